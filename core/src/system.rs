@@ -1,0 +1,215 @@
+//! The trait a variable-mass system implements (by the `#[variable_mass_system]` macro, or by
+//! hand), in the paper's language.
+//!
+//! Two vectors of the same shape appear throughout:
+//!
+//! * the **state** `[q, p, m_s]` — coordinates, momenta p = ∂*L/∂q̇ (eq. 8) and the state
+//!   masses; this is what the steppers integrate;
+//! * the **velocity state** `[q, q̇, m_s]` — the same with velocities in place of momenta;
+//!   the Lagrange-side functions take it.
+//!
+//! A system with `N` coordinates and `K` state masses has `S = 2N + K`.
+//!
+//! The required methods are the Lagrange side, which a person can write by hand for a small
+//! system; everything else (q̇(q, p), H, the canonical equations, the true state rate, the
+//! energy-budget power, the Jacobian) has a default built from them, which generated code
+//! replaces with specialised formulas.
+
+use nalgebra::{SMatrix, SVector};
+
+/// Why a system could not be evaluated at a state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SystemError {
+    /// The mass matrix ∂²L/∂q̇² is singular (or not positive definite) here, so q̇ cannot be
+    /// recovered from p.
+    #[error("the mass matrix is singular, so q̇ cannot be recovered from p")]
+    SingularMassMatrix,
+    /// A mass (or inertia) is zero or negative; its index is into
+    /// [`VariableMassSystem::MASSES`].
+    #[error("mass {index} is not positive")]
+    NonPositiveMass {
+        /// Index into [`VariableMassSystem::MASSES`].
+        index: usize,
+    },
+}
+
+/// A holonomic variable-mass system in the sense of Zhang Jiuzhu (2015): generalized
+/// coordinates q, frozen masses mᵢ(q, t) or state masses, a Lagrangian L = T − V, and
+/// generalized forces Q* (active, non-potential), R1 (reactive thrust) and R2 (impact).
+///
+/// `N` is the number of coordinates, `S = 2N + K` the state dimension with `K` state masses.
+pub trait VariableMassSystem<const N: usize, const S: usize> {
+    /// Names of the generalized coordinates, in state order.
+    const COORDINATES: [&'static str; N];
+    /// Names of every frozen mass and inertia. The first `S - 2N` are the state masses, in
+    /// state order; the rest follow laws m(q, t).
+    const MASSES: &'static [&'static str];
+
+    /// The number of state masses, `K = S − 2N`.
+    const STATE_MASSES: usize = S - 2 * N;
+
+    /// The value of mass `index` (into [`Self::MASSES`]) at time `t`. Only q and the state
+    /// masses of `state` are read, so either a state or a velocity state may be passed.
+    fn mass(&self, index: usize, t: f64, state: &SVector<f64, S>) -> f64;
+
+    /// ṁ of mass `index` along the motion, at the velocity state `velocity_state`: for a
+    /// state mass its declared rate, for a law m(q, t) its total time derivative.
+    fn mass_rate(&self, index: usize, t: f64, velocity_state: &SVector<f64, S>) -> f64;
+
+    /// The mass matrix M = ∂²L/∂q̇², with masses frozen. Reads q and the state masses only.
+    fn mass_matrix(&self, t: f64, state: &SVector<f64, S>) -> SMatrix<f64, N, N>;
+
+    /// The generalized momenta p = ∂*L/∂q̇ (eq. 8) at a velocity state.
+    fn momenta(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N>;
+
+    /// The Lagrangian L = T − V at a velocity state.
+    fn lagrangian(&self, t: f64, velocity_state: &SVector<f64, S>) -> f64;
+
+    /// ∂*L/∂q at a velocity state: the partial with masses frozen (−∂*H/∂q, eq. 13).
+    fn lagrangian_gradient(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N>;
+
+    /// The generalized active (non-potential) force Q*.
+    fn active_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N>;
+
+    /// The generalized reactive thrust R1 = Σᵢ Q1ᵢ v_r1ᵢ · ∂rᵢ/∂q.
+    fn reactive_thrust(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N>;
+
+    /// The generalized impact force R2 = Σᵢ Q2ᵢ v_r2ᵢ · ∂rᵢ/∂q.
+    fn impact_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N>;
+
+    /// The mass-flux term Σᵢ ṁᵢ ∂*p/∂mᵢ that turns d*p/dt into the true ṗ (SPEC §1).
+    fn mass_flux_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N>;
+
+    /// Lagrange-form accelerations q̈(q, q̇, t), from eq. 6 with the frozen-mass rule:
+    /// M q̈ = ∂*L/∂q − ∂*p/∂q · q̇ − ∂*p/∂t + Q* − R1 + R2.
+    fn accelerations(
+        &self,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+    ) -> Result<SVector<f64, N>, SystemError>;
+
+    // ---------------------------------------------------------------- provided methods
+
+    /// Q* − R1 + R2 + Σ ṁᵢ ∂*p/∂mᵢ: everything that drives the true ṗ besides ∂*L/∂q.
+    fn generalized_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+        self.active_force(t, velocity_state) - self.reactive_thrust(t, velocity_state)
+            + self.impact_force(t, velocity_state)
+            + self.mass_flux_force(t, velocity_state)
+    }
+
+    /// Checks that every mass and inertia is positive.
+    fn check_masses(&self, t: f64, state: &SVector<f64, S>) -> Result<(), SystemError> {
+        for index in 0..Self::MASSES.len() {
+            let mass = self.mass(index, t, state);
+            // NaN fails `mass > 0.0` too, so it is rejected here as well.
+            if mass.is_nan() || mass <= 0.0 {
+                return Err(SystemError::NonPositiveMass { index });
+            }
+        }
+        Ok(())
+    }
+
+    /// q̇(q, p, t): solves M q̇ = p − p(q, 0, t) (p is affine in q̇ because L is at most
+    /// quadratic in the velocities).
+    fn velocities(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, N>, SystemError> {
+        let mut at_rest = *state;
+        at_rest.fixed_rows_mut::<N>(N).fill(0.0);
+        let offset = self.momenta(t, &at_rest);
+        let rhs = state.fixed_rows::<N>(N) - offset;
+        let mass_matrix = self.mass_matrix(t, state);
+        mass_matrix
+            .cholesky()
+            .map(|c| c.solve(&rhs))
+            .ok_or(SystemError::SingularMassMatrix)
+    }
+
+    /// The velocity state `[q, q̇, m_s]` of a state `[q, p, m_s]`.
+    fn velocity_state(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+    ) -> Result<SVector<f64, S>, SystemError> {
+        let velocities = self.velocities(t, state)?;
+        let mut out = *state;
+        out.fixed_rows_mut::<N>(N).copy_from(&velocities);
+        Ok(out)
+    }
+
+    /// The state `[q, p, m_s]` of a velocity state `[q, q̇, m_s]`.
+    fn momentum_state(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, S> {
+        let momenta = self.momenta(t, velocity_state);
+        let mut out = *velocity_state;
+        out.fixed_rows_mut::<N>(N).copy_from(&momenta);
+        out
+    }
+
+    /// The Hamiltonian H(q, p, t) = p·q̇ − L with q̇ eliminated (eqs. 9–10).
+    fn hamiltonian(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
+        let velocity_state = self.velocity_state(t, state)?;
+        let p = state.fixed_rows::<N>(N);
+        let v = velocity_state.fixed_rows::<N>(N);
+        Ok(p.dot(&v) - self.lagrangian(t, &velocity_state))
+    }
+
+    /// The canonical equations of the paper (eq. 14): `(q̇, d*p/dt)` with
+    /// q̇ = ∂*H/∂p and d*p/dt = −∂*H/∂q + Q* − R1 + R2. Note d*p/dt is not the true ṗ;
+    /// see [`Self::state_rate`].
+    fn canonical_rates(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+    ) -> Result<(SVector<f64, N>, SVector<f64, N>), SystemError> {
+        let velocity_state = self.velocity_state(t, state)?;
+        // −∂*H/∂q|_p = ∂*L/∂q|_q̇ (eq. 13).
+        let frozen_rate = self.lagrangian_gradient(t, &velocity_state)
+            + self.active_force(t, &velocity_state)
+            - self.reactive_thrust(t, &velocity_state)
+            + self.impact_force(t, &velocity_state);
+        Ok((velocity_state.fixed_rows::<N>(N).into_owned(), frozen_rate))
+    }
+
+    /// The rate of the state the steppers integrate: `[q̇, ṗ, ṁ_s]` with the true momentum rate
+    /// ṗ = d*p/dt + Σᵢ ṁᵢ ∂*p/∂mᵢ.
+    fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
+        let velocity_state = self.velocity_state(t, state)?;
+        let momentum_rate = self.lagrangian_gradient(t, &velocity_state)
+            + self.generalized_force(t, &velocity_state);
+        let mut rate = SVector::<f64, S>::zeros();
+        rate.fixed_rows_mut::<N>(0)
+            .copy_from(&velocity_state.fixed_rows::<N>(N));
+        rate.fixed_rows_mut::<N>(N).copy_from(&momentum_rate);
+        for k in 0..Self::STATE_MASSES {
+            rate[2 * N + k] = self.mass_rate(k, t, &velocity_state);
+        }
+        Ok(rate)
+    }
+
+    /// The energy-budget power dH/dt along the motion (SPEC §1). The default differentiates
+    /// H along the state rate by central differences; generated systems return the formula
+    /// ∂*H/∂t + q̇·(Q* − R1 + R2 + Σ ṁᵢ ∂*p/∂mᵢ) + Σ ṁᵢ ∂H/∂mᵢ.
+    fn power(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
+        let rate = self.state_rate(t, state)?;
+        let scale = state.norm().max(1.0) * (1.0 + t.abs());
+        let h = f64::EPSILON.powf(1.0 / 3.0) * scale / rate.norm().max(1.0).max(scale);
+        let forward = self.hamiltonian(t + h, &(state + rate * h))?;
+        let backward = self.hamiltonian(t - h, &(state - rate * h))?;
+        Ok((forward - backward) / (2.0 * h))
+    }
+
+    /// The Jacobian ∂(state rate)/∂(state) for implicit steppers. The default uses central
+    /// differences; generated systems return the symbolic Jacobian.
+    fn jacobian(&self, t: f64, state: &SVector<f64, S>) -> Result<SMatrix<f64, S, S>, SystemError> {
+        let mut jacobian = SMatrix::<f64, S, S>::zeros();
+        let mut probe = *state;
+        for j in 0..S {
+            let h = f64::EPSILON.powf(1.0 / 3.0) * state[j].abs().max(1.0);
+            probe[j] = state[j] + h;
+            let forward = self.state_rate(t, &probe)?;
+            probe[j] = state[j] - h;
+            let backward = self.state_rate(t, &probe)?;
+            probe[j] = state[j];
+            jacobian.set_column(j, &((forward - backward) / (2.0 * h)));
+        }
+        Ok(jacobian)
+    }
+}

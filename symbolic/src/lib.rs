@@ -1,0 +1,19 @@
+//! The symbolic engine of varmass.
+//!
+//! The pipeline reads top to bottom, one module a stage:
+//!
+//! 1. [`parse`] — the DSL text (SPEC §2) into a statement AST that keeps positions;
+//! 2. [`expr`] — hash-consed expressions with exact rational constants, the frozen-mass
+//!    calculus (∂*, d*/dt), canonical simplification, evaluation, printing and CSE;
+//! 3. `mechanics` — from a checked system to H, the canonical equations and the forces
+//!    (Zhang Jiuzhu, *Hamilton's canonical equations and Hamilton's principle for variable
+//!    mass systems*, Mechanics in Engineering 37(1):125–128, 2015).
+//!
+//! Nothing in this crate panics on user input: every problem is a [`Diagnostic`] with the
+//! position of the offending text.
+#![warn(missing_docs)]
+
+pub mod expr;
+pub mod parse;
+
+pub use parse::{Diagnostic, Span};

@@ -1,0 +1,205 @@
+//! The typed view of a DSL system (SPEC §2): statements and expressions, each with its
+//! [`Span`]. The AST is purely syntactic: names are not resolved here (that is the
+//! `mechanics` stage's job), so `x` in an expression is just [`Expr::Name`].
+
+use super::span::{Span, Spanned};
+use std::fmt;
+
+/// An expression node with its position.
+pub type ExprNode = Spanned<Box<Expr>>;
+
+/// Binary operators, in the DSL's spelling.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BinOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `^` (right-associative, binds tighter than unary minus: `-x^2` is `-(x^2)`)
+    Pow,
+}
+
+impl fmt::Display for BinOp {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::Pow => "^",
+        })
+    }
+}
+
+/// An expression as written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Expr {
+    /// A numeric literal, kept as written (`9.81`, `1e-3`, `2`) so that the engine can turn
+    /// it into an exact rational.
+    Number(String),
+    /// An identifier: a coordinate, parameter, mass, inertia, definition, `t`, or in a
+    /// `check` a derived quantity such as `H` or `p_x`.
+    Name(String),
+    /// `x'` (order 1, a velocity) or `x''` (order 2, an acceleration).
+    Derivative {
+        /// The coordinate's name.
+        name: String,
+        /// Number of primes, 1 or 2.
+        order: u8,
+    },
+    /// Unary minus.
+    Neg(ExprNode),
+    /// A binary operation.
+    Binary {
+        /// The operator.
+        op: BinOp,
+        /// Left operand.
+        lhs: ExprNode,
+        /// Right operand.
+        rhs: ExprNode,
+    },
+    /// A function call such as `sin(theta)` or `atan2(y, x)`. The name is not checked
+    /// against the known functions here.
+    Call {
+        /// The function's name as written, with its span.
+        func: Spanned<String>,
+        /// The arguments.
+        args: Vec<ExprNode>,
+    },
+}
+
+/// A bracketed vector `[e1, e2, e3]` of 1, 2 or 3 components, with the span of the brackets.
+pub type VectorNode = Spanned<Vec<ExprNode>>;
+
+/// A whole system: its statements in source order.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct SystemAst {
+    /// The statements, in the order written.
+    pub statements: Vec<Statement>,
+}
+
+/// One statement with the span of its whole text (keyword to end of line or `;`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Statement {
+    /// What the statement says.
+    pub kind: StatementKind,
+    /// Where it is.
+    pub span: Span,
+}
+
+/// The statements of SPEC §2.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StatementKind {
+    /// `coordinates x, y`
+    Coordinates(Vec<Spanned<String>>),
+    /// `mass m = m0 + c*x` or `mass m: state, rate -mu`
+    Mass(MassDecl),
+    /// `inertia J = …` (frozen like a mass)
+    Inertia(MassDecl),
+    /// `let w = …`: a plain definition, inlined, not frozen.
+    Let {
+        /// The defined name.
+        name: Spanned<String>,
+        /// Its value.
+        value: ExprNode,
+    },
+    /// `body sled: mass m, position [x]`
+    Body(BodyDecl),
+    /// `kinetic …`: an extra term of T.
+    Kinetic(ExprNode),
+    /// `potential …`: a term of V.
+    Potential(ExprNode),
+    /// `lagrangian …`: a term of L given directly.
+    Lagrangian(ExprNode),
+    /// `force x: …` (generalized Q*) or `force sled: [ … ]` (applied to a body).
+    Force(Load),
+    /// `thrust x: …`: the generalized reactive thrust R1 given directly.
+    Thrust(Load),
+    /// `impact x: …`: the generalized impact force R2 given directly.
+    Impact(Load),
+    /// `outflow rocket: rate mu, relative_velocity [-u_e]`
+    Outflow(Flow),
+    /// `inflow sled: velocity [0]`
+    Inflow(Flow),
+    /// `check lhs = rhs`: an identity verified at derivation time.
+    Check {
+        /// Left side (usually a derived quantity such as `H`, `p_x` or `x''`).
+        lhs: ExprNode,
+        /// Right side.
+        rhs: ExprNode,
+    },
+}
+
+/// A `mass` or `inertia` declaration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MassDecl {
+    /// The frozen symbol's name.
+    pub name: Spanned<String>,
+    /// How it changes.
+    pub law: MassLaw,
+}
+
+/// How a mass (or inertia) evolves.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MassLaw {
+    /// `= expr`: a law m(q, t).
+    Law(ExprNode),
+    /// `: state, rate expr`: a state variable with its own rate ṁ.
+    State {
+        /// ṁ as an expression.
+        rate: ExprNode,
+    },
+}
+
+/// A `body` declaration: a particle with a frozen mass and a position r(q, t).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyDecl {
+    /// The body's name.
+    pub name: Spanned<String>,
+    /// The name of its mass (declared by `mass`).
+    pub mass: Spanned<String>,
+    /// Its position in 1, 2 or 3 dimensions.
+    pub position: VectorNode,
+}
+
+/// The target and value of `force`, `thrust` or `impact`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Load {
+    /// A coordinate (then the value is generalized, a scalar) or a body (then a vector).
+    pub target: Spanned<String>,
+    /// The value as written.
+    pub value: LoadValue,
+}
+
+/// A scalar (generalized) or vector (applied to a body) load.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoadValue {
+    /// A generalized component, for a coordinate target.
+    Scalar(ExprNode),
+    /// A vector in the body's dimensions, for a body target.
+    Vector(VectorNode),
+}
+
+/// An `inflow` or `outflow` on a body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Flow {
+    /// The body the mass joins or leaves.
+    pub body: Spanned<String>,
+    /// `rate …` (Q2 or Q1, ≥ 0). Absent: ṁ for inflow, −ṁ for outflow.
+    pub rate: Option<ExprNode>,
+    /// The velocity of the mass that arrives or leaves, if given.
+    pub velocity: Option<FlowVelocity>,
+}
+
+/// How the velocity of flowing mass is given.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FlowVelocity {
+    /// `velocity [...]`: absolute velocity u of the mass.
+    Absolute(VectorNode),
+    /// `relative_velocity [...]`: v_r = u − v relative to the body.
+    Relative(VectorNode),
+}
