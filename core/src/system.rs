@@ -17,6 +17,10 @@
 
 use nalgebra::{SMatrix, SVector};
 
+/// ε^(1/3), the step of a central difference that balances truncation against rounding.
+/// A literal because `f64::powf` is not available without `std`.
+const CBRT_EPSILON: f64 = 6.055_454_452_393_343e-6;
+
 /// Why a system could not be evaluated at a state.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum SystemError {
@@ -190,7 +194,7 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     fn power(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
         let rate = self.state_rate(t, state)?;
         let scale = state.norm().max(1.0) * (1.0 + t.abs());
-        let h = f64::EPSILON.powf(1.0 / 3.0) * scale / rate.norm().max(1.0).max(scale);
+        let h = CBRT_EPSILON * scale / rate.norm().max(1.0).max(scale);
         let forward = self.hamiltonian(t + h, &(state + rate * h))?;
         let backward = self.hamiltonian(t - h, &(state - rate * h))?;
         Ok((forward - backward) / (2.0 * h))
@@ -202,7 +206,7 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         let mut jacobian = SMatrix::<f64, S, S>::zeros();
         let mut probe = *state;
         for j in 0..S {
-            let h = f64::EPSILON.powf(1.0 / 3.0) * state[j].abs().max(1.0);
+            let h = CBRT_EPSILON * state[j].abs().max(1.0);
             probe[j] = state[j] + h;
             let forward = self.state_rate(t, &probe)?;
             probe[j] = state[j] - h;

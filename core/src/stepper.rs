@@ -1,0 +1,261 @@
+//! What every stepper shares: the [`Stepper`] trait a run drives, the [`Progress`] of a
+//! stepper (time, state, last step, statistics) and the checks made after every step.
+
+use nalgebra::SVector;
+
+use crate::error::{is_finite, StepError};
+use crate::system::VariableMassSystem;
+
+/// What one call of [`Stepper::step`] achieved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StepOutcome {
+    /// An internal step was taken; the stop time is still ahead.
+    Advanced,
+    /// The step landed exactly on the stop time set by [`Stepper::set_stop_time`].
+    ReachedStopTime,
+}
+
+/// Work counters of a stepper. They count the stepper's own work; the extras a run records
+/// (H, power, event functions) are not included.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Statistics {
+    /// Steps accepted.
+    pub accepted_steps: usize,
+    /// Step attempts rejected by the error control (or because a trial state was unusable).
+    pub rejected_steps: usize,
+    /// Evaluations of the state rate (for the variational stepper: evaluations of the
+    /// Lagrange-side functions at a midpoint).
+    pub rate_evaluations: usize,
+    /// Evaluations of the Jacobian ([`VariableMassSystem::jacobian`], or a finite-difference
+    /// Jacobian of a discrete residual).
+    pub jacobian_evaluations: usize,
+    /// Newton iterations of implicit steppers.
+    pub newton_iterations: usize,
+}
+
+/// Where a stepper is: its time and state, the start of its last step, the stop time it
+/// must not pass, and its statistics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress<const S: usize> {
+    time: f64,
+    state: SVector<f64, S>,
+    previous_time: f64,
+    previous_state: SVector<f64, S>,
+    stop_time: Option<f64>,
+    pub(crate) statistics: Statistics,
+}
+
+impl<const S: usize> Progress<S> {
+    /// Checks the initial value and starts at it.
+    pub(crate) fn new<Sys, const N: usize>(
+        system: &Sys,
+        time: f64,
+        state: SVector<f64, S>,
+    ) -> Result<Self, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        if !time.is_finite() {
+            return Err(StepError::InvalidConfiguration {
+                reason: "the initial time is not finite",
+            });
+        }
+        check_state(system, time, &state)?;
+        Ok(Self {
+            time,
+            state,
+            previous_time: time,
+            previous_state: state,
+            stop_time: None,
+            statistics: Statistics::default(),
+        })
+    }
+
+    /// Restarts at a new initial value, keeping the statistics and the stop time.
+    pub(crate) fn restart<Sys, const N: usize>(
+        &mut self,
+        system: &Sys,
+        time: f64,
+        state: SVector<f64, S>,
+    ) -> Result<(), StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let statistics = self.statistics;
+        let stop_time = self.stop_time;
+        *self = Self::new(system, time, state)?;
+        self.statistics = statistics;
+        self.stop_time = stop_time.filter(|&stop| stop >= time);
+        Ok(())
+    }
+
+    /// The current time.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The current state `[q, p, m_s]`.
+    pub fn state(&self) -> &SVector<f64, S> {
+        &self.state
+    }
+
+    /// The time at the start of the last accepted step (the initial time before any step).
+    pub fn previous_time(&self) -> f64 {
+        self.previous_time
+    }
+
+    /// The state at the start of the last accepted step.
+    pub fn previous_state(&self) -> &SVector<f64, S> {
+        &self.previous_state
+    }
+
+    /// The time the stepper will land on exactly and not pass, if one is set.
+    pub fn stop_time(&self) -> Option<f64> {
+        self.stop_time
+    }
+
+    /// The work counters.
+    pub fn statistics(&self) -> &Statistics {
+        &self.statistics
+    }
+
+    /// Sets the stop time; it must be finite and not before the current time.
+    pub(crate) fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
+        if !stop_time.is_finite() || stop_time < self.time {
+            return Err(StepError::InvalidConfiguration {
+                reason: "the stop time must be finite and not before the current time",
+            });
+        }
+        self.stop_time = Some(stop_time);
+        Ok(())
+    }
+
+    /// The step to take given a nominal one: the nominal step, or what remains to the stop
+    /// time when that is (nearly) less. The `bool` says whether the step reaches it. A
+    /// remainder within a millionth of a step of the stop time is absorbed into this step
+    /// rather than left as a sliver step that only rounding would create.
+    pub(crate) fn next_step(&self, nominal: f64) -> (f64, bool) {
+        match self.stop_time {
+            Some(stop) if self.time + nominal * (1.0 + 1e-6) >= stop => (stop - self.time, true),
+            _ => (nominal, false),
+        }
+    }
+
+    /// Accepts a new state after checking it. With `reaches_stop` the time is set to the
+    /// stop time exactly, so rounding in `time + h` cannot leave a sliver.
+    pub(crate) fn accept<Sys, const N: usize>(
+        &mut self,
+        system: &Sys,
+        step: f64,
+        reaches_stop: bool,
+        state: SVector<f64, S>,
+    ) -> Result<StepOutcome, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let time = match (reaches_stop, self.stop_time) {
+            (true, Some(stop)) => stop,
+            _ => self.time + step,
+        };
+        check_state(system, time, &state)?;
+        self.previous_time = self.time;
+        self.previous_state = self.state;
+        self.time = time;
+        self.state = state;
+        self.statistics.accepted_steps += 1;
+        Ok(if reaches_stop {
+            StepOutcome::ReachedStopTime
+        } else {
+            StepOutcome::Advanced
+        })
+    }
+}
+
+/// The checks made on every state a stepper produces: finite, every mass positive.
+pub(crate) fn check_state<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    time: f64,
+    state: &SVector<f64, S>,
+) -> Result<(), StepError<S>>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    if !is_finite(state) {
+        return Err(StepError::NonFiniteState {
+            time,
+            state: *state,
+        });
+    }
+    system
+        .check_masses(time, state)
+        .map_err(|error| StepError::from_system(system, error, time, state))
+}
+
+/// The state rate at `(time, state)`, counted, with a failure turned into a typed error.
+pub(crate) fn state_rate<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    statistics: &mut Statistics,
+    time: f64,
+    state: &SVector<f64, S>,
+) -> Result<SVector<f64, S>, StepError<S>>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    statistics.rate_evaluations += 1;
+    if !is_finite(state) {
+        return Err(StepError::NonFiniteState {
+            time,
+            state: *state,
+        });
+    }
+    system
+        .state_rate(time, state)
+        .map_err(|error| StepError::from_system(system, error, time, state))
+}
+
+/// A monomorphized one-step method for a [`VariableMassSystem`]. Runs
+/// ([`crate::run::run`]) drive any stepper through this trait.
+pub trait Stepper<const N: usize, const S: usize> {
+    /// The system being integrated.
+    type System: VariableMassSystem<N, S>;
+
+    /// The system being integrated.
+    fn system(&self) -> &Self::System;
+
+    /// Time, state, last step and statistics.
+    fn progress(&self) -> &Progress<S>;
+
+    /// Sets a time the stepper will land on exactly and not pass. It must be finite and not
+    /// before the current time.
+    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>>;
+
+    /// Restarts from a new initial value (e.g. after an event changed the state), keeping
+    /// the statistics and, if still ahead, the stop time.
+    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>>;
+
+    /// Takes one accepted step. The new state is checked (finite, masses positive) before it
+    /// is accepted; on error the stepper stays at its last accepted state.
+    fn step(&mut self) -> Result<StepOutcome, StepError<S>>;
+
+    /// The stepper's own continuous extension over the last step, if it has one; `None`
+    /// otherwise, and runs then interpolate by cubic Hermite with the state rates at the
+    /// ends of the step.
+    fn dense_output(&self, _time: f64) -> Option<SVector<f64, S>> {
+        None
+    }
+
+    /// The current time.
+    fn time(&self) -> f64 {
+        self.progress().time()
+    }
+
+    /// The current state `[q, p, m_s]`.
+    fn state(&self) -> &SVector<f64, S> {
+        self.progress().state()
+    }
+
+    /// The work counters.
+    fn statistics(&self) -> &Statistics {
+        self.progress().statistics()
+    }
+}

@@ -1,0 +1,482 @@
+//! The Dormand–Prince 5(4) pair: adaptive fifth-order steps with a fourth-order error
+//! estimate, a PI step-size controller and a fourth-order continuous extension.
+//!
+//! Butcher tableau (Dormand & Prince, *A family of embedded Runge–Kutta formulae*, J. Comp.
+//! Appl. Math. 6, 1980; Hairer–Nørsett–Wanner I, II.5, Table 5.2). The method is FSAL: the
+//! last stage is the rate at the new state and becomes the first stage of the next step.
+//!
+//! ```text
+//!  0    |
+//!  1/5  | 1/5
+//!  3/10 | 3/40        9/40
+//!  4/5  | 44/45      −56/15       32/9
+//!  8/9  | 19372/6561 −25360/2187  64448/6561  −212/729
+//!  1    | 9017/3168  −355/33      46732/5247   49/176   −5103/18656
+//!  1    | 35/384      0           500/1113     125/192  −2187/6784    11/84
+//! ------+----------------------------------------------------------------------------
+//!  y₁   | 35/384      0           500/1113     125/192  −2187/6784    11/84     0
+//!  ŷ₁   | 5179/57600  0           7571/16695   393/640  −92097/339200 187/2100  1/40
+//! ```
+//!
+//! The error estimate is y₁ − ŷ₁ = h Σ eⱼ kⱼ with e = b − b̂. Dense output is Hairer's
+//! `CONTD5` (HNW I, II.6, and the `dopri5` code): a quartic in θ = (t − t₀)/h through y₀ and
+//! y₁ with the end slopes k₁ and k₇ and one more combination of the stages (coefficients dⱼ).
+//! The step-size controller is the PI controller of HNW II, IV.2 (eq. 2.43c) with the
+//! defaults of `dopri5`: β = 0.04, safety 0.9, factor in [0.2, 10].
+
+use nalgebra::SVector;
+
+use super::FixedStep;
+use crate::error::StepError;
+use crate::math::{powf, sqrt};
+use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
+use crate::system::VariableMassSystem;
+
+const C2: f64 = 1.0 / 5.0;
+const C3: f64 = 3.0 / 10.0;
+const C4: f64 = 4.0 / 5.0;
+const C5: f64 = 8.0 / 9.0;
+const A21: f64 = 1.0 / 5.0;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const B1: f64 = 35.0 / 384.0;
+const B3: f64 = 500.0 / 1113.0;
+const B4: f64 = 125.0 / 192.0;
+const B5: f64 = -2187.0 / 6784.0;
+const B6: f64 = 11.0 / 84.0;
+// e = b − b̂.
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+// Dense output (CONTD5).
+const D1: f64 = -12715105075.0 / 11282082432.0;
+const D3: f64 = 87487479700.0 / 32700410799.0;
+const D4: f64 = -10690763975.0 / 1880347072.0;
+const D5: f64 = 701980252875.0 / 199316789632.0;
+const D6: f64 = -1453857185.0 / 822651844.0;
+const D7: f64 = 69997945.0 / 29380423.0;
+
+/// The error-control settings of the adaptive mode. Defaults are those of Hairer's `dopri5`
+/// with tolerances 1e-6 (relative) and 1e-9 (absolute).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveControl {
+    /// Relative tolerance per component.
+    pub relative_tolerance: f64,
+    /// Absolute tolerance per component.
+    pub absolute_tolerance: f64,
+    /// The first step; `None` chooses it from the problem (HNW I, II.4).
+    pub initial_step: Option<f64>,
+    /// The largest step allowed.
+    pub max_step: f64,
+    /// Safety factor on the optimal step, in (0, 1].
+    pub safety: f64,
+    /// Smallest factor by which one step may shrink the next, in (0, 1].
+    pub min_factor: f64,
+    /// Largest factor by which one step may grow the next, ≥ 1.
+    pub max_factor: f64,
+    /// The PI controller's weight β on the previous error (0 gives the classical I
+    /// controller).
+    pub beta: f64,
+}
+
+impl Default for AdaptiveControl {
+    fn default() -> Self {
+        Self {
+            relative_tolerance: 1e-6,
+            absolute_tolerance: 1e-9,
+            initial_step: None,
+            max_step: f64::INFINITY,
+            safety: 0.9,
+            min_factor: 0.2,
+            max_factor: 10.0,
+            beta: 0.04,
+        }
+    }
+}
+
+impl AdaptiveControl {
+    fn validated<const S: usize>(self) -> Result<Self, StepError<S>> {
+        let tolerances_ok = self.relative_tolerance >= 0.0
+            && self.absolute_tolerance >= 0.0
+            && self.relative_tolerance.is_finite()
+            && self.absolute_tolerance.is_finite()
+            && self.relative_tolerance + self.absolute_tolerance > 0.0;
+        let initial_ok = self.initial_step.is_none_or(|h| h.is_finite() && h > 0.0);
+        let factors_ok = self.safety > 0.0
+            && self.safety <= 1.0
+            && self.min_factor > 0.0
+            && self.min_factor <= 1.0
+            && self.max_factor >= 1.0
+            && self.max_factor.is_finite()
+            && (0.0..0.2).contains(&self.beta)
+            && self.max_step > 0.0;
+        if tolerances_ok && initial_ok && factors_ok {
+            Ok(self)
+        } else {
+            Err(StepError::InvalidConfiguration {
+                reason: "adaptive control: tolerances must be non-negative and not both zero, \
+                         steps positive, safety and min_factor in (0, 1], max_factor ≥ 1, \
+                         beta in [0, 0.2)",
+            })
+        }
+    }
+}
+
+/// How the Dormand–Prince stepper chooses its steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StepControl {
+    /// Error-controlled steps.
+    Adaptive(AdaptiveControl),
+    /// Every step of the same size, accepted without error control (e.g. to measure the
+    /// order of convergence).
+    Fixed(FixedStep),
+}
+
+impl Default for StepControl {
+    fn default() -> Self {
+        Self::Adaptive(AdaptiveControl::default())
+    }
+}
+
+/// The Dormand–Prince 5(4) stepper on the state `[q, p, m_s]`.
+#[derive(Clone, Debug)]
+pub struct DormandPrince<'a, Sys, const N: usize, const S: usize> {
+    system: &'a Sys,
+    progress: Progress<S>,
+    control: StepControl,
+    /// The size of the next step to try (0 until the first step chooses it).
+    next_step: f64,
+    /// The size of the last accepted step, for the dense output.
+    last_step: f64,
+    /// The stages k₁…k₇ of the last accepted step.
+    stages: [SVector<f64, S>; 7],
+    /// The rate at the current state (FSAL), if known.
+    current_rate: Option<SVector<f64, S>>,
+    /// The PI controller's memory of the last accepted error.
+    previous_error: f64,
+    /// Whether the last attempt was rejected, so the next step may not grow.
+    last_rejected: bool,
+}
+
+/// One attempted step: the new state, its stages and its scaled error.
+struct Attempt<const S: usize> {
+    state: SVector<f64, S>,
+    stages: [SVector<f64, S>; 7],
+    error: f64,
+}
+
+impl<'a, Sys, const N: usize, const S: usize> DormandPrince<'a, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    /// Starts at `(time, state)`; the state and the control are checked.
+    pub fn new(
+        system: &'a Sys,
+        time: f64,
+        state: SVector<f64, S>,
+        control: StepControl,
+    ) -> Result<Self, StepError<S>> {
+        let control = match control {
+            StepControl::Adaptive(adaptive) => StepControl::Adaptive(adaptive.validated()?),
+            StepControl::Fixed(fixed) => StepControl::Fixed(FixedStep {
+                step: FixedStep::validated(fixed.step)?,
+            }),
+        };
+        Ok(Self {
+            system,
+            progress: Progress::new(system, time, state)?,
+            control,
+            next_step: 0.0,
+            last_step: 0.0,
+            stages: [SVector::zeros(); 7],
+            current_rate: None,
+            previous_error: 1e-4,
+            last_rejected: false,
+        })
+    }
+
+    /// The dense output over the last accepted step: the fourth-order continuous extension,
+    /// evaluated at `time` (meant for `time` within the step; outside it extrapolates).
+    /// Before the first step it returns the current state.
+    pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
+        let h = self.last_step;
+        let y0 = self.progress.previous_state();
+        let y1 = self.progress.state();
+        if h <= 0.0 {
+            return *y1;
+        }
+        let k = &self.stages;
+        let theta = (time - self.progress.previous_time()) / h;
+        let theta1 = 1.0 - theta;
+        let difference = y1 - y0;
+        let first = k[0] * h - difference;
+        let second = difference - k[6] * h - first;
+        let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
+        y0 + (difference + (first + (second + third * theta1) * theta) * theta1) * theta
+    }
+
+    /// The size of the step the stepper will try next (0 before the first step).
+    pub fn proposed_step(&self) -> f64 {
+        self.next_step
+    }
+
+    /// The six new stages and the new state of a step of size `h` from `(t0, y0)`.
+    fn attempt(
+        system: &Sys,
+        statistics: &mut Statistics,
+        t0: f64,
+        y0: &SVector<f64, S>,
+        k1: &SVector<f64, S>,
+        h: f64,
+        adaptive: Option<&AdaptiveControl>,
+    ) -> Result<Attempt<S>, StepError<S>> {
+        let k1 = *k1;
+        let k2 = state_rate(system, statistics, t0 + C2 * h, &(y0 + k1 * (A21 * h)))?;
+        let y3 = y0 + (k1 * A31 + k2 * A32) * h;
+        let k3 = state_rate(system, statistics, t0 + C3 * h, &y3)?;
+        let y4 = y0 + (k1 * A41 + k2 * A42 + k3 * A43) * h;
+        let k4 = state_rate(system, statistics, t0 + C4 * h, &y4)?;
+        let y5 = y0 + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h;
+        let k5 = state_rate(system, statistics, t0 + C5 * h, &y5)?;
+        let y6 = y0 + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h;
+        let k6 = state_rate(system, statistics, t0 + h, &y6)?;
+        let y1 = y0 + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5 + k6 * B6) * h;
+        check_state(system, t0 + h, &y1)?;
+        let k7 = state_rate(system, statistics, t0 + h, &y1)?;
+        let error = match adaptive {
+            None => 0.0,
+            Some(control) => {
+                let estimate = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
+                scaled_norm(&estimate, y0, &y1, control)
+            }
+        };
+        Ok(Attempt {
+            state: y1,
+            stages: [k1, k2, k3, k4, k5, k6, k7],
+            error,
+        })
+    }
+
+    /// The first step for the adaptive mode (HNW I, II.4, the `hinit` of `dopri5`): a step
+    /// for which an explicit Euler step would change the state by about 1 % of its size,
+    /// refined by an estimate of the second derivative.
+    fn initial_step(&mut self, k1: &SVector<f64, S>, control: &AdaptiveControl) -> f64 {
+        let t0 = self.progress.time();
+        let y0 = *self.progress.state();
+        let weight =
+            |i: usize| control.absolute_tolerance + control.relative_tolerance * y0[i].abs();
+        let norm = |v: &SVector<f64, S>| {
+            sqrt((0..S).map(|i| square(v[i] / weight(i))).sum::<f64>() / S as f64)
+        };
+        let rate_norm = norm(k1);
+        let state_norm = norm(&y0);
+        let mut h = if rate_norm <= 1e-5 || state_norm <= 1e-5 {
+            1e-6
+        } else {
+            0.01 * state_norm / rate_norm
+        };
+        h = h.min(control.max_step);
+        let probe = y0 + k1 * h;
+        let Ok(k_probe) = state_rate(self.system, &mut self.progress.statistics, t0 + h, &probe)
+        else {
+            // The probe left the domain (e.g. a mass went negative): the first guess is
+            // already small enough to try; rejections will shrink it further if needed.
+            return h;
+        };
+        let second_derivative = norm(&(k_probe - k1)) / h;
+        let scale = second_derivative.max(rate_norm);
+        let refined = if scale <= 1e-15 {
+            (h * 1e-3).max(1e-6)
+        } else {
+            powf(0.01 / scale, 1.0 / 5.0)
+        };
+        (100.0 * h).min(refined).min(control.max_step)
+    }
+}
+
+/// Whether a step of size `h` from `t0` is positive and moves t at all.
+fn resolvable(t0: f64, h: f64) -> bool {
+    h > 0.0 && t0 + h != t0
+}
+
+fn square(x: f64) -> f64 {
+    x * x
+}
+
+/// The RMS of the error estimate, each component scaled by atol + rtol·max(|y₀|, |y₁|).
+fn scaled_norm<const S: usize>(
+    estimate: &SVector<f64, S>,
+    y0: &SVector<f64, S>,
+    y1: &SVector<f64, S>,
+    control: &AdaptiveControl,
+) -> f64 {
+    let sum: f64 = (0..S)
+        .map(|i| {
+            let scale = control.absolute_tolerance
+                + control.relative_tolerance * y0[i].abs().max(y1[i].abs());
+            square(estimate[i] / scale)
+        })
+        .sum();
+    sqrt(sum / S as f64)
+}
+
+impl<Sys, const N: usize, const S: usize> Stepper<N, S> for DormandPrince<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    type System = Sys;
+
+    fn system(&self) -> &Sys {
+        self.system
+    }
+
+    fn progress(&self) -> &Progress<S> {
+        &self.progress
+    }
+
+    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
+        self.progress.set_stop_time(stop_time)
+    }
+
+    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
+        self.progress.restart(self.system, time, state)?;
+        self.current_rate = None;
+        self.last_step = 0.0;
+        self.previous_error = 1e-4;
+        self.last_rejected = false;
+        Ok(())
+    }
+
+    fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
+        Some(self.interpolate(time))
+    }
+
+    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
+        let t0 = self.progress.time();
+        let y0 = *self.progress.state();
+        let k1 = match self.current_rate {
+            Some(rate) => rate,
+            None => {
+                let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;
+                self.current_rate = Some(rate);
+                rate
+            }
+        };
+        if self.next_step <= 0.0 {
+            self.next_step = match self.control {
+                StepControl::Fixed(fixed) => fixed.step,
+                StepControl::Adaptive(control) => match control.initial_step {
+                    Some(h) => h.min(control.max_step),
+                    None => self.initial_step(&k1, &control),
+                },
+            };
+        }
+        let adaptive = match &self.control {
+            StepControl::Adaptive(control) => Some(*control),
+            StepControl::Fixed(_) => None,
+        };
+        loop {
+            let (h, reaches_stop) = self.progress.next_step(self.next_step);
+            if !resolvable(t0, h) {
+                return Err(StepError::StepSizeUnderflow {
+                    time: t0,
+                    state: y0,
+                    step: h,
+                });
+            }
+            let attempt = Self::attempt(
+                self.system,
+                &mut self.progress.statistics,
+                t0,
+                &y0,
+                &k1,
+                h,
+                adaptive.as_ref(),
+            );
+            let Some(control) = adaptive else {
+                let attempt = attempt?;
+                return self.accept(h, reaches_stop, attempt);
+            };
+            match attempt {
+                Ok(attempt) if attempt.error <= 1.0 => {
+                    // PI controller (HNW II, eq. IV.2.43c): h_new = h·err^(−α)·err_old^β
+                    // with α = 1/5 − 0.75β, bounded by the factor limits.
+                    let alpha = 0.2 - 0.75 * control.beta;
+                    let factor = powf(attempt.error, alpha)
+                        / powf(self.previous_error, control.beta)
+                        / control.safety;
+                    let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
+                    let mut next = h / factor;
+                    if self.last_rejected {
+                        next = next.min(h);
+                    }
+                    self.previous_error = attempt.error.max(1e-4);
+                    self.last_rejected = false;
+                    let outcome = self.accept(h, reaches_stop, attempt)?;
+                    if !reaches_stop || next > self.next_step {
+                        self.next_step = next.min(control.max_step);
+                    }
+                    return Ok(outcome);
+                }
+                Ok(attempt) => {
+                    let factor = powf(attempt.error, 0.2 - 0.75 * control.beta) / control.safety;
+                    // A non-finite error estimate (overflowing stages) shrinks the most.
+                    let factor = if attempt.error.is_finite() {
+                        factor.min(1.0 / control.min_factor)
+                    } else {
+                        1.0 / control.min_factor
+                    };
+                    self.next_step = h / factor;
+                    self.last_rejected = true;
+                    self.progress.statistics.rejected_steps += 1;
+                }
+                Err(error) => {
+                    // A trial state outside the domain (non-finite, a mass ≤ 0, a singular
+                    // mass matrix) is a step too long, not yet a failure: shrink and retry.
+                    // If the step underflows, report the cause rather than the underflow.
+                    self.next_step = h * control.min_factor;
+                    self.last_rejected = true;
+                    self.progress.statistics.rejected_steps += 1;
+                    if !resolvable(t0, self.next_step) {
+                        return Err(error);
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    fn accept(
+        &mut self,
+        h: f64,
+        reaches_stop: bool,
+        attempt: Attempt<S>,
+    ) -> Result<StepOutcome, StepError<S>> {
+        let outcome = self
+            .progress
+            .accept(self.system, h, reaches_stop, attempt.state)?;
+        self.stages = attempt.stages;
+        self.current_rate = Some(attempt.stages[6]);
+        self.last_step = h;
+        Ok(outcome)
+    }
+}

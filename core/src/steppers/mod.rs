@@ -1,0 +1,38 @@
+//! The steppers, one per file. Each is generic over the system (monomorphized: no `dyn`, no
+//! allocation per step) and implements [`crate::stepper::Stepper`].
+
+pub mod dormand_prince;
+pub mod euler;
+pub mod implicit_midpoint;
+pub mod newton;
+pub mod rk4;
+pub mod variational;
+
+pub use dormand_prince::{AdaptiveControl, DormandPrince, StepControl};
+pub use euler::ExplicitEuler;
+pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig};
+pub use newton::NewtonConfig;
+pub use rk4::ClassicalRk4;
+pub use variational::{Principle, Variational, VariationalConfig};
+
+use crate::error::StepError;
+
+/// The configuration of a fixed-step method: just its step size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FixedStep {
+    /// The step size h > 0. The last step of a run is shortened to land on the end time.
+    pub step: f64,
+}
+
+impl FixedStep {
+    /// Checks that the step is positive and finite.
+    pub(crate) fn validated<const S: usize>(step: f64) -> Result<f64, StepError<S>> {
+        if step.is_finite() && step > 0.0 {
+            Ok(step)
+        } else {
+            Err(StepError::InvalidConfiguration {
+                reason: "the step size must be positive and finite",
+            })
+        }
+    }
+}
