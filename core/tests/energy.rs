@@ -23,16 +23,12 @@ where
     St: Stepper<1, 2, System = Oscillator>,
 {
     let system = *stepper.system();
-    let initial = system
-        .hamiltonian(stepper.time(), stepper.state())
-        .unwrap();
+    let initial = system.hamiltonian(stepper.time(), stepper.state()).unwrap();
     let mut worst: f64 = 0.0;
     for step in 1..=STEPS {
         stepper.step().unwrap();
         if step % 100 == 0 || step == STEPS {
-            let energy = system
-                .hamiltonian(stepper.time(), stepper.state())
-                .unwrap();
+            let energy = system.hamiltonian(stepper.time(), stepper.state()).unwrap();
             worst = worst.max(((energy - initial) / initial).abs());
         }
     }

@@ -36,7 +36,12 @@ fn assert_second_order(errors: [f64; 3], label: &str) {
 fn corrected_principle_converges_to_the_right_equation() {
     let problem = SledProblem::standard();
     let errors = [40, 80, 160].map(|steps| {
-        relative_miss(&problem, Method::Variational, steps, SledProblem::speed_squared)
+        relative_miss(
+            &problem,
+            Method::Variational,
+            steps,
+            SledProblem::speed_squared,
+        )
     });
     assert_second_order(errors, "corrected vs right closed form");
     // 160 steps of h = 0.025: measured 7.5e-6 relative; 3e-5 leaves room for the constant.
@@ -68,11 +73,19 @@ fn literal_eq19_misses_the_right_closed_form_by_a_margin() {
         steps,
         SledProblem::speed_squared,
     );
-    let corrected = relative_miss(&problem, Method::Variational, steps, SledProblem::speed_squared);
+    let corrected = relative_miss(
+        &problem,
+        Method::Variational,
+        steps,
+        SledProblem::speed_squared,
+    );
     // Over 4 s the sled gathers almost four times its mass (ε = c x/m0 ≈ 3.75), where the
     // two closed forms differ by 39 %; the discretisation error is ~1e-5.
     assert!(literal > 0.1, "literal eq. 19 misses by only {literal}");
-    assert!(literal > 1e3 * corrected, "literal {literal}, corrected {corrected}");
+    assert!(
+        literal > 1e3 * corrected,
+        "literal {literal}, corrected {corrected}"
+    );
     // And the corrected one, symmetrically, misses the wrong closed form.
     let corrected_vs_wrong = relative_miss(
         &problem,
