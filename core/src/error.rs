@@ -48,7 +48,7 @@ pub enum StepError<const S: usize> {
     },
     /// Newton's method of an implicit stepper did not converge (or its iteration matrix was
     /// singular).
-    #[error("Newton's method diverged at t = {time} after {iterations} iterations")]
+    #[error("Newton's method did not converge at t = {time} ({iterations} iterations)")]
     NewtonDivergence {
         /// Time at the start of the failed step.
         time: f64,

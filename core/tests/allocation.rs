@@ -1,0 +1,119 @@
+//! The steppers' inner loop allocates nothing: a counting global allocator sees zero
+//! allocations during N calls of `step()` after setup, for every stepper.
+
+mod support;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+use support::problems::{KeplerProblem, RocketProblem};
+use support::Problem;
+use varmass_core::steppers::{
+    ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
+    ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
+};
+use varmass_core::Stepper;
+
+/// Counts allocations made by the current thread only, so the test harness's other
+/// threads cannot disturb the count.
+struct CountingAllocator;
+
+thread_local! {
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+// SAFETY: every call is forwarded unchanged to the system allocator; the counter is a
+// const-initialised thread-local `Cell`, which needs no allocation and no destructor.
+unsafe impl GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.with(|count| count.set(count.get() + 1));
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.with(|count| count.set(count.get() + 1));
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: CountingAllocator = CountingAllocator;
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
+
+/// Allocations made during `steps` calls of `step()` (after the stepper is built).
+fn allocations_while_stepping<St, const N: usize, const S: usize>(
+    mut stepper: St,
+    steps: usize,
+) -> usize
+where
+    St: Stepper<N, S>,
+{
+    let before = allocations();
+    for _ in 0..steps {
+        if stepper.step().is_err() {
+            // Cannot happen on these problems; make it fail the test without a panic
+            // message that would itself allocate before the count is read.
+            return usize::MAX;
+        }
+    }
+    allocations() - before
+}
+
+#[test]
+fn steppers_do_not_allocate_per_step() {
+    // The counter must see allocations at all, or the test could not fail.
+    let probe = allocations();
+    let boxed = std::hint::black_box(Box::new(1.0));
+    assert!(allocations() > probe);
+    drop(boxed);
+
+    let kepler = KeplerProblem::standard();
+    let (system, y0) = (&kepler.system, kepler.initial_state());
+    let fixed = FixedStep { step: 1e-3 };
+    let steps = 1000;
+    let counts = [
+        (
+            "Euler",
+            allocations_while_stepping(ExplicitEuler::new(system, 0.0, y0, fixed).unwrap(), steps),
+        ),
+        (
+            "RK4",
+            allocations_while_stepping(ClassicalRk4::new(system, 0.0, y0, fixed).unwrap(), steps),
+        ),
+        (
+            "Dormand–Prince",
+            allocations_while_stepping(
+                DormandPrince::new(system, 0.0, y0, StepControl::default()).unwrap(),
+                steps,
+            ),
+        ),
+        (
+            "implicit midpoint",
+            allocations_while_stepping(
+                ImplicitMidpoint::new(system, 0.0, y0, ImplicitMidpointConfig::default()).unwrap(),
+                steps,
+            ),
+        ),
+    ];
+    // The variational stepper on the rocket, which has a state mass (S = 3).
+    let rocket = RocketProblem::standard();
+    let variational = allocations_while_stepping(
+        Variational::new(
+            &rocket.system,
+            0.0,
+            rocket.initial_state(),
+            VariationalConfig::default(),
+        )
+        .unwrap(),
+        steps,
+    );
+    for (name, count) in counts {
+        assert_eq!(count, 0, "{name} allocated");
+    }
+    assert_eq!(variational, 0, "variational allocated");
+}
