@@ -16,6 +16,70 @@
 //! Failures are typed [`StepError`]s carrying the time and the state.
 //!
 //! Without the `std` feature the crate is `no_std`; `run` then needs only `alloc`.
+//!
+//! # Example: a vertical rocket, written by hand
+//!
+//! State `[y, p, m]` with the state mass m burning at μ, exhaust at −u_e relative:
+//! L = ½ m ẏ² − m g y, R1 = −μ u_e and the mass-flux term ṁ ∂p/∂m = −μ ẏ. The run stops when
+//! a tenth of the mass is left.
+//!
+//! ```
+//! use nalgebra::{SMatrix, SVector, Vector1, Vector3};
+//! use varmass_core::steppers::{DormandPrince, StepControl};
+//! use varmass_core::{run, Event, RunConfig, StopReason, SystemError, VariableMassSystem};
+//!
+//! struct Rocket { mu: f64, u_e: f64, g: f64 }
+//!
+//! impl VariableMassSystem<1, 3> for Rocket {
+//!     const COORDINATES: [&'static str; 1] = ["y"];
+//!     const MASSES: &'static [&'static str] = &["m"];
+//!     fn mass(&self, _: usize, _: f64, s: &SVector<f64, 3>) -> f64 { s[2] }
+//!     fn mass_rate(&self, _: usize, _: f64, _: &SVector<f64, 3>) -> f64 { -self.mu }
+//!     fn mass_matrix(&self, _: f64, s: &SVector<f64, 3>) -> SMatrix<f64, 1, 1> {
+//!         SMatrix::<f64, 1, 1>::new(s[2])
+//!     }
+//!     fn momenta(&self, _: f64, v: &SVector<f64, 3>) -> SVector<f64, 1> {
+//!         Vector1::new(v[2] * v[1])
+//!     }
+//!     fn lagrangian(&self, _: f64, v: &SVector<f64, 3>) -> f64 {
+//!         0.5 * v[2] * v[1] * v[1] - v[2] * self.g * v[0]
+//!     }
+//!     fn lagrangian_gradient(&self, _: f64, v: &SVector<f64, 3>) -> SVector<f64, 1> {
+//!         Vector1::new(-v[2] * self.g)
+//!     }
+//!     fn active_force(&self, _: f64, _: &SVector<f64, 3>) -> SVector<f64, 1> {
+//!         Vector1::zeros()
+//!     }
+//!     fn reactive_thrust(&self, _: f64, _: &SVector<f64, 3>) -> SVector<f64, 1> {
+//!         Vector1::new(-self.mu * self.u_e)
+//!     }
+//!     fn impact_force(&self, _: f64, _: &SVector<f64, 3>) -> SVector<f64, 1> {
+//!         Vector1::zeros()
+//!     }
+//!     fn mass_flux_force(&self, _: f64, v: &SVector<f64, 3>) -> SVector<f64, 1> {
+//!         Vector1::new(-self.mu * v[1])
+//!     }
+//!     fn accelerations(
+//!         &self,
+//!         _: f64,
+//!         v: &SVector<f64, 3>,
+//!     ) -> Result<SVector<f64, 1>, SystemError> {
+//!         Ok(Vector1::new(-self.g + self.mu * self.u_e / v[2]))
+//!     }
+//! }
+//!
+//! let rocket = Rocket { mu: 0.05, u_e: 300.0, g: 9.81 };
+//! let start = Vector3::new(0.0, 0.0, 1.0);
+//! let mut stepper = DormandPrince::new(&rocket, 0.0, start, StepControl::default())?;
+//! let solution = run(&mut stepper, &RunConfig::until(30.0), &[Event::mass_reaches(0, 0.1)])?;
+//! assert_eq!(solution.stop, StopReason::EventFound { index: 0 });
+//! let (time, state) = solution.last().unwrap();
+//! // m = 1 − 0.05 t reaches 0.1 at t = 18; then v = u_e ln(m0/m) − g t (Tsiolkovsky).
+//! assert!((time - 18.0).abs() < 1e-9);
+//! let speed = state[1] / state[2];
+//! assert!((speed - (300.0 * 10f64.ln() - 9.81 * 18.0)).abs() < 1e-3);
+//! # Ok::<(), varmass_core::StepError<3>>(())
+//! ```
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 

@@ -47,19 +47,21 @@ where
     }
 }
 
-/// Every method of [`Method::ALL`] with its coarsest step count on one problem.
+/// A test running every method on one problem, each from its coarsest step count.
 macro_rules! orders_test {
-    ($name:ident, $problem:expr, [$euler:expr, $rk4:expr, $dopri:expr, $midpoint:expr, $variational:expr]) => {
+    ($name:ident, $problem:expr, [$euler:expr, $rk4:expr, $dopri:expr, $midpoint:expr, $var:expr]) => {
         #[test]
         fn $name() {
-            let counts = [$euler, $rk4, $dopri, $midpoint, $variational];
-            let mut coarsest = [(Method::Euler, 0); 5];
-            for (slot, (method, steps)) in
-                coarsest.iter_mut().zip(Method::ALL.into_iter().zip(counts))
-            {
-                *slot = (method, steps);
-            }
-            check_orders(&$problem, coarsest);
+            check_orders(
+                &$problem,
+                [
+                    (Method::Euler, $euler),
+                    (Method::Rk4, $rk4),
+                    (Method::DormandPrinceFixed, $dopri),
+                    (Method::ImplicitMidpoint, $midpoint),
+                    (Method::Variational, $var),
+                ],
+            );
         }
     };
 }

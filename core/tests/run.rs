@@ -122,3 +122,37 @@ fn energy_residual_converges_with_the_method_order() {
     assert!((0.9..=1.1).contains(&euler_order), "{euler_order}");
     assert!((1.9..=2.1).contains(&midpoint_order), "{midpoint_order}");
 }
+
+/// A run stopped by an event can continue from it: restart the stepper at the event and
+/// run on; the result matches the closed form as if never stopped.
+#[test]
+fn a_run_continues_after_a_restart_at_its_event() {
+    use std::f64::consts::PI;
+    use support::problems::OscillatorProblem;
+    use varmass_core::{Direction, Event};
+
+    let problem = OscillatorProblem::standard();
+    let control = StepControl::Adaptive(AdaptiveControl {
+        relative_tolerance: 1e-12,
+        absolute_tolerance: 1e-12,
+        ..Default::default()
+    });
+    let mut stepper =
+        DormandPrince::new(&problem.system, 0.0, problem.exact(0.0), control).unwrap();
+    let events = [Event::state_reaches(0, 0.0, Direction::Falling)];
+    let first = run(&mut stepper, &RunConfig::until(3.0), &events).unwrap();
+    let (time, state) = first.last().unwrap();
+    assert!((time - PI / 4.0).abs() < 1e-10);
+    stepper.restart(time, *state).unwrap();
+    // Restarted exactly on the crossing, g = 0 there does not re-trigger (or it would stop
+    // at once); the next falling crossing, at 5π/4 ≈ 3.93, lies beyond the end.
+    let second = run(&mut stepper, &RunConfig::until(3.0), &events).unwrap();
+    assert_eq!(second.stop, StopReason::ReachedEnd);
+    let (end, end_state) = second.last().unwrap();
+    assert_eq!(end, 3.0);
+    // Tolerances 1e-12 over 3 time units: well below 1e-8.
+    assert!(
+        (end_state - problem.exact(3.0)).norm() < 1e-8,
+        "{end_state}"
+    );
+}

@@ -21,8 +21,8 @@
 //! The error estimate is y₁ − ŷ₁ = h Σ eⱼ kⱼ with e = b − b̂. Dense output is Hairer's
 //! `CONTD5` (HNW I, II.6, and the `dopri5` code): a quartic in θ = (t − t₀)/h through y₀ and
 //! y₁ with the end slopes k₁ and k₇ and one more combination of the stages (coefficients dⱼ).
-//! The step-size controller is the PI controller of HNW II, IV.2 (eq. 2.43c) with the
-//! defaults of `dopri5`: β = 0.04, safety 0.9, factor in [0.2, 10].
+//! The step-size controller is Gustafsson's PI controller (HNW II, IV.2) as in Hairer's
+//! `dopri5`: β = 0.04, safety 0.9, factor in [0.2, 10].
 
 use nalgebra::SVector;
 
@@ -414,7 +414,7 @@ where
             };
             match attempt {
                 Ok(attempt) if attempt.error <= 1.0 => {
-                    // PI controller (HNW II, eq. IV.2.43c): h_new = h·err^(−α)·err_old^β
+                    // PI controller (HNW II, IV.2): h_new = h·err^(−α)·err_old^β
                     // with α = 1/5 − 0.75β, bounded by the factor limits.
                     let alpha = 0.2 - 0.75 * control.beta;
                     let factor = powf(attempt.error, alpha)

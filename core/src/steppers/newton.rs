@@ -6,7 +6,7 @@
 //! `lu()`, because the latter needs `Const<S>: DimMin<Const<S>>`, a typenum bound that
 //! would leak into every implicit stepper's public signature for a generic `S`.
 //!
-//! Convergence test (HNW II, IV.8, eq. 8.10): with the contraction rate θₖ = ‖Δₖ‖/‖Δₖ₋₁‖
+//! Convergence test (HNW II, IV.8): with the contraction rate θₖ = ‖Δₖ‖/‖Δₖ₋₁‖
 //! the remaining error is about θₖ/(1 − θₖ)·‖Δₖ‖, and the iteration stops when that is below
 //! tolerance. An increment already at the rounding level of z also stops it, since no
 //! further iteration can improve on rounding.

@@ -9,7 +9,7 @@
 //! t̄ = t₀ + h/2, every mass frozen at its midpoint value (every Lagrange-side function is
 //! evaluated at the midpoint velocity state); discrete forces f⁻ = f⁺ = (h/2) F(mid) with
 //! F = [`VariableMassSystem::generalized_force`] (Marsden & West, *Discrete mechanics and
-//! variational integrators*, Acta Numerica 2001, §3.2). In position–momentum form:
+//! variational integrators*, Acta Numerica 2001, on forced systems). In position–momentum form:
 //!
 //! ```text
 //! p₀ = ∂L/∂q̇(mid) − (h/2)(∂*L/∂q + F)(mid)     solved for q₁ (and the state masses)
