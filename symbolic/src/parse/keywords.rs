@@ -98,6 +98,16 @@ pub const FLOW_OPTIONS: &[&str] = &[RATE, VELOCITY, RELATIVE_VELOCITY];
 /// ```
 pub fn closest<'k>(word: &str, candidates: &[&'k str]) -> Option<&'k str> {
     let length = word.chars().count();
+    // A word much longer than every candidate is no typo of one; this also keeps the
+    // quadratic distance cheap on absurd input.
+    let longest = candidates
+        .iter()
+        .map(|c| c.chars().count())
+        .max()
+        .unwrap_or(0);
+    if length > longest + 2 {
+        return None;
+    }
     candidates
         .iter()
         .map(|&candidate| (edit_distance(word, candidate), candidate))

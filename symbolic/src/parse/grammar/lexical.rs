@@ -187,8 +187,17 @@ impl<'a> Grammar<'a> {
                     format!("expected {what} after `{after}`")
                 };
                 let mut diagnostic = Diagnostic::new(span, message);
-                if let Some(c) = at.chars().next().filter(|&c| !is_dsl_char(c)) {
-                    diagnostic = diagnostic.with_help(foreign_character_help(c));
+                match at.chars().next() {
+                    Some(c) if !is_dsl_char(c) => {
+                        diagnostic = diagnostic.with_help(foreign_character_help(c));
+                    }
+                    Some('\n') if !newlines && what.starts_with("an expression") => {
+                        diagnostic = diagnostic.with_help(
+                            "a statement ends at the end of its line; to go on on the next \
+                             line, put the expression in parentheses",
+                        );
+                    }
+                    _ => {}
                 }
                 Err(self.fail(at, diagnostic))
             }

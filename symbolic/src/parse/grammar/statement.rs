@@ -12,6 +12,8 @@ use crate::parse::span::{Diagnostic, Span, Spanned};
 const AFTER_EXPRESSION: &str = "an operator, `;` or a newline";
 /// What may follow a statement ending in a list of names or options.
 const AFTER_LIST: &str = "`,`, `;` or a newline";
+/// What may follow `inflow b` / `outflow b` without options.
+const AFTER_FLOW_NAME: &str = "`:`, `;` or a newline";
 /// What may follow a statement ending in a vector.
 const AFTER_VECTOR: &str = "`;` or a newline";
 
@@ -34,12 +36,13 @@ impl<'a> Grammar<'a> {
         let head = match self.identifier(input) {
             Ok((_, head)) => head,
             Err(_) => {
-                let diagnostic =
-                    self.unexpected_diagnostic(input, "a statement")
-                        .with_help(format!(
-                            "a statement starts with one of {}",
-                            keywords::STATEMENTS.join(", ")
-                        ));
+                let mut diagnostic = self.unexpected_diagnostic(input, "a statement");
+                if diagnostic.help.is_none() {
+                    diagnostic = diagnostic.with_help(format!(
+                        "a statement starts with one of {}",
+                        keywords::STATEMENTS.join(", ")
+                    ));
+                }
                 return Err(self.fail(input, diagnostic));
             }
         };
@@ -192,16 +195,14 @@ impl<'a> Grammar<'a> {
         let (after, _) = self.required(rest, false, "`:`", &target.node, |i| {
             self.punct_after_blanks(i, ':')
         })?;
-        if let Ok((rest, vector)) = self.vector(after, STATEMENT_LEVEL) {
-            let value = LoadValue::Vector(vector);
-            return Ok((rest, (kind(Load { target, value }), AFTER_VECTOR)));
-        }
-        // `vector` failed without consuming anything or with a real error: redo it to get
-        // the error, or read a scalar.
-        if self.skip_blanks(after, false).starts_with('[') {
-            let (rest, vector) = self.vector(after, STATEMENT_LEVEL)?;
-            let value = LoadValue::Vector(vector);
-            return Ok((rest, (kind(Load { target, value }), AFTER_VECTOR)));
+        match self.vector(after, STATEMENT_LEVEL) {
+            Ok((rest, vector)) => {
+                let value = LoadValue::Vector(vector);
+                return Ok((rest, (kind(Load { target, value }), AFTER_VECTOR)));
+            }
+            // No `[` here: a scalar.
+            Err(nom::Err::Error(_)) => {}
+            Err(error) => return Err(error),
         }
         let what = "an expression or a vector `[…]`";
         let (rest, (value, _)) = self.required(after, false, what, ":", |i| {
@@ -299,7 +300,7 @@ impl<'a> Grammar<'a> {
                 rate: None,
                 velocity: None,
             };
-            return Ok((rest, (kind(flow), AFTER_VECTOR)));
+            return Ok((rest, (kind(flow), AFTER_FLOW_NAME)));
         };
         let mut rate = None;
         let mut velocity: Option<(FlowVelocity, Span)> = None;
