@@ -77,7 +77,7 @@ pub fn statement_expressions(statement: &Statement) -> Vec<&ExprNode> {
 }
 
 /// The source text a span covers.
-pub fn text<'s>(source: &'s str, span: Span) -> &'s str {
+pub fn text(source: &str, span: Span) -> &str {
     &source[span.start..span.end]
 }
 
