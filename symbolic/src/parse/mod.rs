@@ -8,5 +8,5 @@ mod grammar;
 pub mod keywords;
 mod span;
 
-pub use grammar::{parse_expression, parse_system};
+pub use grammar::{parse_expression, parse_system, MAX_DEPTH, MAX_DIAGNOSTICS, MAX_NESTING};
 pub use span::{Diagnostic, Span, Spanned};

@@ -15,10 +15,49 @@ pub(super) type Parsed = (ExprNode, u32);
 const EXPRESSION: &str = "an expression";
 
 impl<'a> Grammar<'a> {
-    /// A whole expression. Backtracks (a plain nom error) only if no expression starts at
-    /// `input`; any other problem is a diagnostic.
+    /// A whole expression: `product { (+|-) product }` with `product := unary { (*|/)
+    /// unary }`, both left-associative. Backtracks (a plain nom error) only if no
+    /// expression starts at `input`; any other problem is a diagnostic.
+    ///
+    /// Both levels are one loop: the product being built is `term`, the sum so far is
+    /// `sum` with its pending operator. Together with the other functions from here to
+    /// [`Grammar::parenthesized`], this recurses once per nesting level, so they keep few
+    /// frames and leave error building to cold functions: in unoptimized builds every
+    /// local gets its own stack slot, and each byte is multiplied by [`MAX_NESTING`].
     pub(super) fn expression(&self, input: &'a str, context: Context) -> PResult<'a, Parsed> {
-        self.sum(input, context)
+        let (mut rest, mut term) = self.unary(input, context)?;
+        let mut sum: Option<(Parsed, BinOp)> = None;
+        loop {
+            let at = self.skip_blanks(rest, context.nested);
+            let found: PResult<'a, char> = one_of("+-*/").parse(at);
+            let Ok((after, symbol)) = found else {
+                break;
+            };
+            let (op, written) = match symbol {
+                '+' => (BinOp::Add, "+"),
+                '-' => (BinOp::Sub, "-"),
+                '*' => (BinOp::Mul, "*"),
+                _ => (BinOp::Div, "/"),
+            };
+            let operand = self.unary(after, context);
+            let (after, operand) =
+                self.or_missing(operand, after, context.nested, EXPRESSION, written)?;
+            if matches!(op, BinOp::Mul | BinOp::Div) {
+                term = self.binary(op, term, operand, after)?;
+            } else {
+                let left = match sum.take() {
+                    Some((left, pending)) => self.binary(pending, left, term, after)?,
+                    None => term,
+                };
+                sum = Some((left, op));
+                term = operand;
+            }
+            rest = after;
+        }
+        match sum {
+            Some((left, pending)) => Ok((rest, self.binary(pending, left, term, rest)?)),
+            None => Ok((rest, term)),
+        }
     }
 
     /// An expression that must be there, after `after`.
@@ -28,51 +67,8 @@ impl<'a> Grammar<'a> {
         context: Context,
         after: &str,
     ) -> PResult<'a, Parsed> {
-        self.required(input, context.nested, EXPRESSION, after, |i| {
-            self.expression(i, context)
-        })
-    }
-
-    /// `product { (+|-) product }`, left-associative.
-    fn sum(&self, input: &'a str, context: Context) -> PResult<'a, Parsed> {
-        self.left_associative(input, context, "+-", Self::product)
-    }
-
-    /// `unary { (*|/) unary }`, left-associative.
-    fn product(&self, input: &'a str, context: Context) -> PResult<'a, Parsed> {
-        self.left_associative(input, context, "*/", Self::unary)
-    }
-
-    /// `operand { op operand }` for the operators in `operators`, folded to the left. A
-    /// loop, not recursion, so a long sum costs no stack while parsing (its depth still
-    /// counts against [`MAX_DEPTH`]).
-    fn left_associative(
-        &self,
-        input: &'a str,
-        context: Context,
-        operators: &str,
-        operand: fn(&Self, &'a str, Context) -> PResult<'a, Parsed>,
-    ) -> PResult<'a, Parsed> {
-        let (mut rest, mut tree) = operand(self, input, context)?;
-        loop {
-            let at = self.skip_blanks(rest, context.nested);
-            let found: PResult<'a, char> = one_of(operators).parse(at);
-            let Ok((after, symbol)) = found else {
-                return Ok((rest, tree));
-            };
-            let op = match symbol {
-                '+' => BinOp::Add,
-                '-' => BinOp::Sub,
-                '*' => BinOp::Mul,
-                _ => BinOp::Div,
-            };
-            let (after, rhs) =
-                self.required(after, context.nested, EXPRESSION, &op.to_string(), |i| {
-                    operand(self, i, context)
-                })?;
-            tree = self.binary(op, tree, rhs, after)?;
-            rest = after;
-        }
+        let result = self.expression(input, context);
+        self.or_missing(result, input, context.nested, EXPRESSION, after)
     }
 
     /// `- unary | power`.
@@ -82,10 +78,9 @@ impl<'a> Grammar<'a> {
             return self.power(input, context);
         };
         let inner = self.deeper(context, input)?;
+        let operand = self.unary(after, inner);
         let (rest, (operand, depth)) =
-            self.required(after, context.nested, EXPRESSION, "-", |i| {
-                self.unary(i, inner)
-            })?;
+            self.or_missing(operand, after, context.nested, EXPRESSION, "-")?;
         let span = minus.join(operand.span);
         let depth = self.limit_depth(depth + 1, span, rest)?;
         Ok((
@@ -103,9 +98,8 @@ impl<'a> Grammar<'a> {
             return Ok((rest, base));
         };
         let inner = self.deeper(context, at)?;
-        let (rest, exponent) = self.required(after, context.nested, EXPRESSION, "^", |i| {
-            self.unary(i, inner)
-        })?;
+        let exponent = self.unary(after, inner);
+        let (rest, exponent) = self.or_missing(exponent, after, context.nested, EXPRESSION, "^")?;
         let tree = self.binary(BinOp::Pow, base, exponent, rest)?;
         Ok((rest, tree))
     }
@@ -113,13 +107,32 @@ impl<'a> Grammar<'a> {
     /// A number, a name, a derivative `x'`/`x''`, a call, or a parenthesized expression.
     fn atom(&self, input: &'a str, context: Context) -> PResult<'a, Parsed> {
         let input = self.skip_blanks(input, context.nested);
-        if let Ok((after, open)) = self.punct(input, '(') {
-            return self.parenthesized(input, after, open, context);
+        if input.starts_with('(') {
+            return self.parenthesized(input, context);
         }
-        match self.number(input) {
-            Err(nom::Err::Error(_)) => {}
-            number => return number.map(|(rest, node)| (rest, (node, 1))),
+        if input.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+            return self.number(input).map(|(rest, node)| (rest, (node, 1)));
         }
+        self.named(input, context)
+    }
+
+    /// `( expr )` at `input`: the node is the inner expression, its span widened over the
+    /// parentheses (so that the span of `(a+b)*c` starts at the `(`).
+    fn parenthesized(&self, input: &'a str, context: Context) -> PResult<'a, Parsed> {
+        let (after, open) = self.punct(input, '(')?;
+        let inner = Context {
+            nested: true,
+            ..self.deeper(context, input)?
+        };
+        let inside = self.expression(after, inner);
+        let (rest, (mut node, depth)) = self.or_missing(inside, after, true, EXPRESSION, "(")?;
+        let (rest, close) = self.close(rest, ')', open, "an operator or `)`")?;
+        node.span = open.join(close);
+        Ok((rest, (node, depth)))
+    }
+
+    /// A name, `x'`, `x''` or a call `f(…)`.
+    fn named(&self, input: &'a str, context: Context) -> PResult<'a, Parsed> {
         let (rest, name) = self.identifier(input)?;
         let primes: PResult<'a, &'a str> = take_while(|c: char| c == '\'')(rest);
         let (after_primes, primes) = primes.unwrap_or((rest, ""));
@@ -127,8 +140,8 @@ impl<'a> Grammar<'a> {
             return self.derivative(name, primes.len(), after_primes);
         }
         let at = self.skip_blanks(rest, context.nested);
-        if let Ok((after, open)) = self.punct(at, '(') {
-            return self.call(name, at, after, open, context);
+        if at.starts_with('(') {
+            return self.call(name, at, context);
         }
         let span = name.span;
         Ok((
@@ -165,37 +178,12 @@ impl<'a> Grammar<'a> {
         Ok((rest, (Spanned::new(Box::new(node), span), 1)))
     }
 
-    /// `( expr )`: the node is the inner expression, its span widened over the parentheses
-    /// (so that the span of `(a+b)*c` starts at the `(`).
-    fn parenthesized(
-        &self,
-        open_at: &'a str,
-        after: &'a str,
-        open: Span,
-        context: Context,
-    ) -> PResult<'a, Parsed> {
-        let inner = Context {
-            nested: true,
-            ..self.deeper(context, open_at)?
-        };
-        let (rest, (mut node, depth)) = self.required_expression(after, inner, "(")?;
-        let (rest, close) = self.close(rest, ')', open, "an operator or `)`")?;
-        node.span = open.join(close);
-        Ok((rest, (node, depth)))
-    }
-
     /// `name( args )`; the name is not checked against the known functions here.
-    fn call(
-        &self,
-        func: Spanned<String>,
-        open_at: &'a str,
-        after: &'a str,
-        open: Span,
-        context: Context,
-    ) -> PResult<'a, Parsed> {
+    fn call(&self, func: Spanned<String>, input: &'a str, context: Context) -> PResult<'a, Parsed> {
+        let (after, open) = self.punct(input, '(')?;
         let inner = Context {
             nested: true,
-            ..self.deeper(context, open_at)?
+            ..self.deeper(context, input)?
         };
         let (rest, (args, depth, close)) = self.list(after, open, ')', inner)?;
         let span = func.span.join(close);

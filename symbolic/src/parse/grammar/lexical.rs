@@ -138,7 +138,7 @@ impl<'a> Grammar<'a> {
             Err(_) => at + c.len_utf8(),
         };
         let text = self.source.get(at..end).unwrap_or("");
-        (format!("`{}`", text.escape_debug()), self.span(at, end))
+        (format!("`{}`", printable(text)), self.span(at, end))
     }
 
     /// "unexpected X; expected `expected`" about the input at `input`, with a hint for
@@ -167,8 +167,8 @@ impl<'a> Grammar<'a> {
     }
 
     /// Runs `parser`, which must find something: if it backtracks, the error says
-    /// "expected `what` after `after`" (or just "expected `what`" when `after` is empty),
-    /// pointing at whatever is there instead.
+    /// "expected `what` after `after`" (or "expected `what`, found …" when `after` is
+    /// empty), pointing at whatever is there instead.
     pub(super) fn required<T>(
         &self,
         input: &'a str,
@@ -177,32 +177,57 @@ impl<'a> Grammar<'a> {
         after: &str,
         mut parser: impl FnMut(&'a str) -> PResult<'a, T>,
     ) -> PResult<'a, T> {
-        match parser(input) {
-            Err(nom::Err::Error(_)) => {
-                let at = self.skip_blanks(input, newlines);
-                let (found, span) = self.found(at);
-                let message = if after.is_empty() {
-                    format!("expected {what}, found {found}")
-                } else {
-                    format!("expected {what} after `{after}`")
-                };
-                let mut diagnostic = Diagnostic::new(span, message);
-                match at.chars().next() {
-                    Some(c) if !is_dsl_char(c) => {
-                        diagnostic = diagnostic.with_help(foreign_character_help(c));
-                    }
-                    Some('\n') if !newlines && what.starts_with("an expression") => {
-                        diagnostic = diagnostic.with_help(
-                            "a statement ends at the end of its line; to go on on the next \
-                             line, put the expression in parentheses",
-                        );
-                    }
-                    _ => {}
-                }
-                Err(self.fail(at, diagnostic))
-            }
+        self.or_missing(parser(input), input, newlines, what, after)
+    }
+
+    /// [`Grammar::required`] applied to a result already computed. The recursive
+    /// expression parsers use this form so that neither a closure nor the error building
+    /// sits on the stack between nesting levels.
+    pub(super) fn or_missing<T>(
+        &self,
+        result: PResult<'a, T>,
+        input: &'a str,
+        newlines: bool,
+        what: &str,
+        after: &str,
+    ) -> PResult<'a, T> {
+        match result {
+            Err(nom::Err::Error(_)) => Err(self.missing(input, newlines, what, after)),
             other => other,
         }
+    }
+
+    /// The error for [`Grammar::required`].
+    #[cold]
+    #[inline(never)]
+    fn missing(
+        &self,
+        input: &'a str,
+        newlines: bool,
+        what: &str,
+        after: &str,
+    ) -> nom::Err<ParseError> {
+        let at = self.skip_blanks(input, newlines);
+        let (found, span) = self.found(at);
+        let message = if after.is_empty() {
+            format!("expected {what}, found {found}")
+        } else {
+            format!("expected {what} after `{after}`")
+        };
+        let mut diagnostic = Diagnostic::new(span, message);
+        match at.chars().next() {
+            Some(c) if !is_dsl_char(c) => {
+                diagnostic = diagnostic.with_help(foreign_character_help(c));
+            }
+            Some('\n') if !newlines && what.starts_with("an expression") => {
+                diagnostic = diagnostic.with_help(
+                    "a statement ends at the end of its line; to go on on the next \
+                     line, put the expression in parentheses",
+                );
+            }
+            _ => {}
+        }
+        self.fail(at, diagnostic)
     }
 }
 
@@ -210,6 +235,20 @@ fn foreign_character_help(c: char) -> String {
     if c.is_alphabetic() {
         format!("names use only ASCII letters, digits and `_`: spell `{c}` out in Latin letters")
     } else {
-        format!("`{}` is not part of the DSL", c.escape_debug())
+        format!("`{}` is not part of the DSL", printable(&c.to_string()))
     }
+}
+
+/// `text` with control characters escaped (`\0`, `\u{7f}`), so a message stays one
+/// readable line; everything else as written.
+fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_debug().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
