@@ -51,7 +51,9 @@ fn check_result(source: &str, result: &Result<SystemAst, Vec<Diagnostic>>) {
                 assert_span_valid(source, error.span);
                 assert!(!error.message.is_empty());
                 let rendered = error.render(source);
-                assert!(rendered.contains(&format!("--> {}:{}", error.span.line, error.span.column)));
+                assert!(
+                    rendered.contains(&format!("--> {}:{}", error.span.line, error.span.column))
+                );
             }
         }
     }
@@ -93,7 +95,9 @@ enum Mutation {
 
 fn mutation() -> impl Strategy<Value = Mutation> {
     let chars = prop::sample::select(
-        "()[],:;=+-*/^'#.\n xm0eθ\u{0}".chars().collect::<Vec<char>>(),
+        "()[],:;=+-*/^'#.\n xm0eθ\u{0}"
+            .chars()
+            .collect::<Vec<char>>(),
     );
     prop_oneof![
         (any::<prop::sample::Index>(), chars).prop_map(|(i, c)| Mutation::Insert(i, c)),
@@ -161,7 +165,13 @@ fn tree() -> impl Strategy<Value = Tree> {
         prop_oneof![
             inner.clone().prop_map(|t| Tree::Neg(Box::new(t))),
             (
-                prop::sample::select(vec![BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::Div, BinOp::Pow]),
+                prop::sample::select(vec![
+                    BinOp::Add,
+                    BinOp::Sub,
+                    BinOp::Mul,
+                    BinOp::Div,
+                    BinOp::Pow
+                ]),
                 inner.clone(),
                 inner.clone()
             )

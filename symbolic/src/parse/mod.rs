@@ -1,7 +1,9 @@
 //! Stage 1: DSL text → [`ast::SystemAst`], with positions (SPEC §2).
 //!
 //! One `nom` grammar serves the attribute macro (a string literal) and `.vms` files.
-//! Statements are separated by newlines or `;`; `#` starts a comment.
+//! Statements are separated by newlines or `;` (a newline inside an open `(` or `[`
+//! continues the statement); `#` starts a comment. The grammar and its error recovery are
+//! described in `grammar/mod.rs`.
 
 pub mod ast;
 mod grammar;

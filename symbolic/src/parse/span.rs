@@ -96,7 +96,7 @@ impl Diagnostic {
     /// ```
     ///
     /// The carets line up under the text as a terminal shows it: a tab counts as
-    /// [`TAB_WIDTH`] columns (and is shown as that many spaces), East Asian wide characters
+    /// four columns (and is shown as four spaces), East Asian wide characters
     /// as two, combining marks as none, and control characters are shown as `�`. A span
     /// over several lines shows its first and last line (with `...` between them when
     /// lines are skipped), each underlined where the span covers it. An empty span (at the
@@ -150,7 +150,7 @@ impl Diagnostic {
 }
 
 /// How many columns a tab takes in [`Diagnostic::render`].
-pub const TAB_WIDTH: usize = 4;
+const TAB_WIDTH: usize = 4;
 
 /// Byte offsets where the lines of `source` start.
 fn line_starts(source: &str) -> Vec<usize> {

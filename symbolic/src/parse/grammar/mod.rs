@@ -39,12 +39,16 @@
 //! **Limits.** Nesting of parentheses, brackets, signs and powers is bounded by
 //! [`MAX_NESTING`], and the depth of an expression tree by [`MAX_DEPTH`] (a sum of a thousand
 //! terms is a tree that deep), so that neither this parser nor any later recursive walk over
-//! the tree can overflow the stack: past the limits the input gets a diagnostic.
+//! the tree can overflow the stack: past the limits the input gets a diagnostic. At the
+//! limits parsing needs about 1 MB of stack in an unoptimized build (200 nested calls, the
+//! worst case) and under 0.5 MB optimized, so the default 2 MB of a spawned thread is
+//! enough.
 //!
 //! Every parser below skips the whitespace *before* its token and never after, so the input
 //! left after a node starts right after the node's text: that is how node and statement
 //! spans cover exactly their text.
 
+mod building;
 mod expression;
 mod lexical;
 mod positions;
