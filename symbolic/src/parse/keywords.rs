@@ -80,3 +80,87 @@ pub const FUNCTIONS: &[(&str, usize)] = &[
     ("min", 2),
     ("max", 2),
 ];
+
+/// The options of a `body` statement.
+pub const BODY_OPTIONS: &[&str] = &[MASS, POSITION];
+
+/// The options of an `inflow` or `outflow` statement.
+pub const FLOW_OPTIONS: &[&str] = &[RATE, VELOCITY, RELATIVE_VELOCITY];
+
+/// The candidate closest to `word` by edit distance (insertions, deletions, substitutions and
+/// swaps of neighbouring characters), if it is close enough to be a likely typo: at most 2
+/// edits, and fewer edits than `word` has characters (so `t` does not suggest `let`).
+///
+/// ```
+/// use varmass_symbolic::parse::keywords::{closest, STATEMENTS};
+/// assert_eq!(closest("forse", STATEMENTS), Some("force"));
+/// assert_eq!(closest("xyz", STATEMENTS), None);
+/// ```
+pub fn closest<'k>(word: &str, candidates: &[&'k str]) -> Option<&'k str> {
+    let length = word.chars().count();
+    // A word much longer than every candidate is no typo of one; this also keeps the
+    // quadratic distance cheap on absurd input.
+    let longest = candidates
+        .iter()
+        .map(|c| c.chars().count())
+        .max()
+        .unwrap_or(0);
+    if length > longest + 2 {
+        return None;
+    }
+    candidates
+        .iter()
+        .map(|&candidate| (edit_distance(word, candidate), candidate))
+        .filter(|&(distance, _)| distance <= 2 && distance < length)
+        .min_by_key(|&(distance, _)| distance)
+        .map(|(_, candidate)| candidate)
+}
+
+/// Optimal-string-alignment distance: Levenshtein plus adjacent transpositions, so `msas`
+/// is one edit from `mass` (a swap is the most common typing slip).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    // Three rolling rows: the transposition case looks two rows back.
+    let mut before: Vec<usize> = vec![0; b.len() + 1];
+    let mut previous: Vec<usize> = (0..=b.len()).collect();
+    let mut current: Vec<usize> = vec![0; b.len() + 1];
+    for (i, &ca) in a.iter().enumerate() {
+        current[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substitution = previous[j] + usize::from(ca != cb);
+            let mut best = substitution.min(previous[j + 1] + 1).min(current[j] + 1);
+            if i > 0 && j > 0 && a[i - 1] == cb && ca == b[j - 1] {
+                best = best.min(before[j - 1] + 1);
+            }
+            current[j + 1] = best;
+        }
+        std::mem::swap(&mut before, &mut previous);
+        std::mem::swap(&mut previous, &mut current);
+    }
+    previous[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edit_distance_counts_each_kind_of_edit_once() {
+        assert_eq!(edit_distance("mass", "mass"), 0);
+        assert_eq!(edit_distance("mas", "mass"), 1); // insertion
+        assert_eq!(edit_distance("masss", "mass"), 1); // deletion
+        assert_eq!(edit_distance("forse", "force"), 1); // substitution
+        assert_eq!(edit_distance("msas", "mass"), 1); // swap
+        assert_eq!(edit_distance("", "let"), 3);
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+    }
+
+    #[test]
+    fn closest_suggests_only_plausible_typos() {
+        assert_eq!(closest("positon", BODY_OPTIONS), Some("position"));
+        assert_eq!(closest("inflwo", STATEMENTS), Some("inflow"));
+        assert_eq!(closest("t", STATEMENTS), None);
+        assert_eq!(closest("banana", STATEMENTS), None);
+    }
+}

@@ -24,7 +24,12 @@ impl Span {
         while !source.is_char_boundary(start) {
             start -= 1;
         }
-        let end = end.clamp(start, source.len());
+        let mut end = end.clamp(start, source.len());
+        // Round the end up to a character boundary so that `source[start..end]` is always
+        // valid text (the source's length is a boundary, so this stops).
+        while !source.is_char_boundary(end) {
+            end += 1;
+        }
         let before = &source[..start];
         let line = before.matches('\n').count() as u32 + 1;
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);
@@ -84,38 +89,113 @@ impl Diagnostic {
     ///
     /// ```text
     /// error: unknown symbol `mm`
-    ///  --> 2:8
+    ///  --> 2:10
     ///   |
     /// 2 | mass m = mm + c*x
     ///   |          ^^
     /// ```
+    ///
+    /// The carets line up under the text as a terminal shows it: a tab counts as
+    /// four columns (and is shown as four spaces), East Asian wide characters
+    /// as two, combining marks as none, and control characters are shown as `�`. A span
+    /// over several lines shows its first and last line (with `...` between them when
+    /// lines are skipped), each underlined where the span covers it. An empty span (at the
+    /// end of a line or of the input) gets one caret just after the text.
     pub fn render(&self, source: &str) -> String {
         let span = Span::from_range(source, self.span.start, self.span.end);
-        let line_text = source.lines().nth(span.line as usize - 1).unwrap_or("");
-        let gutter = span.line.to_string().len();
+        let starts = line_starts(source);
+        // The last line is the one holding the span's last byte, so a span that ends just
+        // after a newline does not drag in the next, uncovered line.
+        let last_line = if span.end > span.start {
+            Span::from_range(source, span.end - 1, span.end).line
+        } else {
+            span.line
+        };
+        let gutter = last_line.to_string().len();
         let pad = " ".repeat(gutter);
-        let col = span.column as usize - 1;
-        let available = line_text.chars().count().saturating_sub(col);
-        let width = source[span.start..span.end]
-            .split('\n')
-            .next()
-            .map_or(0, |s| s.chars().count())
-            .min(available)
-            .max(1);
         let mut out = format!(
-            "error: {}\n{pad}--> {}:{}\n{pad} |\n{} | {}\n{pad} | {}{}",
-            self.message,
-            span.line,
-            span.column,
-            span.line,
-            line_text,
-            " ".repeat(col),
-            "^".repeat(width)
+            "error: {}\n{pad}--> {}:{}\n{pad} |",
+            self.message, span.line, span.column
         );
+        let mut shown = vec![span.line];
+        if last_line > span.line {
+            shown.push(last_line);
+        }
+        for (k, &line) in shown.iter().enumerate() {
+            if k > 0 && line > span.line + 1 {
+                out.push_str("\n...");
+            }
+            let line_start = starts.get(line as usize - 1).copied().unwrap_or(0);
+            let line_end = starts
+                .get(line as usize)
+                .map_or(source.len(), |&next| next - 1);
+            let text = source.get(line_start..line_end).unwrap_or("");
+            let text = text.strip_suffix('\r').unwrap_or(text);
+            let from = span.start.clamp(line_start, line_start + text.len()) - line_start;
+            let to = span.end.clamp(line_start, line_start + text.len()) - line_start;
+            let indent = display_width(text.get(..from).unwrap_or(""));
+            let width = display_width(text.get(from..to).unwrap_or("")).max(1);
+            out.push_str(&format!(
+                "\n{line:>gutter$} | {}\n{pad} | {}{}",
+                display_text(text),
+                " ".repeat(indent),
+                "^".repeat(width)
+            ));
+        }
         if let Some(help) = &self.help {
             out.push_str(&format!("\n{pad} = help: {help}"));
         }
         out
+    }
+}
+
+/// How many columns a tab takes in [`Diagnostic::render`].
+const TAB_WIDTH: usize = 4;
+
+/// Byte offsets where the lines of `source` start.
+fn line_starts(source: &str) -> Vec<usize> {
+    std::iter::once(0)
+        .chain(source.match_indices('\n').map(|(i, _)| i + 1))
+        .collect()
+}
+
+/// `text` as it is shown in a rendered diagnostic: tabs expanded, control characters
+/// replaced, so that [`display_width`] matches what a terminal prints.
+fn display_text(text: &str) -> String {
+    let mut shown = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '\t' => shown.push_str(&" ".repeat(TAB_WIDTH)),
+            c if c.is_control() => shown.push('\u{fffd}'),
+            c => shown.push(c),
+        }
+    }
+    shown
+}
+
+/// The number of terminal columns `text` takes once passed through [`display_text`].
+fn display_width(text: &str) -> usize {
+    text.chars().map(char_width).sum()
+}
+
+/// Columns of one character. A small table instead of a Unicode-width crate: the DSL is
+/// ASCII, non-ASCII text only appears in mistakes and comments, and this covers the wide
+/// scripts and the combining marks that would visibly shift the caret.
+fn char_width(c: char) -> usize {
+    match c {
+        '\t' => TAB_WIDTH,
+        '\u{0300}'..='\u{036f}' | '\u{200b}'..='\u{200f}' | '\u{fe00}'..='\u{fe0f}' => 0,
+        '\u{1100}'..='\u{115f}'
+        | '\u{2e80}'..='\u{a4cf}'
+        | '\u{ac00}'..='\u{d7a3}'
+        | '\u{f900}'..='\u{faff}'
+        | '\u{fe30}'..='\u{fe4f}'
+        | '\u{ff00}'..='\u{ff60}'
+        | '\u{ffe0}'..='\u{ffe6}'
+        | '\u{1f300}'..='\u{1f64f}'
+        | '\u{1f900}'..='\u{1f9ff}'
+        | '\u{20000}'..='\u{3fffd}' => 2,
+        _ => 1,
     }
 }
 

@@ -1,0 +1,334 @@
+//! Whole systems parse to the expected statements: the paper's sled in both forms, a
+//! rocket, every statement form, separators and comments, and exact spans.
+
+mod parse_support;
+
+use parse_support::*;
+use varmass_symbolic::parse::ast::{FlowVelocity, LoadValue, MassLaw, StatementKind, SystemAst};
+use varmass_symbolic::parse::{parse_system, Span};
+
+fn parse(source: &str) -> SystemAst {
+    match parse_system(source) {
+        Ok(system) => system,
+        Err(errors) => panic!(
+            "{}",
+            errors
+                .iter()
+                .map(|e| e.render(source))
+                .collect::<Vec<_>>()
+                .join("\n")
+        ),
+    }
+}
+
+/// A span-free summary of a statement, one line, for comparing whole systems.
+fn summary(kind: &StatementKind) -> String {
+    let vector = |v: &varmass_symbolic::parse::ast::VectorNode| {
+        let parts: Vec<String> = v.node.iter().map(show).collect();
+        format!("[{}]", parts.join(", "))
+    };
+    match kind {
+        StatementKind::Coordinates(names) => {
+            let names: Vec<&str> = names.iter().map(|n| n.node.as_str()).collect();
+            format!("coordinates {}", names.join(", "))
+        }
+        StatementKind::Mass(decl) | StatementKind::Inertia(decl) => {
+            let head = if matches!(kind, StatementKind::Mass(_)) {
+                "mass"
+            } else {
+                "inertia"
+            };
+            match &decl.law {
+                MassLaw::Law(law) => format!("{head} {} = {}", decl.name.node, show(law)),
+                MassLaw::State { rate } => {
+                    format!("{head} {}: state, rate {}", decl.name.node, show(rate))
+                }
+            }
+        }
+        StatementKind::Let { name, value } => format!("let {} = {}", name.node, show(value)),
+        StatementKind::Body(b) => format!(
+            "body {}: mass {}, position {}",
+            b.name.node,
+            b.mass.node,
+            vector(&b.position)
+        ),
+        StatementKind::Kinetic(e) => format!("kinetic {}", show(e)),
+        StatementKind::Potential(e) => format!("potential {}", show(e)),
+        StatementKind::Lagrangian(e) => format!("lagrangian {}", show(e)),
+        StatementKind::Force(l) | StatementKind::Thrust(l) | StatementKind::Impact(l) => {
+            let head = match kind {
+                StatementKind::Force(_) => "force",
+                StatementKind::Thrust(_) => "thrust",
+                _ => "impact",
+            };
+            let value = match &l.value {
+                LoadValue::Scalar(e) => show(e),
+                LoadValue::Vector(v) => vector(v),
+            };
+            format!("{head} {}: {value}", l.target.node)
+        }
+        StatementKind::Outflow(f) | StatementKind::Inflow(f) => {
+            let head = if matches!(kind, StatementKind::Outflow(_)) {
+                "outflow"
+            } else {
+                "inflow"
+            };
+            let mut options = Vec::new();
+            if let Some(rate) = &f.rate {
+                options.push(format!("rate {}", show(rate)));
+            }
+            match &f.velocity {
+                Some(FlowVelocity::Absolute(v)) => options.push(format!("velocity {}", vector(v))),
+                Some(FlowVelocity::Relative(v)) => {
+                    options.push(format!("relative_velocity {}", vector(v)))
+                }
+                None => {}
+            }
+            format!("{head} {}: {}", f.body.node, options.join(", "))
+        }
+        StatementKind::Check { lhs, rhs } => format!("check {} = {}", show(lhs), show(rhs)),
+    }
+}
+
+fn summaries(source: &str) -> Vec<String> {
+    parse(source)
+        .statements
+        .iter()
+        .map(|s| summary(&s.kind))
+        .collect()
+}
+
+#[test]
+fn paper_sled_parses_to_the_expected_statements() {
+    assert_eq!(
+        summaries(SLED_PAPER),
+        [
+            "coordinates x",
+            "mass m = (m0 + (c * x))",
+            "lagrangian ((((1 / 2) * m) * (x' ^ 2)) + (((m * g) * x) * sin(theta)))",
+            "force x: ((((-f_d) * m) * g) * cos(theta))",
+            "impact x: ((-c) * (x' ^ 2))",
+        ]
+    );
+}
+
+#[test]
+fn body_sled_parses_to_the_expected_statements() {
+    assert_eq!(
+        summaries(SLED_BODY),
+        [
+            "coordinates x",
+            "mass m = (m0 + (c * x))",
+            "body sled: mass m, position [x]",
+            "potential ((((-m) * g) * x) * sin(theta))",
+            "force sled: [((((-f_d) * m) * g) * cos(theta))]",
+            "inflow sled: velocity [0]",
+        ]
+    );
+}
+
+#[test]
+fn rocket_parses_to_the_expected_statements() {
+    assert_eq!(
+        summaries(ROCKET),
+        [
+            "coordinates y",
+            "mass m: state, rate (-mu)",
+            "body rocket: mass m, position [y]",
+            "potential ((m * g) * y)",
+            "outflow rocket: rate mu, relative_velocity [(-u_e)]",
+        ]
+    );
+}
+
+#[test]
+fn every_statement_form_parses() {
+    assert_eq!(
+        summaries(EVERY_STATEMENT),
+        [
+            "coordinates x, y, phi",
+            "mass m = (m0 + (c * x))",
+            "mass q: state, rate (-mu)",
+            "inertia J = ((m * (r ^ 2)) / 2)",
+            "inertia K: state, rate k",
+            "let w = sqrt((g / l))",
+            "body b: mass m, position [x, y, 0]",
+            "kinetic (((1 / 2) * J) * (phi' ^ 2))",
+            "potential ((m * g) * y)",
+            "lagrangian ((((-1) / 2) * k) * (phi ^ 2))",
+            "force x: ((-f) * x')",
+            "force b: [0, ((-m) * g)]",
+            "thrust y: (mu * u)",
+            "impact phi: ((-c) * phi')",
+            "outflow b: rate mu, relative_velocity [(-u), 0]",
+            "inflow b: velocity [0, 0]",
+            "inflow b: ",
+            "check x'' = ((-(w ^ 2)) * x)",
+        ]
+    );
+}
+
+#[test]
+fn scalar_and_vector_loads_are_told_apart() {
+    let system = parse("force x: 1\nthrust b: [1, 2]\nimpact x: (1)");
+    let values: Vec<bool> = system
+        .statements
+        .iter()
+        .map(|s| match &s.kind {
+            StatementKind::Force(l) | StatementKind::Thrust(l) | StatementKind::Impact(l) => {
+                matches!(l.value, LoadValue::Vector(_))
+            }
+            other => panic!("unexpected {other:?}"),
+        })
+        .collect();
+    assert_eq!(values, [false, true, false]);
+}
+
+#[test]
+fn flow_options_come_in_any_order_and_may_be_absent() {
+    assert_eq!(
+        summaries("outflow r: relative_velocity [1], rate 2\ninflow s: rate 3\ninflow s: velocity [0]\noutflow r"),
+        [
+            "outflow r: rate 2, relative_velocity [1]",
+            "inflow s: rate 3",
+            "inflow s: velocity [0]",
+            "outflow r: ",
+        ]
+    );
+}
+
+#[test]
+fn semicolons_newlines_comments_and_blank_lines_separate_statements_alike() {
+    let lines = "coordinates x\nmass m = 2\nkinetic m*x'^2/2\n";
+    let semicolons = "coordinates x; mass m = 2; kinetic m*x'^2/2";
+    let messy = "\n\n   # a comment line\n\t coordinates x # trailing comment\r\n;;\nmass m = 2 ;\n\n  kinetic m*x'^2/2   # end\n   \n";
+    let expected = summaries(lines);
+    assert_eq!(expected.len(), 3);
+    assert_eq!(summaries(semicolons), expected);
+    assert_eq!(summaries(messy), expected);
+    assert!(parse("").statements.is_empty());
+    assert!(parse("  # nothing but a comment\n\n;\n")
+        .statements
+        .is_empty());
+}
+
+#[test]
+fn newlines_continue_a_statement_inside_parentheses_and_brackets() {
+    let source = "kinetic (1/2*m*x'^2 +   # translation\n   1/2*J*phi'^2)\nforce b: [\n  1,\n  2\n]\nlet v = max(a,\n b)";
+    assert_eq!(
+        summaries(source),
+        [
+            "kinetic ((((1 / 2) * m) * (x' ^ 2)) + (((1 / 2) * J) * (phi' ^ 2)))",
+            "force b: [1, 2]",
+            "let v = max(a, b)",
+        ]
+    );
+    let system = parse(source);
+    assert_eq!(system.statements[1].span.line, 3);
+    assert_eq!(
+        text(source, system.statements[1].span),
+        "force b: [\n  1,\n  2\n]"
+    );
+}
+
+#[test]
+fn keywords_are_names_inside_expressions() {
+    assert_eq!(
+        summaries("kinetic mass*body + check\nlet force = t"),
+        ["kinetic ((mass * body) + check)", "let force = t"]
+    );
+}
+
+#[test]
+fn statement_spans_cover_keyword_to_end_of_text() {
+    let source = "coordinates x   # c\n  mass m = m0 + c*x ; let w = 2\n";
+    let system = parse(source);
+    let spans: Vec<(&str, u32, u32)> = system
+        .statements
+        .iter()
+        .map(|s| (text(source, s.span), s.span.line, s.span.column))
+        .collect();
+    assert_eq!(
+        spans,
+        [
+            ("coordinates x", 1, 1),
+            ("mass m = m0 + c*x", 2, 3),
+            ("let w = 2", 2, 23),
+        ]
+    );
+}
+
+#[test]
+fn sled_spans_are_exact() {
+    let system = parse(SLED_PAPER);
+    let StatementKind::Lagrangian(l) = &system.statements[2].kind else {
+        panic!("not a lagrangian: {:?}", system.statements[2].kind)
+    };
+    assert_eq!(text(SLED_PAPER, l.span), "1/2*m*x'^2 + m*g*x*sin(theta)");
+    assert_eq!((l.span.line, l.span.column), (4, 12));
+    // The node for `sin(theta)` and its name.
+    let call = nodes(l)
+        .into_iter()
+        .find(|n| show(n) == "sin(theta)")
+        .expect("a call node");
+    assert_eq!(text(SLED_PAPER, call.span), "sin(theta)");
+    assert_eq!((call.span.line, call.span.column), (4, 31));
+
+    let system = parse(SLED_BODY);
+    let StatementKind::Body(body) = &system.statements[2].kind else {
+        panic!("not a body")
+    };
+    assert_eq!(text(SLED_BODY, body.name.span), "sled");
+    assert_eq!(text(SLED_BODY, body.mass.span), "m");
+    assert_eq!(text(SLED_BODY, body.position.span), "[x]");
+    assert_eq!(
+        body.position.span,
+        Span {
+            start: body.position.span.start,
+            end: body.position.span.end,
+            line: 4,
+            column: 29
+        }
+    );
+    let StatementKind::Inflow(flow) = &system.statements[5].kind else {
+        panic!("not an inflow")
+    };
+    let Some(FlowVelocity::Absolute(v)) = &flow.velocity else {
+        panic!("no velocity")
+    };
+    assert_eq!(text(SLED_BODY, v.span), "[0]");
+    assert_eq!(
+        text(SLED_BODY, system.statements[5].span),
+        "inflow sled: velocity [0]"
+    );
+}
+
+#[test]
+fn every_span_of_every_example_is_exact_text_that_reparses_to_its_node() {
+    for source in [SLED_PAPER, SLED_BODY, ROCKET, EVERY_STATEMENT] {
+        for statement in parse(source).statements {
+            assert_span_valid(source, statement.span);
+            // The statement's own text is a system of that one statement.
+            let alone = parse(text(source, statement.span));
+            assert_eq!(alone.statements.len(), 1);
+            assert_eq!(summary(&alone.statements[0].kind), summary(&statement.kind));
+            for root in statement_expressions(&statement) {
+                for node in nodes(root) {
+                    assert_span_valid(source, node.span);
+                    let reparsed =
+                        varmass_symbolic::parse::parse_expression(text(source, node.span))
+                            .unwrap_or_else(|e| panic!("{:?}: {e}", text(source, node.span)));
+                    assert_eq!(show(&reparsed), show(node));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn body_options_come_in_any_order() {
+    assert_eq!(
+        summaries("body b: position [x, y], mass m"),
+        ["body b: mass m, position [x, y]"]
+    );
+}
