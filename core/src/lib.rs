@@ -87,7 +87,7 @@
 extern crate alloc;
 
 pub mod error;
-mod math;
+pub mod math;
 pub mod stepper;
 pub mod steppers;
 pub mod system;
@@ -98,6 +98,9 @@ pub mod events;
 pub mod run;
 #[cfg(feature = "run")]
 pub mod solution;
+
+/// nalgebra, re-exported so generated code and users name one version.
+pub use nalgebra;
 
 pub use error::StepError;
 pub use stepper::{Progress, Statistics, StepOutcome, Stepper};

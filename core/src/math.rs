@@ -1,4 +1,4 @@
-//! The few real functions the runtime needs, through `nalgebra::ComplexField` so that they
+//! The few real functions the runtime and generated code need, through `nalgebra::ComplexField` so that they
 //! exist without `std` (nalgebra is built with `libm`).
 
 use nalgebra::ComplexField;
@@ -11,4 +11,18 @@ pub(crate) fn sqrt(x: f64) -> f64 {
 /// xʸ.
 pub(crate) fn powf(x: f64, y: f64) -> f64 {
     <f64 as ComplexField>::powf(x, y)
+}
+
+/// The sign of x as the derivative of |x| needs it: −1, 0 or 1 (and NaN for NaN).
+/// `f64::signum` gives 1 at 0, which would make d|x|/dx = 1 at the kink; generated code
+/// calls this instead.
+#[inline]
+pub fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        x * 0.0
+    }
 }
