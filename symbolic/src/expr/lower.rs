@@ -1,0 +1,172 @@
+//! Lowering: from the parser's syntax tree ([`ExprNode`]) to a canonical expression.
+//!
+//! Names are resolved by a [`Resolver`] supplied by the caller (the mechanics stage knows
+//! which names are coordinates, masses, parameters); every error of one expression is
+//! collected, so the user sees them all at once.
+
+use super::func::Func;
+use super::node::Id;
+use super::pool::ExprPool;
+use super::symbol::SymbolKind;
+use crate::parse::ast::{BinOp, Expr, ExprNode};
+use crate::parse::{Diagnostic, Span};
+
+/// Turns a name written in the DSL into an expression.
+pub trait Resolver {
+    /// The expression for `name` followed by `primes` primes (0, 1 or 2): `x`, `x'`, `x''`.
+    fn resolve(
+        &mut self,
+        pool: &mut ExprPool,
+        name: &str,
+        primes: u8,
+        span: Span,
+    ) -> Result<Id, Diagnostic>;
+}
+
+/// Resolves names already in the pool's symbol table: `x` to its symbol, `x'` and `x''`
+/// to the velocity and acceleration of coordinate `x`. Handy for tests and `check` lines.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TableResolver;
+
+impl Resolver for TableResolver {
+    fn resolve(
+        &mut self,
+        pool: &mut ExprPool,
+        name: &str,
+        primes: u8,
+        span: Span,
+    ) -> Result<Id, Diagnostic> {
+        let table = pool.symbols();
+        let Some(s) = table.lookup(name) else {
+            return Err(Diagnostic::new(span, format!("unknown symbol `{name}`")));
+        };
+        let target = match primes {
+            0 => Some(s),
+            1 => table.velocity_of(s),
+            2 => table.acceleration_of(s),
+            _ => None,
+        };
+        match target {
+            Some(t) => Ok(pool.sym(t)),
+            None if table.kind(s) == SymbolKind::Coordinate => Err(Diagnostic::new(
+                span,
+                format!("`{name}{}` has too many primes", "'".repeat(primes.into())),
+            )
+            .with_help("write `x'` for a velocity or `x''` for an acceleration")),
+            None => Err(Diagnostic::new(
+                span,
+                format!(
+                    "`{name}` is not a coordinate, so `{name}{}` has no meaning",
+                    "'".repeat(primes.into())
+                ),
+            )),
+        }
+    }
+}
+
+/// The names the DSL accepts as functions, for messages.
+fn known_functions() -> String {
+    let mut names: Vec<&str> = Func::ALL.iter().map(|f| f.name()).collect();
+    names.insert(5, SQRT);
+    names.join(", ")
+}
+
+/// `sqrt` is a power, not a [`Func`].
+const SQRT: &str = "sqrt";
+
+/// Lowers `node` into `pool`, resolving names with `resolver`. Every error found is
+/// returned, not just the first.
+pub fn lower(
+    pool: &mut ExprPool,
+    node: &ExprNode,
+    resolver: &mut dyn Resolver,
+) -> Result<Id, Vec<Diagnostic>> {
+    let mut errors = Vec::new();
+    let id = lower_node(pool, node, resolver, &mut errors);
+    match id {
+        Some(id) if errors.is_empty() => Ok(id),
+        _ => Err(errors),
+    }
+}
+
+/// Recursion is bounded by the parser's nesting limit. On an error, `None` is returned
+/// after recording it, and siblings are still lowered so that their errors are found too.
+fn lower_node(
+    pool: &mut ExprPool,
+    node: &ExprNode,
+    resolver: &mut dyn Resolver,
+    errors: &mut Vec<Diagnostic>,
+) -> Option<Id> {
+    let span = node.span;
+    match node.node.as_ref() {
+        Expr::Number(text) => {
+            let id = pool.literal(text);
+            if id.is_none() {
+                errors.push(Diagnostic::new(
+                    span,
+                    format!("`{text}` is not a finite number"),
+                ));
+            }
+            id
+        }
+        Expr::Name(name) => record(resolver.resolve(pool, name, 0, span), errors),
+        Expr::Derivative { name, order } => {
+            record(resolver.resolve(pool, name, *order, span), errors)
+        }
+        Expr::Neg(inner) => {
+            let inner = lower_node(pool, inner, resolver, errors)?;
+            Some(pool.neg(inner))
+        }
+        Expr::Binary { op, lhs, rhs } => {
+            let lhs = lower_node(pool, lhs, resolver, errors);
+            let rhs = lower_node(pool, rhs, resolver, errors);
+            let (a, b) = (lhs?, rhs?);
+            Some(match op {
+                BinOp::Add => pool.add(&[a, b]),
+                BinOp::Sub => pool.sub(a, b),
+                BinOp::Mul => pool.mul(&[a, b]),
+                BinOp::Div => pool.div(a, b),
+                BinOp::Pow => pool.pow(a, b),
+            })
+        }
+        Expr::Call { func, args } => {
+            let lowered: Vec<Option<Id>> = args
+                .iter()
+                .map(|a| lower_node(pool, a, resolver, errors))
+                .collect();
+            let (expected, f) = if func.node == SQRT {
+                (1, None)
+            } else if let Some(f) = Func::from_name(&func.node) {
+                (f.arity(), Some(f))
+            } else {
+                errors.push(
+                    Diagnostic::new(func.span, format!("unknown function `{}`", func.node))
+                        .with_help(format!("known functions: {}", known_functions())),
+                );
+                return None;
+            };
+            if args.len() != expected {
+                errors.push(Diagnostic::new(
+                    func.span,
+                    format!(
+                        "`{}` takes {expected} argument{}, found {}",
+                        func.node,
+                        if expected == 1 { "" } else { "s" },
+                        args.len()
+                    ),
+                ));
+                return None;
+            }
+            let args: Vec<Id> = lowered.into_iter().collect::<Option<_>>()?;
+            match (f, args.as_slice()) {
+                (Some(f), _) => Some(pool.call(f, &args)),
+                (None, [u]) => Some(pool.sqrt(*u)),
+                (None, _) => None,
+            }
+        }
+    }
+}
+
+fn record(result: Result<Id, Diagnostic>, errors: &mut Vec<Diagnostic>) -> Option<Id> {
+    result.map_err(|e| errors.push(e)).ok()
+}

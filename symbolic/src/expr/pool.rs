@@ -1,0 +1,246 @@
+//! The arena: hash-consed nodes, leaf constructors, definitions and simple queries.
+
+use super::node::{Id, Node, Number};
+use super::rational::Rational;
+use super::symbol::{Symbol, SymbolKind, SymbolTable};
+use std::collections::HashMap;
+
+/// A flat, hash-consed arena of expressions (after egg's `RecExpr`).
+///
+/// **Invariant:** every child of a node has a smaller [`Id`] than the node, and the value
+/// of a defined symbol (see [`define`](Self::define)) has a smaller id than that symbol's
+/// `Sym` node. So ascending id order is a topological order: every pass over an expression
+/// (derivatives, substitution, evaluation, compilation) visits the reachable ids in
+/// ascending order, bottom-up, without recursion and in time linear in the DAG size.
+///
+/// Identical nodes are stored once, so equal ids mean equal expressions. The public
+/// constructors keep every node in canonical form (see [`Node`]), so simplification
+/// happens at construction: `x - x` is `0`, `2*x + 3*x` is `5*x`, `x*x` is `x^2`.
+#[derive(Clone, Debug)]
+pub struct ExprPool {
+    nodes: Vec<Node>,
+    /// Height of each node (a leaf is 0): a cheap structural key that settles most
+    /// comparisons of deep expressions at once (see `structural_cmp`).
+    heights: Vec<u32>,
+    index: HashMap<Node, Id>,
+    symbols: SymbolTable,
+    definitions: HashMap<Symbol, Id>,
+}
+
+/// What `node` answers for an id that is not in the pool (an id of another pool).
+static FOREIGN: Node = Node::Num(Rational::ZERO);
+
+impl Default for ExprPool {
+    fn default() -> Self {
+        ExprPool::new()
+    }
+}
+
+impl ExprPool {
+    /// An empty pool with an empty symbol table.
+    pub fn new() -> ExprPool {
+        ExprPool {
+            nodes: Vec::new(),
+            heights: Vec::new(),
+            index: HashMap::new(),
+            symbols: SymbolTable::new(),
+            definitions: HashMap::new(),
+        }
+    }
+
+    /// The symbol table.
+    pub fn symbols(&self) -> &SymbolTable {
+        &self.symbols
+    }
+
+    /// The symbol table, to declare symbols.
+    pub fn symbols_mut(&mut self) -> &mut SymbolTable {
+        &mut self.symbols
+    }
+
+    /// The node behind `id` (a zero constant for an id of another pool).
+    pub fn node(&self, id: Id) -> &Node {
+        self.nodes.get(id.index()).unwrap_or(&FOREIGN)
+    }
+
+    /// Number of distinct nodes stored.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The height of `e`'s tree: 0 for a leaf, else 1 + the largest child height.
+    pub fn height(&self, e: Id) -> u32 {
+        self.heights.get(e.index()).copied().unwrap_or(0)
+    }
+
+    /// Every id of the pool, ascending (children before parents).
+    pub fn ids(&self) -> impl Iterator<Item = Id> {
+        (0..self.nodes.len() as u32).map(Id)
+    }
+
+    /// Whether no node is stored yet.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Stores `node` once. Only the canonical constructors call this.
+    pub(crate) fn intern(&mut self, node: Node) -> Id {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        // 2^32 nodes would need far more memory than any derivation uses.
+        let id = Id(self.nodes.len() as u32);
+        let height = node
+            .children()
+            .map(|c| self.height(c).saturating_add(1))
+            .max()
+            .unwrap_or(0);
+        self.heights.push(height);
+        self.nodes.push(node.clone());
+        self.index.insert(node, id);
+        id
+    }
+
+    /// The integer `n`.
+    pub fn int(&mut self, n: i64) -> Id {
+        self.rational(Rational::from(n))
+    }
+
+    /// An exact rational constant.
+    pub fn rational(&mut self, r: Rational) -> Id {
+        self.intern(Node::Num(r))
+    }
+
+    /// An inexact constant. `0.0` (either sign) is the exact zero.
+    pub fn float(&mut self, x: f64) -> Id {
+        self.number(Number::Inexact(x))
+    }
+
+    /// A constant from a decimal literal (`9.81`, `1e-3`, `.5`, `6.02E23`): exact when the
+    /// value fits a rational of `i128`s, else inexact. `None` if the text is not a literal
+    /// or its value is not finite.
+    pub fn literal(&mut self, text: &str) -> Option<Id> {
+        if let Some(r) = Rational::from_decimal(text) {
+            return Some(self.rational(r));
+        }
+        let valid = text
+            .bytes()
+            .all(|b| b.is_ascii_digit() || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-'));
+        let x: f64 = text.parse().ok().filter(|x: &f64| x.is_finite())?;
+        valid.then(|| self.float(x))
+    }
+
+    pub(crate) fn number(&mut self, n: Number) -> Id {
+        match n.normalized() {
+            Number::Exact(r) => self.rational(r),
+            Number::Inexact(x) => self.intern(Node::Float(x.to_bits())),
+        }
+    }
+
+    /// The expression that is just the symbol `s`.
+    pub fn sym(&mut self, s: Symbol) -> Id {
+        self.intern(Node::Sym(s))
+    }
+
+    /// Declares a [`SymbolKind::Definition`] `name` whose value is `value`: derivatives look
+    /// through it, evaluation evaluates it, [`inline_definitions`](Self::inline_definitions)
+    /// replaces it.
+    ///
+    /// If `name` is taken, the existing symbol is returned and nothing is recorded (so a
+    /// definition can never refer to itself); [`try_define`](Self::try_define) reports it.
+    pub fn define(&mut self, name: &str, value: Id) -> Symbol {
+        match self.try_define(name, value) {
+            Ok(s) | Err(s) => s,
+        }
+    }
+
+    /// Like [`define`](Self::define), but `Err(existing)` if the name is taken.
+    pub fn try_define(&mut self, name: &str, value: Id) -> Result<Symbol, Symbol> {
+        let s = self.symbols.try_add(name, SymbolKind::Definition)?;
+        // `value` exists already and `Sym(s)` cannot, so the value's id is the smaller one.
+        self.definitions.insert(s, value);
+        self.sym(s);
+        Ok(s)
+    }
+
+    /// The value of a defined symbol.
+    pub fn definition(&self, s: Symbol) -> Option<Id> {
+        self.definitions.get(&s).copied()
+    }
+
+    /// The value behind a `Sym` node of a defined symbol.
+    pub(crate) fn definition_of_node(&self, id: Id) -> Option<Id> {
+        match self.node(id) {
+            Node::Sym(s) => self.definition(*s),
+            _ => None,
+        }
+    }
+
+    /// Whether `e` is the constant zero.
+    pub fn is_zero(&self, e: Id) -> bool {
+        self.node(e).number().is_some_and(Number::is_zero)
+    }
+
+    /// Whether `e` is the constant one.
+    pub fn is_one(&self, e: Id) -> bool {
+        self.node(e).number().is_some_and(Number::is_one)
+    }
+
+    /// The exact value of a rational constant.
+    pub fn as_rational(&self, e: Id) -> Option<Rational> {
+        match self.node(e) {
+            Node::Num(r) => Some(*r),
+            _ => None,
+        }
+    }
+
+    /// The value of any constant, exact or not.
+    pub fn as_f64(&self, e: Id) -> Option<f64> {
+        self.node(e).number().map(Number::to_f64)
+    }
+
+    /// The symbol, if `e` is a bare symbol.
+    pub fn as_symbol(&self, e: Id) -> Option<Symbol> {
+        match self.node(e) {
+            Node::Sym(s) => Some(*s),
+            _ => None,
+        }
+    }
+
+    /// The terms of a sum, or `[e]` — to name an offending term in a diagnostic.
+    pub fn terms(&self, e: Id) -> Vec<Id> {
+        match self.node(e) {
+            Node::Add(terms) => terms.to_vec(),
+            _ => vec![e],
+        }
+    }
+
+    /// The factors of a product (coefficient included), or `[e]`.
+    pub fn factors(&self, e: Id) -> Vec<Id> {
+        match self.node(e) {
+            Node::Mul(factors) => factors.to_vec(),
+            _ => vec![e],
+        }
+    }
+
+    /// Every id reachable from `roots` (looking through definitions if asked), ascending,
+    /// hence children before parents. Iterative: no recursion on deep expressions.
+    pub(crate) fn reachable(&self, roots: &[Id], through_definitions: bool) -> Vec<Id> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack: Vec<Id> = roots.to_vec();
+        let mut out = Vec::new();
+        while let Some(id) = stack.pop() {
+            match seen.get_mut(id.index()) {
+                Some(flag) if !*flag => *flag = true,
+                _ => continue,
+            }
+            out.push(id);
+            stack.extend(self.node(id).children());
+            if through_definitions {
+                stack.extend(self.definition_of_node(id));
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+}

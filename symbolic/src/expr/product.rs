@@ -1,0 +1,154 @@
+//! Canonical products and powers: factors flattened, equal bases collected by adding
+//! exponents (`x*x` → `x^2`, `x^2*x^-1` → `x`), the numeric coefficient folded exactly,
+//! factors in structural order.
+//!
+//! Only rules that hold wherever both sides are defined:
+//!
+//! | rule                        | when                                   |
+//! |-----------------------------|----------------------------------------|
+//! | `u^0 → 1`, `u^1 → u`        | always                                 |
+//! | `(u^a)^n → u^(a·n)`         | `n` an integer                         |
+//! | `(a·b)^n → a^n · b^n`       | `n` an integer                         |
+//! | `r^n` folded                | `r` rational, `n` integer, fits `i128` |
+//! | `r^(p/q)` folded            | `r` a perfect `q`-th power             |
+//!
+//! `(x^2)^(1/2)` is *not* `x` (it is `|x|`), so it stays as written.
+
+use super::node::{Id, Node, Number};
+use super::pool::ExprPool;
+use super::rational::Rational;
+use std::collections::HashMap;
+
+/// Folds `b^e` for constants when the result is exact (or either side is inexact and the
+/// result is finite); `None` leaves the power unfolded.
+fn fold_power(b: Number, e: Number) -> Option<Number> {
+    match (b, e) {
+        (Number::Exact(b), Number::Exact(e)) => {
+            if let Some(n) = e.as_integer() {
+                return b.checked_pow(n).map(Number::Exact);
+            }
+            let q = u32::try_from(e.denom()).ok()?;
+            b.exact_root(q)?.checked_pow(e.numer()).map(Number::Exact)
+        }
+        _ => {
+            let x = b.to_f64().powf(e.to_f64());
+            x.is_finite().then_some(Number::Inexact(x))
+        }
+    }
+}
+
+impl ExprPool {
+    /// The canonical product of `factors` (1 for none).
+    pub fn mul(&mut self, factors: &[Id]) -> Id {
+        let mut coefficient = Number::ONE;
+        let mut exponents: HashMap<Id, Vec<Id>> = HashMap::new();
+        let one = self.int(1);
+        let mut work: Vec<Id> = factors.to_vec();
+        while let Some(f) = work.pop() {
+            match self.node(f) {
+                Node::Num(_) | Node::Float(_) => {
+                    if let Some(n) = self.node(f).number() {
+                        coefficient = coefficient.mul(n);
+                    }
+                }
+                Node::Mul(inner) => work.extend_from_slice(inner),
+                Node::Pow(b, e) => exponents.entry(*b).or_default().push(*e),
+                _ => exponents.entry(f).or_default().push(one),
+            }
+        }
+        if coefficient.is_zero() {
+            return self.number(Number::ZERO);
+        }
+        // Bases in structural order so that the result does not depend on hash order.
+        let mut bases: Vec<(Id, Vec<Id>)> = exponents.into_iter().collect();
+        bases.sort_by(|(a, _), (b, _)| self.structural_cmp(*a, *b));
+        let mut out: Vec<Id> = Vec::with_capacity(bases.len() + 1);
+        let mut again: Vec<Id> = Vec::new();
+        for (base, exps) in bases {
+            let e = match exps.as_slice() {
+                [single] => *single,
+                _ => self.add(&exps),
+            };
+            let p = self.pow(base, e);
+            match self.node(p) {
+                Node::Num(_) | Node::Float(_) => {
+                    if let Some(n) = self.node(p).number() {
+                        coefficient = coefficient.mul(n);
+                    }
+                }
+                // Collected exponents made an integer power of a product, which distributes
+                // over factors that may meet others here: collect once more.
+                Node::Mul(_) => again.push(p),
+                _ => out.push(p),
+            }
+        }
+        if coefficient.is_zero() {
+            return self.number(Number::ZERO);
+        }
+        if !again.is_empty() {
+            let c = self.number(coefficient);
+            again.push(c);
+            again.extend(out);
+            return self.mul(&again);
+        }
+        out.sort_by(|a, b| self.structural_cmp(*a, *b));
+        if !coefficient.is_one() {
+            let c = self.number(coefficient);
+            out.insert(0, c);
+        }
+        match out.as_slice() {
+            [] => self.number(Number::ONE),
+            [single] => *single,
+            _ => self.intern(Node::Mul(out.into_boxed_slice())),
+        }
+    }
+
+    /// `a / b`, that is `a * b^-1`.
+    pub fn div(&mut self, a: Id, b: Id) -> Id {
+        let minus_one = self.int(-1);
+        let inverse = self.pow(b, minus_one);
+        self.mul(&[a, inverse])
+    }
+
+    /// `sqrt(a)`, that is `a^(1/2)`.
+    pub fn sqrt(&mut self, a: Id) -> Id {
+        let half = self.rational(Rational::HALF);
+        self.pow(a, half)
+    }
+
+    /// The canonical power `base ^ exp`.
+    pub fn pow(&mut self, base: Id, exp: Id) -> Id {
+        let e = self.node(exp).number();
+        if let Some(e) = e {
+            if e.is_zero() {
+                return self.number(Number::ONE);
+            }
+            if e.is_one() {
+                return base;
+            }
+        }
+        if let Some(b) = self.node(base).number() {
+            if b.is_one() {
+                return self.number(Number::ONE);
+            }
+            if let Some(folded) = e.and_then(|e| fold_power(b, e)) {
+                return self.number(folded);
+            }
+        }
+        let integer_exponent = self.as_rational(exp).and_then(|r| r.as_integer()).is_some();
+        if integer_exponent {
+            match self.node(base).clone() {
+                Node::Pow(b, inner) => {
+                    let product = self.mul(&[inner, exp]);
+                    return self.pow(b, product);
+                }
+                Node::Mul(factors) => {
+                    let powers: Vec<Id> = factors.iter().map(|f| self.pow(*f, exp)).collect();
+                    return self.mul(&powers);
+                }
+                _ => {}
+            }
+        }
+        self.intern(Node::Pow(base, exp))
+    }
+}

@@ -1,0 +1,62 @@
+//! Questions about an expression's symbols: which occur, and the polynomial degree in some
+//! of them (L must be at most quadratic in the velocities, SPEC §2).
+
+use super::node::{Id, Node};
+use super::pool::ExprPool;
+use super::symbol::Symbol;
+use std::collections::{BTreeSet, HashMap};
+
+impl ExprPool {
+    /// Whether `s` occurs in `e`, directly or inside the value of a defined symbol.
+    pub fn contains(&self, e: Id, s: Symbol) -> bool {
+        self.reachable(&[e], true)
+            .into_iter()
+            .any(|id| *self.node(id) == Node::Sym(s))
+    }
+
+    /// Every symbol that occurs in `e`: defined symbols and the symbols of their values.
+    pub fn free_symbols(&self, e: Id) -> BTreeSet<Symbol> {
+        self.reachable(&[e], true)
+            .into_iter()
+            .filter_map(|id| self.as_symbol(id))
+            .collect()
+    }
+
+    /// The total degree of `e` as a polynomial in `vars` (whose coefficients may be any
+    /// expressions free of `vars`); `None` if `e` is not polynomial in them, e.g. `sin(x')`
+    /// or `1/x'`. Defined symbols are looked through.
+    pub fn degree(&self, e: Id, vars: &[Symbol]) -> Option<u32> {
+        // None = not polynomial; Some(0) = free of vars (canonical form has no `x - x`).
+        let mut degrees: HashMap<Id, Option<u32>> = HashMap::new();
+        for id in self.reachable(&[e], true) {
+            let of = |c: &Id| degrees.get(c).copied().flatten();
+            let degree = match self.node(id) {
+                Node::Num(_) | Node::Float(_) => Some(0),
+                Node::Sym(s) => match self.definition(*s) {
+                    Some(v) => of(&v),
+                    None => Some(u32::from(vars.contains(s))),
+                },
+                Node::Add(terms) => terms
+                    .iter()
+                    .map(of)
+                    .try_fold(0u32, |acc, d| d.map(|d| acc.max(d))),
+                Node::Mul(factors) => factors
+                    .iter()
+                    .map(of)
+                    .try_fold(0u32, |acc, d| acc.checked_add(d?)),
+                Node::Pow(b, x) => match (of(b), of(x)) {
+                    (Some(0), Some(0)) => Some(0),
+                    (Some(db), Some(0)) => self
+                        .as_rational(*x)
+                        .and_then(|r| r.as_integer())
+                        .and_then(|n| u32::try_from(n).ok())
+                        .and_then(|n| db.checked_mul(n)),
+                    _ => None,
+                },
+                Node::Call(_, args) => args.iter().all(|a| of(a) == Some(0)).then_some(0),
+            };
+            degrees.insert(id, degree);
+        }
+        degrees.get(&e).copied().flatten()
+    }
+}
