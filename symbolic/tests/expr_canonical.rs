@@ -70,6 +70,10 @@ fn the_safe_rules_fire_at_construction() {
     same(&mut p, "0*sin(x)", "0");
     same(&mut p, "(a + b)*1 + 0", "b + a");
     same(&mut p, "-(-x)", "x");
+    // A number times a sum distributes, so differences of sums cancel.
+    same(&mut p, "x - (x + y)", "-y");
+    same(&mut p, "2*(x + y) - 2*x", "2*y");
+    same(&mut p, "(a + b)/2 - a/2", "b/2");
 }
 
 #[test]
@@ -81,6 +85,11 @@ fn unsafe_rules_do_not_fire() {
     assert!(matches!(p.node(root_of_square), Node::Pow(..)));
     // No expansion of products of sums by default.
     let product = build(&mut p, "(a + b)*(a - b)");
+    let scaled_sum = build(&mut p, "c*(a + b)");
+    assert!(
+        matches!(p.node(scaled_sum), Node::Mul(_)),
+        "a symbol does not distribute"
+    );
     let expanded = build(&mut p, "a^2 - b^2");
     assert_ne!(product, expanded);
     // (x^(1/2))^(1/2) is x^(1/4) only for x ≥ 0 in both readings; only integer outer
