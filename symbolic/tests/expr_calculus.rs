@@ -192,6 +192,8 @@ fn definitions_are_looked_through() {
     let xv = env[x.index()];
     let want = xv * xv * env[sym(&p, "g").index()] * env[sym(&p, "x'").index()];
     assert!((p.eval(e, &env) - want).abs() < 1e-14);
+    // With respect to itself, a defined symbol is a variable like any other.
+    assert_eq!(p.diff(e, w), build(&mut p, "x'"));
     // Contains and degree see through it; a redefinition does not rebind.
     assert!(p.contains(e, x));
     assert!(p.free_symbols(e).contains(&w));

@@ -70,6 +70,10 @@ fn the_safe_rules_fire_at_construction() {
     same(&mut p, "0*sin(x)", "0");
     same(&mut p, "(a + b)*1 + 0", "b + a");
     same(&mut p, "-(-x)", "x");
+    // A number times a sum distributes, so differences of sums cancel.
+    same(&mut p, "x - (x + y)", "-y");
+    same(&mut p, "2*(x + y) - 2*x", "2*y");
+    same(&mut p, "(a + b)/2 - a/2", "b/2");
 }
 
 #[test]
@@ -81,6 +85,11 @@ fn unsafe_rules_do_not_fire() {
     assert!(matches!(p.node(root_of_square), Node::Pow(..)));
     // No expansion of products of sums by default.
     let product = build(&mut p, "(a + b)*(a - b)");
+    let scaled_sum = build(&mut p, "c*(a + b)");
+    assert!(
+        matches!(p.node(scaled_sum), Node::Mul(_)),
+        "a symbol does not distribute"
+    );
     let expanded = build(&mut p, "a^2 - b^2");
     assert_ne!(product, expanded);
     // (x^(1/2))^(1/2) is x^(1/4) only for x ≥ 0 in both readings; only integer outer
@@ -165,6 +174,9 @@ fn symmetric_functions_pull_out_the_sign() {
     same(&mut p, "atan(-x) + atan(x)", "0");
     same(&mut p, "abs(-x*y)", "abs(x*y)");
     same(&mut p, "abs(abs(x))", "abs(x)");
+    same(&mut p, "cos(y - x)", "cos(x - y)");
+    same(&mut p, "sin(y - x) + sin(x - y)", "0");
+    same(&mut p, "tanh(1 - x)", "-tanh(x - 1)");
 }
 
 #[test]
@@ -183,7 +195,7 @@ fn construction_order_does_not_matter() {
             build(&mut p, &junk);
         }
         let e = build(&mut p, text);
-        let shape = dump(&p, e);
+        let shape = format!("{} = {}", dump(&p, e), p.display(e));
         match &reference {
             None => reference = Some(shape),
             Some(r) => assert_eq!(&shape, r, "order {k}"),

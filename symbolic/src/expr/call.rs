@@ -1,7 +1,8 @@
 //! Canonical function calls: exact values at the few points where they are rational
 //! (`sin(0)`, `cos(0)`, `ln(1)`, `abs`, `sign`, `min`, `max` of rationals), inexact
 //! arguments folded, and symmetry pulling a negative coefficient out of the argument of an
-//! odd (`sin(-x)` → `-sin(x)`) or even (`cos(-x)` → `cos(x)`) function.
+//! odd (`sin(-x)` → `-sin(x)`, `sin(y - x)` → `-sin(x - y)`) or even (`cos(-x)` →
+//! `cos(x)`) function.
 
 use super::func::Func;
 use super::node::{Id, Node, Number};
@@ -55,7 +56,7 @@ impl ExprPool {
             }
         }
         if let [u] = args {
-            if (f.is_odd() || f.is_even()) && self.has_negative_coefficient(*u) {
+            if (f.is_odd() || f.is_even()) && self.argument_is_negative(*u) {
                 let positive = self.neg(*u);
                 let value = self.call(f, &[positive]);
                 return if f.is_odd() { self.neg(value) } else { value };
@@ -67,6 +68,20 @@ impl ExprPool {
             }
         }
         self.intern(Node::Call(f, args.into()))
+    }
+
+    /// Whether `f(u)` should be written `±f(−u)`: `u` is a negative constant, a product
+    /// with a negative coefficient, or a sum whose leading (first non-constant) term is
+    /// such a product. Exactly one of `u` and `−u` qualifies, so `cos(x − y)` and
+    /// `cos(y − x)` become one node.
+    fn argument_is_negative(&self, u: Id) -> bool {
+        match self.node(u) {
+            Node::Add(terms) => terms
+                .iter()
+                .find(|t| self.node(**t).number().is_none())
+                .is_some_and(|t| self.has_negative_coefficient(*t)),
+            _ => self.has_negative_coefficient(u),
+        }
     }
 
     /// Whether `u` is a negative constant or a product with a negative coefficient.

@@ -32,7 +32,8 @@ pub struct UnsupportedDerivative {
 enum Leaf {
     /// ∂*/∂s: 1 for `s`, 0 for every other symbol.
     Partial(Symbol),
-    /// d*/dt: q → q', q' → q'', t → 1, parameters and frozen symbols → 0.
+    /// d*/dt: q → q', q' → q'', t → 1; parameters, frozen symbols and definitions
+    /// without a value → 0.
     Time,
 }
 
@@ -92,9 +93,11 @@ impl ExprPool {
             let of = |c: &Id| d.get(c).copied().unwrap_or(zero);
             let value = match self.node(id).clone() {
                 Node::Num(_) | Node::Float(_) => zero,
-                Node::Sym(s) => match self.definition(s) {
-                    Some(v) => of(&v),
-                    None => self.leaf_derivative(s, leaf)?,
+                Node::Sym(s) => match (self.definition(s), leaf) {
+                    // ∂w/∂w = 1 even for a defined w; otherwise look through its value.
+                    (Some(v), Leaf::Partial(wrt)) if wrt != s => of(&v),
+                    (Some(v), Leaf::Time) => of(&v),
+                    _ => self.leaf_derivative(s, leaf)?,
                 },
                 Node::Add(terms) => {
                     let dt: Vec<Id> = terms.iter().map(of).collect();

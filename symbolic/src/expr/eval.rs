@@ -4,9 +4,12 @@
 use super::func::Func;
 use super::node::{Id, Node};
 use super::pool::ExprPool;
+use super::rational::Rational;
 use std::collections::HashMap;
 
-/// `b^e`, exactly for integer exponents (powi keeps `(-2)^3 = -8` and is more accurate).
+/// `b^e`, by `powi` for integer exponents (it keeps `(-2)^3 = -8` and is more accurate).
+/// Evaluation and [`Tape`](super::Tape) make the same choices (`sqrt` for `^(1/2)`,
+/// `powi` for integers), so they agree bit for bit.
 pub(crate) fn power(b: f64, e: f64) -> f64 {
     if e.fract() == 0.0 && e.abs() <= f64::from(i32::MAX) {
         b.powi(e as i32)
@@ -31,6 +34,7 @@ impl ExprPool {
                 },
                 Node::Add(terms) => terms.iter().map(v).sum(),
                 Node::Mul(factors) => factors.iter().map(v).product(),
+                Node::Pow(b, x) if self.as_rational(*x) == Some(Rational::HALF) => v(b).sqrt(),
                 Node::Pow(b, x) => power(v(b), v(x)),
                 Node::Call(f, args) => apply(*f, args.iter().map(v)),
             };

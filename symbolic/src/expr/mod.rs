@@ -32,24 +32,34 @@
 //! ```
 
 mod call;
+mod cse;
 mod diff;
 mod eval;
+mod expand;
 mod func;
+mod identity;
+mod latex;
 mod lower;
 mod node;
 mod order;
 mod pool;
+mod print;
 mod product;
 mod query;
 mod rational;
 mod subst;
 mod sum;
 mod symbol;
+mod tape;
 
+pub use cse::Cse;
 pub use diff::UnsupportedDerivative;
 pub use func::Func;
+pub use identity::Identity;
 pub use lower::{lower, Resolver, TableResolver};
 pub use node::{Id, Node};
 pub use pool::ExprPool;
+pub use print::DisplayExpr;
 pub use rational::Rational;
 pub use symbol::{Symbol, SymbolKind, SymbolTable};
+pub use tape::Tape;

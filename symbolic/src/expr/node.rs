@@ -23,8 +23,10 @@ impl Id {
 /// - `Add`: ≥ 2 terms, no `Add` among them, the constant (if nonzero) first, then the
 ///   other terms in structural order, each `coefficient × rest` with distinct rests;
 /// - `Mul`: ≥ 2 factors, no `Mul` among them, the numeric coefficient (if ≠ 1) first, then
-///   the factors `base^exponent` in structural order with distinct bases;
-/// - `Pow(b, e)`: `e ≠ 0, 1`; `Call`: arguments as given.
+///   the factors `base^exponent` in structural order with distinct bases; never a number
+///   times a lone sum (that distributes);
+/// - `Pow(b, e)`: `e ≠ 0, 1`, no integer power of a power or of a product;
+/// - `Call`: no negative argument to an odd or even function (it is pulled out).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Node {
     /// An exact rational constant.

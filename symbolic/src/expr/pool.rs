@@ -3,7 +3,7 @@
 use super::node::{Id, Node, Number};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind, SymbolTable};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// A flat, hash-consed arena of expressions (after egg's `RecExpr`).
 ///
@@ -226,13 +226,14 @@ impl ExprPool {
     /// Every id reachable from `roots` (looking through definitions if asked), ascending,
     /// hence children before parents. Iterative: no recursion on deep expressions.
     pub(crate) fn reachable(&self, roots: &[Id], through_definitions: bool) -> Vec<Id> {
-        let mut seen = vec![false; self.nodes.len()];
+        // A set, not a bitmap of the whole pool: the cost follows the expression, not the
+        // (ever-growing) arena.
+        let mut seen: HashSet<Id> = HashSet::new();
         let mut stack: Vec<Id> = roots.to_vec();
         let mut out = Vec::new();
         while let Some(id) = stack.pop() {
-            match seen.get_mut(id.index()) {
-                Some(flag) if !*flag => *flag = true,
-                _ => continue,
+            if id.index() >= self.nodes.len() || !seen.insert(id) {
+                continue;
             }
             out.push(id);
             stack.extend(self.node(id).children());

@@ -11,6 +11,7 @@
 //! | `(a·b)^n → a^n · b^n`       | `n` an integer                         |
 //! | `r^n` folded                | `r` rational, `n` integer, fits `i128` |
 //! | `r^(p/q)` folded            | `r` a perfect `q`-th power             |
+//! | `c·(a + b) → c·a + c·b`     | `c` a number, the sum the only factor  |
 //!
 //! `(x^2)^(1/2)` is *not* `x` (it is `|x|`), so it stays as written.
 
@@ -92,6 +93,16 @@ impl ExprPool {
             return self.mul(&again);
         }
         out.sort_by(|a, b| self.structural_cmp(*a, *b));
+        // A number times a sum distributes (as in SymPy): `x - (x + y)` must cancel to `y`,
+        // and it costs no growth, unlike expanding a product of sums.
+        if let [single] = out.as_slice() {
+            if let (Node::Add(terms), false) = (self.node(*single), coefficient.is_one()) {
+                let terms = terms.clone();
+                let c = self.number(coefficient);
+                let scaled: Vec<Id> = terms.iter().map(|t| self.mul(&[c, *t])).collect();
+                return self.add(&scaled);
+            }
+        }
         if !coefficient.is_one() {
             let c = self.number(coefficient);
             out.insert(0, c);

@@ -87,8 +87,9 @@ impl SymbolTable {
 
     /// Adds a coordinate `name` together with `name'`, `name''` and `p_name`.
     ///
-    /// If `name` is already a coordinate, that coordinate is returned. Callers that must
-    /// reject duplicates check [`lookup`](Self::lookup) first.
+    /// If `name` is already a coordinate, that coordinate is returned. If it names a symbol
+    /// of another kind, a new coordinate is created but the name keeps finding the first
+    /// symbol: callers that must reject duplicates check [`lookup`](Self::lookup) first.
     pub fn add_coordinate(&mut self, name: &str) -> Symbol {
         if let Some(s) = self.lookup(name) {
             if self.kind(s) == SymbolKind::Coordinate {

@@ -43,7 +43,7 @@ pub fn sled_pool() -> ExprPool {
     let table = pool.symbols_mut();
     table.add_coordinate("x");
     table.add("t", SymbolKind::Time);
-    for p in ["g", "theta", "c", "m0", "f_d"] {
+    for p in ["g", "theta", "c", "m0", "f_d", "u_e", "mu"] {
         table.add(p, SymbolKind::Parameter);
     }
     table.add("m", SymbolKind::Frozen);

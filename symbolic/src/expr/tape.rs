@@ -1,0 +1,229 @@
+//! A compiled evaluator: the DAG of some roots flattened into straight-line code over
+//! numbered slots, each shared subexpression computed once. Reusable, and allocation-free
+//! per evaluation after the first.
+
+use super::eval::power;
+use super::func::Func;
+use super::node::{Id, Node};
+use super::pool::ExprPool;
+use super::rational::Rational;
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+/// One instruction; its result goes to the slot with its own index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Instr {
+    Const(f64),
+    /// `env[index]`, NaN if missing.
+    Var(usize),
+    /// The value of an earlier slot (a defined symbol's value).
+    Copy(usize),
+    /// Sum of `operands[start..start + len]`.
+    Add {
+        start: usize,
+        len: usize,
+    },
+    /// Product of `operands[start..start + len]`.
+    Mul {
+        start: usize,
+        len: usize,
+    },
+    /// `a^n` for an integer exponent: `powi`, exact for small `n` and sign-correct.
+    PowI(usize, i32),
+    Sqrt(usize),
+    Pow(usize, usize),
+    Call1(Func, usize),
+    Call2(Func, usize, usize),
+}
+
+/// Straight-line code evaluating several expressions at once (see
+/// [`ExprPool::compile`]). Defined symbols are compiled through their values.
+#[derive(Debug)]
+pub struct Tape {
+    code: Vec<Instr>,
+    operands: Vec<usize>,
+    outputs: Vec<usize>,
+    scratch: RefCell<Vec<f64>>,
+}
+
+impl Clone for Tape {
+    fn clone(&self) -> Tape {
+        Tape {
+            code: self.code.clone(),
+            operands: self.operands.clone(),
+            outputs: self.outputs.clone(),
+            scratch: RefCell::new(Vec::new()),
+        }
+    }
+}
+
+impl ExprPool {
+    /// Compiles `roots` into one [`Tape`]; `out[i]` of [`Tape::eval`] is the value of
+    /// `roots[i]`.
+    pub fn compile(&self, roots: &[Id]) -> Tape {
+        let mut slot: HashMap<Id, usize> = HashMap::new();
+        let mut code = Vec::new();
+        let mut operands = Vec::new();
+        for id in self.reachable(roots, true) {
+            let s = |c: &Id| slot.get(c).copied().unwrap_or(usize::MAX);
+            let instr = match self.node(id) {
+                Node::Num(r) => Instr::Const(r.to_f64()),
+                Node::Float(bits) => Instr::Const(f64::from_bits(*bits)),
+                Node::Sym(sym) => match self.definition(*sym) {
+                    Some(value) => Instr::Copy(s(&value)),
+                    None => Instr::Var(sym.index()),
+                },
+                Node::Add(terms) => {
+                    let start = operands.len();
+                    operands.extend(terms.iter().map(s));
+                    Instr::Add {
+                        start,
+                        len: terms.len(),
+                    }
+                }
+                Node::Mul(factors) => {
+                    let start = operands.len();
+                    operands.extend(factors.iter().map(s));
+                    Instr::Mul {
+                        start,
+                        len: factors.len(),
+                    }
+                }
+                Node::Pow(b, x) => {
+                    let exponent = self.as_rational(*x);
+                    let small = exponent
+                        .and_then(|r| r.as_integer())
+                        .and_then(|n| i32::try_from(n).ok());
+                    match small {
+                        Some(n) => Instr::PowI(s(b), n),
+                        None if exponent == Some(Rational::HALF) => Instr::Sqrt(s(b)),
+                        None => Instr::Pow(s(b), s(x)),
+                    }
+                }
+                Node::Call(f, args) => match args.as_ref() {
+                    [a] => Instr::Call1(*f, s(a)),
+                    [a, b] => Instr::Call2(*f, s(a), s(b)),
+                    _ => Instr::Const(f64::NAN),
+                },
+            };
+            slot.insert(id, code.len());
+            code.push(instr);
+        }
+        let outputs = roots
+            .iter()
+            .map(|r| slot.get(r).copied().unwrap_or(usize::MAX))
+            .collect();
+        Tape {
+            code,
+            operands,
+            outputs,
+            scratch: RefCell::new(Vec::new()),
+        }
+    }
+}
+
+impl Tape {
+    /// Number of instructions (one per distinct subexpression).
+    pub fn len(&self) -> usize {
+        self.code.len()
+    }
+
+    /// Whether the tape computes nothing.
+    pub fn is_empty(&self) -> bool {
+        self.code.is_empty()
+    }
+
+    /// Number of outputs (the roots it was compiled from).
+    pub fn outputs(&self) -> usize {
+        self.outputs.len()
+    }
+
+    /// Evaluates every root with symbol `s` worth `env[s.index()]` (NaN if missing) and
+    /// writes root `i` to `out[i]` (as many as fit). Uses an internal scratch buffer,
+    /// allocated on the first call only.
+    pub fn eval(&self, env: &[f64], out: &mut [f64]) {
+        match self.scratch.try_borrow_mut() {
+            Ok(mut scratch) => self.eval_with(env, &mut scratch, out),
+            // Only reachable through re-entrancy, which `eval` never does; stay correct.
+            Err(_) => self.eval_with(env, &mut Vec::new(), out),
+        }
+    }
+
+    /// [`eval`](Self::eval) with a caller-owned scratch buffer (for sharing a tape between
+    /// threads: one buffer per thread).
+    pub fn eval_with(&self, env: &[f64], scratch: &mut Vec<f64>, out: &mut [f64]) {
+        scratch.clear();
+        scratch.resize(self.code.len(), 0.0);
+        for i in 0..self.code.len() {
+            let v = |k: usize| scratch.get(k).copied().unwrap_or(f64::NAN);
+            let ops = |start: usize, len: usize| {
+                self.operands
+                    .get(start..start + len)
+                    .unwrap_or(&[])
+                    .iter()
+                    .copied()
+            };
+            let value = match self.code.get(i) {
+                Some(Instr::Const(c)) => *c,
+                Some(Instr::Var(k)) => env.get(*k).copied().unwrap_or(f64::NAN),
+                Some(Instr::Copy(k)) => v(*k),
+                Some(Instr::Add { start, len }) => ops(*start, *len).map(v).sum(),
+                Some(Instr::Mul { start, len }) => ops(*start, *len).map(v).product(),
+                Some(Instr::PowI(a, n)) => v(*a).powi(*n),
+                Some(Instr::Sqrt(a)) => v(*a).sqrt(),
+                Some(Instr::Pow(a, b)) => power(v(*a), v(*b)),
+                Some(Instr::Call1(f, a)) => f.apply(&[v(*a)]),
+                Some(Instr::Call2(f, a, b)) => f.apply(&[v(*a), v(*b)]),
+                None => f64::NAN,
+            };
+            if let Some(slot) = scratch.get_mut(i) {
+                *slot = value;
+            }
+        }
+        for (o, k) in out.iter_mut().zip(&self.outputs) {
+            *o = scratch.get(*k).copied().unwrap_or(f64::NAN);
+        }
+    }
+
+    /// Like [`eval_with`](Self::eval_with), and also the *magnitude* of each root: the same
+    /// expression with every sum replaced by the sum of absolute values. It bounds the
+    /// rounding error of the evaluation (≈ ops × ε × magnitude), which a value that cancels
+    /// to nearly zero cannot.
+    pub(crate) fn eval_with_magnitude(
+        &self,
+        env: &[f64],
+        scratch: &mut Vec<f64>,
+        magnitudes: &mut Vec<f64>,
+        out: &mut [f64],
+        out_magnitude: &mut [f64],
+    ) {
+        self.eval_with(env, scratch, out);
+        magnitudes.clear();
+        magnitudes.resize(self.code.len(), 0.0);
+        for i in 0..self.code.len() {
+            let m = |k: usize| magnitudes.get(k).copied().unwrap_or(f64::NAN);
+            let ops = |start: usize, len: usize| {
+                self.operands
+                    .get(start..start + len)
+                    .unwrap_or(&[])
+                    .iter()
+                    .copied()
+            };
+            let value = scratch.get(i).copied().unwrap_or(f64::NAN).abs();
+            let magnitude = match self.code.get(i) {
+                Some(Instr::Copy(k)) => m(*k),
+                Some(Instr::Add { start, len }) => ops(*start, *len).map(m).sum(),
+                Some(Instr::Mul { start, len }) => ops(*start, *len).map(m).product(),
+                Some(Instr::PowI(a, n)) if *n > 0 => m(*a).powi(*n),
+                // Nonlinear: the value's size is the best cheap scale.
+                _ => value,
+            };
+            if let Some(slot) = magnitudes.get_mut(i) {
+                *slot = magnitude.max(value);
+            }
+        }
+        for (o, k) in out_magnitude.iter_mut().zip(&self.outputs) {
+            *o = magnitudes.get(*k).copied().unwrap_or(f64::NAN);
+        }
+    }
+}

@@ -1,0 +1,88 @@
+//! The compiled tape against the interpreter, and common-subexpression elimination.
+
+mod expr_support;
+
+use expr_support::{build, sled_pool};
+use varmass_symbolic::expr::{ExprPool, Id};
+
+fn env(p: &ExprPool, k: usize) -> Vec<f64> {
+    (0..p.symbols().len())
+        .map(|i| 0.3 + 1.4 * (((i + 1) * (k + 3) * 7919) % 1000) as f64 / 1000.0)
+        .collect()
+}
+
+#[test]
+fn tape_equals_eval() {
+    let mut p = sled_pool();
+    let texts = [
+        "1/2*m*x'^2 + m*g*x*sin(theta)",
+        "p_x^2/(2*m) - m*g*x*sin(theta)",
+        "sqrt(x)/(m0 + c*x)^2 + x^(3/2) - 2^x",
+        "atan2(x, -g) + min(x, g)*max(c, m0) + abs(x - g)*sign(g - x)",
+        "exp(-x*t)*cosh(x) + ln(m0/m)*tanh(t) + asin(x/2) + acos(g/2) + atan(x)",
+        "(x + g)^-3 + tan(theta)",
+    ];
+    let roots: Vec<Id> = texts.iter().map(|t| build(&mut p, t)).collect();
+    // A definition is compiled through its value.
+    let w = p.define("w", roots[0]);
+    let ws = p.sym(w);
+    let mut all = roots.clone();
+    all.push(ws);
+    let tape = p.compile(&all);
+    assert_eq!(tape.outputs(), all.len());
+    let mut out = vec![0.0; all.len()];
+    for k in 0..10 {
+        let e = env(&p, k);
+        tape.eval(&e, &mut out);
+        for (r, got) in all.iter().zip(&out) {
+            let want = p.eval(*r, &e);
+            // Same operations in the same order, except sqrt vs powf(0.5): one ulp apart.
+            assert!(
+                (got - want).abs() <= 4.0 * f64::EPSILON * want.abs().max(1.0),
+                "{}: tape {got} vs eval {want}",
+                p.display(*r)
+            );
+        }
+    }
+    // A missing value is NaN, not a panic.
+    tape.eval(&[], &mut out);
+    assert!(out.iter().all(|v| v.is_nan()));
+    let mut scratch = Vec::new();
+    let e = env(&p, 0);
+    tape.eval_with(&e, &mut scratch, &mut out);
+    assert_eq!(out[6], p.eval(roots[0], &e));
+}
+
+/// Whether `part` occurs in `whole` (test-side walk, independent of the engine).
+fn inside(p: &ExprPool, whole: Id, part: Id) -> bool {
+    whole == part || p.node(whole).children().any(|c| inside(p, c, part))
+}
+
+#[test]
+fn cse_finds_the_shared_subexpressions() {
+    let mut p = sled_pool();
+    // sin(theta) is a factor in both roots and x*sin(theta) is the argument of two calls;
+    // p_x^2 occurs once. (Products are flat, so m*g*x*sin(theta) holds no x*sin(theta).)
+    let h = build(&mut p, "p_x^2/(2*m) - m*g*x*sin(theta)");
+    let q = build(&mut p, "cos(x*sin(theta)) + exp(x*sin(theta))");
+    let cse = p.cse(&[h, q]);
+    let shared: Vec<String> = cse
+        .shared
+        .iter()
+        .map(|e| p.display(*e).to_string())
+        .collect();
+    assert!(shared.contains(&"sin(theta)".to_owned()), "{shared:?}");
+    assert!(shared.contains(&"x*sin(theta)".to_owned()), "{shared:?}");
+    assert!(!shared.iter().any(|s| s.contains("p_x")), "{shared:?}");
+    // Dependency order: every shared node after the shared nodes inside it.
+    for (i, a) in cse.shared.iter().enumerate() {
+        for b in &cse.shared[i + 1..] {
+            assert!(!inside(&p, *a, *b), "{} before a part of it", p.display(*a));
+        }
+    }
+    assert!(cse.is_shared(cse.shared[0]));
+    assert!(!cse.is_shared(h));
+    // Nothing is shared in a tree without repetition.
+    let lone = build(&mut p, "x + g*c");
+    assert!(p.cse(&[lone]).shared.is_empty());
+}
