@@ -74,8 +74,8 @@ fn printing_reads_naturally() {
         ("1/sqrt(m)", "1/sqrt(m)"),
         ("x^(3/2)", "x^(3/2)"),
         ("x^(-g)", "1/x^g"),
-        ("-(x + g)", "-x - g"),
-        ("-(x + g)^2", "-(x + g)^2"),
+        ("-(x + g)", "-g - x"),
+        ("-(x + g)^2", "-(g + x)^2"),
         ("atan2(x, -g)", "atan2(x, -g)"),
         ("g - x", "g - x"),
         ("-x - 1", "-x - 1"),
@@ -103,7 +103,7 @@ fn latex_samples() {
     let mut p = sled_pool();
     let cases = [
         ("1/2*m*x'^2", r"\frac{m \dot{x}^{2}}{2}"),
-        ("m*x''", r"\ddot{x} m"),
+        ("m*x''", r"m \ddot{x}"),
         ("p_x^2/(2*m)", r"\frac{p_{x}^{2}}{2 m}"),
         ("m0*sin(theta)", r"m_{0} \sin\left(\theta\right)"),
         ("u_e*ln(m0/m)", r"u_{e} \ln\left(\frac{m_{0}}{m}\right)"),
@@ -115,7 +115,7 @@ fn latex_samples() {
         ),
         ("abs(x)*mu", r"\mu \left|x\right|"),
         ("exp(-x)", r"e^{-x}"),
-        ("(x + g)^2", r"\left(x + g\right)^{2}"),
+        ("(x + g)^2", r"\left(g + x\right)^{2}"),
         ("2*3^x", r"2 \cdot 3^{x}"),
         ("f_d*g*cos(theta)", r"g f_{d} \cos\left(\theta\right)"),
         ("atan2(x, g)", r"\operatorname{atan2}\left(x, g\right)"),

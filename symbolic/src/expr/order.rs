@@ -5,6 +5,7 @@
 //! built.
 //!
 //! The key, compared in turn: kind (constants, symbols, calls, powers, products, sums),
+//! (for symbols: their role, then their index),
 //! height of the tree, then the contents (constant value, symbol index, function, children
 //! in order). Height comes before contents so that deep expressions that share a long
 //! spine (`sin(sin(…x…))` against `sin(sin(…y…))` is rare; `cos(u)` against
@@ -23,6 +24,22 @@ fn rank(node: &Node) -> u8 {
         Node::Pow(..) => 3,
         Node::Mul(_) => 4,
         Node::Add(_) => 5,
+    }
+}
+
+/// Symbols sort by role first, as a physicist writes them: parameters, masses, time,
+/// coordinates, velocities, momenta (`m*g*x*sin(theta)`, `c*x'^2`); then by table index.
+fn symbol_rank(pool: &ExprPool, s: super::symbol::Symbol) -> u8 {
+    use super::symbol::SymbolKind;
+    match pool.symbols().kind(s) {
+        SymbolKind::Parameter => 0,
+        SymbolKind::Frozen => 1,
+        SymbolKind::Time => 2,
+        SymbolKind::Coordinate => 3,
+        SymbolKind::Velocity { .. } => 4,
+        SymbolKind::Momentum { .. } => 5,
+        SymbolKind::Acceleration { .. } => 6,
+        SymbolKind::Definition => 7,
     }
 }
 
@@ -61,7 +78,11 @@ impl ExprPool {
                         .total_cmp(&y.to_f64())
                         .then(Ordering::Greater)
                 }
-                (Node::Sym(x), Node::Sym(y)) => return x.cmp(y),
+                (Node::Sym(x), Node::Sym(y)) => {
+                    return symbol_rank(self, *x)
+                        .cmp(&symbol_rank(self, *y))
+                        .then(x.cmp(y))
+                }
                 (Node::Call(f, x), Node::Call(g, y)) => {
                     let by_func = f.cmp(g);
                     if by_func != Ordering::Equal {
