@@ -13,7 +13,9 @@
 //! position of the offending text.
 #![warn(missing_docs)]
 
+pub mod emit;
 pub mod expr;
+pub mod mechanics;
 pub mod parse;
 
 pub use parse::{Diagnostic, Span};

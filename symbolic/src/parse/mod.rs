@@ -11,4 +11,4 @@ pub mod keywords;
 mod span;
 
 pub use grammar::{parse_expression, parse_system, MAX_DEPTH, MAX_DIAGNOSTICS, MAX_NESTING};
-pub use span::{Diagnostic, Span, Spanned};
+pub use span::{Diagnostic, Origin, Span, Spanned};

@@ -102,7 +102,21 @@ impl Diagnostic {
     /// lines are skipped), each underlined where the span covers it. An empty span (at the
     /// end of a line or of the input) gets one caret just after the text.
     pub fn render(&self, source: &str) -> String {
+        self.render_at(source, Origin::default())
+    }
+
+    /// [`Diagnostic::render`] for DSL text that sits inside a larger file (a string literal
+    /// in Rust source): line and column numbers are shown in the file's terms.
+    pub fn render_at(&self, source: &str, origin: Origin) -> String {
         let span = Span::from_range(source, self.span.start, self.span.end);
+        let file_line = |line: u32| line + origin.line.saturating_sub(1);
+        let file_column = |line: u32, column: u32| {
+            if line == 1 {
+                column + origin.column.saturating_sub(1)
+            } else {
+                column
+            }
+        };
         let starts = line_starts(source);
         // The last line is the one holding the span's last byte, so a span that ends just
         // after a newline does not drag in the next, uncovered line.
@@ -111,11 +125,13 @@ impl Diagnostic {
         } else {
             span.line
         };
-        let gutter = last_line.to_string().len();
+        let gutter = file_line(last_line).to_string().len();
         let pad = " ".repeat(gutter);
         let mut out = format!(
             "error: {}\n{pad}--> {}:{}\n{pad} |",
-            self.message, span.line, span.column
+            self.message,
+            file_line(span.line),
+            file_column(span.line, span.column)
         );
         let mut shown = vec![span.line];
         if last_line > span.line {
@@ -136,7 +152,8 @@ impl Diagnostic {
             let indent = display_width(text.get(..from).unwrap_or(""));
             let width = display_width(text.get(from..to).unwrap_or("")).max(1);
             out.push_str(&format!(
-                "\n{line:>gutter$} | {}\n{pad} | {}{}",
+                "\n{:>gutter$} | {}\n{pad} | {}{}",
+                file_line(line),
                 display_text(text),
                 " ".repeat(indent),
                 "^".repeat(width)
@@ -146,6 +163,21 @@ impl Diagnostic {
             out.push_str(&format!("\n{pad} = help: {help}"));
         }
         out
+    }
+}
+
+/// Where DSL text starts inside a larger file (1-based), for [`Diagnostic::render_at`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Origin {
+    /// The file line of the DSL's first line.
+    pub line: u32,
+    /// The file column of the DSL's first character.
+    pub column: u32,
+}
+
+impl Default for Origin {
+    fn default() -> Self {
+        Origin { line: 1, column: 1 }
     }
 }
 

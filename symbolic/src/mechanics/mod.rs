@@ -1,0 +1,62 @@
+//! Stage 3: from a parsed system to its derivation (SPEC §1, §3).
+//!
+//! [`derive`] runs the whole stage: it resolves names and lowers every expression into a
+//! checked [`Model`], derives every quantity into a [`Derivation`], then verifies the
+//! system's `check`s against it. Every problem is a [`Diagnostic`] with the position of the
+//! statement it is about.
+//!
+//! ```
+//! use varmass_symbolic::mechanics::{derive_source, Parameters};
+//!
+//! let sled = "coordinates x
+//!             mass m = m0 + c*x
+//!             body sled: mass m, position [x]
+//!             potential -m*g*x*sin(theta)
+//!             force sled: [-f_d*m*g*cos(theta)]
+//!             inflow sled: velocity [0]
+//!             check p_x = m*x'
+//!             check R2_x = -c*x'^2";
+//! let derivation = derive_source(sled, Parameters::Inferred).expect("the sled derives");
+//! assert_eq!(derivation.checks.len(), 2);
+//! ```
+
+mod checks;
+mod derivation;
+mod forces;
+mod lagrangian;
+mod linear;
+mod masses;
+mod model;
+mod render;
+mod resolve;
+
+pub use derivation::{
+    CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,
+};
+pub use linear::Matrix;
+pub use model::{
+    Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
+    Model, Term, TermKind,
+};
+pub use resolve::Parameters;
+
+use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
+
+/// Resolves and lowers a parsed system into a checked [`Model`].
+pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
+    model::build_model(ast, parameters)
+}
+
+/// Derives a parsed system and verifies its `check`s.
+pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
+    let model = model::build_model(ast, parameters)?;
+    let mut derivation = derivation::derive_model(model)?;
+    checks::run_checks(&mut derivation)?;
+    Ok(derivation)
+}
+
+/// Parses and derives DSL source text.
+pub fn derive_source(source: &str, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
+    let ast = parse_system(source)?;
+    derive(&ast, parameters)
+}

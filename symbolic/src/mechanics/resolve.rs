@@ -1,0 +1,202 @@
+//! Name resolution: what each identifier of the DSL means, and where it may be used.
+
+use std::collections::HashMap;
+
+use crate::expr::{ExprPool, Id, Resolver, Symbol, SymbolKind};
+use crate::parse::keywords;
+use crate::parse::{Diagnostic, Span};
+
+/// What a name is bound to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Binding {
+    /// The time symbol `t`.
+    Time(Symbol),
+    /// Coordinate number `index`, with its symbols.
+    Coordinate {
+        q: Symbol,
+        velocity: Symbol,
+        acceleration: Symbol,
+    },
+    /// A frozen mass or inertia (index into the model's masses).
+    Mass(Symbol),
+    /// A `let` definition, inlined.
+    Let(Id),
+    /// A parameter (a field of the struct).
+    Parameter(Symbol),
+}
+
+/// Where an expression stands, which decides what it may refer to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Context {
+    /// Anything but accelerations and derived quantities.
+    Ordinary,
+    /// A `check`: accelerations and derived quantities (H, p_x, …) are allowed too.
+    Check,
+}
+
+/// How parameters are known.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Parameters {
+    /// Exactly these names are parameters (the struct's `f64` fields); any other unknown
+    /// name is an error.
+    Declared(Vec<String>),
+    /// Every name that is nothing else is a parameter (for `.vms` files and tests).
+    Inferred,
+}
+
+/// The resolver handed to expression lowering.
+pub(crate) struct NameResolver<'a> {
+    pub names: &'a mut HashMap<String, Binding>,
+    pub parameters: &'a Parameters,
+    pub inferred: &'a mut Vec<(String, Symbol)>,
+    pub context: Context,
+    /// Derived quantities a `check` may name (velocity form).
+    pub quantities: Option<&'a HashMap<String, Id>>,
+}
+
+impl Resolver for NameResolver<'_> {
+    fn resolve(
+        &mut self,
+        pool: &mut ExprPool,
+        name: &str,
+        primes: u8,
+        span: Span,
+    ) -> Result<Id, Diagnostic> {
+        if primes == 0 {
+            if let Some(value) = self.quantities.and_then(|q| q.get(name)) {
+                return Ok(*value);
+            }
+        }
+        match self.names.get(name).copied() {
+            Some(Binding::Coordinate {
+                q,
+                velocity,
+                acceleration,
+            }) => match primes {
+                0 => Ok(pool.sym(q)),
+                1 => Ok(pool.sym(velocity)),
+                _ if self.context == Context::Check => {
+                    match self.quantities.and_then(|q| q.get(&format!("{name}''"))) {
+                        Some(value) => Ok(*value),
+                        None => Ok(pool.sym(acceleration)),
+                    }
+                }
+                _ => Err(Diagnostic::new(
+                    span,
+                    format!("the acceleration `{name}''` may appear only in a `check`"),
+                )
+                .with_help("equations of motion are derived, not written; state them as `check`s")),
+            },
+            Some(binding) if primes > 0 => Err(Diagnostic::new(
+                span,
+                format!(
+                    "`{name}{}`: only coordinates have velocities, and `{name}` is {}",
+                    "'".repeat(primes as usize),
+                    describe(binding)
+                ),
+            )),
+            Some(Binding::Time(s) | Binding::Mass(s) | Binding::Parameter(s)) => Ok(pool.sym(s)),
+            Some(Binding::Let(value)) => Ok(value),
+            None => self.unknown(pool, name, primes, span),
+        }
+    }
+}
+
+impl NameResolver<'_> {
+    fn unknown(
+        &mut self,
+        pool: &mut ExprPool,
+        name: &str,
+        primes: u8,
+        span: Span,
+    ) -> Result<Id, Diagnostic> {
+        if primes == 0 {
+            if let Parameters::Inferred = self.parameters {
+                if !is_reserved(name) {
+                    let symbol = pool.symbols_mut().add(name, SymbolKind::Parameter);
+                    self.names
+                        .insert(name.to_string(), Binding::Parameter(symbol));
+                    self.inferred.push((name.to_string(), symbol));
+                    return Ok(pool.sym(symbol));
+                }
+            }
+        }
+        let what = if primes > 0 {
+            format!(
+                "`{name}{}`: `{name}` is not a coordinate",
+                "'".repeat(primes as usize)
+            )
+        } else if self.context == Context::Check && is_reserved(name) {
+            format!("`{name}` is not a quantity this system derives")
+        } else {
+            format!("unknown symbol `{name}`")
+        };
+        let candidates = self.names.keys().map(String::as_str).chain(
+            self.quantities
+                .into_iter()
+                .flat_map(|q| q.keys().map(String::as_str)),
+        );
+        let suggestion = closest(name, candidates).map(|close| format!("did you mean `{close}`?"));
+        let declared = primes == 0 && matches!(self.parameters, Parameters::Declared(_));
+        let field = declared.then(|| {
+            format!("if `{name}` is a parameter, add the field `{name}: f64` to the struct")
+        });
+        let help = match (suggestion, field) {
+            (Some(s), Some(f)) => Some(format!("{s} {}{}", &f[..1].to_uppercase(), &f[1..])),
+            (s, f) => s.or(f),
+        };
+        let mut diagnostic = Diagnostic::new(span, what);
+        if let Some(help) = help {
+            diagnostic = diagnostic.with_help(help);
+        }
+        Err(diagnostic)
+    }
+}
+
+/// Names that may not be declared because `check`s use them for derived quantities.
+pub(crate) fn is_reserved(name: &str) -> bool {
+    const QUANTITIES: &[&str] = &["H", "L", "T", "V", "power"];
+    name == keywords::TIME
+        || QUANTITIES.contains(&name)
+        || ["p_", "Q_", "R1_", "R2_", "pdot_", "dp_", "mdot_"]
+            .iter()
+            .any(|prefix| name.starts_with(prefix))
+}
+
+fn describe(binding: Binding) -> &'static str {
+    match binding {
+        Binding::Time(_) => "the time",
+        Binding::Coordinate { .. } => "a coordinate",
+        Binding::Mass(_) => "a mass (its rate is derived)",
+        Binding::Let(_) => "a definition",
+        Binding::Parameter(_) => "a parameter",
+    }
+}
+
+/// The candidate within edit distance 2 of `name`, if any (for "did you mean").
+pub(crate) fn closest<'a>(
+    name: &str,
+    candidates: impl Iterator<Item = &'a str>,
+) -> Option<&'a str> {
+    candidates
+        .map(|c| (edit_distance(name, c), c))
+        // A one-letter name is one edit from every other: suggest only real near-misses.
+        .filter(|(d, _)| *d <= 2 && *d < name.chars().count())
+        .min()
+        .map(|(_, c)| c)
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut previous = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let substitution = previous + usize::from(ca != *cb);
+            previous = row[j + 1];
+            row[j + 1] = substitution.min(row[j] + 1).min(previous + 1);
+        }
+    }
+    row[b.len()]
+}
