@@ -1,3 +1,25 @@
-//! The `#[variable_mass_system("…")]` attribute macro of varmass. A thin entry point: the
-//! work (parse → derive → emit) lives in `varmass-symbolic` so that it can be unit-tested.
-//! The macro itself arrives with the code-generation stage; until then this crate is empty.
+//! The `#[variable_mass_system("…")]` attribute macro of varmass.
+//!
+//! A thin entry point; the stages are files named after them (as in thiserror's `impl/`):
+//! [`ast`] reads the attribute and the struct, [`valid`] checks the struct, [`expand`] runs
+//! the symbolic pipeline (parse → derive → emit, in `varmass-symbolic`) and [`fallback`]
+//! emits a stub impl when anything fails, so one mistake does not cascade. Errors are
+//! collected in a [`ctxt::Ctxt`] and reported together.
+
+mod ast;
+mod ctxt;
+mod expand;
+mod fallback;
+mod valid;
+
+use proc_macro::TokenStream;
+
+/// Derives the equations of a variable-mass system from its Lagrangian, written in the
+/// varmass DSL, and implements `varmass::core::VariableMassSystem` for the struct, whose
+/// `f64` fields are the parameters.
+///
+/// See the `varmass` crate for the DSL and an example.
+#[proc_macro_attribute]
+pub fn variable_mass_system(attr: TokenStream, item: TokenStream) -> TokenStream {
+    expand::expand(attr.into(), item.into()).into()
+}

@@ -1,0 +1,394 @@
+//! The trait methods, one generator each.
+
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+use super::system::Emitter;
+use crate::expr::Id;
+use crate::mechanics::VelocitySolve;
+
+impl Emitter<'_> {
+    fn sizes(&self) -> (Literal, Literal, usize, usize) {
+        let (n, k) = (self.d.coordinates.len(), self.d.state_mass_count());
+        (
+            Literal::usize_unsuffixed(n),
+            Literal::usize_unsuffixed(2 * n + k),
+            n,
+            k,
+        )
+    }
+
+    /// `mass(index, t, state)`: a state mass is read from the state, a law is evaluated.
+    pub(crate) fn mass(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (_, s, n, _) = self.sizes();
+        let mut arms = Vec::new();
+        let mut docs = Vec::new();
+        for (i, (m, law)) in self.d.masses.iter().zip(&self.d.closed_laws).enumerate() {
+            let index = Literal::usize_unsuffixed(i);
+            match law {
+                None => {
+                    let slot = Literal::usize_unsuffixed(2 * n + i);
+                    docs.push(format!("{} = state[{}] (state mass)", m.name, 2 * n + i));
+                    arms.push(quote!(#index => state[#slot],));
+                }
+                Some(law) => {
+                    docs.push(format!("{} = {}", m.name, self.display(*law)));
+                    let body =
+                        self.body_configuration(&[*law], |mut outs| outs.pop().unwrap_or_default());
+                    arms.push(quote!(#index => { #body },));
+                }
+            }
+        }
+        let docs = self.docs("The masses and inertias, state masses first.", docs);
+        quote! {
+            #docs
+            #[inline]
+            fn mass(&self, index: usize, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>) -> f64 {
+                match index {
+                    #(#arms)*
+                    _ => f64::NAN,
+                }
+            }
+        }
+    }
+
+    /// `mass_rate(index, t, velocity_state)`.
+    pub(crate) fn mass_rate(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (_, s, _, _) = self.sizes();
+        let mut arms = Vec::new();
+        let mut docs = Vec::new();
+        for (i, (m, rate)) in self.d.masses.iter().zip(&self.d.mass_rates).enumerate() {
+            let index = Literal::usize_unsuffixed(i);
+            docs.push(format!("d{}/dt = {}", m.name, self.display(*rate)));
+            if self.d.pool.is_zero(*rate) {
+                arms.push(quote!(#index => 0.0,));
+            } else {
+                let body =
+                    self.body_input_velocity(&[*rate], |mut outs| outs.pop().unwrap_or_default());
+                arms.push(quote!(#index => { #body },));
+            }
+        }
+        let docs = self.docs("ṁ of every mass along the motion.", docs);
+        quote! {
+            #docs
+            #[inline]
+            fn mass_rate(&self, index: usize, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>) -> f64 {
+                match index {
+                    #(#arms)*
+                    _ => f64::NAN,
+                }
+            }
+        }
+    }
+
+    /// `mass_matrix(t, state)`.
+    pub(crate) fn mass_matrix(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (n_lit, s, n, _) = self.sizes();
+        let entries: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
+        let docs = self.docs(
+            "The mass matrix M = ∂²L/∂q̇² (masses frozen), row by row.",
+            (0..n).map(|a| {
+                let row: Vec<String> = (0..n)
+                    .map(|b| self.display(self.d.mass_matrix[a][b]))
+                    .collect();
+                format!("[{}]", row.join(", "))
+            }),
+        );
+        let body = self.body_configuration(&entries, |outs| {
+            quote!(#runtime::nalgebra::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#outs),*]))
+        });
+        quote! {
+            #docs
+            #[inline]
+            fn mass_matrix(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>) -> #runtime::nalgebra::SMatrix<f64, #n_lit, #n_lit> {
+                #body
+            }
+        }
+    }
+
+    /// `lagrangian(t, velocity_state)`.
+    pub(crate) fn lagrangian(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (_, s, _, _) = self.sizes();
+        let docs = self.docs(
+            "The Lagrangian L = T − V.",
+            [format!("L = {}", self.display(self.d.lagrangian))],
+        );
+        let body =
+            self.body_input_velocity(&[self.d.lagrangian], |mut o| o.pop().unwrap_or_default());
+        quote! {
+            #docs
+            #[inline]
+            fn lagrangian(&self, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>) -> f64 {
+                #body
+            }
+        }
+    }
+
+    /// `accelerations(t, velocity_state)`: q̈ in closed form, or M q̈ = rhs solved by Cholesky.
+    pub(crate) fn accelerations(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (n_lit, s, _, _) = self.sizes();
+        let (docs, body) = match &self.d.accelerations {
+            Some(acc) => (
+                self.docs(
+                    "Lagrange-form accelerations q̈(q, q̇, t) (eq. 6, masses frozen).",
+                    self.per_coordinate("#''", acc),
+                ),
+                self.body_input_velocity(acc, |outs| {
+                    let v = self.vector(outs);
+                    quote!(Ok(#v))
+                }),
+            ),
+            None => {
+                let mut roots: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
+                let m = roots.len();
+                roots.extend(&self.d.acceleration_rhs);
+                let docs = self.docs(
+                    "Lagrange-form accelerations: solves M q̈ = rhs (eq. 6, masses frozen) with",
+                    self.per_coordinate("rhs_#", &self.d.acceleration_rhs),
+                );
+                let body = self.body_input_velocity(&roots, |outs| {
+                    let (matrix, rhs) = outs.split_at(m);
+                    quote! {
+                        let __mass_matrix = #runtime::nalgebra::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#matrix),*]);
+                        let __rhs = #runtime::nalgebra::SVector::<f64, #n_lit>::from([#(#rhs),*]);
+                        __mass_matrix
+                            .cholesky()
+                            .map(|c| c.solve(&__rhs))
+                            .ok_or(#runtime::SystemError::SingularMassMatrix)
+                    }
+                });
+                (docs, body)
+            }
+        };
+        quote! {
+            #docs
+            #[inline]
+            fn accelerations(&self, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>)
+                -> Result<#runtime::nalgebra::SVector<f64, #n_lit>, #runtime::SystemError> {
+                #body
+            }
+        }
+    }
+
+    /// `velocities(t, state)`: q̇(q, p), overridden only when it is in closed form.
+    pub(crate) fn velocities(&self) -> TokenStream {
+        let VelocitySolve::Symbolic(v) = &self.d.velocities else {
+            return TokenStream::new();
+        };
+        let runtime = &self.target.runtime;
+        let (n_lit, s, _, _) = self.sizes();
+        let docs = self.docs(
+            "q̇(q, p, t) = M⁻¹ (p − b), in closed form.",
+            self.per_coordinate("#'", v),
+        );
+        let body = self.body_input_state(v, |outs| {
+            let v = self.vector(outs);
+            quote!(Ok(#v))
+        });
+        quote! {
+            #docs
+            #[inline]
+            fn velocities(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>)
+                -> Result<#runtime::nalgebra::SVector<f64, #n_lit>, #runtime::SystemError> {
+                #body
+            }
+        }
+    }
+
+    /// `hamiltonian(t, state)`.
+    pub(crate) fn hamiltonian(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (_, s, _, _) = self.sizes();
+        let (root, line) = match self.d.hamiltonian {
+            Some(h) => (h, format!("H = {}", self.display(h))),
+            None => (
+                self.d.energy,
+                format!("H = {}   (q̇ from M q̇ = p − b)", self.display(self.d.energy)),
+            ),
+        };
+        let docs = self.docs("The Hamiltonian H(q, p, t) = p·q̇ − L (eqs. 9–10).", [line]);
+        let body = self.body_input_state(&[root], |mut o| {
+            let h = o.pop().unwrap_or_default();
+            quote!(Ok(#h))
+        });
+        quote! {
+            #docs
+            #[inline]
+            fn hamiltonian(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>) -> Result<f64, #runtime::SystemError> {
+                #body
+            }
+        }
+    }
+
+    /// `canonical_rates(t, state)`: (q̇, d*p/dt) of eq. 14.
+    pub(crate) fn canonical_rates(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (n_lit, s, n, _) = self.sizes();
+        let velocities: Vec<Id> = self.velocity_roots();
+        let mut roots = velocities.clone();
+        roots.extend(&self.d.frozen_momentum_rate);
+        let mut lines = self.velocity_docs();
+        lines.extend(self.per_coordinate("d*p_#/dt", &self.d.frozen_momentum_rate));
+        let docs = self.docs(
+            "The canonical equations (eq. 14): q̇ = ∂*H/∂p, d*p/dt = −∂*H/∂q + Q* − R1 + R2.",
+            lines,
+        );
+        let body = self.body_input_state(&roots, |outs| {
+            let (v, dp) = outs.split_at(n);
+            let (v, dp) = (self.vector(v.to_vec()), self.vector(dp.to_vec()));
+            quote!(Ok((#v, #dp)))
+        });
+        quote! {
+            #docs
+            #[inline]
+            fn canonical_rates(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>)
+                -> Result<(#runtime::nalgebra::SVector<f64, #n_lit>, #runtime::nalgebra::SVector<f64, #n_lit>), #runtime::SystemError> {
+                #body
+            }
+        }
+    }
+
+    /// The velocity symbols as expressions (q̇ itself, bound by the prologue).
+    fn velocity_roots(&self) -> Vec<Id> {
+        self.velocity_ids.clone()
+    }
+
+    /// Doc lines for q̇: the closed form, or the linear solve.
+    fn velocity_docs(&self) -> Vec<String> {
+        match &self.d.velocities {
+            VelocitySolve::Symbolic(v) => self.per_coordinate("#'", v),
+            VelocitySolve::Numeric => vec!["q' from M q' = p - b (Cholesky)".to_string()],
+        }
+    }
+
+    /// `state_rate(t, state)`: [q̇, ṗ, ṁ_s], the integration hot path, fused.
+    pub(crate) fn state_rate(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (_, s, _, k) = self.sizes();
+        let mut roots = self.velocity_roots();
+        roots.extend(&self.d.momentum_rate);
+        roots.extend(self.d.mass_rates.iter().take(k));
+        let mut lines = self.velocity_docs();
+        lines.extend(self.per_coordinate("dp_#/dt", &self.d.momentum_rate));
+        for (m, rate) in self.d.masses.iter().zip(&self.d.mass_rates).take(k) {
+            lines.push(format!("d{}/dt = {}", m.name, self.display(*rate)));
+        }
+        let docs = self.docs(
+            "The state rate [q̇, ṗ, ṁ_s] with the true ṗ = d*p/dt + Σ ṁᵢ ∂*p/∂mᵢ.",
+            lines,
+        );
+        let body = self.body_input_state(&roots, |outs| {
+            let v = self.vector(outs);
+            quote!(Ok(#v))
+        });
+        quote! {
+            #docs
+            #[inline]
+            fn state_rate(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>)
+                -> Result<#runtime::nalgebra::SVector<f64, #s>, #runtime::SystemError> {
+                #body
+            }
+        }
+    }
+
+    /// `power(t, state)`: the energy-budget dH/dt.
+    pub(crate) fn power(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (_, s, _, _) = self.sizes();
+        let docs = self.docs(
+            "The energy-budget power dH/dt = ∂*H/∂t + q̇·(Q* − R1 + R2 + Σ ṁ ∂*p/∂m) + Σ ṁ ∂H/∂m.",
+            [format!("dH/dt = {}", self.display(self.d.power))],
+        );
+        let body = self.body_input_state(&[self.d.power], |mut o| {
+            let p = o.pop().unwrap_or_default();
+            quote!(Ok(#p))
+        });
+        quote! {
+            #docs
+            #[inline]
+            fn power(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>) -> Result<f64, #runtime::SystemError> {
+                #body
+            }
+        }
+    }
+
+    /// `jacobian(t, state)` from the derivation's blocks, combined with M⁻¹ numerically.
+    pub(crate) fn jacobian(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let (n_lit, s, n, k) = self.sizes();
+        let j = &self.d.jacobian;
+        let blocks: [&Vec<Vec<Id>>; 6] = [
+            &j.rate_wrt_q,
+            &j.rate_wrt_velocity,
+            &j.rate_wrt_state_mass,
+            &j.momentum_wrt_q,
+            &j.momentum_wrt_state_mass,
+            &self.d.mass_matrix,
+        ];
+        let mut roots = Vec::new();
+        let mut sizes = Vec::new();
+        for b in blocks {
+            let entries: Vec<Id> = b.iter().flatten().copied().collect();
+            sizes.push(entries.len());
+            roots.extend(entries);
+        }
+        let nk = Literal::usize_unsuffixed(n + k);
+        let k_lit = Literal::usize_unsuffixed(k);
+        let docs = self.docs(
+            "The Jacobian ∂[q̇, ṗ, ṁ_s]/∂[q, p, m_s]: J_q = F_q − F_v M⁻¹ P_q, J_p = F_v M⁻¹, J_m = F_m − F_v M⁻¹ P_m.",
+            Vec::<String>::new(),
+        );
+        let body = self.body_input_state(&roots, |outs| {
+            let mut rest: &[TokenStream] = &outs;
+            let mut take = |len: usize| {
+                let (head, tail) = rest.split_at(len);
+                rest = tail;
+                head.to_vec()
+            };
+            let (fq, fv, fm, pq, pm, mm) = (take(sizes[0]), take(sizes[1]), take(sizes[2]), take(sizes[3]), take(sizes[4]), take(sizes[5]));
+            let na = quote!(#runtime::nalgebra);
+            let state_mass_blocks = if k == 0 {
+                TokenStream::new()
+            } else {
+                quote! {
+                    let __fm = #na::SMatrix::<f64, #nk, #k_lit>::from_row_slice(&[#(#fm),*]);
+                    let __pm = #na::SMatrix::<f64, #n_lit, #k_lit>::from_row_slice(&[#(#pm),*]);
+                    let __dv_dm = -(__inverse * __pm);
+                    __jacobian.fixed_view_mut::<#n_lit, #k_lit>(0, 2 * #n_lit).copy_from(&__dv_dm);
+                    __jacobian.fixed_view_mut::<#nk, #k_lit>(#n_lit, 2 * #n_lit).copy_from(&(__fm + __fv * __dv_dm));
+                }
+            };
+            quote! {
+                let __fq = #na::SMatrix::<f64, #nk, #n_lit>::from_row_slice(&[#(#fq),*]);
+                let __fv = #na::SMatrix::<f64, #nk, #n_lit>::from_row_slice(&[#(#fv),*]);
+                let __pq = #na::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#pq),*]);
+                let __mass_matrix = #na::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#mm),*]);
+                let __inverse = __mass_matrix
+                    .cholesky()
+                    .ok_or(#runtime::SystemError::SingularMassMatrix)?
+                    .inverse();
+                let __dv_dq = -(__inverse * __pq);
+                let mut __jacobian = #na::SMatrix::<f64, #s, #s>::zeros();
+                __jacobian.fixed_view_mut::<#n_lit, #n_lit>(0, 0).copy_from(&__dv_dq);
+                __jacobian.fixed_view_mut::<#n_lit, #n_lit>(0, #n_lit).copy_from(&__inverse);
+                __jacobian.fixed_view_mut::<#nk, #n_lit>(#n_lit, 0).copy_from(&(__fq + __fv * __dv_dq));
+                __jacobian.fixed_view_mut::<#nk, #n_lit>(#n_lit, #n_lit).copy_from(&(__fv * __inverse));
+                #state_mass_blocks
+                Ok(__jacobian)
+            }
+        });
+        quote! {
+            #docs
+            #[inline]
+            fn jacobian(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>)
+                -> Result<#runtime::nalgebra::SMatrix<f64, #s, #s>, #runtime::SystemError> {
+                #body
+            }
+        }
+    }
+}

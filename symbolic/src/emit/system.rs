@@ -1,0 +1,296 @@
+//! The `VariableMassSystem` impl for a derivation (SPEC §3): one straight-line function per
+//! trait method, each with its formula in a doc comment.
+
+use std::collections::BTreeSet;
+
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+
+use super::expression::{block, symbol_ident};
+use crate::expr::{Id, Symbol, SymbolKind};
+use crate::mechanics::{Derivation, VelocitySolve};
+
+/// Where the generated code finds the runtime.
+#[derive(Clone, Debug)]
+pub struct Target {
+    /// The struct the impl is for.
+    pub name: Ident,
+    /// A path to `varmass_core` (e.g. `::varmass::core`).
+    pub runtime: TokenStream,
+}
+
+/// Which vector a method receives.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Input {
+    /// `state = [q, p, m_s]`
+    State,
+    /// `velocity_state = [q, q̇, m_s]`
+    VelocityState,
+    /// `state`, of which only q and m_s are read (mass laws, the mass matrix).
+    Configuration,
+}
+
+pub(crate) struct Emitter<'a> {
+    pub d: &'a Derivation,
+    pub target: &'a Target,
+    /// The velocity symbols as expressions, in coordinate order.
+    pub velocity_ids: Vec<Id>,
+}
+
+impl Emitter<'_> {
+    fn n(&self) -> usize {
+        self.d.coordinates.len()
+    }
+
+    fn k(&self) -> usize {
+        self.d.state_mass_count()
+    }
+
+    pub(crate) fn display(&self, id: Id) -> String {
+        self.d.pool.display(id).to_string()
+    }
+
+    /// Symbols needed to evaluate `roots`, closed under the laws of the law masses.
+    fn used(&self, roots: &[Id]) -> BTreeSet<Symbol> {
+        let mut used = BTreeSet::new();
+        for r in roots {
+            used.extend(self.d.pool.free_symbols(*r));
+        }
+        // A law may name state masses and parameters, never other law masses (closed laws).
+        for (m, law) in self.d.masses.iter().zip(&self.d.closed_laws) {
+            if let (true, Some(law)) = (used.contains(&m.symbol), law) {
+                used.extend(self.d.pool.free_symbols(*law));
+            }
+        }
+        used
+    }
+
+    /// `let` bindings for every used symbol from the struct's fields, `t` and the input.
+    fn prologue(&self, used: &BTreeSet<Symbol>, input: Input) -> TokenStream {
+        let n = self.n();
+        let vector = match input {
+            Input::State | Input::Configuration => format_ident!("state"),
+            Input::VelocityState => format_ident!("velocity_state"),
+        };
+        let mut out = TokenStream::new();
+        for (name, s) in &self.d.parameters {
+            if used.contains(s) {
+                let local = symbol_ident(&self.d.pool, *s);
+                let field = Ident::new(name, proc_macro2::Span::call_site());
+                out.extend(quote!(let #local = self.#field;));
+            }
+        }
+        for (a, c) in self.d.coordinates.iter().enumerate() {
+            let q = symbol_ident(&self.d.pool, c.q);
+            let second = Literal::usize_unsuffixed(n + a);
+            let first = Literal::usize_unsuffixed(a);
+            if used.contains(&c.q) {
+                out.extend(quote!(let #q = #vector[#first];));
+            }
+            let second_symbol = match input {
+                Input::State => c.momentum,
+                Input::VelocityState => c.velocity,
+                Input::Configuration => continue,
+            };
+            if used.contains(&second_symbol) {
+                let local = symbol_ident(&self.d.pool, second_symbol);
+                out.extend(quote!(let #local = #vector[#second];));
+            }
+        }
+        for (k, m) in self.d.masses.iter().take(self.k()).enumerate() {
+            if used.contains(&m.symbol) {
+                let local = symbol_ident(&self.d.pool, m.symbol);
+                let index = Literal::usize_unsuffixed(2 * n + k);
+                out.extend(quote!(let #local = #vector[#index];));
+            }
+        }
+        let laws: Vec<(Symbol, Id)> = self
+            .d
+            .masses
+            .iter()
+            .zip(&self.d.closed_laws)
+            .filter_map(|(m, law)| {
+                law.filter(|_| used.contains(&m.symbol))
+                    .map(|l| (m.symbol, l))
+            })
+            .collect();
+        if !laws.is_empty() {
+            let roots: Vec<Id> = laws.iter().map(|(_, l)| *l).collect();
+            let b = block(&self.d.pool, &roots, "law", &self.target.runtime);
+            out.extend(b.lets);
+            for ((symbol, _), value) in laws.iter().zip(b.outputs) {
+                let local = symbol_ident(&self.d.pool, *symbol);
+                out.extend(quote!(let #local = #value;));
+            }
+        }
+        out
+    }
+
+    /// Code that binds `x_dot`, … from the momenta of `state` (after the prologue).
+    fn velocities_from_momenta(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        match &self.d.velocities {
+            VelocitySolve::Symbolic(v) => {
+                let b = block(&self.d.pool, v, "v", runtime);
+                let lets = b.lets;
+                let names = self
+                    .d
+                    .coordinates
+                    .iter()
+                    .map(|c| symbol_ident(&self.d.pool, c.velocity));
+                let values = b.outputs;
+                quote!(#(#lets)* #(let #names = #values;)*)
+            }
+            VelocitySolve::Numeric => {
+                let n = Literal::usize_unsuffixed(self.n());
+                let entries: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
+                let mut roots = entries.clone();
+                roots.extend(&self.d.momentum_offset);
+                let b = block(&self.d.pool, &roots, "m", runtime);
+                let lets = b.lets;
+                let (matrix, offset) = b.outputs.split_at(entries.len());
+                let momenta = self
+                    .d
+                    .coordinates
+                    .iter()
+                    .map(|c| symbol_ident(&self.d.pool, c.momentum));
+                let names = self
+                    .d
+                    .coordinates
+                    .iter()
+                    .map(|c| symbol_ident(&self.d.pool, c.velocity));
+                let indices = (0..self.n()).map(Literal::usize_unsuffixed);
+                quote! {
+                    #(#lets)*
+                    let __mass_matrix = #runtime::nalgebra::SMatrix::<f64, #n, #n>::from_row_slice(&[#(#matrix),*]);
+                    let __excess = #runtime::nalgebra::SVector::<f64, #n>::from_column_slice(&[#(#momenta - (#offset)),*]);
+                    let __velocities = __mass_matrix
+                        .cholesky()
+                        .ok_or(#runtime::SystemError::SingularMassMatrix)?
+                        .solve(&__excess);
+                    #(let #names = __velocities[#indices];)*
+                }
+            }
+        }
+    }
+
+    /// Whether evaluating `roots` needs any velocity.
+    fn needs_velocities(&self, used: &BTreeSet<Symbol>) -> bool {
+        used.iter()
+            .any(|s| matches!(self.d.pool.symbols().kind(*s), SymbolKind::Velocity { .. }))
+    }
+
+    /// Prologue + shared subexpressions + the outputs, handed to `finish`.
+    fn body(
+        &self,
+        input: Input,
+        roots: &[Id],
+        finish: impl FnOnce(Vec<TokenStream>) -> TokenStream,
+    ) -> TokenStream {
+        let b = block(&self.d.pool, roots, "t", &self.target.runtime);
+        let mut used = self.used(roots);
+        let solve = if input == Input::State && self.needs_velocities(&used) {
+            let extra: Vec<Id> = match &self.d.velocities {
+                VelocitySolve::Symbolic(v) => v.clone(),
+                VelocitySolve::Numeric => {
+                    let mut e: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
+                    e.extend(&self.d.momentum_offset);
+                    e
+                }
+            };
+            used.extend(self.used(&extra));
+            for c in &self.d.coordinates {
+                used.insert(c.momentum);
+            }
+            self.velocities_from_momenta()
+        } else {
+            TokenStream::new()
+        };
+        let prologue = self.prologue(&used, input);
+        let lets = b.lets;
+        let out = finish(b.outputs);
+        quote! { #prologue #solve #(#lets)* #out }
+    }
+
+    /// [`Self::body`] for a method taking `state = [q, p, m_s]`.
+    pub(crate) fn body_input_state(
+        &self,
+        roots: &[Id],
+        finish: impl FnOnce(Vec<TokenStream>) -> TokenStream,
+    ) -> TokenStream {
+        self.body(Input::State, roots, finish)
+    }
+
+    /// [`Self::body`] for a method taking `velocity_state = [q, q̇, m_s]`.
+    pub(crate) fn body_input_velocity(
+        &self,
+        roots: &[Id],
+        finish: impl FnOnce(Vec<TokenStream>) -> TokenStream,
+    ) -> TokenStream {
+        self.body(Input::VelocityState, roots, finish)
+    }
+
+    /// [`Self::body`] for a method taking `state` but reading only q, t and m_s.
+    pub(crate) fn body_configuration(
+        &self,
+        roots: &[Id],
+        finish: impl FnOnce(Vec<TokenStream>) -> TokenStream,
+    ) -> TokenStream {
+        self.body(Input::Configuration, roots, finish)
+    }
+
+    pub(crate) fn vector(&self, values: Vec<TokenStream>) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let len = Literal::usize_unsuffixed(values.len());
+        quote!(#runtime::nalgebra::SVector::<f64, #len>::from([#(#values),*]))
+    }
+
+    pub(crate) fn docs(&self, title: &str, lines: impl IntoIterator<Item = String>) -> TokenStream {
+        let lines: Vec<String> = lines.into_iter().collect();
+        let mut text = vec![title.to_string()];
+        if !lines.is_empty() {
+            text.extend([String::new(), "```text".to_string()]);
+            text.extend(lines);
+            text.push("```".to_string());
+        }
+        quote!(#(#[doc = #text])*)
+    }
+
+    pub(crate) fn per_coordinate(&self, label: &str, values: &[Id]) -> Vec<String> {
+        self.d
+            .coordinates
+            .iter()
+            .zip(values)
+            .map(|(c, v)| format!("{} = {}", label.replace('#', &c.name), self.display(*v)))
+            .collect()
+    }
+
+    /// A method `fn name(&self, t, velocity_state) -> SVector<N>` returning `values`, or zeros
+    /// when every entry is identically zero.
+    pub(crate) fn coordinate_vector_method(
+        &self,
+        name: &str,
+        title: &str,
+        label: &str,
+        values: &[Id],
+    ) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let n = Literal::usize_unsuffixed(self.n());
+        let s = Literal::usize_unsuffixed(2 * self.n() + self.k());
+        let ident = format_ident!("{}", name);
+        let docs = self.docs(title, self.per_coordinate(label, values));
+        let all_zero = values.iter().all(|v| self.d.pool.is_zero(*v));
+        let body = if all_zero {
+            quote!(#runtime::nalgebra::SVector::<f64, #n>::zeros())
+        } else {
+            self.body(Input::VelocityState, values, |outs| self.vector(outs))
+        };
+        quote! {
+            #docs
+            #[inline]
+            fn #ident(&self, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>) -> #runtime::nalgebra::SVector<f64, #n> {
+                #body
+            }
+        }
+    }
+}
