@@ -285,6 +285,12 @@ proptest! {
             let back = lower(&mut p, &ast, &mut TableResolver)
                 .map_err(|errs| TestCaseError::fail(format!("{errs:?}")))?;
             prop_assert_eq!(back, root, "printed as `{}`", text);
+            // And through the real nom grammar, as the DSL reads it.
+            let ast = varmass_symbolic::parse::parse_expression(&text)
+                .map_err(|e| TestCaseError::fail(e.render(&text)))?;
+            let back = lower(&mut p, &ast, &mut TableResolver)
+                .map_err(|errs| TestCaseError::fail(format!("{errs:?}")))?;
+            prop_assert_eq!(back, root, "printed as `{}`, read by the DSL parser", text);
         }
     }
 
