@@ -51,6 +51,7 @@ mod subst;
 mod sum;
 mod symbol;
 mod tape;
+mod trig;
 
 pub use cse::Cse;
 pub use diff::UnsupportedDerivative;

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 
 use super::forces::generalized_forces;
 use super::lagrangian::{energies, momenta, singular_everywhere};
-use super::linear::{inverse, mat_vec, Matrix};
+use super::linear::{dot, inverse, mat_vec, Matrix};
 use super::masses::{closed_laws, flow_rates, mass_rates};
 use super::model::{Coordinate, Mass, MassKind, Model};
 use crate::expr::{ExprPool, Id, Symbol};
@@ -267,6 +267,7 @@ pub fn derive_model(mut model: Model) -> Result<Derivation, Vec<Diagnostic>> {
         .collect();
     let pv = pool.add(&pv);
     let energy = pool.sub(pv, lagrangian);
+    let energy = pool.reduce_trig(energy);
     let (velocity_solve, hamiltonian) = match &inverse_mass {
         Some(inv) => {
             let excess: Vec<Id> = (0..n)
@@ -276,9 +277,18 @@ pub fn derive_model(mut model: Model) -> Result<Derivation, Vec<Diagnostic>> {
                 })
                 .collect();
             let v = mat_vec(pool, inv, &excess);
-            let to_momenta: HashMap<Symbol, Id> =
-                velocities.iter().copied().zip(v.iter().copied()).collect();
-            let h = pool.substitute(energy, &to_momenta);
+            // H = ½ (p − b)·q̇ − L₀ with q̇ = M⁻¹ (p − b): the same function as p·q̇ − L with
+            // q̇ eliminated (L = ½ q̇ᵀ M q̇ + b·q̇ + L₀), without squaring M⁻¹.
+            let zero = pool.int(0);
+            let at_rest: HashMap<Symbol, Id> = velocities.iter().map(|v| (*v, zero)).collect();
+            let rest_lagrangian = pool.substitute(lagrangian, &at_rest);
+            let half = {
+                let (one, two) = (pool.int(1), pool.int(2));
+                pool.div(one, two)
+            };
+            let kinetic_part = dot(pool, &excess, &v);
+            let kinetic_part = pool.mul(&[half, kinetic_part]);
+            let h = pool.sub(kinetic_part, rest_lagrangian);
             (VelocitySolve::Symbolic(v), Some(h))
         }
         None => (VelocitySolve::Numeric, None),

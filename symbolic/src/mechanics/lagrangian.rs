@@ -85,12 +85,18 @@ pub(crate) fn energies(
     if !errors.is_empty() {
         return Err(errors);
     }
+    // Expanded and trigonometrically reduced, so that a linkage's T reads as in a textbook
+    // (sin² + cos² = 1, cos a cos b + sin a sin b = cos(a − b)) and every quantity derived
+    // from L starts from its simplest form.
     let kinetic = pool.add(&kinetic_terms);
+    let kinetic = pool.reduce_trig(kinetic);
     let potential = pool.add(&potential_terms);
+    let potential = pool.reduce_trig(potential);
     let minus_v = pool.neg(potential);
     lagrangian_terms.push(kinetic);
     lagrangian_terms.push(minus_v);
     let lagrangian = pool.add(&lagrangian_terms);
+    let lagrangian = pool.reduce_trig(lagrangian);
     Ok(Energies {
         kinetic,
         potential,

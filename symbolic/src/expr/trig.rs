@@ -1,0 +1,187 @@
+//! Trigonometric reduction of an expanded sum: the identities that turn the kinetic energy
+//! of a linkage into its textbook form.
+//!
+//! | rule          | terms (same coefficient c and rest R)      | becomes        |
+//! |---------------|--------------------------------------------|----------------|
+//! | Pythagoras    | c R sin(u)²  +  c R cos(u)²                | c R            |
+//! | cos of a difference | c R cos(u) cos(v) + c R sin(u) sin(v) | c R cos(u − v) |
+//! | cos of a sum  | c R cos(u) cos(v) − c R sin(u) sin(v)      | c R cos(u + v) |
+//! | sin of a difference | c R sin(u) cos(v) − c R cos(u) sin(v) | c R sin(u − v) |
+//! | sin of a sum  | c R sin(u) cos(v) + c R cos(u) sin(v)      | c R sin(u + v) |
+//!
+//! Canonical construction does not apply these (they need two terms at once and would slow
+//! every sum); the derivation applies [`ExprPool::reduce_trig`] to the expanded Lagrangian,
+//! so that every derived quantity starts from the simplest L.
+
+use super::func::Func;
+use super::node::{Id, Node};
+use super::pool::ExprPool;
+
+/// Two sine/cosine factors of one term, with a normal order: same-function arguments
+/// sorted by id, a mixed pair always as (sine, cosine).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Pair {
+    CosCos(Id, Id),
+    SinSin(Id, Id),
+    SinCos { sin: Id, cos: Id },
+}
+
+impl Pair {
+    fn new((f, u): (Func, Id), (g, v): (Func, Id)) -> Pair {
+        let (lo, hi) = if u <= v { (u, v) } else { (v, u) };
+        match (f, g) {
+            (Func::Cos, Func::Cos) => Pair::CosCos(lo, hi),
+            (Func::Sin, Func::Sin) => Pair::SinSin(lo, hi),
+            (Func::Sin, _) => Pair::SinCos { sin: u, cos: v },
+            _ => Pair::SinCos { sin: v, cos: u },
+        }
+    }
+}
+
+/// A term as a product of factors (the numeric coefficient included).
+struct Term {
+    factors: Vec<Id>,
+}
+
+impl ExprPool {
+    /// `e` expanded, with the identities above applied to its terms until none applies.
+    pub fn reduce_trig(&mut self, e: Id) -> Id {
+        let mut current = self.expand(e);
+        // Each rewrite removes at least one term, so this many rounds always suffice.
+        for _ in 0..self.terms(current).len() {
+            match self.reduce_once(current) {
+                Some(next) => current = next,
+                None => break,
+            }
+        }
+        current
+    }
+
+    /// `f(u)` with f = sin or cos, as `(func, u)`.
+    fn trig_factor(&self, f: Id) -> Option<(Func, Id)> {
+        match self.node(f) {
+            Node::Call(func @ (Func::Sin | Func::Cos), args) if args.len() == 1 => {
+                Some((*func, args[0]))
+            }
+            _ => None,
+        }
+    }
+
+    /// `f(u)^2` with f = sin or cos.
+    fn trig_square(&self, f: Id) -> Option<(Func, Id)> {
+        match self.node(f) {
+            Node::Pow(base, exponent)
+                if self.as_rational(*exponent).and_then(|r| r.as_integer()) == Some(2) =>
+            {
+                self.trig_factor(*base)
+            }
+            _ => None,
+        }
+    }
+
+    /// The product of `factors` without the ones at `skip`.
+    fn rest(&mut self, factors: &[Id], skip: &[usize]) -> Id {
+        let kept: Vec<Id> = factors
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !skip.contains(i))
+            .map(|(_, f)| *f)
+            .collect();
+        self.mul(&kept)
+    }
+
+    /// One rewrite, if any applies.
+    fn reduce_once(&mut self, sum: Id) -> Option<Id> {
+        let terms: Vec<Term> = self
+            .terms(sum)
+            .into_iter()
+            .map(|t| Term {
+                factors: self.factors(t),
+            })
+            .collect();
+        if terms.len() < 2 {
+            return None;
+        }
+        // Candidate patterns per term, each with the rest R of the term.
+        let mut squares = Vec::new(); // (R, func, u, term): f(u)² R
+        let mut pairs = Vec::new(); // (R, pair, term)
+        for (i, term) in terms.iter().enumerate() {
+            for (a, fa) in term.factors.iter().enumerate() {
+                if let Some((func, u)) = self.trig_square(*fa) {
+                    let rest = self.rest(&term.factors, &[a]);
+                    squares.push((rest, func, u, i));
+                }
+                let Some(first) = self.trig_factor(*fa) else {
+                    continue;
+                };
+                for (b, fb) in term.factors.iter().enumerate().skip(a + 1) {
+                    if let Some(second) = self.trig_factor(*fb) {
+                        let rest = self.rest(&term.factors, &[a, b]);
+                        pairs.push((rest, Pair::new(first, second), i));
+                    }
+                }
+            }
+        }
+        // Pythagoras: sin(u)² R + cos(u)² R = R.
+        for &(rest, func, u, i) in &squares {
+            if func != Func::Sin {
+                continue;
+            }
+            let partner = squares
+                .iter()
+                .find(|(r, f, v, j)| *r == rest && *f == Func::Cos && *v == u && *j != i);
+            if let Some(&(_, _, _, j)) = partner {
+                return Some(self.replace_two(sum, i, j, rest));
+            }
+        }
+        // Sums and differences of angles.
+        for &(rest, pair, i) in &pairs {
+            let negated = self.neg(rest);
+            for &(other_rest, other, j) in &pairs {
+                if j == i || !(other_rest == rest || other_rest == negated) {
+                    continue;
+                }
+                let same_sign = other_rest == rest;
+                let replacement = match (pair, other) {
+                    // cos u cos v ± sin u sin v = cos(u ∓ v)
+                    (Pair::CosCos(u, v), Pair::SinSin(x, y)) if (u, v) == (x, y) => {
+                        let angle = if same_sign {
+                            self.sub(u, v)
+                        } else {
+                            self.add(&[u, v])
+                        };
+                        self.call(Func::Cos, &[angle])
+                    }
+                    // sin u cos v ± sin v cos u = sin(u ± v)
+                    (Pair::SinCos { sin: u, cos: v }, Pair::SinCos { sin: x, cos: y })
+                        if x == v && y == u && u != v =>
+                    {
+                        let angle = if same_sign {
+                            self.add(&[u, v])
+                        } else {
+                            self.sub(u, v)
+                        };
+                        self.call(Func::Sin, &[angle])
+                    }
+                    _ => continue,
+                };
+                let term = self.mul(&[rest, replacement]);
+                return Some(self.replace_two(sum, i, j, term));
+            }
+        }
+        None
+    }
+
+    /// `sum` with terms `i` and `j` replaced by `term`.
+    fn replace_two(&mut self, sum: Id, i: usize, j: usize, term: Id) -> Id {
+        let mut terms: Vec<Id> = self
+            .terms(sum)
+            .into_iter()
+            .enumerate()
+            .filter(|(k, _)| *k != i && *k != j)
+            .map(|(_, t)| t)
+            .collect();
+        terms.push(term);
+        self.add(&terms)
+    }
+}
