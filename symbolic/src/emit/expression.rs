@@ -60,30 +60,7 @@ impl Rendered {
 /// Renders `roots` with their shared subexpressions hoisted into temporaries named
 /// `__{prefix}{n}`.
 pub(crate) fn block(pool: &ExprPool, roots: &[Id], prefix: &str, runtime: &TokenStream) -> Block {
-    let mut uses: HashMap<Id, usize> = HashMap::new();
-    let mut stack: Vec<Id> = roots.to_vec();
-    for r in roots {
-        *uses.entry(*r).or_default() += 0;
-    }
-    let mut seen = std::collections::HashSet::new();
-    while let Some(id) = stack.pop() {
-        if !seen.insert(id) {
-            continue;
-        }
-        for child in pool.node(id).children() {
-            *uses.entry(child).or_default() += 1;
-            stack.push(child);
-        }
-    }
-    for r in roots {
-        *uses.entry(*r).or_default() += 1;
-    }
-    let mut shared: Vec<Id> = uses
-        .iter()
-        .filter(|(id, n)| **n >= 2 && worth_sharing(pool, **id))
-        .map(|(id, _)| *id)
-        .collect();
-    shared.sort();
+    let shared = pool.cse(roots).shared;
     let mut renderer = Renderer {
         pool,
         temps: HashMap::new(),
@@ -98,11 +75,6 @@ pub(crate) fn block(pool: &ExprPool, roots: &[Id], prefix: &str, runtime: &Token
     }
     let outputs = roots.iter().map(|r| renderer.render(*r).tokens).collect();
     Block { lets, outputs }
-}
-
-/// Leaves and constants cost nothing to repeat.
-fn worth_sharing(pool: &ExprPool, id: Id) -> bool {
-    !matches!(pool.node(id), Node::Num(_) | Node::Float(_) | Node::Sym(_))
 }
 
 struct Renderer<'a> {
