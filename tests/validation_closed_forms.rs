@@ -64,7 +64,11 @@ fn sled_without_accretion_is_the_constant_mass_sled() {
         }
         if s[0] >= 1.0 {
             let v = s[1] / sled.m0;
-            assert!(relative(v * v, 2.0 * a * s[0]) < ASSERTED, "v² at x = {}", s[0]);
+            assert!(
+                relative(v * v, 2.0 * a * s[0]) < ASSERTED,
+                "v² at x = {}",
+                s[0]
+            );
         }
     }
 }
@@ -160,7 +164,10 @@ fn rocket_without_burn_is_a_ballistic_throw() {
     let solution = run(&mut stepper, &RunConfig::until(100.0), &[apex]).unwrap();
     for (&t, s) in solution.times.iter().zip(&solution.states) {
         let y = v0 * t - 0.5 * rocket.g * t * t;
-        assert!((s[0] - y).abs() < ASSERTED * v0 * v0 / rocket.g, "y at t = {t}");
+        assert!(
+            (s[0] - y).abs() < ASSERTED * v0 * v0 / rocket.g,
+            "y at t = {t}"
+        );
         assert!((s[1] / mass - (v0 - rocket.g * t)).abs() < ASSERTED * v0);
         assert_eq!(s[2], mass);
     }

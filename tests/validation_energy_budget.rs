@@ -23,7 +23,12 @@ where
         energy_residual: true,
         ..Record::default()
     };
-    let solution = run(&mut stepper, &RunConfig::until(end).recording(record), events).unwrap();
+    let solution = run(
+        &mut stepper,
+        &RunConfig::until(end).recording(record),
+        events,
+    )
+    .unwrap();
     let first = solution.hamiltonian[0];
     let scale = solution
         .hamiltonian

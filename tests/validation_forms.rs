@@ -170,5 +170,10 @@ fn literal_eq_19_is_detected_by_the_lagrange_form() {
     let lagrange = lagrange_rk4(&sled, SVector::from([0.5, 2.0]), 1e-3, 5_000);
     let (_, end) = wrong.last().unwrap();
     let right = lagrange.last().unwrap();
-    assert!((end[0] - right[0]).abs() > 1.0, "{} vs {}", end[0], right[0]);
+    assert!(
+        (end[0] - right[0]).abs() > 1.0,
+        "{} vs {}",
+        end[0],
+        right[0]
+    );
 }

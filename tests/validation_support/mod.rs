@@ -45,10 +45,17 @@ impl Sled {
 
     /// v(x) from eq. 24 in the stable form of SPEC §1, ε = c x / m0:
     /// v² = (2/3) a x (3 + 3ε + ε²)/(1 + ε)². Stable for every c ≥ 0 (no cancellation).
+    /// Evaluated as a product of square roots so that v² (and a x) may leave f64's range
+    /// while v does not (units scaled by 10^±100).
     pub fn exact_speed(&self, x: f64) -> f64 {
         let eps = self.c * x / self.m0;
-        let shape = (3.0 + 3.0 * eps + eps * eps) / ((1.0 + eps) * (1.0 + eps));
-        (2.0 / 3.0 * self.acceleration() * x * shape).sqrt()
+        // (3 + 3ε + ε²)/(1 + ε)², written so that ε up to 1e300 does not overflow.
+        let shape = if eps < 1e100 {
+            (3.0 + 3.0 * eps + eps * eps) / ((1.0 + eps) * (1.0 + eps))
+        } else {
+            1.0
+        };
+        (2.0 / 3.0 * self.acceleration()).sqrt() * x.sqrt() * shape.sqrt()
     }
 }
 
