@@ -215,7 +215,8 @@ fn main() -> ExitCode {
          maximum over every accepted step with x ≥ {MEASURED_FROM} m (below that v ∝ √x \
          turns any error in x into a large relative error in v)."
     );
-    println!("|H residual| is the largest energy-budget residual |∫ power dt − (H − H₀)| in J.\n");
+    println!("|H resid.| is the largest energy-budget residual |∫ power dt − (H − H₀)| in J;");
+    println!("time is the wall time of the run, including that energy-budget recording.\n");
 
     let outcomes = match all_methods(&sled) {
         Ok(outcomes) => outcomes,

@@ -84,6 +84,8 @@ fn accretion_rates_from_1e_minus_12_to_1e6() {
         let c = 10f64.powi(exponent);
         let (error, steps) = sled_at_50_m(10.0, c);
         assert!(error < 1e-9, "c = {c:e}: relative error {error:e}");
+        // The cost stays bounded too: no step-size collapse at either end.
+        assert!(steps < 2_000, "c = {c:e}: {steps} steps");
     }
 }
 
@@ -121,6 +123,7 @@ fn near_massless_start() {
     for m0 in [1e-3, 1e-6, 1e-9, 1e-12] {
         let (error, steps) = sled_at_50_m(m0, 2.0);
         assert!(error < 1e-9, "m0 = {m0:e}: relative error {error:e}");
+        assert!(steps < 2_000, "m0 = {m0:e}: {steps} steps");
     }
 }
 

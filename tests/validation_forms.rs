@@ -5,7 +5,7 @@
 
 mod validation_support;
 
-use validation_support::{pendulums, tight, PolarPendulum, Rocket, Sled};
+use validation_support::{pendulums, tight, Rocket, Sled};
 use varmass::prelude::*;
 
 /// Classical RK4 on the velocity state [q, q̇, m_s] with rate [q̇, q̈(q, q̇, t), ṁ_s], written
