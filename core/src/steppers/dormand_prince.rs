@@ -280,8 +280,11 @@ where
         let y0 = *self.progress.state();
         let weight =
             |i: usize| control.absolute_tolerance + control.relative_tolerance * y0[i].abs();
+        // A component without a scale (atol = 0 and y = 0) says nothing about the step size
+        // here: it does not vote.
         let norm = |v: &SVector<f64, S>| {
-            sqrt((0..S).map(|i| square(v[i] / weight(i))).sum::<f64>() / S as f64)
+            let terms = (0..S).filter(|&i| weight(i) > 0.0);
+            sqrt(terms.map(|i| square(v[i] / weight(i))).sum::<f64>() / S as f64)
         };
         let rate_norm = norm(k1);
         let state_norm = norm(&y0);
@@ -290,6 +293,11 @@ where
         } else {
             0.01 * state_norm / rate_norm
         };
+        // Norms that overflow (a tiny absolute tolerance) give h = 0 or NaN: fall back to the
+        // heuristic's own small default, which the controller then grows.
+        if !(h > 0.0 && h.is_finite()) {
+            h = 1e-6;
+        }
         h = h.min(control.max_step);
         let probe = y0 + k1 * h;
         let Ok(k_probe) = state_rate(self.system, &mut self.progress.statistics, t0 + h, &probe)
@@ -305,7 +313,12 @@ where
         } else {
             powf(0.01 / scale, 1.0 / 5.0)
         };
-        (100.0 * h).min(refined).min(control.max_step)
+        let first = (100.0 * h).min(refined).min(control.max_step);
+        if first > 0.0 && first.is_finite() {
+            first
+        } else {
+            h
+        }
     }
 }
 
@@ -316,6 +329,17 @@ fn resolvable(t0: f64, h: f64) -> bool {
 
 fn square(x: f64) -> f64 {
     x * x
+}
+
+/// `value / scale`, with 0/0 = 0: with a purely relative tolerance (atol = 0) a component
+/// that is exactly zero has scale 0, and a zero error there meets any tolerance. (Without
+/// this, 0/0 = NaN poisoned the norm and every step was rejected.)
+fn scaled(value: f64, scale: f64) -> f64 {
+    if value == 0.0 {
+        0.0
+    } else {
+        value / scale
+    }
 }
 
 /// The RMS of the error estimate, each component scaled by atol + rtol·max(|y₀|, |y₁|).
@@ -329,7 +353,7 @@ fn scaled_norm<const S: usize>(
         .map(|i| {
             let scale = control.absolute_tolerance
                 + control.relative_tolerance * y0[i].abs().max(y1[i].abs());
-            square(estimate[i] / scale)
+            square(scaled(estimate[i], scale))
         })
         .sum();
     sqrt(sum / S as f64)
