@@ -36,9 +36,9 @@ fn check_start(absolute_tolerance: f64) {
     // A tolerance of 1e-10 per step over a few hundred steps: 1e-7 leaves room for the
     // accumulation and none for a wrong answer (the amplitude is 1).
     assert!(
-        problem.error(time, &state) < 1e-7,
+        problem.error(time, state) < 1e-7,
         "error {}",
-        problem.error(time, &state)
+        problem.error(time, state)
     );
     // Before the fix the first-step norm was NaN (atol = 0: the whole interval was tried
     // first and rejected eight times) or infinite (atol = 1e-300: a zero first step, a
