@@ -99,8 +99,8 @@ fn explicit_steps_past_the_stability_limit_fail_with_a_typed_error() {
     // Expectation: past the limit (ωh > 2√2 for RK4; any h for explicit Euler, |R|² = 1 + h²;
     // ωh ≳ 3.3 for Dormand–Prince) the amplitude grows geometrically until it overflows,
     // and the run ends with NonFiniteState carrying the time — not a NaN in the solution.
-    // The growth itself is not detected: before the overflow the states are finite garbage
-    // (see the leaking pendulum below), which is why the energy budget is worth recording.
+    // The stepper does not detect the growth itself: before the overflow the states are
+    // finite garbage (see the leaking pendulum below), which the energy guard catches.
     let start = SVector::<f64, 2>::new(1.0, 0.0);
     let end = 1e6;
     let euler = oscillate(
@@ -195,6 +195,34 @@ fn losing_mass_moves_a_fixed_step_past_the_stability_limit_silently() {
         after > 1e3 && r_after.abs() > 10.0,
         "{after} J, r = {r_after}"
     );
+}
+
+#[test]
+fn the_energy_guard_turns_that_silent_instability_into_a_typed_error() {
+    // The same run with `guarding_energy(0.1)`: the residual is ~1% of |H| before the
+    // crossing at t = 20 s and grows geometrically after it, so the run must fail with
+    // EnergyBudgetExceeded shortly after 20 s — not return the garbage of t = 25 s — and must
+    // not fail before the crossing.
+    let (polar, _) = pendulums();
+    let start = SVector::from([1.1, 0.5, 0.0, 0.0, 2.0]);
+    let mut stepper = ClassicalRk4::new(&polar, 0.0, start, FixedStep { step: 0.2 }).unwrap();
+    let error = run(
+        &mut stepper,
+        &RunConfig::until(25.0).guarding_energy(0.1),
+        &[],
+    )
+    .unwrap_err();
+    let StepError::EnergyBudgetExceeded {
+        time,
+        residual,
+        scale,
+        ..
+    } = error
+    else {
+        panic!("expected the energy guard, got {error:?}");
+    };
+    assert!(time > 20.0 && time < 25.0, "t = {time}");
+    assert!(residual.abs() > 0.1 * scale && residual.is_finite());
 }
 
 #[test]

@@ -67,6 +67,23 @@ pub enum StepError<const S: usize> {
         /// The configured limit.
         max_steps: usize,
     },
+    /// The energy budget stopped closing: |∫ power dt − (H − H₀)| exceeded the run's
+    /// [`RunConfig::energy_tolerance`](crate::RunConfig) times the largest |H| so far. The
+    /// typical cause is a fixed step past the stability limit, whose finite but meaningless
+    /// states would otherwise go on until they overflow.
+    #[error(
+        "the energy budget failed at t = {time}: residual {residual:e} against H scale {scale:e}"
+    )]
+    EnergyBudgetExceeded {
+        /// Time of the state.
+        time: f64,
+        /// The state.
+        state: SVector<f64, S>,
+        /// ∫ power dt − (H − H₀) there.
+        residual: f64,
+        /// The largest |H| seen so far.
+        scale: f64,
+    },
     /// A configuration value is unusable (non-positive step, non-finite time, an index out
     /// of range, …). Detected before any step is taken.
     #[error("invalid configuration: {reason}")]
@@ -85,7 +102,8 @@ impl<const S: usize> StepError<S> {
             | Self::SingularMassMatrix { time, .. }
             | Self::StepSizeUnderflow { time, .. }
             | Self::NewtonDivergence { time, .. }
-            | Self::TooManySteps { time, .. } => Some(*time),
+            | Self::TooManySteps { time, .. }
+            | Self::EnergyBudgetExceeded { time, .. } => Some(*time),
             Self::InvalidConfiguration { .. } => None,
         }
     }
@@ -98,7 +116,8 @@ impl<const S: usize> StepError<S> {
             | Self::SingularMassMatrix { state, .. }
             | Self::StepSizeUnderflow { state, .. }
             | Self::NewtonDivergence { state, .. }
-            | Self::TooManySteps { state, .. } => Some(state),
+            | Self::TooManySteps { state, .. }
+            | Self::EnergyBudgetExceeded { state, .. } => Some(state),
             Self::InvalidConfiguration { .. } => None,
         }
     }

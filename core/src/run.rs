@@ -32,6 +32,11 @@ pub struct RunConfig {
     pub record: Record,
     /// How finely events are located in time (absolute, never below rounding of t).
     pub event_tolerance: f64,
+    /// If set, the run fails with [`StepError::EnergyBudgetExceeded`] once the energy-budget
+    /// residual exceeds this fraction of the largest |H| seen: a guard against the finite
+    /// garbage of a fixed step past the stability limit. Costs H and the power at every
+    /// point (and a midpoint), as recording the residual does.
+    pub energy_tolerance: Option<f64>,
 }
 
 impl RunConfig {
@@ -43,6 +48,16 @@ impl RunConfig {
             max_steps: 10_000_000,
             record: Record::default(),
             event_tolerance: 1e-12,
+            energy_tolerance: None,
+        }
+    }
+
+    /// The same run, failing once the energy budget misses by more than `tolerance` of the
+    /// largest |H| (see [`RunConfig::energy_tolerance`]).
+    pub fn guarding_energy(self, tolerance: f64) -> Self {
+        Self {
+            energy_tolerance: Some(tolerance),
+            ..self
         }
     }
 
@@ -76,6 +91,14 @@ pub fn run<St, const N: usize, const S: usize>(
 where
     St: Stepper<N, S>,
 {
+    if config
+        .energy_tolerance
+        .is_some_and(|t| t.is_nan() || t <= 0.0)
+    {
+        return Err(StepError::InvalidConfiguration {
+            reason: "the energy tolerance must be positive",
+        });
+    }
     if config.event_tolerance.is_nan() || config.event_tolerance < 0.0 {
         return Err(StepError::InvalidConfiguration {
             reason: "the event tolerance must be non-negative",
@@ -87,7 +110,7 @@ where
     stepper.set_stop_time(config.end_time)?;
 
     let record = config.record;
-    let needs_energy = record.energy_residual;
+    let needs_energy = record.energy_residual || config.energy_tolerance.is_some();
     let start_time = stepper.time();
     let needs_rates =
         (needs_energy || !events.is_empty()) && stepper.dense_output(start_time).is_none();
@@ -100,6 +123,7 @@ where
         needs_energy,
     )?;
     let initial_hamiltonian = previous.energy.map_or(0.0, |(hamiltonian, _)| hamiltonian);
+    let mut energy_scale = initial_hamiltonian.abs();
     let mut integral = 0.0;
     solution.push(
         stepper.system(),
@@ -166,6 +190,17 @@ where
             integral += simpson(system, &previous, &current, &interpolate)?;
         }
         let energy = energy_point(&current, integral, initial_hamiltonian);
+        if let (Some(tolerance), Some(point)) = (config.energy_tolerance, energy) {
+            energy_scale = energy_scale.max(point.hamiltonian.abs());
+            if point.residual.abs() > tolerance * energy_scale {
+                return Err(StepError::EnergyBudgetExceeded {
+                    time: current.time,
+                    state: current.state,
+                    residual: point.residual,
+                    scale: energy_scale,
+                });
+            }
+        }
         solution.push(system, &record, current.time, current.state, energy)?;
         previous = current;
         if outcome == StepOutcome::ReachedStopTime {
