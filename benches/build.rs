@@ -52,7 +52,9 @@ fn emit(links: usize, name: &str, variant: Variant) -> String {
     match variant {
         Variant::AsDerived => {}
         Variant::Numeric => d.velocities = VelocitySolve::Numeric,
-        Variant::Closed => d.velocities = VelocitySolve::Symbolic(adjugate::closed_velocities(&mut d)),
+        Variant::Closed => {
+            d.velocities = VelocitySolve::Symbolic(adjugate::closed_velocities(&mut d))
+        }
     }
     let ident = Ident::new(name, Span::call_site());
     let target = Target {

@@ -13,17 +13,12 @@
 
 mod common;
 
-use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion};
-use proc_macro2::{Ident, Span};
-use quote::quote;
 use varmass::core::nalgebra::SVector;
-use varmass::core::steppers::{ClassicalRk4, FixedStep};
-use varmass::core::{StepOutcome, Stepper, VariableMassSystem};
-use varmass_symbolic::emit::{emit_system, Target};
-use varmass_symbolic::mechanics::{derive, derive_source, Parameters};
+use varmass::core::VariableMassSystem;
+use varmass_symbolic::mechanics::{derive, derive_source};
 use varmass_symbolic::parse::parse_system;
 
 use common::adjugate::closed_velocities;
@@ -34,184 +29,32 @@ use common::hand::{HandKepler, HandRocket, HandSled};
 use common::interpreted::{Interpreted, Mode};
 use common::problems::{KeplerProblem, Problem, RocketProblem, SledProblem};
 use common::timing::fastest_of;
+use common::workloads::{
+    chain, chain_parameters, chain_samples, disagreement, expand, generated_rates,
+    interpreted_rates, kepler_parameters, pair, rk4_run, rocket_parameters, samples,
+    sled_parameters, ParameterValues, CHAIN_PARAMETERS, STEPS,
+};
 
-/// RK4 steps per run in the overhead comparison.
-const STEPS: usize = 1000;
-
-/// `STEPS` RK4 steps from `start` over `[0, end]`; the final state.
-fn rk4_run<Sys, const N: usize, const S: usize>(
-    system: &Sys,
-    start: SVector<f64, S>,
-    end: f64,
-) -> SVector<f64, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    let fixed = FixedStep {
-        step: end / STEPS as f64,
-    };
-    let Ok(mut stepper) = ClassicalRk4::new(system, 0.0, start, fixed) else {
-        return SVector::from_element(f64::NAN);
-    };
-    if stepper.set_stop_time(end).is_err() {
-        return SVector::from_element(f64::NAN);
-    }
-    while let Ok(StepOutcome::Advanced) = stepper.step() {}
-    *stepper.state()
+thread_local! {
+    /// The summary as printed, for `docs/bench/costs.txt`.
+    static REPORT: std::cell::RefCell<String> = const { std::cell::RefCell::new(String::new()) };
 }
 
-/// States along the reference motion where the state rate is sampled.
-fn samples<P, const N: usize, const S: usize>(problem: &P) -> Vec<SVector<f64, S>>
-where
-    P: Problem<N, S>,
-{
-    let mut states = Vec::new();
-    let mut state = problem.initial_state();
-    let fixed = FixedStep {
-        step: problem.end_time() / 64.0,
-    };
-    if let Ok(mut stepper) = ClassicalRk4::new(problem.system(), 0.0, state, fixed) {
-        for _ in 0..16 {
-            for _ in 0..4 {
-                if stepper.step().is_err() {
-                    break;
-                }
-            }
-            state = *stepper.state();
-            states.push(state);
-        }
-    }
-    states
-}
-
-/// A deterministic spread of chain states: angles within ±0.6, momenta within ±1.
-fn chain_samples<const S: usize>(links: usize) -> Vec<SVector<f64, S>> {
-    let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-    let mut uniform = move |lo: f64, hi: f64| {
-        seed = seed
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        lo + (hi - lo) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
-    };
-    (0..16)
-        .map(|_| {
-            SVector::<f64, S>::from_fn(|i, _| {
-                if i < links {
-                    uniform(-0.6, 0.6)
-                } else {
-                    uniform(-1.0, 1.0)
-                }
-            })
-        })
-        .collect()
-}
-
-/// The sum of the state rates at every sample (so no evaluation can be optimised away).
-fn generated_rates<Sys, const N: usize, const S: usize>(
-    system: &Sys,
-    states: &[SVector<f64, S>],
-) -> f64
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    states
-        .iter()
-        .map(|s| {
-            system
-                .state_rate(0.5, black_box(s))
-                .map_or(f64::NAN, |r| r.sum())
-        })
-        .sum()
-}
-
-fn interpreted_rates<const S: usize>(program: &Interpreted, states: &[SVector<f64, S>]) -> f64 {
-    let mut out = [0.0; S];
-    states
-        .iter()
-        .map(|s| {
-            program.state_rate(0.5, black_box(s.as_slice()), &mut out);
-            out.iter().sum::<f64>()
-        })
-        .sum()
-}
-
-/// The largest relative difference between the generated and the interpreted state rates.
-fn disagreement<Sys, const N: usize, const S: usize>(
-    system: &Sys,
-    program: &Interpreted,
-    states: &[SVector<f64, S>],
-) -> f64
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    let mut out = [0.0; S];
-    let mut worst = 0.0f64;
-    for s in states {
-        program.state_rate(0.5, s.as_slice(), &mut out);
-        let Ok(rate) = system.state_rate(0.5, s) else {
-            return f64::NAN;
-        };
-        for (a, b) in rate.iter().zip(out) {
-            worst = worst.max((a - b).abs() / (1.0 + a.abs()));
-        }
-    }
-    worst
-}
-
-/// Nanoseconds of the fastest of interleaved runs of `a` and `b`, each run `repeat` calls.
-fn pair(repeat: usize, mut a: impl FnMut() -> f64, mut b: impl FnMut() -> f64) -> (f64, f64) {
-    let mut best = (f64::INFINITY, f64::INFINITY);
-    // Interleaving puts both under the same load; the minimum discards the noise.
-    for _ in 0..15 {
-        let (ta, _) = fastest_of(1, 1, Duration::ZERO, || {
-            (0..repeat).map(|_| black_box(a())).sum::<f64>()
+/// Prints a line of the summary and keeps it for the report file.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        let line = format!($($arg)*);
+        println!("{line}");
+        REPORT.with(|report| {
+            let mut report = report.borrow_mut();
+            report.push_str(&line);
+            report.push('\n');
         });
-        let (tb, _) = fastest_of(1, 1, Duration::ZERO, || {
-            (0..repeat).map(|_| black_box(b())).sum::<f64>()
-        });
-        best.0 = best.0.min(ta.as_nanos() as f64 / repeat as f64);
-        best.1 = best.1.min(tb.as_nanos() as f64 / repeat as f64);
-    }
-    best
-}
-
-fn sled_parameters(s: &Sled) -> Vec<(&'static str, f64)> {
-    vec![("m0", s.m0), ("c", s.c), ("g", s.g), ("theta", s.theta), ("f_d", s.f_d)]
-}
-
-fn rocket_parameters(r: &Rocket) -> Vec<(&'static str, f64)> {
-    vec![("mu", r.mu), ("u_e", r.u_e), ("g", r.g)]
-}
-
-fn kepler_parameters(k: &Kepler) -> Vec<(&'static str, f64)> {
-    vec![("m1", k.m1), ("k", k.k)]
-}
-
-const CHAIN_PARAMETERS: [(&str, f64); 4] = [("m0", 1.0), ("c", 0.1), ("l", 1.0), ("g", 9.81)];
-
-fn chain<T>(build: impl Fn(f64, f64, f64, f64) -> T) -> T {
-    let [(_, m0), (_, c), (_, l), (_, g)] = CHAIN_PARAMETERS;
-    build(m0, c, l, g)
-}
-
-fn chain_parameters() -> Parameters {
-    Parameters::Declared(CHAIN_PARAMETERS.iter().map(|(n, _)| n.to_string()).collect())
-}
-
-/// The macro's pipeline on the n-link chain: parse, derive (with checks), emit.
-fn expand(links: usize, source: &str) -> proc_macro2::TokenStream {
-    let target = Target {
-        name: Ident::new(&format!("Chain{links}"), Span::call_site()),
-        runtime: quote!(::varmass::core),
-    };
-    match derive_source(source, chain_parameters()) {
-        Ok(mut d) => emit_system(&mut d, source, &target),
-        Err(_) => proc_macro2::TokenStream::new(),
-    }
+    }};
 }
 
 fn summary() {
-    println!("== generated vs hand-written: {STEPS} RK4 steps, fastest of 15 interleaved runs");
+    say!("== generated vs hand-written: {STEPS} RK4 steps, fastest of 15 interleaved runs");
     let sled = SledProblem::standard();
     let rocket = RocketProblem::standard();
     let kepler = KeplerProblem::standard();
@@ -221,7 +64,14 @@ fn summary() {
             pair(
                 20,
                 || rk4_run(&sled.system, sled.initial_state(), sled.end_time()).sum(),
-                || rk4_run(&HandSled(sled.system), sled.initial_state(), sled.end_time()).sum(),
+                || {
+                    rk4_run(
+                        &HandSled(sled.system),
+                        sled.initial_state(),
+                        sled.end_time(),
+                    )
+                    .sum()
+                },
             ),
         ),
         (
@@ -230,8 +80,12 @@ fn summary() {
                 20,
                 || rk4_run(&rocket.system, rocket.initial_state(), rocket.end_time()).sum(),
                 || {
-                    rk4_run(&HandRocket(rocket.system), rocket.initial_state(), rocket.end_time())
-                        .sum()
+                    rk4_run(
+                        &HandRocket(rocket.system),
+                        rocket.initial_state(),
+                        rocket.end_time(),
+                    )
+                    .sum()
                 },
             ),
         ),
@@ -241,15 +95,22 @@ fn summary() {
                 20,
                 || rk4_run(&kepler.system, kepler.initial_state(), kepler.end_time()).sum(),
                 || {
-                    rk4_run(&HandKepler(kepler.system), kepler.initial_state(), kepler.end_time())
-                        .sum()
+                    rk4_run(
+                        &HandKepler(kepler.system),
+                        kepler.initial_state(),
+                        kepler.end_time(),
+                    )
+                    .sum()
                 },
             ),
         ),
     ];
-    println!("{:<8} {:>14} {:>14} {:>8}", "system", "generated µs", "hand µs", "ratio");
+    say!(
+        "{:<8} {:>14} {:>14} {:>8}",
+        "system", "generated µs", "hand µs", "ratio"
+    );
     for (name, (generated, hand)) in rows {
-        println!(
+        say!(
             "{name:<8} {:>14.2} {:>14.2} {:>8.3}",
             generated / 1e3,
             hand / 1e3,
@@ -257,8 +118,8 @@ fn summary() {
         );
     }
 
-    println!("\n== generated vs interpreted state rate (ns per call, fastest of 15 interleaved)");
-    println!(
+    say!("\n== generated vs interpreted state rate (ns per call, fastest of 15 interleaved)");
+    say!(
         "{:<8} {:>10} {:>10} {:>10} {:>9} {:>9} {:>6} {:>10}",
         "system", "generated", "tape", "tree", "tape/gen", "tree/gen", "instr", "max diff"
     );
@@ -268,7 +129,7 @@ fn summary() {
     let chain3 = chain(|m0, c, l, g| Chain3 { m0, c, l, g });
     let chain3_states = chain_samples::<6>(3);
     let chain3_source = chain_source(3);
-    let cases: [(&str, &str, Vec<(&str, f64)>); 4] = [
+    let cases: [(&str, &str, ParameterValues); 4] = [
         ("sled", Sled::SOURCE, sled_parameters(&sled.system)),
         ("rocket", Rocket::SOURCE, rocket_parameters(&rocket.system)),
         ("Kepler", Kepler::SOURCE, kepler_parameters(&kepler.system)),
@@ -279,7 +140,7 @@ fn summary() {
             Interpreted::new(source, &parameters, Mode::Tape),
             Interpreted::new(source, &parameters, Mode::Tree),
         ) else {
-            println!("{name}: the interpreter could not derive the system");
+            say!("{name}: the interpreter could not derive the system");
             continue;
         };
         let (generated, by_tape, by_tree, difference) = match name {
@@ -288,7 +149,7 @@ fn summary() {
             "Kepler" => interpretation_row(&kepler.system, &tape, &tree, &kepler_states),
             _ => interpretation_row(&chain3, &tape, &tree, &chain3_states),
         };
-        println!(
+        say!(
             "{name:<8} {generated:>10.1} {by_tape:>10.1} {by_tree:>10.1} {:>9.1} {:>9.1} {:>6} {difference:>10.1e}",
             by_tape / generated,
             by_tree / generated,
@@ -296,8 +157,8 @@ fn summary() {
         );
     }
 
-    println!("\n== derivation cost (parse + derive + checks + emit), fastest of 3 to 10 runs");
-    println!(
+    say!("\n== derivation cost (parse + derive + checks + emit), fastest of 3 to 10 runs");
+    say!(
         "{:<6} {:>10} {:>10} {:>10} {:>10} {:>12}",
         "links", "parse µs", "derive ms", "emit ms", "total ms", "code bytes"
     );
@@ -306,12 +167,12 @@ fn summary() {
         let budget = Duration::from_secs(2);
         let (parse, ast) = fastest_of(3, 10, budget, || parse_system(&source));
         let Ok(ast) = ast else {
-            println!("{links}: does not parse");
+            say!("{links}: does not parse");
             continue;
         };
         let (derive_time, derived) = fastest_of(3, 10, budget, || derive(&ast, chain_parameters()));
         if derived.is_err() {
-            println!("{links}: does not derive");
+            say!("{links}: does not derive");
             continue;
         }
         let (total, tokens) = fastest_of(3, 10, budget, || expand(links, &source));
@@ -319,7 +180,7 @@ fn summary() {
         // and cannot be cloned), so it is the remainder.
         let emit_time = total.saturating_sub(parse + derive_time);
         let code = tokens.to_string().len();
-        println!(
+        say!(
             "{links:<6} {:>10.1} {:>10.2} {:>10.2} {:>10.2} {code:>12}",
             parse.as_secs_f64() * 1e6,
             derive_time.as_secs_f64() * 1e3,
@@ -328,7 +189,7 @@ fn summary() {
         );
     }
 
-    println!("\n== symbolic-inverse threshold: q̇ from p in closed form vs Cholesky");
+    say!("\n== symbolic-inverse threshold: q̇ from p in closed form vs Cholesky");
     threshold_row(
         2,
         chain(|m0, c, l, g| Chain2 { m0, c, l, g }),
@@ -346,14 +207,14 @@ fn summary() {
     velocity_tapes(2);
     velocity_tapes(3);
 
-    println!("\n== generated state rate of the n-link chain (ns per call)");
+    say!("\n== generated state rate of the n-link chain (ns per call)");
     chain_rate(1, &chain(|m0, c, l, g| Chain1 { m0, c, l, g }));
     chain_rate(2, &chain(|m0, c, l, g| Chain2 { m0, c, l, g }));
     chain_rate(3, &chain3);
     chain_rate(4, &chain(|m0, c, l, g| Chain4 { m0, c, l, g }));
     chain_rate(5, &chain(|m0, c, l, g| Chain5 { m0, c, l, g }));
     chain_rate(6, &chain(|m0, c, l, g| Chain6 { m0, c, l, g }));
-    println!();
+    say!("");
 }
 
 /// (generated, tape, tree) ns per call and the largest disagreement.
@@ -407,7 +268,7 @@ fn threshold_row<A, B, const N: usize, const S: usize>(
         .filter_map(|s| Some((a.state_rate(0.5, s).ok()?, b.state_rate(0.5, s).ok()?)))
         .map(|(x, y)| (x - y).amax() / (1.0 + x.amax()))
         .fold(0.0, f64::max);
-    println!(
+    say!(
         "{links} links: {a_name} {:.1} ns, {b_name} {:.1} ns per state rate (ratio {:.2}; agree to {difference:.0e})",
         ta / calls,
         tb / calls,
@@ -432,7 +293,7 @@ fn velocity_tapes(links: usize) {
         }
         _ => 0,
     };
-    println!(
+    say!(
         "{links} links: q̇ closed form {closed} tape instructions; M and b {numeric} instructions + a {links}×{links} Cholesky"
     );
 }
@@ -447,7 +308,7 @@ where
         || generated_rates(system, &states),
         || generated_rates(system, &states),
     );
-    println!("{links} links: {:.1}", t / states.len() as f64);
+    say!("{links} links: {:.1}", t / states.len() as f64);
 }
 
 fn criterion_benches(c: &mut Criterion) {
@@ -460,19 +321,37 @@ fn criterion_benches(c: &mut Criterion) {
         b.iter(|| rk4_run(&sled.system, sled.initial_state(), sled.end_time()))
     });
     group.bench_function(BenchmarkId::new("sled", "hand"), |b| {
-        b.iter(|| rk4_run(&HandSled(sled.system), sled.initial_state(), sled.end_time()))
+        b.iter(|| {
+            rk4_run(
+                &HandSled(sled.system),
+                sled.initial_state(),
+                sled.end_time(),
+            )
+        })
     });
     group.bench_function(BenchmarkId::new("rocket", "generated"), |b| {
         b.iter(|| rk4_run(&rocket.system, rocket.initial_state(), rocket.end_time()))
     });
     group.bench_function(BenchmarkId::new("rocket", "hand"), |b| {
-        b.iter(|| rk4_run(&HandRocket(rocket.system), rocket.initial_state(), rocket.end_time()))
+        b.iter(|| {
+            rk4_run(
+                &HandRocket(rocket.system),
+                rocket.initial_state(),
+                rocket.end_time(),
+            )
+        })
     });
     group.bench_function(BenchmarkId::new("Kepler", "generated"), |b| {
         b.iter(|| rk4_run(&kepler.system, kepler.initial_state(), kepler.end_time()))
     });
     group.bench_function(BenchmarkId::new("Kepler", "hand"), |b| {
-        b.iter(|| rk4_run(&HandKepler(kepler.system), kepler.initial_state(), kepler.end_time()))
+        b.iter(|| {
+            rk4_run(
+                &HandKepler(kepler.system),
+                kepler.initial_state(),
+                kepler.end_time(),
+            )
+        })
     });
     group.finish();
 
@@ -526,6 +405,14 @@ fn criterion_benches(c: &mut Criterion) {
 
 fn main() {
     summary();
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/bench/costs.txt");
+    let written = REPORT.with(|report| {
+        let header = "# cargo bench -p varmass-benches --bench costs (summary part)\n";
+        std::fs::write(&path, format!("{header}{}", report.borrow()))
+    });
+    if let Err(error) = written {
+        eprintln!("could not write {}: {error}", path.display());
+    }
     let mut criterion = Criterion::default()
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2))

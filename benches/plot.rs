@@ -24,10 +24,7 @@ const WORST_SHOWN: f64 = 1.0;
 const BEST_SHOWN: f64 = 1e-15;
 
 fn colour(method: Method) -> RGBColor {
-    let index = Method::ALL
-        .iter()
-        .position(|m| *m == method)
-        .unwrap_or(0);
+    let index = Method::ALL.iter().position(|m| *m == method).unwrap_or(0);
     PALETTE[index % PALETTE.len()]
 }
 
@@ -35,7 +32,9 @@ fn colour(method: Method) -> RGBColor {
 fn decades(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| *v > 0.0 && v.is_finite())
-        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
     if lo > hi {
         return (1.0, 10.0);
     }

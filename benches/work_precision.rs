@@ -164,7 +164,10 @@ where
     Sys: VariableMassSystem<N, S>,
 {
     let y0 = ode_solvers::SVector::<f64, S>::from_column_slice(start.as_slice());
-    let mut solver = ode_solvers::Dopri5::new(
+    // Hairer's defaults (as ours), and sparse output: the state at every accepted step, of
+    // which the last is at `end`. (Dense output at `dx = end` returned a wrong final state
+    // in ode_solvers 0.6.2, see the README.)
+    let mut solver = ode_solvers::Dopri5::from_param(
         PeerSystem::<Sys, N, S>(system),
         0.0,
         end,
@@ -172,6 +175,15 @@ where
         y0,
         tolerance,
         tolerance,
+        0.9,
+        0.04,
+        0.2,
+        10.0,
+        end,
+        0.0,
+        10_000_000,
+        1000,
+        ode_solvers::OutputType::Sparse,
     );
     let stats = solver.integrate().map_err(|e| e.to_string())?;
     let (Some(t), Some(y)) = (solver.x_out().last(), solver.y_out().last()) else {
@@ -202,8 +214,14 @@ where
     let fixed = FixedStep { step };
     let started = |e: varmass::core::StepError<S>| e.to_string();
     match method {
-        Method::Euler => integrate(ExplicitEuler::new(system, 0.0, y0, fixed).map_err(started)?, end),
-        Method::Rk4 => integrate(ClassicalRk4::new(system, 0.0, y0, fixed).map_err(started)?, end),
+        Method::Euler => integrate(
+            ExplicitEuler::new(system, 0.0, y0, fixed).map_err(started)?,
+            end,
+        ),
+        Method::Rk4 => integrate(
+            ClassicalRk4::new(system, 0.0, y0, fixed).map_err(started)?,
+            end,
+        ),
         Method::DormandPrinceFixed => integrate(
             DormandPrince::new(system, 0.0, y0, StepControl::Fixed(fixed)).map_err(started)?,
             end,
@@ -225,14 +243,20 @@ where
                 step,
                 ..ImplicitMidpointConfig::default()
             };
-            integrate(ImplicitMidpoint::new(system, 0.0, y0, config).map_err(started)?, end)
+            integrate(
+                ImplicitMidpoint::new(system, 0.0, y0, config).map_err(started)?,
+                end,
+            )
         }
         Method::Variational => {
             let config = VariationalConfig {
                 step,
                 ..VariationalConfig::default()
             };
-            integrate(Variational::new(system, 0.0, y0, config).map_err(started)?, end)
+            integrate(
+                Variational::new(system, 0.0, y0, config).map_err(started)?,
+                end,
+            )
         }
         Method::PeerDopri5 => run_peer(system, y0, end, setting),
     }
@@ -249,7 +273,11 @@ where
             let (time, state, statistics) = match outcome {
                 Ok(result) => result,
                 Err(error) => {
-                    println!("{:<24} {:<20} {setting:>9.1e}  failed: {error}", P::NAME, method.name());
+                    println!(
+                        "{:<24} {:<20} {setting:>9.1e}  failed: {error}",
+                        P::NAME,
+                        method.name()
+                    );
                     continue;
                 }
             };
@@ -327,12 +355,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/bench");
     std::fs::create_dir_all(&folder)?;
     std::fs::write(folder.join("work_precision.csv"), csv(&points))?;
-    let problems = [
-        SledProblem::NAME,
-        RocketProblem::NAME,
-        KeplerProblem::NAME,
-    ];
+    let problems = [SledProblem::NAME, RocketProblem::NAME, KeplerProblem::NAME];
     plot::work_precision(&folder.join("work_precision.svg"), &problems, &points)?;
-    println!("wrote {}", folder.join("work_precision.{csv,svg}").display());
+    println!(
+        "wrote {}",
+        folder.join("work_precision.{csv,svg}").display()
+    );
     Ok(())
 }

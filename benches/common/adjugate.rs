@@ -16,7 +16,7 @@ pub fn closed_velocities(d: &mut Derivation) -> Vec<Id> {
         let ad = pool.mul(&[m[rows[0]][columns[0]], m[rows[1]][columns[1]]]);
         let bc = pool.mul(&[m[rows[0]][columns[1]], m[rows[1]][columns[0]]]);
         let minor = pool.sub(ad, bc);
-        if (row + column) % 2 == 0 {
+        if (row + column).is_multiple_of(2) {
             minor
         } else {
             pool.neg(minor)

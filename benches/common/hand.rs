@@ -49,7 +49,9 @@ impl VariableMassSystem<1, 2> for HandSled {
         Vector1::new(self.0.c * vs[1] * vs[1])
     }
     fn accelerations(&self, t: f64, vs: &SVector<f64, 2>) -> Result<SVector<f64, 1>, SystemError> {
-        let Sled { c, g, theta, f_d, .. } = self.0;
+        let Sled {
+            c, g, theta, f_d, ..
+        } = self.0;
         let m = self.mass(0, t, vs);
         Ok(Vector1::new(
             g * (theta.sin() - f_d * theta.cos()) - c * vs[1] * vs[1] / m,

@@ -6,7 +6,9 @@
 use std::cell::RefCell;
 
 use varmass::symbolic::expr::{Id, Tape};
-use varmass::symbolic::mechanics::{derive_source, Derivation, MassKind, Parameters, VelocitySolve};
+use varmass::symbolic::mechanics::{
+    derive_source, Derivation, MassKind, Parameters, VelocitySolve,
+};
 
 /// How each stage is evaluated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,8 +45,7 @@ impl Interpreted {
     /// Derives `source` with the given parameter values.
     pub fn new(source: &str, parameters: &[(&str, f64)], mode: Mode) -> Result<Self, String> {
         let names = parameters.iter().map(|(n, _)| n.to_string()).collect();
-        let d = derive_source(source, Parameters::Declared(names))
-            .map_err(|e| format!("{e:?}"))?;
+        let d = derive_source(source, Parameters::Declared(names)).map_err(|e| format!("{e:?}"))?;
         let mut env = vec![f64::NAN; d.pool.symbols().len()];
         for (name, value) in parameters {
             let symbol = d
@@ -78,7 +79,8 @@ impl Interpreted {
             tape: d.pool.compile(&roots),
             roots,
         };
-        let (laws, velocities, rates) = (stage(law_roots), stage(velocity_roots), stage(rate_roots));
+        let (laws, velocities, rates) =
+            (stage(law_roots), stage(velocity_roots), stage(rate_roots));
         Ok(Self {
             mode,
             law_slots,
@@ -127,10 +129,24 @@ impl Interpreted {
         set(env, self.d.time.index(), t);
         for (a, c) in self.d.coordinates.iter().enumerate() {
             set(env, c.q.index(), state.get(a).copied().unwrap_or(f64::NAN));
-            set(env, c.momentum.index(), state.get(n + a).copied().unwrap_or(f64::NAN));
+            set(
+                env,
+                c.momentum.index(),
+                state.get(n + a).copied().unwrap_or(f64::NAN),
+            );
         }
-        for (k, m) in self.d.masses.iter().take(self.d.state_mass_count()).enumerate() {
-            set(env, m.symbol.index(), state.get(2 * n + k).copied().unwrap_or(f64::NAN));
+        for (k, m) in self
+            .d
+            .masses
+            .iter()
+            .take(self.d.state_mass_count())
+            .enumerate()
+        {
+            set(
+                env,
+                m.symbol.index(),
+                state.get(2 * n + k).copied().unwrap_or(f64::NAN),
+            );
         }
         self.run(&self.laws, env, values);
         for (slot, value) in self.law_slots.iter().zip(values.iter()) {
@@ -140,7 +156,11 @@ impl Interpreted {
         if self.numeric {
             let (matrix, offset) = values.split_at_mut(n * n);
             for (a, b) in offset.iter_mut().enumerate() {
-                *b = env.get(self.d.coordinates[a].momentum.index()).copied().unwrap_or(f64::NAN) - *b;
+                *b = env
+                    .get(self.d.coordinates[a].momentum.index())
+                    .copied()
+                    .unwrap_or(f64::NAN)
+                    - *b;
             }
             cholesky_solve(matrix, offset, n);
             for (c, v) in self.d.coordinates.iter().zip(offset.iter()) {
@@ -169,7 +189,11 @@ fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) {
         for k in 0..j {
             diagonal -= m[j * n + k] * m[j * n + k];
         }
-        let diagonal = if diagonal > 0.0 { diagonal.sqrt() } else { f64::NAN };
+        let diagonal = if diagonal > 0.0 {
+            diagonal.sqrt()
+        } else {
+            f64::NAN
+        };
         m[j * n + j] = diagonal;
         for i in j + 1..n {
             let mut entry = m[i * n + j];

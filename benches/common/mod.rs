@@ -10,6 +10,7 @@ pub mod hand;
 pub mod interpreted;
 pub mod problems;
 pub mod timing;
+pub mod workloads;
 
 /// The chains emitted by `build.rs` with the macro's own pipeline (`emit_system`).
 #[allow(missing_docs, clippy::all)]

@@ -62,7 +62,10 @@ impl SledProblem {
             f_d,
         } = self.system;
         let epsilon = c * x / m0;
-        2.0 / 3.0 * g * (theta.sin() - f_d * theta.cos()) * (3.0 + 3.0 * epsilon + epsilon * epsilon)
+        2.0 / 3.0
+            * g
+            * (theta.sin() - f_d * theta.cos())
+            * (3.0 + 3.0 * epsilon + epsilon * epsilon)
             / ((1.0 + epsilon) * (1.0 + epsilon))
     }
 
