@@ -24,7 +24,7 @@ use varmass_symbolic::parse::parse_system;
 use common::adjugate::closed_velocities;
 use common::chain::chain_source;
 use common::chains::{Chain1, Chain2, Chain2Numeric, Chain3, Chain3Closed, Chain4, Chain5, Chain6};
-use common::generated::{Kepler, Rocket, Sled};
+use common::generated::{Kepler, KeplerPolar, Rocket, Sled};
 use common::hand::{HandKepler, HandRocket, HandSled};
 use common::interpreted::{Interpreted, Mode};
 use common::problems::{KeplerProblem, Problem, RocketProblem, SledProblem};
@@ -58,6 +58,10 @@ fn summary() {
     let sled = SledProblem::standard();
     let rocket = RocketProblem::standard();
     let kepler = KeplerProblem::standard();
+    let kepler_polar = KeplerPolar {
+        m1: kepler.system.m1,
+        k: kepler.system.k,
+    };
     let rows = [
         (
             "sled",
@@ -104,14 +108,28 @@ fn summary() {
                 },
             ),
         ),
+        (
+            "Kepler, T in polar form",
+            pair(
+                20,
+                || rk4_run(&kepler_polar, kepler.initial_state(), kepler.end_time()).sum(),
+                || {
+                    let hand = HandKepler(kepler.system);
+                    rk4_run(&hand, kepler.initial_state(), kepler.end_time()).sum()
+                },
+            ),
+        ),
     ];
     say!(
-        "{:<8} {:>14} {:>14} {:>8}",
-        "system", "generated µs", "hand µs", "ratio"
+        "{:<24} {:>14} {:>14} {:>8}",
+        "system",
+        "generated µs",
+        "hand µs",
+        "ratio"
     );
     for (name, (generated, hand)) in rows {
         say!(
-            "{name:<8} {:>14.2} {:>14.2} {:>8.3}",
+            "{name:<24} {:>14.2} {:>14.2} {:>8.3}",
             generated / 1e3,
             hand / 1e3,
             generated / hand
@@ -121,7 +139,14 @@ fn summary() {
     say!("\n== generated vs interpreted state rate (ns per call, fastest of 15 interleaved)");
     say!(
         "{:<8} {:>10} {:>10} {:>10} {:>9} {:>9} {:>6} {:>10}",
-        "system", "generated", "tape", "tree", "tape/gen", "tree/gen", "instr", "max diff"
+        "system",
+        "generated",
+        "tape",
+        "tree",
+        "tape/gen",
+        "tree/gen",
+        "instr",
+        "max diff"
     );
     let sled_states = samples(&sled);
     let rocket_states = samples(&rocket);
@@ -160,7 +185,12 @@ fn summary() {
     say!("\n== derivation cost (parse + derive + checks + emit), fastest of 3 to 10 runs");
     say!(
         "{:<6} {:>10} {:>10} {:>10} {:>10} {:>12}",
-        "links", "parse µs", "derive ms", "emit ms", "total ms", "code bytes"
+        "links",
+        "parse µs",
+        "derive ms",
+        "emit ms",
+        "total ms",
+        "code bytes"
     );
     for links in 1..=6 {
         let source = chain_source(links);

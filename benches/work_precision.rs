@@ -326,7 +326,7 @@ fn csv(points: &[Point]) -> String {
         let s = &p.statistics;
         let _ = writeln!(
             out,
-            "{},{},{:e},{:e},{:e},{},{},{},{},{}",
+            "\"{}\",\"{}\",{:e},{:e},{:e},{},{},{},{},{}",
             p.problem,
             p.method.name(),
             p.setting,

@@ -237,7 +237,7 @@ impl KeplerProblem {
 
 impl Problem<2, 4> for KeplerProblem {
     type System = Kepler;
-    const NAME: &'static str = "Kepler e=0.5, 3 orbits";
+    const NAME: &'static str = "Kepler e=0.5 (3 orbits)";
     fn system(&self) -> &Kepler {
         &self.system
     }
