@@ -1,0 +1,19 @@
+//! What the bench binaries share: the systems (generated and by hand), their reference
+//! solutions, the n-link chain family, the run-time interpreter and the timing rule.
+// Each bench binary uses part of this module.
+#![allow(dead_code)]
+
+pub mod adjugate;
+pub mod chain;
+pub mod generated;
+pub mod hand;
+pub mod interpreted;
+pub mod problems;
+pub mod timing;
+pub mod workloads;
+
+/// The chains emitted by `build.rs` with the macro's own pipeline (`emit_system`).
+#[allow(missing_docs, clippy::all)]
+pub mod chains {
+    include!(concat!(env!("OUT_DIR"), "/chains.rs"));
+}

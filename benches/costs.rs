@@ -1,0 +1,452 @@
+//! The cost of generated code, against code written by hand and against run-time
+//! interpretation of the same derivation; the cost of the derivation itself (the macro's
+//! expansion) for 1 to 6 degrees of freedom; and the two sides of the symbolic-inverse
+//! threshold (`SYMBOLIC_INVERSE_MAX_DOF`).
+//!
+//! First a summary of ratios, timed as the fastest of interleaved runs (robust on a shared
+//! machine), then the same workloads under criterion for their statistics.
+//!
+//! ```sh
+//! cargo bench -p varmass-benches --bench costs             # summary + criterion
+//! cargo bench -p varmass-benches --bench costs -- overhead # criterion filter
+//! ```
+
+mod common;
+
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion};
+use varmass::core::nalgebra::SVector;
+use varmass::core::VariableMassSystem;
+use varmass_symbolic::mechanics::{derive, derive_source};
+use varmass_symbolic::parse::parse_system;
+
+use common::adjugate::closed_velocities;
+use common::chain::chain_source;
+use common::chains::{Chain1, Chain2, Chain2Numeric, Chain3, Chain3Closed, Chain4, Chain5, Chain6};
+use common::generated::{Kepler, KeplerPolar, Rocket, Sled};
+use common::hand::{HandKepler, HandRocket, HandSled};
+use common::interpreted::{Interpreted, Mode};
+use common::problems::{KeplerProblem, Problem, RocketProblem, SledProblem};
+use common::timing::fastest_of;
+use common::workloads::{
+    chain, chain_parameters, chain_samples, disagreement, expand, generated_rates,
+    interpreted_rates, kepler_parameters, pair, rk4_run, rocket_parameters, samples,
+    sled_parameters, ParameterValues, CHAIN_PARAMETERS, STEPS,
+};
+
+thread_local! {
+    /// The summary as printed, for `docs/bench/costs.txt`.
+    static REPORT: std::cell::RefCell<String> = const { std::cell::RefCell::new(String::new()) };
+}
+
+/// Prints a line of the summary and keeps it for the report file.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        let line = format!($($arg)*);
+        println!("{line}");
+        REPORT.with(|report| {
+            let mut report = report.borrow_mut();
+            report.push_str(&line);
+            report.push('\n');
+        });
+    }};
+}
+
+fn summary() {
+    say!("== generated vs hand-written: {STEPS} RK4 steps, fastest of 15 interleaved runs");
+    let sled = SledProblem::standard();
+    let rocket = RocketProblem::standard();
+    let kepler = KeplerProblem::standard();
+    let kepler_polar = KeplerPolar {
+        m1: kepler.system.m1,
+        k: kepler.system.k,
+    };
+    let rows = [
+        (
+            "sled",
+            pair(
+                20,
+                || rk4_run(&sled.system, sled.initial_state(), sled.end_time()).sum(),
+                || {
+                    rk4_run(
+                        &HandSled(sled.system),
+                        sled.initial_state(),
+                        sled.end_time(),
+                    )
+                    .sum()
+                },
+            ),
+        ),
+        (
+            "rocket",
+            pair(
+                20,
+                || rk4_run(&rocket.system, rocket.initial_state(), rocket.end_time()).sum(),
+                || {
+                    rk4_run(
+                        &HandRocket(rocket.system),
+                        rocket.initial_state(),
+                        rocket.end_time(),
+                    )
+                    .sum()
+                },
+            ),
+        ),
+        (
+            "Kepler",
+            pair(
+                20,
+                || rk4_run(&kepler.system, kepler.initial_state(), kepler.end_time()).sum(),
+                || {
+                    rk4_run(
+                        &HandKepler(kepler.system),
+                        kepler.initial_state(),
+                        kepler.end_time(),
+                    )
+                    .sum()
+                },
+            ),
+        ),
+        (
+            "Kepler, T in polar form",
+            pair(
+                20,
+                || rk4_run(&kepler_polar, kepler.initial_state(), kepler.end_time()).sum(),
+                || {
+                    let hand = HandKepler(kepler.system);
+                    rk4_run(&hand, kepler.initial_state(), kepler.end_time()).sum()
+                },
+            ),
+        ),
+    ];
+    say!(
+        "{:<24} {:>14} {:>14} {:>8}",
+        "system",
+        "generated µs",
+        "hand µs",
+        "ratio"
+    );
+    for (name, (generated, hand)) in rows {
+        say!(
+            "{name:<24} {:>14.2} {:>14.2} {:>8.3}",
+            generated / 1e3,
+            hand / 1e3,
+            generated / hand
+        );
+    }
+
+    say!("\n== generated vs interpreted state rate (ns per call, fastest of 15 interleaved)");
+    say!(
+        "{:<8} {:>10} {:>10} {:>10} {:>9} {:>9} {:>6} {:>10}",
+        "system",
+        "generated",
+        "tape",
+        "tree",
+        "tape/gen",
+        "tree/gen",
+        "instr",
+        "max diff"
+    );
+    let sled_states = samples(&sled);
+    let rocket_states = samples(&rocket);
+    let kepler_states = samples(&kepler);
+    let chain3 = chain(|m0, c, l, g| Chain3 { m0, c, l, g });
+    let chain3_states = chain_samples::<6>(3);
+    let chain3_source = chain_source(3);
+    let cases: [(&str, &str, ParameterValues); 4] = [
+        ("sled", Sled::SOURCE, sled_parameters(&sled.system)),
+        ("rocket", Rocket::SOURCE, rocket_parameters(&rocket.system)),
+        ("Kepler", Kepler::SOURCE, kepler_parameters(&kepler.system)),
+        ("chain3", &chain3_source, CHAIN_PARAMETERS.to_vec()),
+    ];
+    for (name, source, parameters) in cases {
+        let (Ok(tape), Ok(tree)) = (
+            Interpreted::new(source, &parameters, Mode::Tape),
+            Interpreted::new(source, &parameters, Mode::Tree),
+        ) else {
+            say!("{name}: the interpreter could not derive the system");
+            continue;
+        };
+        let (generated, by_tape, by_tree, difference) = match name {
+            "sled" => interpretation_row(&sled.system, &tape, &tree, &sled_states),
+            "rocket" => interpretation_row(&rocket.system, &tape, &tree, &rocket_states),
+            "Kepler" => interpretation_row(&kepler.system, &tape, &tree, &kepler_states),
+            _ => interpretation_row(&chain3, &tape, &tree, &chain3_states),
+        };
+        say!(
+            "{name:<8} {generated:>10.1} {by_tape:>10.1} {by_tree:>10.1} {:>9.1} {:>9.1} {:>6} {difference:>10.1e}",
+            by_tape / generated,
+            by_tree / generated,
+            tape.tape_length(),
+        );
+    }
+
+    say!("\n== derivation cost (parse + derive + checks + emit), fastest of 3 to 10 runs");
+    say!(
+        "{:<6} {:>10} {:>10} {:>10} {:>10} {:>12}",
+        "links",
+        "parse µs",
+        "derive ms",
+        "emit ms",
+        "total ms",
+        "code bytes"
+    );
+    for links in 1..=6 {
+        let source = chain_source(links);
+        let budget = Duration::from_secs(2);
+        let (parse, ast) = fastest_of(3, 10, budget, || parse_system(&source));
+        let Ok(ast) = ast else {
+            say!("{links}: does not parse");
+            continue;
+        };
+        let (derive_time, derived) = fastest_of(3, 10, budget, || derive(&ast, chain_parameters()));
+        if derived.is_err() {
+            say!("{links}: does not derive");
+            continue;
+        }
+        let (total, tokens) = fastest_of(3, 10, budget, || expand(links, &source));
+        // Emitting alone cannot be timed apart (a derivation is consumed by `emit_system`
+        // and cannot be cloned), so it is the remainder.
+        let emit_time = total.saturating_sub(parse + derive_time);
+        let code = tokens.to_string().len();
+        say!(
+            "{links:<6} {:>10.1} {:>10.2} {:>10.2} {:>10.2} {code:>12}",
+            parse.as_secs_f64() * 1e6,
+            derive_time.as_secs_f64() * 1e3,
+            emit_time.as_secs_f64() * 1e3,
+            total.as_secs_f64() * 1e3,
+        );
+    }
+
+    say!("\n== symbolic-inverse threshold: q̇ from p in closed form vs Cholesky");
+    threshold_row(
+        2,
+        chain(|m0, c, l, g| Chain2 { m0, c, l, g }),
+        chain(|m0, c, l, g| Chain2Numeric { m0, c, l, g }),
+        "closed (macro)",
+        "Cholesky",
+    );
+    threshold_row(
+        3,
+        chain(|m0, c, l, g| Chain3Closed { m0, c, l, g }),
+        chain3,
+        "closed",
+        "Cholesky (macro)",
+    );
+    velocity_tapes(2);
+    velocity_tapes(3);
+
+    say!("\n== generated state rate of the n-link chain (ns per call)");
+    chain_rate(1, &chain(|m0, c, l, g| Chain1 { m0, c, l, g }));
+    chain_rate(2, &chain(|m0, c, l, g| Chain2 { m0, c, l, g }));
+    chain_rate(3, &chain3);
+    chain_rate(4, &chain(|m0, c, l, g| Chain4 { m0, c, l, g }));
+    chain_rate(5, &chain(|m0, c, l, g| Chain5 { m0, c, l, g }));
+    chain_rate(6, &chain(|m0, c, l, g| Chain6 { m0, c, l, g }));
+    say!("");
+}
+
+/// (generated, tape, tree) ns per call and the largest disagreement.
+fn interpretation_row<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    tape: &Interpreted,
+    tree: &Interpreted,
+    states: &[SVector<f64, S>],
+) -> (f64, f64, f64, f64)
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let per_call = states.len() as f64;
+    let (generated, by_tape) = pair(
+        200,
+        || generated_rates(system, states),
+        || interpreted_rates(tape, states),
+    );
+    let (_, by_tree) = pair(
+        20,
+        || generated_rates(system, states),
+        || interpreted_rates(tree, states),
+    );
+    (
+        generated / per_call,
+        by_tape / per_call,
+        by_tree / per_call,
+        disagreement(system, tape, states),
+    )
+}
+
+fn threshold_row<A, B, const N: usize, const S: usize>(
+    links: usize,
+    a: A,
+    b: B,
+    a_name: &str,
+    b_name: &str,
+) where
+    A: VariableMassSystem<N, S>,
+    B: VariableMassSystem<N, S>,
+{
+    let states = chain_samples::<S>(links);
+    let (ta, tb) = pair(
+        500,
+        || generated_rates(&a, &states),
+        || generated_rates(&b, &states),
+    );
+    let calls = states.len() as f64;
+    let difference = states
+        .iter()
+        .filter_map(|s| Some((a.state_rate(0.5, s).ok()?, b.state_rate(0.5, s).ok()?)))
+        .map(|(x, y)| (x - y).amax() / (1.0 + x.amax()))
+        .fold(0.0, f64::max);
+    say!(
+        "{links} links: {a_name} {:.1} ns, {b_name} {:.1} ns per state rate (ratio {:.2}; agree to {difference:.0e})",
+        ta / calls,
+        tb / calls,
+        ta / tb,
+    );
+}
+
+/// Instructions to get q̇ from p at run time: closed-form tape vs the M and b entries that a
+/// Cholesky solve then consumes.
+fn velocity_tapes(links: usize) {
+    let Ok(mut d) = derive_source(&chain_source(links), chain_parameters()) else {
+        return;
+    };
+    let mut numeric: Vec<_> = d.mass_matrix.iter().flatten().copied().collect();
+    numeric.extend(&d.momentum_offset);
+    let numeric = d.pool.compile(&numeric).len();
+    let closed = match (&d.velocities, links) {
+        (varmass_symbolic::mechanics::VelocitySolve::Symbolic(v), _) => d.pool.compile(v).len(),
+        (_, 3) => {
+            let v = closed_velocities(&mut d);
+            d.pool.compile(&v).len()
+        }
+        _ => 0,
+    };
+    say!(
+        "{links} links: q̇ closed form {closed} tape instructions; M and b {numeric} instructions + a {links}×{links} Cholesky"
+    );
+}
+
+fn chain_rate<Sys, const N: usize, const S: usize>(links: usize, system: &Sys)
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let states = chain_samples::<S>(links);
+    let (t, _) = pair(
+        200,
+        || generated_rates(system, &states),
+        || generated_rates(system, &states),
+    );
+    say!("{links} links: {:.1}", t / states.len() as f64);
+}
+
+fn criterion_benches(c: &mut Criterion) {
+    let sled = SledProblem::standard();
+    let rocket = RocketProblem::standard();
+    let kepler = KeplerProblem::standard();
+
+    let mut group = c.benchmark_group("overhead_rk4_1000_steps");
+    group.bench_function(BenchmarkId::new("sled", "generated"), |b| {
+        b.iter(|| rk4_run(&sled.system, sled.initial_state(), sled.end_time()))
+    });
+    group.bench_function(BenchmarkId::new("sled", "hand"), |b| {
+        b.iter(|| {
+            rk4_run(
+                &HandSled(sled.system),
+                sled.initial_state(),
+                sled.end_time(),
+            )
+        })
+    });
+    group.bench_function(BenchmarkId::new("rocket", "generated"), |b| {
+        b.iter(|| rk4_run(&rocket.system, rocket.initial_state(), rocket.end_time()))
+    });
+    group.bench_function(BenchmarkId::new("rocket", "hand"), |b| {
+        b.iter(|| {
+            rk4_run(
+                &HandRocket(rocket.system),
+                rocket.initial_state(),
+                rocket.end_time(),
+            )
+        })
+    });
+    group.bench_function(BenchmarkId::new("Kepler", "generated"), |b| {
+        b.iter(|| rk4_run(&kepler.system, kepler.initial_state(), kepler.end_time()))
+    });
+    group.bench_function(BenchmarkId::new("Kepler", "hand"), |b| {
+        b.iter(|| {
+            rk4_run(
+                &HandKepler(kepler.system),
+                kepler.initial_state(),
+                kepler.end_time(),
+            )
+        })
+    });
+    group.finish();
+
+    let mut group = c.benchmark_group("state_rate_16_calls");
+    let states = samples(&kepler);
+    let parameters = kepler_parameters(&kepler.system);
+    if let (Ok(tape), Ok(tree)) = (
+        Interpreted::new(Kepler::SOURCE, &parameters, Mode::Tape),
+        Interpreted::new(Kepler::SOURCE, &parameters, Mode::Tree),
+    ) {
+        group.bench_function(BenchmarkId::new("Kepler", "generated"), |b| {
+            b.iter(|| generated_rates(&kepler.system, &states))
+        });
+        group.bench_function(BenchmarkId::new("Kepler", "tape"), |b| {
+            b.iter(|| interpreted_rates(&tape, &states))
+        });
+        group.bench_function(BenchmarkId::new("Kepler", "tree"), |b| {
+            b.iter(|| interpreted_rates(&tree, &states))
+        });
+    }
+    let states = chain_samples::<6>(3);
+    let chain3 = chain(|m0, c, l, g| Chain3 { m0, c, l, g });
+    let chain3_closed = chain(|m0, c, l, g| Chain3Closed { m0, c, l, g });
+    group.bench_function(BenchmarkId::new("chain3", "generated Cholesky"), |b| {
+        b.iter(|| generated_rates(&chain3, &states))
+    });
+    group.bench_function(BenchmarkId::new("chain3", "generated closed"), |b| {
+        b.iter(|| generated_rates(&chain3_closed, &states))
+    });
+    let states = chain_samples::<4>(2);
+    let chain2 = chain(|m0, c, l, g| Chain2 { m0, c, l, g });
+    let chain2_numeric = chain(|m0, c, l, g| Chain2Numeric { m0, c, l, g });
+    group.bench_function(BenchmarkId::new("chain2", "generated closed"), |b| {
+        b.iter(|| generated_rates(&chain2, &states))
+    });
+    group.bench_function(BenchmarkId::new("chain2", "generated Cholesky"), |b| {
+        b.iter(|| generated_rates(&chain2_numeric, &states))
+    });
+    group.finish();
+
+    let mut group = c.benchmark_group("expansion");
+    group.sample_size(10);
+    for links in 1..=6 {
+        let source = chain_source(links);
+        group.bench_function(BenchmarkId::new("chain", links), |b| {
+            b.iter(|| expand(links, &source))
+        });
+    }
+    group.finish();
+}
+
+fn main() {
+    summary();
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/bench/costs.txt");
+    let written = REPORT.with(|report| {
+        let header = "# cargo bench -p varmass-benches --bench costs (summary part)\n";
+        std::fs::write(&path, format!("{header}{}", report.borrow()))
+    });
+    if let Err(error) = written {
+        eprintln!("could not write {}: {error}", path.display());
+    }
+    let mut criterion = Criterion::default()
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .configure_from_args();
+    criterion_benches(&mut criterion);
+    criterion.final_summary();
+}

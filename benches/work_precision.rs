@@ -1,0 +1,365 @@
+//! Work-precision: every stepper on every system with a closed-form reference (the paper's
+//! sled to 50 m, the vertical rocket, a Kepler orbit), swept over step sizes (fixed-step
+//! methods) or tolerances (adaptive Dormand–Prince, and the `ode_solvers` crate's Dopri5 as a
+//! peer on the same right-hand side). One point per setting: the relative error at the end
+//! against the reference, the fastest of several runs, and the work counters.
+//!
+//! Writes a table to stdout and `docs/bench/work_precision.{csv,svg}`.
+//!
+//! ```sh
+//! cargo bench -p varmass-benches --bench work_precision
+//! ```
+
+mod common;
+mod plot;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use varmass::core::nalgebra::SVector;
+use varmass::core::steppers::{
+    AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
+    ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
+};
+use varmass::core::{Statistics, StepOutcome, Stepper, VariableMassSystem};
+
+use common::problems::{KeplerProblem, Problem, RocketProblem, SledProblem};
+use common::timing::fastest;
+
+/// A stepper and how it is configured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Explicit Euler, fixed step.
+    Euler,
+    /// Classical RK4, fixed step.
+    Rk4,
+    /// Dormand–Prince 5(4), fixed step.
+    DormandPrinceFixed,
+    /// Dormand–Prince 5(4), adaptive (PI control).
+    DormandPrinceAdaptive,
+    /// Implicit midpoint (Newton on the generated Jacobian), fixed step.
+    ImplicitMidpoint,
+    /// The variational integrator of the corrected principle, fixed step.
+    Variational,
+    /// `ode_solvers::Dopri5` on the same state rate: the peer.
+    PeerDopri5,
+}
+
+impl Method {
+    const ALL: [Method; 7] = [
+        Method::Euler,
+        Method::Rk4,
+        Method::DormandPrinceFixed,
+        Method::DormandPrinceAdaptive,
+        Method::ImplicitMidpoint,
+        Method::Variational,
+        Method::PeerDopri5,
+    ];
+
+    /// The name in tables, the CSV and the plot legend.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Euler => "Euler",
+            Method::Rk4 => "RK4",
+            Method::DormandPrinceFixed => "DP5 fixed",
+            Method::DormandPrinceAdaptive => "DP5 adaptive",
+            Method::ImplicitMidpoint => "implicit midpoint",
+            Method::Variational => "variational",
+            Method::PeerDopri5 => "ode_solvers Dopri5",
+        }
+    }
+
+    fn adaptive(self) -> bool {
+        matches!(self, Method::DormandPrinceAdaptive | Method::PeerDopri5)
+    }
+
+    /// The sweep: tolerances 1e-3…1e-13 for adaptive methods, step counts 2^k otherwise,
+    /// ranges chosen per order so that each method spans its useful accuracies without
+    /// spending minutes on Euler at 1e-9.
+    fn settings(self) -> Vec<f64> {
+        let powers = |from: i32, to: i32, by: usize| -> Vec<f64> {
+            (from..=to).step_by(by).map(|k| 2f64.powi(k)).collect()
+        };
+        match self {
+            Method::DormandPrinceAdaptive | Method::PeerDopri5 => {
+                (3..=13).map(|k| 10f64.powi(-k)).collect()
+            }
+            Method::Euler => powers(8, 20, 2),
+            Method::Rk4 => powers(5, 16, 1),
+            Method::DormandPrinceFixed => powers(4, 13, 1),
+            Method::ImplicitMidpoint | Method::Variational => powers(6, 18, 2),
+        }
+    }
+}
+
+/// One point of the sweep.
+#[derive(Clone, Debug)]
+pub struct Point {
+    /// The problem's name.
+    pub problem: &'static str,
+    /// The method.
+    pub method: Method,
+    /// The tolerance (adaptive) or the number of steps (fixed).
+    pub setting: f64,
+    /// Relative error at the end against the closed form.
+    pub error: f64,
+    /// Fastest wall time of one whole run, in seconds.
+    pub seconds: f64,
+    /// The work counters of the run.
+    pub statistics: Statistics,
+}
+
+/// Steps to `end` and returns the final time, state and counters.
+fn integrate<St, const N: usize, const S: usize>(
+    mut stepper: St,
+    end: f64,
+) -> Result<(f64, SVector<f64, S>, Statistics), String>
+where
+    St: Stepper<N, S>,
+{
+    stepper.set_stop_time(end).map_err(|e| e.to_string())?;
+    loop {
+        match stepper.step() {
+            Ok(StepOutcome::ReachedStopTime) => break,
+            Ok(StepOutcome::Advanced) => {}
+            Err(error) => return Err(error.to_string()),
+        }
+    }
+    Ok((stepper.time(), *stepper.state(), *stepper.statistics()))
+}
+
+/// The peer's view of a system: `ode_solvers` needs its own nalgebra's vector type; the
+/// copies in and out are a few floats per call, negligible next to the state rate. (`N` is
+/// named so that the trait impl can name the system's trait.)
+struct PeerSystem<'a, Sys, const N: usize, const S: usize>(&'a Sys);
+
+impl<Sys, const N: usize, const S: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, S>>
+    for PeerSystem<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    fn system(
+        &self,
+        t: f64,
+        y: &ode_solvers::SVector<f64, S>,
+        dy: &mut ode_solvers::SVector<f64, S>,
+    ) {
+        let state = SVector::<f64, S>::from_column_slice(y.as_slice());
+        // A failed evaluation becomes NaN, which makes the peer's error test reject the step.
+        let rate = self
+            .0
+            .state_rate(t, &state)
+            .unwrap_or(SVector::from_element(f64::NAN));
+        dy.as_mut_slice().copy_from_slice(rate.as_slice());
+    }
+}
+
+fn run_peer<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    start: SVector<f64, S>,
+    end: f64,
+    tolerance: f64,
+) -> Result<(f64, SVector<f64, S>, Statistics), String>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let y0 = ode_solvers::SVector::<f64, S>::from_column_slice(start.as_slice());
+    // Hairer's defaults (as ours), and sparse output: the state at every accepted step, of
+    // which the last is at `end`. (Dense output at `dx = end` returned a wrong final state
+    // in ode_solvers 0.6.2, see the README.)
+    let mut solver = ode_solvers::Dopri5::from_param(
+        PeerSystem::<Sys, N, S>(system),
+        0.0,
+        end,
+        end,
+        y0,
+        tolerance,
+        tolerance,
+        0.9,
+        0.04,
+        0.2,
+        10.0,
+        end,
+        0.0,
+        10_000_000,
+        1000,
+        ode_solvers::OutputType::Sparse,
+    );
+    let stats = solver.integrate().map_err(|e| e.to_string())?;
+    let (Some(t), Some(y)) = (solver.x_out().last(), solver.y_out().last()) else {
+        return Err("the peer returned no output".into());
+    };
+    let statistics = Statistics {
+        accepted_steps: stats.accepted_steps as usize,
+        rejected_steps: stats.rejected_steps as usize,
+        rate_evaluations: stats.num_eval as usize,
+        ..Statistics::default()
+    };
+    Ok((*t, SVector::from_column_slice(y.as_slice()), statistics))
+}
+
+/// One run of `method` at `setting` on `problem`.
+fn run_once<P, const N: usize, const S: usize>(
+    problem: &P,
+    method: Method,
+    setting: f64,
+) -> Result<(f64, SVector<f64, S>, Statistics), String>
+where
+    P: Problem<N, S>,
+{
+    let system = problem.system();
+    let y0 = problem.initial_state();
+    let end = problem.end_time();
+    let step = end / setting;
+    let fixed = FixedStep { step };
+    let started = |e: varmass::core::StepError<S>| e.to_string();
+    match method {
+        Method::Euler => integrate(
+            ExplicitEuler::new(system, 0.0, y0, fixed).map_err(started)?,
+            end,
+        ),
+        Method::Rk4 => integrate(
+            ClassicalRk4::new(system, 0.0, y0, fixed).map_err(started)?,
+            end,
+        ),
+        Method::DormandPrinceFixed => integrate(
+            DormandPrince::new(system, 0.0, y0, StepControl::Fixed(fixed)).map_err(started)?,
+            end,
+        ),
+        Method::DormandPrinceAdaptive => {
+            let control = AdaptiveControl {
+                relative_tolerance: setting,
+                absolute_tolerance: setting,
+                ..AdaptiveControl::default()
+            };
+            integrate(
+                DormandPrince::new(system, 0.0, y0, StepControl::Adaptive(control))
+                    .map_err(started)?,
+                end,
+            )
+        }
+        Method::ImplicitMidpoint => {
+            let config = ImplicitMidpointConfig {
+                step,
+                ..ImplicitMidpointConfig::default()
+            };
+            integrate(
+                ImplicitMidpoint::new(system, 0.0, y0, config).map_err(started)?,
+                end,
+            )
+        }
+        Method::Variational => {
+            let config = VariationalConfig {
+                step,
+                ..VariationalConfig::default()
+            };
+            integrate(
+                Variational::new(system, 0.0, y0, config).map_err(started)?,
+                end,
+            )
+        }
+        Method::PeerDopri5 => run_peer(system, y0, end, setting),
+    }
+}
+
+/// The sweep of every method on `problem`.
+fn sweep<P, const N: usize, const S: usize>(problem: &P, points: &mut Vec<Point>)
+where
+    P: Problem<N, S>,
+{
+    for method in Method::ALL {
+        for setting in method.settings() {
+            let (elapsed, outcome) = fastest(|| run_once(problem, method, setting));
+            let (time, state, statistics) = match outcome {
+                Ok(result) => result,
+                Err(error) => {
+                    println!(
+                        "{:<24} {:<20} {setting:>9.1e}  failed: {error}",
+                        P::NAME,
+                        method.name()
+                    );
+                    continue;
+                }
+            };
+            let error = problem.error(time, &state);
+            let point = Point {
+                problem: P::NAME,
+                method,
+                setting,
+                error,
+                seconds: elapsed.as_secs_f64(),
+                statistics,
+            };
+            println!("{}", row(&point));
+            points.push(point);
+            // Past the rounding floor a finer setting only costs time.
+            if error < 1e-13 {
+                break;
+            }
+        }
+    }
+}
+
+fn row(point: &Point) -> String {
+    let setting = if point.method.adaptive() {
+        format!("tol {:.0e}", point.setting)
+    } else {
+        format!("{} steps", point.setting)
+    };
+    format!(
+        "{:<24} {:<20} {:>14} {:>10.2e} {:>12.1} {:>10} {:>8}",
+        point.problem,
+        point.method.name(),
+        setting,
+        point.error,
+        point.seconds * 1e6,
+        point.statistics.rate_evaluations,
+        point.statistics.jacobian_evaluations,
+    )
+}
+
+fn csv(points: &[Point]) -> String {
+    let mut out = String::from(
+        "problem,method,setting,error,seconds,rate_evaluations,jacobian_evaluations,newton_iterations,accepted_steps,rejected_steps\n",
+    );
+    for p in points {
+        let s = &p.statistics;
+        let _ = writeln!(
+            out,
+            "\"{}\",\"{}\",{:e},{:e},{:e},{},{},{},{},{}",
+            p.problem,
+            p.method.name(),
+            p.setting,
+            p.error,
+            p.seconds,
+            s.rate_evaluations,
+            s.jacobian_evaluations,
+            s.newton_iterations,
+            s.accepted_steps,
+            s.rejected_steps
+        );
+    }
+    out
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    println!(
+        "{:<24} {:<20} {:>14} {:>10} {:>12} {:>10} {:>8}",
+        "problem", "method", "setting", "rel. error", "time (µs)", "rate evals", "Jacobians"
+    );
+    let mut points = Vec::new();
+    sweep(&SledProblem::standard(), &mut points);
+    sweep(&RocketProblem::standard(), &mut points);
+    sweep(&KeplerProblem::standard(), &mut points);
+
+    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/bench");
+    std::fs::create_dir_all(&folder)?;
+    std::fs::write(folder.join("work_precision.csv"), csv(&points))?;
+    let problems = [SledProblem::NAME, RocketProblem::NAME, KeplerProblem::NAME];
+    plot::work_precision(&folder.join("work_precision.svg"), &problems, &points)?;
+    println!(
+        "wrote {}",
+        folder.join("work_precision.{csv,svg}").display()
+    );
+    Ok(())
+}
