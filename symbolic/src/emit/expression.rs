@@ -60,19 +60,52 @@ impl Rendered {
 /// Renders `roots` with their shared subexpressions hoisted into temporaries named
 /// `__{prefix}{n}`.
 pub(crate) fn block(pool: &ExprPool, roots: &[Id], prefix: &str, runtime: &TokenStream) -> Block {
-    let shared = pool.cse(roots).shared;
+    staged_block(pool, &[], roots, prefix, runtime)
+}
+
+/// Like [`block`], with a first stage that binds symbols the outputs use: `bindings` are
+/// `(symbol, value)` with values free of those symbols (q̇ = M⁻¹(p − b) binding `x_dot`).
+/// One CSE pass covers both stages, so a subexpression of the velocities that the outputs
+/// need too (`cos(a - b)`) is computed once: temporaries free of the bound symbols come
+/// first, then the bindings, then the temporaries that use them.
+pub(crate) fn staged_block(
+    pool: &ExprPool,
+    bindings: &[(Symbol, Id)],
+    roots: &[Id],
+    prefix: &str,
+    runtime: &TokenStream,
+) -> Block {
+    let mut all: Vec<Id> = bindings.iter().map(|(_, value)| *value).collect();
+    all.extend(roots);
+    let bound: Vec<Symbol> = bindings.iter().map(|(s, _)| *s).collect();
+    let (late, early): (Vec<Id>, Vec<Id>) = pool
+        .cse(&all)
+        .shared
+        .into_iter()
+        .partition(|id| bound.iter().any(|s| pool.contains(*id, *s)));
     let mut renderer = Renderer {
         pool,
         temps: HashMap::new(),
         runtime,
     };
-    let mut lets = Vec::with_capacity(shared.len());
-    for (n, id) in shared.iter().enumerate() {
-        let value = renderer.render(*id).tokens;
-        let name = format_ident!("__{}{}", prefix, n);
+    let mut lets = Vec::new();
+    let mut counter = 0usize;
+    let mut hoist = |renderer: &mut Renderer, ids: &[Id], lets: &mut Vec<TokenStream>| {
+        for id in ids {
+            let value = renderer.render(*id).tokens;
+            let name = format_ident!("__{}{}", prefix, counter);
+            counter += 1;
+            lets.push(quote!(let #name = #value;));
+            renderer.temps.insert(*id, name);
+        }
+    };
+    hoist(&mut renderer, &early, &mut lets);
+    for (symbol, value) in bindings {
+        let name = symbol_ident(pool, *symbol);
+        let value = renderer.render(*value).tokens;
         lets.push(quote!(let #name = #value;));
-        renderer.temps.insert(*id, name);
     }
+    hoist(&mut renderer, &late, &mut lets);
     let outputs = roots.iter().map(|r| renderer.render(*r).tokens).collect();
     Block { lets, outputs }
 }

@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
-use super::expression::{block, symbol_ident};
+use super::expression::{block, staged_block, symbol_ident};
 use crate::expr::{Id, Symbol, SymbolKind};
 use crate::mechanics::{Derivation, VelocitySolve};
 
@@ -180,31 +180,46 @@ impl Emitter<'_> {
             .any(|s| matches!(self.d.pool.symbols().kind(*s), SymbolKind::Velocity { .. }))
     }
 
-    /// Prologue + shared subexpressions + the outputs, handed to `finish`.
+    /// Prologue + shared subexpressions + the outputs, handed to `finish`. A method on the
+    /// state that needs q̇ first solves it from p: in closed form inside the same CSE pass
+    /// as the outputs, or by a Cholesky solve before them.
     fn body(
         &self,
         input: Input,
         roots: &[Id],
         finish: impl FnOnce(Vec<TokenStream>) -> TokenStream,
     ) -> TokenStream {
-        let b = block(&self.d.pool, roots, "t", &self.target.runtime);
+        let runtime = &self.target.runtime;
         let mut used = self.used(roots);
-        let solve = if input == Input::State && self.needs_velocities(&used) {
-            let extra: Vec<Id> = match &self.d.velocities {
-                VelocitySolve::Symbolic(v) => v.clone(),
-                VelocitySolve::Numeric => {
-                    let mut e: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
-                    e.extend(&self.d.momentum_offset);
-                    e
-                }
-            };
-            used.extend(self.used(&extra));
-            for c in &self.d.coordinates {
-                used.insert(c.momentum);
+        let needs_velocities = input == Input::State && self.needs_velocities(&used);
+        let (solve, b) = match (&self.d.velocities, needs_velocities) {
+            (VelocitySolve::Symbolic(v), true) => {
+                used.extend(self.used(v));
+                let bindings: Vec<(Symbol, Id)> = self
+                    .d
+                    .coordinates
+                    .iter()
+                    .map(|c| c.velocity)
+                    .zip(v.iter().copied())
+                    .collect();
+                (
+                    TokenStream::new(),
+                    staged_block(&self.d.pool, &bindings, roots, "t", runtime),
+                )
             }
-            self.velocities_from_momenta()
-        } else {
-            TokenStream::new()
+            (VelocitySolve::Numeric, true) => {
+                let mut e: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
+                e.extend(&self.d.momentum_offset);
+                used.extend(self.used(&e));
+                for c in &self.d.coordinates {
+                    used.insert(c.momentum);
+                }
+                (
+                    self.velocities_from_momenta(),
+                    block(&self.d.pool, roots, "t", runtime),
+                )
+            }
+            (_, false) => (TokenStream::new(), block(&self.d.pool, roots, "t", runtime)),
         };
         let prologue = self.prologue(&used, input);
         let lets = b.lets;
