@@ -278,6 +278,15 @@ where
     fn initial_step(&mut self, k1: &SVector<f64, S>, control: &AdaptiveControl) -> f64 {
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
+        // HNW's heuristic (I, II.4) has absolute constants (1e-6, 1e-5) and mixes ‖f‖ ~ 1/t
+        // with ‖f′‖ ~ 1/t². Running it in τ = t/T, T the length of the integration, makes
+        // the first step independent of the unit of time; T = 1 (HNW's own) without a stop.
+        let unit = self
+            .progress
+            .stop_time()
+            .map(|stop| stop - t0)
+            .filter(|length| *length > 0.0 && length.is_finite())
+            .unwrap_or(1.0);
         let weight =
             |i: usize| control.absolute_tolerance + control.relative_tolerance * y0[i].abs();
         // A component without a scale (atol = 0 and y = 0) says nothing about the step size
@@ -286,19 +295,19 @@ where
             let terms = (0..S).filter(|&i| weight(i) > 0.0);
             sqrt(terms.map(|i| square(v[i] / weight(i))).sum::<f64>() / S as f64)
         };
-        let rate_norm = norm(k1);
+        let rate_norm = norm(k1) * unit;
         let state_norm = norm(&y0);
-        let mut h = if rate_norm <= 1e-5 || state_norm <= 1e-5 {
+        let mut tau = if rate_norm <= 1e-5 || state_norm <= 1e-5 {
             1e-6
         } else {
             0.01 * state_norm / rate_norm
         };
-        // Norms that overflow (a tiny absolute tolerance) give h = 0 or NaN: fall back to the
+        // Norms that overflow (a tiny absolute tolerance) give 0 or NaN: fall back to the
         // heuristic's own small default, which the controller then grows.
-        if !(h > 0.0 && h.is_finite()) {
-            h = 1e-6;
+        if !(tau > 0.0 && tau.is_finite()) {
+            tau = 1e-6;
         }
-        h = h.min(control.max_step);
+        let h = (tau * unit).min(control.max_step);
         let probe = y0 + k1 * h;
         let Ok(k_probe) = state_rate(self.system, &mut self.progress.statistics, t0 + h, &probe)
         else {
@@ -306,14 +315,14 @@ where
             // already small enough to try; rejections will shrink it further if needed.
             return h;
         };
-        let second_derivative = norm(&(k_probe - k1)) / h;
+        let second_derivative = norm(&(k_probe - k1)) / h * unit * unit;
         let scale = second_derivative.max(rate_norm);
         let refined = if scale <= 1e-15 {
-            (h * 1e-3).max(1e-6)
+            (tau * 1e-3).max(1e-6)
         } else {
             powf(0.01 / scale, 1.0 / 5.0)
         };
-        let first = (100.0 * h).min(refined).min(control.max_step);
+        let first = ((100.0 * tau).min(refined) * unit).min(control.max_step);
         if first > 0.0 && first.is_finite() {
             first
         } else {
