@@ -73,3 +73,26 @@ fn unequal_coefficients_and_other_terms_are_left_alone() {
     reduces("sin(a)^2 + cos(b)^2", "sin(a)^2 + cos(b)^2");
     reduces("k*a + l1", "k*a + l1");
 }
+
+#[test]
+fn arguments_of_two_symbols_expand_back_for_evaluation() {
+    let mut p = pool();
+    for (input, expected) in [
+        ("k*cos(a - b)", "k*(cos(a)*cos(b) + sin(a)*sin(b))"),
+        ("sin(a - b)", "sin(a)*cos(b) - cos(a)*sin(b)"),
+        (
+            "sin(a + b)^2 + cos(a)",
+            "(sin(a)*cos(b) + cos(a)*sin(b))^2 + cos(a)",
+        ),
+        ("cos(a + 2*b)", "cos(a + 2*b)"),
+    ] {
+        let e = build(&mut p, input);
+        let want = build(&mut p, expected);
+        let got = p.expand_trig_arguments(e);
+        assert_eq!(got, want, "{input} gave {}", p.display(got));
+        assert!(matches!(
+            p.identical(e, got),
+            Identity::Proven | Identity::Numerical { .. }
+        ));
+    }
+}

@@ -27,12 +27,22 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
         .iter()
         .map(|c| d.pool.sym(c.velocity))
         .collect();
+    // The code evaluates sin/cos of sums of two coordinates through the sines and cosines
+    // of the coordinates themselves (shared by CSE); the text above keeps cos(a - b).
+    let mut for_code = std::collections::HashMap::new();
+    for e in code_roots(d) {
+        let expanded = d.pool.expand_trig_arguments(e);
+        if expanded != e {
+            for_code.insert(e, expanded);
+        }
+    }
     let name = &target.name;
     let runtime = &target.runtime;
     let emitter = Emitter {
         d,
         target,
         velocity_ids,
+        for_code,
     };
     let n = d.coordinates.len();
     let k = d.state_mass_count();
@@ -112,4 +122,42 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
             #(#methods)*
         }
     }
+}
+
+/// Every expression of `d` that generated code evaluates.
+fn code_roots(d: &Derivation) -> Vec<crate::expr::Id> {
+    let mut roots = vec![d.lagrangian, d.energy, d.power];
+    roots.extend(d.hamiltonian);
+    roots.extend(d.closed_laws.iter().flatten());
+    for list in [
+        &d.mass_rates,
+        &d.momenta,
+        &d.momentum_offset,
+        &d.lagrangian_gradient,
+        &d.active_force,
+        &d.reactive_thrust,
+        &d.impact_force,
+        &d.frozen_momentum_rate,
+        &d.mass_flux_force,
+        &d.momentum_rate,
+        &d.acceleration_rhs,
+    ] {
+        roots.extend(list);
+    }
+    roots.extend(d.accelerations.iter().flatten());
+    if let crate::mechanics::VelocitySolve::Symbolic(v) = &d.velocities {
+        roots.extend(v);
+    }
+    let j = &d.jacobian;
+    for matrix in [
+        &d.mass_matrix,
+        &j.rate_wrt_q,
+        &j.rate_wrt_velocity,
+        &j.rate_wrt_state_mass,
+        &j.momentum_wrt_q,
+        &j.momentum_wrt_state_mass,
+    ] {
+        roots.extend(matrix.iter().flatten());
+    }
+    roots
 }

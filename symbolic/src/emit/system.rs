@@ -35,9 +35,21 @@ pub(crate) struct Emitter<'a> {
     pub target: &'a Target,
     /// The velocity symbols as expressions, in coordinate order.
     pub velocity_ids: Vec<Id>,
+    /// Expressions rewritten for evaluation (see `expand_trig_arguments`); others as is.
+    pub for_code: std::collections::HashMap<Id, Id>,
 }
 
 impl Emitter<'_> {
+    /// The form of `e` that generated code evaluates.
+    fn code(&self, e: Id) -> Id {
+        self.for_code.get(&e).copied().unwrap_or(e)
+    }
+
+    /// [`Self::code`] of each.
+    fn code_all(&self, es: &[Id]) -> Vec<Id> {
+        es.iter().map(|e| self.code(*e)).collect()
+    }
+
     fn n(&self) -> usize {
         self.d.coordinates.len()
     }
@@ -115,7 +127,7 @@ impl Emitter<'_> {
             })
             .collect();
         if !laws.is_empty() {
-            let roots: Vec<Id> = laws.iter().map(|(_, l)| *l).collect();
+            let roots: Vec<Id> = laws.iter().map(|(_, l)| self.code(*l)).collect();
             let b = block(&self.d.pool, &roots, "law", &self.target.runtime);
             out.extend(b.lets);
             for ((symbol, _), value) in laws.iter().zip(b.outputs) {
@@ -131,7 +143,7 @@ impl Emitter<'_> {
         let runtime = &self.target.runtime;
         match &self.d.velocities {
             VelocitySolve::Symbolic(v) => {
-                let b = block(&self.d.pool, v, "v", runtime);
+                let b = block(&self.d.pool, &self.code_all(v), "v", runtime);
                 let lets = b.lets;
                 let names = self
                     .d
@@ -143,9 +155,15 @@ impl Emitter<'_> {
             }
             VelocitySolve::Numeric => {
                 let n = Literal::usize_unsuffixed(self.n());
-                let entries: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
+                let entries: Vec<Id> = self
+                    .d
+                    .mass_matrix
+                    .iter()
+                    .flatten()
+                    .map(|e| self.code(*e))
+                    .collect();
                 let mut roots = entries.clone();
-                roots.extend(&self.d.momentum_offset);
+                roots.extend(self.code_all(&self.d.momentum_offset));
                 let b = block(&self.d.pool, &roots, "m", runtime);
                 let lets = b.lets;
                 let (matrix, offset) = b.outputs.split_at(entries.len());
@@ -191,6 +209,7 @@ impl Emitter<'_> {
     ) -> TokenStream {
         let runtime = &self.target.runtime;
         let mut used = self.used(roots);
+        let roots = &self.code_all(roots);
         let needs_velocities = input == Input::State && self.needs_velocities(&used);
         let (solve, b) = match (&self.d.velocities, needs_velocities) {
             (VelocitySolve::Symbolic(v), true) => {
@@ -200,7 +219,7 @@ impl Emitter<'_> {
                     .coordinates
                     .iter()
                     .map(|c| c.velocity)
-                    .zip(v.iter().copied())
+                    .zip(self.code_all(v))
                     .collect();
                 (
                     TokenStream::new(),

@@ -185,3 +185,68 @@ impl ExprPool {
         self.add(&terms)
     }
 }
+
+impl ExprPool {
+    /// `e` with every `sin(u ± v)` and `cos(u ± v)` of two symbols written as products of
+    /// sines and cosines of the symbols: the inverse of the angle rules of
+    /// [`ExprPool::reduce_trig`], for evaluation. A linkage's T in textbook form holds
+    /// cos(θᵢ − θⱼ) for every pair, n(n−1)/2 calls; expanded, generated code computes the 2n
+    /// values sin θᵢ, cos θᵢ once and shares them.
+    pub fn expand_trig_arguments(&mut self, e: Id) -> Id {
+        let mut image: std::collections::HashMap<Id, Id> = std::collections::HashMap::new();
+        for id in self.reachable(&[e], false) {
+            let node = self.node(id).clone();
+            let children: Vec<Id> = node
+                .children()
+                .map(|c| image.get(&c).copied().unwrap_or(c))
+                .collect();
+            let rebuilt = match node {
+                Node::Num(_) | Node::Float(_) | Node::Sym(_) => id,
+                Node::Add(_) => self.add(&children),
+                Node::Mul(_) => self.mul(&children),
+                Node::Pow(..) => self.pow(children[0], children[1]),
+                Node::Call(func @ (Func::Sin | Func::Cos), _) => {
+                    match self.two_symbol_sum(children[0]) {
+                        Some((u, v)) => {
+                            let (su, cu) = (self.call(Func::Sin, &[u]), self.call(Func::Cos, &[u]));
+                            let (sv, cv) = (self.call(Func::Sin, &[v]), self.call(Func::Cos, &[v]));
+                            if func == Func::Sin {
+                                // sin(u + v) = sin u cos v + cos u sin v
+                                let (a, b) = (self.mul(&[su, cv]), self.mul(&[cu, sv]));
+                                self.add(&[a, b])
+                            } else {
+                                // cos(u + v) = cos u cos v − sin u sin v
+                                let (a, b) = (self.mul(&[cu, cv]), self.mul(&[su, sv]));
+                                self.sub(a, b)
+                            }
+                        }
+                        None => self.call(func, &children),
+                    }
+                }
+                Node::Call(func, _) => self.call(func, &children),
+            };
+            image.insert(id, rebuilt);
+        }
+        image.get(&e).copied().unwrap_or(e)
+    }
+
+    /// `(u, v)` if `e` is `u + v` with each of u, v a symbol or minus a symbol.
+    fn two_symbol_sum(&mut self, e: Id) -> Option<(Id, Id)> {
+        let Node::Add(terms) = self.node(e) else {
+            return None;
+        };
+        let [u, v] = terms[..] else { return None };
+        let signed_symbol = |pool: &ExprPool, t: Id| match pool.node(t) {
+            Node::Sym(_) => true,
+            Node::Mul(f) => {
+                f.len() == 2
+                    && pool
+                        .as_rational(f[0])
+                        .is_some_and(|r| r.numer() == -1 && r.denom() == 1)
+                    && matches!(pool.node(f[1]), Node::Sym(_))
+            }
+            _ => false,
+        };
+        (signed_symbol(self, u) && signed_symbol(self, v)).then_some((u, v))
+    }
+}
