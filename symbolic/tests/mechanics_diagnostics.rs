@@ -318,3 +318,25 @@ fn every_error_of_a_system_is_reported_together() {
     );
     assert!(errors.len() >= 2, "{errors:?}");
 }
+
+#[test]
+fn literal_outside_the_range_of_f64() {
+    expect(
+        "coordinates x\nkinetic x'^2\npotential 1e-400*x + 1e400*x^2",
+        "`1e-400` is not representable as an f64",
+        3,
+        11,
+    );
+    expect(
+        "coordinates x\nkinetic x'^2\npotential 1e400*x^2",
+        "`1e400` is not representable as an f64",
+        3,
+        11,
+    );
+    // Zero written with an exponent is still zero, and a subnormal is still a number.
+    assert!(derive_source(
+        "coordinates x\nkinetic x'^2\npotential 0e-999*x + 1e-310*x",
+        Parameters::Inferred
+    )
+    .is_ok());
+}

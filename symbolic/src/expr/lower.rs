@@ -104,7 +104,7 @@ fn lower_node(
             if id.is_none() {
                 errors.push(Diagnostic::new(
                     span,
-                    format!("`{text}` is not a finite number"),
+                    format!("`{text}` is not representable as an f64: it overflows to infinity or underflows to 0"),
                 ));
             }
             id

@@ -118,7 +118,7 @@ impl ExprPool {
 
     /// A constant from a decimal literal (`9.81`, `1e-3`, `.5`, `6.02E23`): exact when the
     /// value fits a rational of `i128`s, else inexact. `None` if the text is not a literal
-    /// or its value is not finite.
+    /// or its value is not finite, or underflows a nonzero literal to 0.
     pub fn literal(&mut self, text: &str) -> Option<Id> {
         if let Some(r) = Rational::from_decimal(text) {
             return Some(self.rational(r));
@@ -127,7 +127,10 @@ impl ExprPool {
             .bytes()
             .all(|b| b.is_ascii_digit() || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-'));
         let x: f64 = text.parse().ok().filter(|x: &f64| x.is_finite())?;
-        valid.then(|| self.float(x))
+        // `1e-400` parses to 0: refuse it rather than silently drop a nonzero constant.
+        let mantissa = text.split(['e', 'E']).next().unwrap_or("");
+        let underflows = x == 0.0 && mantissa.bytes().any(|b| matches!(b, b'1'..=b'9'));
+        (valid && !underflows).then(|| self.float(x))
     }
 
     pub(crate) fn number(&mut self, n: Number) -> Id {
