@@ -39,6 +39,12 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
                     Err(errors) => report(&cx, source, &text, &errors),
                     Ok(mut derivation) => {
                         check_unused_fields(&cx, &fields, &derivation);
+                        let bad_names = rust_name_diagnostics(&derivation);
+                        report(&cx, source, &text, &bad_names);
+                        if !bad_names.is_empty() {
+                            // No code: it would not compile with these names.
+                            return finish(cx, &item_struct, dims, None);
+                        }
                         let target = Target {
                             name: item_struct.ident.clone(),
                             runtime: quote!(::varmass::core),
@@ -49,12 +55,22 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
             }
         }
     }
+    finish(cx, &item_struct, dims, generated)
+}
+
+/// The struct, then the generated items, or every error and a stub.
+fn finish(
+    cx: Ctxt,
+    item_struct: &syn::ItemStruct,
+    dims: (usize, usize),
+    generated: Option<TokenStream>,
+) -> TokenStream {
     let item_tokens = item_struct.to_token_stream();
     match (cx.check(), generated) {
         (Ok(()), Some(generated)) => quote!(#item_tokens #generated),
         (Err(e), _) => {
             let errors = e.to_compile_error();
-            let stub = stub(&item_struct, dims.0, dims.1);
+            let stub = stub(item_struct, dims.0, dims.1);
             quote!(#item_tokens #errors #stub)
         }
         (Ok(()), None) => item_tokens,
@@ -112,6 +128,27 @@ fn check_unused_fields(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
             );
         }
     }
+}
+
+/// Coordinates and masses become locals of the generated code (`x`, `x_dot`, `p_x`, `m`), so
+/// each must be a Rust identifier: not a keyword, not `_`, and not `__…`, which the generated
+/// temporaries use.
+fn rust_name_diagnostics(d: &Derivation) -> Vec<Diagnostic> {
+    let names = d
+        .coordinates
+        .iter()
+        .map(|c| (&c.name, c.span, "coordinate"))
+        .chain(d.masses.iter().map(|m| (&m.name, m.span, "mass")));
+    names
+        .filter(|(name, _, _)| name.starts_with("__") || syn::parse_str::<syn::Ident>(name).is_err())
+        .map(|(name, span, what)| {
+            Diagnostic::new(
+                span,
+                format!("`{name}` cannot name a {what}: generated Rust code uses it as a variable, and it is a Rust keyword or reserved"),
+            )
+            .with_help("rename it (names starting with `__` are reserved for generated temporaries)")
+        })
+        .collect()
 }
 
 /// The number of coordinates and of state masses, for the stub.
