@@ -39,6 +39,7 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
                     Err(errors) => report(&cx, source, &text, &errors),
                     Ok(mut derivation) => {
                         check_unused_fields(&cx, &fields, &derivation);
+                        check_generated_names(&cx, &fields, &derivation);
                         let bad_names = rust_name_diagnostics(&derivation);
                         report(&cx, source, &text, &bad_names);
                         if !bad_names.is_empty() {
@@ -130,6 +131,25 @@ fn check_unused_fields(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
     }
 }
 
+/// Generated code binds `x_dot` for the velocity of coordinate `x`; a field or mass of that
+/// name would be shadowed, silently feeding the velocity where the parameter was meant.
+fn check_generated_names(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
+    let generated: Vec<String> = d
+        .coordinates
+        .iter()
+        .flat_map(|c| [format!("{}_dot", c.name), format!("{}_ddot", c.name)])
+        .collect();
+    for field in fields {
+        let name = field.to_string();
+        if generated.contains(&name) {
+            cx.error_spanned_by(
+                field,
+                format!("field `{name}` clashes with the generated name of a coordinate's velocity; rename it"),
+            );
+        }
+    }
+}
+
 /// Coordinates and masses become locals of the generated code (`x`, `x_dot`, `p_x`, `m`), so
 /// each must be a Rust identifier: not a keyword, not `_`, and not `__…`, which the generated
 /// temporaries use.
@@ -139,8 +159,17 @@ fn rust_name_diagnostics(d: &Derivation) -> Vec<Diagnostic> {
         .iter()
         .map(|c| (&c.name, c.span, "coordinate"))
         .chain(d.masses.iter().map(|m| (&m.name, m.span, "mass")));
+    let velocities: Vec<String> = d
+        .coordinates
+        .iter()
+        .map(|c| format!("{}_dot", c.name))
+        .collect();
     names
-        .filter(|(name, _, _)| name.starts_with("__") || syn::parse_str::<syn::Ident>(name).is_err())
+        .filter(|(name, _, _)| {
+            name.starts_with("__")
+                || velocities.contains(name)
+                || syn::parse_str::<syn::Ident>(name).is_err()
+        })
         .map(|(name, span, what)| {
             Diagnostic::new(
                 span,
