@@ -122,7 +122,8 @@ fn check_unused_fields(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
     let used = d.used_parameters();
     for field in fields {
         let name = field.to_string();
-        if !name.starts_with('_') && !used.contains(&name) {
+        let reserved = varmass_symbolic::mechanics::is_reserved(&name);
+        if !name.starts_with('_') && !reserved && !used.contains(&name) {
             cx.error_spanned_by(
                 field,
                 format!("field `{name}` is not used by the system's equations; use it in the DSL, remove it, or name it `_{name}`"),
@@ -141,7 +142,12 @@ fn check_generated_names(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
         .collect();
     for field in fields {
         let name = field.to_string();
-        if generated.contains(&name) {
+        if varmass_symbolic::mechanics::is_reserved(&name) {
+            cx.error_spanned_by(
+                field,
+                format!("field `{name}` has a reserved name: in the DSL `t` is the time and `H`, `L`, `T`, `V`, `power`, `p_…`, `Q_…`, `R1_…`, `R2_…`, `dp_…`, `pdot_…`, `mdot_…` are derived quantities; rename it"),
+            );
+        } else if generated.contains(&name) {
             cx.error_spanned_by(
                 field,
                 format!("field `{name}` clashes with the generated name of a coordinate's velocity; rename it"),

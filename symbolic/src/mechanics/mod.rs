@@ -38,7 +38,7 @@ pub use model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
     Model, Term, TermKind,
 };
-pub use resolve::Parameters;
+pub use resolve::{is_reserved, Parameters};
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
 

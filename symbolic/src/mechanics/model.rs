@@ -206,7 +206,11 @@ impl Builder {
         names.insert(keywords::TIME.to_string(), Binding::Time(time));
         let mut declared = Vec::new();
         if let Parameters::Declared(list) = &parameters {
+            // A field may not take over `t` (the macro reports such a field at its span).
             for name in list {
+                if names.contains_key(name.as_str()) {
+                    continue;
+                }
                 let symbol = pool.symbols_mut().add(name, SymbolKind::Parameter);
                 names.insert(name.clone(), Binding::Parameter(symbol));
                 declared.push((name.clone(), symbol));

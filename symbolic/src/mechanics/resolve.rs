@@ -153,8 +153,10 @@ impl NameResolver<'_> {
     }
 }
 
-/// Names that may not be declared because `check`s use them for derived quantities.
-pub(crate) fn is_reserved(name: &str) -> bool {
+/// Names that may not be declared (nor be parameters) because they mean the time or, in
+/// `check`s, a derived quantity: `t`, `H`, `L`, `T`, `V`, `power`, and the prefixes `p_`,
+/// `Q_`, `R1_`, `R2_`, `pdot_`, `dp_`, `mdot_`.
+pub fn is_reserved(name: &str) -> bool {
     const QUANTITIES: &[&str] = &["H", "L", "T", "V", "power"];
     name == keywords::TIME
         || QUANTITIES.contains(&name)
