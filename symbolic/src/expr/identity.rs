@@ -50,8 +50,28 @@ const DISAGREE: f64 = 1e-6;
 const LOW: f64 = 0.3;
 const WIDTH: f64 = 1.4;
 
-/// splitmix64: a tiny, seeded, well-mixed generator (Steele, Lea, Flood 2014), enough for
-/// sampling points reproducibly.
+/// Seeded random points for numerical checks (the identity test here, the derivation's
+/// singularity test): each symbol drawn from [0.3, 1.7] — positive, away from 0 and from
+/// the usual singularities — by splitmix64 (Steele, Lea, Flood 2014), so runs repeat.
+pub struct SamplePoints(SplitMix64);
+
+impl SamplePoints {
+    /// A generator with the given seed.
+    pub fn new(seed: u64) -> SamplePoints {
+        SamplePoints(SplitMix64(seed))
+    }
+
+    /// Draws a value for each of `symbols` into `env` (indexed by [`Symbol::index`]).
+    pub fn fill(&mut self, env: &mut [f64], symbols: impl IntoIterator<Item = Symbol>) {
+        for s in symbols {
+            if let Some(slot) = env.get_mut(s.index()) {
+                *slot = LOW + WIDTH * self.0.next_f64();
+            }
+        }
+    }
+}
+
+/// splitmix64: a tiny, seeded, well-mixed generator.
 struct SplitMix64(u64);
 
 impl SplitMix64 {
@@ -91,7 +111,7 @@ impl ExprPool {
         let mut symbols = self.free_symbols(a);
         symbols.extend(self.free_symbols(b));
         let tape = self.compile(&[a, b]);
-        let mut rng = SplitMix64(0x7661_726D_6173_7321);
+        let mut points = SamplePoints::new(0x7661_726D_6173_7321);
         let mut env = vec![f64::NAN; self.symbols().len()];
         let (mut scratch, mut magnitudes) = (Vec::new(), Vec::new());
         let (mut values, mut scales) = ([0.0; 2], [0.0; 2]);
@@ -100,11 +120,7 @@ impl ExprPool {
             if agreed == POINTS {
                 break;
             }
-            for s in &symbols {
-                if let Some(slot) = env.get_mut(s.index()) {
-                    *slot = LOW + WIDTH * rng.next_f64();
-                }
-            }
+            points.fill(&mut env, symbols.iter().copied());
             tape.eval_with_magnitude(
                 &env,
                 &mut scratch,

@@ -56,7 +56,7 @@ mod trig;
 pub use cse::Cse;
 pub use diff::UnsupportedDerivative;
 pub use func::Func;
-pub use identity::Identity;
+pub use identity::{Identity, SamplePoints};
 pub use lower::{lower, Resolver, TableResolver};
 pub use node::{Id, Node};
 pub use pool::ExprPool;

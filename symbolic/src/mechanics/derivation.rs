@@ -12,7 +12,7 @@ use super::lagrangian::{energies, momenta, singular_everywhere};
 use super::linear::{dot, inverse, mat_vec, Matrix};
 use super::masses::{closed_laws, flow_rates, mass_rates};
 use super::model::{Coordinate, Mass, MassKind, Model};
-use crate::expr::{ExprPool, Id, Symbol};
+use crate::expr::{ExprPool, Id, Rational, Symbol};
 use crate::parse::Diagnostic;
 
 /// Up to this many coordinates, q̇(q, p) and q̈ are solved symbolically (adjugate of M);
@@ -143,11 +143,6 @@ pub(crate) struct Scope {
 }
 
 impl Derivation {
-    /// The velocity symbols, in coordinate order.
-    pub fn velocity_symbols(&self) -> Vec<Symbol> {
-        self.coordinates.iter().map(|c| c.velocity).collect()
-    }
-
     /// The names of the parameters the equations read (a declared field may go unused).
     pub fn used_parameters(&self) -> Vec<String> {
         let mut roots = vec![self.lagrangian, self.power];
@@ -199,16 +194,15 @@ pub fn derive_model(mut model: Model) -> Result<Derivation, Vec<Diagnostic>> {
         .iter()
         .map(|c| pool.diff(lagrangian, c.q))
         .collect();
-    let frozen_momentum_rate: Vec<Id> = (0..n)
+    // Q* − R1 + R2, shared by d*p/dt and the power.
+    let applied: Vec<Id> = (0..n)
         .map(|a| {
             let thrust = pool.neg(forces.reactive_thrust[a]);
-            pool.add(&[
-                lagrangian_gradient[a],
-                forces.active[a],
-                thrust,
-                forces.impact[a],
-            ])
+            pool.add(&[forces.active[a], thrust, forces.impact[a]])
         })
+        .collect();
+    let frozen_momentum_rate: Vec<Id> = (0..n)
+        .map(|a| pool.add(&[lagrangian_gradient[a], applied[a]]))
         .collect();
     let mass_flux_force: Vec<Id> = p
         .momenta
@@ -287,10 +281,7 @@ pub fn derive_model(mut model: Model) -> Result<Derivation, Vec<Diagnostic>> {
             let zero = pool.int(0);
             let at_rest: HashMap<Symbol, Id> = velocities.iter().map(|v| (*v, zero)).collect();
             let rest_lagrangian = pool.substitute(lagrangian, &at_rest);
-            let half = {
-                let (one, two) = (pool.int(1), pool.int(2));
-                pool.div(one, two)
-            };
+            let half = pool.rational(Rational::HALF);
             let kinetic_part = dot(pool, &excess, &v);
             let kinetic_part = pool.mul(&[half, kinetic_part]);
             let h = pool.sub(kinetic_part, rest_lagrangian);
@@ -303,13 +294,7 @@ pub fn derive_model(mut model: Model) -> Result<Derivation, Vec<Diagnostic>> {
         let dl_dt = pool.diff(lagrangian, model.time);
         let mut terms = vec![pool.neg(dl_dt)];
         for a in 0..n {
-            let thrust = pool.neg(forces.reactive_thrust[a]);
-            let force = pool.add(&[
-                forces.active[a],
-                thrust,
-                forces.impact[a],
-                mass_flux_force[a],
-            ]);
+            let force = pool.add(&[applied[a], mass_flux_force[a]]);
             let v = pool.sym(velocities[a]);
             terms.push(pool.mul(&[v, force]));
         }

@@ -3,7 +3,7 @@
 
 use super::linear::Matrix;
 use super::model::{Model, TermKind};
-use crate::expr::{ExprPool, Id, Symbol};
+use crate::expr::{ExprPool, Id, Rational, SamplePoints, Symbol};
 use crate::parse::Diagnostic;
 
 /// The kinetic and potential parts and their sum.
@@ -23,10 +23,7 @@ pub(crate) fn energies(
 ) -> Result<Energies, Vec<Diagnostic>> {
     let mut errors = Vec::new();
     let pool = &mut model.pool;
-    let half = {
-        let (one, two) = (pool.int(1), pool.int(2));
-        pool.div(one, two)
-    };
+    let half = pool.rational(Rational::HALF);
     let mut kinetic_terms = Vec::new();
     let mut body_velocities = Vec::with_capacity(model.bodies.len());
     for body in &model.bodies {
@@ -156,17 +153,11 @@ pub(crate) fn singular_everywhere(
     symbol_count: usize,
 ) -> bool {
     let n = mass_matrix.len();
-    let mut rng = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut points = SamplePoints::new(0x9e37_79b9_7f4a_7c15);
+    let mut env = vec![f64::NAN; symbol_count];
     let mut usable = 0;
     for _ in 0..16 {
-        let env: Vec<f64> = (0..symbol_count)
-            .map(|_| {
-                rng = rng
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                0.3 + 1.4 * ((rng >> 11) as f64 / (1u64 << 53) as f64)
-            })
-            .collect();
+        points.fill(&mut env, pool.symbols().iter());
         let mut a: Vec<Vec<f64>> = mass_matrix
             .iter()
             .map(|row| row.iter().map(|e| pool.eval(*e, &env)).collect())
