@@ -60,24 +60,26 @@ impl Rendered {
 /// Renders `roots` with their shared subexpressions hoisted into temporaries named
 /// `__{prefix}{n}`.
 pub(crate) fn block(pool: &ExprPool, roots: &[Id], prefix: &str, runtime: &TokenStream) -> Block {
-    staged_block(pool, &[], roots, prefix, runtime)
+    staged_block(pool, &[], &[], |_| Vec::new(), roots, prefix, runtime)
 }
 
-/// Like [`block`], with a first stage that binds symbols the outputs use: `bindings` are
-/// `(symbol, value)` with values free of those symbols (q̇ = M⁻¹(p − b) binding `x_dot`).
-/// One CSE pass covers both stages, so a subexpression of the velocities that the outputs
-/// need too (`cos(a - b)`) is computed once: temporaries free of the bound symbols come
-/// first, then the bindings, then the temporaries that use them.
+/// Like [`block`], with a first stage that binds symbols the outputs use: `first` is
+/// rendered, then `bridge` turns its rendered values into the `let`s that bind `bound`
+/// (q̇ in closed form, or a Cholesky solve of M q̇ = p − b). One CSE pass covers both
+/// stages, so a subexpression of the first stage that the outputs need too (`cos(a - b)`,
+/// an entry of M) is computed once: temporaries free of the bound symbols come first, then
+/// the bridge, then the temporaries that use them.
 pub(crate) fn staged_block(
     pool: &ExprPool,
-    bindings: &[(Symbol, Id)],
+    first: &[Id],
+    bound: &[Symbol],
+    bridge: impl FnOnce(Vec<TokenStream>) -> Vec<TokenStream>,
     roots: &[Id],
     prefix: &str,
     runtime: &TokenStream,
 ) -> Block {
-    let mut all: Vec<Id> = bindings.iter().map(|(_, value)| *value).collect();
+    let mut all: Vec<Id> = first.to_vec();
     all.extend(roots);
-    let bound: Vec<Symbol> = bindings.iter().map(|(s, _)| *s).collect();
     let (late, early): (Vec<Id>, Vec<Id>) = pool
         .cse(&all)
         .shared
@@ -100,11 +102,8 @@ pub(crate) fn staged_block(
         }
     };
     hoist(&mut renderer, &early, &mut lets);
-    for (symbol, value) in bindings {
-        let name = symbol_ident(pool, *symbol);
-        let value = renderer.render(*value).tokens;
-        lets.push(quote!(let #name = #value;));
-    }
+    let first_values = first.iter().map(|e| renderer.render(*e).tokens).collect();
+    lets.extend(bridge(first_values));
     hoist(&mut renderer, &late, &mut lets);
     let outputs = roots.iter().map(|r| renderer.render(*r).tokens).collect();
     Block { lets, outputs }

@@ -19,6 +19,9 @@ pub struct Target {
     pub runtime: TokenStream,
 }
 
+/// Turns the rendered first-stage values into the `let`s that bind q̇.
+type Bridge<'a> = Box<dyn FnOnce(Vec<TokenStream>) -> Vec<TokenStream> + 'a>;
+
 /// Which vector a method receives.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Input {
@@ -138,56 +141,53 @@ impl Emitter<'_> {
         out
     }
 
-    /// Code that binds `x_dot`, … from the momenta of `state` (after the prologue).
-    fn velocities_from_momenta(&self) -> TokenStream {
+    /// The first stage of a method on the state that needs q̇: the expressions to render
+    /// and the bridge that binds `x_dot`, … from their values — q̇ = M⁻¹(p − b) in closed
+    /// form, or a Cholesky solve of M q̇ = p − b from the entries of M and b.
+    fn velocity_stage(&self) -> (Vec<Id>, Bridge<'_>) {
         let runtime = &self.target.runtime;
+        let names: Vec<Ident> = self
+            .d
+            .coordinates
+            .iter()
+            .map(|c| symbol_ident(&self.d.pool, c.velocity))
+            .collect();
         match &self.d.velocities {
             VelocitySolve::Symbolic(v) => {
-                let b = block(&self.d.pool, &self.code_all(v), "v", runtime);
-                let lets = b.lets;
-                let names = self
-                    .d
-                    .coordinates
-                    .iter()
-                    .map(|c| symbol_ident(&self.d.pool, c.velocity));
-                let values = b.outputs;
-                quote!(#(#lets)* #(let #names = #values;)*)
+                let bridge = move |values: Vec<TokenStream>| {
+                    names
+                        .iter()
+                        .zip(values)
+                        .map(|(name, value)| quote!(let #name = #value;))
+                        .collect()
+                };
+                (self.code_all(v), Box::new(bridge))
             }
             VelocitySolve::Numeric => {
-                let n = Literal::usize_unsuffixed(self.n());
-                let entries: Vec<Id> = self
+                let mut first: Vec<Id> = self.code_all(&self.d.mass_matrix.concat());
+                let entries = first.len();
+                first.extend(self.code_all(&self.d.momentum_offset));
+                let momenta: Vec<Ident> = self
                     .d
-                    .mass_matrix
+                    .coordinates
                     .iter()
-                    .flatten()
-                    .map(|e| self.code(*e))
+                    .map(|c| symbol_ident(&self.d.pool, c.momentum))
                     .collect();
-                let mut roots = entries.clone();
-                roots.extend(self.code_all(&self.d.momentum_offset));
-                let b = block(&self.d.pool, &roots, "m", runtime);
-                let lets = b.lets;
-                let (matrix, offset) = b.outputs.split_at(entries.len());
-                let momenta = self
-                    .d
-                    .coordinates
-                    .iter()
-                    .map(|c| symbol_ident(&self.d.pool, c.momentum));
-                let names = self
-                    .d
-                    .coordinates
-                    .iter()
-                    .map(|c| symbol_ident(&self.d.pool, c.velocity));
-                let indices = (0..self.n()).map(Literal::usize_unsuffixed);
-                quote! {
-                    #(#lets)*
-                    let __mass_matrix = #runtime::nalgebra::SMatrix::<f64, #n, #n>::from_row_slice(&[#(#matrix),*]);
-                    let __excess = #runtime::nalgebra::SVector::<f64, #n>::from_column_slice(&[#(#momenta - (#offset)),*]);
-                    let __velocities = __mass_matrix
-                        .cholesky()
-                        .ok_or(#runtime::SystemError::SingularMassMatrix)?
-                        .solve(&__excess);
-                    #(let #names = __velocities[#indices];)*
-                }
+                let n = Literal::usize_unsuffixed(self.n());
+                let bridge = move |values: Vec<TokenStream>| {
+                    let (matrix, offset) = values.split_at(entries);
+                    let indices = (0..names.len()).map(Literal::usize_unsuffixed);
+                    vec![quote! {
+                        let __mass_matrix = #runtime::nalgebra::SMatrix::<f64, #n, #n>::from_row_slice(&[#(#matrix),*]);
+                        let __excess = #runtime::nalgebra::SVector::<f64, #n>::from_column_slice(&[#(#momenta - (#offset)),*]);
+                        let __velocities = __mass_matrix
+                            .cholesky()
+                            .ok_or(#runtime::SystemError::SingularMassMatrix)?
+                            .solve(&__excess);
+                        #(let #names = __velocities[#indices];)*
+                    }]
+                };
+                (first, Box::new(bridge))
             }
         }
     }
@@ -210,40 +210,19 @@ impl Emitter<'_> {
         let runtime = &self.target.runtime;
         let mut used = self.used(roots);
         let roots = &self.code_all(roots);
-        let needs_velocities = input == Input::State && self.needs_velocities(&used);
-        let (solve, b) = match (&self.d.velocities, needs_velocities) {
-            (VelocitySolve::Symbolic(v), true) => {
-                used.extend(self.used(v));
-                let bindings: Vec<(Symbol, Id)> = self
-                    .d
-                    .coordinates
-                    .iter()
-                    .map(|c| c.velocity)
-                    .zip(self.code_all(v))
-                    .collect();
-                (
-                    TokenStream::new(),
-                    staged_block(&self.d.pool, &bindings, roots, "t", runtime),
-                )
-            }
-            (VelocitySolve::Numeric, true) => {
-                let mut e: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
-                e.extend(&self.d.momentum_offset);
-                used.extend(self.used(&e));
-                for c in &self.d.coordinates {
-                    used.insert(c.momentum);
-                }
-                (
-                    self.velocities_from_momenta(),
-                    block(&self.d.pool, roots, "t", runtime),
-                )
-            }
-            (_, false) => (TokenStream::new(), block(&self.d.pool, roots, "t", runtime)),
+        let b = if input == Input::State && self.needs_velocities(&used) {
+            let (first, bridge) = self.velocity_stage();
+            used.extend(self.used(&first));
+            used.extend(self.d.coordinates.iter().map(|c| c.momentum));
+            let bound: Vec<Symbol> = self.d.coordinates.iter().map(|c| c.velocity).collect();
+            staged_block(&self.d.pool, &first, &bound, bridge, roots, "t", runtime)
+        } else {
+            block(&self.d.pool, roots, "t", runtime)
         };
         let prologue = self.prologue(&used, input);
         let lets = b.lets;
         let out = finish(b.outputs);
-        quote! { #prologue #solve #(#lets)* #out }
+        quote! { #prologue #(#lets)* #out }
     }
 
     /// [`Self::body`] for a method taking `state = [q, p, m_s]`.
