@@ -4,7 +4,7 @@ mod expr_support;
 
 use expr_support::{build, sled_pool};
 use std::collections::HashMap;
-use varmass_symbolic::expr::{ExprPool, Identity};
+use varmass_symbolic::expr::{ExprPool, Identity, SymbolKind};
 
 fn verdict(p: &mut ExprPool, a: &str, b: &str) -> Identity {
     let (ia, ib) = (build(p, a), build(p, b));
@@ -124,4 +124,30 @@ fn definitions_are_inlined_before_deciding() {
     let momentum = p.sym(p_def);
     let v2 = build(&mut p, "x'*m");
     assert_eq!(p.identical(momentum, v2), Identity::Proven);
+}
+
+#[test]
+fn expansion_past_its_size_limit_keeps_every_factor() {
+    // (a+b+c+d)^32 exceeds the 5000-term limit of `expand` on the way; the factors not yet
+    // distributed must stay, or S^32 and S^25 would both become S^19 and compare equal.
+    let mut p = ExprPool::new();
+    let s: Vec<_> = ["a", "b", "c", "d"]
+        .iter()
+        .map(|n| {
+            let sym = p.symbols_mut().add(n, SymbolKind::Parameter);
+            p.sym(sym)
+        })
+        .collect();
+    let sum = p.add(&s);
+    let (e32, e25) = (p.int(32), p.int(25));
+    let (high, low) = (p.pow(sum, e32), p.pow(sum, e25));
+    assert!(
+        !matches!(p.identical(high, low), Identity::Proven | Identity::Numerical { .. }),
+        "S^32 and S^25 must differ"
+    );
+    // And expansion preserves value.
+    let expanded = p.expand(high);
+    let env = vec![0.4; p.symbols().len()];
+    let (a, b) = (p.eval(high, &env), p.eval(expanded, &env));
+    assert!((a - b).abs() <= 1e-12 * a.abs(), "{a} vs {b}");
 }

@@ -48,11 +48,14 @@ impl ExprPool {
     /// (so `(a+b)(a-b)` never holds more than its collected terms).
     fn distribute(&mut self, factors: &[Id]) -> Id {
         let mut acc: Vec<Id> = vec![self.int(1)];
-        for &f in factors {
+        for (i, &f) in factors.iter().enumerate() {
             let f_terms = self.terms(f);
             if acc.len().saturating_mul(f_terms.len()) > MAX_TERMS {
-                let partial = self.add(&acc);
-                return self.mul(&[partial, f]);
+                // Too big to expand further: keep the expanded part times every factor not
+                // yet distributed (all of them — dropping any would change the value).
+                let mut rest = vec![self.add(&acc)];
+                rest.extend(&factors[i..]);
+                return self.mul(&rest);
             }
             let mut products = Vec::with_capacity(acc.len() * f_terms.len());
             for &a in &acc {

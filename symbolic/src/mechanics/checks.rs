@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use super::derivation::{CheckOutcome, Derivation};
-use super::model::lower_with;
+use super::resolve::lower_with;
 use super::resolve::Context;
 use crate::expr::{Id, Identity, Symbol};
 use crate::parse::Diagnostic;

@@ -20,6 +20,7 @@
 //! assert_eq!(derivation.checks.len(), 2);
 //! ```
 
+mod build;
 mod checks;
 mod derivation;
 mod forces;
@@ -44,12 +45,12 @@ use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
 
 /// Resolves and lowers a parsed system into a checked [`Model`].
 pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
-    model::build_model(ast, parameters)
+    build::build_model(ast, parameters)
 }
 
 /// Derives a parsed system and verifies its `check`s.
 pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
-    let model = model::build_model(ast, parameters)?;
+    let model = build::build_model(ast, parameters)?;
     let mut derivation = derivation::derive_model(model)?;
     checks::run_checks(&mut derivation)?;
     Ok(derivation)

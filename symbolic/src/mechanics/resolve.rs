@@ -2,7 +2,8 @@
 
 use std::collections::HashMap;
 
-use crate::expr::{ExprPool, Id, Resolver, Symbol, SymbolKind};
+use crate::expr::{lower, ExprPool, Id, Resolver, Symbol, SymbolKind};
+use crate::parse::ast::ExprNode;
 use crate::parse::keywords;
 use crate::parse::{Diagnostic, Span};
 
@@ -201,4 +202,24 @@ fn edit_distance(a: &str, b: &str) -> usize {
         }
     }
     row[b.len()]
+}
+
+/// Lowers `node` with the given scope.
+pub(crate) fn lower_with(
+    pool: &mut ExprPool,
+    names: &mut HashMap<String, Binding>,
+    parameter_mode: &Parameters,
+    parameters: &mut Vec<(String, Symbol)>,
+    node: &ExprNode,
+    context: Context,
+    quantities: Option<&HashMap<String, Id>>,
+) -> Result<Id, Vec<Diagnostic>> {
+    let mut resolver = NameResolver {
+        names,
+        parameters: parameter_mode,
+        inferred: parameters,
+        context,
+        quantities,
+    };
+    lower(pool, node, &mut resolver)
 }
