@@ -234,3 +234,20 @@ fn the_arena_invariant_holds() {
         }
     }
 }
+
+#[test]
+fn a_power_that_simplifies_to_another_base_is_collected_with_it() {
+    // sqrt(x^2)^2 is x^2: times x it must be x^3, one factor, not x·x^2.
+    let mut p = ExprPool::new();
+    let x = p.symbols_mut().add("x", SymbolKind::Parameter);
+    let x = p.sym(x);
+    let two = p.int(2);
+    let square = p.pow(x, two);
+    let root = p.sqrt(square);
+    let product = p.mul(&[x, root, root]);
+    let three = p.int(3);
+    let cube = p.pow(x, three);
+    assert_eq!(product, cube, "{}", p.display(product));
+    let difference = p.sub(product, cube);
+    assert!(p.is_zero(difference));
+}

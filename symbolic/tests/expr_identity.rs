@@ -142,7 +142,10 @@ fn expansion_past_its_size_limit_keeps_every_factor() {
     let (e32, e25) = (p.int(32), p.int(25));
     let (high, low) = (p.pow(sum, e32), p.pow(sum, e25));
     assert!(
-        !matches!(p.identical(high, low), Identity::Proven | Identity::Numerical { .. }),
+        !matches!(
+            p.identical(high, low),
+            Identity::Proven | Identity::Numerical { .. }
+        ),
         "S^32 and S^25 must differ"
     );
     // And expansion preserves value.

@@ -38,6 +38,14 @@ fn fold_power(b: Number, e: Number) -> Option<Number> {
     }
 }
 
+/// The base a factor is collected under: `b` for `b^e`, the factor itself otherwise.
+fn collected_base(pool: &ExprPool, factor: Id) -> Id {
+    match pool.node(factor) {
+        Node::Pow(b, _) => *b,
+        _ => factor,
+    }
+}
+
 impl ExprPool {
     /// The canonical product of `factors` (1 for none).
     pub fn mul(&mut self, factors: &[Id]) -> Id {
@@ -63,6 +71,7 @@ impl ExprPool {
         // Bases in structural order so that the result does not depend on hash order.
         let mut bases: Vec<(Id, Vec<Id>)> = exponents.into_iter().collect();
         bases.sort_by(|(a, _), (b, _)| self.structural_cmp(*a, *b));
+        let all_bases: Vec<Id> = bases.iter().map(|(b, _)| *b).collect();
         let mut out: Vec<Id> = Vec::with_capacity(bases.len() + 1);
         let mut again: Vec<Id> = Vec::new();
         for (base, exps) in bases {
@@ -80,6 +89,14 @@ impl ExprPool {
                 // Collected exponents made an integer power of a product, which distributes
                 // over factors that may meet others here: collect once more.
                 Node::Mul(_) => again.push(p),
+                // The power simplified to another base (`sqrt(x^2)^2` is `x^2`) that is also
+                // a base here: collect once more, or the product would hold `x` twice. Each
+                // such round merges two factors, so this ends.
+                _ if collected_base(self, p) != base
+                    && all_bases.contains(&collected_base(self, p)) =>
+                {
+                    again.push(p)
+                }
                 _ => out.push(p),
             }
         }
