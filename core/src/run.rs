@@ -132,6 +132,13 @@ where
         previous.state,
         energy_point(&previous, integral, initial_hamiltonian),
     )?;
+    // A run to where the stepper already is takes no step (a zero-length step would divide
+    // by zero in some steppers and count work in others).
+    if config.end_time == start_time {
+        solution.stop = StopReason::ReachedEnd;
+        solution.statistics = *stepper.statistics();
+        return Ok(solution);
+    }
     let mut event_values: Vec<f64> = events
         .iter()
         .map(|event| event.value(stepper.system(), previous.time, &previous.state))
