@@ -68,7 +68,7 @@ pub enum StepError<const S: usize> {
         max_steps: usize,
     },
     /// The energy budget stopped closing: |∫ power dt − (H − H₀)| exceeded the run's
-    /// [`RunConfig::energy_tolerance`](crate::RunConfig) times the largest |H| so far. The
+    /// [`RunConfig::energy_tolerance`](crate::RunConfig) times the largest |H| or |p·q̇| so far. The
     /// typical cause is a fixed step past the stability limit, whose finite but meaningless
     /// states would otherwise go on until they overflow.
     #[error(
@@ -81,7 +81,7 @@ pub enum StepError<const S: usize> {
         state: SVector<f64, S>,
         /// ∫ power dt − (H − H₀) there.
         residual: f64,
-        /// The largest |H| seen so far.
+        /// The largest |H| or |p·q̇| seen so far.
         scale: f64,
     },
     /// A configuration value is unusable (non-positive step, non-finite time, an index out

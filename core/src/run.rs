@@ -33,7 +33,7 @@ pub struct RunConfig {
     /// How finely events are located in time (absolute, never below rounding of t).
     pub event_tolerance: f64,
     /// If set, the run fails with [`StepError::EnergyBudgetExceeded`] once the energy-budget
-    /// residual exceeds this fraction of the largest |H| seen: a guard against the finite
+    /// residual exceeds this fraction of the largest |H| or |p·q̇| seen: a guard against the finite
     /// garbage of a fixed step past the stability limit. Costs H and the power at every
     /// point (and a midpoint), as recording the residual does.
     pub energy_tolerance: Option<f64>,
@@ -53,7 +53,7 @@ impl RunConfig {
     }
 
     /// The same run, failing once the energy budget misses by more than `tolerance` of the
-    /// largest |H| (see [`RunConfig::energy_tolerance`]).
+    /// largest |H| or |p·q̇| (see [`RunConfig::energy_tolerance`]).
     pub fn guarding_energy(self, tolerance: f64) -> Self {
         Self {
             energy_tolerance: Some(tolerance),
@@ -198,7 +198,15 @@ where
         }
         let energy = energy_point(&current, integral, initial_hamiltonian);
         if let (Some(tolerance), Some(point)) = (config.energy_tolerance, energy) {
-            energy_scale = energy_scale.max(point.hamiltonian.abs());
+            // |H| alone can vanish while T and V are large (free fall from rest at y = 0):
+            // measure against |p·q̇| too, twice the kinetic energy for a quadratic T.
+            let velocities = system
+                .velocities(current.time, &current.state)
+                .map_err(|e| StepError::from_system(system, e, current.time, &current.state))?;
+            let momentum_velocity = current.state.fixed_rows::<N>(N).dot(&velocities);
+            energy_scale = energy_scale
+                .max(point.hamiltonian.abs())
+                .max(momentum_velocity.abs());
             if point.residual.abs() > tolerance * energy_scale {
                 return Err(StepError::EnergyBudgetExceeded {
                     time: current.time,

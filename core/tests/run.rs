@@ -208,3 +208,30 @@ fn a_run_to_the_current_time_takes_no_step() {
         "Dormand–Prince",
     );
 }
+
+#[test]
+fn the_energy_guard_does_not_trip_where_h_vanishes() {
+    // Free fall from rest at y = 0 (a rocket that does not burn): H = p²/2m + m g y is 0
+    // along the whole motion while T and V grow. Measured against |H| alone, rounding would
+    // trip the guard; against |p·q̇| too, a correct run passes at a strict tolerance.
+    use support::systems::Rocket;
+    let rocket = Rocket {
+        burn_rate: 0.0,
+        exhaust_speed: 0.0,
+        gravity: 9.81,
+    };
+    let start = nalgebra::SVector::<f64, 3>::new(0.0, 0.0, 2.0);
+    let control = StepControl::Adaptive(AdaptiveControl {
+        relative_tolerance: 1e-10,
+        absolute_tolerance: 1e-12,
+        ..AdaptiveControl::default()
+    });
+    let mut stepper = DormandPrince::new(&rocket, 0.0, start, control).unwrap();
+    let solution = run(
+        &mut stepper,
+        &RunConfig::until(5.0).guarding_energy(1e-6),
+        &[],
+    )
+    .unwrap();
+    assert_eq!(solution.stop, StopReason::ReachedEnd);
+}
