@@ -94,11 +94,16 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
 
     // ---------------------------------------------------------------- provided methods
 
-    /// Q* − R1 + R2 + Σ ṁᵢ ∂*p/∂mᵢ: everything that drives the true ṗ besides ∂*L/∂q.
-    fn generalized_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+    /// Q* − R1 + R2: the generalized forces of the paper's eq. 6 and 14 (what drives d*p/dt
+    /// besides ∂*L/∂q).
+    fn frozen_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
         self.active_force(t, velocity_state) - self.reactive_thrust(t, velocity_state)
             + self.impact_force(t, velocity_state)
-            + self.mass_flux_force(t, velocity_state)
+    }
+
+    /// Q* − R1 + R2 + Σ ṁᵢ ∂*p/∂mᵢ: everything that drives the true ṗ besides ∂*L/∂q.
+    fn generalized_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+        self.frozen_force(t, velocity_state) + self.mass_flux_force(t, velocity_state)
     }
 
     /// Checks that every mass and inertia is positive.
@@ -165,10 +170,8 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     ) -> Result<(SVector<f64, N>, SVector<f64, N>), SystemError> {
         let velocity_state = self.velocity_state(t, state)?;
         // −∂*H/∂q|_p = ∂*L/∂q|_q̇ (eq. 13).
-        let frozen_rate = self.lagrangian_gradient(t, &velocity_state)
-            + self.active_force(t, &velocity_state)
-            - self.reactive_thrust(t, &velocity_state)
-            + self.impact_force(t, &velocity_state);
+        let frozen_rate =
+            self.lagrangian_gradient(t, &velocity_state) + self.frozen_force(t, &velocity_state);
         Ok((velocity_state.fixed_rows::<N>(N).into_owned(), frozen_rate))
     }
 

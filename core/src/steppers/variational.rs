@@ -133,10 +133,7 @@ impl<Sys, const S: usize> DiscreteStep<'_, Sys, S> {
         let momenta = self.system.momenta(t_mid, mid);
         let force = match self.principle {
             Principle::Corrected => self.system.generalized_force(t_mid, mid),
-            Principle::LiteralEq19 => {
-                self.system.active_force(t_mid, mid) - self.system.reactive_thrust(t_mid, mid)
-                    + self.system.impact_force(t_mid, mid)
-            }
+            Principle::LiteralEq19 => self.system.frozen_force(t_mid, mid),
         };
         let impulse = (self.system.lagrangian_gradient(t_mid, mid) + force) * (0.5 * self.h);
         Ok((momenta - impulse, momenta + impulse))
@@ -157,7 +154,7 @@ impl<Sys, const S: usize> DiscreteStep<'_, Sys, S> {
         let mut r = *z;
         r.fixed_rows_mut::<N>(0)
             .copy_from(&(start_momenta - self.y0.fixed_rows::<N>(N)));
-        for k in 0..S - 2 * N {
+        for k in 0..Sys::STATE_MASSES {
             let index = 2 * N + k;
             r[index] = z[index] - self.y0[index] - self.h * self.system.mass_rate(k, t_mid, &mid);
         }
@@ -236,7 +233,7 @@ where
             .fixed_rows_mut::<N>(0)
             .copy_from(&(y0.fixed_rows::<N>(0) + velocity_state.fixed_rows::<N>(N) * h));
         predictor.fixed_rows_mut::<N>(N).fill(0.0);
-        for k in 0..S - 2 * N {
+        for k in 0..Sys::STATE_MASSES {
             predictor[2 * N + k] += h * system.mass_rate(k, t0, &velocity_state);
         }
 
