@@ -74,6 +74,13 @@ fn rocket_out_of_propellant_is_a_typed_error_for_every_stepper() {
         // except for a Newton failure, which reports the (valid) start of its step.
         let state = error.state().unwrap();
         assert!(state.iter().all(|x| x.is_finite()), "{method:?}: {state}");
+        if !matches!(error, StepError::NewtonDivergence { .. }) {
+            assert!(
+                state[2] <= 0.0,
+                "{method:?}: mass {} in {error:?}",
+                state[2]
+            );
+        }
     }
 }
 

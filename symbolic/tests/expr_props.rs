@@ -226,9 +226,9 @@ proptest! {
         let e = build(&mut p, &t, false);
         let (want, magnitude) = naive(&t, &env);
         let got = p.eval(e, &env);
-        // ≤ ~100 roundings of ε ≈ 1.1e-16 each, scaled by M: 1e-9 leaves a wide margin.
+        // ≤ ~100 roundings of ε ≈ 1.1e-16 each, scaled by M (≈ 1e-14 · M): 1e-12 leaves 100×.
         prop_assert!(
-            (got - want).abs() <= 1e-9 * (1.0 + magnitude),
+            (got - want).abs() <= 1e-12 * (1.0 + magnitude),
             "{t:?}: engine {got} vs naive {want} (M = {magnitude})"
         );
     }

@@ -36,9 +36,10 @@ fn tape_equals_eval() {
         tape.eval(&e, &mut out);
         for (r, got) in all.iter().zip(&out) {
             let want = p.eval(*r, &e);
-            // Same operations in the same order, except sqrt vs powf(0.5): one ulp apart.
-            assert!(
-                (got - want).abs() <= 4.0 * f64::EPSILON * want.abs().max(1.0),
+            // Same operations in the same order (both use sqrt for ^(1/2)): identical bits.
+            assert_eq!(
+                got.to_bits(),
+                want.to_bits(),
                 "{}: tape {got} vs eval {want}",
                 p.display(*r)
             );

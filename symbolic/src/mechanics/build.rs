@@ -1,0 +1,490 @@
+//! Building the checked [`Model`] from the AST: declarations first (so any statement may
+//! name any coordinate or mass), then every expression lowered in its scope, each rule a
+//! diagnostic at the statement it is about.
+
+use std::collections::HashMap;
+
+use super::model::{
+    Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
+    Model, Term, TermKind,
+};
+use super::resolve::{is_reserved, lower_with, Binding, Context, Parameters};
+use crate::expr::{ExprPool, Id, Symbol, SymbolKind};
+use crate::parse::ast::{
+    ExprNode, FlowVelocity, LoadValue, MassLaw, StatementKind, SystemAst, VectorNode,
+};
+use crate::parse::{keywords, Diagnostic, Span};
+
+/// Builds the model, collecting every diagnostic.
+pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
+    let mut builder = Builder::new(parameters);
+    builder.declare(ast);
+    builder.lower_statements(ast);
+    builder.finish()
+}
+
+struct Builder {
+    model: Model,
+    errors: Vec<Diagnostic>,
+    declared_at: HashMap<String, Span>,
+}
+
+impl Builder {
+    fn new(parameters: Parameters) -> Builder {
+        let mut pool = ExprPool::new();
+        let time = pool.symbols_mut().add(keywords::TIME, SymbolKind::Time);
+        let mut names = HashMap::new();
+        names.insert(keywords::TIME.to_string(), Binding::Time(time));
+        let mut declared = Vec::new();
+        if let Parameters::Declared(list) = &parameters {
+            // A field may not take over `t` (the macro reports such a field at its span).
+            for name in list {
+                if names.contains_key(name.as_str()) {
+                    continue;
+                }
+                let symbol = pool.symbols_mut().add(name, SymbolKind::Parameter);
+                names.insert(name.clone(), Binding::Parameter(symbol));
+                declared.push((name.clone(), symbol));
+            }
+        }
+        Builder {
+            model: Model {
+                pool,
+                time,
+                coordinates: Vec::new(),
+                masses: Vec::new(),
+                parameters: declared,
+                bodies: Vec::new(),
+                loads: Vec::new(),
+                flows: Vec::new(),
+                terms: Vec::new(),
+                checks: Vec::new(),
+                names,
+                parameter_mode: parameters,
+            },
+            errors: Vec::new(),
+            declared_at: HashMap::new(),
+        }
+    }
+
+    /// Checks a new name against everything declared so far (why: one name, one meaning —
+    /// a mass named like a coordinate would make every equation ambiguous).
+    fn check_new_name(&mut self, name: &str, span: Span, what: &str) -> bool {
+        if is_reserved(name) {
+            self.errors.push(Diagnostic::new(
+                span,
+                format!("`{name}` is reserved for a derived quantity or the time, and cannot name a {what}"),
+            ));
+            return false;
+        }
+        if let Some(previous) = self.declared_at.get(name) {
+            self.errors.push(
+                Diagnostic::new(span, format!("`{name}` is declared twice")).with_help(format!(
+                    "first declared at {}:{}",
+                    previous.line, previous.column
+                )),
+            );
+            return false;
+        }
+        if let Some(Binding::Parameter(_)) = self.model.names.get(name) {
+            self.errors.push(Diagnostic::new(
+                span,
+                format!("`{name}` is already a parameter (a field of the struct); a {what} needs its own name"),
+            ));
+            return false;
+        }
+        self.declared_at.insert(name.to_string(), span);
+        true
+    }
+
+    /// First pass: coordinates and masses, so that any statement may use them.
+    fn declare(&mut self, ast: &SystemAst) {
+        for statement in &ast.statements {
+            match &statement.kind {
+                StatementKind::Coordinates(names) => {
+                    for name in names {
+                        if !self.check_new_name(&name.node, name.span, "coordinate") {
+                            continue;
+                        }
+                        let symbols = self.model.pool.symbols_mut();
+                        let q = symbols.add_coordinate(&name.node);
+                        let (velocity, acceleration, momentum) = match (
+                            symbols.velocity_of(q),
+                            symbols.acceleration_of(q),
+                            symbols.momentum_of(q),
+                        ) {
+                            (Some(v), Some(a), Some(p)) => (v, a, p),
+                            _ => continue,
+                        };
+                        self.model.names.insert(
+                            name.node.clone(),
+                            Binding::Coordinate {
+                                q,
+                                velocity,
+                                acceleration,
+                            },
+                        );
+                        self.model.coordinates.push(Coordinate {
+                            name: name.node.clone(),
+                            q,
+                            velocity,
+                            acceleration,
+                            momentum,
+                            span: name.span,
+                        });
+                    }
+                }
+                StatementKind::Mass(decl) | StatementKind::Inertia(decl) => {
+                    let inertia = matches!(statement.kind, StatementKind::Inertia(_));
+                    let what = if inertia { "inertia" } else { "mass" };
+                    if !self.check_new_name(&decl.name.node, decl.name.span, what) {
+                        continue;
+                    }
+                    let symbol = self
+                        .model
+                        .pool
+                        .symbols_mut()
+                        .add(&decl.name.node, SymbolKind::Frozen);
+                    self.model
+                        .names
+                        .insert(decl.name.node.clone(), Binding::Mass(symbol));
+                    // The kind's expression is a placeholder until the second pass lowers it.
+                    let placeholder = self.model.pool.int(0);
+                    let kind = match decl.law {
+                        MassLaw::Law(_) => MassKind::Law(placeholder),
+                        MassLaw::State { .. } => MassKind::State { rate: placeholder },
+                    };
+                    self.model.masses.push(Mass {
+                        name: decl.name.node.clone(),
+                        symbol,
+                        kind,
+                        inertia,
+                        span: statement.span,
+                    });
+                }
+                StatementKind::Let { name, .. } => {
+                    self.check_new_name(&name.node, name.span, "definition");
+                }
+                StatementKind::Body(body) => {
+                    self.check_new_name(&body.name.node, body.name.span, "body");
+                }
+                _ => {}
+            }
+        }
+        if self.model.coordinates.is_empty() && self.errors.is_empty() {
+            let span = ast.statements.first().map_or(Span::default(), |s| s.span);
+            self.errors.push(
+                Diagnostic::new(span, "the system declares no coordinates")
+                    .with_help("start with `coordinates x` (one name per degree of freedom)"),
+            );
+        }
+        // State masses first: the runtime keeps them in the state in this order.
+        self.model
+            .masses
+            .sort_by_key(|m| !matches!(m.kind, MassKind::State { .. }));
+    }
+}
+
+/// Lowers `node` in `model`'s scope.
+pub(crate) fn lower_in(
+    model: &mut Model,
+    node: &ExprNode,
+    context: Context,
+    quantities: Option<&HashMap<String, Id>>,
+) -> Result<Id, Vec<Diagnostic>> {
+    let Model {
+        pool,
+        names,
+        parameter_mode,
+        parameters,
+        ..
+    } = model;
+    lower_with(
+        pool,
+        names,
+        parameter_mode,
+        parameters,
+        node,
+        context,
+        quantities,
+    )
+}
+
+/// The first velocity symbol `e` depends on, if any.
+pub(crate) fn first_velocity(pool: &ExprPool, e: Id) -> Option<Symbol> {
+    pool.free_symbols(e)
+        .into_iter()
+        .find(|s| matches!(pool.symbols().kind(*s), SymbolKind::Velocity { .. }))
+}
+
+impl Builder {
+    fn lower(&mut self, node: &ExprNode) -> Option<Id> {
+        match lower_in(&mut self.model, node, Context::Ordinary, None) {
+            Ok(id) => Some(id),
+            Err(mut errors) => {
+                self.errors.append(&mut errors);
+                None
+            }
+        }
+    }
+
+    fn lower_vector(&mut self, vector: &VectorNode) -> Option<Vec<Id>> {
+        let lowered: Vec<Option<Id>> = vector.node.iter().map(|e| self.lower(e)).collect();
+        lowered.into_iter().collect()
+    }
+
+    /// A quantity of configuration (a mass law, a position) may not depend on velocities:
+    /// the frozen-mass calculus needs m(q, t) and r(q, t).
+    fn require_configuration(&mut self, value: Id, span: Span, what: &str) -> bool {
+        match first_velocity(&self.model.pool, value) {
+            Some(v) => {
+                let name = self.model.pool.symbols().name(v).to_string();
+                self.errors.push(Diagnostic::new(
+                    span,
+                    format!("{what} depends on the velocity `{name}`; it may depend only on coordinates, time and parameters"),
+                ));
+                false
+            }
+            None => true,
+        }
+    }
+
+    fn mass_index(&self, name: &str) -> Option<usize> {
+        self.model.masses.iter().position(|m| m.name == name)
+    }
+
+    fn body_index(&self, name: &str) -> Option<usize> {
+        self.model.bodies.iter().position(|b| b.name == name)
+    }
+
+    /// Second pass: lower every expression. Definitions, masses, bodies and terms go in
+    /// source order (a `let` is visible after it); loads, flows and checks after them, so
+    /// they may name any body.
+    fn lower_statements(&mut self, ast: &SystemAst) {
+        for statement in &ast.statements {
+            let span = statement.span;
+            match &statement.kind {
+                StatementKind::Let { name, value } => {
+                    if let Some(value) = self.lower(value) {
+                        self.model
+                            .names
+                            .entry(name.node.clone())
+                            .or_insert(Binding::Let(value));
+                    }
+                }
+                StatementKind::Mass(decl) | StatementKind::Inertia(decl) => {
+                    let Some(index) = self.mass_index(&decl.name.node) else {
+                        continue;
+                    };
+                    let kind = match &decl.law {
+                        MassLaw::Law(law) => {
+                            let Some(law) = self.lower(law) else { continue };
+                            let what = format!("the law of `{}`", decl.name.node);
+                            if !self.require_configuration(law, span, &what) {
+                                continue;
+                            }
+                            MassKind::Law(law)
+                        }
+                        MassLaw::State { rate } => match self.lower(rate) {
+                            Some(rate) => MassKind::State { rate },
+                            None => continue,
+                        },
+                    };
+                    self.model.masses[index].kind = kind;
+                }
+                StatementKind::Body(body) => {
+                    let Some(mass) = self.mass_index(&body.mass.node) else {
+                        let mut d = Diagnostic::new(
+                            body.mass.span,
+                            format!("`{}` is not a declared mass", body.mass.node),
+                        );
+                        d = d.with_help(format!(
+                            "declare it first, e.g. `{} {} = m0` or `{} {}: state, rate -mu`",
+                            keywords::MASS,
+                            body.mass.node,
+                            keywords::MASS,
+                            body.mass.node
+                        ));
+                        self.errors.push(d);
+                        continue;
+                    };
+                    let Some(position) = self.lower_vector(&body.position) else {
+                        continue;
+                    };
+                    let what = format!("the position of body `{}`", body.name.node);
+                    if position
+                        .iter()
+                        .all(|p| self.require_configuration(*p, body.position.span, &what))
+                    {
+                        self.model.bodies.push(Body {
+                            name: body.name.node.clone(),
+                            mass,
+                            position,
+                            span,
+                        });
+                    }
+                }
+                StatementKind::Kinetic(e)
+                | StatementKind::Potential(e)
+                | StatementKind::Lagrangian(e) => {
+                    let kind = match statement.kind {
+                        StatementKind::Kinetic(_) => TermKind::Kinetic,
+                        StatementKind::Potential(_) => TermKind::Potential,
+                        _ => TermKind::Lagrangian,
+                    };
+                    if let Some(value) = self.lower(e) {
+                        self.model.terms.push(Term { kind, value, span });
+                    }
+                }
+                _ => {}
+            }
+        }
+        for statement in &ast.statements {
+            let span = statement.span;
+            match &statement.kind {
+                StatementKind::Force(load)
+                | StatementKind::Thrust(load)
+                | StatementKind::Impact(load) => {
+                    let kind = match statement.kind {
+                        StatementKind::Force(_) => LoadKind::Active,
+                        StatementKind::Thrust(_) => LoadKind::Thrust,
+                        _ => LoadKind::Impact,
+                    };
+                    self.lower_load(kind, load, span);
+                }
+                StatementKind::Outflow(flow) | StatementKind::Inflow(flow) => {
+                    let inflow = matches!(statement.kind, StatementKind::Inflow(_));
+                    self.lower_flow(inflow, flow, span);
+                }
+                StatementKind::Check { lhs, rhs } => self.model.checks.push(Check {
+                    lhs: lhs.clone(),
+                    rhs: rhs.clone(),
+                    span,
+                }),
+                _ => {}
+            }
+        }
+    }
+
+    fn lower_load(&mut self, kind: LoadKind, load: &crate::parse::ast::Load, span: Span) {
+        let target = &load.target;
+        if let Some(index) = self
+            .model
+            .coordinates
+            .iter()
+            .position(|c| c.name == target.node)
+        {
+            match &load.value {
+                LoadValue::Scalar(e) => {
+                    if let Some(value) = self.lower(e) {
+                        self.model.loads.push(Load {
+                            kind,
+                            target: LoadTarget::Coordinate(index, value),
+                            span,
+                        });
+                    }
+                }
+                LoadValue::Vector(v) => self.errors.push(
+                    Diagnostic::new(v.span, format!("`{}` is a coordinate, so its load is a generalized component, not a vector", target.node))
+                        .with_help(format!("write `{}: <expression>`, or name a body to apply a vector", target.node)),
+                ),
+            }
+        } else if let Some(index) = self.body_index(&target.node) {
+            match &load.value {
+                LoadValue::Vector(v) => {
+                    let Some(value) = self.lower_vector(v) else {
+                        return;
+                    };
+                    if self.check_dimension(index, value.len(), v.span) {
+                        self.model.loads.push(Load {
+                            kind,
+                            target: LoadTarget::Body(index, value),
+                            span,
+                        });
+                    }
+                }
+                LoadValue::Scalar(e) => self.errors.push(Diagnostic::new(
+                    e.span,
+                    format!(
+                        "`{}` is a body, so its load is a vector `[...]` in the body's dimensions",
+                        target.node
+                    ),
+                )),
+            }
+        } else {
+            self.errors.push(Diagnostic::new(
+                target.span,
+                format!("`{}` is neither a coordinate nor a body", target.node),
+            ));
+        }
+    }
+
+    /// Vectors on a body live in the space of its position (why: F·∂r/∂q needs both).
+    fn check_dimension(&mut self, body: usize, found: usize, span: Span) -> bool {
+        let expected = self.model.bodies[body].position.len();
+        if expected == found {
+            return true;
+        }
+        self.errors.push(Diagnostic::new(
+            span,
+            format!(
+                "body `{}` moves in {expected} dimension{}, but this vector has {found} component{}",
+                self.model.bodies[body].name,
+                if expected == 1 { "" } else { "s" },
+                if found == 1 { "" } else { "s" },
+            ),
+        ));
+        false
+    }
+
+    fn lower_flow(&mut self, inflow: bool, flow: &crate::parse::ast::Flow, span: Span) {
+        let Some(body) = self.body_index(&flow.body.node) else {
+            self.errors.push(Diagnostic::new(
+                flow.body.span,
+                format!(
+                    "`{}` is not a body; mass flows in and out of bodies",
+                    flow.body.node
+                ),
+            ));
+            return;
+        };
+        let rate = match &flow.rate {
+            Some(rate) => match self.lower(rate) {
+                Some(rate) => Some(rate),
+                None => return,
+            },
+            None => None,
+        };
+        let velocity = match &flow.velocity {
+            Some(FlowVelocity::Absolute(v)) | Some(FlowVelocity::Relative(v)) => {
+                let Some(value) = self.lower_vector(v) else {
+                    return;
+                };
+                if !self.check_dimension(body, value.len(), v.span) {
+                    return;
+                }
+                if matches!(flow.velocity, Some(FlowVelocity::Absolute(_))) {
+                    FlowVelocityValue::Absolute(value)
+                } else {
+                    FlowVelocityValue::Relative(value)
+                }
+            }
+            None => FlowVelocityValue::WithBody,
+        };
+        self.model.flows.push(Flow {
+            inflow,
+            body,
+            rate,
+            velocity,
+            span,
+        });
+    }
+
+    fn finish(self) -> Result<Model, Vec<Diagnostic>> {
+        if self.errors.is_empty() {
+            Ok(self.model)
+        } else {
+            Err(self.errors)
+        }
+    }
+}
