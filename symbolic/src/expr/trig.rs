@@ -200,13 +200,11 @@ impl ExprPool {
                 .children()
                 .map(|c| image.get(&c).copied().unwrap_or(c))
                 .collect();
-            let rebuilt = match node {
-                Node::Num(_) | Node::Float(_) | Node::Sym(_) => id,
-                Node::Add(_) => self.add(&children),
-                Node::Mul(_) => self.mul(&children),
-                Node::Pow(..) => self.pow(children[0], children[1]),
-                Node::Call(func @ (Func::Sin | Func::Cos), _) => {
-                    match self.two_symbol_sum(children[0]) {
+            let unchanged = node.children().eq(children.iter().copied());
+            let rebuilt = match (node, children.as_slice()) {
+                (Node::Num(_) | Node::Float(_) | Node::Sym(_), _) => id,
+                (Node::Call(func @ (Func::Sin | Func::Cos), _), &[argument]) => {
+                    match self.two_symbol_sum(argument) {
                         Some((u, v)) => {
                             let (su, cu) = (self.call(Func::Sin, &[u]), self.call(Func::Cos, &[u]));
                             let (sv, cv) = (self.call(Func::Sin, &[v]), self.call(Func::Cos, &[v]));
@@ -220,10 +218,17 @@ impl ExprPool {
                                 self.sub(a, b)
                             }
                         }
+                        None if unchanged => id,
                         None => self.call(func, &children),
                     }
                 }
-                Node::Call(func, _) => self.call(func, &children),
+                // Nothing below changed: the node is already canonical.
+                _ if unchanged => id,
+                (Node::Add(_), _) => self.add(&children),
+                (Node::Mul(_), _) => self.mul(&children),
+                (Node::Pow(..), &[base, exponent]) => self.pow(base, exponent),
+                (Node::Call(func, _), _) => self.call(func, &children),
+                (Node::Pow(..), _) => id,
             };
             image.insert(id, rebuilt);
         }

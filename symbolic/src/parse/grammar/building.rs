@@ -77,15 +77,9 @@ impl<'a> Grammar<'a> {
         after: &'a str,
         context: Context,
     ) -> Step<Chain<'a>> {
-        let written = match op {
-            BinOp::Add => "+",
-            BinOp::Sub => "-",
-            BinOp::Mul => "*",
-            BinOp::Div => "/",
-            BinOp::Pow => "^",
-        };
+        let written = op.to_string();
         let (rest, operand) =
-            self.or_missing(operand, after, context.nested, EXPRESSION, written)?;
+            self.or_missing(operand, after, context.nested, EXPRESSION, &written)?;
         let Chain { term, sum, .. } = chain;
         if matches!(op, BinOp::Mul | BinOp::Div) {
             let term = self.binary(op, term, operand, rest)?;
