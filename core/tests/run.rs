@@ -158,54 +158,43 @@ fn a_run_continues_after_a_restart_at_its_event() {
     );
 }
 
+/// Runs `stepper`, which starts at t = 2, to t = 2: one point, no step, no evaluation.
+fn run_to_start<St: Stepper<1, 2>>(mut stepper: St, name: &str) {
+    let before = stepper.statistics().rate_evaluations;
+    let solution = run(&mut stepper, &RunConfig::until(2.0), &[]).unwrap();
+    assert_eq!(solution.stop, StopReason::ReachedEnd, "{name}");
+    assert_eq!(solution.times, vec![2.0], "{name}");
+    assert_eq!(solution.statistics.accepted_steps, 0, "{name}");
+    assert_eq!(
+        stepper.statistics().rate_evaluations,
+        before,
+        "{name}: rate evaluations"
+    );
+}
+
 #[test]
 fn a_run_to_the_current_time_takes_no_step() {
-    // Every stepper, started at t = 2 and run to t = 2: one point, no step, no evaluation
-    // beyond construction — before, the variational stepper divided by h = 0.
+    // Before, the variational stepper divided by h = 0 and the others took a zero step.
     use varmass_core::steppers::{ClassicalRk4, Variational, VariationalConfig};
     let problem = SledProblem::standard();
-    let start = problem.initial_state();
+    let (system, start) = (problem.system(), problem.initial_state());
     let fixed = FixedStep { step: 0.1 };
-    let check = |solution: Solution<1, 2>, before: usize, after: usize, name: &str| {
-        assert_eq!(solution.stop, StopReason::ReachedEnd, "{name}");
-        assert_eq!(solution.times, vec![2.0], "{name}");
-        assert_eq!(solution.statistics.accepted_steps, 0, "{name}");
-        assert_eq!(before, after, "{name}: rate evaluations");
-    };
-    let mut euler = ExplicitEuler::new(problem.system(), 2.0, start, fixed).unwrap();
-    let before = euler.statistics().rate_evaluations;
-    let solution = run(&mut euler, &RunConfig::until(2.0), &[]).unwrap();
-    check(
-        solution,
-        before,
-        euler.statistics().rate_evaluations,
+    run_to_start(
+        ExplicitEuler::new(system, 2.0, start, fixed).unwrap(),
         "Euler",
     );
-    let mut rk4 = ClassicalRk4::new(problem.system(), 2.0, start, fixed).unwrap();
-    let before = rk4.statistics().rate_evaluations;
-    let solution = run(&mut rk4, &RunConfig::until(2.0), &[]).unwrap();
-    check(solution, before, rk4.statistics().rate_evaluations, "RK4");
+    run_to_start(ClassicalRk4::new(system, 2.0, start, fixed).unwrap(), "RK4");
     let config = VariationalConfig {
         step: 0.1,
         ..VariationalConfig::default()
     };
-    let mut variational = Variational::new(problem.system(), 2.0, start, config).unwrap();
-    let before = variational.statistics().rate_evaluations;
-    let solution = run(&mut variational, &RunConfig::until(2.0), &[]).unwrap();
-    check(
-        solution,
-        before,
-        variational.statistics().rate_evaluations,
+    run_to_start(
+        Variational::new(system, 2.0, start, config).unwrap(),
         "variational",
     );
     let control = StepControl::Adaptive(AdaptiveControl::default());
-    let mut dopri = DormandPrince::new(problem.system(), 2.0, start, control).unwrap();
-    let before = dopri.statistics().rate_evaluations;
-    let solution = run(&mut dopri, &RunConfig::until(2.0), &[]).unwrap();
-    check(
-        solution,
-        before,
-        dopri.statistics().rate_evaluations,
+    run_to_start(
+        DormandPrince::new(system, 2.0, start, control).unwrap(),
         "Dormand–Prince",
     );
 }
