@@ -14,7 +14,7 @@ use alloc::vec::Vec;
 
 use nalgebra::SVector;
 
-use crate::error::StepError;
+use crate::error::{StepError, StepErrorKind};
 use crate::events::{locate_root, Event, EventAction, EventHit};
 use crate::solution::{EnergyPoint, Record, Solution, StopReason};
 use crate::stepper::{StepOutcome, Stepper};
@@ -26,13 +26,13 @@ use crate::system::VariableMassSystem;
 pub struct RunConfig {
     /// The time to integrate to (not before the stepper's current time).
     pub end_time: f64,
-    /// The most steps a run may take before [`StepError::TooManySteps`].
+    /// The most steps a run may take before [`StepErrorKind::TooManySteps`].
     pub max_steps: usize,
     /// The extras to record at every point.
     pub record: Record,
     /// How finely events are located in time (absolute, never below rounding of t).
     pub event_tolerance: f64,
-    /// If set, the run fails with [`StepError::EnergyBudgetExceeded`] once the energy-budget
+    /// If set, the run fails with [`StepErrorKind::EnergyBudgetExceeded`] once the energy-budget
     /// residual exceeds this fraction of the largest |H| or |p·q̇| seen: a guard against the finite
     /// garbage of a fixed step past the stability limit. Costs H and the power at every
     /// point (and a midpoint), as recording the residual does.
@@ -91,21 +91,21 @@ pub fn run<St, const N: usize, const S: usize>(
 where
     St: Stepper<N, S>,
 {
+    let invalid =
+        |reason| StepError::invalid_configuration(stepper.time(), *stepper.state(), reason);
     if config
         .energy_tolerance
         .is_some_and(|t| t.is_nan() || t <= 0.0)
     {
-        return Err(StepError::InvalidConfiguration {
-            reason: "the energy tolerance must be positive",
-        });
+        return Err(invalid("the energy tolerance must be positive"));
     }
     if config.event_tolerance.is_nan() || config.event_tolerance < 0.0 {
-        return Err(StepError::InvalidConfiguration {
-            reason: "the event tolerance must be non-negative",
-        });
+        return Err(invalid("the event tolerance must be non-negative"));
     }
     for event in events {
-        event.validate::<St::System, N>()?;
+        event
+            .validate::<St::System, N>()
+            .map_err(|e| invalid(e.reason))?;
     }
     stepper.set_stop_time(config.end_time)?;
 
@@ -208,12 +208,11 @@ where
                 .max(point.hamiltonian.abs())
                 .max(momentum_velocity.abs());
             if point.residual.abs() > tolerance * energy_scale {
-                return Err(StepError::EnergyBudgetExceeded {
-                    time: current.time,
-                    state: current.state,
+                let kind = StepErrorKind::EnergyBudgetExceeded {
                     residual: point.residual,
                     scale: energy_scale,
-                });
+                };
+                return Err(StepError::new(current.time, current.state, kind));
             }
         }
         solution.push(system, &record, current.time, current.state, energy)?;
@@ -224,11 +223,10 @@ where
             return Ok(solution);
         }
     }
-    Err(StepError::TooManySteps {
-        time: stepper.time(),
-        state: *stepper.state(),
+    let kind = StepErrorKind::TooManySteps {
         max_steps: config.max_steps,
-    })
+    };
+    Err(StepError::new(stepper.time(), *stepper.state(), kind))
 }
 
 /// The run's view of one point: the state rate and the energy budget if needed.

@@ -27,7 +27,7 @@
 use nalgebra::SVector;
 
 use super::FixedStep;
-use crate::error::StepError;
+use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
 use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
@@ -110,7 +110,7 @@ impl Default for AdaptiveControl {
 }
 
 impl AdaptiveControl {
-    fn validated<const S: usize>(self) -> Result<Self, StepError<S>> {
+    fn validated(self) -> Result<Self, ConfigError> {
         let tolerances_ok = self.relative_tolerance >= 0.0
             && self.absolute_tolerance >= 0.0
             && self.relative_tolerance.is_finite()
@@ -128,7 +128,7 @@ impl AdaptiveControl {
         if tolerances_ok && initial_ok && factors_ok {
             Ok(self)
         } else {
-            Err(StepError::InvalidConfiguration {
+            Err(ConfigError {
                 reason: "adaptive control: tolerances must be non-negative and not both zero, \
                          steps positive, safety and min_factor in (0, 1], max_factor ≥ 1, \
                          beta in [0, 0.2)",
@@ -192,11 +192,12 @@ where
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
         let control = match control {
-            StepControl::Adaptive(adaptive) => StepControl::Adaptive(adaptive.validated()?),
-            StepControl::Fixed(fixed) => StepControl::Fixed(FixedStep {
-                step: FixedStep::validated(fixed.step)?,
-            }),
-        };
+            StepControl::Adaptive(adaptive) => adaptive.validated().map(StepControl::Adaptive),
+            StepControl::Fixed(fixed) => {
+                FixedStep::validated(fixed.step).map(|step| StepControl::Fixed(FixedStep { step }))
+            }
+        }
+        .map_err(|e| e.at(time, &state))?;
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
@@ -426,11 +427,8 @@ where
         loop {
             let (h, reaches_stop) = self.progress.next_step(self.next_step);
             if !resolvable(t0, h) {
-                return Err(StepError::StepSizeUnderflow {
-                    time: t0,
-                    state: y0,
-                    step: h,
-                });
+                let kind = StepErrorKind::StepSizeUnderflow { step: h };
+                return Err(StepError::new(t0, y0, kind));
             }
             let attempt = Self::attempt(
                 self.system,

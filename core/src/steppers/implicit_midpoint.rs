@@ -64,8 +64,8 @@ where
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
-            step: FixedStep::validated(config.step)?,
-            newton: config.newton.validated()?,
+            step: FixedStep::validated(config.step).map_err(|e| e.at(time, &state))?,
+            newton: config.newton.validated().map_err(|e| e.at(time, &state))?,
         })
     }
 }

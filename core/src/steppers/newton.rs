@@ -13,7 +13,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::error::StepError;
+use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::sqrt;
 use crate::stepper::Statistics;
 
@@ -25,7 +25,7 @@ pub struct NewtonConfig {
     pub relative_tolerance: f64,
     /// Absolute tolerance on the solution (for components near zero).
     pub absolute_tolerance: f64,
-    /// Iterations allowed per step before [`StepError::NewtonDivergence`].
+    /// Iterations allowed per step before [`StepErrorKind::NewtonDivergence`].
     pub max_iterations: usize,
 }
 
@@ -40,7 +40,7 @@ impl Default for NewtonConfig {
 }
 
 impl NewtonConfig {
-    pub(crate) fn validated<const S: usize>(self) -> Result<Self, StepError<S>> {
+    pub(crate) fn validated(self) -> Result<Self, ConfigError> {
         let ok = self.relative_tolerance >= 0.0
             && self.absolute_tolerance >= 0.0
             && self.relative_tolerance.is_finite()
@@ -50,7 +50,7 @@ impl NewtonConfig {
         if ok {
             Ok(self)
         } else {
-            Err(StepError::InvalidConfiguration {
+            Err(ConfigError {
                 reason: "Newton: tolerances must be non-negative, not both zero, and at least \
                          one iteration allowed",
             })
@@ -73,11 +73,8 @@ pub(crate) fn solve<const S: usize, R>(
 where
     R: FnMut(&SVector<f64, S>, &mut Statistics) -> Result<SVector<f64, S>, StepError<S>>,
 {
-    let diverged = |iterations| StepError::NewtonDivergence {
-        time,
-        state: *state,
-        iterations,
-    };
+    let diverged =
+        |iterations| StepError::new(time, *state, StepErrorKind::NewtonDivergence { iterations });
     let Some(lu) = Lu::factor(iteration_matrix) else {
         return Err(diverged(0));
     };
