@@ -91,6 +91,7 @@ pub mod math;
 pub mod stepper;
 pub mod steppers;
 pub mod system;
+pub mod tolerance;
 
 #[cfg(feature = "run")]
 pub mod events;
