@@ -126,3 +126,33 @@ fn latex_samples() {
         assert_eq!(p.latex(e), want, "latex of `{text}`");
     }
 }
+
+#[test]
+fn printing_a_deep_expression_needs_no_deep_stack() {
+    // The printers walk the arena bottom-up without recursion: an expression 5000 calls
+    // deep prints on a 256 KiB stack (a recursive printer needs several frames per level).
+    let depth = 5000;
+    let handle = std::thread::Builder::new()
+        .stack_size(256 << 10)
+        .spawn(move || {
+            let mut p = sled_pool();
+            let x = p.symbols().lookup("x").expect("the sled's coordinate");
+            let mut e = p.sym(x);
+            for _ in 0..depth {
+                e = p.call(varmass_symbolic::expr::Func::Sin, &[e]);
+            }
+            (p.display(e).to_string(), p.latex(e))
+        })
+        .expect("a thread");
+    let (text, latex) = handle.join().expect("printing does not overflow the stack");
+    assert_eq!(
+        text,
+        format!("{}x{}", "sin(".repeat(depth), ")".repeat(depth))
+    );
+    let tex = format!(
+        "{}x{}",
+        r"\sin\left(".repeat(depth),
+        r"\right)".repeat(depth)
+    );
+    assert_eq!(latex, tex);
+}
