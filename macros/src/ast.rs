@@ -4,6 +4,7 @@
 //! #[variable_mass_system("coordinates x …")]                     the system inline
 //! #[variable_mass_system(file = "models/sled.vms")]              the system in a file
 //! #[variable_mass_system(file = "models/rocket.vms", with = ["drag"])]
+//! #[variable_mass_system(file = "models/sled.vms", emit = [])]    only what steppers need
 //! ```
 
 use proc_macro2::{Span, TokenStream};
@@ -12,7 +13,7 @@ use syn::punctuated::Punctuated;
 use syn::{bracketed, Ident, LitStr, Token};
 
 /// The options after the inline system or in place of it.
-const OPTIONS: &str = "`file = \"…\"` or `with = [\"…\", …]`";
+const OPTIONS: &str = "`file = \"…\"`, `with = [\"…\", …]` or `emit = [\"…\", …]`";
 
 /// Where the DSL text is.
 pub enum Source {
@@ -28,6 +29,8 @@ pub struct Attribute {
     pub source: Source,
     /// The tags asked for with `with = [...]`; empty without it.
     pub with: Vec<LitStr>,
+    /// The optional outputs asked for with `emit = [...]`; `None` (all of them) without it.
+    pub emit: Option<Vec<LitStr>>,
 }
 
 /// The attribute's arguments: the system (inline or `file = …`) and its options.
@@ -51,13 +54,14 @@ impl Parse for Attribute {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let mut source = None;
         let mut with = None;
+        let mut emit = None;
         if input.peek(LitStr) {
             source = Some(Source::Inline(input.parse()?));
         } else if !input.peek(Ident) || !input.peek2(Token![=]) {
             return Err(no_system(input.span()));
         }
         while !input.is_empty() {
-            if source.is_some() || with.is_some() {
+            if source.is_some() || with.is_some() || emit.is_some() {
                 input.parse::<Token![,]>()?;
                 if input.is_empty() {
                     break;
@@ -73,7 +77,13 @@ impl Parse for Attribute {
                     source = Some(Source::File(input.parse()?));
                 }
                 "with" if with.is_none() => with = Some(tag_list(input)?),
-                "with" => return Err(syn::Error::new(option.span(), "`with` given twice")),
+                "emit" if emit.is_none() => emit = Some(tag_list(input)?),
+                "with" | "emit" => {
+                    return Err(syn::Error::new(
+                        option.span(),
+                        format!("`{option}` given twice"),
+                    ))
+                }
                 other => {
                     return Err(syn::Error::new(
                         option.span(),
@@ -84,7 +94,7 @@ impl Parse for Attribute {
         }
         let source = source.ok_or_else(|| no_system(Span::call_site()))?;
         let with = with.unwrap_or_default();
-        Ok(Attribute { source, with })
+        Ok(Attribute { source, with, emit })
     }
 }
 
@@ -97,7 +107,7 @@ fn twice(option: &Ident, previous: &Source) -> syn::Error {
     syn::Error::new(option.span(), message)
 }
 
-/// `["drag", "wind"]`.
+/// A list of strings, `["drag", "wind"]`.
 fn tag_list(input: ParseStream) -> syn::Result<Vec<LitStr>> {
     let content;
     bracketed!(content in input);

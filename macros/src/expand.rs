@@ -3,8 +3,8 @@
 
 use proc_macro2::TokenStream;
 use quote::{quote, ToTokens};
-use varmass_symbolic::emit::{emit_system, Target};
-use varmass_symbolic::mechanics::{derive, Derivation, Parameters};
+use varmass_symbolic::emit::{emit_system_for, Target};
+use varmass_symbolic::mechanics::{derive_for, Derivation, Outputs, Parameters};
 use varmass_symbolic::parse::ast::{MassLaw, StatementKind, SystemAst};
 use varmass_symbolic::parse::{parse_system, select_tags};
 use varmass_symbolic::Diagnostic;
@@ -35,7 +35,8 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
     if let (Some(attribute), Some(model)) = (&attribute, &model) {
         if let Some(ast) = selected_system(&cx, attribute, model) {
             dims = dimensions(&ast);
-            generated = generate(&cx, &item_struct, &fields, model, &ast);
+            let outputs = outputs(&cx, attribute);
+            generated = generate(&cx, &item_struct, &fields, model, &ast, outputs);
         }
     }
     let tracking = model.as_ref().map(ModelText::tracking);
@@ -58,6 +59,21 @@ fn selected_system(cx: &Ctxt, attribute: &Attribute, model: &ModelText) -> Optio
         .ok()
 }
 
+/// The optional outputs `emit = [...]` names (all without it); an unknown name is reported
+/// on its string.
+fn outputs(cx: &Ctxt, attribute: &Attribute) -> Outputs {
+    let Some(names) = &attribute.emit else {
+        return Outputs::FULL;
+    };
+    let values: Vec<String> = names.iter().map(|n| n.value()).collect();
+    Outputs::from_names(&values).unwrap_or_else(|unknown| {
+        for u in unknown {
+            cx.error_at(names[u.index].span(), &u);
+        }
+        Outputs::FULL
+    })
+}
+
 /// Derives the system and emits its code, or `None` after reporting every problem.
 fn generate(
     cx: &Ctxt,
@@ -65,9 +81,10 @@ fn generate(
     fields: &[syn::Ident],
     model: &ModelText,
     ast: &SystemAst,
+    outputs: Outputs,
 ) -> Option<TokenStream> {
     let names = fields.iter().map(|f| f.to_string()).collect();
-    let mut derivation = derive(ast, Parameters::Declared(names))
+    let mut derivation = derive_for(ast, Parameters::Declared(names), outputs)
         .map_err(|errors| model.report(cx, &errors))
         .ok()?;
     check_unused_fields(cx, fields, &derivation);
@@ -82,7 +99,12 @@ fn generate(
         name: item_struct.ident.clone(),
         runtime: quote!(::varmass::core),
     };
-    Some(emit_system(&mut derivation, &model.text, &target))
+    Some(emit_system_for(
+        &mut derivation,
+        &model.text,
+        &target,
+        outputs,
+    ))
 }
 
 /// The struct, then the generated items (and the model file's tracking), or every error

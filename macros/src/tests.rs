@@ -64,3 +64,55 @@ fn leaving_the_impact_out_changes_the_code() {
     assert!(!without.to_string().contains("compile_error"));
     assert_ne!(items(with_impact).1, items(without).1);
 }
+
+#[test]
+fn minimal_emission_leaves_the_optional_outputs_out() {
+    let full = expand(
+        quote!(file = "../models/sled.vms", with = ["impact"]),
+        sled_struct(),
+    )
+    .to_string();
+    let minimal = expand(
+        quote!(file = "../models/sled.vms", with = ["impact"], emit = []),
+        sled_struct(),
+    )
+    .to_string();
+    let power_only = expand(
+        quote!(
+            file = "../models/sled.vms",
+            with = ["impact"],
+            emit = ["power"]
+        ),
+        sled_struct(),
+    )
+    .to_string();
+    for optional in ["fn hamiltonian", "fn power", "fn jacobian", "DERIVATION"] {
+        assert!(full.contains(optional), "{optional}");
+        assert!(!minimal.contains(optional), "{optional}");
+    }
+    assert!(power_only.contains("fn power") && !power_only.contains("fn jacobian"));
+    for required in [
+        "fn state_rate",
+        "fn accelerations",
+        "fn velocities",
+        "SOURCE",
+    ] {
+        assert!(minimal.contains(required), "{required}");
+    }
+    assert!(minimal.len() < power_only.len() && power_only.len() < full.len());
+}
+
+#[test]
+fn an_unknown_output_is_an_error_naming_the_known_ones() {
+    let expanded = expand(
+        quote!(file = "../models/sled.vms", emit = ["jacobain"]),
+        sled_struct(),
+    )
+    .to_string();
+    assert!(
+        expanded.contains(
+            "unknown output `jacobain`; expected one of `hamiltonian`, `power`, `jacobian`, `derivation`"
+        ),
+        "{expanded}"
+    );
+}
