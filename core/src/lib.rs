@@ -96,6 +96,8 @@ pub mod tolerance;
 #[cfg(feature = "run")]
 pub mod events;
 #[cfg(feature = "run")]
+pub mod observe;
+#[cfg(feature = "run")]
 pub mod run;
 #[cfg(feature = "run")]
 pub mod solution;
@@ -109,6 +111,8 @@ pub use system::{SystemError, VariableMassSystem};
 
 #[cfg(feature = "run")]
 pub use events::{Direction, Event, EventAction, EventCondition, EventHit};
+#[cfg(feature = "run")]
+pub use observe::{observe, Observable, Quantity, Recording};
 #[cfg(feature = "run")]
 pub use run::{run, RunConfig};
 #[cfg(feature = "run")]
