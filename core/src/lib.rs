@@ -92,6 +92,8 @@ pub mod stepper;
 pub mod steppers;
 pub mod system;
 
+#[cfg(feature = "ensemble")]
+pub mod ensemble;
 #[cfg(feature = "run")]
 pub mod events;
 #[cfg(feature = "run")]
