@@ -43,6 +43,8 @@ mod sampler;
 mod shard;
 mod statistics;
 mod stop;
+#[cfg(feature = "serde")]
+mod wire;
 
 use alloc::vec::Vec;
 use core::ops::Range;

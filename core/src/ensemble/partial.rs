@@ -16,17 +16,18 @@ use super::statistics::{summarize, StatisticsError, Summary, SummaryConfig};
 /// Observables and failures of a set of members of one ensemble (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(try_from = "super::wire::PartialData<P, E>"))]
 pub struct Partial<P, E> {
-    seed: u64,
-    observables: Vec<String>,
+    pub(super) seed: u64,
+    pub(super) observables: Vec<String>,
     /// The members run, as sorted, disjoint, non-adjacent ranges.
-    covered: Vec<Range<u64>>,
+    pub(super) covered: Vec<Range<u64>>,
     /// Indices of the completed members, ascending.
-    indices: Vec<u64>,
+    pub(super) indices: Vec<u64>,
     /// `values[k][j]`: observable k of member `indices[j]`.
-    values: Vec<Vec<f64>>,
+    pub(super) values: Vec<Vec<f64>>,
     /// The failed members, by ascending index.
-    failures: Vec<Failure<P, E>>,
+    pub(super) failures: Vec<Failure<P, E>>,
 }
 
 /// Why two partials cannot be merged.
