@@ -112,5 +112,8 @@ fn the_ensemble_adds_no_allocation_per_member() {
     assert_eq!(partial.completed().len(), 100_000);
     // 100 batches of one vector each, plus the doublings of the growing vectors (indices,
     // the column, the covered ranges: at most ⌈log2 100 000⌉ + 1 = 18 each). Measured: 136.
-    assert!(count <= 100 + 3 * 18, "{count} allocations for 100 000 members");
+    assert!(
+        count <= 100 + 3 * 18,
+        "{count} allocations for 100 000 members"
+    );
 }

@@ -60,6 +60,9 @@ pub use stop::{StopRule, StopRuleError};
 
 /// `rand`, re-exported so samplers use the version [`MemberRng`] implements.
 pub use rand;
+/// `rayon`, re-exported to build a thread pool of a chosen size for [`Ensemble::run`].
+#[cfg(feature = "parallel")]
+pub use rayon;
 
 /// Members run between checks of a stop rule, unless set with [`Ensemble::batch_size`].
 pub const DEFAULT_BATCH_SIZE: u64 = 1024;
