@@ -80,7 +80,16 @@ pub struct Ensemble<const K: usize, Sample, Member> {
 impl<const K: usize, Sample, Member> Ensemble<K, Sample, Member> {
     /// An ensemble with `seed` whose members draw their parameters with `sample` and run
     /// with `member`, which returns the named observables (or the member's error).
-    pub fn new(seed: u64, observables: [&'static str; K], sample: Sample, member: Member) -> Self {
+    pub fn new<P, E>(
+        seed: u64,
+        observables: [&'static str; K],
+        sample: Sample,
+        member: Member,
+    ) -> Self
+    where
+        Sample: Fn(&mut MemberRng) -> P,
+        Member: Fn(&P) -> Result<[f64; K], E>,
+    {
         Self {
             seed,
             observables,
