@@ -57,16 +57,18 @@ fn fly(&[mu, u_e, dry_mass]: &[f64; 3]) -> Result<[f64; 1], StepError<3>> {
         &RunConfig::until(1e4),
         &[Event::mass_reaches(0, dry_mass)],
     )?;
-    let no_point = StepError::InvalidConfiguration {
-        reason: "a run returned no point",
-    };
-    let (t_b, state_b) = powered.last().ok_or(no_point)?;
+    let (t_b, state_b) = powered.last().ok_or_else(|| no_point(&burn))?;
     let coasting = Rocket { mu: 0.0, ..engine };
     let mut coast = DormandPrince::new(&coasting, t_b, *state_b, control())?;
     let apex = [Event::state_reaches(1, 0.0, Direction::Falling)];
     let ballistic = run(&mut coast, &RunConfig::until(1e4), &apex)?;
-    let (_, state) = ballistic.last().ok_or(no_point)?;
+    let (_, state) = ballistic.last().ok_or_else(|| no_point(&coast))?;
     Ok([state[0]])
+}
+
+/// The error for a run that returned no point (a run always records its start).
+fn no_point(stepper: &impl Stepper<1, 3>) -> StepError<3> {
+    StepError::invalid_configuration(stepper.time(), *stepper.state(), "a run returned no point")
 }
 
 fn pool(threads: usize) -> ThreadPool {

@@ -77,17 +77,19 @@ fn fly(d: &Dispersion) -> Result<[f64; 3], StepError<3>> {
     let mut burn = DormandPrince::new(&engine, 0.0, start, control())?;
     let burnout = [Event::mass_reaches(0, d.dry_mass)];
     let powered = run(&mut burn, &RunConfig::until(1e4), &burnout)?;
-    let no_point = StepError::InvalidConfiguration {
-        reason: "a run returned no point",
-    };
-    let (t_b, state_b) = powered.last().ok_or(no_point)?;
+    let (t_b, state_b) = powered.last().ok_or_else(|| no_point(&burn))?;
     let coasting = Rocket { mu: 0.0, ..engine };
     let mut coast = DormandPrince::new(&coasting, t_b, *state_b, control())?;
     let apex = [Event::state_reaches(1, 0.0, Direction::Falling)];
     let ballistic = run(&mut coast, &RunConfig::until(1e4), &apex)?;
-    let (t_apex, state_apex) = ballistic.last().ok_or(no_point)?;
+    let (t_apex, state_apex) = ballistic.last().ok_or_else(|| no_point(&coast))?;
     let exact = exact_apex_height(d);
     Ok([state_apex[0], t_apex, (state_apex[0] - exact).abs() / exact])
+}
+
+/// The error for a run that returned no point (a run always records its start).
+fn no_point(stepper: &impl Stepper<1, 3>) -> StepError<3> {
+    StepError::invalid_configuration(stepper.time(), *stepper.state(), "a run returned no point")
 }
 
 /// The apex height in closed form (module docs).

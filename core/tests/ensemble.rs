@@ -13,7 +13,7 @@ use varmass_core::ensemble::{
     StopRule, Summary, SummaryConfig,
 };
 use varmass_core::steppers::{AdaptiveControl, DormandPrince, StepControl};
-use varmass_core::{run, Event, RunConfig, StepError};
+use varmass_core::{run, Event, RunConfig, StepError, StepErrorKind, Stepper};
 
 /// Start and end mass of the free-space burn, and its rate: m goes 1 → 1/4 in 7.5 s.
 const M0: f64 = 1.0;
@@ -50,8 +50,8 @@ fn free_space_burn(exhaust_speed: &f64) -> Result<[f64; 2], StepError<3>> {
         &RunConfig::until(100.0),
         &[Event::mass_reaches(0, M1)],
     )?;
-    let (_, state) = solution.last().ok_or(StepError::InvalidConfiguration {
-        reason: "empty solution",
+    let (_, state) = solution.last().ok_or_else(|| {
+        StepError::invalid_configuration(stepper.time(), *stepper.state(), "empty solution")
     })?;
     Ok([state[1] / state[2], state[0]])
 }
@@ -208,8 +208,8 @@ fn burn_for(params: &(f64, f64)) -> Result<[f64; 1], StepError<3>> {
     let end = fraction * M0 / BURN_RATE;
     let mut stepper = DormandPrince::new(&rocket, 0.0, Vector3::new(0.0, 0.0, M0), control())?;
     let solution = run(&mut stepper, &RunConfig::until(end), &[])?;
-    let (_, state) = solution.last().ok_or(StepError::InvalidConfiguration {
-        reason: "empty solution",
+    let (_, state) = solution.last().ok_or_else(|| {
+        StepError::invalid_configuration(stepper.time(), *stepper.state(), "empty solution")
     })?;
     Ok([state[1] / state[2]])
 }
@@ -239,7 +239,11 @@ fn failed_members_are_reported_with_index_parameters_and_error() {
         // The mass reaches zero at t = 10 s: the error names it there (measured within
         // 2.5e-14 s; bound 1e-9 s).
         match &failure.error {
-            MemberError::Run(StepError::NonPositiveMass { time, index: 0, .. }) => {
+            MemberError::Run(StepError {
+                time,
+                kind: StepErrorKind::NonPositiveMass { index: 0 },
+                ..
+            }) => {
                 assert!((time - 10.0).abs() < 1e-9, "failed at t = {time}");
             }
             other => panic!("member {}: unexpected {other:?}", failure.index),

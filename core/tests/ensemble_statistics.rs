@@ -6,7 +6,7 @@ use varmass_core::ensemble::{
     standard_normal_quantile, summarize, Ensemble, MemberRng, Partial, StatisticsError,
     SummaryConfig,
 };
-use varmass_core::StepError;
+use varmass_core::{StepError, StepErrorKind};
 
 #[test]
 fn summary_of_a_small_sample_matches_hand_computation() {
@@ -127,12 +127,12 @@ fn a_tampered_partial_is_refused_when_read_back() {
 
 #[test]
 fn step_errors_become_records_with_their_time() {
-    let error = StepError::<3>::TooManySteps {
-        time: 2.5,
-        state: Default::default(),
-        max_steps: 7,
-    };
+    let error = StepError::<3>::new(
+        2.5,
+        Default::default(),
+        StepErrorKind::TooManySteps { max_steps: 7 },
+    );
     let record = varmass_core::ensemble::ErrorRecord::from(error);
-    assert_eq!(record.time, Some(2.5));
+    assert_eq!(record.time, 2.5);
     assert_eq!(record.message, error.to_string());
 }

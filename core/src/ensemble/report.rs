@@ -61,16 +61,16 @@ pub struct Failure<P, E> {
     pub error: MemberError<E>,
 }
 
-/// A run error reduced to what any format can hold: the time of the failure (if it happened
-/// while stepping) and its message. Map a [`Partial`](super::Partial)'s errors to it with
+/// A run error reduced to what any format can hold: the time of the failure and its
+/// message. Map a [`Partial`](super::Partial)'s errors to it with
 /// [`Partial::map_errors`](super::Partial::map_errors) to serialize a partial whose error type
 /// cannot be.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[error("{message}")]
 pub struct ErrorRecord {
-    /// When the run failed, if it did so while stepping.
-    pub time: Option<f64>,
+    /// When the run failed.
+    pub time: f64,
     /// The error's message.
     pub message: String,
 }
@@ -78,7 +78,7 @@ pub struct ErrorRecord {
 impl<const S: usize> From<StepError<S>> for ErrorRecord {
     fn from(error: StepError<S>) -> Self {
         Self {
-            time: error.time(),
+            time: error.time,
             message: error.to_string(),
         }
     }
