@@ -17,5 +17,6 @@ pub mod emit;
 pub mod expr;
 pub mod mechanics;
 pub mod parse;
+pub mod units;
 
 pub use parse::{Diagnostic, Span};

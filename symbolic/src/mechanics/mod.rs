@@ -48,9 +48,11 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
     build::build_model(ast, parameters)
 }
 
-/// Derives a parsed system and verifies its `check`s.
+/// Derives a parsed system and verifies its `check`s. A system with a `units` statement
+/// is first checked for dimensions ([`crate::units::check_units`]).
 pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
     let model = build::build_model(ast, parameters)?;
+    crate::units::check_units(ast)?;
     let mut derivation = derivation::derive_model(model)?;
     checks::run_checks(&mut derivation)?;
     Ok(derivation)
