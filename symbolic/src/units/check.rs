@@ -174,14 +174,12 @@ impl Checker {
     fn declare_mass(&mut self, decl: &MassDecl, dimension: Dimension, what: &str) {
         let name = &decl.name.node;
         self.table.masses.push(name.clone());
-        match self.table.dimensions.get(name) {
-            Some(&given) if given != dimension => {
+        // Whatever `units` says, the mass is checked as what it is.
+        if let Some(given) = self.table.dimensions.insert(name.clone(), dimension) {
+            if given != dimension {
                 let message =
                     format!("`{name}` is {what}, in {dimension}, but `units` gives it {given}");
                 self.report(Diagnostic::new(decl.name.span, message));
-            }
-            _ => {
-                self.table.dimensions.insert(name.clone(), dimension);
             }
         }
     }
