@@ -23,7 +23,9 @@
 mod build;
 mod checks;
 mod derivation;
+mod equations;
 mod forces;
+mod jacobian;
 mod lagrangian;
 mod linear;
 mod masses;
@@ -53,9 +55,7 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
 pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
     let model = build::build_model(ast, parameters)?;
     crate::units::check_units(ast)?;
-    let mut derivation = derivation::derive_model(model)?;
-    checks::run_checks(&mut derivation)?;
-    Ok(derivation)
+    derivation::derive_model(model)
 }
 
 /// Parses and derives DSL source text.
