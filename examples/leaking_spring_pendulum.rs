@@ -24,6 +24,7 @@ use varmass::prelude::*;
 #[variable_mass_system(
     "
     coordinates r, th
+    units r: m, th: rad, mu: kg/s, u_e: m/s, k: N/m, l0: m, g: m/s^2
     mass m: state, rate -mu
     body bob: mass m, position [r*sin(th), -r*cos(th)]
     potential 1/2*k*(r - l0)^2 - m*g*r*cos(th)
@@ -45,6 +46,7 @@ struct PolarPendulum {
 #[variable_mass_system(
     "
     coordinates x, y
+    units x: m, y: m, mu: kg/s, u_e: m/s, k: N/m, l0: m, g: m/s^2
     mass m: state, rate -mu
     let r = sqrt(x^2 + y^2)
     body bob: mass m, position [x, y]

@@ -18,6 +18,7 @@ use varmass::prelude::*;
 #[variable_mass_system(
     "
     coordinates y
+    units y: m, mu: kg/s, u_e: m/s, g: m/s^2
     mass m: state, rate -mu
     body rocket: mass m, position [y]
     potential m*g*y

@@ -20,6 +20,7 @@ use varmass::prelude::*;
 #[variable_mass_system(
     "
     coordinates x
+    units x: m, m0: kg, c: kg/m, g: m/s^2, theta: rad, f_d: 1
     mass m = m0 + c*x
     body sled: mass m, position [x]
     potential -m*g*x*sin(theta)

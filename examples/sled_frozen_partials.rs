@@ -11,6 +11,7 @@ use varmass::symbolic::mechanics::{derive_source, Parameters};
 /// The paper's sled, body form (SPEC §2), with the paper's results stated as checks.
 const SLED: &str = "
 coordinates x
+units x: m, m0: kg, c: kg/m, g: m/s^2, theta: rad, f_d: 1
 mass m = m0 + c*x
 body sled: mass m, position [x]
 potential -m*g*x*sin(theta)
