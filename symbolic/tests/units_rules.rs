@@ -96,7 +96,7 @@ fn a_state_mass_rate_and_a_flow_rate_are_mass_flows() {
     assert_eq!(
         messages,
         [
-            "rate of `m`: mu has kg, expected a mass flow, kg/s",
+            "rate of `m`: -mu has kg, expected a mass flow, kg/s",
             "rate of outflow from `r`: mu has kg, expected a mass flow, kg/s",
         ]
     );
@@ -108,8 +108,8 @@ fn flow_velocities_are_velocities() {
     single(
         "coordinates y\nunits y: m, mu: kg/s, u_e: m\nmass m: state, rate -mu\n\
          body r: mass m, position [y]\noutflow r: rate mu, relative_velocity [-u_e]",
-        "relative velocity of outflow from `r`: u_e has m, expected a velocity, m/s",
-        "u_e",
+        "relative velocity of outflow from `r`: -u_e has m, expected a velocity, m/s",
+        "-u_e",
     );
     single(
         "coordinates x\nunits x: m, m0: kg, c: kg/m\nmass m = m0 + c*x\n\
@@ -135,8 +135,8 @@ fn a_generalized_force_is_an_energy_per_unit_of_its_coordinate() {
     // On an angle, a force (N) is not a torque (N·m = J/rad).
     single(
         "coordinates th\nunits th: rad, I0: kg*m^2, F: N\nkinetic 1/2*I0*th'^2\nforce th: F",
-        "generalized force on `th`: F has kg·m/s², expected energy per unit of `th` (J/rad), \
-         an energy, kg·m²/s²",
+        "generalized force on `th`: F has kg·m/s², expected an energy, kg·m²/s² \
+         (energy per unit of `th`, J/rad)",
         "F",
     );
     // The impact force on x (m) is −c ẋ² with c in kg/m: kg·m/s² = J/m. With c in kg it
@@ -144,13 +144,13 @@ fn a_generalized_force_is_an_energy_per_unit_of_its_coordinate() {
     single(
         "coordinates x\nunits x: m, m0: kg, c: kg\nmass m = m0\nkinetic 1/2*m*x'^2\n\
          impact x: -c*x'^2",
-        "impact force on `x`: -c*x'^2 has kg·m²/s², expected energy per unit of `x` (J/m), \
-         a force, kg·m/s²",
+        "impact force on `x`: -c*x'^2 has kg·m²/s², expected a force, kg·m/s² \
+         (energy per unit of `x`, J/m)",
         "-c*x'^2",
     );
     single(
         "coordinates x\nunits x: m, m: kg, mu: kg/s\nkinetic 1/2*m*x'^2\nthrust x: mu",
-        "thrust on `x`: mu has kg/s, expected energy per unit of `x` (J/m), a force, kg·m/s²",
+        "thrust on `x`: mu has kg/s, expected a force, kg·m/s² (energy per unit of `x`, J/m)",
         "mu",
     );
 }
@@ -269,8 +269,7 @@ fn symbols_without_a_unit_are_listed_in_one_diagnostic() {
     let source = "coordinates x, y\nunits m: kg\nkinetic 1/2*m*(x'^2 + y'^2)\npotential m*g*y";
     let error = single(
         source,
-        "no unit for `x` (1:13), `y` (1:16), `g` (4:13): with `units`, every coordinate and \
-         parameter needs one",
+        "no unit for `x`, `y`, `g`: with `units`, every coordinate and parameter needs one",
         "units m: kg",
     );
     assert_eq!(
@@ -290,7 +289,7 @@ fn definitions_are_inferred_unless_given() {
     .unwrap();
     single(
         "coordinates x\nunits x: m, m: kg, w: 1/s\nlet w = x'/x^2\nkinetic 1/2*m*x^2*w^2",
-        "definition of `w`: x'/x^2 has 1/(m·s), expected the unit `units` gives it, a rate, 1/s",
+        "definition of `w`: x'/x^2 has 1/(m·s), expected a rate, 1/s (the unit `units` gives `w`)",
         "x'/x^2",
     );
 }

@@ -102,6 +102,10 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
         emitter.power(),
         emitter.jacobian(),
     ];
+    let units_doc = d.units_line().map(|line| {
+        let line = format!("Units: {line}.");
+        quote!(#[doc = ""] #[doc = #line])
+    });
     quote! {
         impl #name {
             /// The system in the DSL, as written.
@@ -112,6 +116,7 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
             /// The derivation of this system as LaTeX (`align*` environments).
             pub const DERIVATION_LATEX: &'static str = #latex;
             /// The parameters (fields) the equations use, in order.
+            #units_doc
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
         }
 

@@ -54,8 +54,10 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
 /// is first checked for dimensions ([`crate::units::check_units`]).
 pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
     let model = build::build_model(ast, parameters)?;
-    crate::units::check_units(ast)?;
-    derivation::derive_model(model)
+    let units = crate::units::check_units(ast)?;
+    let mut derivation = derivation::derive_model(model)?;
+    derivation.units = units;
+    Ok(derivation)
 }
 
 /// Parses and derives DSL source text.

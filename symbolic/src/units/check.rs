@@ -81,6 +81,15 @@ pub fn check_units(ast: &SystemAst) -> Result<Option<UnitTable>, Vec<Diagnostic>
     Ok(Some(table))
 }
 
+/// `has kg·m` or `is dimensionless`, for messages.
+pub(crate) fn has(dimension: Dimension) -> String {
+    if dimension.is_dimensionless() {
+        "is dimensionless".to_string()
+    } else {
+        format!("has {dimension}")
+    }
+}
+
 /// The `units` entries of `ast`, in source order.
 fn unit_entries(ast: &SystemAst) -> impl Iterator<Item = &UnitDecl> {
     ast.statements.iter().flat_map(|s| match &s.kind {
@@ -226,16 +235,15 @@ impl Checker {
                 self.expect(lhs, expected, explained, label);
                 self.expect(rhs, expected, explained, label);
             }
-            Expr::Neg(operand) => self.expect(operand, expected, explained, label),
             _ => {
                 if let Some(Dim::Of(found)) = self.infer(node) {
                     if found != expected {
                         let expected = match explained {
-                            Some(why) => format!("{why}, {}", expected.described()),
+                            Some(why) => format!("{} ({why})", expected.described()),
                             None => expected.described(),
                         };
-                        let message =
-                            format!("{} has {found}, expected {expected}", label(&text(node)));
+                        let term = label(&text(node));
+                        let message = format!("{term} {}, expected {expected}", has(found));
                         self.report(Diagnostic::new(node.span, message));
                     }
                 }
@@ -254,7 +262,12 @@ impl Checker {
         match self.table.dimension(name) {
             Some(given) => {
                 let label = |t: &str| format!("definition of `{name}`: {t}");
-                self.expect(value, given, Some("the unit `units` gives it"), &label);
+                self.expect(
+                    value,
+                    given,
+                    Some(&format!("the unit `units` gives `{name}`")),
+                    &label,
+                );
             }
             None if !self.unreadable.contains(name) => {
                 let dim = self.infer(value);
@@ -275,7 +288,7 @@ impl Checker {
                 self.expect(law, dimension, None, &label);
             }
             MassLaw::State { rate } => {
-                let Some(per_second) = dimension.div(Dimension::TIME) else {
+                let Some(per_second) = dimension.checked_div(Dimension::TIME) else {
                     return;
                 };
                 let label = |t: &str| format!("rate of `{name}`: {t}");
@@ -295,11 +308,11 @@ impl Checker {
                 let Some(q) = self.table.dimension(target) else {
                     return;
                 };
-                let Some(expected) = Dimension::ENERGY.div(q) else {
+                let Some(expected) = Dimension::ENERGY.checked_div(q) else {
                     return;
                 };
                 let unit = self.table.written(target).unwrap_or("1").to_string();
-                let why = format!("energy per unit of `{target}` (J/{unit})");
+                let why = format!("energy per unit of `{target}`, J/{unit}");
                 let label = |t: &str| format!("{generalized} on `{target}`: {t}");
                 self.expect(value, expected, Some(&why), &label);
             }
@@ -376,7 +389,7 @@ impl Checker {
         let listed: Vec<String> = self
             .missing
             .iter()
-            .map(|(name, span)| format!("`{name}` ({}:{})", span.line, span.column))
+            .map(|(name, _)| format!("`{name}`"))
             .collect();
         let names: Vec<String> = self
             .missing

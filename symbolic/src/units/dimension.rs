@@ -75,12 +75,12 @@ impl Dimension {
     }
 
     /// The dimension of a product.
-    pub fn mul(self, other: Dimension) -> Option<Dimension> {
+    pub fn checked_mul(self, other: Dimension) -> Option<Dimension> {
         self.zip(other, Rational::checked_add)
     }
 
     /// The dimension of a quotient.
-    pub fn div(self, other: Dimension) -> Option<Dimension> {
+    pub fn checked_div(self, other: Dimension) -> Option<Dimension> {
         self.zip(other, Rational::checked_sub)
     }
 
@@ -100,6 +100,20 @@ impl Dimension {
             .iter()
             .find(|(dimension, _)| *dimension == self)
             .map(|(_, name)| *name)
+    }
+
+    /// The unit to show for a quantity of this dimension: `J`, `N`, `W` or `Pa` when it is
+    /// one of those, else the base form (`kg·m/s`); `N·m` for an energy that is a torque
+    /// (a generalized force on an angle).
+    pub fn unit(self, torque: bool) -> String {
+        match self {
+            Dimension::ENERGY if torque => "N·m".to_string(),
+            Dimension::ENERGY => "J".to_string(),
+            Dimension::FORCE => "N".to_string(),
+            Dimension::POWER => "W".to_string(),
+            Dimension::PRESSURE => "Pa".to_string(),
+            _ => self.to_string(),
+        }
     }
 
     /// `an energy, kg·m²/s²` when the dimension has a name, else just `kg·m/s³`;
@@ -190,13 +204,16 @@ mod tests {
 
     #[test]
     fn products_and_quotients_add_and_subtract_exponents() {
-        let velocity = Dimension::LENGTH.div(Dimension::TIME).unwrap();
+        let velocity = Dimension::LENGTH.checked_div(Dimension::TIME).unwrap();
         assert_eq!(velocity, Dimension::VELOCITY);
-        let momentum = Dimension::MASS.mul(velocity).unwrap();
-        let energy = momentum.mul(velocity).unwrap();
+        let momentum = Dimension::MASS.checked_mul(velocity).unwrap();
+        let energy = momentum.checked_mul(velocity).unwrap();
         assert_eq!(energy, Dimension::ENERGY);
-        assert_eq!(energy.div(Dimension::LENGTH), Some(Dimension::FORCE));
-        assert_eq!(energy.div(energy), Some(Dimension::NONE));
+        assert_eq!(
+            energy.checked_div(Dimension::LENGTH),
+            Some(Dimension::FORCE)
+        );
+        assert_eq!(energy.checked_div(energy), Some(Dimension::NONE));
     }
 
     #[test]
@@ -215,7 +232,7 @@ mod tests {
     #[test]
     fn an_exponent_that_overflows_is_none_not_a_panic() {
         let huge = Dimension::LENGTH.pow(Rational::integer(i128::MAX)).unwrap();
-        assert_eq!(huge.mul(Dimension::LENGTH), None);
+        assert_eq!(huge.checked_mul(Dimension::LENGTH), None);
         assert_eq!(huge.pow(r(2, 1)), None);
     }
 
@@ -230,6 +247,14 @@ mod tests {
         assert_eq!(Dimension::LENGTH.sqrt().unwrap().to_string(), "m^(1/2)");
         let odd = Dimension::integer(1, 0, 0).pow(r(-3, 2)).unwrap();
         assert_eq!(odd.to_string(), "1/kg^(3/2)");
+    }
+
+    #[test]
+    fn units_use_the_si_names_of_derived_units() {
+        assert_eq!(Dimension::ENERGY.unit(false), "J");
+        assert_eq!(Dimension::ENERGY.unit(true), "N·m");
+        assert_eq!(Dimension::FORCE.unit(true), "N");
+        assert_eq!(Dimension::integer(1, 1, -1).unit(false), "kg·m/s");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! two agreeing ones; `sqrt` halves the exponents and `^` with a constant exponent scales
 //! them; a dimensioned base with a non-constant exponent is an error.
 
-use super::check::Checker;
+use super::check::{has, Checker};
 use super::dimension::Dimension;
 use super::text::text;
 use super::unit::constant;
@@ -39,7 +39,7 @@ impl Checker {
             Expr::Derivative { name, order } => {
                 let q = self.dimension_of(name, node.span)?;
                 let rate = Dimension::TIME.pow(Rational::integer(i128::from(*order)))?;
-                self.overflow(node.span, q.div(rate)).map(Dim::Of)
+                self.overflow(node.span, q.checked_div(rate)).map(Dim::Of)
             }
             Expr::Neg(operand) => self.infer(operand),
             Expr::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs, node),
@@ -74,7 +74,11 @@ impl Checker {
                 (Dim::Of(_), Dim::Zero) if op == BinOp::Mul => Some(Dim::Zero),
                 (Dim::Of(a), Dim::Zero) => Some(Dim::Of(a)),
                 (Dim::Of(a), Dim::Of(b)) => {
-                    let product = if op == BinOp::Mul { a.mul(b) } else { a.div(b) };
+                    let product = if op == BinOp::Mul {
+                        a.checked_mul(b)
+                    } else {
+                        a.checked_div(b)
+                    };
                     self.overflow(node.span, product).map(Dim::Of)
                 }
             },
@@ -177,7 +181,8 @@ impl Checker {
             (Dim::Zero, other) | (other, Dim::Zero) => Some(other),
             (Dim::Of(a), Dim::Of(b)) if a == b => Some(left),
             (Dim::Of(a), Dim::Of(b)) => {
-                let message = format!("{what}: {} has {a}, {} has {b}", text(lhs), text(rhs));
+                let (left, right) = (text(lhs), text(rhs));
+                let message = format!("{what}: {left} {}, {right} {}", has(a), has(b));
                 self.report(Diagnostic::new(span, message));
                 None
             }

@@ -32,6 +32,58 @@ impl UnitTable {
         self.written.get(name).map(String::as_str)
     }
 
+    /// The unit of the quantity a line of the derivation text defines, from the line's
+    /// label: `H`, `p_x`, `Q*_x`, `R1_x`, `d*p_x/dt`, `dp_x/dt`, `x'`, `x''`, `dH/dt`, a
+    /// mass `m` or `dm/dt`. Generalized forces on a dimensionless coordinate are in N·m.
+    ///
+    /// ```
+    /// use varmass_symbolic::parse::parse_system;
+    /// use varmass_symbolic::units::check_units;
+    /// let ast = parse_system("coordinates th; units th: rad, k: J; potential k*th^2").unwrap();
+    /// let table = check_units(&ast).unwrap().unwrap();
+    /// assert_eq!(table.label_unit("Q*_th").as_deref(), Some("N·m"));
+    /// assert_eq!(table.label_unit("H(q,").as_deref(), Some("J"));
+    /// assert_eq!(table.label_unit("th''").as_deref(), Some("1/s²"));
+    /// ```
+    pub fn label_unit(&self, label: &str) -> Option<String> {
+        let label = label.split('(').next().unwrap_or(label);
+        let generalized = ["Q*_", "R1_", "R2_", "d*p_", "dp_"];
+        let torque = generalized.iter().any(|p| label.starts_with(p));
+        let per_time = |name: &str, order: i128| {
+            let q = self.dimensions.get(name)?;
+            q.checked_div(Dimension::TIME.pow(crate::expr::Rational::integer(order))?)
+        };
+        let dimension = if let Some(rest) = label.strip_suffix("/dt") {
+            let rest = rest.strip_prefix('d')?;
+            match rest.strip_prefix("*p_") {
+                Some(q) => self.quantity(&format!("dp_{q}")),
+                None if rest == "H" => Some(Dimension::POWER),
+                None => match rest.strip_prefix("p_") {
+                    Some(q) => self.quantity(&format!("pdot_{q}")),
+                    None => self.quantity(&format!("mdot_{rest}")),
+                },
+            }
+        } else if let Some(q) = label.strip_suffix("''") {
+            self.coordinates
+                .iter()
+                .any(|c| c == q)
+                .then(|| per_time(q, 2))?
+        } else if let Some(q) = label.strip_suffix('\'') {
+            self.coordinates
+                .iter()
+                .any(|c| c == q)
+                .then(|| per_time(q, 1))?
+        } else if let Some(q) = label.strip_prefix("Q*_") {
+            self.quantity(&format!("Q_{q}"))
+        } else if self.masses.iter().any(|m| m == label) {
+            self.dimensions.get(label).copied()
+        } else {
+            self.quantity(label)
+        };
+        // A generalized force in J is one on a dimensionless coordinate: a torque.
+        Some(dimension?.unit(torque))
+    }
+
     /// The dimension of a derived quantity a `check` may name: `H`, `L`, `T`, `V` are
     /// energies, `power` a power; for a coordinate q, `p_q` is energy·time / dim(q) and
     /// `Q_q`, `R1_q`, `R2_q`, `dp_q`, `pdot_q` are energy / dim(q); `mdot_m` is dim(m)/s.
@@ -56,15 +108,17 @@ impl UnitTable {
             self.dimensions.get(q).copied()
         };
         if let Some(q) = coordinate("p_") {
-            return Dimension::ENERGY.mul(Dimension::TIME)?.div(q);
+            return Dimension::ENERGY
+                .checked_mul(Dimension::TIME)?
+                .checked_div(q);
         }
         for prefix in ["Q_", "R1_", "R2_", "dp_", "pdot_"] {
             if let Some(q) = coordinate(prefix) {
-                return Dimension::ENERGY.div(q);
+                return Dimension::ENERGY.checked_div(q);
             }
         }
         let mass = name.strip_prefix("mdot_")?;
         self.masses.iter().any(|m| m == mass).then_some(())?;
-        self.dimensions.get(mass)?.div(Dimension::TIME)
+        self.dimensions.get(mass)?.checked_div(Dimension::TIME)
     }
 }

@@ -51,8 +51,8 @@ pub fn unit_dimension(node: &ExprNode) -> Result<Dimension, Diagnostic> {
         Expr::Binary { op, lhs, rhs } if matches!(op, BinOp::Mul | BinOp::Div) => {
             let (left, right) = (unit_dimension(lhs)?, unit_dimension(rhs)?);
             let combined = match op {
-                BinOp::Mul => left.mul(right),
-                _ => left.div(right),
+                BinOp::Mul => left.checked_mul(right),
+                _ => left.checked_div(right),
             };
             combined.ok_or_else(too_large)
         }
