@@ -73,7 +73,7 @@ fn a_mass_law_is_a_mass_and_an_inertia_is_kg_m2() {
     );
     single(
         "coordinates th\nunits th: rad, J0: kg\ninertia J = J0\nkinetic 1/2*J*th'^2",
-        "mass law of `J`: J0 has kg, expected a moment of inertia, kg·m²",
+        "inertia law of `J`: J0 has kg, expected a moment of inertia, kg·m²",
         "J0",
     );
 }
@@ -311,6 +311,11 @@ fn unit_declarations_are_checked_themselves() {
         ]
     );
     single(
+        "coordinates x\nunits x: m, b: kg, M0: kg\nmass m = M0\nbody b: mass m, position [x]",
+        "`b` is a body: it has no unit; its mass and position do",
+        "b",
+    );
+    single(
         "coordinates x\nunits x: m, M0: kg, m: m\nmass m = M0\nbody b: mass m, position [x]",
         "`m` is a mass, in kg, but `units` gives it m",
         "m",
@@ -345,5 +350,23 @@ fn a_system_without_units_is_not_checked() {
         &format!("{wrong}\nunits x: m, m: kg, k: N/m"),
         "potential term x has m, expected an energy, kg·m²/s²",
         "x",
+    );
+}
+
+#[test]
+fn a_sum_at_the_depth_limit_is_checked_on_a_default_thread() {
+    // 995 terms, near the deepest tree the parser accepts (1000); each k*x^2 is an energy but the
+    // last one, k*x.
+    let terms = vec!["k*x^2"; 994].join(" + ");
+    let source = format!(
+        "coordinates x\nunits x: m, m: kg, k: N/m\nkinetic 1/2*m*x'^2\npotential {terms} + k*x"
+    );
+    let errors = std::thread::spawn(move || errors(&source))
+        .join()
+        .expect("no stack overflow on a 2 MB thread");
+    assert_eq!(errors.len(), 1);
+    assert_eq!(
+        errors[0].message,
+        "potential term k*x has kg·m/s², expected an energy, kg·m²/s²"
     );
 }

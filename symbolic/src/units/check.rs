@@ -197,7 +197,8 @@ impl Checker {
     fn statement(&mut self, statement: &Statement) {
         match &statement.kind {
             StatementKind::Let { name, value } => self.definition(&name.node, value),
-            StatementKind::Mass(decl) | StatementKind::Inertia(decl) => self.mass_law(decl),
+            StatementKind::Mass(decl) => self.mass_law(decl, "mass"),
+            StatementKind::Inertia(decl) => self.mass_law(decl, "inertia"),
             StatementKind::Body(body) => {
                 let label = |t: &str| format!("position of body `{}`: {t}", body.name.node);
                 for component in &body.position.node {
@@ -277,14 +278,14 @@ impl Checker {
         }
     }
 
-    fn mass_law(&mut self, decl: &MassDecl) {
+    fn mass_law(&mut self, decl: &MassDecl, kind: &str) {
         let name = &decl.name.node;
         let Some(dimension) = self.table.dimension(name) else {
             return;
         };
         match &decl.law {
             MassLaw::Law(law) => {
-                let label = |t: &str| format!("mass law of `{name}`: {t}");
+                let label = |t: &str| format!("{kind} law of `{name}`: {t}");
                 self.expect(law, dimension, None, &label);
             }
             MassLaw::State { rate } => {
@@ -359,13 +360,22 @@ impl Checker {
         known.extend(self.table.coordinates.iter().cloned());
         known.extend(self.table.masses.iter().cloned());
         known.extend(self.lets.keys().cloned());
+        let mut bodies = Vec::new();
         for statement in &ast.statements {
-            if let StatementKind::Let { name, .. } = &statement.kind {
-                known.push(name.node.clone());
+            match &statement.kind {
+                StatementKind::Let { name, .. } => known.push(name.node.clone()),
+                StatementKind::Body(body) => bodies.push(body.name.node.clone()),
+                _ => {}
             }
         }
         for entry in unit_entries(ast) {
             let name = &entry.name.node;
+            if bodies.contains(name) {
+                let message =
+                    format!("`{name}` is a body: it has no unit; its mass and position do");
+                self.report(Diagnostic::new(entry.name.span, message));
+                continue;
+            }
             if known.contains(name) || is_reserved(name) {
                 continue;
             }
