@@ -72,3 +72,37 @@ fn without_units_the_text_has_none() {
     let text = text(&plain);
     assert!(!text.contains("Units") && !text.contains("   ["), "{text}");
 }
+
+#[test]
+fn the_generated_doc_comments_state_units() {
+    let mut d = derive_source(PENDULUM, Parameters::Inferred).unwrap();
+    let target = varmass_symbolic::emit::Target {
+        name: quote::format_ident!("Pendulum"),
+        runtime: quote::quote!(::varmass::core),
+    };
+    let code = varmass_symbolic::emit::emit_system(&mut d, PENDULUM, &target).to_string();
+    let docs: Vec<&str> = code
+        .split("# [doc = \"")
+        .skip(1)
+        .filter_map(|rest| rest.split("\"]").next())
+        .collect();
+    let has = |text: &str| docs.iter().any(|d| d.contains(text));
+    assert!(has("Units: r in m, th in rad, mu in kg/s"), "{docs:#?}");
+    for line in ["H = ", "d*p_th/dt = ", "dp_r/dt = ", "th' = ", "dH/dt = "] {
+        let doc = docs
+            .iter()
+            .find(|d| d.starts_with(line))
+            .unwrap_or_else(|| panic!("{line}"));
+        let unit = doc
+            .rsplit_once("   [")
+            .map(|(_, u)| u.trim_end_matches(']'));
+        let expected = match line {
+            "H = " => "J",
+            "d*p_th/dt = " => "N·m",
+            "dp_r/dt = " => "N",
+            "th' = " => "1/s",
+            _ => "W",
+        };
+        assert_eq!(unit, Some(expected), "{doc}");
+    }
+}
