@@ -7,4 +7,5 @@ fn ui() {
     cases.compile_fail("tests/ui/dsl/*.rs");
     cases.compile_fail("tests/ui/struct/*.rs");
     cases.compile_fail("tests/ui/units/*.rs");
+    cases.compile_fail("tests/ui/models/*.rs");
 }
