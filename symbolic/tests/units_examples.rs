@@ -192,3 +192,25 @@ fn the_sled_table_has_the_units_of_its_quantities() {
     assert_eq!(table.dimension("c").unwrap().to_string(), "kg/m");
     assert_eq!(table.written("theta"), Some("rad"));
 }
+
+#[test]
+fn every_model_file_states_its_units_and_passes_the_check() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../models");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).expect("models/ exists") {
+        let path = entry.expect("a directory entry").path();
+        if path.extension().is_none_or(|e| e != "vms") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).expect("readable");
+        let ast = varmass_symbolic::parse::parse_system(&text).expect("parses");
+        let every_tag = varmass_symbolic::parse::known_tags(&ast);
+        let all = varmass_symbolic::parse::select_tags(&ast, &every_tag).expect("known tags");
+        match varmass_symbolic::units::check_units(&all) {
+            Ok(Some(_)) => count += 1,
+            Ok(None) => panic!("{} has no `units` statement", path.display()),
+            Err(errors) => panic!("{}: {}", path.display(), errors[0].render(&text)),
+        }
+    }
+    assert!(count >= 8, "{count} model files");
+}

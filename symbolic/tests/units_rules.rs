@@ -302,11 +302,9 @@ fn unit_declarations_are_checked_themselves() {
     assert_eq!(
         messages,
         [
-            "unit given for `q`, which this system does not use",
             "the unit of `x` is given twice",
             "`t` is the time, always in s",
             "`H` is a derived quantity: its unit follows from the others",
-            "unit given for `v`, which this system does not use",
             "unknown unit `sec`; the units are kg, m, s, rad, N, J, W, Pa and 1",
         ]
     );
@@ -368,5 +366,26 @@ fn a_sum_at_the_depth_limit_is_checked_on_a_default_thread() {
     assert_eq!(
         errors[0].message,
         "potential term k*x has kg·m/s², expected an energy, kg·m²/s²"
+    );
+}
+
+#[test]
+fn a_unit_for_an_unused_name_is_allowed_and_a_likely_typo_is_pointed_out() {
+    // One `units` line serves every tag selection: k_d is used only with `[drag]`.
+    derive_source(
+        "coordinates y\nunits y: m, m0: kg, g: m/s^2, k_d: kg/m\nmass m = m0\n\
+         body b: mass m, position [y]\npotential m*g*y",
+        Parameters::Inferred,
+    )
+    .unwrap();
+    let error = single(
+        "coordinates x\nunits x: m, m: kg, E: J, thetta: rad\nkinetic 1/2*m*x'^2\n\
+         potential E*cos(theta)",
+        "no unit for `theta`: with `units`, every coordinate and parameter needs one",
+        "units x: m, m: kg, E: J, thetta: rad",
+    );
+    assert_eq!(
+        error.help.as_deref(),
+        Some("add `theta: …` to the `units` statement; `thetta` has one: a typo of `theta`?")
     );
 }

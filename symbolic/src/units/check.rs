@@ -60,8 +60,8 @@ pub fn check_units(ast: &SystemAst) -> Result<Option<UnitTable>, Vec<Diagnostic>
     for statement in &ast.statements {
         checker.statement(statement);
     }
-    checker.unused_units(ast);
-    checker.missing_units(first.span);
+    checker.bodies_with_units(ast);
+    checker.missing_units(ast, first.span);
     let Checker {
         table,
         lets,
@@ -354,53 +354,30 @@ impl Checker {
         }
     }
 
-    /// A unit given for a name the system does not use is likely a typo.
-    fn unused_units(&mut self, ast: &SystemAst) {
-        let mut known: Vec<String> = self.used.iter().cloned().collect();
-        known.extend(self.table.coordinates.iter().cloned());
-        known.extend(self.table.masses.iter().cloned());
-        known.extend(self.lets.keys().cloned());
-        let mut bodies = Vec::new();
+    /// A body has no unit. A unit for a name the system does not use is allowed (one
+    /// `units` line serves every tag selection); [`Checker::missing_units`] points out a
+    /// likely typo among them.
+    fn bodies_with_units(&mut self, ast: &SystemAst) {
         for statement in &ast.statements {
-            match &statement.kind {
-                StatementKind::Let { name, .. } => known.push(name.node.clone()),
-                StatementKind::Body(body) => bodies.push(body.name.node.clone()),
-                _ => {}
-            }
-        }
-        for entry in unit_entries(ast) {
-            let name = &entry.name.node;
-            if bodies.contains(name) {
+            let StatementKind::Body(body) = &statement.kind else {
+                continue;
+            };
+            for entry in unit_entries(ast).filter(|e| e.name.node == body.name.node) {
+                let name = &entry.name.node;
                 let message =
                     format!("`{name}` is a body: it has no unit; its mass and position do");
                 self.report(Diagnostic::new(entry.name.span, message));
-                continue;
             }
-            if known.contains(name) || is_reserved(name) {
-                continue;
-            }
-            let candidates: Vec<&str> = known.iter().map(String::as_str).collect();
-            let mut diagnostic = Diagnostic::new(
-                entry.name.span,
-                format!("unit given for `{name}`, which this system does not use"),
-            );
-            if let Some(close) = keywords::closest(name, &candidates) {
-                diagnostic = diagnostic.with_help(format!("did you mean `{close}`?"));
-            }
-            self.report(diagnostic);
         }
     }
 
-    /// One diagnostic listing every name used without a unit.
-    fn missing_units(&mut self, units: Span) {
+    /// One diagnostic listing every name used without a unit, with a hint when a unit was
+    /// given for a name the system does not use that looks like a typo of a missing one.
+    fn missing_units(&mut self, ast: &SystemAst, units: Span) {
         if self.missing.is_empty() {
             return;
         }
-        let listed: Vec<String> = self
-            .missing
-            .iter()
-            .map(|(name, _)| format!("`{name}`"))
-            .collect();
+        let listed: Vec<String> = self.missing.iter().map(|(n, _)| format!("`{n}`")).collect();
         let names: Vec<String> = self
             .missing
             .iter()
@@ -410,7 +387,16 @@ impl Checker {
             "no unit for {}: with `units`, every coordinate and parameter needs one",
             listed.join(", ")
         );
-        let help = format!("add `{}` to the `units` statement", names.join(", "));
+        let mut help = format!("add `{}` to the `units` statement", names.join(", "));
+        let unused: Vec<&str> = unit_entries(ast)
+            .map(|e| e.name.node.as_str())
+            .filter(|name| !self.used.contains(*name))
+            .collect();
+        for (name, _) in &self.missing {
+            if let Some(typo) = keywords::closest(name, &unused) {
+                help.push_str(&format!("; `{typo}` has one: a typo of `{name}`?"));
+            }
+        }
         self.report(Diagnostic::new(units, message).with_help(help));
     }
 }
