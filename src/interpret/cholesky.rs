@@ -13,8 +13,7 @@ pub(super) fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) -> bool {
         for k in 0..j {
             diagonal -= m[j * n + k] * m[j * n + k];
         }
-        // NaN fails `> 0.0` too.
-        if !(diagonal > 0.0) || !diagonal.is_finite() {
+        if diagonal.is_nan() || diagonal <= 0.0 || diagonal.is_infinite() {
             return false;
         }
         let diagonal = diagonal.sqrt();

@@ -145,8 +145,7 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     fn check_masses(&self, t: f64, state: &SVector<f64, S>) -> Result<(), SystemError> {
         let mut masses = vec![f64::NAN; self.program.derivation().masses.len()];
         self.program.masses(t, state.as_slice(), &mut masses);
-        // NaN fails `mass > 0.0` too.
-        match masses.iter().position(|m| !(*m > 0.0)) {
+        match masses.iter().position(|m| m.is_nan() || *m <= 0.0) {
             Some(index) => Err(SystemError::NonPositiveMass { index }),
             None => Ok(()),
         }

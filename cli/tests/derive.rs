@@ -1,0 +1,29 @@
+//! `varmass derive`: the whole derivation of the sled, as text and as LaTeX, snapshot-tested.
+
+use assert_cmd::Command;
+
+fn derive(extra: &[&str]) -> String {
+    let file = format!("{}/tests/data/sled.vms", env!("CARGO_MANIFEST_DIR"));
+    let output = Command::cargo_bin("varmass")
+        .expect("built")
+        .args(["derive", &file])
+        .args(extra)
+        .output()
+        .expect("runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).expect("UTF-8")
+}
+
+#[test]
+fn the_sled_derivation_as_text() {
+    insta::assert_snapshot!(derive(&[]));
+}
+
+#[test]
+fn the_sled_derivation_as_latex() {
+    insta::assert_snapshot!(derive(&["--latex"]));
+}
