@@ -82,8 +82,12 @@ fn simulate() -> Result<f64, StepError<3>> {
             worst_v = worst_v.max(relative(state[1] / state[2], v));
         }
     }
-    let (t_b, burnout_state) = powered.last().ok_or(StepError::InvalidConfiguration {
-        reason: "the powered run returned no point",
+    let (t_b, burnout_state) = powered.last().ok_or_else(|| {
+        StepError::invalid_configuration(
+            burn.time(),
+            *burn.state(),
+            "the powered run returned no point",
+        )
     })?;
     let burnout_state = *burnout_state;
     let t_burn_exact = (M0 - DRY_MASS) / engine.mu;
@@ -119,8 +123,12 @@ fn simulate() -> Result<f64, StepError<3>> {
     let mut coast = DormandPrince::new(&coasting, t_b, burnout_state, control)?;
     let apex = Event::state_reaches(1, 0.0, Direction::Falling);
     let ballistic = run(&mut coast, &RunConfig::until(1e4), &[apex])?;
-    let (t_apex, apex_state) = ballistic.last().ok_or(StepError::InvalidConfiguration {
-        reason: "the ballistic run returned no point",
+    let (t_apex, apex_state) = ballistic.last().ok_or_else(|| {
+        StepError::invalid_configuration(
+            coast.time(),
+            *coast.state(),
+            "the ballistic run returned no point",
+        )
     })?;
     let t_apex_exact = t_burn_exact + v_b / engine.g;
     let y_apex_exact = y_b + v_b * v_b / (2.0 * engine.g);

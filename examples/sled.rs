@@ -105,8 +105,12 @@ where
             max_error = max_error.max(relative_error(time, state)?);
         }
     }
-    let (time, state) = solution.last().ok_or(StepError::InvalidConfiguration {
-        reason: "the run returned no point",
+    let (time, state) = solution.last().ok_or_else(|| {
+        StepError::invalid_configuration(
+            stepper.time(),
+            *stepper.state(),
+            "the run returned no point",
+        )
     })?;
     let energy_residual = solution
         .energy_residual

@@ -69,7 +69,7 @@ pub mod prelude {
         StepControl, Variational,
     };
     pub use varmass_core::{
-        run, Direction, Event, RunConfig, Solution, StepError, Stepper, StopReason, SystemError,
-        VariableMassSystem,
+        run, Direction, Event, RunConfig, Solution, StepError, StepErrorKind, Stepper, StopReason,
+        SystemError, VariableMassSystem,
     };
 }

@@ -136,7 +136,7 @@ fn no_mass_at_all_is_a_typed_error() {
     };
     let error = DormandPrince::new(&sled, 0.0, SVector::zeros(), tight(1e-12)).unwrap_err();
     assert!(
-        matches!(error, StepError::NonPositiveMass { index: 0, .. }),
+        matches!(error.kind, StepErrorKind::NonPositiveMass { index: 0 }),
         "{error:?}"
     );
 }
@@ -150,7 +150,7 @@ fn never_nan<const N: usize, const S: usize>(result: &Result<Solution<N, S>, Ste
                 assert!(state.iter().all(|c| c.is_finite()), "{state:?}");
             }
         }
-        Err(error) => assert!(error.time().is_some_and(f64::is_finite), "{error:?}"),
+        Err(error) => assert!(error.time.is_finite(), "{error:?}"),
     }
 }
 
@@ -232,14 +232,14 @@ fn a_rocket_running_out_of_mass_stops_with_a_typed_error() {
     for (name, result) in &results {
         never_nan(result);
         let error = result.as_ref().expect_err(name);
-        let time = error.time().unwrap_or(f64::NAN);
+        let time = error.time;
         assert!((time - 10.0).abs() < 0.01, "{name}: failed at t = {time}");
         assert!(
             matches!(
-                error,
-                StepError::NonPositiveMass { .. }
-                    | StepError::StepSizeUnderflow { .. }
-                    | StepError::NewtonDivergence { .. }
+                error.kind,
+                StepErrorKind::NonPositiveMass { .. }
+                    | StepErrorKind::StepSizeUnderflow { .. }
+                    | StepErrorKind::NewtonDivergence { .. }
             ),
             "{name}: {error:?}"
         );

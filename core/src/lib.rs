@@ -91,6 +91,7 @@ pub mod math;
 pub mod stepper;
 pub mod steppers;
 pub mod system;
+pub mod tolerance;
 
 #[cfg(feature = "run")]
 pub mod events;
@@ -102,7 +103,7 @@ pub mod solution;
 /// nalgebra, re-exported so generated code and users name one version.
 pub use nalgebra;
 
-pub use error::StepError;
+pub use error::{ConfigError, StepError, StepErrorKind};
 pub use stepper::{Progress, Statistics, StepOutcome, Stepper};
 pub use system::{SystemError, VariableMassSystem};
 

@@ -27,10 +27,11 @@
 use nalgebra::SVector;
 
 use super::FixedStep;
-use crate::error::StepError;
-use crate::math::{powf, sqrt};
+use crate::error::{ConfigError, StepError, StepErrorKind};
+use crate::math::powf;
 use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
+use crate::tolerance::{weighted_rms, Tolerance};
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -110,12 +111,15 @@ impl Default for AdaptiveControl {
 }
 
 impl AdaptiveControl {
-    fn validated<const S: usize>(self) -> Result<Self, StepError<S>> {
-        let tolerances_ok = self.relative_tolerance >= 0.0
-            && self.absolute_tolerance >= 0.0
-            && self.relative_tolerance.is_finite()
-            && self.absolute_tolerance.is_finite()
-            && self.relative_tolerance + self.absolute_tolerance > 0.0;
+    /// Checks the settings and returns the tolerance they give.
+    fn validated(&self) -> Result<Tolerance, ConfigError> {
+        let tolerance =
+            Tolerance::new(self.relative_tolerance, self.absolute_tolerance).map_err(|_| {
+                ConfigError {
+                    reason: "adaptive control: tolerances must be finite, non-negative and not \
+                         both zero",
+                }
+            })?;
         let initial_ok = self.initial_step.is_none_or(|h| h.is_finite() && h > 0.0);
         let factors_ok = self.safety > 0.0
             && self.safety <= 1.0
@@ -125,13 +129,12 @@ impl AdaptiveControl {
             && self.max_factor.is_finite()
             && (0.0..0.2).contains(&self.beta)
             && self.max_step > 0.0;
-        if tolerances_ok && initial_ok && factors_ok {
-            Ok(self)
+        if initial_ok && factors_ok {
+            Ok(tolerance)
         } else {
-            Err(StepError::InvalidConfiguration {
-                reason: "adaptive control: tolerances must be non-negative and not both zero, \
-                         steps positive, safety and min_factor in (0, 1], max_factor ≥ 1, \
-                         beta in [0, 0.2)",
+            Err(ConfigError {
+                reason: "adaptive control: steps must be positive, safety and min_factor in \
+                         (0, 1], max_factor ≥ 1, beta in [0, 0.2)",
             })
         }
     }
@@ -153,12 +156,31 @@ impl Default for StepControl {
     }
 }
 
+impl StepControl {
+    /// Checks the settings.
+    fn validated(self) -> Result<Mode, ConfigError> {
+        match self {
+            Self::Adaptive(control) => control
+                .validated()
+                .map(|tolerance| Mode::Adaptive(control, tolerance)),
+            Self::Fixed(fixed) => FixedStep::validated(fixed.step).map(Mode::Fixed),
+        }
+    }
+}
+
+/// A checked [`StepControl`]: the fixed step, or the adaptive settings with their tolerance.
+#[derive(Clone, Copy, Debug)]
+enum Mode {
+    Fixed(f64),
+    Adaptive(AdaptiveControl, Tolerance),
+}
+
 /// The Dormand–Prince 5(4) stepper on the state `[q, p, m_s]`.
 #[derive(Clone, Debug)]
 pub struct DormandPrince<'a, Sys, const N: usize, const S: usize> {
     system: &'a Sys,
     progress: Progress<S>,
-    control: StepControl,
+    mode: Mode,
     /// The size of the next step to try (0 until the first step chooses it).
     next_step: f64,
     /// The size of the last accepted step, for the dense output.
@@ -191,16 +213,11 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let control = match control {
-            StepControl::Adaptive(adaptive) => StepControl::Adaptive(adaptive.validated()?),
-            StepControl::Fixed(fixed) => StepControl::Fixed(FixedStep {
-                step: FixedStep::validated(fixed.step)?,
-            }),
-        };
+        let mode = control.validated().map_err(|e| e.at(time, &state))?;
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
-            control,
+            mode,
             next_step: 0.0,
             last_step: 0.0,
             stages: [SVector::zeros(); 7],
@@ -243,7 +260,7 @@ where
         y0: &SVector<f64, S>,
         k1: &SVector<f64, S>,
         h: f64,
-        adaptive: Option<&AdaptiveControl>,
+        tolerance: Option<&Tolerance>,
     ) -> Result<Attempt<S>, StepError<S>> {
         let k1 = *k1;
         let k2 = state_rate(system, statistics, t0 + C2 * h, &(y0 + k1 * (A21 * h)))?;
@@ -258,11 +275,12 @@ where
         let y1 = y0 + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5 + k6 * B6) * h;
         check_state(system, t0 + h, &y1)?;
         let k7 = state_rate(system, statistics, t0 + h, &y1)?;
-        let error = match adaptive {
+        // Each component weighed by atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|).
+        let error = match tolerance {
             None => 0.0,
-            Some(control) => {
+            Some(tolerance) => {
                 let estimate = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
-                scaled_norm(&estimate, y0, &y1, control)
+                tolerance.norm(&estimate, |i| y0[i].abs().max(y1[i].abs()))
             }
         };
         Ok(Attempt {
@@ -275,7 +293,12 @@ where
     /// The first step for the adaptive mode (HNW I, II.4, the `hinit` of `dopri5`): a step
     /// for which an explicit Euler step would change the state by about 1 % of its size,
     /// refined by an estimate of the second derivative.
-    fn initial_step(&mut self, k1: &SVector<f64, S>, control: &AdaptiveControl) -> f64 {
+    fn initial_step(
+        &mut self,
+        k1: &SVector<f64, S>,
+        control: &AdaptiveControl,
+        tolerance: &Tolerance,
+    ) -> f64 {
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
         // HNW's heuristic (I, II.4) has absolute constants (1e-6, 1e-5) and mixes ‖f‖ ~ 1/t
@@ -287,13 +310,13 @@ where
             .map(|stop| stop - t0)
             .filter(|length| *length > 0.0 && length.is_finite())
             .unwrap_or(1.0);
-        let weight =
-            |i: usize| control.absolute_tolerance + control.relative_tolerance * y0[i].abs();
+        let weight = |i: usize| tolerance.weight(y0[i].abs());
         // A component without a scale (atol = 0 and y = 0) says nothing about the step size
-        // here: it does not vote.
+        // here: it does not vote (its value is taken as 0, which counts 0).
         let norm = |v: &SVector<f64, S>| {
-            let terms = (0..S).filter(|&i| weight(i) > 0.0);
-            sqrt(terms.map(|i| square(v[i] / weight(i))).sum::<f64>() / S as f64)
+            let voting =
+                SVector::<f64, S>::from_fn(|i, _| if weight(i) > 0.0 { v[i] } else { 0.0 });
+            weighted_rms(&voting, weight)
         };
         let rate_norm = norm(k1) * unit;
         let state_norm = norm(&y0);
@@ -334,38 +357,6 @@ where
 /// Whether a step of size `h` from `t0` is positive and moves t at all.
 fn resolvable(t0: f64, h: f64) -> bool {
     h > 0.0 && t0 + h != t0
-}
-
-fn square(x: f64) -> f64 {
-    x * x
-}
-
-/// `value / scale`, with 0/0 = 0: with a purely relative tolerance (atol = 0) a component
-/// that is exactly zero has scale 0, and a zero error there meets any tolerance. (Without
-/// this, 0/0 = NaN poisoned the norm and every step was rejected.)
-fn scaled(value: f64, scale: f64) -> f64 {
-    if value == 0.0 {
-        0.0
-    } else {
-        value / scale
-    }
-}
-
-/// The RMS of the error estimate, each component scaled by atol + rtol·max(|y₀|, |y₁|).
-fn scaled_norm<const S: usize>(
-    estimate: &SVector<f64, S>,
-    y0: &SVector<f64, S>,
-    y1: &SVector<f64, S>,
-    control: &AdaptiveControl,
-) -> f64 {
-    let sum: f64 = (0..S)
-        .map(|i| {
-            let scale = control.absolute_tolerance
-                + control.relative_tolerance * y0[i].abs().max(y1[i].abs());
-            square(scaled(estimate[i], scale))
-        })
-        .sum();
-    sqrt(sum / S as f64)
 }
 
 impl<Sys, const N: usize, const S: usize> Stepper<N, S> for DormandPrince<'_, Sys, N, S>
@@ -411,26 +402,23 @@ where
             }
         };
         if self.next_step <= 0.0 {
-            self.next_step = match self.control {
-                StepControl::Fixed(fixed) => fixed.step,
-                StepControl::Adaptive(control) => match control.initial_step {
+            self.next_step = match self.mode {
+                Mode::Fixed(step) => step,
+                Mode::Adaptive(control, tolerance) => match control.initial_step {
                     Some(h) => h.min(control.max_step),
-                    None => self.initial_step(&k1, &control),
+                    None => self.initial_step(&k1, &control, &tolerance),
                 },
             };
         }
-        let adaptive = match &self.control {
-            StepControl::Adaptive(control) => Some(*control),
-            StepControl::Fixed(_) => None,
+        let (adaptive, tolerance) = match self.mode {
+            Mode::Adaptive(control, tolerance) => (Some(control), Some(tolerance)),
+            Mode::Fixed(_) => (None, None),
         };
         loop {
             let (h, reaches_stop) = self.progress.next_step(self.next_step);
             if !resolvable(t0, h) {
-                return Err(StepError::StepSizeUnderflow {
-                    time: t0,
-                    state: y0,
-                    step: h,
-                });
+                let kind = StepErrorKind::StepSizeUnderflow { step: h };
+                return Err(StepError::new(t0, y0, kind));
             }
             let attempt = Self::attempt(
                 self.system,
@@ -439,7 +427,7 @@ where
                 &y0,
                 &k1,
                 h,
-                adaptive.as_ref(),
+                tolerance.as_ref(),
             );
             let Some(control) = adaptive else {
                 let attempt = attempt?;
