@@ -200,7 +200,7 @@ fn a_failed_run_reports_the_typed_error_with_its_time_and_state() {
     );
     // RK4 at h = 0.3 steps t = 0.9 → 1.2, where m = −0.2.
     assert!(
-        stderr.contains("the run failed: mass 0 is not positive at t = 1.2"),
+        stderr.contains("the run failed at t = 1.2: the mass `m` is not positive"),
         "{stderr}"
     );
     assert!(stderr.contains("m = -0.2"), "{stderr}");

@@ -8,7 +8,8 @@ use varmass::core::steppers::{
     ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
 };
 use varmass::core::{
-    run, Direction, Event, EventAction, RunConfig, Statistics, StepError, Stepper, StopReason,
+    run, Direction, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper,
+    StopReason,
 };
 use varmass::interpret::{Program, TapeSystem};
 
@@ -112,6 +113,9 @@ fn step(steps: Steps) -> f64 {
 
 type Points = Vec<(f64, Vec<f64>)>;
 
+/// An event function g(t, state) borrowing the program.
+type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
+
 /// Runs `stepper` to the end or a stopping event: one run over every accepted step, or
 /// with `--every` one run to each output time in turn (the stepper lands on each).
 fn drive<St, const N: usize, const S: usize>(
@@ -123,7 +127,7 @@ where
     St: Stepper<N, S, System = TapeSystem<N, S>>,
 {
     let program = system.program();
-    let watchers: Vec<Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + '_>> = plan
+    let watchers: Vec<Watcher<'_, S>> = plan
         .stop_when
         .iter()
         .map(|c| watcher(program, c.observable, c.value))
@@ -178,7 +182,7 @@ fn watcher<const S: usize>(
     program: &Program,
     observable: Observable,
     value: f64,
-) -> Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + '_> {
+) -> Watcher<'_, S> {
     Box::new(move |t, state| {
         evaluate(program, observable, t, state.as_slice()).map_or(f64::NAN, |v| v - value)
     })
@@ -190,10 +194,16 @@ fn describe<const N: usize, const S: usize>(
     error: StepError<S>,
 ) -> CliError {
     let program = system.program();
-    let mut message = format!("the run failed: {error}");
-    if let (Some(time), Some(state)) = (error.time(), error.state()) {
-        message.push_str("\nstate there:");
-        message.push_str(&super::output::state_lines(program, time, state.as_slice()));
-    }
-    CliError::Run(message)
+    let what = match error.kind {
+        StepErrorKind::NonPositiveMass { index } => match program.mass_names().nth(index) {
+            Some(name) => format!("the mass `{name}` is not positive"),
+            None => error.kind.to_string(),
+        },
+        kind => kind.to_string(),
+    };
+    let state = super::output::state_lines(program, error.time, error.state.as_slice());
+    CliError::Run(format!(
+        "the run failed at t = {}: {what}\nstate there:{state}",
+        error.time
+    ))
 }
