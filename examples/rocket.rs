@@ -13,19 +13,10 @@ use std::process::ExitCode;
 
 use varmass::prelude::*;
 
-/// The rocket: the reactive thrust R1 = μ·(−u_e) is derived from the outflow, and the checks
-/// restate Meshchersky's equation m ÿ = −m g + μ u_e.
-#[variable_mass_system(
-    "
-    coordinates y
-    mass m: state, rate -mu
-    body rocket: mass m, position [y]
-    potential m*g*y
-    outflow rocket: rate mu, relative_velocity [-u_e]
-    check R1_y = -mu*u_e
-    check y'' = mu*u_e/m - g
-"
-)]
+/// The rocket of `models/rocket.vms`, without its optional `[drag]`: the reactive thrust
+/// R1 = μ·(−u_e) is derived from the outflow, and the checks restate Meshchersky's equation
+/// m ÿ = −m g + μ u_e.
+#[variable_mass_system(file = "models/rocket.vms")]
 struct Rocket {
     mu: f64,
     u_e: f64,

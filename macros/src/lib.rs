@@ -10,7 +10,11 @@ mod ast;
 mod ctxt;
 mod expand;
 mod fallback;
+mod model;
 mod valid;
+
+#[cfg(test)]
+mod tests;
 
 use proc_macro::TokenStream;
 

@@ -165,7 +165,10 @@ fn jacobian_agrees_with_finite_differences() {
             let t = env[d.time.index()];
             let state = state_of(&d, &env);
             // From the parts: J_q = F_q − F_v M⁻¹ P_q, J_p = F_v M⁻¹, J_m = F_m − F_v M⁻¹ P_m.
-            let j = &d.jacobian;
+            let j = d
+                .jacobian
+                .as_ref()
+                .expect("derive derives the Jacobian by default");
             let (fq, fv, fm) = (
                 matrix(&d, &j.rate_wrt_q, &env),
                 matrix(&d, &j.rate_wrt_velocity, &env),

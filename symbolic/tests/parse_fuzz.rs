@@ -80,6 +80,7 @@ fn dsl_piece() -> impl Strategy<Value = String> {
             "coordinates", "mass", "inertia", "let", "body", "kinetic", "potential",
             "lagrangian", "force", "thrust", "impact", "outflow", "inflow", "check", "state",
             "rate", "position", "velocity", "relative_velocity", "x", "m", "sin", "t", "_a",
+            "[drag] ", "[a, b]",
         ])
         .prop_map(str::to_string),
         4 => prop::sample::select(vec![
@@ -224,12 +225,20 @@ proptest! {
     }
 }
 
+/// A model with tagged statements (optional effects).
+const TAGGED: &str = "coordinates y
+mass m: state, rate -mu
+body rocket: mass m, position [y]
+[drag] force rocket: [-k_d*y'*abs(y')]
+[drag, wind] force rocket: [k_w*w]
+[drag] check Q_y = -k_d*y'*abs(y')";
+
 proptest! {
     #![proptest_config(config(4_000))]
 
     #[test]
     fn mutated_examples_never_panic(
-        example in prop::sample::select(vec![SLED_PAPER, SLED_BODY, ROCKET, EVERY_STATEMENT]),
+        example in prop::sample::select(vec![SLED_PAPER, SLED_BODY, ROCKET, EVERY_STATEMENT, TAGGED]),
         mutations in prop::collection::vec(mutation(), 1..5),
     ) {
         let source = mutate(example, &mutations);

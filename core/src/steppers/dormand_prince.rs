@@ -393,33 +393,20 @@ where
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
-        let k1 = match self.current_rate {
-            Some(rate) => rate,
-            None => {
-                let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;
-                self.current_rate = Some(rate);
-                rate
-            }
-        };
+        let k1 = self.rate_at_start()?;
         if self.next_step <= 0.0 {
-            self.next_step = match self.mode {
-                Mode::Fixed(step) => step,
-                Mode::Adaptive(control, tolerance) => match control.initial_step {
-                    Some(h) => h.min(control.max_step),
-                    None => self.initial_step(&k1, &control, &tolerance),
-                },
-            };
+            self.next_step = self.first_step(&k1);
         }
-        let (adaptive, tolerance) = match self.mode {
-            Mode::Adaptive(control, tolerance) => (Some(control), Some(tolerance)),
-            Mode::Fixed(_) => (None, None),
-        };
         loop {
             let (h, reaches_stop) = self.progress.next_step(self.next_step);
             if !resolvable(t0, h) {
                 let kind = StepErrorKind::StepSizeUnderflow { step: h };
                 return Err(StepError::new(t0, y0, kind));
             }
+            let tolerance = match &self.mode {
+                Mode::Adaptive(_, tolerance) => Some(tolerance),
+                Mode::Fixed(_) => None,
+            };
             let attempt = Self::attempt(
                 self.system,
                 &mut self.progress.statistics,
@@ -427,56 +414,13 @@ where
                 &y0,
                 &k1,
                 h,
-                tolerance.as_ref(),
+                tolerance,
             );
-            let Some(control) = adaptive else {
-                let attempt = attempt?;
-                return self.accept(h, reaches_stop, attempt);
+            let Mode::Adaptive(control, _) = self.mode else {
+                return self.accept(h, reaches_stop, attempt?);
             };
-            match attempt {
-                Ok(attempt) if attempt.error <= 1.0 => {
-                    // PI controller (HNW II, IV.2): h_new = h·err^(−α)·err_old^β
-                    // with α = 1/5 − 0.75β, bounded by the factor limits.
-                    let alpha = 0.2 - 0.75 * control.beta;
-                    let factor = powf(attempt.error, alpha)
-                        / powf(self.previous_error, control.beta)
-                        / control.safety;
-                    let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
-                    let mut next = h / factor;
-                    if self.last_rejected {
-                        next = next.min(h);
-                    }
-                    self.previous_error = attempt.error.max(1e-4);
-                    self.last_rejected = false;
-                    let outcome = self.accept(h, reaches_stop, attempt)?;
-                    if !reaches_stop || next > self.next_step {
-                        self.next_step = next.min(control.max_step);
-                    }
-                    return Ok(outcome);
-                }
-                Ok(attempt) => {
-                    let factor = powf(attempt.error, 0.2 - 0.75 * control.beta) / control.safety;
-                    // A non-finite error estimate (overflowing stages) shrinks the most.
-                    let factor = if attempt.error.is_finite() {
-                        factor.min(1.0 / control.min_factor)
-                    } else {
-                        1.0 / control.min_factor
-                    };
-                    self.next_step = h / factor;
-                    self.last_rejected = true;
-                    self.progress.statistics.rejected_steps += 1;
-                }
-                Err(error) => {
-                    // A trial state outside the domain (non-finite, a mass ≤ 0, a singular
-                    // mass matrix) is a step too long, not yet a failure: shrink and retry.
-                    // If the step underflows, report the cause rather than the underflow.
-                    self.next_step = h * control.min_factor;
-                    self.last_rejected = true;
-                    self.progress.statistics.rejected_steps += 1;
-                    if !resolvable(t0, self.next_step) {
-                        return Err(error);
-                    }
-                }
+            if let Some(outcome) = self.control(&control, h, reaches_stop, attempt)? {
+                return Ok(outcome);
             }
         }
     }
@@ -486,6 +430,103 @@ impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
 where
     Sys: VariableMassSystem<N, S>,
 {
+    /// The rate k₁ at the current state: the last stage of the previous step (FSAL), or
+    /// evaluated after a start or restart.
+    fn rate_at_start(&mut self) -> Result<SVector<f64, S>, StepError<S>> {
+        if let Some(rate) = self.current_rate {
+            return Ok(rate);
+        }
+        let (time, state) = (self.progress.time(), *self.progress.state());
+        let rate = state_rate(self.system, &mut self.progress.statistics, time, &state)?;
+        self.current_rate = Some(rate);
+        Ok(rate)
+    }
+
+    /// The size of the first step: the fixed step, or the adaptive control's initial step,
+    /// or one chosen from the problem.
+    fn first_step(&mut self, k1: &SVector<f64, S>) -> f64 {
+        match self.mode {
+            Mode::Fixed(step) => step,
+            Mode::Adaptive(control, tolerance) => match control.initial_step {
+                Some(h) => h.min(control.max_step),
+                None => self.initial_step(k1, &control, &tolerance),
+            },
+        }
+    }
+
+    /// The step-size controller's verdict on an attempted step of size `h`: accepted (its
+    /// outcome) when its error is at most 1, otherwise `None` with a shorter next step. A
+    /// failed attempt is a step too long as well, unless the step cannot shrink any more.
+    fn control(
+        &mut self,
+        control: &AdaptiveControl,
+        h: f64,
+        reaches_stop: bool,
+        attempt: Result<Attempt<S>, StepError<S>>,
+    ) -> Result<Option<StepOutcome>, StepError<S>> {
+        match attempt {
+            Ok(attempt) if attempt.error <= 1.0 => self
+                .accept_controlled(control, h, reaches_stop, attempt)
+                .map(Some),
+            Ok(attempt) => {
+                let factor = powf(attempt.error, 0.2 - 0.75 * control.beta) / control.safety;
+                // A non-finite error estimate (overflowing stages) shrinks the most.
+                let factor = if attempt.error.is_finite() {
+                    factor.min(1.0 / control.min_factor)
+                } else {
+                    1.0 / control.min_factor
+                };
+                self.reject(h / factor);
+                Ok(None)
+            }
+            Err(error) => {
+                // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
+                // matrix) is a step too long, not yet a failure: shrink and retry. If the
+                // step underflows, report the cause rather than the underflow.
+                self.reject(h * control.min_factor);
+                if resolvable(self.progress.time(), self.next_step) {
+                    Ok(None)
+                } else {
+                    Err(error)
+                }
+            }
+        }
+    }
+
+    /// Accepts a step whose error met the tolerance and chooses the next step by the PI
+    /// controller (HNW II, IV.2): h_new = h·err^(−α)·err_old^β with α = 1/5 − 0.75β, within
+    /// the factor limits, not growing right after a rejection.
+    fn accept_controlled(
+        &mut self,
+        control: &AdaptiveControl,
+        h: f64,
+        reaches_stop: bool,
+        attempt: Attempt<S>,
+    ) -> Result<StepOutcome, StepError<S>> {
+        let alpha = 0.2 - 0.75 * control.beta;
+        let factor =
+            powf(attempt.error, alpha) / powf(self.previous_error, control.beta) / control.safety;
+        let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
+        let mut next = h / factor;
+        if self.last_rejected {
+            next = next.min(h);
+        }
+        self.previous_error = attempt.error.max(1e-4);
+        self.last_rejected = false;
+        let outcome = self.accept(h, reaches_stop, attempt)?;
+        if !reaches_stop || next > self.next_step {
+            self.next_step = next.min(control.max_step);
+        }
+        Ok(outcome)
+    }
+
+    /// Rejects an attempt: the next attempt has size `next`.
+    fn reject(&mut self, next: f64) {
+        self.next_step = next;
+        self.last_rejected = true;
+        self.progress.statistics.rejected_steps += 1;
+    }
+
     fn accept(
         &mut self,
         h: f64,

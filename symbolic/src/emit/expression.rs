@@ -11,7 +11,7 @@ use std::collections::HashMap;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::expr::walk::{print, Prec, Printed, Printer, Syntax};
+use crate::expr::walk::{print_all, Prec, Printed, Printer, Syntax};
 use crate::expr::{ExprPool, Func, Id, Node, Rational, Symbol, SymbolKind};
 
 /// The Rust local that holds a symbol's value in generated code.
@@ -62,26 +62,36 @@ pub(crate) fn staged_block(
         .shared
         .into_iter()
         .partition(|id| bound.iter().any(|s| pool.contains(*id, *s)));
-    let syntax = RustSyntax { runtime };
-    // The temporaries so far, printed by name.
-    let mut temps: HashMap<Id, Rendered> = HashMap::new();
-    let render = |temps: &HashMap<Id, Rendered>, id: Id| print(pool, &syntax, id, temps).text;
-    let mut lets = Vec::new();
-    let mut counter = 0usize;
-    let mut hoist = |temps: &mut HashMap<Id, Rendered>, ids: &[Id], lets: &mut Vec<TokenStream>| {
-        for id in ids {
-            let value = render(temps, *id);
-            let name = format_ident!("__{}{}", prefix, counter);
-            counter += 1;
-            lets.push(quote!(let #name = #value;));
-            temps.insert(*id, atom(quote!(#name)));
-        }
+    // Early temporaries are numbered first, then late ones, each in id order.
+    let names: HashMap<Id, Ident> = early
+        .iter()
+        .chain(&late)
+        .enumerate()
+        .map(|(n, id)| (*id, format_ident!("__{}{}", prefix, n)))
+        .collect();
+    // One walk over everything: a shared node is printed once, bound to its temporary,
+    // and printed by name wherever it is used above.
+    let mut values: HashMap<Id, TokenStream> = HashMap::new();
+    let mut printed = print_all(pool, &RustSyntax { runtime }, &all, |id, value| {
+        let name = names.get(&id)?;
+        values.insert(id, value.text.clone());
+        Some(atom(quote!(#name)))
+    })
+    .into_iter()
+    .map(|p| p.text);
+    let mut lets_of = |ids: &[Id]| -> Vec<TokenStream> {
+        ids.iter()
+            .filter_map(|id| {
+                let (name, value) = (names.get(id)?, values.remove(id)?);
+                Some(quote!(let #name = #value;))
+            })
+            .collect()
     };
-    hoist(&mut temps, &early, &mut lets);
-    let first_values = first.iter().map(|e| render(&temps, *e)).collect();
+    let mut lets = lets_of(&early);
+    let first_values = printed.by_ref().take(first.len()).collect();
     lets.extend(bridge(first_values));
-    hoist(&mut temps, &late, &mut lets);
-    let outputs = roots.iter().map(|r| render(&temps, *r)).collect();
+    lets.extend(lets_of(&late));
+    let outputs = printed.collect();
     Block { lets, outputs }
 }
 
@@ -127,7 +137,7 @@ fn rational(pool: &ExprPool, id: Id) -> Option<Rational> {
 impl Syntax for RustSyntax<'_> {
     type Text = TokenStream;
 
-    fn group(&self, text: TokenStream) -> TokenStream {
+    fn group(&self, text: &TokenStream) -> TokenStream {
         quote!((#text))
     }
 
@@ -151,14 +161,14 @@ impl Syntax for RustSyntax<'_> {
         // `f64::signum(0.0)` is 1, but the derivative of |x| needs sign(0) = 0.
         if func == Func::Sign {
             let runtime = self.runtime;
-            let a = p.get(*first).text;
+            let a = &p.get(*first).text;
             return atom(quote!(#runtime::math::sign(#a)));
         }
         let receiver = self.at_least(p.get(*first), Prec::Atom);
         let method = format_ident!("{}", func.name());
         match args.get(1).filter(|_| func.arity() == 2) {
             Some(second) => {
-                let second = p.get(*second).text;
+                let second = &p.get(*second).text;
                 atom(quote!(#receiver.#method(#second)))
             }
             None => atom(quote!(#receiver.#method())),
@@ -169,7 +179,7 @@ impl Syntax for RustSyntax<'_> {
         match rational(p.pool(), factors[0]) {
             Some(c) if c.numer() == -1 && c.denom() == 1 => {
                 let rest = self.product_of(p, None, &factors[1..]);
-                let rest = self.at_least(rest, Prec::Power);
+                let rest = self.at_least(&rest, Prec::Power);
                 Printed::new(quote!(-#rest), Prec::Power)
             }
             Some(c) => self.product_of(p, Some(c.to_f64()), &factors[1..]),
@@ -181,13 +191,13 @@ impl Syntax for RustSyntax<'_> {
         match rational(p.pool(), exponent) {
             Some(e) if e.is_negative() => {
                 let below = self.power_rational(p, base, Rational::new(-e.numer(), e.denom()));
-                let below = self.at_least(below, Prec::Atom);
+                let below = self.at_least(&below, Prec::Atom);
                 Printed::new(quote!(1.0f64 / #below), Prec::Product)
             }
             Some(e) => self.power_rational(p, base, Some(e)),
             None => {
                 let b = self.at_least(p.get(base), Prec::Atom);
-                let e = p.get(exponent).text;
+                let e = &p.get(exponent).text;
                 atom(quote!(#b.powf(#e)))
             }
         }
@@ -203,24 +213,25 @@ impl Syntax for RustSyntax<'_> {
     }
 
     fn negated(&self, p: &Printer<'_, Self>, term: Id) -> Rendered {
-        self.split_sign(p, term).unwrap_or_else(|| p.get(term))
+        self.split_sign(p, term)
+            .unwrap_or_else(|| p.get(term).clone())
     }
 
     fn lead(&self, p: &Printer<'_, Self>, term: Id, negative: bool) -> TokenStream {
         if negative {
-            let m = self.at_least(self.negated(p, term), Prec::Product);
+            let m = self.at_least(&self.negated(p, term), Prec::Product);
             quote!(-#m)
         } else {
-            p.get(term).text
+            p.get(term).text.clone()
         }
     }
 
-    fn join(&self, sum: TokenStream, negative: bool, term: TokenStream) -> TokenStream {
-        if negative {
-            quote!(#sum - #term)
+    fn join(&self, sum: &mut TokenStream, negative: bool, term: TokenStream) {
+        sum.extend(if negative {
+            quote!(- #term)
         } else {
-            quote!(#sum + #term)
-        }
+            quote!(+ #term)
+        });
     }
 }
 
@@ -251,7 +262,7 @@ impl RustSyntax<'_> {
         let mut numerator = Vec::new();
         let mut denominator = Vec::new();
         if let Some(c) = coefficient.filter(|c| *c != 1.0) {
-            numerator.push(self.at_least(float_literal(c), Prec::Power));
+            numerator.push(self.at_least(&float_literal(c), Prec::Power));
         }
         for f in factors {
             let below = match p.pool().node(*f) {
@@ -280,13 +291,13 @@ impl RustSyntax<'_> {
         let below = if denominator.len() == 1 {
             denominator
                 .pop()
-                .map(|d| self.at_least(d, Prec::Atom))
+                .map(|d| self.at_least(&d, Prec::Atom))
                 .unwrap_or_default()
         } else {
             let parts = times(
                 denominator
                     .into_iter()
-                    .map(|d| self.at_least(d, Prec::Power))
+                    .map(|d| self.at_least(&d, Prec::Power))
                     .collect(),
             );
             quote!((#parts))
@@ -301,7 +312,7 @@ impl RustSyntax<'_> {
         };
         let b = p.get(base);
         if e.is_one() {
-            return b;
+            return b.clone();
         }
         let receiver = self.at_least(b, Prec::Atom);
         let tokens = match (e.numer(), e.denom()) {
@@ -312,7 +323,7 @@ impl RustSyntax<'_> {
                 quote!(#receiver.powi(#n))
             }
             _ => {
-                let e = self.at_least(float_literal(e.to_f64()), Prec::Atom);
+                let e = self.at_least(&float_literal(e.to_f64()), Prec::Atom);
                 quote!(#receiver.powf(#e))
             }
         };

@@ -321,7 +321,10 @@ impl Emitter<'_> {
     pub(crate) fn jacobian(&self) -> TokenStream {
         let runtime = &self.target.runtime;
         let (n_lit, s, n, k) = self.sizes();
-        let j = &self.d.jacobian;
+        let Some(j) = &self.d.jacobian else {
+            // Not derived: the trait's finite-difference default serves.
+            return TokenStream::new();
+        };
         let blocks: [&Vec<Vec<Id>>; 6] = [
             &j.rate_wrt_q,
             &j.rate_wrt_velocity,

@@ -15,13 +15,24 @@ use quote::quote;
 
 pub use system::Target;
 
-use crate::mechanics::Derivation;
+use crate::mechanics::{Derivation, Outputs};
 use system::Emitter;
 
-/// The inherent constants and the trait impl for `target.name`.
+/// The inherent constants and the trait impl for `target.name`, with every optional output.
 pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenStream {
-    let text = d.to_text();
-    let latex = d.to_latex();
+    emit_system_for(d, source, target, Outputs::FULL)
+}
+
+/// [`emit_system`] with only the optional outputs `outputs` asks for; the trait's defaults
+/// serve for the methods left out. The Jacobian is emitted when it is asked for and was
+/// derived (see [`crate::mechanics::derive_for`]).
+pub fn emit_system_for(
+    d: &mut Derivation,
+    source: &str,
+    target: &Target,
+    outputs: Outputs,
+) -> TokenStream {
+    let texts = outputs.derivation.then(|| derivation_texts(d));
     let velocity_ids = d
         .coordinates
         .iter()
@@ -30,7 +41,7 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
     // The code evaluates sin/cos of sums of two coordinates through the sines and cosines
     // of the coordinates themselves (shared by CSE); the text above keeps cos(a - b).
     let mut for_code = std::collections::HashMap::new();
-    for e in code_roots(d) {
+    for e in code_roots(d, outputs) {
         let expanded = d.pool.expand_trig_arguments(e);
         if expanded != e {
             for_code.insert(e, expanded);
@@ -96,21 +107,17 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
         ),
         emitter.accelerations(),
         emitter.velocities(),
-        emitter.hamiltonian(),
+        optional(outputs.hamiltonian, || emitter.hamiltonian()),
         emitter.canonical_rates(),
         emitter.state_rate(),
-        emitter.power(),
-        emitter.jacobian(),
+        optional(outputs.power, || emitter.power()),
+        optional(outputs.jacobian, || emitter.jacobian()),
     ];
     quote! {
         impl #name {
             /// The system in the DSL, as written.
             pub const SOURCE: &'static str = #source;
-            /// The derivation of this system as text, in the order of the paper
-            /// (L, p, H, forces, canonical equations, true rates).
-            pub const DERIVATION: &'static str = #text;
-            /// The derivation of this system as LaTeX (`align*` environments).
-            pub const DERIVATION_LATEX: &'static str = #latex;
+            #texts
             /// The parameters (fields) the equations use, in order.
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
         }
@@ -124,10 +131,37 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
     }
 }
 
-/// Every expression of `d` that generated code evaluates.
-fn code_roots(d: &Derivation) -> Vec<crate::expr::Id> {
-    let mut roots = vec![d.lagrangian, d.energy, d.power];
-    roots.extend(d.hamiltonian);
+/// The `DERIVATION` and `DERIVATION_LATEX` constants.
+fn derivation_texts(d: &mut Derivation) -> TokenStream {
+    let text = d.to_text();
+    let latex = d.to_latex();
+    quote! {
+        /// The derivation of this system as text, in the order of the paper
+        /// (L, p, H, forces, canonical equations, true rates).
+        pub const DERIVATION: &'static str = #text;
+        /// The derivation of this system as LaTeX (`align*` environments).
+        pub const DERIVATION_LATEX: &'static str = #latex;
+    }
+}
+
+/// A method's code when it is asked for, nothing otherwise.
+fn optional(asked: bool, method: impl FnOnce() -> TokenStream) -> TokenStream {
+    if asked {
+        method()
+    } else {
+        TokenStream::new()
+    }
+}
+
+/// Every expression of `d` that generated code evaluates with `outputs`.
+fn code_roots(d: &Derivation, outputs: Outputs) -> Vec<crate::expr::Id> {
+    let mut roots = vec![d.lagrangian, d.energy];
+    if outputs.power {
+        roots.push(d.power);
+    }
+    if outputs.hamiltonian {
+        roots.extend(d.hamiltonian);
+    }
     roots.extend(d.closed_laws.iter().flatten());
     for list in [
         &d.mass_rates,
@@ -148,16 +182,17 @@ fn code_roots(d: &Derivation) -> Vec<crate::expr::Id> {
     if let crate::mechanics::VelocitySolve::Symbolic(v) = &d.velocities {
         roots.extend(v);
     }
-    let j = &d.jacobian;
-    for matrix in [
-        &d.mass_matrix,
-        &j.rate_wrt_q,
-        &j.rate_wrt_velocity,
-        &j.rate_wrt_state_mass,
-        &j.momentum_wrt_q,
-        &j.momentum_wrt_state_mass,
-    ] {
-        roots.extend(matrix.iter().flatten());
+    roots.extend(d.mass_matrix.iter().flatten());
+    if let Some(j) = d.jacobian.as_ref().filter(|_| outputs.jacobian) {
+        for matrix in [
+            &j.rate_wrt_q,
+            &j.rate_wrt_velocity,
+            &j.rate_wrt_state_mass,
+            &j.momentum_wrt_q,
+            &j.momentum_wrt_state_mass,
+        ] {
+            roots.extend(matrix.iter().flatten());
+        }
     }
     roots
 }

@@ -2,8 +2,6 @@
 //! names, subscripts from `m0` and `u_e`, `\sin`, `\sqrt`, `\left( \right)` — the LaTeX
 //! [`Syntax`] of the shared printing walk.
 
-use std::collections::HashMap;
-
 use super::func::Func;
 use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
@@ -130,7 +128,7 @@ fn join_factors(parts: &[String]) -> String {
 impl ExprPool {
     /// `e` in LaTeX (math mode, without delimiters).
     pub fn latex(&self, e: Id) -> String {
-        print(self, &Latex, e, &HashMap::new()).text
+        print(self, &Latex, e).text
     }
 
     /// The LaTeX of a symbol: `\dot{x}` for x', `\ddot{x}` for x'', else from its name.
@@ -153,7 +151,7 @@ struct Latex;
 impl Syntax for Latex {
     type Text = String;
 
-    fn group(&self, text: String) -> String {
+    fn group(&self, text: &String) -> String {
         format!("\\left({text}\\right)")
     }
 
@@ -203,12 +201,12 @@ impl Syntax for Latex {
     }
 
     fn lead(&self, p: &Printer<'_, Self>, term: Id, _negative: bool) -> String {
-        p.get(term).text
+        p.get(term).text.clone()
     }
 
-    fn join(&self, sum: String, negative: bool, term: String) -> String {
-        let op = if negative { " - " } else { " + " };
-        format!("{sum}{op}{term}")
+    fn join(&self, sum: &mut String, negative: bool, term: String) {
+        sum.push_str(if negative { " - " } else { " + " });
+        sum.push_str(&term);
     }
 }
 
@@ -221,7 +219,7 @@ impl Latex {
         args: &[Id],
         power: Option<&str>,
     ) -> PrintedText {
-        let args: Vec<String> = args.iter().map(|a| p.get(*a).text).collect();
+        let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
         let inner = args.join(", ");
         let named = |command: &str| match power {
             Some(p) => format!("{command}^{{{p}}}\\left({inner}\\right)"),
@@ -258,7 +256,7 @@ impl Latex {
                 }
             }
         }
-        numerator.extend(view.numerator.iter().map(|f| p.get(*f)));
+        numerator.extend(view.numerator.iter().map(|f| p.get(*f).clone()));
         denominator.extend(
             view.denominator
                 .iter()
@@ -272,7 +270,7 @@ impl Latex {
                 _ => join_factors(
                     &parts
                         .into_iter()
-                        .map(|p| self.at_least(p, Prec::Power))
+                        .map(|p| self.at_least(&p, Prec::Power))
                         .collect::<Vec<_>>(),
                 ),
             }
@@ -282,7 +280,7 @@ impl Latex {
                 let single = single.clone();
                 return if view.negative {
                     Printed::new(
-                        format!("-{}", self.at_least(single, Prec::Power)),
+                        format!("-{}", self.at_least(&single, Prec::Power)),
                         Prec::Sum,
                     )
                 } else {
@@ -307,14 +305,14 @@ impl Latex {
         let pool = p.pool();
         let value = pool.exponent_value(x);
         match value {
-            Some(n) if n.is_one() => return p.get(b),
+            Some(n) if n.is_one() => return p.get(b).clone(),
             Some(Number::Exact(r)) if r == Rational::HALF => {
                 return Printed::new(format!("\\sqrt{{{}}}", p.get(b).text), Prec::Atom)
             }
             _ => {}
         }
         let exponent = match x {
-            Exponent::Of(x) => p.get(x).text,
+            Exponent::Of(x) => p.get(x).text.clone(),
             Exponent::Negated(x) => self.negated(p, x).text,
         };
         // sin²(u) rather than (sin(u))² for positive integer powers of named functions.

@@ -229,28 +229,13 @@ impl ExprPool {
     /// Every id reachable from `roots` (looking through definitions if asked), ascending,
     /// hence children before parents. Iterative: no recursion on deep expressions.
     pub(crate) fn reachable(&self, roots: &[Id], through_definitions: bool) -> Vec<Id> {
-        self.reachable_where(roots, through_definitions, |_| false)
-    }
-
-    /// Every id reachable from `root` without passing through a node for which `stop`
-    /// holds (those are left out), ascending. Definitions are not looked through.
-    pub(crate) fn reachable_until(&self, root: Id, stop: impl Fn(Id) -> bool) -> Vec<Id> {
-        self.reachable_where(&[root], false, stop)
-    }
-
-    fn reachable_where(
-        &self,
-        roots: &[Id],
-        through_definitions: bool,
-        stop: impl Fn(Id) -> bool,
-    ) -> Vec<Id> {
         // A set, not a bitmap of the whole pool: the cost follows the expression, not the
         // (ever-growing) arena.
         let mut seen: HashSet<Id> = HashSet::new();
         let mut stack: Vec<Id> = roots.to_vec();
         let mut out = Vec::new();
         while let Some(id) = stack.pop() {
-            if id.index() >= self.nodes.len() || stop(id) || !seen.insert(id) {
+            if id.index() >= self.nodes.len() || !seen.insert(id) {
                 continue;
             }
             out.push(id);

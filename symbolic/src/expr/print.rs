@@ -3,7 +3,6 @@
 //! the shared walk. Also the views of sums and products (signs pulled out, negative powers
 //! as denominators) shared with the LaTeX printer.
 
-use std::collections::HashMap;
 use std::fmt;
 
 use super::func::Func;
@@ -39,7 +38,7 @@ pub struct DisplayExpr<'a> {
 
 impl fmt::Display for DisplayExpr<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&print(self.pool, &Dsl, self.id, &HashMap::new()).text)
+        f.write_str(&print(self.pool, &Dsl, self.id).text)
     }
 }
 
@@ -137,7 +136,7 @@ pub(crate) type PrintedText = Printed<String>;
 impl Syntax for Dsl {
     type Text = String;
 
-    fn group(&self, text: String) -> String {
+    fn group(&self, text: &String) -> String {
         format!("({text})")
     }
 
@@ -155,7 +154,7 @@ impl Syntax for Dsl {
     }
 
     fn call(&self, p: &Printer<'_, Self>, f: Func, args: &[Id]) -> PrintedText {
-        let args: Vec<String> = args.iter().map(|a| p.get(*a).text).collect();
+        let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
         Printed::new(format!("{}({})", f.name(), args.join(", ")), Prec::Atom)
     }
 
@@ -165,7 +164,7 @@ impl Syntax for Dsl {
 
     fn power(&self, p: &Printer<'_, Self>, b: Id, x: Id) -> PrintedText {
         if p.pool().exponent_is_negative(x) {
-            let den = self.at_least(self.power_of(p, b, Exponent::Negated(x)), Prec::Power);
+            let den = self.at_least(&self.power_of(p, b, Exponent::Negated(x)), Prec::Power);
             Printed::new(format!("1/{den}"), Prec::Product)
         } else {
             self.power_of(p, b, Exponent::Of(x))
@@ -194,12 +193,12 @@ impl Syntax for Dsl {
     /// The lead term whole: `-((a + b)*(c + d))` must keep its grouping (see
     /// [`Dsl::product_of`]).
     fn lead(&self, p: &Printer<'_, Self>, term: Id, _negative: bool) -> String {
-        p.get(term).text
+        p.get(term).text.clone()
     }
 
-    fn join(&self, sum: String, negative: bool, term: String) -> String {
-        let op = if negative { " - " } else { " + " };
-        format!("{sum}{op}{term}")
+    fn join(&self, sum: &mut String, negative: bool, term: String) {
+        sum.push_str(if negative { " - " } else { " + " });
+        sum.push_str(&term);
     }
 }
 
@@ -218,7 +217,7 @@ impl Dsl {
             view.negative,
         ) {
             if view.coefficient.is_one() {
-                return p.get(*single);
+                return p.get(*single).clone();
             }
         }
         let (numerator_number, denominator_number) = match view.coefficient {
@@ -245,7 +244,7 @@ impl Dsl {
         let denominator: Vec<String> = others
             .into_iter()
             .chain(sums)
-            .map(|d| self.at_least(self.power_of(p, d.0, d.1), Prec::Power))
+            .map(|d| self.at_least(&self.power_of(p, d.0, d.1), Prec::Power))
             .collect();
         let scaled = view.negative || numerator_number.is_some() || denominator_number.is_some();
         let only_sums = !view.numerator.is_empty() && view.numerator.iter().all(is_sum);
@@ -267,20 +266,20 @@ impl Dsl {
     /// `b^x` with `x` as printed: `b` alone for 1, `sqrt(b)` for 1/2.
     fn power_of(&self, p: &Printer<'_, Self>, b: Id, x: Exponent) -> PrintedText {
         match p.pool().exponent_value(x) {
-            Some(n) if n.is_one() => return p.get(b),
+            Some(n) if n.is_one() => return p.get(b).clone(),
             Some(Number::Exact(r)) if r == Rational::HALF => {
                 return Printed::new(format!("sqrt({})", p.get(b).text), Prec::Atom)
             }
             _ => {}
         }
         let exponent = match x {
-            Exponent::Of(x) => p.get(x),
+            Exponent::Of(x) => p.get(x).clone(),
             Exponent::Negated(x) => self.negated(p, x),
         };
         let text = format!(
             "{}^{}",
             self.at_least(p.get(b), Prec::Atom),
-            self.at_least(exponent, Prec::Power)
+            self.at_least(&exponent, Prec::Power)
         );
         Printed::new(text, Prec::Power)
     }

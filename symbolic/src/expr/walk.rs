@@ -3,7 +3,7 @@
 //! [`ExprPool`]), each by a small [`Syntax`] from the printed forms of its descendants. No
 //! recursion, so deep expressions cannot overflow the stack.
 
-use std::collections::HashMap;
+use std::collections::HashSet;
 
 use super::func::Func;
 use super::node::{Id, Node};
@@ -46,7 +46,7 @@ pub(crate) trait Syntax: Sized {
     type Text: Clone + Default;
 
     /// `text` in parentheses.
-    fn group(&self, text: Self::Text) -> Self::Text;
+    fn group(&self, text: &Self::Text) -> Self::Text;
     /// An exact constant.
     fn number(&self, r: Rational) -> Printed<Self::Text>;
     /// An inexact constant.
@@ -65,34 +65,34 @@ pub(crate) trait Syntax: Sized {
     fn negated(&self, p: &Printer<'_, Self>, term: Id) -> Printed<Self::Text>;
     /// The first term of a sum.
     fn lead(&self, p: &Printer<'_, Self>, term: Id, negative: bool) -> Self::Text;
-    /// `sum + term`, or `sum - term` when `negative`.
-    fn join(&self, sum: Self::Text, negative: bool, term: Self::Text) -> Self::Text;
+    /// Appends ` + term`, or ` - term` when `negative`, to `sum`.
+    fn join(&self, sum: &mut Self::Text, negative: bool, term: Self::Text);
 
     /// `printed`, grouped if it binds more loosely than `prec`.
-    fn at_least(&self, printed: Printed<Self::Text>, prec: Prec) -> Self::Text {
+    fn at_least(&self, printed: &Printed<Self::Text>, prec: Prec) -> Self::Text {
         if printed.prec < prec {
-            self.group(printed.text)
+            self.group(&printed.text)
         } else {
-            printed.text
+            printed.text.clone()
         }
     }
 
     /// A sum: the lead term, then every other after ` + ` or ` - `, binding at least like
     /// a product.
     fn sum(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Printed<Self::Text> {
-        let mut text = None;
+        let mut text: Option<Self::Text> = None;
         for (t, negative) in self.terms(p, terms) {
-            text = Some(match text {
-                None => self.lead(p, t, negative),
+            match &mut text {
+                None => text = Some(self.lead(p, t, negative)),
                 Some(sum) => {
                     let term = if negative {
-                        self.negated(p, t)
+                        self.at_least(&self.negated(p, t), Prec::Product)
                     } else {
-                        p.get(t)
+                        self.at_least(p.get(t), Prec::Product)
                     };
-                    self.join(sum, negative, self.at_least(term, Prec::Product))
+                    self.join(sum, negative, term);
                 }
-            });
+            }
         }
         Printed::new(text.unwrap_or_default(), Prec::Sum)
     }
@@ -101,8 +101,12 @@ pub(crate) trait Syntax: Sized {
 /// The printed forms of the nodes below the one being printed.
 pub(crate) struct Printer<'a, S: Syntax> {
     pool: &'a ExprPool,
-    bound: &'a HashMap<Id, Printed<S::Text>>,
-    printed: HashMap<Id, Printed<S::Text>>,
+    /// The nodes printed so far, in ascending id order (the order of the walk).
+    printed: Vec<(Id, Printed<S::Text>)>,
+    /// The nodes whose printed form the caller replaced (temporaries of generated code).
+    bound: HashSet<Id>,
+    /// What [`get`](Self::get) answers for a node not printed (unreachable).
+    missing: Printed<S::Text>,
 }
 
 impl<S: Syntax> Printer<'_, S> {
@@ -111,51 +115,74 @@ impl<S: Syntax> Printer<'_, S> {
         self.pool
     }
 
-    /// Whether `id` was given its printed form by the caller (a temporary of generated
-    /// code), so that its structure is not to be looked into.
+    /// Whether `id` is printed as the caller replaced it (a temporary of generated code,
+    /// by name), so that its structure is not to be looked into.
     pub(crate) fn is_bound(&self, id: Id) -> bool {
-        self.bound.contains_key(&id)
+        self.bound.contains(&id)
     }
 
     /// The printed form of a node below the current one.
-    pub(crate) fn get(&self, id: Id) -> Printed<S::Text> {
-        self.bound
-            .get(&id)
-            .or_else(|| self.printed.get(&id))
-            .cloned()
+    pub(crate) fn get(&self, id: Id) -> &Printed<S::Text> {
+        match self.printed.binary_search_by_key(&id, |(i, _)| *i) {
+            Ok(at) => &self.printed[at].1,
             // Unreachable: the walk prints every node below a parent before it.
-            .unwrap_or_else(|| Printed::new(S::Text::default(), Prec::Atom))
+            Err(_) => &self.missing,
+        }
+    }
+
+    fn print_node(&self, syntax: &S, id: Id) -> Printed<S::Text> {
+        match self.pool.node(id) {
+            Node::Num(r) => syntax.number(*r),
+            Node::Float(bits) => syntax.float(f64::from_bits(*bits)),
+            Node::Sym(s) => syntax.symbol(self.pool, *s),
+            Node::Call(f, args) => syntax.call(self, *f, args),
+            Node::Add(terms) => syntax.sum(self, terms),
+            Node::Mul(factors) => syntax.product(self, factors),
+            Node::Pow(b, x) => syntax.power(self, *b, *x),
+        }
     }
 }
 
-/// Prints `root` in `syntax`. The nodes in `bound` are printed as given and not looked
-/// into (the temporaries of generated code).
-pub(crate) fn print<S: Syntax>(
+/// Prints `root` in `syntax`.
+pub(crate) fn print<S: Syntax>(pool: &ExprPool, syntax: &S, root: Id) -> Printed<S::Text> {
+    let mut printed = print_all(pool, syntax, &[root], |_, _| None);
+    printed
+        .pop()
+        .unwrap_or_else(|| syntax.number(Rational::ZERO))
+}
+
+/// Prints every root in `syntax`, in one walk over the nodes below them. After each node
+/// is printed, `bind` may replace its printed form (a temporary of generated code, then
+/// printed by name in every node above it, which [`Printer::is_bound`] then tells).
+pub(crate) fn print_all<S: Syntax>(
     pool: &ExprPool,
     syntax: &S,
-    root: Id,
-    bound: &HashMap<Id, Printed<S::Text>>,
-) -> Printed<S::Text> {
+    roots: &[Id],
+    mut bind: impl FnMut(Id, &Printed<S::Text>) -> Option<Printed<S::Text>>,
+) -> Vec<Printed<S::Text>> {
+    let order = pool.reachable(roots, false);
     let mut printer = Printer {
         pool,
-        bound,
-        printed: HashMap::new(),
+        printed: Vec::with_capacity(order.len()),
+        bound: HashSet::new(),
+        missing: Printed::new(S::Text::default(), Prec::Atom),
     };
-    for id in pool.reachable_until(root, |id| bound.contains_key(&id)) {
-        let printed = match pool.node(id) {
-            Node::Num(r) => syntax.number(*r),
-            Node::Float(bits) => syntax.float(f64::from_bits(*bits)),
-            Node::Sym(s) => syntax.symbol(pool, *s),
-            Node::Call(f, args) => syntax.call(&printer, *f, args),
-            Node::Add(terms) => syntax.sum(&printer, terms),
-            Node::Mul(factors) => syntax.product(&printer, factors),
-            Node::Pow(b, x) => syntax.power(&printer, *b, *x),
-        };
-        printer.printed.insert(id, printed);
+    for id in order {
+        let mut printed = printer.print_node(syntax, id);
+        if let Some(replaced) = bind(id, &printed) {
+            printed = replaced;
+            printer.bound.insert(id);
+        }
+        printer.printed.push((id, printed));
     }
-    match printer.printed.contains_key(&root) || bound.contains_key(&root) {
-        true => printer.get(root),
-        // An id of another pool reads as the zero constant (see `ExprPool::node`).
-        false => syntax.number(Rational::ZERO),
-    }
+    roots
+        .iter()
+        .map(
+            |r| match printer.printed.binary_search_by_key(r, |(i, _)| *i) {
+                Ok(at) => printer.printed[at].1.clone(),
+                // An id of another pool reads as the zero constant (see `ExprPool::node`).
+                Err(_) => syntax.number(Rational::ZERO),
+            },
+        )
+        .collect()
 }

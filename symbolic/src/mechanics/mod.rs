@@ -30,6 +30,7 @@ mod lagrangian;
 mod linear;
 mod masses;
 mod model;
+mod outputs;
 mod render;
 mod resolve;
 
@@ -41,6 +42,7 @@ pub use model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
     Model, Term, TermKind,
 };
+pub use outputs::{Outputs, UnknownOutput};
 pub use resolve::{is_reserved, Parameters};
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
@@ -52,8 +54,18 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
 
 /// Derives a parsed system and verifies its `check`s.
 pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
+    derive_for(ast, parameters, Outputs::FULL)
+}
+
+/// [`derive`], deriving only the optional quantities `outputs` asks for (the Jacobian is
+/// `None` without [`Outputs::jacobian`]).
+pub fn derive_for(
+    ast: &SystemAst,
+    parameters: Parameters,
+    outputs: Outputs,
+) -> Result<Derivation, Vec<Diagnostic>> {
     let model = build::build_model(ast, parameters)?;
-    derivation::derive_model(model)
+    derivation::derive_model(model, outputs)
 }
 
 /// Parses and derives DSL source text.

@@ -89,6 +89,9 @@ pub struct Statement {
     pub kind: StatementKind,
     /// Where it is.
     pub span: Span,
+    /// The tags written before the keyword (`[drag] force …`); empty for an untagged
+    /// statement. See [`crate::parse::select_tags`] for what they mean.
+    pub tags: Vec<Spanned<String>>,
 }
 
 /// The statements of SPEC §2.

@@ -1,7 +1,8 @@
 //! The nom grammar of the DSL (SPEC §2).
 //!
 //! ```text
-//! system    := { separator | statement }                separator := newline | `;`
+//! system    := { separator | [ tags ] statement }       separator := newline | `;`
+//! tags      := `[` name { `,` name } `]`                (see `parse::select_tags`)
 //! statement := `coordinates` name { `,` name }
 //!            | (`mass` | `inertia`) name ( `=` expr | `:` `state` `,` `rate` expr )
 //!            | `let` name `=` expr

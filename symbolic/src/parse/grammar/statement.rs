@@ -33,6 +33,7 @@ impl<'a> Grammar<'a> {
     /// One statement, from its keyword up to (not including) the `;`, newline or end of
     /// input that ends it.
     pub(super) fn statement(&self, input: &'a str) -> PResult<'a, Statement> {
+        let (input, tags) = self.tags(input)?;
         let head = match self.identifier(input) {
             Ok((_, head)) => head,
             Err(_) => {
@@ -79,7 +80,32 @@ impl<'a> Grammar<'a> {
         if !(at.is_empty() || at.starts_with('\n') || at.starts_with(';')) {
             return Err(self.unexpected(at, follow));
         }
-        Ok((rest, Statement { kind, span }))
+        Ok((rest, Statement { kind, span, tags }))
+    }
+
+    /// The optional tags before a statement's keyword: `[tag]` or `[tag1, tag2]`.
+    fn tags(&self, input: &'a str) -> PResult<'a, Vec<Spanned<String>>> {
+        let Ok((mut rest, _)) = self.punct(input, '[') else {
+            return Ok((input, Vec::new()));
+        };
+        let mut tags: Vec<Spanned<String>> = Vec::new();
+        let mut after = "[".to_string();
+        loop {
+            let (next, tag) = self.required(rest, false, "a tag name", &after, |i| self.name(i))?;
+            after = tag.node.clone();
+            tags.push(tag);
+            match self.punct_after_blanks(next, ',') {
+                Ok((next, _)) => (rest, after) = (next, ",".to_string()),
+                Err(_) => {
+                    rest = next;
+                    break;
+                }
+            }
+        }
+        let (rest, _) = self.required(rest, false, "`,` or `]`", &after, |i| {
+            self.punct_after_blanks(i, ']')
+        })?;
+        Ok((self.skip_blanks(rest, false), tags))
     }
 
     fn unknown_statement(
