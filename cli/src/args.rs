@@ -24,11 +24,14 @@ pub enum Command {
     Run(Box<RunArgs>),
 }
 
-/// The model file.
+/// The model file and the optional effects it is built with.
 #[derive(Debug, Args)]
 pub struct ModelArgs {
     /// The model file (varmass DSL).
     pub file: PathBuf,
+    /// Include the statements tagged `[TAG]` (repeat for several effects).
+    #[arg(long = "with", value_name = "TAG")]
+    pub with: Vec<String>,
 }
 
 /// `varmass derive`.

@@ -27,8 +27,8 @@ use error::CliError;
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Check(a) => commands::check::check(&a.file),
-        Command::Derive(a) => commands::derive::derive(&a.model.file, a.latex),
+        Command::Check(a) => commands::check::check(&a),
+        Command::Derive(a) => commands::derive::derive(&a.model, a.latex),
         Command::Run(a) => run::run(&a),
     };
     match result {

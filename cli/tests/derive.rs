@@ -1,12 +1,13 @@
-//! `varmass derive`: the whole derivation of the sled, as text and as LaTeX, snapshot-tested.
+//! `varmass derive`: the whole derivation of the paper's sled (`models/sled.vms` with its
+//! impact), as text and as LaTeX, snapshot-tested.
 
 use assert_cmd::Command;
 
 fn derive(extra: &[&str]) -> String {
-    let file = format!("{}/tests/data/sled.vms", env!("CARGO_MANIFEST_DIR"));
+    let file = format!("{}/../models/sled.vms", env!("CARGO_MANIFEST_DIR"));
     let output = Command::cargo_bin("varmass")
         .expect("built")
-        .args(["derive", &file])
+        .args(["derive", &file, "--with", "impact"])
         .args(extra)
         .output()
         .expect("runs");

@@ -7,6 +7,11 @@ fn data(name: &str) -> String {
     format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
+/// A model file of the repository's `models/`.
+fn model(name: &str) -> String {
+    format!("{}/../models/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
 /// Runs `varmass ARGS`, expects exit `code`, and returns stderr.
 fn fails(args: &[&str], code: i32) -> String {
     let output = Command::cargo_bin("varmass")
@@ -23,10 +28,19 @@ fn fails(args: &[&str], code: i32) -> String {
 /// `varmass run` of the sled with `extra` replacing nothing: all parameters set unless
 /// `without` names one.
 fn sled(without: &str, extra: &[&str]) -> Vec<String> {
-    let mut args: Vec<String> = ["run", &data("sled.vms"), "--init", "x=0", "--until", "1"]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
+    let mut args: Vec<String> = [
+        "run",
+        &model("sled.vms"),
+        "--with",
+        "impact",
+        "--init",
+        "x=0",
+        "--until",
+        "1",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
     for s in ["m0=10", "c=2", "g=9.81", "theta=0.5", "f_d=0.1"] {
         if !s.starts_with(&format!("{without}=")) {
             args.extend(["--set".to_string(), s.to_string()]);
@@ -46,7 +60,7 @@ fn run_sled(without: &str, extra: &[&str], code: i32) -> String {
 fn check_passes_on_a_good_model() {
     let output = Command::cargo_bin("varmass")
         .expect("built")
-        .args(["check", &data("sled.vms")])
+        .args(["check", &model("sled.vms"), "--with", "impact"])
         .output()
         .expect("runs");
     assert!(output.status.success());
@@ -121,7 +135,7 @@ fn a_missing_initial_coordinate_is_named() {
     let stderr = fails(
         &[
             "run",
-            &data("rocket.vms"),
+            &model("rocket.vms"),
             "--set",
             "mu=1",
             "--set",
@@ -178,7 +192,7 @@ fn a_failed_run_reports_the_typed_error_with_its_time_and_state() {
     let stderr = fails(
         &[
             "run",
-            &data("rocket.vms"),
+            &model("rocket.vms"),
             "--set",
             "mu=1",
             "--set",
@@ -222,4 +236,39 @@ fn an_oversized_model_names_the_limit() {
     }
     let stderr = fails(&args, 2);
     assert!(stderr.contains("the model has 5 coordinates and 0 state masses; the tool runs models with 1 to 4 coordinates"), "{stderr}");
+}
+
+#[test]
+fn an_unknown_tag_names_the_models_tags() {
+    let stderr = fails(&["check", &model("sled.vms"), "--with", "drag"], 2);
+    assert!(
+        stderr.contains("--with: unknown tag `drag`; the model's tags are `impact`"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn a_tag_brings_its_parameters() {
+    let stderr = fails(
+        &[
+            "run",
+            &model("rocket.vms"),
+            "--with",
+            "drag",
+            "--set",
+            "mu=1",
+            "--set",
+            "u_e=10",
+            "--set",
+            "g=1",
+            "--init",
+            "y=0",
+            "--init",
+            "m=1",
+            "--until",
+            "0.5",
+        ],
+        2,
+    );
+    assert!(stderr.contains("missing value for k_d"), "{stderr}");
 }

@@ -5,8 +5,9 @@ use std::path::PathBuf;
 
 use assert_cmd::Command;
 
-fn data(name: &str) -> String {
-    format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"))
+/// A model file of the repository's `models/`.
+fn model(name: &str) -> String {
+    format!("{}/../models/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -41,7 +42,16 @@ const SLED: [&str; 5] = [
 
 fn sled_run(until: &str, extra: &[&str]) -> Command {
     let mut cmd = Command::cargo_bin("varmass").expect("the binary is built");
-    cmd.args(["run", &data("sled.vms"), "--init", "x=0", "--until", until]);
+    cmd.args([
+        "run",
+        &model("sled.vms"),
+        "--with",
+        "impact",
+        "--init",
+        "x=0",
+        "--until",
+        until,
+    ]);
     for s in SLED {
         cmd.args(["--set", s]);
     }
@@ -122,7 +132,7 @@ fn every_spaces_the_rows_and_each_row_is_on_the_closed_form() {
 fn the_rocket_to_burnout_matches_tsiolkovsky() {
     let csv = scratch("rocket.csv");
     let mut cmd = Command::cargo_bin("varmass").expect("the binary is built");
-    cmd.args(["run", &data("rocket.vms")]);
+    cmd.args(["run", &model("rocket.vms")]);
     cmd.args(["--set", "mu=10", "--set", "u_e=2500", "--set", "g=9.81"]);
     cmd.args(["--init", "y=0", "--init", "m=1000", "--until", "1000"]);
     cmd.args([

@@ -1,15 +1,15 @@
 //! `varmass check FILE`: derive the model and verify its `check`s.
 
-use std::path::Path;
-
 use varmass::symbolic::expr::Identity;
 
+use crate::args::ModelArgs;
 use crate::error::CliError;
 use crate::model::load;
 
-/// Derives `file`; on success prints how each `check` was decided.
-pub fn check(file: &Path) -> Result<String, CliError> {
-    let model = load(file)?;
+/// Derives the model; on success prints how each `check` was decided.
+pub fn check(args: &ModelArgs) -> Result<String, CliError> {
+    let model = load(args)?;
+    let file = &args.file;
     let d = &model.derivation;
     let mut out = format!(
         "{}: derives ({} coordinate{}, {} mass{}, parameters: {})\n",

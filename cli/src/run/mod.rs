@@ -18,7 +18,7 @@ use crate::model::load;
 
 /// Runs the model as `args` say; returns the summary to print.
 pub fn run(args: &RunArgs) -> Result<String, CliError> {
-    let model = load(&args.model.file)?;
+    let model = load(&args.model)?;
     let values = plan::parameters(args)?;
     let borrowed: Vec<(&str, f64)> = values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
     let program =
