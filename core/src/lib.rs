@@ -95,6 +95,8 @@ pub mod tolerance;
 
 #[cfg(feature = "run")]
 pub mod events;
+#[cfg(all(feature = "run", feature = "std"))]
+pub mod fidelity;
 #[cfg(feature = "run")]
 pub mod observe;
 #[cfg(feature = "run")]
