@@ -14,6 +14,7 @@
 //! With the `run` feature (default), [`run::run`] drives any of them to an end time or an
 //! [`events::Event`] and returns a [`solution::Solution`] with the extras asked for.
 //! Failures are typed [`StepError`]s carrying the time and the state.
+//! Feature `ensemble` (and `parallel`, `serde`) adds `ensemble`: many sampled runs, shardable.
 //!
 //! Without the `std` feature the crate is `no_std`; `run` then needs only `alloc`.
 //!
@@ -93,6 +94,8 @@ pub mod steppers;
 pub mod system;
 pub mod tolerance;
 
+#[cfg(feature = "ensemble")]
+pub mod ensemble;
 #[cfg(feature = "run")]
 pub mod events;
 #[cfg(all(feature = "run", feature = "std"))]
