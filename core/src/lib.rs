@@ -98,6 +98,8 @@ pub mod tolerance;
 pub mod ensemble;
 #[cfg(feature = "run")]
 pub mod events;
+#[cfg(all(feature = "run", feature = "std"))]
+pub mod fidelity;
 #[cfg(feature = "run")]
 pub mod observe;
 #[cfg(feature = "run")]
