@@ -116,12 +116,17 @@ pub fn emit_system_for(
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
     ];
+    let units_doc = d.units_line().map(|line| {
+        let line = format!("Units: {line}.");
+        quote!(#[doc = ""] #[doc = #line])
+    });
     quote! {
         impl #name {
             /// The system in the DSL, as written.
             pub const SOURCE: &'static str = #source;
             #texts
             /// The parameters (fields) the equations use, in order.
+            #units_doc
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
         }
 

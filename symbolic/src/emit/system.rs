@@ -268,7 +268,7 @@ impl Emitter<'_> {
         let mut text = vec![title.to_string()];
         if !lines.is_empty() {
             text.extend([String::new(), "```text".to_string()]);
-            text.extend(lines);
+            text.extend(lines.iter().map(|l| format!("{l}{}", self.d.line_unit(l))));
             text.push("```".to_string());
         }
         quote!(#(#[doc = #text])*)
