@@ -110,7 +110,7 @@ impl Default for AdaptiveControl {
 }
 
 impl AdaptiveControl {
-    fn validated<const S: usize>(self) -> Result<Self, StepError<S>> {
+    pub(crate) fn validated<const S: usize>(self) -> Result<Self, StepError<S>> {
         let tolerances_ok = self.relative_tolerance >= 0.0
             && self.absolute_tolerance >= 0.0
             && self.relative_tolerance.is_finite()
@@ -272,78 +272,89 @@ where
         })
     }
 
-    /// The first step for the adaptive mode (HNW I, II.4, the `hinit` of `dopri5`): a step
-    /// for which an explicit Euler step would change the state by about 1 % of its size,
-    /// refined by an estimate of the second derivative.
+    /// The first step for the adaptive mode: [`initial_step`] for a fifth-order method.
     fn initial_step(&mut self, k1: &SVector<f64, S>, control: &AdaptiveControl) -> f64 {
-        let t0 = self.progress.time();
-        let y0 = *self.progress.state();
-        // HNW's heuristic (I, II.4) has absolute constants (1e-6, 1e-5) and mixes ‖f‖ ~ 1/t
-        // with ‖f′‖ ~ 1/t². Running it in τ = t/T, T the length of the integration, makes
-        // the first step independent of the unit of time; T = 1 (HNW's own) without a stop.
-        let unit = self
-            .progress
-            .stop_time()
-            .map(|stop| stop - t0)
-            .filter(|length| *length > 0.0 && length.is_finite())
-            .unwrap_or(1.0);
-        let weight =
-            |i: usize| control.absolute_tolerance + control.relative_tolerance * y0[i].abs();
-        // A component without a scale (atol = 0 and y = 0) says nothing about the step size
-        // here: it does not vote.
-        let norm = |v: &SVector<f64, S>| {
-            let terms = (0..S).filter(|&i| weight(i) > 0.0);
-            sqrt(terms.map(|i| square(v[i] / weight(i))).sum::<f64>() / S as f64)
-        };
-        let rate_norm = norm(k1) * unit;
-        let state_norm = norm(&y0);
-        let mut tau = if rate_norm <= 1e-5 || state_norm <= 1e-5 {
-            1e-6
-        } else {
-            0.01 * state_norm / rate_norm
-        };
-        // Norms that overflow (a tiny absolute tolerance) give 0 or NaN: fall back to the
-        // heuristic's own small default, which the controller then grows.
-        if !(tau > 0.0 && tau.is_finite()) {
-            tau = 1e-6;
-        }
-        let h = (tau * unit).min(control.max_step);
-        let probe = y0 + k1 * h;
-        let Ok(k_probe) = state_rate(self.system, &mut self.progress.statistics, t0 + h, &probe)
-        else {
-            // The probe left the domain (e.g. a mass went negative): the first guess is
-            // already small enough to try; rejections will shrink it further if needed.
-            return h;
-        };
-        let second_derivative = norm(&(k_probe - k1)) / h * unit * unit;
-        let scale = second_derivative.max(rate_norm);
-        let refined = if scale <= 1e-15 {
-            (tau * 1e-3).max(1e-6)
-        } else {
-            powf(0.01 / scale, 1.0 / 5.0)
-        };
-        let first = ((100.0 * tau).min(refined) * unit).min(control.max_step);
-        if first > 0.0 && first.is_finite() {
-            first
-        } else {
-            h
-        }
+        initial_step(self.system, &mut self.progress, k1, control, 5)
+    }
+}
+
+/// The first step of an adaptive method of order `order` (HNW I, II.4, the `hinit` of
+/// `dopri5` and `dop853`): a step for which an explicit Euler step would change the state by
+/// about 1 % of its size, refined by an estimate of the second derivative.
+pub(crate) fn initial_step<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    progress: &mut Progress<S>,
+    k1: &SVector<f64, S>,
+    control: &AdaptiveControl,
+    order: u32,
+) -> f64
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let t0 = progress.time();
+    let y0 = *progress.state();
+    // HNW's heuristic (I, II.4) has absolute constants (1e-6, 1e-5) and mixes ‖f‖ ~ 1/t
+    // with ‖f′‖ ~ 1/t². Running it in τ = t/T, T the length of the integration, makes
+    // the first step independent of the unit of time; T = 1 (HNW's own) without a stop.
+    let unit = progress
+        .stop_time()
+        .map(|stop| stop - t0)
+        .filter(|length| *length > 0.0 && length.is_finite())
+        .unwrap_or(1.0);
+    let weight = |i: usize| control.absolute_tolerance + control.relative_tolerance * y0[i].abs();
+    // A component without a scale (atol = 0 and y = 0) says nothing about the step size
+    // here: it does not vote.
+    let norm = |v: &SVector<f64, S>| {
+        let terms = (0..S).filter(|&i| weight(i) > 0.0);
+        sqrt(terms.map(|i| square(v[i] / weight(i))).sum::<f64>() / S as f64)
+    };
+    let rate_norm = norm(k1) * unit;
+    let state_norm = norm(&y0);
+    let mut tau = if rate_norm <= 1e-5 || state_norm <= 1e-5 {
+        1e-6
+    } else {
+        0.01 * state_norm / rate_norm
+    };
+    // Norms that overflow (a tiny absolute tolerance) give 0 or NaN: fall back to the
+    // heuristic's own small default, which the controller then grows.
+    if !(tau > 0.0 && tau.is_finite()) {
+        tau = 1e-6;
+    }
+    let h = (tau * unit).min(control.max_step);
+    let probe = y0 + k1 * h;
+    let Ok(k_probe) = state_rate(system, &mut progress.statistics, t0 + h, &probe) else {
+        // The probe left the domain (e.g. a mass went negative): the first guess is
+        // already small enough to try; rejections will shrink it further if needed.
+        return h;
+    };
+    let second_derivative = norm(&(k_probe - k1)) / h * unit * unit;
+    let scale = second_derivative.max(rate_norm);
+    let refined = if scale <= 1e-15 {
+        (tau * 1e-3).max(1e-6)
+    } else {
+        powf(0.01 / scale, 1.0 / f64::from(order))
+    };
+    let first = ((100.0 * tau).min(refined) * unit).min(control.max_step);
+    if first > 0.0 && first.is_finite() {
+        first
+    } else {
+        h
     }
 }
 
 /// Whether a step of size `h` from `t0` is positive and moves t at all.
-fn resolvable(t0: f64, h: f64) -> bool {
+pub(crate) fn resolvable(t0: f64, h: f64) -> bool {
     h > 0.0 && t0 + h != t0
 }
 
-fn square(x: f64) -> f64 {
+pub(crate) fn square(x: f64) -> f64 {
     x * x
 }
 
 /// `value / scale`, with 0/0 = 0: with a purely relative tolerance (atol = 0) a component
 /// that is exactly zero has scale 0, and a zero error there meets any tolerance. (Without
 /// this, 0/0 = NaN poisoned the norm and every step was rejected.)
-fn scaled(value: f64, scale: f64) -> f64 {
+pub(crate) fn scaled(value: f64, scale: f64) -> f64 {
     if value == 0.0 {
         0.0
     } else {
