@@ -22,15 +22,20 @@
 //! `CONTD5` (HNW I, II.6, and the `dopri5` code): a quartic in θ = (t − t₀)/h through y₀ and
 //! y₁ with the end slopes k₁ and k₇ and one more combination of the stages (coefficients dⱼ).
 //! The step-size controller is Gustafsson's PI controller (HNW II, IV.2) as in Hairer's
-//! `dopri5`: β = 0.04, safety 0.9, factor in [0.2, 10].
+//! `dopri5`: β = 0.04, safety 0.9, factor in [0.2, 10]. Hairer's stiffness test (stages 6
+//! and 7, both at t₀ + h; bound h|λ| = 3.25) sets [`Statistics::stiffness_detected`].
 
 use nalgebra::SVector;
 
+use super::stiffness::StiffnessTest;
 use super::FixedStep;
 use crate::error::StepError;
 use crate::math::{powf, sqrt};
 use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
+
+/// h|λ| beyond which the stiffness test counts a step as stiff (`dopri5.f`).
+const STIFFNESS_BOUND: f64 = 3.25;
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -171,12 +176,16 @@ pub struct DormandPrince<'a, Sys, const N: usize, const S: usize> {
     previous_error: f64,
     /// Whether the last attempt was rejected, so the next step may not grow.
     last_rejected: bool,
+    /// Hairer's stiffness test on stages 6 and 7 (both at t₀ + h).
+    stiffness: StiffnessTest,
 }
 
-/// One attempted step: the new state, its stages and its scaled error.
+/// One attempted step: the new state, its stages, the state of stage 6 (for the stiffness
+/// test) and its scaled error.
 struct Attempt<const S: usize> {
     state: SVector<f64, S>,
     stages: [SVector<f64, S>; 7],
+    stage_6_state: SVector<f64, S>,
     error: f64,
 }
 
@@ -207,6 +216,7 @@ where
             current_rate: None,
             previous_error: 1e-4,
             last_rejected: false,
+            stiffness: StiffnessTest::default(),
         })
     }
 
@@ -268,6 +278,7 @@ where
         Ok(Attempt {
             state: y1,
             stages: [k1, k2, k3, k4, k5, k6, k7],
+            stage_6_state: y6,
             error,
         })
     }
@@ -518,6 +529,15 @@ where
         let outcome = self
             .progress
             .accept(self.system, h, reaches_stop, attempt.state)?;
+        let statistics = &mut self.progress.statistics;
+        let stiff = self.stiffness.observe(
+            statistics.accepted_steps,
+            h,
+            (&attempt.state, &attempt.stages[6]),
+            (&attempt.stage_6_state, &attempt.stages[5]),
+            STIFFNESS_BOUND,
+        );
+        statistics.stiffness_detected |= stiff;
         self.stages = attempt.stages;
         self.current_rate = Some(attempt.stages[6]);
         self.last_step = h;

@@ -9,6 +9,7 @@ pub mod newton;
 #[cfg(test)]
 mod order_conditions;
 pub mod rk4;
+pub mod sdirk4;
 mod stiffness;
 pub mod variational;
 
@@ -18,6 +19,7 @@ pub use euler::ExplicitEuler;
 pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig};
 pub use newton::NewtonConfig;
 pub use rk4::ClassicalRk4;
+pub use sdirk4::{Sdirk4, Sdirk4Newton};
 pub use variational::{Principle, Variational, VariationalConfig};
 
 use crate::error::StepError;
