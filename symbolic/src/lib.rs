@@ -2,12 +2,17 @@
 //!
 //! The pipeline reads top to bottom, one module a stage:
 //!
-//! 1. [`parse`] — the DSL text (SPEC §2) into a statement AST that keeps positions;
+//! 1. [`parse`] — the DSL text (see `docs/dsl.md`) into a statement AST that keeps positions;
 //! 2. [`expr`] — hash-consed expressions with exact rational constants, the frozen-mass
 //!    calculus (∂*, d*/dt), canonical simplification, evaluation, printing and CSE;
-//! 3. `mechanics` — from a checked system to H, the canonical equations and the forces
+//! 3. [`mechanics`] — from a checked system to H, the canonical equations and the forces
 //!    (Zhang Jiuzhu, *Hamilton's canonical equations and Hamilton's principle for variable
-//!    mass systems*, Mechanics in Engineering 37(1):125–128, 2015).
+//!    mass systems*, Mechanics in Engineering 37(1):125–128, 2015; see
+//!    `docs/mechanics.md`);
+//! 4. [`emit`] — the derivation as Rust: the `VariableMassSystem` impl that the
+//!    `#[variable_mass_system]` macro adds, straight-line code with shared subexpressions.
+//!
+//! `ARCHITECTURE.md` at the repository root describes the stages and their invariants.
 //!
 //! Nothing in this crate panics on user input: every problem is a [`Diagnostic`] with the
 //! position of the offending text.

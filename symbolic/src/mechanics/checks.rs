@@ -1,135 +1,169 @@
-//! `check` statements: identities stated in the DSL and verified against the derivation
-//! (SPEC §2). Both sides are brought to velocity form with the mass laws substituted, then
+//! `check` statements: identities stated in the DSL and verified against the derived
+//! equations before the derivation is assembled (see `docs/dsl.md`). Both sides are brought to velocity form with the mass laws substituted, then
 //! compared by canonical form and, failing that, at random points.
 
 use std::collections::HashMap;
 
-use super::derivation::{CheckOutcome, Derivation};
+use super::derivation::{CheckOutcome, Equations};
+use super::equations::SYMBOLIC_INVERSE_MAX_DOF;
+use super::model::{Check, Model};
 use super::resolve::lower_with;
 use super::resolve::Context;
-use crate::expr::{Id, Identity, Symbol};
+use crate::expr::{ExprPool, Id, Identity, Symbol};
 use crate::parse::Diagnostic;
 
 /// The names a `check` may use for derived quantities, in velocity form.
-fn quantities(d: &Derivation) -> HashMap<String, Id> {
+fn quantities(model: &Model, e: &Equations) -> HashMap<String, Id> {
     let mut q = HashMap::new();
-    q.insert("H".to_string(), d.energy);
-    q.insert("L".to_string(), d.lagrangian);
-    q.insert("T".to_string(), d.kinetic);
-    q.insert("V".to_string(), d.potential);
-    q.insert("power".to_string(), d.power);
-    for (a, c) in d.coordinates.iter().enumerate() {
+    q.insert("H".to_string(), e.hamiltonian.energy);
+    q.insert("L".to_string(), e.energies.lagrangian);
+    q.insert("T".to_string(), e.energies.kinetic);
+    q.insert("V".to_string(), e.energies.potential);
+    q.insert("power".to_string(), e.power);
+    for (a, c) in model.coordinates.iter().enumerate() {
         let name = &c.name;
-        q.insert(format!("p_{name}"), d.momenta[a]);
-        q.insert(format!("Q_{name}"), d.active_force[a]);
-        q.insert(format!("R1_{name}"), d.reactive_thrust[a]);
-        q.insert(format!("R2_{name}"), d.impact_force[a]);
-        q.insert(format!("dp_{name}"), d.frozen_momentum_rate[a]);
-        q.insert(format!("pdot_{name}"), d.momentum_rate[a]);
-        if let Some(acc) = &d.accelerations {
+        q.insert(format!("p_{name}"), e.momenta.momenta[a]);
+        q.insert(format!("Q_{name}"), e.forces.active[a]);
+        q.insert(format!("R1_{name}"), e.forces.reactive_thrust[a]);
+        q.insert(format!("R2_{name}"), e.forces.impact[a]);
+        q.insert(format!("dp_{name}"), e.rates.frozen[a]);
+        q.insert(format!("pdot_{name}"), e.rates.total[a]);
+        if let Some(acc) = &e.accelerations.solved {
             q.insert(format!("{name}''"), acc[a]);
         }
     }
-    for (m, rate) in d.masses.iter().zip(&d.mass_rates) {
+    for (m, rate) in model.masses.iter().zip(&e.mass_rates) {
         q.insert(format!("mdot_{}", m.name), *rate);
     }
     q
 }
 
-/// Verifies every pending check against the derivation; the failures are diagnostics.
-pub(crate) fn run_checks(derivation: &mut Derivation) -> Result<(), Vec<Diagnostic>> {
-    let quantities = quantities(derivation);
-    let laws: HashMap<Symbol, Id> = derivation
+/// Verifies every check of the model against its equations; the failures are diagnostics.
+pub(crate) fn run_checks(
+    model: &mut Model,
+    equations: &Equations,
+) -> Result<Vec<CheckOutcome>, Vec<Diagnostic>> {
+    let quantities = quantities(model, equations);
+    let laws: HashMap<Symbol, Id> = model
         .masses
         .iter()
-        .zip(&derivation.closed_laws)
+        .zip(&equations.closed_laws)
         .filter_map(|(m, law)| law.map(|l| (m.symbol, l)))
         .collect();
     let mut errors = Vec::new();
-    let checks = std::mem::take(&mut derivation.scope.pending_checks);
+    let mut outcomes = Vec::new();
+    let checks = std::mem::take(&mut model.checks);
     for check in &checks {
-        let d = &mut *derivation;
-        let scope = &mut d.scope;
-        let mut lower = |node| {
-            lower_with(
-                &mut d.pool,
-                &mut scope.names,
-                &scope.parameter_mode,
-                &mut d.parameters,
-                node,
-                Context::Check,
-                Some(&quantities),
-            )
-        };
-        let lhs = lower(&check.lhs);
-        let rhs = lower(&check.rhs);
-        let (lhs, rhs) = match (lhs, rhs) {
-            (Ok(l), Ok(r)) => (l, r),
-            (l, r) => {
-                errors.extend(l.err().into_iter().flatten());
-                errors.extend(r.err().into_iter().flatten());
-                continue;
-            }
-        };
-        // Accelerations left as symbols mean q̈ was not solved symbolically.
-        let unsolved = derivation.coordinates.iter().any(|c| {
-            derivation.pool.contains(lhs, c.acceleration)
-                || derivation.pool.contains(rhs, c.acceleration)
+        let sides = lower_sides(model, check, &quantities).and_then(|(lhs, rhs)| {
+            require_solved(model, check, lhs, rhs)?;
+            Ok((lhs, rhs))
         });
-        if unsolved {
-            errors.push(Diagnostic::new(
-                check.span,
-                format!(
-                    "a check on accelerations needs q̈ in closed form, which is derived for up to {} coordinates",
-                    super::derivation::SYMBOLIC_INVERSE_MAX_DOF
-                ),
-            ));
-            continue;
-        }
-        let pool = &mut derivation.pool;
-        let lhs_physical = pool.substitute(lhs, &laws);
-        let rhs_physical = pool.substitute(rhs, &laws);
-        let verdict = pool.identical(lhs_physical, rhs_physical);
-        let text = format!("{} = {}", pool.display(lhs), pool.display(rhs));
-        match &verdict {
-            Identity::Refuted {
-                env,
-                lhs: l,
-                rhs: r,
-            } => {
-                let at: Vec<String> = env
-                    .iter()
-                    .map(|(s, v)| format!("{} = {v:.4}", pool.symbols().name(*s)))
-                    .collect();
-                errors.push(
-                    Diagnostic::new(
-                        check.span,
-                        format!(
-                            "check failed: the derivation gives {}, but the check states {}",
-                            pool.display(lhs),
-                            pool.display(rhs)
-                        ),
-                    )
-                    .with_help(format!(
-                        "at {} the sides are {} and {}",
-                        at.join(", "),
-                        short(*l),
-                        short(*r)
-                    )),
-                );
+        match sides {
+            Ok((lhs, rhs)) => {
+                let outcome = decide(&mut model.pool, lhs, rhs, &laws);
+                errors.extend(verdict_error(&model.pool, check, lhs, rhs, &outcome));
+                outcomes.push(outcome);
             }
-            Identity::Undecided => errors.push(Diagnostic::new(
-                check.span,
-                "check undecided: no sample point lies where both sides are defined",
-            )),
-            Identity::Proven | Identity::Numerical { .. } => {}
+            Err(e) => errors.extend(e),
         }
-        derivation.checks.push(CheckOutcome { text, verdict });
     }
+    model.checks = checks;
     if errors.is_empty() {
-        Ok(())
+        Ok(outcomes)
     } else {
         Err(errors)
+    }
+}
+
+/// Both sides of a check lowered, with every diagnostic of either side.
+fn lower_sides(
+    model: &mut Model,
+    check: &Check,
+    quantities: &HashMap<String, Id>,
+) -> Result<(Id, Id), Vec<Diagnostic>> {
+    let mut lower = |node| {
+        lower_with(
+            &mut model.pool,
+            &mut model.names,
+            &model.parameter_mode,
+            &mut model.parameters,
+            node,
+            Context::Check,
+            Some(quantities),
+        )
+    };
+    match (lower(&check.lhs), lower(&check.rhs)) {
+        (Ok(l), Ok(r)) => Ok((l, r)),
+        (l, r) => Err(l.err().into_iter().chain(r.err()).flatten().collect()),
+    }
+}
+
+/// Accelerations left as symbols mean q̈ was not solved symbolically.
+fn require_solved(model: &Model, check: &Check, lhs: Id, rhs: Id) -> Result<(), Vec<Diagnostic>> {
+    let unsolved = model.coordinates.iter().any(|c| {
+        model.pool.contains(lhs, c.acceleration) || model.pool.contains(rhs, c.acceleration)
+    });
+    if !unsolved {
+        return Ok(());
+    }
+    Err(vec![Diagnostic::new(
+        check.span,
+        format!(
+            "a check on accelerations needs q̈ in closed form, which is derived for up to {} coordinates",
+            SYMBOLIC_INVERSE_MAX_DOF
+        ),
+    )])
+}
+
+/// Compares both sides with the mass laws substituted.
+fn decide(pool: &mut ExprPool, lhs: Id, rhs: Id, laws: &HashMap<Symbol, Id>) -> CheckOutcome {
+    let lhs_physical = pool.substitute(lhs, laws);
+    let rhs_physical = pool.substitute(rhs, laws);
+    let verdict = pool.identical(lhs_physical, rhs_physical);
+    let text = format!("{} = {}", pool.display(lhs), pool.display(rhs));
+    CheckOutcome { text, verdict }
+}
+
+/// The diagnostic of a refuted or undecided check.
+fn verdict_error(
+    pool: &ExprPool,
+    check: &Check,
+    lhs: Id,
+    rhs: Id,
+    outcome: &CheckOutcome,
+) -> Option<Diagnostic> {
+    match &outcome.verdict {
+        Identity::Refuted {
+            env,
+            lhs: l,
+            rhs: r,
+        } => {
+            let at: Vec<String> = env
+                .iter()
+                .map(|(s, v)| format!("{} = {v:.4}", pool.symbols().name(*s)))
+                .collect();
+            Some(
+                Diagnostic::new(
+                    check.span,
+                    format!(
+                        "check failed: the derivation gives {}, but the check states {}",
+                        pool.display(lhs),
+                        pool.display(rhs)
+                    ),
+                )
+                .with_help(format!(
+                    "at {} the sides are {} and {}",
+                    at.join(", "),
+                    short(*l),
+                    short(*r)
+                )),
+            )
+        }
+        Identity::Undecided => Some(Diagnostic::new(
+            check.span,
+            "check undecided: no sample point lies where both sides are defined",
+        )),
+        Identity::Proven | Identity::Numerical { .. } => None,
     }
 }
 

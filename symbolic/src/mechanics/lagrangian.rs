@@ -200,3 +200,41 @@ fn is_singular(a: &mut [Vec<f64>], n: usize) -> bool {
     }
     false
 }
+
+/// Rejects a mass matrix that is singular at every state, naming a coordinate without
+/// kinetic energy when there is one.
+pub(crate) fn require_regular(model: &Model, mass_matrix: &Matrix) -> Result<(), Vec<Diagnostic>> {
+    let symbol_count = model.pool.symbols().len();
+    if singular_everywhere(&model.pool, mass_matrix, symbol_count) {
+        return Err(vec![singular_diagnostic(model, mass_matrix)]);
+    }
+    Ok(())
+}
+
+fn singular_diagnostic(model: &Model, mass_matrix: &Matrix) -> Diagnostic {
+    // A coordinate whose row of M is identically zero has no kinetic energy at all.
+    let idle = mass_matrix
+        .iter()
+        .position(|row| row.iter().all(|e| model.pool.is_zero(*e)));
+    match idle {
+        Some(a) => {
+            let c = &model.coordinates[a];
+            Diagnostic::new(
+                c.span,
+                format!(
+                    "the mass matrix is singular: no term of T depends on the velocity `{}'`",
+                    c.name
+                ),
+            )
+            .with_help("every coordinate needs kinetic energy, or q̇ cannot be recovered from p")
+        }
+        None => Diagnostic::new(
+            model
+                .coordinates
+                .first()
+                .map_or_else(Default::default, |c| c.span),
+            "the mass matrix ∂²L/∂q̇² is singular at every state: q̇ cannot be recovered from p",
+        )
+        .with_help("the coordinates may not be independent (e.g. two coordinates for one motion)"),
+    }
+}

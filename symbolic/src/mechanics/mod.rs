@@ -23,7 +23,9 @@
 mod build;
 mod checks;
 mod derivation;
+mod equations;
 mod forces;
+mod jacobian;
 mod lagrangian;
 mod linear;
 mod masses;
@@ -51,9 +53,7 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
 /// Derives a parsed system and verifies its `check`s.
 pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
     let model = build::build_model(ast, parameters)?;
-    let mut derivation = derivation::derive_model(model)?;
-    checks::run_checks(&mut derivation)?;
-    Ok(derivation)
+    derivation::derive_model(model)
 }
 
 /// Parses and derives DSL source text.

@@ -1,0 +1,73 @@
+//! The Jacobian of the state rate: its blocks as total derivatives at fixed q̇ with the mass
+//! laws followed (see [`JacobianParts`]).
+
+use super::derivation::JacobianParts;
+use super::linear::Matrix;
+use super::model::{MassKind, Model};
+use crate::expr::{ExprPool, Id, Symbol};
+
+/// Total derivative at fixed q̇ with the mass laws followed: ∂e/∂w + Σ ∂e/∂mᵢ ∂mᵢ/∂w.
+fn total_diff(pool: &mut ExprPool, e: Id, wrt: Symbol, law_masses: &[(Symbol, Id)]) -> Id {
+    let mut terms = vec![pool.diff(e, wrt)];
+    for (mass, law) in law_masses {
+        let outer = pool.diff(e, *mass);
+        if pool.is_zero(outer) {
+            continue;
+        }
+        let inner = pool.diff(*law, wrt);
+        terms.push(pool.mul(&[outer, inner]));
+    }
+    pool.add(&terms)
+}
+
+/// The blocks of the Jacobian of [q̇, ṗ, ṁ_s] with respect to [q, p, m_s].
+pub(crate) fn jacobian_parts(
+    model: &mut Model,
+    closed: &[Option<Id>],
+    momenta: &[Id],
+    momentum_rate: &[Id],
+    rates: &[Id],
+    velocities: &[Symbol],
+) -> JacobianParts {
+    let law_masses: Vec<(Symbol, Id)> = model
+        .masses
+        .iter()
+        .zip(closed)
+        .filter_map(|(m, law)| law.map(|l| (m.symbol, l)))
+        .collect();
+    let state_masses: Vec<Symbol> = model
+        .masses
+        .iter()
+        .filter(|m| matches!(m.kind, MassKind::State { .. }))
+        .map(|m| m.symbol)
+        .collect();
+    let coordinates: Vec<Symbol> = model.coordinates.iter().map(|c| c.q).collect();
+    let pool = &mut model.pool;
+    let rows: Vec<Id> = momentum_rate
+        .iter()
+        .copied()
+        .chain(rates.iter().take(state_masses.len()).copied())
+        .collect();
+    let block = |pool: &mut ExprPool, rows: &[Id], wrt: &[Symbol], total: bool| -> Matrix {
+        rows.iter()
+            .map(|r| {
+                wrt.iter()
+                    .map(|w| {
+                        if total {
+                            total_diff(pool, *r, *w, &law_masses)
+                        } else {
+                            pool.diff(*r, *w)
+                        }
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    JacobianParts {
+        rate_wrt_q: block(pool, &rows, &coordinates, true),
+        rate_wrt_velocity: block(pool, &rows, velocities, false),
+        rate_wrt_state_mass: block(pool, &rows, &state_masses, true),
+        momentum_wrt_q: block(pool, momenta, &coordinates, true),
+        momentum_wrt_state_mass: block(pool, momenta, &state_masses, true),
+    }
+}
