@@ -508,7 +508,13 @@ where
                     continue;
                 }
             };
-            let factor = fac11 / powf(self.previous_error, control.beta) / control.safety;
+            // (β = 0, `dop853.f`'s default, needs no second power.)
+            let memory = if control.beta == 0.0 {
+                1.0
+            } else {
+                powf(self.previous_error, control.beta)
+            };
+            let factor = fac11 / memory / control.safety;
             let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
             let mut next = h / factor;
             if self.last_rejected {
