@@ -1,7 +1,7 @@
 //! DOP853: Dormand & Prince's explicit Runge–Kutta pair of order 8 with a fifth- and a
 //! third-order error estimate and a seventh-order continuous extension (HNW I, II.10; the
 //! coefficients and the step logic follow Hairer & Wanner's `dop853.f`, see
-//! [`coefficients`](self::coefficients)).
+//! `dop853/coefficients.rs`).
 //!
 //! Twelve stages per step, the FSAL rate f(t₁, y₁) becoming the first stage of the next step.
 //! The error estimate combines the two embedded solutions as in `dop853.f`:

@@ -1,6 +1,6 @@
 //! SDIRK4: Hairer & Wanner's L-stable singly diagonally implicit Runge–Kutta method of
 //! order 4 with an embedded third-order solution (HNW II, IV.6, Table 6.5, γ = 1/4; the
-//! coefficients and the step logic follow `sdirk4.f`, see [`coefficients`](self::coefficients)).
+//! coefficients and the step logic follow `sdirk4.f`, see `sdirk4/coefficients.rs`).
 //!
 //! Each of the five stages solves Zᵢ = Σ_{j<i} αᵢⱼ Zⱼ + hγ f(t₀ + cᵢh, y₀ + Zᵢ) by simplified
 //! Newton with the one matrix I − hγJ, J = [`VariableMassSystem::jacobian`] at the start of
