@@ -20,19 +20,9 @@ use varmass::core::steppers::{ImplicitMidpointConfig, VariationalConfig};
 use varmass::core::Record;
 use varmass::prelude::*;
 
-/// Polar form: the bob at r (sin θ, −cos θ), the exhaust leaving at −u_e ê_θ relative to it.
-#[variable_mass_system(
-    "
-    coordinates r, th
-    mass m: state, rate -mu
-    body bob: mass m, position [r*sin(th), -r*cos(th)]
-    potential 1/2*k*(r - l0)^2 - m*g*r*cos(th)
-    outflow bob: rate mu, relative_velocity [-u_e*cos(th), -u_e*sin(th)]
-    check p_th = m*r^2*th'
-    check R1_th = -mu*u_e*r
-    check pdot_th = -m*g*r*sin(th) + mu*u_e*r - mu*r^2*th'
-"
-)]
+/// Polar form (`models/leaking_spring_pendulum.vms`): the bob at r (sin θ, −cos θ), the
+/// exhaust leaving at −u_e ê_θ relative to it.
+#[variable_mass_system(file = "models/leaking_spring_pendulum.vms")]
 struct PolarPendulum {
     mu: f64,
     u_e: f64,
@@ -41,17 +31,9 @@ struct PolarPendulum {
     g: f64,
 }
 
-/// Cartesian form of the same system: ê_θ = (−y, x)/r.
-#[variable_mass_system(
-    "
-    coordinates x, y
-    mass m: state, rate -mu
-    let r = sqrt(x^2 + y^2)
-    body bob: mass m, position [x, y]
-    potential 1/2*k*(r - l0)^2 + m*g*y
-    outflow bob: rate mu, relative_velocity [u_e*y/r, -u_e*x/r]
-"
-)]
+/// Cartesian form of the same system (`models/leaking_spring_pendulum_cartesian.vms`):
+/// ê_θ = (−y, x)/r.
+#[variable_mass_system(file = "models/leaking_spring_pendulum_cartesian.vms")]
 struct CartesianPendulum {
     mu: f64,
     u_e: f64,

@@ -13,19 +13,10 @@ use std::process::ExitCode;
 
 use varmass::prelude::*;
 
-/// The rocket: the reactive thrust R1 = μ·(−u_e) is derived from the outflow, and the checks
-/// restate Meshchersky's equation m ÿ = −m g + μ u_e.
-#[variable_mass_system(
-    "
-    coordinates y
-    mass m: state, rate -mu
-    body rocket: mass m, position [y]
-    potential m*g*y
-    outflow rocket: rate mu, relative_velocity [-u_e]
-    check R1_y = -mu*u_e
-    check y'' = mu*u_e/m - g
-"
-)]
+/// The rocket of `models/rocket.vms`, without its optional `[drag]`: the reactive thrust
+/// R1 = μ·(−u_e) is derived from the outflow, and the checks restate Meshchersky's equation
+/// m ÿ = −m g + μ u_e.
+#[variable_mass_system(file = "models/rocket.vms")]
 struct Rocket {
     mu: f64,
     u_e: f64,
@@ -82,8 +73,12 @@ fn simulate() -> Result<f64, StepError<3>> {
             worst_v = worst_v.max(relative(state[1] / state[2], v));
         }
     }
-    let (t_b, burnout_state) = powered.last().ok_or(StepError::InvalidConfiguration {
-        reason: "the powered run returned no point",
+    let (t_b, burnout_state) = powered.last().ok_or_else(|| {
+        StepError::invalid_configuration(
+            burn.time(),
+            *burn.state(),
+            "the powered run returned no point",
+        )
     })?;
     let burnout_state = *burnout_state;
     let t_burn_exact = (M0 - DRY_MASS) / engine.mu;
@@ -119,8 +114,12 @@ fn simulate() -> Result<f64, StepError<3>> {
     let mut coast = DormandPrince::new(&coasting, t_b, burnout_state, control)?;
     let apex = Event::state_reaches(1, 0.0, Direction::Falling);
     let ballistic = run(&mut coast, &RunConfig::until(1e4), &[apex])?;
-    let (t_apex, apex_state) = ballistic.last().ok_or(StepError::InvalidConfiguration {
-        reason: "the ballistic run returned no point",
+    let (t_apex, apex_state) = ballistic.last().ok_or_else(|| {
+        StepError::invalid_configuration(
+            coast.time(),
+            *coast.state(),
+            "the ballistic run returned no point",
+        )
     })?;
     let t_apex_exact = t_burn_exact + v_b / engine.g;
     let y_apex_exact = y_b + v_b * v_b / (2.0 * engine.g);

@@ -2,9 +2,9 @@
 //! snow at rest (m = m0 + c x) and slides to x = 50 m. Every stepper is run and compared with
 //! the closed form of eq. 24.
 //!
-//! The system is written in body form (SPEC §2): the impact force R2 is derived from the
-//! inflow, not written by hand, and the paper's results (eqs. 20–24) are `check`s, so a wrong
-//! derivation fails the build.
+//! The system is the model file `models/sled.vms`, in body form: the impact force R2 is
+//! derived from the inflow, not written by hand, and the paper's results (eqs. 20–24) are
+//! `check`s, so a wrong derivation fails the build.
 //!
 //! Run with `cargo run --release --example sled`. The last line is the error of the most
 //! accurate method; the process exits non-zero if it is not below 1e-9.
@@ -16,23 +16,10 @@ use varmass::core::steppers::{ImplicitMidpointConfig, VariationalConfig};
 use varmass::core::Record;
 use varmass::prelude::*;
 
-/// The paper's sled in body form; each `check` is one of the paper's equations.
-#[variable_mass_system(
-    "
-    coordinates x
-    mass m = m0 + c*x
-    body sled: mass m, position [x]
-    potential -m*g*x*sin(theta)
-    force sled: [-f_d*m*g*cos(theta)]
-    inflow sled: velocity [0]
-    check L = 1/2*m*x'^2 + m*g*x*sin(theta)                  # eq. 20
-    check p_x = m*x'
-    check H = p_x^2/(2*m) - m*g*x*sin(theta)                 # eq. 21
-    check Q_x = -f_d*m*g*cos(theta)                          # eq. 22
-    check R2_x = -c*x'^2                                     # eq. 23
-    check x'' = g*sin(theta) - f_d*g*cos(theta) - c*x'^2/m   # eq. 24
-"
-)]
+/// The paper's sled in body form (`models/sled.vms`); each `check` is one of the paper's
+/// equations. `with = ["impact"]` puts in the momentum exchange with the snow (the inflow
+/// at rest, whose impact force is eq. 23).
+#[variable_mass_system(file = "models/sled.vms", with = ["impact"])]
 struct Sled {
     m0: f64,
     c: f64,
@@ -105,8 +92,12 @@ where
             max_error = max_error.max(relative_error(time, state)?);
         }
     }
-    let (time, state) = solution.last().ok_or(StepError::InvalidConfiguration {
-        reason: "the run returned no point",
+    let (time, state) = solution.last().ok_or_else(|| {
+        StepError::invalid_configuration(
+            stepper.time(),
+            *stepper.state(),
+            "the run returned no point",
+        )
     })?;
     let energy_residual = solution
         .energy_residual

@@ -6,29 +6,33 @@
 use std::collections::HashMap;
 use std::process::ExitCode;
 
-use varmass::symbolic::mechanics::{derive_source, Parameters};
+use varmass::symbolic::mechanics::{derive, Derivation, Parameters};
+use varmass::symbolic::parse::{parse_system, select_tags};
 
-/// The paper's sled, body form (SPEC §2), with the paper's results stated as checks.
-const SLED: &str = "
-coordinates x
-mass m = m0 + c*x
-body sled: mass m, position [x]
-potential -m*g*x*sin(theta)
-force sled: [-f_d*m*g*cos(theta)]
-inflow sled: velocity [0]
-check p_x = m*x'
-check H = p_x^2/(2*m) - m*g*x*sin(theta)
-check R2_x = -c*x'^2
-check x'' = g*sin(theta) - f_d*g*cos(theta) - c*x'^2/m
-";
+/// The paper's sled, body form, with the paper's results stated as checks.
+const SLED: &str = include_str!("../models/sled.vms");
+
+/// The sled's model with its impact force (the paper's sled), derived.
+fn derive_sled() -> Result<Derivation, String> {
+    let ast = parse_system(SLED).map_err(|errors| render(&errors))?;
+    let paper = select_tags(&ast, &["impact".to_string()])
+        .map_err(|unknown| unknown.iter().map(|u| u.to_string()).collect::<String>())?;
+    derive(&paper, Parameters::Inferred).map_err(|errors| render(&errors))
+}
+
+fn render(errors: &[varmass::symbolic::Diagnostic]) -> String {
+    let rendered: Vec<String> = errors
+        .iter()
+        .map(|e| e.render_in_file(SLED, "models/sled.vms"))
+        .collect();
+    rendered.join("\n")
+}
 
 fn main() -> ExitCode {
-    let mut d = match derive_source(SLED, Parameters::Inferred) {
+    let mut d = match derive_sled() {
         Ok(d) => d,
         Err(errors) => {
-            for e in errors {
-                eprintln!("{}", e.render(SLED));
-            }
+            eprintln!("{errors}");
             return ExitCode::FAILURE;
         }
     };

@@ -49,8 +49,12 @@
 //!
 //! The crates:
 //! * [`symbolic`] — the DSL parser and the symbolic engine (parse → expr → mechanics → emit);
-//! * [`core`] — the system trait and the steppers.
+//! * [`core`] — the system trait and the steppers;
+//! * [`interpret`] — a derivation evaluated at run time (compiled tapes), for models read
+//!   while the program runs.
 #![warn(missing_docs)]
+
+pub mod interpret;
 
 pub use varmass_core as core;
 pub use varmass_macros::variable_mass_system;
@@ -65,7 +69,7 @@ pub mod prelude {
         ImplicitMidpoint, Sdirk4, StepControl, Variational,
     };
     pub use varmass_core::{
-        run, Direction, Event, RunConfig, Solution, StepError, Stepper, StopReason, SystemError,
-        VariableMassSystem,
+        run, Direction, Event, RunConfig, Solution, StepError, StepErrorKind, Stepper, StopReason,
+        SystemError, VariableMassSystem,
     };
 }

@@ -4,6 +4,7 @@
 mod validation_support;
 
 use validation_support::{pendulums, Oscillator};
+use varmass::core::nalgebra::Complex;
 use varmass::core::steppers::{ImplicitMidpointConfig, VariationalConfig};
 use varmass::core::Record;
 use varmass::prelude::*;
@@ -37,7 +38,7 @@ fn rk4_drift_over_ten_million_steps_is_its_amplification_factor() {
     // |R(ih)|² = 1 − h⁶/72 + h⁸/576 (R the degree-4 Taylor polynomial of e^z), so after n
     // steps H/H₀ = |R(ih)|^(2n). With h = 0.1 and n = 10⁷ (1.6·10⁵ periods) that is
     // e^(−0.1389) ≈ 0.870: RK4 loses 13% of the energy. Rounding adds ~1e-16 per step,
-    // so the prediction holds to ~1e-9; 1e-6 is asserted.
+    // so the prediction holds to ~1e-9: measured 3.7e-10; 4e-9 is asserted.
     let (step, steps) = (0.1, 10_000_000);
     let start = SVector::<f64, 2>::new(1.0, 0.0);
     let stepper = ClassicalRk4::new(&UNIT, 0.0, start, FixedStep { step }).unwrap();
@@ -45,7 +46,7 @@ fn rk4_drift_over_ten_million_steps_is_its_amplification_factor() {
     let factor = 1.0 - step.powi(6) / 72.0 + step.powi(8) / 576.0;
     let predicted = factor.powi(steps as i32);
     assert!(
-        ((ratio - predicted) / predicted).abs() < 1e-6,
+        ((ratio - predicted) / predicted).abs() < 4e-9,
         "{ratio} vs {predicted}"
     );
     assert!(1.0 - ratio > 0.1, "RK4 drift {}", 1.0 - ratio);
@@ -56,8 +57,8 @@ fn symplectic_and_variational_stay_bounded_over_ten_million_steps() {
     // Expectation: the implicit midpoint rule conserves every quadratic invariant, so H of
     // this linear oscillator is kept to the Newton tolerance (1e-12 relative) and rounding
     // per step; the midpoint variational integrator is the same map here. Over 10⁷ steps the
-    // error stays at the rounding level (measured 9e-13 and 1.7e-12), against RK4's 13% loss
-    // over the same steps; 1e-10 is asserted.
+    // error stays at the rounding level (measured 8.6e-13 and 1.7e-12), against RK4's 13%
+    // loss over the same steps; 1e-11 and 2e-11 are asserted.
     let (step, steps) = (0.1, 10_000_000);
     let start = SVector::<f64, 2>::new(1.0, 0.0);
     let midpoint = ImplicitMidpoint::new(
@@ -71,7 +72,7 @@ fn symplectic_and_variational_stay_bounded_over_ten_million_steps() {
     )
     .unwrap();
     let (_, worst) = energy_ratio(midpoint, steps);
-    assert!(worst < 1e-10, "implicit midpoint: {worst:e}");
+    assert!(worst < 1e-11, "implicit midpoint: {worst:e}");
     let variational = Variational::new(
         &UNIT,
         0.0,
@@ -83,7 +84,7 @@ fn symplectic_and_variational_stay_bounded_over_ten_million_steps() {
     )
     .unwrap();
     let (_, worst) = energy_ratio(variational, steps);
-    assert!(worst < 1e-10, "variational: {worst:e}");
+    assert!(worst < 2e-11, "variational: {worst:e}");
 }
 
 /// Runs `stepper` on the unit oscillator for `end` and returns the result.
@@ -94,6 +95,15 @@ where
     run(&mut stepper, &RunConfig::until(end), &[])
 }
 
+/// |R(z)| for the stability polynomial R(z) = Σₖ coefficients[k] zᵏ.
+fn amplification(coefficients: &[f64], z: Complex<f64>) -> f64 {
+    coefficients
+        .iter()
+        .rev()
+        .fold(Complex::new(0.0, 0.0), |sum, &c| sum * z + c)
+        .norm()
+}
+
 #[test]
 fn explicit_steps_past_the_stability_limit_fail_with_a_typed_error() {
     // Expectation: past the limit (ωh > 2√2 for RK4; any h for explicit Euler, |R|² = 1 + h²;
@@ -101,6 +111,12 @@ fn explicit_steps_past_the_stability_limit_fail_with_a_typed_error() {
     // and the run ends with NonFiniteState carrying the time — not a NaN in the solution.
     // The stepper does not detect the growth itself: before the overflow the states are
     // finite garbage (see the leaking pendulum below), which the energy guard catches.
+    // From amplitude 1 the state passes f64::MAX after n = ln(MAX)/ln|R(iωh)| steps, with R
+    // the method's stability polynomial (Euler 1 + z; RK4 Σₖ₌₀⁴ zᵏ/k!; Dormand–Prince
+    // Σₖ₌₀⁵ zᵏ/k! + z⁶/600, the weights bᵀAᵏ⁻¹𝟙 of its tableau). A stage can overflow a few
+    // steps earlier: it exceeds the state by up to |1 + z + z²/2 + z³/4| = 5.1 for RK4 at
+    // h = 3, i.e. ln 5.1/ln|R| = 4 steps. Measured failing steps against n: Euler 2048 vs
+    // 2047.98, RK4 1733 vs 1735.7, Dormand–Prince 545 vs 545.9; asserted in [n − 4, n + 1].
     let start = SVector::<f64, 2>::new(1.0, 0.0);
     let end = 1e6;
     let euler = oscillate(
@@ -121,11 +137,34 @@ fn explicit_steps_past_the_stability_limit_fail_with_a_typed_error() {
         .unwrap(),
         end,
     );
-    for (name, result) in [("Euler", euler), ("RK4", rk4), ("DP fixed", dormand_prince)] {
+    // Σ zᵏ/k! up to z⁵, then Dormand–Prince's z⁶/600; Euler and RK4 take a prefix.
+    let polynomial = [
+        1.0,
+        1.0,
+        1.0 / 2.0,
+        1.0 / 6.0,
+        1.0 / 24.0,
+        1.0 / 120.0,
+        1.0 / 600.0,
+    ];
+    let cases = [
+        ("Euler", euler, 1.0, &polynomial[..2]),
+        ("RK4", rk4, 3.0, &polynomial[..5]),
+        ("DP fixed", dormand_prince, 4.0, &polynomial[..]),
+    ];
+    for (name, result, step, coefficients) in cases {
         let error = result.expect_err(name);
-        assert!(
-            matches!(error, StepError::NonFiniteState { time, .. } if time.is_finite()),
+        assert_eq!(
+            error.kind,
+            StepErrorKind::NonFiniteState,
             "{name}: {error:?}"
+        );
+        let growth = amplification(coefficients, Complex::new(0.0, step));
+        let predicted = f64::MAX.ln() / growth.ln();
+        let failing_step = (error.time / step).ceil();
+        assert!(
+            (predicted - 4.0..=predicted + 1.0).contains(&failing_step),
+            "{name}: failed in step {failing_step}, predicted overflow after {predicted}"
         );
     }
 }
@@ -140,12 +179,15 @@ fn rk4_at_the_stability_limit_neither_grows_nor_decays() {
         ClassicalRk4::new(&UNIT, 0.0, start, FixedStep { step: limit }).unwrap(),
         10_000,
     );
+    // Measured 1.1e-11 after 10⁴ steps.
     assert!((at_limit - 1.0).abs() < 1e-10, "{at_limit}");
+    // Just below, |R|² = 0.867 per step: 10⁴ steps give 10⁻⁶²¹, which underflows to 0
+    // (measured 0).
     let (below, _) = energy_ratio(
         ClassicalRk4::new(&UNIT, 0.0, start, FixedStep { step: 0.99 * limit }).unwrap(),
         10_000,
     );
-    assert!(below < 1e-3, "{below}");
+    assert!(below < 1e-300, "{below}");
 }
 
 #[test]
@@ -161,7 +203,8 @@ fn implicit_steps_far_past_the_explicit_limit_stay_bounded() {
         ImplicitMidpoint::new(&UNIT, 0.0, start, config).unwrap(),
         10_000,
     );
-    assert!(worst < 1e-9, "{worst:e}");
+    // Measured 7.1e-15 over 10⁴ steps.
+    assert!(worst < 1e-13, "{worst:e}");
 }
 
 #[test]
@@ -185,14 +228,15 @@ fn losing_mass_moves_a_fixed_step_past_the_stability_limit_silently() {
         let (_, state) = solution.last().unwrap();
         (solution.energy_residual.last().unwrap().abs(), state[0])
     };
+    // Measured: 0.196 J and r = 1.055 m at 19 s; 4.0e6 J and r = −157 m at 25 s.
     let (before, r_before) = residual_until(19.0);
     let (after, r_after) = residual_until(25.0);
     assert!(
-        before < 1.0 && (r_before - 1.0).abs() < 0.2,
+        before < 0.3 && (r_before - 1.0).abs() < 0.2,
         "{before} J, r = {r_before}"
     );
     assert!(
-        after > 1e3 && r_after.abs() > 10.0,
+        after > 1e6 && r_after.abs() > 100.0,
         "{after} J, r = {r_after}"
     );
 }
@@ -212,16 +256,16 @@ fn the_energy_guard_turns_that_silent_instability_into_a_typed_error() {
         &[],
     )
     .unwrap_err();
-    let StepError::EnergyBudgetExceeded {
+    let StepError {
         time,
-        residual,
-        scale,
+        kind: StepErrorKind::EnergyBudgetExceeded { residual, scale },
         ..
     } = error
     else {
         panic!("expected the energy guard, got {error:?}");
     };
-    assert!(time > 20.0 && time < 25.0, "t = {time}");
+    // Measured: t = 23.8 s, residual −3.07 J against a scale of 17.9 J.
+    assert!(time > 20.0 && time <= 24.0, "t = {time}");
     assert!(residual.abs() > 0.1 * scale && residual.is_finite());
 }
 
@@ -240,8 +284,10 @@ fn an_implicit_step_too_long_for_newton_is_a_typed_error() {
     let mut stepper = ImplicitMidpoint::new(&polar, 0.0, start, config).unwrap();
     let result = run(&mut stepper, &RunConfig::until(30.0), &[]);
     let error = result.unwrap_err();
+    // Measured: in the first step (the contraction rate passed 1 at the third iteration).
     assert!(
-        matches!(error, StepError::NewtonDivergence { .. }),
+        matches!(error.kind, StepErrorKind::NewtonDivergence { .. }),
         "{error:?}"
     );
+    assert_eq!((error.time, error.state), (0.0, start));
 }

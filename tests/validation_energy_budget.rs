@@ -43,9 +43,8 @@ where
 
 // At tolerance 1e-12 the state is accurate to ~1e-12 relative per step, a few hundred to a
 // few thousand steps at most add up to ~1e-10, and Simpson's rule on the dense output adds
-// its own O(h⁵) per step. Measured: sled 9e-13, pendulum 5e-12 (both forms), oscillator
-// 7e-11 (16 periods); 1e-9 leaves an order of magnitude or more.
-const ASSERTED: f64 = 1e-9;
+// its own O(h⁵) per step. Each system has its own bound, about ten times its measured
+// residual, so that a regression by an order of magnitude fails.
 
 #[test]
 fn sled_budget_closes() {
@@ -53,7 +52,8 @@ fn sled_budget_closes() {
     let stepper = DormandPrince::new(&sled, 0.0, SVector::zeros(), tight(1e-12)).unwrap();
     let at_50_m = Event::state_reaches(0, 50.0, Direction::Rising);
     let residual = relative_residual(stepper, 1e3, &[at_50_m]);
-    assert!(residual < ASSERTED, "{residual:e}");
+    // Measured 9.0e-13.
+    assert!(residual < 1e-11, "{residual:e}");
 }
 
 #[test]
@@ -70,7 +70,8 @@ fn rocket_budget_closes_through_burnout() {
     // at 1e-13 the residual is 4e-11).
     let stepper = DormandPrince::new(&rocket, 0.0, start, tight(1e-13)).unwrap();
     let residual = relative_residual(stepper, 1e3, &[Event::mass_reaches(0, 100.0)]);
-    assert!(residual < ASSERTED, "{residual:e}");
+    // Measured 3.9e-11.
+    assert!(residual < 4e-10, "{residual:e}");
 }
 
 #[test]
@@ -80,11 +81,12 @@ fn leaking_pendulum_budget_closes_in_both_coordinates() {
     let start = SVector::from([r0, theta0, 0.0, 0.0, m0]);
     let stepper = DormandPrince::new(&polar, 0.0, start, tight(1e-12)).unwrap();
     let residual = relative_residual(stepper, 30.0, &[]);
-    assert!(residual < ASSERTED, "polar: {residual:e}");
+    // Measured 4.8e-12 (polar) and 4.5e-12 (Cartesian).
+    assert!(residual < 5e-11, "polar: {residual:e}");
     let start = SVector::from([r0 * theta0.sin(), -r0 * theta0.cos(), 0.0, 0.0, m0]);
     let stepper = DormandPrince::new(&cartesian, 0.0, start, tight(1e-12)).unwrap();
     let residual = relative_residual(stepper, 30.0, &[]);
-    assert!(residual < ASSERTED, "Cartesian: {residual:e}");
+    assert!(residual < 5e-11, "Cartesian: {residual:e}");
 }
 
 #[test]
@@ -93,17 +95,19 @@ fn oscillator_budget_closes() {
     let start = SVector::<f64, 2>::new(0.3, 0.0);
     let stepper = DormandPrince::new(&oscillator, 0.0, start, tight(1e-12)).unwrap();
     let residual = relative_residual(stepper, 20.0, &[]);
-    assert!(residual < ASSERTED, "{residual:e}");
+    // Measured 7.2e-11 over 16 periods.
+    assert!(residual < 7e-10, "{residual:e}");
 }
 
 #[test]
 fn a_poor_run_shows_a_large_residual() {
     // Explicit Euler at h = 1e-2 on the pendulum (spring period 0.63 s at 2 kg): first
-    // order with ~60 steps per period, so its energy error is percent-level and the
-    // residual must say so — otherwise the check above could not fail.
+    // order with ~60 steps per period, which pumps energy into the spring, and the
+    // residual must say so — otherwise the checks above could not fail. Measured 1.04: as
+    // large as the run's whole energy range; asserted above a tenth of that.
     let (polar, _) = pendulums();
     let start = SVector::from([1.1, 0.5, 0.0, 0.0, 2.0]);
     let stepper = ExplicitEuler::new(&polar, 0.0, start, FixedStep { step: 1e-2 }).unwrap();
     let residual = relative_residual(stepper, 10.0, &[]);
-    assert!(residual > 1e-2, "{residual:e}");
+    assert!(residual > 0.1, "{residual:e}");
 }

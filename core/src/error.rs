@@ -5,65 +5,62 @@ use nalgebra::SVector;
 
 use crate::system::{SystemError, VariableMassSystem};
 
-/// A failure of a stepper or of a run, with the time and the state `[q, p, m_s]` where it was
-/// detected. `S` is the state dimension.
+/// A failure of a stepper or of a run: what went wrong ([`StepErrorKind`]) and the time and
+/// the state `[q, p, m_s]` where it was detected. `S` is the state dimension.
+///
+/// For [`StepErrorKind::InvalidConfiguration`], detected before any step is taken, `time` and
+/// `state` are those of the stepper when the configuration was checked: the initial value a
+/// constructor was given (even if that initial time is the unusable value), the stepper's
+/// current time and state for [`Stepper::set_stop_time`](crate::Stepper::set_stop_time) and
+/// for a run's configuration and events.
+///
+/// Displayed as `at t = <time>: <what happened>`.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
-pub enum StepError<const S: usize> {
+#[error("at t = {time}: {kind}")]
+pub struct StepError<const S: usize> {
+    /// Time of the failure (for a failed step: the start of the step, or the time of the
+    /// offending state when it was produced).
+    pub time: f64,
+    /// The state at `time` (the offending state when it is the state itself that is wrong).
+    pub state: SVector<f64, S>,
+    /// What went wrong, with the data particular to that cause.
+    pub kind: StepErrorKind,
+}
+
+/// What went wrong in a [`StepError`].
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum StepErrorKind {
     /// A component of the state (or of a trial state) is NaN or infinite, typically because a
     /// fixed step is far past the stability limit.
-    #[error("the state became non-finite at t = {time}")]
-    NonFiniteState {
-        /// Time of the non-finite state.
-        time: f64,
-        /// The offending state.
-        state: SVector<f64, S>,
-    },
+    #[error("the state became non-finite")]
+    NonFiniteState,
     /// A mass or inertia reached zero or became negative, e.g. a rocket out of propellant.
-    #[error("mass {index} is not positive at t = {time}")]
+    #[error("mass {index} is not positive")]
     NonPositiveMass {
-        /// Time of the state.
-        time: f64,
-        /// The state whose mass is not positive.
-        state: SVector<f64, S>,
         /// Index into [`VariableMassSystem::MASSES`].
         index: usize,
     },
     /// The mass matrix ∂²L/∂q̇² is singular here, so q̇ cannot be recovered from p.
-    #[error("the mass matrix is singular at t = {time}")]
-    SingularMassMatrix {
-        /// Time of the state.
-        time: f64,
-        /// The state.
-        state: SVector<f64, S>,
-    },
+    #[error("the mass matrix is singular")]
+    SingularMassMatrix,
     /// An adaptive stepper had to shrink its step below what the time resolution allows.
-    #[error("the step size {step:e} underflowed at t = {time}")]
+    /// The error's time and state are those at the start of the failed step.
+    #[error("the step size {step:e} underflowed")]
     StepSizeUnderflow {
-        /// Time at the start of the failed step.
-        time: f64,
-        /// State at the start of the failed step.
-        state: SVector<f64, S>,
         /// The step size that was too small.
         step: f64,
     },
     /// Newton's method of an implicit stepper did not converge (or its iteration matrix was
-    /// singular).
-    #[error("Newton's method did not converge at t = {time} ({iterations} iterations)")]
+    /// singular). The error's time and state are those at the start of the failed step.
+    #[error("Newton's method did not converge ({iterations} iterations)")]
     NewtonDivergence {
-        /// Time at the start of the failed step.
-        time: f64,
-        /// State at the start of the failed step.
-        state: SVector<f64, S>,
         /// Iterations done before giving up.
         iterations: usize,
     },
-    /// A run needed more steps than its configuration allows.
-    #[error("more than {max_steps} steps were needed; stopped at t = {time}")]
+    /// A run needed more steps than its configuration allows. The error's time and state are
+    /// those reached.
+    #[error("more than {max_steps} steps were needed")]
     TooManySteps {
-        /// Time reached.
-        time: f64,
-        /// State reached.
-        state: SVector<f64, S>,
         /// The configured limit.
         max_steps: usize,
     },
@@ -71,21 +68,16 @@ pub enum StepError<const S: usize> {
     /// [`RunConfig::energy_tolerance`](crate::RunConfig) times the largest |H| or |p·q̇| so far. The
     /// typical cause is a fixed step past the stability limit, whose finite but meaningless
     /// states would otherwise go on until they overflow.
-    #[error(
-        "the energy budget failed at t = {time}: residual {residual:e} against H scale {scale:e}"
-    )]
+    #[error("the energy budget failed: residual {residual:e} against H scale {scale:e}")]
     EnergyBudgetExceeded {
-        /// Time of the state.
-        time: f64,
-        /// The state.
-        state: SVector<f64, S>,
         /// ∫ power dt − (H − H₀) there.
         residual: f64,
         /// The largest |H| or |p·q̇| seen so far.
         scale: f64,
     },
     /// A configuration value is unusable (non-positive step, non-finite time, an index out
-    /// of range, …). Detected before any step is taken.
+    /// of range, …). Detected before any step is taken; see [`StepError`] for the time and
+    /// state it carries.
     #[error("invalid configuration: {reason}")]
     InvalidConfiguration {
         /// What is wrong.
@@ -94,32 +86,19 @@ pub enum StepError<const S: usize> {
 }
 
 impl<const S: usize> StepError<S> {
-    /// The time at which the failure was detected, if it happened during stepping.
-    pub fn time(&self) -> Option<f64> {
-        match self {
-            Self::NonFiniteState { time, .. }
-            | Self::NonPositiveMass { time, .. }
-            | Self::SingularMassMatrix { time, .. }
-            | Self::StepSizeUnderflow { time, .. }
-            | Self::NewtonDivergence { time, .. }
-            | Self::TooManySteps { time, .. }
-            | Self::EnergyBudgetExceeded { time, .. } => Some(*time),
-            Self::InvalidConfiguration { .. } => None,
-        }
+    /// A failure of kind `kind` at `(time, state)`.
+    pub const fn new(time: f64, state: SVector<f64, S>, kind: StepErrorKind) -> Self {
+        Self { time, state, kind }
     }
 
-    /// The state at which the failure was detected, if it happened during stepping.
-    pub fn state(&self) -> Option<&SVector<f64, S>> {
-        match self {
-            Self::NonFiniteState { state, .. }
-            | Self::NonPositiveMass { state, .. }
-            | Self::SingularMassMatrix { state, .. }
-            | Self::StepSizeUnderflow { state, .. }
-            | Self::NewtonDivergence { state, .. }
-            | Self::TooManySteps { state, .. }
-            | Self::EnergyBudgetExceeded { state, .. } => Some(state),
-            Self::InvalidConfiguration { .. } => None,
-        }
+    /// An [`StepErrorKind::InvalidConfiguration`] found while the stepper is at
+    /// `(time, state)`.
+    pub const fn invalid_configuration(
+        time: f64,
+        state: SVector<f64, S>,
+        reason: &'static str,
+    ) -> Self {
+        Self::new(time, state, StepErrorKind::InvalidConfiguration { reason })
     }
 
     /// Attaches the time and state to a [`SystemError`]. A singular mass matrix is reported
@@ -136,7 +115,7 @@ impl<const S: usize> StepError<S> {
     {
         let state = *state;
         if !is_finite(&state) {
-            return Self::NonFiniteState { time, state };
+            return Self::new(time, state, StepErrorKind::NonFiniteState);
         }
         let error = match error {
             SystemError::SingularMassMatrix => match system.check_masses(time, &state) {
@@ -145,10 +124,28 @@ impl<const S: usize> StepError<S> {
             },
             SystemError::NonPositiveMass { .. } => error,
         };
-        match error {
-            SystemError::SingularMassMatrix => Self::SingularMassMatrix { time, state },
-            SystemError::NonPositiveMass { index } => Self::NonPositiveMass { time, state, index },
-        }
+        let kind = match error {
+            SystemError::SingularMassMatrix => StepErrorKind::SingularMassMatrix,
+            SystemError::NonPositiveMass { index } => StepErrorKind::NonPositiveMass { index },
+        };
+        Self::new(time, state, kind)
+    }
+}
+
+/// An unusable configuration value found before a stepper exists (a tolerance, a step size,
+/// a Newton setting). It becomes a [`StepError`] with [`ConfigError::at`] once the time and
+/// state it applies to are known.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("invalid configuration: {reason}")]
+pub struct ConfigError {
+    /// What is wrong.
+    pub reason: &'static str,
+}
+
+impl ConfigError {
+    /// The [`StepErrorKind::InvalidConfiguration`] of a stepper at `(time, state)`.
+    pub fn at<const S: usize>(self, time: f64, state: &SVector<f64, S>) -> StepError<S> {
+        StepError::invalid_configuration(time, *state, self.reason)
     }
 }
 

@@ -12,7 +12,7 @@ use core::fmt;
 
 use nalgebra::SVector;
 
-use crate::error::StepError;
+use crate::error::ConfigError;
 use crate::system::VariableMassSystem;
 
 /// Which sign changes of g trigger an event.
@@ -48,7 +48,7 @@ pub enum EventCondition<'a, const S: usize> {
         /// The mass at which the event triggers.
         threshold: f64,
     },
-    /// g = state[index] − value: a coordinate, momentum or state mass reaching a value.
+    /// g = state\[index\] − value: a coordinate, momentum or state mass reaching a value.
     StateComponent {
         /// Index into the state `[q, p, m_s]`.
         index: usize,
@@ -122,7 +122,7 @@ impl<'a, const S: usize> Event<'a, S> {
     }
 
     /// Checks the indices against the system.
-    pub(crate) fn validate<Sys, const N: usize>(&self) -> Result<(), StepError<S>>
+    pub(crate) fn validate<Sys, const N: usize>(&self) -> Result<(), ConfigError>
     where
         Sys: VariableMassSystem<N, S>,
     {
@@ -136,7 +136,7 @@ impl<'a, const S: usize> Event<'a, S> {
         if ok {
             Ok(())
         } else {
-            Err(StepError::InvalidConfiguration {
+            Err(ConfigError {
                 reason: "an event's index is out of range or its threshold is not finite",
             })
         }

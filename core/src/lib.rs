@@ -19,6 +19,7 @@
 //! With the `run` feature (default), [`run::run`] drives any of them to an end time or an
 //! [`events::Event`] and returns a [`solution::Solution`] with the extras asked for.
 //! Failures are typed [`StepError`]s carrying the time and the state.
+//! Feature `ensemble` (and `parallel`, `serde`) adds `ensemble`: many sampled runs, shardable.
 //!
 //! Without the `std` feature the crate is `no_std`; `run` then needs only `alloc`.
 //!
@@ -96,9 +97,14 @@ pub mod math;
 pub mod stepper;
 pub mod steppers;
 pub mod system;
+pub mod tolerance;
 
+#[cfg(feature = "ensemble")]
+pub mod ensemble;
 #[cfg(feature = "run")]
 pub mod events;
+#[cfg(feature = "run")]
+pub mod observe;
 #[cfg(feature = "run")]
 pub mod run;
 #[cfg(feature = "run")]
@@ -107,12 +113,14 @@ pub mod solution;
 /// nalgebra, re-exported so generated code and users name one version.
 pub use nalgebra;
 
-pub use error::StepError;
+pub use error::{ConfigError, StepError, StepErrorKind};
 pub use stepper::{Progress, Statistics, StepOutcome, Stepper};
 pub use system::{SystemError, VariableMassSystem};
 
 #[cfg(feature = "run")]
 pub use events::{Direction, Event, EventAction, EventCondition, EventHit};
+#[cfg(feature = "run")]
+pub use observe::{observe, Observable, Quantity, Recording};
 #[cfg(feature = "run")]
 pub use run::{run, RunConfig};
 #[cfg(feature = "run")]

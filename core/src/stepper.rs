@@ -3,7 +3,7 @@
 
 use nalgebra::SVector;
 
-use crate::error::{is_finite, StepError};
+use crate::error::{is_finite, StepError, StepErrorKind};
 use crate::system::VariableMassSystem;
 
 /// What one call of [`Stepper::step`] achieved.
@@ -60,9 +60,11 @@ impl<const S: usize> Progress<S> {
         Sys: VariableMassSystem<N, S>,
     {
         if !time.is_finite() {
-            return Err(StepError::InvalidConfiguration {
-                reason: "the initial time is not finite",
-            });
+            return Err(StepError::invalid_configuration(
+                time,
+                state,
+                "the initial time is not finite",
+            ));
         }
         check_state(system, time, &state)?;
         Ok(Self {
@@ -126,9 +128,11 @@ impl<const S: usize> Progress<S> {
     /// Sets the stop time; it must be finite and not before the current time.
     pub(crate) fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
         if !stop_time.is_finite() || stop_time < self.time {
-            return Err(StepError::InvalidConfiguration {
-                reason: "the stop time must be finite and not before the current time",
-            });
+            return Err(StepError::invalid_configuration(
+                self.time,
+                self.state,
+                "the stop time must be finite and not before the current time",
+            ));
         }
         self.stop_time = Some(stop_time);
         Ok(())
@@ -185,10 +189,7 @@ where
     Sys: VariableMassSystem<N, S>,
 {
     if !is_finite(state) {
-        return Err(StepError::NonFiniteState {
-            time,
-            state: *state,
-        });
+        return Err(StepError::new(time, *state, StepErrorKind::NonFiniteState));
     }
     system
         .check_masses(time, state)
@@ -207,10 +208,7 @@ where
 {
     statistics.rate_evaluations += 1;
     if !is_finite(state) {
-        return Err(StepError::NonFiniteState {
-            time,
-            state: *state,
-        });
+        return Err(StepError::new(time, *state, StepErrorKind::NonFiniteState));
     }
     system
         .state_rate(time, state)

@@ -79,12 +79,11 @@ fn recorded_extras_match_the_sleds_closed_forms() {
             solution.power[k]
         );
     }
-    // With tolerances 1e-10 the residual ∫P dt − ΔH stays at the level of the state error
-    // (measured 1.2e-11 relative to H).
+    // With tolerances 1e-10 the residual ∫P dt − ΔH stays at the level of the state error:
+    // measured 9.0e-8 J against |H| = 5.5e3 J, 1.6e-11 relative; 2e-10 asserted (12×).
     let final_hamiltonian = *solution.hamiltonian.last().unwrap();
     let residual = solution.energy_residual.last().unwrap().abs();
-    eprintln!("DOPRI residual {residual:e}, |H| {final_hamiltonian:e}");
-    assert!(residual < 1e-9 * final_hamiltonian.abs(), "{residual}");
+    assert!(residual < 2e-10 * final_hamiltonian.abs(), "{residual}");
     assert_eq!(solution.energy_residual[0], 0.0);
 }
 
@@ -158,18 +157,15 @@ fn a_run_continues_after_a_restart_at_its_event() {
     );
 }
 
-/// Runs `stepper`, which starts at t = 2, to t = 2: one point, no step, no evaluation.
+/// Runs `stepper`, which starts at t = 2, to t = 2: one point, no step, no evaluation (of
+/// the rate or, for the implicit steppers, of the Jacobian or a Newton iteration).
 fn run_to_start<St: Stepper<1, 2>>(mut stepper: St, name: &str) {
-    let before = stepper.statistics().rate_evaluations;
+    let before = *stepper.statistics();
     let solution = run(&mut stepper, &RunConfig::until(2.0), &[]).unwrap();
     assert_eq!(solution.stop, StopReason::ReachedEnd, "{name}");
     assert_eq!(solution.times, vec![2.0], "{name}");
     assert_eq!(solution.statistics.accepted_steps, 0, "{name}");
-    assert_eq!(
-        stepper.statistics().rate_evaluations,
-        before,
-        "{name}: rate evaluations"
-    );
+    assert_eq!(*stepper.statistics(), before, "{name}: work done");
 }
 
 #[test]
@@ -196,6 +192,14 @@ fn a_run_to_the_current_time_takes_no_step() {
     run_to_start(
         DormandPrince::new(system, 2.0, start, control).unwrap(),
         "Dormand–Prince",
+    );
+    let config = ImplicitMidpointConfig {
+        step: 0.1,
+        ..ImplicitMidpointConfig::default()
+    };
+    run_to_start(
+        ImplicitMidpoint::new(system, 2.0, start, config).unwrap(),
+        "implicit midpoint",
     );
 }
 

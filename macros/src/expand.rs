@@ -3,16 +3,18 @@
 
 use proc_macro2::TokenStream;
 use quote::{quote, ToTokens};
-use varmass_symbolic::emit::{emit_system, Target};
-use varmass_symbolic::mechanics::{derive, Derivation, Parameters};
+use varmass_symbolic::emit::{emit_system_for, Target};
+use varmass_symbolic::mechanics::{derive_for, Outputs, Parameters};
 use varmass_symbolic::parse::ast::{MassLaw, StatementKind, SystemAst};
-use varmass_symbolic::parse::{parse_system, Origin};
-use varmass_symbolic::Diagnostic;
+use varmass_symbolic::parse::{parse_system, select_tags};
 
-use crate::ast::{parse_source, parse_struct};
+use crate::ast::{parse_attribute, parse_struct, Attribute};
 use crate::ctxt::Ctxt;
 use crate::fallback::stub;
-use crate::valid::parameter_fields;
+use crate::model::ModelText;
+use crate::valid::{
+    check_generated_names, check_unused_fields, parameter_fields, rust_name_diagnostics,
+};
 
 pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
     let item_struct = match parse_struct(item.clone()) {
@@ -25,165 +27,106 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
     };
     let cx = Ctxt::new();
     let fields = parameter_fields(&cx, &item_struct);
-    let source = parse_source(attr).map_err(|e| cx.push(e)).ok();
+    let attribute = parse_attribute(attr).map_err(|e| cx.push(e)).ok();
+    let model = attribute
+        .as_ref()
+        .and_then(|a| ModelText::load(&a.source).map_err(|e| cx.push(e)).ok());
     let mut dims = (1, 0);
     let mut generated = None;
-    if let Some(source) = &source {
-        let text = source.value();
-        match parse_system(&text) {
-            Err(errors) => report(&cx, source, &text, &errors),
-            Ok(ast) => {
-                dims = dimensions(&ast);
-                let names = fields.iter().map(|f| f.to_string()).collect();
-                match derive(&ast, Parameters::Declared(names)) {
-                    Err(errors) => report(&cx, source, &text, &errors),
-                    Ok(mut derivation) => {
-                        check_unused_fields(&cx, &fields, &derivation);
-                        check_generated_names(&cx, &fields, &derivation);
-                        let bad_names = rust_name_diagnostics(&derivation);
-                        report(&cx, source, &text, &bad_names);
-                        if !bad_names.is_empty() {
-                            // No code: it would not compile with these names.
-                            return finish(cx, &item_struct, dims, None);
-                        }
-                        let target = Target {
-                            name: item_struct.ident.clone(),
-                            runtime: quote!(::varmass::core),
-                        };
-                        generated = Some(emit_system(&mut derivation, &text, &target));
-                    }
-                }
-            }
+    if let (Some(attribute), Some(model)) = (&attribute, &model) {
+        if let Some(ast) = selected_system(&cx, attribute, model) {
+            dims = dimensions(&ast);
+            let outputs = outputs(&cx, attribute);
+            generated = generate(&cx, &item_struct, &fields, model, &ast, outputs);
         }
     }
-    finish(cx, &item_struct, dims, generated)
+    let tracking = model.as_ref().map(ModelText::tracking);
+    finish(cx, &item_struct, dims, generated, tracking)
 }
 
-/// The struct, then the generated items, or every error and a stub.
+/// The parsed system with the statements the attribute's `with` selects, or `None` after
+/// reporting why not.
+fn selected_system(cx: &Ctxt, attribute: &Attribute, model: &ModelText) -> Option<SystemAst> {
+    let ast = parse_system(&model.text)
+        .map_err(|errors| model.report(cx, &errors))
+        .ok()?;
+    let with: Vec<String> = attribute.with.iter().map(|t| t.value()).collect();
+    select_tags(&ast, &with)
+        .map_err(|unknown| {
+            for u in unknown {
+                cx.error_at(attribute.with[u.index].span(), &u);
+            }
+        })
+        .ok()
+}
+
+/// The optional outputs `emit = [...]` names (all without it); an unknown name is reported
+/// on its string.
+fn outputs(cx: &Ctxt, attribute: &Attribute) -> Outputs {
+    let Some(names) = &attribute.emit else {
+        return Outputs::FULL;
+    };
+    let values: Vec<String> = names.iter().map(|n| n.value()).collect();
+    Outputs::from_names(&values).unwrap_or_else(|unknown| {
+        for u in unknown {
+            cx.error_at(names[u.index].span(), &u);
+        }
+        Outputs::FULL
+    })
+}
+
+/// Derives the system and emits its code, or `None` after reporting every problem.
+fn generate(
+    cx: &Ctxt,
+    item_struct: &syn::ItemStruct,
+    fields: &[syn::Ident],
+    model: &ModelText,
+    ast: &SystemAst,
+    outputs: Outputs,
+) -> Option<TokenStream> {
+    let names = fields.iter().map(|f| f.to_string()).collect();
+    let mut derivation = derive_for(ast, Parameters::Declared(names), outputs)
+        .map_err(|errors| model.report(cx, &errors))
+        .ok()?;
+    check_unused_fields(cx, fields, &derivation);
+    check_generated_names(cx, fields, &derivation);
+    let bad_names = rust_name_diagnostics(&derivation);
+    model.report(cx, &bad_names);
+    if !bad_names.is_empty() {
+        // No code: it would not compile with these names.
+        return None;
+    }
+    let target = Target {
+        name: item_struct.ident.clone(),
+        runtime: quote!(::varmass::core),
+    };
+    Some(emit_system_for(
+        &mut derivation,
+        &model.text,
+        &target,
+        outputs,
+    ))
+}
+
+/// The struct, then the generated items (and the model file's tracking), or every error
+/// and a stub.
 fn finish(
     cx: Ctxt,
     item_struct: &syn::ItemStruct,
     dims: (usize, usize),
     generated: Option<TokenStream>,
+    tracking: Option<TokenStream>,
 ) -> TokenStream {
     let item_tokens = item_struct.to_token_stream();
     match (cx.check(), generated) {
-        (Ok(()), Some(generated)) => quote!(#item_tokens #generated),
+        (Ok(()), Some(generated)) => quote!(#item_tokens #tracking #generated),
         (Err(e), _) => {
             let errors = e.to_compile_error();
             let stub = stub(item_struct, dims.0, dims.1);
-            quote!(#item_tokens #errors #stub)
+            quote!(#item_tokens #tracking #errors #stub)
         }
-        (Ok(()), None) => item_tokens,
+        (Ok(()), None) => quote!(#item_tokens #tracking),
     }
-}
-
-/// Each diagnostic as a compile error on the string literal, with the file's line:column and
-/// a caret under the offending DSL text in the message. (A span inside the literal needs the
-/// unstable `Literal::subspan`; the message carries the exact position instead.)
-fn report(cx: &Ctxt, literal: &syn::LitStr, source: &str, errors: &[Diagnostic]) {
-    let origin = origin(literal);
-    for d in errors {
-        let rendered = d.render_at(source, origin);
-        // `render` starts with "error: <message>"; the compiler prints its own "error: ".
-        let body: Vec<&str> = rendered.lines().skip(1).collect();
-        cx.error_at(
-            literal.span(),
-            format!("{}\n{}", d.message, body.join("\n")),
-        );
-    }
-}
-
-/// Where the literal's text starts in the file, when its value is its text verbatim (no
-/// escapes), so DSL positions map to file positions; otherwise positions stay relative to
-/// the DSL text (line 1 is the first line of the string).
-fn origin(literal: &syn::LitStr) -> Origin {
-    let token = literal.token().to_string();
-    let prefix = token.find('"').map_or(0, |i| i + 1);
-    let suffix = token.len() - token.rfind('"').unwrap_or(token.len());
-    let verbatim = token
-        .get(prefix..token.len() - suffix)
-        .is_some_and(|inner| inner == literal.value());
-    let start = literal.span().start();
-    if verbatim && start.line > 0 {
-        Origin {
-            line: start.line as u32,
-            // `start.column` is 0-based and points at the literal's first character.
-            column: (start.column + prefix + 1) as u32,
-        }
-    } else {
-        Origin::default()
-    }
-}
-
-/// A field the equations never read is most likely a misspelt or forgotten parameter.
-/// Fields starting with `_` are exempt.
-fn check_unused_fields(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
-    let used = d.used_parameters();
-    for field in fields {
-        let name = field.to_string();
-        let reserved = varmass_symbolic::mechanics::is_reserved(&name);
-        if !name.starts_with('_') && !reserved && !used.contains(&name) {
-            cx.error_spanned_by(
-                field,
-                format!("field `{name}` is not used by the system's equations; use it in the DSL, remove it, or name it `_{name}`"),
-            );
-        }
-    }
-}
-
-/// Generated code binds `x_dot` for the velocity of coordinate `x`; a field or mass of that
-/// name would be shadowed, silently feeding the velocity where the parameter was meant.
-fn check_generated_names(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
-    let generated: Vec<String> = d
-        .coordinates
-        .iter()
-        .flat_map(|c| [format!("{}_dot", c.name), format!("{}_ddot", c.name)])
-        .collect();
-    for field in fields {
-        let name = field.to_string();
-        if varmass_symbolic::mechanics::is_reserved(&name) {
-            cx.error_spanned_by(
-                field,
-                format!("field `{name}` has a reserved name: in the DSL `t` is the time and `H`, `L`, `T`, `V`, `power`, `p_…`, `Q_…`, `R1_…`, `R2_…`, `dp_…`, `pdot_…`, `mdot_…` are derived quantities; rename it"),
-            );
-        } else if generated.contains(&name) {
-            cx.error_spanned_by(
-                field,
-                format!("field `{name}` clashes with the generated name of a coordinate's velocity; rename it"),
-            );
-        }
-    }
-}
-
-/// Coordinates and masses become locals of the generated code (`x`, `x_dot`, `p_x`, `m`), so
-/// each must be a Rust identifier: not a keyword, not `_`, and not `__…`, which the generated
-/// temporaries use.
-fn rust_name_diagnostics(d: &Derivation) -> Vec<Diagnostic> {
-    let names = d
-        .coordinates
-        .iter()
-        .map(|c| (&c.name, c.span, "coordinate"))
-        .chain(d.masses.iter().map(|m| (&m.name, m.span, "mass")));
-    let velocities: Vec<String> = d
-        .coordinates
-        .iter()
-        .map(|c| format!("{}_dot", c.name))
-        .collect();
-    names
-        .filter(|(name, _, _)| {
-            name.starts_with("__")
-                || velocities.contains(name)
-                || syn::parse_str::<syn::Ident>(name).is_err()
-        })
-        .map(|(name, span, what)| {
-            Diagnostic::new(
-                span,
-                format!("`{name}` cannot name a {what}: generated Rust code uses it as a variable, and it is a Rust keyword or reserved"),
-            )
-            .with_help("rename it (names starting with `__` are reserved for generated temporaries)")
-        })
-        .collect()
 }
 
 /// The number of coordinates and of state masses, for the stub.

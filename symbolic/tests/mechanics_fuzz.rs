@@ -1,6 +1,8 @@
 //! The derivation never panics: mutated and recombined example systems go through parse →
 //! model → derivation → checks and come out as a derivation or as diagnostics, never a
-//! panic. Set `VARMASS_FUZZ_CASES` to run more cases locally.
+//! panic. The cases come from a fixed seed, so CI runs the same ones every time; for longer
+//! local runs set `VARMASS_FUZZ_CASES` (how many) and `VARMASS_FUZZ_SEED` (any `u64`, where
+//! to search).
 
 mod mechanics_support;
 
@@ -9,14 +11,21 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 use varmass_symbolic::mechanics::{derive_source, Parameters};
 
-fn config() -> Config {
-    let cases = std::env::var("VARMASS_FUZZ_CASES")
+/// The seed CI uses; `VARMASS_FUZZ_SEED` replaces it.
+const DEFAULT_SEED: u64 = 20261121;
+
+/// The value of the environment variable `name`, if set and a number, else `default`.
+fn from_env<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name)
         .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(4000);
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or(default)
+}
+
+fn config() -> Config {
     Config {
-        cases,
-        rng_seed: RngSeed::Fixed(20261121),
+        cases: from_env("VARMASS_FUZZ_CASES", 4000),
+        rng_seed: RngSeed::Fixed(from_env("VARMASS_FUZZ_SEED", DEFAULT_SEED)),
         failure_persistence: None,
         ..Config::default()
     }

@@ -18,13 +18,14 @@ mod coefficients;
 use nalgebra::SVector;
 
 use self::coefficients::*;
-use super::dormand_prince::{initial_step, resolvable, scaled, square, AdaptiveControl};
+use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
 use super::stiffness::StiffnessTest;
 use super::{FixedStep, StepControl};
-use crate::error::StepError;
+use crate::error::{StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
 use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
+use crate::tolerance::Tolerance;
 
 /// h|λ| beyond which DOP853's stiffness test counts a step as stiff (`dop853.f`).
 const STIFFNESS_BOUND: f64 = 6.1;
@@ -35,6 +36,8 @@ pub struct Dop853<'a, Sys, const N: usize, const S: usize> {
     system: &'a Sys,
     progress: Progress<S>,
     control: StepControl,
+    /// The checked tolerance of the adaptive mode.
+    tolerance: Option<Tolerance>,
     /// Whether the three extra stages of the dense output are computed.
     dense: bool,
     /// The size of the next step to try (0 until the first step chooses it).
@@ -87,16 +90,21 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let control = match control {
-            StepControl::Adaptive(adaptive) => StepControl::Adaptive(adaptive.validated()?),
-            StepControl::Fixed(fixed) => StepControl::Fixed(FixedStep {
-                step: FixedStep::validated(fixed.step)?,
-            }),
+        let (control, tolerance) = match control {
+            StepControl::Adaptive(adaptive) => {
+                let tolerance = adaptive.validated().map_err(|e| e.at(time, &state))?;
+                (control, Some(tolerance))
+            }
+            StepControl::Fixed(fixed) => {
+                FixedStep::validated(fixed.step).map_err(|e| e.at(time, &state))?;
+                (control, None)
+            }
         };
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
             control,
+            tolerance,
             dense: true,
             next_step: 0.0,
             last_step: 0.0,
@@ -147,7 +155,7 @@ fn attempt<Sys, const N: usize, const S: usize>(
     (t0, y0): (f64, &SVector<f64, S>),
     k1: &SVector<f64, S>,
     h: f64,
-    adaptive: Option<&AdaptiveControl>,
+    tolerance: Option<&Tolerance>,
 ) -> Result<Attempt<S>, StepError<S>>
 where
     Sys: VariableMassSystem<N, S>,
@@ -195,9 +203,9 @@ where
     let y1 = y0 + increment * h;
     check_state(system, t0 + h, &y1)?;
     let stages = [k1, k2, k3, k4, k5, k6, k7, k8, k9, k10, k11, k12];
-    let error = match adaptive {
+    let error = match tolerance {
         None => 0.0,
-        Some(control) => {
+        Some(tolerance) => {
             let fifth = k1 * ER1
                 + k6 * ER6
                 + k7 * ER7
@@ -207,7 +215,7 @@ where
                 + k11 * ER11
                 + k12 * ER12;
             let third = increment - k1 * BHH1 - k9 * BHH2 - k12 * BHH3;
-            error_norm(&fifth, &third, (y0, &y1), control, h)
+            error_norm(&fifth, &third, (y0, &y1), tolerance, h)
         }
     };
     Ok(Attempt {
@@ -218,24 +226,22 @@ where
     })
 }
 
-/// `dop853.f`'s scaled error from the fifth- and third-order estimates (per unit step).
+/// `dop853.f`'s scaled error from the fifth- and third-order estimates (per unit step),
+/// each weighed by atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|): with the mean squares m₅, m₃ of the
+/// weighted estimates, err = |h| m₅ / √(m₅ + 0.01 m₃).
 fn error_norm<const S: usize>(
     fifth: &SVector<f64, S>,
     third: &SVector<f64, S>,
     (y0, y1): (&SVector<f64, S>, &SVector<f64, S>),
-    control: &AdaptiveControl,
+    tolerance: &Tolerance,
     h: f64,
 ) -> f64 {
-    let (mut sum_fifth, mut sum_third) = (0.0, 0.0);
-    for i in 0..S {
-        let scale =
-            control.absolute_tolerance + control.relative_tolerance * y0[i].abs().max(y1[i].abs());
-        sum_fifth += square(scaled(fifth[i], scale));
-        sum_third += square(scaled(third[i], scale));
-    }
-    let denominator = sum_fifth + 0.01 * sum_third;
+    let magnitude = |i: usize| y0[i].abs().max(y1[i].abs());
+    let mean_fifth = tolerance.norm(fifth, magnitude).powi(2);
+    let mean_third = tolerance.norm(third, magnitude).powi(2);
+    let denominator = mean_fifth + 0.01 * mean_third;
     let denominator = if denominator > 0.0 { denominator } else { 1.0 };
-    h.abs() * sum_fifth * sqrt(1.0 / (S as f64 * denominator))
+    h.abs() * mean_fifth / sqrt(denominator)
 }
 
 /// The coefficients of the dense output of an accepted step (the `CONT` array of
@@ -453,7 +459,11 @@ where
                 StepControl::Fixed(fixed) => fixed.step,
                 StepControl::Adaptive(control) => match control.initial_step {
                     Some(h) => h.min(control.max_step),
-                    None => initial_step(self.system, &mut self.progress, &k1, &control, 8),
+                    None => {
+                        let tolerance = self.tolerance.expect("adaptive mode has a tolerance");
+                        let settings = (&control, &tolerance);
+                        initial_step(self.system, &mut self.progress, &k1, settings, 8)
+                    }
                 },
             };
         }
@@ -467,14 +477,12 @@ where
         loop {
             let (h, reaches_stop) = self.progress.next_step(self.next_step);
             if !resolvable(t0, h) {
-                return Err(StepError::StepSizeUnderflow {
-                    time: t0,
-                    state: y0,
-                    step: h,
-                });
+                let kind = StepErrorKind::StepSizeUnderflow { step: h };
+                return Err(StepError::new(t0, y0, kind));
             }
             let statistics = &mut self.progress.statistics;
-            let trial = attempt(self.system, statistics, (t0, &y0), &k1, h, Some(&control));
+            let tolerance = self.tolerance.as_ref();
+            let trial = attempt(self.system, statistics, (t0, &y0), &k1, h, tolerance);
             let attempt = match trial {
                 Ok(attempt) => attempt,
                 // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
@@ -493,11 +501,8 @@ where
                 } else {
                     control.min_factor
                 };
-                let underflow = StepError::StepSizeUnderflow {
-                    time: t0,
-                    state: y0,
-                    step: h * factor,
-                };
+                let kind = StepErrorKind::StepSizeUnderflow { step: h * factor };
+                let underflow = StepError::new(t0, y0, kind);
                 self.shrink_after(h, factor, underflow)?;
                 continue;
             }

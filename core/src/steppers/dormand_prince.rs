@@ -29,10 +29,11 @@ use nalgebra::SVector;
 
 use super::stiffness::StiffnessTest;
 use super::FixedStep;
-use crate::error::StepError;
-use crate::math::{powf, sqrt};
+use crate::error::{ConfigError, StepError, StepErrorKind};
+use crate::math::powf;
 use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
+use crate::tolerance::{weighted_rms, Tolerance};
 
 /// h|λ| beyond which the stiffness test counts a step as stiff (`dopri5.f`).
 const STIFFNESS_BOUND: f64 = 3.25;
@@ -115,12 +116,15 @@ impl Default for AdaptiveControl {
 }
 
 impl AdaptiveControl {
-    pub(crate) fn validated<const S: usize>(self) -> Result<Self, StepError<S>> {
-        let tolerances_ok = self.relative_tolerance >= 0.0
-            && self.absolute_tolerance >= 0.0
-            && self.relative_tolerance.is_finite()
-            && self.absolute_tolerance.is_finite()
-            && self.relative_tolerance + self.absolute_tolerance > 0.0;
+    /// Checks the settings and returns the tolerance they give.
+    pub(crate) fn validated(&self) -> Result<Tolerance, ConfigError> {
+        let tolerance =
+            Tolerance::new(self.relative_tolerance, self.absolute_tolerance).map_err(|_| {
+                ConfigError {
+                    reason: "adaptive control: tolerances must be finite, non-negative and not \
+                         both zero",
+                }
+            })?;
         let initial_ok = self.initial_step.is_none_or(|h| h.is_finite() && h > 0.0);
         let factors_ok = self.safety > 0.0
             && self.safety <= 1.0
@@ -130,13 +134,12 @@ impl AdaptiveControl {
             && self.max_factor.is_finite()
             && (0.0..0.2).contains(&self.beta)
             && self.max_step > 0.0;
-        if tolerances_ok && initial_ok && factors_ok {
-            Ok(self)
+        if initial_ok && factors_ok {
+            Ok(tolerance)
         } else {
-            Err(StepError::InvalidConfiguration {
-                reason: "adaptive control: tolerances must be non-negative and not both zero, \
-                         steps positive, safety and min_factor in (0, 1], max_factor ≥ 1, \
-                         beta in [0, 0.2)",
+            Err(ConfigError {
+                reason: "adaptive control: steps must be positive, safety and min_factor in \
+                         (0, 1], max_factor ≥ 1, beta in [0, 0.2)",
             })
         }
     }
@@ -158,12 +161,31 @@ impl Default for StepControl {
     }
 }
 
+impl StepControl {
+    /// Checks the settings.
+    fn validated(self) -> Result<Mode, ConfigError> {
+        match self {
+            Self::Adaptive(control) => control
+                .validated()
+                .map(|tolerance| Mode::Adaptive(control, tolerance)),
+            Self::Fixed(fixed) => FixedStep::validated(fixed.step).map(Mode::Fixed),
+        }
+    }
+}
+
+/// A checked [`StepControl`]: the fixed step, or the adaptive settings with their tolerance.
+#[derive(Clone, Copy, Debug)]
+enum Mode {
+    Fixed(f64),
+    Adaptive(AdaptiveControl, Tolerance),
+}
+
 /// The Dormand–Prince 5(4) stepper on the state `[q, p, m_s]`.
 #[derive(Clone, Debug)]
 pub struct DormandPrince<'a, Sys, const N: usize, const S: usize> {
     system: &'a Sys,
     progress: Progress<S>,
-    control: StepControl,
+    mode: Mode,
     /// The size of the next step to try (0 until the first step chooses it).
     next_step: f64,
     /// The size of the last accepted step, for the dense output.
@@ -200,16 +222,11 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let control = match control {
-            StepControl::Adaptive(adaptive) => StepControl::Adaptive(adaptive.validated()?),
-            StepControl::Fixed(fixed) => StepControl::Fixed(FixedStep {
-                step: FixedStep::validated(fixed.step)?,
-            }),
-        };
+        let mode = control.validated().map_err(|e| e.at(time, &state))?;
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
-            control,
+            mode,
             next_step: 0.0,
             last_step: 0.0,
             stages: [SVector::zeros(); 7],
@@ -253,7 +270,7 @@ where
         y0: &SVector<f64, S>,
         k1: &SVector<f64, S>,
         h: f64,
-        adaptive: Option<&AdaptiveControl>,
+        tolerance: Option<&Tolerance>,
     ) -> Result<Attempt<S>, StepError<S>> {
         let k1 = *k1;
         let k2 = state_rate(system, statistics, t0 + C2 * h, &(y0 + k1 * (A21 * h)))?;
@@ -268,11 +285,12 @@ where
         let y1 = y0 + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5 + k6 * B6) * h;
         check_state(system, t0 + h, &y1)?;
         let k7 = state_rate(system, statistics, t0 + h, &y1)?;
-        let error = match adaptive {
+        // Each component weighed by atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|).
+        let error = match tolerance {
             None => 0.0,
-            Some(control) => {
+            Some(tolerance) => {
                 let estimate = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
-                scaled_norm(&estimate, y0, &y1, control)
+                tolerance.norm(&estimate, |i| y0[i].abs().max(y1[i].abs()))
             }
         };
         Ok(Attempt {
@@ -284,8 +302,13 @@ where
     }
 
     /// The first step for the adaptive mode: [`initial_step`] for a fifth-order method.
-    fn initial_step(&mut self, k1: &SVector<f64, S>, control: &AdaptiveControl) -> f64 {
-        initial_step(self.system, &mut self.progress, k1, control, 5)
+    fn initial_step(
+        &mut self,
+        k1: &SVector<f64, S>,
+        control: &AdaptiveControl,
+        tolerance: &Tolerance,
+    ) -> f64 {
+        initial_step(self.system, &mut self.progress, k1, (control, tolerance), 5)
     }
 }
 
@@ -296,7 +319,7 @@ pub(crate) fn initial_step<Sys, const N: usize, const S: usize>(
     system: &Sys,
     progress: &mut Progress<S>,
     k1: &SVector<f64, S>,
-    control: &AdaptiveControl,
+    (control, tolerance): (&AdaptiveControl, &Tolerance),
     order: u32,
 ) -> f64
 where
@@ -312,12 +335,12 @@ where
         .map(|stop| stop - t0)
         .filter(|length| *length > 0.0 && length.is_finite())
         .unwrap_or(1.0);
-    let weight = |i: usize| control.absolute_tolerance + control.relative_tolerance * y0[i].abs();
+    let weight = |i: usize| tolerance.weight(y0[i].abs());
     // A component without a scale (atol = 0 and y = 0) says nothing about the step size
-    // here: it does not vote.
+    // here: it does not vote (its value is taken as 0, which counts 0).
     let norm = |v: &SVector<f64, S>| {
-        let terms = (0..S).filter(|&i| weight(i) > 0.0);
-        sqrt(terms.map(|i| square(v[i] / weight(i))).sum::<f64>() / S as f64)
+        let voting = SVector::<f64, S>::from_fn(|i, _| if weight(i) > 0.0 { v[i] } else { 0.0 });
+        weighted_rms(&voting, weight)
     };
     let rate_norm = norm(k1) * unit;
     let state_norm = norm(&y0);
@@ -358,38 +381,6 @@ pub(crate) fn resolvable(t0: f64, h: f64) -> bool {
     h > 0.0 && t0 + h != t0
 }
 
-pub(crate) fn square(x: f64) -> f64 {
-    x * x
-}
-
-/// `value / scale`, with 0/0 = 0: with a purely relative tolerance (atol = 0) a component
-/// that is exactly zero has scale 0, and a zero error there meets any tolerance. (Without
-/// this, 0/0 = NaN poisoned the norm and every step was rejected.)
-pub(crate) fn scaled(value: f64, scale: f64) -> f64 {
-    if value == 0.0 {
-        0.0
-    } else {
-        value / scale
-    }
-}
-
-/// The RMS of the error estimate, each component scaled by atol + rtol·max(|y₀|, |y₁|).
-fn scaled_norm<const S: usize>(
-    estimate: &SVector<f64, S>,
-    y0: &SVector<f64, S>,
-    y1: &SVector<f64, S>,
-    control: &AdaptiveControl,
-) -> f64 {
-    let sum: f64 = (0..S)
-        .map(|i| {
-            let scale = control.absolute_tolerance
-                + control.relative_tolerance * y0[i].abs().max(y1[i].abs());
-            square(scaled(estimate[i], scale))
-        })
-        .sum();
-    sqrt(sum / S as f64)
-}
-
 impl<Sys, const N: usize, const S: usize> Stepper<N, S> for DormandPrince<'_, Sys, N, S>
 where
     Sys: VariableMassSystem<N, S>,
@@ -424,36 +415,20 @@ where
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
-        let k1 = match self.current_rate {
-            Some(rate) => rate,
-            None => {
-                let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;
-                self.current_rate = Some(rate);
-                rate
-            }
-        };
+        let k1 = self.rate_at_start()?;
         if self.next_step <= 0.0 {
-            self.next_step = match self.control {
-                StepControl::Fixed(fixed) => fixed.step,
-                StepControl::Adaptive(control) => match control.initial_step {
-                    Some(h) => h.min(control.max_step),
-                    None => self.initial_step(&k1, &control),
-                },
-            };
+            self.next_step = self.first_step(&k1);
         }
-        let adaptive = match &self.control {
-            StepControl::Adaptive(control) => Some(*control),
-            StepControl::Fixed(_) => None,
-        };
         loop {
             let (h, reaches_stop) = self.progress.next_step(self.next_step);
             if !resolvable(t0, h) {
-                return Err(StepError::StepSizeUnderflow {
-                    time: t0,
-                    state: y0,
-                    step: h,
-                });
+                let kind = StepErrorKind::StepSizeUnderflow { step: h };
+                return Err(StepError::new(t0, y0, kind));
             }
+            let tolerance = match &self.mode {
+                Mode::Adaptive(_, tolerance) => Some(tolerance),
+                Mode::Fixed(_) => None,
+            };
             let attempt = Self::attempt(
                 self.system,
                 &mut self.progress.statistics,
@@ -461,56 +436,13 @@ where
                 &y0,
                 &k1,
                 h,
-                adaptive.as_ref(),
+                tolerance,
             );
-            let Some(control) = adaptive else {
-                let attempt = attempt?;
-                return self.accept(h, reaches_stop, attempt);
+            let Mode::Adaptive(control, _) = self.mode else {
+                return self.accept(h, reaches_stop, attempt?);
             };
-            match attempt {
-                Ok(attempt) if attempt.error <= 1.0 => {
-                    // PI controller (HNW II, IV.2): h_new = h·err^(−α)·err_old^β
-                    // with α = 1/5 − 0.75β, bounded by the factor limits.
-                    let alpha = 0.2 - 0.75 * control.beta;
-                    let factor = powf(attempt.error, alpha)
-                        / powf(self.previous_error, control.beta)
-                        / control.safety;
-                    let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
-                    let mut next = h / factor;
-                    if self.last_rejected {
-                        next = next.min(h);
-                    }
-                    self.previous_error = attempt.error.max(1e-4);
-                    self.last_rejected = false;
-                    let outcome = self.accept(h, reaches_stop, attempt)?;
-                    if !reaches_stop || next > self.next_step {
-                        self.next_step = next.min(control.max_step);
-                    }
-                    return Ok(outcome);
-                }
-                Ok(attempt) => {
-                    let factor = powf(attempt.error, 0.2 - 0.75 * control.beta) / control.safety;
-                    // A non-finite error estimate (overflowing stages) shrinks the most.
-                    let factor = if attempt.error.is_finite() {
-                        factor.min(1.0 / control.min_factor)
-                    } else {
-                        1.0 / control.min_factor
-                    };
-                    self.next_step = h / factor;
-                    self.last_rejected = true;
-                    self.progress.statistics.rejected_steps += 1;
-                }
-                Err(error) => {
-                    // A trial state outside the domain (non-finite, a mass ≤ 0, a singular
-                    // mass matrix) is a step too long, not yet a failure: shrink and retry.
-                    // If the step underflows, report the cause rather than the underflow.
-                    self.next_step = h * control.min_factor;
-                    self.last_rejected = true;
-                    self.progress.statistics.rejected_steps += 1;
-                    if !resolvable(t0, self.next_step) {
-                        return Err(error);
-                    }
-                }
+            if let Some(outcome) = self.control(&control, h, reaches_stop, attempt)? {
+                return Ok(outcome);
             }
         }
     }
@@ -520,6 +452,103 @@ impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
 where
     Sys: VariableMassSystem<N, S>,
 {
+    /// The rate k₁ at the current state: the last stage of the previous step (FSAL), or
+    /// evaluated after a start or restart.
+    fn rate_at_start(&mut self) -> Result<SVector<f64, S>, StepError<S>> {
+        if let Some(rate) = self.current_rate {
+            return Ok(rate);
+        }
+        let (time, state) = (self.progress.time(), *self.progress.state());
+        let rate = state_rate(self.system, &mut self.progress.statistics, time, &state)?;
+        self.current_rate = Some(rate);
+        Ok(rate)
+    }
+
+    /// The size of the first step: the fixed step, or the adaptive control's initial step,
+    /// or one chosen from the problem.
+    fn first_step(&mut self, k1: &SVector<f64, S>) -> f64 {
+        match self.mode {
+            Mode::Fixed(step) => step,
+            Mode::Adaptive(control, tolerance) => match control.initial_step {
+                Some(h) => h.min(control.max_step),
+                None => self.initial_step(k1, &control, &tolerance),
+            },
+        }
+    }
+
+    /// The step-size controller's verdict on an attempted step of size `h`: accepted (its
+    /// outcome) when its error is at most 1, otherwise `None` with a shorter next step. A
+    /// failed attempt is a step too long as well, unless the step cannot shrink any more.
+    fn control(
+        &mut self,
+        control: &AdaptiveControl,
+        h: f64,
+        reaches_stop: bool,
+        attempt: Result<Attempt<S>, StepError<S>>,
+    ) -> Result<Option<StepOutcome>, StepError<S>> {
+        match attempt {
+            Ok(attempt) if attempt.error <= 1.0 => self
+                .accept_controlled(control, h, reaches_stop, attempt)
+                .map(Some),
+            Ok(attempt) => {
+                let factor = powf(attempt.error, 0.2 - 0.75 * control.beta) / control.safety;
+                // A non-finite error estimate (overflowing stages) shrinks the most.
+                let factor = if attempt.error.is_finite() {
+                    factor.min(1.0 / control.min_factor)
+                } else {
+                    1.0 / control.min_factor
+                };
+                self.reject(h / factor);
+                Ok(None)
+            }
+            Err(error) => {
+                // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
+                // matrix) is a step too long, not yet a failure: shrink and retry. If the
+                // step underflows, report the cause rather than the underflow.
+                self.reject(h * control.min_factor);
+                if resolvable(self.progress.time(), self.next_step) {
+                    Ok(None)
+                } else {
+                    Err(error)
+                }
+            }
+        }
+    }
+
+    /// Accepts a step whose error met the tolerance and chooses the next step by the PI
+    /// controller (HNW II, IV.2): h_new = h·err^(−α)·err_old^β with α = 1/5 − 0.75β, within
+    /// the factor limits, not growing right after a rejection.
+    fn accept_controlled(
+        &mut self,
+        control: &AdaptiveControl,
+        h: f64,
+        reaches_stop: bool,
+        attempt: Attempt<S>,
+    ) -> Result<StepOutcome, StepError<S>> {
+        let alpha = 0.2 - 0.75 * control.beta;
+        let factor =
+            powf(attempt.error, alpha) / powf(self.previous_error, control.beta) / control.safety;
+        let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
+        let mut next = h / factor;
+        if self.last_rejected {
+            next = next.min(h);
+        }
+        self.previous_error = attempt.error.max(1e-4);
+        self.last_rejected = false;
+        let outcome = self.accept(h, reaches_stop, attempt)?;
+        if !reaches_stop || next > self.next_step {
+            self.next_step = next.min(control.max_step);
+        }
+        Ok(outcome)
+    }
+
+    /// Rejects an attempt: the next attempt has size `next`.
+    fn reject(&mut self, next: f64) {
+        self.next_step = next;
+        self.last_rejected = true;
+        self.progress.statistics.rejected_steps += 1;
+    }
+
     fn accept(
         &mut self,
         h: f64,

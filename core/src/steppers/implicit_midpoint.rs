@@ -17,7 +17,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::newton::{self, NewtonConfig};
+use super::newton::{self, Newton, NewtonConfig};
 use super::FixedStep;
 use crate::error::StepError;
 use crate::stepper::{state_rate, Progress, StepOutcome, Stepper};
@@ -47,7 +47,7 @@ pub struct ImplicitMidpoint<'a, Sys, const N: usize, const S: usize> {
     system: &'a Sys,
     progress: Progress<S>,
     step: f64,
-    newton: NewtonConfig,
+    newton: Newton,
 }
 
 impl<'a, Sys, const N: usize, const S: usize> ImplicitMidpoint<'a, Sys, N, S>
@@ -64,8 +64,8 @@ where
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
-            step: FixedStep::validated(config.step)?,
-            newton: config.newton.validated()?,
+            step: FixedStep::validated(config.step).map_err(|e| e.at(time, &state))?,
+            newton: config.newton.validated().map_err(|e| e.at(time, &state))?,
         })
     }
 }

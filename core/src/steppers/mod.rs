@@ -22,7 +22,7 @@ pub use rk4::ClassicalRk4;
 pub use sdirk4::{Sdirk4, Sdirk4Newton};
 pub use variational::{Principle, Variational, VariationalConfig};
 
-use crate::error::StepError;
+use crate::error::ConfigError;
 
 /// The configuration of a fixed-step method: just its step size.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,11 +33,11 @@ pub struct FixedStep {
 
 impl FixedStep {
     /// Checks that the step is positive and finite.
-    pub(crate) fn validated<const S: usize>(step: f64) -> Result<f64, StepError<S>> {
+    pub(crate) fn validated(step: f64) -> Result<f64, ConfigError> {
         if step.is_finite() && step > 0.0 {
             Ok(step)
         } else {
-            Err(StepError::InvalidConfiguration {
+            Err(ConfigError {
                 reason: "the step size must be positive and finite",
             })
         }

@@ -13,9 +13,9 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::error::StepError;
-use crate::math::sqrt;
+use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::stepper::Statistics;
+use crate::tolerance::{weighted_rms, Tolerance};
 
 /// Settings of the Newton iteration of the implicit steppers.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,7 +25,7 @@ pub struct NewtonConfig {
     pub relative_tolerance: f64,
     /// Absolute tolerance on the solution (for components near zero).
     pub absolute_tolerance: f64,
-    /// Iterations allowed per step before [`StepError::NewtonDivergence`].
+    /// Iterations allowed per step before [`StepErrorKind::NewtonDivergence`].
     pub max_iterations: usize,
 }
 
@@ -40,22 +40,33 @@ impl Default for NewtonConfig {
 }
 
 impl NewtonConfig {
-    pub(crate) fn validated<const S: usize>(self) -> Result<Self, StepError<S>> {
-        let ok = self.relative_tolerance >= 0.0
-            && self.absolute_tolerance >= 0.0
-            && self.relative_tolerance.is_finite()
-            && self.absolute_tolerance.is_finite()
-            && self.relative_tolerance + self.absolute_tolerance > 0.0
-            && self.max_iterations > 0;
-        if ok {
-            Ok(self)
-        } else {
-            Err(StepError::InvalidConfiguration {
-                reason: "Newton: tolerances must be non-negative, not both zero, and at least \
-                         one iteration allowed",
-            })
+    /// The checked settings: a usable [`Tolerance`] and at least one iteration.
+    pub(crate) fn validated(self) -> Result<Newton, ConfigError> {
+        let tolerance =
+            Tolerance::new(self.relative_tolerance, self.absolute_tolerance).map_err(|_| {
+                ConfigError {
+                    reason: "Newton: tolerances must be finite, non-negative and not both zero",
+                }
+            })?;
+        if self.max_iterations == 0 {
+            return Err(ConfigError {
+                reason: "Newton: at least one iteration must be allowed",
+            });
         }
+        Ok(Newton {
+            tolerance,
+            max_iterations: self.max_iterations,
+        })
     }
+}
+
+/// [`NewtonConfig`] after its check: what [`solve`] runs with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Newton {
+    /// The tolerance on the solution z, weighing component i by atol + rtol·|zᵢ|.
+    pub(crate) tolerance: Tolerance,
+    /// Iterations allowed per step, at least 1.
+    pub(crate) max_iterations: usize,
 }
 
 /// Solves r(z) = 0 from `initial` with the fixed iteration matrix ≈ ∂r/∂z. `time` and
@@ -65,7 +76,7 @@ pub(crate) fn solve<const S: usize, R>(
     mut residual: R,
     iteration_matrix: SMatrix<f64, S, S>,
     initial: SVector<f64, S>,
-    config: &NewtonConfig,
+    config: &Newton,
     statistics: &mut Statistics,
     time: f64,
     state: &SVector<f64, S>,
@@ -73,11 +84,8 @@ pub(crate) fn solve<const S: usize, R>(
 where
     R: FnMut(&SVector<f64, S>, &mut Statistics) -> Result<SVector<f64, S>, StepError<S>>,
 {
-    let diverged = |iterations| StepError::NewtonDivergence {
-        time,
-        state: *state,
-        iterations,
-    };
+    let diverged =
+        |iterations| StepError::new(time, *state, StepErrorKind::NewtonDivergence { iterations });
     let Some(lu) = Lu::factor(iteration_matrix) else {
         return Err(diverged(0));
     };
@@ -88,16 +96,14 @@ where
         let increment = lu.solve(-r);
         z += increment;
         statistics.newton_iterations += 1;
-        let norm = weighted_rms(&increment, &z, |zi| {
-            config.absolute_tolerance + config.relative_tolerance * zi.abs()
-        });
+        let norm = config.tolerance.norm(&increment, |i| z[i].abs());
         if !norm.is_finite() {
             return Err(diverged(iteration));
         }
         if norm <= 1.0 {
             return Ok(z);
         }
-        let rounding = weighted_rms(&increment, &z, |zi| 16.0 * f64::EPSILON * zi.abs());
+        let rounding = weighted_rms(&increment, |i| 16.0 * f64::EPSILON * z[i].abs());
         if rounding <= 1.0 {
             return Ok(z);
         }
@@ -113,27 +119,6 @@ where
         previous_norm = norm;
     }
     Err(diverged(config.max_iterations))
-}
-
-/// RMS of vᵢ / w(zᵢ). A zero weight with a zero component counts as zero.
-fn weighted_rms<const S: usize>(
-    v: &SVector<f64, S>,
-    z: &SVector<f64, S>,
-    weight: impl Fn(f64) -> f64,
-) -> f64 {
-    let sum: f64 = (0..S)
-        .map(|i| {
-            if v[i] == 0.0 {
-                0.0
-            } else {
-                {
-                    let scaled = v[i] / weight(z[i]);
-                    scaled * scaled
-                }
-            }
-        })
-        .sum();
-    sqrt(sum / S as f64)
 }
 
 /// An LU factorisation P A = L U with partial pivoting; L (unit diagonal) and U share one

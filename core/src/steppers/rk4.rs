@@ -40,7 +40,7 @@ where
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
-            step: FixedStep::validated(config.step)?,
+            step: FixedStep::validated(config.step).map_err(|e| e.at(time, &state))?,
         })
     }
 }

@@ -20,13 +20,14 @@ mod coefficients;
 use nalgebra::{SMatrix, SVector};
 
 use self::coefficients::*;
-use super::dormand_prince::{initial_step, resolvable, scaled, square, AdaptiveControl};
+use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
 use super::newton::Lu;
 use super::{FixedStep, StepControl};
-use crate::error::StepError;
-use crate::math::{powf, sqrt};
+use crate::error::{StepError, StepErrorKind};
+use crate::math::powf;
 use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
+use crate::tolerance::{weighted_rms, Tolerance};
 
 /// The Newton settings of [`Sdirk4`] (defaults of `sdirk4.f`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,6 +75,8 @@ pub struct Sdirk4<'a, Sys, const N: usize, const S: usize> {
     system: &'a Sys,
     progress: Progress<S>,
     control: StepControl,
+    /// The checked tolerance of the adaptive mode.
+    tolerance: Option<Tolerance>,
     newton: Sdirk4Newton,
     /// The size of the next step to try (0 until the first step chooses it).
     next_step: f64,
@@ -121,16 +124,21 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let control = match control {
-            StepControl::Adaptive(adaptive) => StepControl::Adaptive(adaptive.validated()?),
-            StepControl::Fixed(fixed) => StepControl::Fixed(FixedStep {
-                step: FixedStep::validated(fixed.step)?,
-            }),
+        let (control, tolerance) = match control {
+            StepControl::Adaptive(adaptive) => {
+                let tolerance = adaptive.validated().map_err(|e| e.at(time, &state))?;
+                (control, Some(tolerance))
+            }
+            StepControl::Fixed(fixed) => {
+                FixedStep::validated(fixed.step).map_err(|e| e.at(time, &state))?;
+                (control, None)
+            }
         };
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
             control,
+            tolerance,
             newton: Sdirk4Newton::default(),
             next_step: 0.0,
             last_step: 0.0,
@@ -148,10 +156,10 @@ where
             && newton.tolerance_fraction < 1.0
             && (0.0..1.0).contains(&newton.jacobian_reuse_rate);
         if !valid {
-            return Err(StepError::InvalidConfiguration {
-                reason: "SDIRK4 Newton: at least 2 iterations, tolerance fraction in (0, 1), \
-                         Jacobian reuse rate in [0, 1)",
-            });
+            let reason = "SDIRK4 Newton: at least 2 iterations, tolerance fraction in (0, 1), \
+                          Jacobian reuse rate in [0, 1)";
+            let kind = StepErrorKind::InvalidConfiguration { reason };
+            return Err(StepError::new(self.time(), *self.state(), kind));
         }
         Ok(Self { newton, ..self })
     }
@@ -200,10 +208,7 @@ where
                     .jacobian(t0, &y0)
                     .map_err(|error| StepError::from_system(self.system, error, t0, &y0))?;
                 if !jacobian.iter().all(|x| x.is_finite()) {
-                    return Err(StepError::NonFiniteState {
-                        time: t0,
-                        state: y0,
-                    });
+                    return Err(StepError::new(t0, y0, StepErrorKind::NonFiniteState));
                 }
                 self.jacobian = Some((jacobian, true));
                 Ok(jacobian)
@@ -226,10 +231,9 @@ struct StepContext<'c, Sys, const S: usize> {
     newton: &'c Sdirk4Newton,
 }
 
-/// The RMS of vᵢ / wᵢ (0/0 = 0).
+/// The [`weighted_rms`] of v against the weights w.
 fn weighted_norm<const S: usize>(v: &SVector<f64, S>, weights: &SVector<f64, S>) -> f64 {
-    let sum: f64 = (0..S).map(|i| square(scaled(v[i], weights[i]))).sum();
-    sqrt(sum / S as f64)
+    weighted_rms(v, |i| weights[i])
 }
 
 /// A solved stage: its increment, its Newton iterations and slowest contraction rate.
@@ -420,7 +424,9 @@ where
                     let (t0, y0) = (self.progress.time(), *self.progress.state());
                     let statistics = &mut self.progress.statistics;
                     let rate = state_rate(self.system, statistics, t0, &y0)?;
-                    initial_step(self.system, &mut self.progress, &rate, &control, 4)
+                    let tolerance = self.tolerance.expect("adaptive mode has a tolerance");
+                    let settings = (&control, &tolerance);
+                    initial_step(self.system, &mut self.progress, &rate, settings, 4)
                 }
             },
         })
@@ -471,11 +477,8 @@ where
         loop {
             let (h, reaches_stop) = self.progress.next_step(self.next_step);
             if !resolvable(t0, h) {
-                return Err(StepError::StepSizeUnderflow {
-                    time: t0,
-                    state: y0,
-                    step: h,
-                });
+                let kind = StepErrorKind::StepSizeUnderflow { step: h };
+                return Err(StepError::new(t0, y0, kind));
             }
             let (jacobian, fresh) = match self.jacobian {
                 Some(pair) => pair,
@@ -552,11 +555,8 @@ where
                     self.refresh_jacobian(true)?;
                     return Ok(());
                 }
-                let error = StepError::NewtonDivergence {
-                    time: t0,
-                    state: y0,
-                    iterations,
-                };
+                let kind = StepErrorKind::NewtonDivergence { iterations };
+                let error = StepError::new(t0, y0, kind);
                 (error, shrink)
             }
             StageFailure::Rate(error) => (error, 0.25),

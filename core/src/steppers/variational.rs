@@ -27,7 +27,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::newton::{self, NewtonConfig};
+use super::newton::{self, Newton, NewtonConfig};
 use super::FixedStep;
 use crate::error::StepError;
 use crate::stepper::{Progress, Statistics, StepOutcome, Stepper};
@@ -73,7 +73,7 @@ pub struct Variational<'a, Sys, const N: usize, const S: usize> {
     system: &'a Sys,
     progress: Progress<S>,
     step: f64,
-    newton: NewtonConfig,
+    newton: Newton,
     principle: Principle,
 }
 
@@ -91,8 +91,8 @@ where
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
-            step: FixedStep::validated(config.step)?,
-            newton: config.newton.validated()?,
+            step: FixedStep::validated(config.step).map_err(|e| e.at(time, &state))?,
+            newton: config.newton.validated().map_err(|e| e.at(time, &state))?,
             principle: config.principle,
         })
     }

@@ -1,5 +1,6 @@
 //! Expressions as Rust: straight-line `let`s for the shared subexpressions of a set of
-//! outputs, then each output as one expression.
+//! outputs, then each output as one expression — the Rust [`Syntax`] of the shared
+//! printing walk, the temporaries printed by name.
 //!
 //! The arena makes common-subexpression elimination exact and cheap: equal subexpressions
 //! are one node, so a node reached more than once from the outputs is computed once into a
@@ -10,6 +11,7 @@ use std::collections::HashMap;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
+use crate::expr::walk::{print_all, Prec, Printed, Printer, Syntax};
 use crate::expr::{ExprPool, Func, Id, Node, Rational, Symbol, SymbolKind};
 
 /// The Rust local that holds a symbol's value in generated code.
@@ -30,31 +32,6 @@ pub(crate) struct Block {
     pub lets: Vec<TokenStream>,
     /// Each output as an expression over symbols and temporaries.
     pub outputs: Vec<TokenStream>,
-}
-
-/// Precedence of rendered code, to parenthesise only where Rust needs it.
-#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-enum Prec {
-    Sum,
-    Product,
-    Unary,
-    Atom,
-}
-
-struct Rendered {
-    tokens: TokenStream,
-    prec: Prec,
-}
-
-impl Rendered {
-    fn at_least(self, prec: Prec) -> TokenStream {
-        let tokens = self.tokens;
-        if self.prec >= prec {
-            tokens
-        } else {
-            quote!((#tokens))
-        }
-    }
 }
 
 /// Renders `roots` with their shared subexpressions hoisted into temporaries named
@@ -85,232 +62,259 @@ pub(crate) fn staged_block(
         .shared
         .into_iter()
         .partition(|id| bound.iter().any(|s| pool.contains(*id, *s)));
-    let mut renderer = Renderer {
-        pool,
-        temps: HashMap::new(),
-        runtime,
+    // Early temporaries are numbered first, then late ones, each in id order.
+    let names: HashMap<Id, Ident> = early
+        .iter()
+        .chain(&late)
+        .enumerate()
+        .map(|(n, id)| (*id, format_ident!("__{}{}", prefix, n)))
+        .collect();
+    // One walk over everything: a shared node is printed once, bound to its temporary,
+    // and printed by name wherever it is used above.
+    let mut values: HashMap<Id, TokenStream> = HashMap::new();
+    let mut printed = print_all(pool, &RustSyntax { runtime }, &all, |id, value| {
+        let name = names.get(&id)?;
+        values.insert(id, value.text.clone());
+        Some(atom(quote!(#name)))
+    })
+    .into_iter()
+    .map(|p| p.text);
+    let mut lets_of = |ids: &[Id]| -> Vec<TokenStream> {
+        ids.iter()
+            .filter_map(|id| {
+                let (name, value) = (names.get(id)?, values.remove(id)?);
+                Some(quote!(let #name = #value;))
+            })
+            .collect()
     };
-    let mut lets = Vec::new();
-    let mut counter = 0usize;
-    let mut hoist = |renderer: &mut Renderer, ids: &[Id], lets: &mut Vec<TokenStream>| {
-        for id in ids {
-            let value = renderer.render(*id).tokens;
-            let name = format_ident!("__{}{}", prefix, counter);
-            counter += 1;
-            lets.push(quote!(let #name = #value;));
-            renderer.temps.insert(*id, name);
-        }
-    };
-    hoist(&mut renderer, &early, &mut lets);
-    let first_values = first.iter().map(|e| renderer.render(*e).tokens).collect();
+    let mut lets = lets_of(&early);
+    let first_values = printed.by_ref().take(first.len()).collect();
     lets.extend(bridge(first_values));
-    hoist(&mut renderer, &late, &mut lets);
-    let outputs = roots.iter().map(|r| renderer.render(*r).tokens).collect();
+    lets.extend(lets_of(&late));
+    let outputs = printed.collect();
     Block { lets, outputs }
 }
 
-struct Renderer<'a> {
-    pool: &'a ExprPool,
-    temps: HashMap<Id, Ident>,
+/// Rust tokens: `f64` arithmetic and methods (`.powi`, `.sqrt`, `.sin()`), temporaries
+/// printed by name.
+struct RustSyntax<'a> {
     runtime: &'a TokenStream,
+}
+
+type Rendered = Printed<TokenStream>;
+
+fn atom(tokens: TokenStream) -> Rendered {
+    Printed::new(tokens, Prec::Atom)
 }
 
 fn float_literal(value: f64) -> Rendered {
     if value.is_nan() {
-        return Rendered {
-            tokens: quote!(f64::NAN),
-            prec: Prec::Atom,
-        };
+        return atom(quote!(f64::NAN));
     }
     if value.is_infinite() {
-        let tokens = if value > 0.0 {
+        return atom(if value > 0.0 {
             quote!(f64::INFINITY)
         } else {
             quote!(f64::NEG_INFINITY)
-        };
-        return Rendered {
-            tokens,
-            prec: Prec::Atom,
-        };
+        });
     }
     let literal = Literal::f64_suffixed(value.abs());
     if value.is_sign_negative() && value != 0.0 {
-        Rendered {
-            tokens: quote!(-#literal),
-            prec: Prec::Unary,
-        }
+        // A unary minus binds tighter than `*` (the `Power` level).
+        Printed::new(quote!(-#literal), Prec::Power)
     } else {
-        Rendered {
-            tokens: quote!(#literal),
-            prec: Prec::Atom,
-        }
+        atom(quote!(#literal))
     }
 }
 
-impl Renderer<'_> {
-    fn render(&self, id: Id) -> Rendered {
-        if let Some(name) = self.temps.get(&id) {
-            return Rendered {
-                tokens: quote!(#name),
-                prec: Prec::Atom,
-            };
+fn rational(pool: &ExprPool, id: Id) -> Option<Rational> {
+    match pool.node(id) {
+        Node::Num(r) => Some(*r),
+        _ => None,
+    }
+}
+
+impl Syntax for RustSyntax<'_> {
+    type Text = TokenStream;
+
+    fn group(&self, text: &TokenStream) -> TokenStream {
+        quote!((#text))
+    }
+
+    fn number(&self, r: Rational) -> Rendered {
+        float_literal(r.to_f64())
+    }
+
+    fn float(&self, x: f64) -> Rendered {
+        float_literal(x)
+    }
+
+    fn symbol(&self, pool: &ExprPool, s: Symbol) -> Rendered {
+        let name = symbol_ident(pool, s);
+        atom(quote!(#name))
+    }
+
+    fn call(&self, p: &Printer<'_, Self>, func: Func, args: &[Id]) -> Rendered {
+        let Some(first) = args.first() else {
+            return atom(quote!(f64::NAN));
+        };
+        // `f64::signum(0.0)` is 1, but the derivative of |x| needs sign(0) = 0.
+        if func == Func::Sign {
+            let runtime = self.runtime;
+            let a = &p.get(*first).text;
+            return atom(quote!(#runtime::math::sign(#a)));
         }
-        match self.pool.node(id) {
-            Node::Num(r) => float_literal(r.to_f64()),
-            Node::Float(bits) => float_literal(f64::from_bits(*bits)),
-            Node::Sym(s) => {
-                let name = symbol_ident(self.pool, *s);
-                Rendered {
-                    tokens: quote!(#name),
-                    prec: Prec::Atom,
-                }
+        let receiver = self.at_least(p.get(*first), Prec::Atom);
+        let method = format_ident!("{}", func.name());
+        match args.get(1).filter(|_| func.arity() == 2) {
+            Some(second) => {
+                let second = &p.get(*second).text;
+                atom(quote!(#receiver.#method(#second)))
             }
-            Node::Add(terms) => self.sum(terms),
-            Node::Mul(factors) => self.product(factors),
-            Node::Pow(base, exponent) => self.power(*base, *exponent),
-            Node::Call(func, args) => self.call(*func, args),
+            None => atom(quote!(#receiver.#method())),
         }
     }
 
-    fn rational(&self, id: Id) -> Option<Rational> {
-        match self.pool.node(id) {
-            Node::Num(r) => Some(*r),
-            _ => None,
-        }
-    }
-
-    /// A term's sign and magnitude: `-3*x` renders as `- 3*x` inside a sum.
-    fn split_sign(&self, id: Id) -> (bool, Option<Rendered>) {
-        match self.pool.node(id) {
-            Node::Num(r) if r.is_negative() => (true, Some(float_literal(-r.to_f64()))),
-            Node::Mul(factors) if !self.temps.contains_key(&id) => {
-                match self.rational(factors[0]) {
-                    Some(c) if c.is_negative() => {
-                        let magnitude = -c.to_f64();
-                        let rest = self.product_of(Some(magnitude), &factors[1..]);
-                        (true, Some(rest))
-                    }
-                    _ => (false, None),
-                }
-            }
-            _ => (false, None),
-        }
-    }
-
-    fn sum(&self, terms: &[Id]) -> Rendered {
-        let mut tokens = TokenStream::new();
-        for (i, term) in terms.iter().enumerate() {
-            let (negative, magnitude) = self.split_sign(*term);
-            match (i, negative, magnitude) {
-                (0, true, Some(m)) => {
-                    let m = m.at_least(Prec::Product);
-                    tokens.extend(quote!(-#m));
-                }
-                (_, true, Some(m)) => {
-                    let m = m.at_least(Prec::Product);
-                    tokens.extend(quote!(- #m));
-                }
-                (0, _, _) => tokens.extend(self.render(*term).at_least(Prec::Sum)),
-                _ => {
-                    let t = self.render(*term).at_least(Prec::Product);
-                    tokens.extend(quote!(+ #t));
-                }
-            }
-        }
-        Rendered {
-            tokens,
-            prec: Prec::Sum,
-        }
-    }
-
-    fn product(&self, factors: &[Id]) -> Rendered {
-        match self.rational(factors[0]) {
+    fn product(&self, p: &Printer<'_, Self>, factors: &[Id]) -> Rendered {
+        match rational(p.pool(), factors[0]) {
             Some(c) if c.numer() == -1 && c.denom() == 1 => {
-                let rest = self.product_of(None, &factors[1..]).at_least(Prec::Unary);
-                Rendered {
-                    tokens: quote!(-#rest),
-                    prec: Prec::Unary,
-                }
+                let rest = self.product_of(p, None, &factors[1..]);
+                let rest = self.at_least(&rest, Prec::Power);
+                Printed::new(quote!(-#rest), Prec::Power)
             }
-            Some(c) => self.product_of(Some(c.to_f64()), &factors[1..]),
-            None => self.product_of(None, factors),
+            Some(c) => self.product_of(p, Some(c.to_f64()), &factors[1..]),
+            None => self.product_of(p, None, factors),
+        }
+    }
+
+    fn power(&self, p: &Printer<'_, Self>, base: Id, exponent: Id) -> Rendered {
+        match rational(p.pool(), exponent) {
+            Some(e) if e.is_negative() => {
+                let below = self.power_rational(p, base, Rational::new(-e.numer(), e.denom()));
+                let below = self.at_least(&below, Prec::Atom);
+                Printed::new(quote!(1.0f64 / #below), Prec::Product)
+            }
+            Some(e) => self.power_rational(p, base, Some(e)),
+            None => {
+                let b = self.at_least(p.get(base), Prec::Atom);
+                let e = &p.get(exponent).text;
+                atom(quote!(#b.powf(#e)))
+            }
+        }
+    }
+
+    /// The terms in stored order; a term with a negative constant coefficient is printed
+    /// after `-`.
+    fn terms(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Vec<(Id, bool)> {
+        terms
+            .iter()
+            .map(|t| (*t, self.split_sign(p, *t).is_some()))
+            .collect()
+    }
+
+    fn negated(&self, p: &Printer<'_, Self>, term: Id) -> Rendered {
+        self.split_sign(p, term)
+            .unwrap_or_else(|| p.get(term).clone())
+    }
+
+    fn lead(&self, p: &Printer<'_, Self>, term: Id, negative: bool) -> TokenStream {
+        if negative {
+            let m = self.at_least(&self.negated(p, term), Prec::Product);
+            quote!(-#m)
+        } else {
+            p.get(term).text.clone()
+        }
+    }
+
+    fn join(&self, sum: &mut TokenStream, negative: bool, term: TokenStream) {
+        sum.extend(if negative {
+            quote!(- #term)
+        } else {
+            quote!(+ #term)
+        });
+    }
+}
+
+impl RustSyntax<'_> {
+    /// The magnitude of a term with a negative constant coefficient (`-3*x` is `3*x`
+    /// printed after `-`); `None` for any other term.
+    fn split_sign(&self, p: &Printer<'_, Self>, id: Id) -> Option<Rendered> {
+        match p.pool().node(id) {
+            Node::Num(r) if r.is_negative() => Some(float_literal(-r.to_f64())),
+            Node::Mul(factors) if !p.is_bound(id) => match rational(p.pool(), factors[0]) {
+                Some(c) if c.is_negative() => {
+                    Some(self.product_of(p, Some(-c.to_f64()), &factors[1..]))
+                }
+                _ => None,
+            },
+            _ => None,
         }
     }
 
     /// `coefficient * numerator / (denominator)`, with factors of negative constant
     /// exponent moved below the line.
-    fn product_of(&self, coefficient: Option<f64>, factors: &[Id]) -> Rendered {
+    fn product_of(
+        &self,
+        p: &Printer<'_, Self>,
+        coefficient: Option<f64>,
+        factors: &[Id],
+    ) -> Rendered {
         let mut numerator = Vec::new();
         let mut denominator = Vec::new();
         if let Some(c) = coefficient.filter(|c| *c != 1.0) {
-            numerator.push(float_literal(c).at_least(Prec::Unary));
+            numerator.push(self.at_least(&float_literal(c), Prec::Power));
         }
         for f in factors {
-            match self.pool.node(*f) {
-                Node::Pow(base, exponent) if !self.temps.contains_key(f) => match self
-                    .rational(*exponent)
-                {
-                    Some(e) if e.is_negative() => {
-                        denominator
-                            .push(self.power_rational(*base, Rational::new(-e.numer(), e.denom())));
-                    }
-                    _ => numerator.push(self.render(*f).at_least(Prec::Unary)),
-                },
-                _ => numerator.push(self.render(*f).at_least(Prec::Unary)),
+            let below = match p.pool().node(*f) {
+                Node::Pow(base, exponent) if !p.is_bound(*f) => rational(p.pool(), *exponent)
+                    .filter(|e| e.is_negative())
+                    .map(|e| (*base, e)),
+                _ => None,
+            };
+            match below {
+                Some((base, e)) => denominator.push(self.power_rational(
+                    p,
+                    base,
+                    Rational::new(-e.numer(), e.denom()),
+                )),
+                None => numerator.push(self.at_least(p.get(*f), Prec::Power)),
             }
         }
         let numerator_tokens = if numerator.is_empty() {
             quote!(1.0f64)
         } else {
-            let mut t = TokenStream::new();
-            for (i, n) in numerator.into_iter().enumerate() {
-                if i > 0 {
-                    t.extend(quote!(*));
-                }
-                t.extend(n);
-            }
-            t
+            times(numerator)
         };
         if denominator.is_empty() {
-            return Rendered {
-                tokens: numerator_tokens,
-                prec: Prec::Product,
-            };
+            return Printed::new(numerator_tokens, Prec::Product);
         }
         let below = if denominator.len() == 1 {
             denominator
                 .pop()
-                .map(|d| d.at_least(Prec::Atom))
+                .map(|d| self.at_least(&d, Prec::Atom))
                 .unwrap_or_default()
         } else {
-            let mut t = TokenStream::new();
-            for (i, d) in denominator.into_iter().enumerate() {
-                if i > 0 {
-                    t.extend(quote!(*));
-                }
-                t.extend(d.at_least(Prec::Unary));
-            }
-            quote!((#t))
+            let parts = times(
+                denominator
+                    .into_iter()
+                    .map(|d| self.at_least(&d, Prec::Power))
+                    .collect(),
+            );
+            quote!((#parts))
         };
-        Rendered {
-            tokens: quote!(#numerator_tokens / #below),
-            prec: Prec::Product,
-        }
+        Printed::new(quote!(#numerator_tokens / #below), Prec::Product)
     }
 
     /// `base ^ e` for a constant exponent, with `e = 1` meaning the base itself.
-    fn power_rational(&self, base: Id, e: Option<Rational>) -> Rendered {
+    fn power_rational(&self, p: &Printer<'_, Self>, base: Id, e: Option<Rational>) -> Rendered {
         let Some(e) = e else {
-            return Rendered {
-                tokens: quote!(f64::NAN),
-                prec: Prec::Atom,
-            };
+            return atom(quote!(f64::NAN));
         };
-        let b = self.render(base);
+        let b = p.get(base);
         if e.is_one() {
-            return b;
+            return b.clone();
         }
-        let receiver = b.at_least(Prec::Atom);
+        let receiver = self.at_least(b, Prec::Atom);
         let tokens = match (e.numer(), e.denom()) {
             (1, 2) => quote!(#receiver.sqrt()),
             (1, 3) => quote!(#receiver.cbrt()),
@@ -319,112 +323,22 @@ impl Renderer<'_> {
                 quote!(#receiver.powi(#n))
             }
             _ => {
-                let e = float_literal(e.to_f64()).at_least(Prec::Atom);
+                let e = self.at_least(&float_literal(e.to_f64()), Prec::Atom);
                 quote!(#receiver.powf(#e))
             }
         };
-        Rendered {
-            tokens,
-            prec: Prec::Atom,
-        }
+        atom(tokens)
     }
+}
 
-    fn power(&self, base: Id, exponent: Id) -> Rendered {
-        match self.rational(exponent) {
-            Some(e) if e.is_negative() => {
-                let below = self
-                    .power_rational(base, Rational::new(-e.numer(), e.denom()))
-                    .at_least(Prec::Atom);
-                Rendered {
-                    tokens: quote!(1.0f64 / #below),
-                    prec: Prec::Product,
-                }
-            }
-            Some(e) => self.power_rational(base, Some(e)),
-            None => {
-                let b = self.render(base).at_least(Prec::Atom);
-                let e = self.render(exponent).tokens;
-                Rendered {
-                    tokens: quote!(#b.powf(#e)),
-                    prec: Prec::Atom,
-                }
-            }
+/// `a * b * …`.
+fn times(parts: Vec<TokenStream>) -> TokenStream {
+    let mut t = TokenStream::new();
+    for (i, part) in parts.into_iter().enumerate() {
+        if i > 0 {
+            t.extend(quote!(*));
         }
+        t.extend(part);
     }
-
-    fn call(&self, func: Func, args: &[Id]) -> Rendered {
-        let runtime = self.runtime;
-        let arg = |i: usize| self.render(args[i]).at_least(Prec::Atom);
-        let tokens = match func {
-            Func::Sin => {
-                let a = arg(0);
-                quote!(#a.sin())
-            }
-            Func::Cos => {
-                let a = arg(0);
-                quote!(#a.cos())
-            }
-            Func::Tan => {
-                let a = arg(0);
-                quote!(#a.tan())
-            }
-            Func::Exp => {
-                let a = arg(0);
-                quote!(#a.exp())
-            }
-            Func::Ln => {
-                let a = arg(0);
-                quote!(#a.ln())
-            }
-            Func::Abs => {
-                let a = arg(0);
-                quote!(#a.abs())
-            }
-            Func::Tanh => {
-                let a = arg(0);
-                quote!(#a.tanh())
-            }
-            Func::Sinh => {
-                let a = arg(0);
-                quote!(#a.sinh())
-            }
-            Func::Cosh => {
-                let a = arg(0);
-                quote!(#a.cosh())
-            }
-            Func::Asin => {
-                let a = arg(0);
-                quote!(#a.asin())
-            }
-            Func::Acos => {
-                let a = arg(0);
-                quote!(#a.acos())
-            }
-            Func::Atan => {
-                let a = arg(0);
-                quote!(#a.atan())
-            }
-            // `f64::signum(0.0)` is 1, but the derivative of |x| needs sign(0) = 0.
-            Func::Sign => {
-                let a = self.render(args[0]).tokens;
-                quote!(#runtime::math::sign(#a))
-            }
-            Func::Atan2 => {
-                let (y, x) = (arg(0), self.render(args[1]).tokens);
-                quote!(#y.atan2(#x))
-            }
-            Func::Min => {
-                let (a, b) = (arg(0), self.render(args[1]).tokens);
-                quote!(#a.min(#b))
-            }
-            Func::Max => {
-                let (a, b) = (arg(0), self.render(args[1]).tokens);
-                quote!(#a.max(#b))
-            }
-        };
-        Rendered {
-            tokens,
-            prec: Prec::Atom,
-        }
-    }
+    t
 }

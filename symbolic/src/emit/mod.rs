@@ -8,20 +8,33 @@
 
 mod expression;
 mod methods;
+mod signature;
 mod system;
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
+pub use signature::{Method, REQUIRED};
 pub use system::Target;
 
-use crate::mechanics::Derivation;
+use crate::mechanics::{Derivation, Outputs};
 use system::Emitter;
 
-/// The inherent constants and the trait impl for `target.name`.
+/// The inherent constants and the trait impl for `target.name`, with every optional output.
 pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenStream {
-    let text = d.to_text();
-    let latex = d.to_latex();
+    emit_system_for(d, source, target, Outputs::FULL)
+}
+
+/// [`emit_system`] with only the optional outputs `outputs` asks for; the trait's defaults
+/// serve for the methods left out. The Jacobian is emitted when it is asked for and was
+/// derived (see [`crate::mechanics::derive_for`]).
+pub fn emit_system_for(
+    d: &mut Derivation,
+    source: &str,
+    target: &Target,
+    outputs: Outputs,
+) -> TokenStream {
+    let texts = outputs.derivation.then(|| derivation_texts(d));
     let velocity_ids = d
         .coordinates
         .iter()
@@ -30,7 +43,7 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
     // The code evaluates sin/cos of sums of two coordinates through the sines and cosines
     // of the coordinates themselves (shared by CSE); the text above keeps cos(a - b).
     let mut for_code = std::collections::HashMap::new();
-    for e in code_roots(d) {
+    for e in code_roots(d, outputs) {
         let expanded = d.pool.expand_trig_arguments(e);
         if expanded != e {
             for_code.insert(e, expanded);
@@ -58,60 +71,61 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
         emitter.mass_rate(),
         emitter.mass_matrix(),
         emitter.coordinate_vector_method(
-            "momenta",
+            Method::Momenta,
             "The generalized momenta p = ∂*L/∂q̇ (eq. 8).",
             "p_#",
             &d.momenta,
         ),
         emitter.lagrangian(),
         emitter.coordinate_vector_method(
-            "lagrangian_gradient",
+            Method::LagrangianGradient,
             "∂*L/∂q, masses frozen (= −∂*H/∂q, eq. 13).",
             "∂*L/∂#",
             &d.lagrangian_gradient,
         ),
         emitter.coordinate_vector_method(
-            "active_force",
+            Method::ActiveForce,
             "The generalized active force Q* (eq. 22 for the sled).",
             "Q*_#",
             &d.active_force,
         ),
         emitter.coordinate_vector_method(
-            "reactive_thrust",
+            Method::ReactiveThrust,
             "The generalized reactive thrust R1 = Σ Q1 v_r1 · ∂r/∂q.",
             "R1_#",
             &d.reactive_thrust,
         ),
         emitter.coordinate_vector_method(
-            "impact_force",
+            Method::ImpactForce,
             "The generalized impact force R2 = Σ Q2 v_r2 · ∂r/∂q (eq. 23 for the sled).",
             "R2_#",
             &d.impact_force,
         ),
         emitter.coordinate_vector_method(
-            "mass_flux_force",
+            Method::MassFluxForce,
             "The mass-flux term Σ ṁᵢ ∂*p/∂mᵢ of the true ṗ.",
             "flux_#",
             &d.mass_flux_force,
         ),
         emitter.accelerations(),
         emitter.velocities(),
-        emitter.hamiltonian(),
+        optional(outputs.hamiltonian, || emitter.hamiltonian()),
         emitter.canonical_rates(),
         emitter.state_rate(),
-        emitter.power(),
-        emitter.jacobian(),
+        optional(outputs.power, || emitter.power()),
+        optional(outputs.jacobian, || emitter.jacobian()),
     ];
+    let units_doc = d.units_line().map(|line| {
+        let line = format!("Units: {line}.");
+        quote!(#[doc = ""] #[doc = #line])
+    });
     quote! {
         impl #name {
             /// The system in the DSL, as written.
             pub const SOURCE: &'static str = #source;
-            /// The derivation of this system as text, in the order of the paper
-            /// (L, p, H, forces, canonical equations, true rates).
-            pub const DERIVATION: &'static str = #text;
-            /// The derivation of this system as LaTeX (`align*` environments).
-            pub const DERIVATION_LATEX: &'static str = #latex;
+            #texts
             /// The parameters (fields) the equations use, in order.
+            #units_doc
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
         }
 
@@ -124,10 +138,37 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
     }
 }
 
-/// Every expression of `d` that generated code evaluates.
-fn code_roots(d: &Derivation) -> Vec<crate::expr::Id> {
-    let mut roots = vec![d.lagrangian, d.energy, d.power];
-    roots.extend(d.hamiltonian);
+/// The `DERIVATION` and `DERIVATION_LATEX` constants.
+fn derivation_texts(d: &mut Derivation) -> TokenStream {
+    let text = d.to_text();
+    let latex = d.to_latex();
+    quote! {
+        /// The derivation of this system as text, in the order of the paper
+        /// (L, p, H, forces, canonical equations, true rates).
+        pub const DERIVATION: &'static str = #text;
+        /// The derivation of this system as LaTeX (`align*` environments).
+        pub const DERIVATION_LATEX: &'static str = #latex;
+    }
+}
+
+/// A method's code when it is asked for, nothing otherwise.
+fn optional(asked: bool, method: impl FnOnce() -> TokenStream) -> TokenStream {
+    if asked {
+        method()
+    } else {
+        TokenStream::new()
+    }
+}
+
+/// Every expression of `d` that generated code evaluates with `outputs`.
+fn code_roots(d: &Derivation, outputs: Outputs) -> Vec<crate::expr::Id> {
+    let mut roots = vec![d.lagrangian, d.energy];
+    if outputs.power {
+        roots.push(d.power);
+    }
+    if outputs.hamiltonian {
+        roots.extend(d.hamiltonian);
+    }
     roots.extend(d.closed_laws.iter().flatten());
     for list in [
         &d.mass_rates,
@@ -148,16 +189,17 @@ fn code_roots(d: &Derivation) -> Vec<crate::expr::Id> {
     if let crate::mechanics::VelocitySolve::Symbolic(v) = &d.velocities {
         roots.extend(v);
     }
-    let j = &d.jacobian;
-    for matrix in [
-        &d.mass_matrix,
-        &j.rate_wrt_q,
-        &j.rate_wrt_velocity,
-        &j.rate_wrt_state_mass,
-        &j.momentum_wrt_q,
-        &j.momentum_wrt_state_mass,
-    ] {
-        roots.extend(matrix.iter().flatten());
+    roots.extend(d.mass_matrix.iter().flatten());
+    if let Some(j) = d.jacobian.as_ref().filter(|_| outputs.jacobian) {
+        for matrix in [
+            &j.rate_wrt_q,
+            &j.rate_wrt_velocity,
+            &j.rate_wrt_state_mass,
+            &j.momentum_wrt_q,
+            &j.momentum_wrt_state_mass,
+        ] {
+            roots.extend(matrix.iter().flatten());
+        }
     }
     roots
 }

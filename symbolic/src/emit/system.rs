@@ -7,6 +7,7 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use super::expression::{block, staged_block, symbol_ident};
+use super::signature::Method;
 use crate::expr::{Id, Symbol, SymbolKind};
 use crate::mechanics::{Derivation, VelocitySolve};
 
@@ -263,7 +264,7 @@ impl Emitter<'_> {
         let mut text = vec![title.to_string()];
         if !lines.is_empty() {
             text.extend([String::new(), "```text".to_string()]);
-            text.extend(lines);
+            text.extend(lines.iter().map(|l| format!("{l}{}", self.d.line_unit(l))));
             text.push("```".to_string());
         }
         quote!(#(#[doc = #text])*)
@@ -282,15 +283,14 @@ impl Emitter<'_> {
     /// when every entry is identically zero.
     pub(crate) fn coordinate_vector_method(
         &self,
-        name: &str,
+        method: Method,
         title: &str,
         label: &str,
         values: &[Id],
     ) -> TokenStream {
         let runtime = &self.target.runtime;
         let n = Literal::usize_unsuffixed(self.n());
-        let s = Literal::usize_unsuffixed(2 * self.n() + self.k());
-        let ident = format_ident!("{}", name);
+        let signature = method.signature(runtime, self.n(), 2 * self.n() + self.k());
         let docs = self.docs(title, self.per_coordinate(label, values));
         let all_zero = values.iter().all(|v| self.d.pool.is_zero(*v));
         let body = if all_zero {
@@ -301,7 +301,7 @@ impl Emitter<'_> {
         quote! {
             #docs
             #[inline]
-            fn #ident(&self, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>) -> #runtime::nalgebra::SVector<f64, #n> {
+            #signature {
                 #body
             }
         }

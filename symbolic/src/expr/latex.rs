@@ -1,12 +1,14 @@
-//! LaTeX rendering for the derivation the system exposes (SPEC §3): `\frac`, `\dot{x}`,
-//! greek names, subscripts from `m0` and `u_e`, `\sin`, `\sqrt`, `\left( \right)`.
+//! LaTeX rendering for the derivation the system exposes: `\frac`, `\dot{x}`, greek
+//! names, subscripts from `m0` and `u_e`, `\sin`, `\sqrt`, `\left( \right)` — the LaTeX
+//! [`Syntax`] of the shared printing walk.
 
 use super::func::Func;
 use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
-use super::print::{float_literal, Exponent, ATOM, POWER, PRODUCT, SUM};
+use super::print::{float_literal, Exponent, PrintedText};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind};
+use super::walk::{print, Prec, Printed, Printer, Syntax};
 
 const GREEK: &[&str] = &[
     "alpha",
@@ -82,15 +84,7 @@ fn name_tex(name: &str) -> String {
     }
 }
 
-fn wrap((text, precedence): (String, u8), at_least: u8) -> String {
-    if precedence < at_least {
-        format!("\\left({text}\\right)")
-    } else {
-        text
-    }
-}
-
-fn rational_tex(r: Rational) -> (String, u8) {
+fn rational_tex(r: Rational) -> PrintedText {
     let magnitude = r.checked_abs().unwrap_or(r);
     let text = if magnitude.denom() == 1 {
         magnitude.numer().to_string()
@@ -98,22 +92,24 @@ fn rational_tex(r: Rational) -> (String, u8) {
         format!("\\frac{{{}}}{{{}}}", magnitude.numer(), magnitude.denom())
     };
     if r.is_negative() {
-        (format!("-{text}"), SUM)
+        Printed::new(format!("-{text}"), Prec::Sum)
     } else if r.denom() != 1 {
-        (text, PRODUCT)
+        Printed::new(text, Prec::Product)
     } else {
-        (text, ATOM)
+        Printed::new(text, Prec::Atom)
     }
 }
 
-fn float_tex(x: f64) -> (String, u8) {
+fn float_tex(x: f64) -> PrintedText {
     let text = float_literal(x);
-    let (text, precedence) = match text.split_once('e') {
-        Some(("1", exponent)) => (format!("10^{{{exponent}}}"), POWER),
-        Some((mantissa, exponent)) => (format!("{mantissa} \\times 10^{{{exponent}}}"), POWER),
-        None => (text, ATOM),
+    let (text, prec) = match text.split_once('e') {
+        Some(("1", exponent)) => (format!("10^{{{exponent}}}"), Prec::Power),
+        Some((mantissa, exponent)) => {
+            (format!("{mantissa} \\times 10^{{{exponent}}}"), Prec::Power)
+        }
+        None => (text, Prec::Atom),
     };
-    (text, if x < 0.0 { SUM } else { precedence })
+    Printed::new(text, if x < 0.0 { Prec::Sum } else { prec })
 }
 
 /// Joins the factors of a product: a space, or `\cdot` before a digit.
@@ -132,7 +128,7 @@ fn join_factors(parts: &[String]) -> String {
 impl ExprPool {
     /// `e` in LaTeX (math mode, without delimiters).
     pub fn latex(&self, e: Id) -> String {
-        self.tex(e).0
+        print(self, &Latex, e).text
     }
 
     /// The LaTeX of a symbol: `\dot{x}` for x', `\ddot{x}` for x'', else from its name.
@@ -147,55 +143,83 @@ impl ExprPool {
             _ => name_tex(self.symbols().name(s)),
         }
     }
+}
 
-    fn tex(&self, e: Id) -> (String, u8) {
-        match self.node(e) {
-            Node::Num(r) => rational_tex(*r),
-            Node::Float(bits) => float_tex(f64::from_bits(*bits)),
-            Node::Sym(s) => (self.latex_symbol(*s), ATOM),
-            Node::Call(f, args) => self.tex_call(*f, args, None),
-            Node::Add(terms) => {
-                let mut text = String::new();
-                for (i, (t, negative)) in self.sum_view(terms).into_iter().enumerate() {
-                    match (i, negative) {
-                        (0, _) => text.push_str(&self.tex(t).0),
-                        // A term binds at least like a product, or it is parenthesised.
-                        (_, true) => {
-                            text.push_str(" - ");
-                            text.push_str(&wrap(self.tex_negated(t), PRODUCT));
-                        }
-                        (_, false) => {
-                            text.push_str(" + ");
-                            text.push_str(&wrap(self.tex(t), PRODUCT));
-                        }
-                    }
-                }
-                (text, SUM)
-            }
-            Node::Mul(factors) => self.tex_product(factors, false),
-            Node::Pow(b, x) => {
-                if self.exponent_is_negative(*x) {
-                    let den = self.tex_power(*b, Exponent::Negated(*x)).0;
-                    (format!("\\frac{{1}}{{{den}}}"), PRODUCT)
-                } else {
-                    self.tex_power(*b, Exponent::Of(*x))
-                }
-            }
+/// LaTeX: `\frac`, `\dot{x}`, `\sqrt`, `\sin^{2}`, `\left( \right)`.
+struct Latex;
+
+impl Syntax for Latex {
+    type Text = String;
+
+    fn group(&self, text: &String) -> String {
+        format!("\\left({text}\\right)")
+    }
+
+    fn number(&self, r: Rational) -> PrintedText {
+        rational_tex(r)
+    }
+
+    fn float(&self, x: f64) -> PrintedText {
+        float_tex(x)
+    }
+
+    fn symbol(&self, pool: &ExprPool, s: Symbol) -> PrintedText {
+        Printed::new(pool.latex_symbol(s), Prec::Atom)
+    }
+
+    fn call(&self, p: &Printer<'_, Self>, f: Func, args: &[Id]) -> PrintedText {
+        self.call_to(p, f, args, None)
+    }
+
+    fn product(&self, p: &Printer<'_, Self>, factors: &[Id]) -> PrintedText {
+        self.product_of(p, factors, false)
+    }
+
+    fn power(&self, p: &Printer<'_, Self>, b: Id, x: Id) -> PrintedText {
+        if p.pool().exponent_is_negative(x) {
+            let den = self.power_of(p, b, Exponent::Negated(x)).text;
+            Printed::new(format!("\\frac{{1}}{{{den}}}"), Prec::Product)
+        } else {
+            self.power_of(p, b, Exponent::Of(x))
         }
     }
 
-    fn tex_negated(&self, e: Id) -> (String, u8) {
-        match self.node(e) {
+    fn terms(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Vec<(Id, bool)> {
+        p.pool().sum_view(terms)
+    }
+
+    fn negated(&self, p: &Printer<'_, Self>, e: Id) -> PrintedText {
+        match p.pool().node(e) {
             Node::Num(r) => rational_tex(r.checked_abs().unwrap_or(*r)),
             Node::Float(bits) => float_tex(f64::from_bits(*bits).abs()),
-            Node::Mul(factors) => self.tex_product(factors, true),
-            _ => (format!("-{}", wrap(self.tex(e), POWER)), SUM),
+            Node::Mul(factors) => self.product_of(p, factors, true),
+            _ => Printed::new(
+                format!("-{}", self.at_least(p.get(e), Prec::Power)),
+                Prec::Sum,
+            ),
         }
     }
 
+    fn lead(&self, p: &Printer<'_, Self>, term: Id, _negative: bool) -> String {
+        p.get(term).text.clone()
+    }
+
+    fn join(&self, sum: &mut String, negative: bool, term: String) {
+        sum.push_str(if negative { " - " } else { " + " });
+        sum.push_str(&term);
+    }
+}
+
+impl Latex {
     /// `\sin\left(u\right)`, or `\sin^{n}\left(u\right)` for a power of it.
-    fn tex_call(&self, f: Func, args: &[Id], power: Option<&str>) -> (String, u8) {
-        let args: Vec<String> = args.iter().map(|a| self.tex(*a).0).collect();
+    fn call_to(
+        &self,
+        p: &Printer<'_, Self>,
+        f: Func,
+        args: &[Id],
+        power: Option<&str>,
+    ) -> PrintedText {
+        let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
         let inner = args.join(", ");
         let named = |command: &str| match power {
             Some(p) => format!("{command}^{{{p}}}\\left({inner}\\right)"),
@@ -203,27 +227,27 @@ impl ExprPool {
         };
         let text = match f {
             Func::Abs => format!("\\left|{inner}\\right|"),
-            Func::Exp => return (format!("e^{{{inner}}}"), POWER),
+            Func::Exp => return Printed::new(format!("e^{{{inner}}}"), Prec::Power),
             Func::Sign | Func::Atan2 => named(&format!("\\operatorname{{{}}}", f.name())),
             Func::Asin => named("\\arcsin"),
             Func::Acos => named("\\arccos"),
             Func::Atan => named("\\arctan"),
             _ => named(&format!("\\{}", f.name())),
         };
-        (text, ATOM)
+        Printed::new(text, Prec::Atom)
     }
 
-    fn tex_product(&self, factors: &[Id], negate: bool) -> (String, u8) {
-        let view = self.product_view(factors, negate);
-        let mut numerator: Vec<(String, u8)> = Vec::new();
-        let mut denominator: Vec<(String, u8)> = Vec::new();
+    fn product_of(&self, p: &Printer<'_, Self>, factors: &[Id], negate: bool) -> PrintedText {
+        let view = p.pool().product_view(factors, negate);
+        let mut numerator: Vec<PrintedText> = Vec::new();
+        let mut denominator: Vec<PrintedText> = Vec::new();
         match view.coefficient {
             Number::Exact(r) => {
                 if r.numer() != 1 {
-                    numerator.push((r.numer().to_string(), ATOM));
+                    numerator.push(Printed::new(r.numer().to_string(), Prec::Atom));
                 }
                 if r.denom() != 1 {
-                    denominator.push((r.denom().to_string(), ATOM));
+                    denominator.push(Printed::new(r.denom().to_string(), Prec::Atom));
                 }
             }
             Number::Inexact(x) => {
@@ -232,64 +256,73 @@ impl ExprPool {
                 }
             }
         }
-        numerator.extend(view.numerator.iter().map(|f| self.tex(*f)));
-        denominator.extend(view.denominator.iter().map(|(b, x)| self.tex_power(*b, *x)));
+        numerator.extend(view.numerator.iter().map(|f| p.get(*f).clone()));
+        denominator.extend(
+            view.denominator
+                .iter()
+                .map(|(b, x)| self.power_of(p, *b, *x)),
+        );
         // A lone factor needs no parentheses: the fraction bar groups it.
-        let side = |parts: Vec<(String, u8)>| -> String {
+        let side = |parts: Vec<PrintedText>| -> String {
             match parts.len() {
                 0 => "1".to_owned(),
-                1 => parts.into_iter().map(|p| p.0).collect(),
+                1 => parts.into_iter().map(|p| p.text).collect(),
                 _ => join_factors(
                     &parts
                         .into_iter()
-                        .map(|p| wrap(p, POWER))
+                        .map(|p| self.at_least(&p, Prec::Power))
                         .collect::<Vec<_>>(),
                 ),
             }
         };
-        let (body, precedence) = if denominator.is_empty() {
+        let (body, prec) = if denominator.is_empty() {
             if let [single] = numerator.as_slice() {
                 let single = single.clone();
                 return if view.negative {
-                    (format!("-{}", wrap(single, POWER)), SUM)
+                    Printed::new(
+                        format!("-{}", self.at_least(&single, Prec::Power)),
+                        Prec::Sum,
+                    )
                 } else {
                     single
                 };
             }
-            (side(numerator), PRODUCT)
+            (side(numerator), Prec::Product)
         } else {
             (
                 format!("\\frac{{{}}}{{{}}}", side(numerator), side(denominator)),
-                PRODUCT,
+                Prec::Product,
             )
         };
         if view.negative {
-            (format!("-{body}"), SUM)
+            Printed::new(format!("-{body}"), Prec::Sum)
         } else {
-            (body, precedence)
+            Printed::new(body, prec)
         }
     }
 
-    fn tex_power(&self, b: Id, x: Exponent) -> (String, u8) {
-        let value = self.exponent_value(x);
+    fn power_of(&self, p: &Printer<'_, Self>, b: Id, x: Exponent) -> PrintedText {
+        let pool = p.pool();
+        let value = pool.exponent_value(x);
         match value {
-            Some(n) if n.is_one() => return self.tex(b),
+            Some(n) if n.is_one() => return p.get(b).clone(),
             Some(Number::Exact(r)) if r == Rational::HALF => {
-                return (format!("\\sqrt{{{}}}", self.tex(b).0), ATOM)
+                return Printed::new(format!("\\sqrt{{{}}}", p.get(b).text), Prec::Atom)
             }
             _ => {}
         }
         let exponent = match x {
-            Exponent::Of(x) => self.tex(x).0,
-            Exponent::Negated(x) => self.tex_negated(x).0,
+            Exponent::Of(x) => p.get(x).text.clone(),
+            Exponent::Negated(x) => self.negated(p, x).text,
         };
         // sin²(u) rather than (sin(u))² for positive integer powers of named functions.
-        if let (Node::Call(f, args), Some(Number::Exact(r))) = (self.node(b), value) {
+        if let (Node::Call(f, args), Some(Number::Exact(r))) = (pool.node(b), value) {
             let named = !matches!(f, Func::Abs | Func::Exp | Func::Sign | Func::Atan2);
             if named && r.as_integer().is_some_and(|n| n > 1) {
-                return self.tex_call(*f, args, Some(&exponent));
+                return self.call_to(p, *f, args, Some(&exponent));
             }
         }
-        (format!("{}^{{{exponent}}}", wrap(self.tex(b), ATOM)), POWER)
+        let text = format!("{}^{{{exponent}}}", self.at_least(p.get(b), Prec::Atom));
+        Printed::new(text, Prec::Power)
     }
 }

@@ -52,6 +52,7 @@ mod sum;
 mod symbol;
 mod tape;
 mod trig;
+pub(crate) mod walk;
 
 pub use cse::Cse;
 pub use diff::UnsupportedDerivative;

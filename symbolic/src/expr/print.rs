@@ -1,18 +1,16 @@
-//! Printing in the DSL's own syntax (SPEC §2), with minimal parentheses, so that the text
-//! parses back to the same canonical expression. Also the views of sums and products
-//! (signs pulled out, negative powers as denominators) shared with the LaTeX printer.
+//! Printing in the DSL's own syntax (see `docs/dsl.md`), with minimal parentheses, so that
+//! the text parses back to the same canonical expression: the [`Syntax`] of DSL text for
+//! the shared walk. Also the views of sums and products (signs pulled out, negative powers
+//! as denominators) shared with the LaTeX printer.
 
+use std::fmt;
+
+use super::func::Func;
 use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
 use super::rational::Rational;
-use std::fmt;
-
-/// How tightly a printed form binds; a child printed where a tighter form is needed is
-/// parenthesised.
-pub(crate) const SUM: u8 = 1;
-pub(crate) const PRODUCT: u8 = 2;
-pub(crate) const POWER: u8 = 3;
-pub(crate) const ATOM: u8 = 4;
+use super::symbol::Symbol;
+use super::walk::{print, Prec, Printed, Printer, Syntax};
 
 /// The exponent of a power as printed: either the node itself or its negation (a negative
 /// power printed as a denominator).
@@ -40,15 +38,7 @@ pub struct DisplayExpr<'a> {
 
 impl fmt::Display for DisplayExpr<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.pool.dsl(self.id).0)
-    }
-}
-
-fn wrap((text, precedence): (String, u8), at_least: u8) -> String {
-    if precedence < at_least {
-        format!("({text})")
-    } else {
-        text
+        f.write_str(&print(self.pool, &Dsl, self.id).text)
     }
 }
 
@@ -135,74 +125,99 @@ impl ExprPool {
                 .map(|n| n.mul(Number::Exact(Rational::MINUS_ONE))),
         }
     }
+}
 
-    /// DSL text of `e` with its precedence.
-    fn dsl(&self, e: Id) -> (String, u8) {
-        match self.node(e) {
-            Node::Num(r) => rational_text(*r),
-            Node::Float(bits) => {
-                let x = f64::from_bits(*bits);
-                (float_literal(x), if x < 0.0 { SUM } else { ATOM })
-            }
-            Node::Sym(s) => (self.symbols().name(*s).to_owned(), ATOM),
-            Node::Call(f, args) => {
-                let args: Vec<String> = args.iter().map(|a| self.dsl(*a).0).collect();
-                (format!("{}({})", f.name(), args.join(", ")), ATOM)
-            }
-            Node::Add(terms) => {
-                let mut text = String::new();
-                for (i, (t, negative)) in self.sum_view(terms).into_iter().enumerate() {
-                    match (i, negative) {
-                        (0, _) => text.push_str(&self.dsl(t).0),
-                        // A term binds at least like a product, or it is parenthesised.
-                        (_, true) => {
-                            text.push_str(" - ");
-                            text.push_str(&wrap(self.dsl_negated(t), PRODUCT));
-                        }
-                        (_, false) => {
-                            text.push_str(" + ");
-                            text.push_str(&wrap(self.dsl(t), PRODUCT));
-                        }
-                    }
-                }
-                (text, SUM)
-            }
-            Node::Mul(factors) => self.dsl_product(factors, false),
-            Node::Pow(b, x) => {
-                if self.exponent_is_negative(*x) {
-                    let den = wrap(self.dsl_power(*b, Exponent::Negated(*x)), POWER);
-                    (format!("1/{den}"), PRODUCT)
-                } else {
-                    self.dsl_power(*b, Exponent::Of(*x))
-                }
-            }
+/// DSL text: `x'`, `^`, `sqrt(...)`, `a/b`, `-`.
+struct Dsl;
+
+/// A printed form of the text printers.
+pub(crate) type PrintedText = Printed<String>;
+
+impl Syntax for Dsl {
+    type Text = String;
+
+    fn group(&self, text: &String) -> String {
+        format!("({text})")
+    }
+
+    fn number(&self, r: Rational) -> PrintedText {
+        rational_text(r)
+    }
+
+    fn float(&self, x: f64) -> PrintedText {
+        let prec = if x < 0.0 { Prec::Sum } else { Prec::Atom };
+        Printed::new(float_literal(x), prec)
+    }
+
+    fn symbol(&self, pool: &ExprPool, s: Symbol) -> PrintedText {
+        Printed::new(pool.symbols().name(s).to_owned(), Prec::Atom)
+    }
+
+    fn call(&self, p: &Printer<'_, Self>, f: Func, args: &[Id]) -> PrintedText {
+        let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
+        Printed::new(format!("{}({})", f.name(), args.join(", ")), Prec::Atom)
+    }
+
+    fn product(&self, p: &Printer<'_, Self>, factors: &[Id]) -> PrintedText {
+        self.product_of(p, factors, false)
+    }
+
+    fn power(&self, p: &Printer<'_, Self>, b: Id, x: Id) -> PrintedText {
+        if p.pool().exponent_is_negative(x) {
+            let den = self.at_least(&self.power_of(p, b, Exponent::Negated(x)), Prec::Power);
+            Printed::new(format!("1/{den}"), Prec::Product)
+        } else {
+            self.power_of(p, b, Exponent::Of(x))
         }
+    }
+
+    fn terms(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Vec<(Id, bool)> {
+        p.pool().sum_view(terms)
     }
 
     /// DSL text of `-e` for a term with a negative coefficient.
-    fn dsl_negated(&self, e: Id) -> (String, u8) {
-        match self.node(e) {
+    fn negated(&self, p: &Printer<'_, Self>, e: Id) -> PrintedText {
+        match p.pool().node(e) {
             Node::Num(r) => rational_text(r.checked_abs().unwrap_or(*r)),
-            Node::Float(bits) => (float_literal(f64::from_bits(*bits).abs()), ATOM),
-            Node::Mul(factors) => self.dsl_product(factors, true),
-            _ => (format!("-{}", wrap(self.dsl(e), POWER)), SUM),
+            Node::Float(bits) => {
+                Printed::new(float_literal(f64::from_bits(*bits).abs()), Prec::Atom)
+            }
+            Node::Mul(factors) => self.product_of(p, factors, true),
+            _ => Printed::new(
+                format!("-{}", self.at_least(p.get(e), Prec::Power)),
+                Prec::Sum,
+            ),
         }
     }
 
+    /// The lead term whole: `-((a + b)*(c + d))` must keep its grouping (see
+    /// [`Dsl::product_of`]).
+    fn lead(&self, p: &Printer<'_, Self>, term: Id, _negative: bool) -> String {
+        p.get(term).text.clone()
+    }
+
+    fn join(&self, sum: &mut String, negative: bool, term: String) {
+        sum.push_str(if negative { " - " } else { " + " });
+        sum.push_str(&term);
+    }
+}
+
+impl Dsl {
     /// A product in DSL text. The text is read back left to right, and a number times a
     /// lone sum distributes when it is built (`2*(x + 1)` is `2*x + 2`), so the text never
     /// lets the coefficient (or sign) meet a lone sum first: `-((a + b)*(c + d))`,
     /// `3*((a + b)/m)`, `x/((a + b)*(c + d))/2` rather than `-(a + b)*(c + d)`,
     /// `3*(a + b)/m`, `x/(2*(a + b)*(c + d))`.
-    fn dsl_product(&self, factors: &[Id], negate: bool) -> (String, u8) {
-        let view = self.product_view(factors, negate);
+    fn product_of(&self, p: &Printer<'_, Self>, factors: &[Id], negate: bool) -> PrintedText {
+        let pool = p.pool();
+        let view = pool.product_view(factors, negate);
         if let ([single], [], false) = (
             view.numerator.as_slice(),
             view.denominator.as_slice(),
             view.negative,
         ) {
             if view.coefficient.is_one() {
-                return self.dsl(*single);
+                return p.get(*single).clone();
             }
         }
         let (numerator_number, denominator_number) = match view.coefficient {
@@ -212,16 +227,16 @@ impl ExprPool {
             ),
             Number::Inexact(x) => ((x != 1.0).then(|| float_literal(x)), None),
         };
-        let is_sum = |e: &Id| matches!(self.node(*e), Node::Add(_));
+        let is_sum = |e: &Id| matches!(pool.node(*e), Node::Add(_));
         let numerator: Vec<String> = view
             .numerator
             .iter()
-            .map(|f| wrap(self.dsl(*f), POWER))
+            .map(|f| self.at_least(p.get(*f), Prec::Power))
             .collect();
         // Read left to right, `(2*(a + b)*m)` would distribute the 2 first: bare sums go
         // last in a denominator, and a number goes after them if nothing else is there.
         let bare_sum = |(b, x): &(Id, Exponent)| {
-            is_sum(b) && self.exponent_value(*x).is_some_and(Number::is_one)
+            is_sum(b) && pool.exponent_value(*x).is_some_and(Number::is_one)
         };
         let (sums, others): (Vec<&(Id, Exponent)>, Vec<_>) =
             view.denominator.iter().partition(|d| bare_sum(d));
@@ -229,66 +244,97 @@ impl ExprPool {
         let denominator: Vec<String> = others
             .into_iter()
             .chain(sums)
-            .map(|d| wrap(self.dsl_power(d.0, d.1), POWER))
+            .map(|d| self.at_least(&self.power_of(p, d.0, d.1), Prec::Power))
             .collect();
         let scaled = view.negative || numerator_number.is_some() || denominator_number.is_some();
         let only_sums = !view.numerator.is_empty() && view.numerator.iter().all(is_sum);
+        let parts = ProductParts {
+            numerator_number,
+            denominator_number,
+            numerator,
+            denominator,
+        };
+        let text = parts.text(view.negative, scaled && only_sums, only_sums_below);
+        let prec = if view.negative {
+            Prec::Sum
+        } else {
+            Prec::Product
+        };
+        Printed::new(text, prec)
+    }
 
+    /// `b^x` with `x` as printed: `b` alone for 1, `sqrt(b)` for 1/2.
+    fn power_of(&self, p: &Printer<'_, Self>, b: Id, x: Exponent) -> PrintedText {
+        match p.pool().exponent_value(x) {
+            Some(n) if n.is_one() => return p.get(b).clone(),
+            Some(Number::Exact(r)) if r == Rational::HALF => {
+                return Printed::new(format!("sqrt({})", p.get(b).text), Prec::Atom)
+            }
+            _ => {}
+        }
+        let exponent = match x {
+            Exponent::Of(x) => p.get(x).clone(),
+            Exponent::Negated(x) => self.negated(p, x),
+        };
+        let text = format!(
+            "{}^{}",
+            self.at_least(p.get(b), Prec::Atom),
+            self.at_least(&exponent, Prec::Power)
+        );
+        Printed::new(text, Prec::Power)
+    }
+}
+
+/// The printed pieces of a product in DSL text.
+struct ProductParts {
+    numerator_number: Option<String>,
+    denominator_number: Option<String>,
+    numerator: Vec<String>,
+    denominator: Vec<String>,
+}
+
+impl ProductParts {
+    /// `-n*(a*b/c)/d` when `grouped` (a scaled product of sums only), else
+    /// `-n*a*b/(d*c)`, with a lone-sum denominator keeping its number last.
+    fn text(self, negative: bool, grouped: bool, only_sums_below: bool) -> String {
         let mut text = String::new();
-        if view.negative {
+        if negative {
             text.push('-');
         }
-        let mut trailing_number = denominator_number.clone();
-        if scaled && only_sums {
+        let mut trailing_number = self.denominator_number.clone();
+        if grouped {
             // Group everything that is not a number, then apply the number to the group.
-            if let Some(n) = &numerator_number {
+            if let Some(n) = &self.numerator_number {
                 text.push_str(n);
                 text.push('*');
             }
             text.push('(');
-            text.push_str(&numerator.join("*"));
-            push_denominator(&mut text, &denominator);
+            text.push_str(&self.numerator.join("*"));
+            push_denominator(&mut text, &self.denominator);
             text.push(')');
         } else {
-            let mut parts: Vec<String> = numerator_number.into_iter().collect();
-            parts.extend(numerator);
+            let mut parts: Vec<String> = self.numerator_number.into_iter().collect();
+            parts.extend(self.numerator);
             if parts.is_empty() {
                 text.push('1');
             } else {
                 text.push_str(&parts.join("*"));
             }
-            match (&denominator_number, only_sums_below) {
+            match (&self.denominator_number, only_sums_below) {
                 (Some(d), false) => {
                     let mut all = vec![d.clone()];
-                    all.extend(denominator);
+                    all.extend(self.denominator);
                     push_denominator(&mut text, &all);
                     trailing_number = None;
                 }
-                _ => push_denominator(&mut text, &denominator),
+                _ => push_denominator(&mut text, &self.denominator),
             }
         }
         if let Some(d) = trailing_number {
             text.push('/');
             text.push_str(&d);
         }
-        (text, if view.negative { SUM } else { PRODUCT })
-    }
-
-    /// `b^x` with `x` as printed: `b` alone for 1, `sqrt(b)` for 1/2.
-    fn dsl_power(&self, b: Id, x: Exponent) -> (String, u8) {
-        match self.exponent_value(x) {
-            Some(n) if n.is_one() => return self.dsl(b),
-            Some(Number::Exact(r)) if r == Rational::HALF => {
-                return (format!("sqrt({})", self.dsl(b).0), ATOM)
-            }
-            _ => {}
-        }
-        let exponent = match x {
-            Exponent::Of(x) => self.dsl(x),
-            Exponent::Negated(x) => self.dsl_negated(x),
-        };
-        let text = format!("{}^{}", wrap(self.dsl(b), ATOM), wrap(exponent, POWER));
-        (text, POWER)
+        text
     }
 }
 
@@ -308,13 +354,13 @@ fn push_denominator(text: &mut String, parts: &[String]) {
     }
 }
 
-fn rational_text(r: Rational) -> (String, u8) {
-    let precedence = if r.is_negative() {
-        SUM
+fn rational_text(r: Rational) -> Printed<String> {
+    let prec = if r.is_negative() {
+        Prec::Sum
     } else if r.denom() != 1 {
-        PRODUCT
+        Prec::Product
     } else {
-        ATOM
+        Prec::Atom
     };
-    (r.to_string(), precedence)
+    Printed::new(r.to_string(), prec)
 }

@@ -1,14 +1,24 @@
-//! A compiled evaluator: the DAG of some roots flattened into straight-line code over
-//! numbered slots, each shared subexpression computed once. Reusable, and allocation-free
-//! per evaluation after the first.
+//! The evaluator: the DAG of some roots compiled into straight-line code over numbered
+//! slots, each shared subexpression computed once. Reusable, and allocation-free per
+//! evaluation after the first; [`ExprPool::eval`] runs a one-root tape, so there is one
+//! numeric semantics (`sqrt` for `^(1/2)`, `powi` for integer exponents).
 
-use super::eval::power;
 use super::func::Func;
 use super::node::{Id, Node};
 use super::pool::ExprPool;
 use super::rational::Rational;
 use std::cell::RefCell;
 use std::collections::HashMap;
+
+/// `b^e`, by `powi` for integer exponents (it keeps `(-2)^3 = -8` and is more accurate),
+/// `powf` otherwise: a power whose exponent is not a constant.
+fn power(b: f64, e: f64) -> f64 {
+    if e.fract() == 0.0 && e.abs() <= f64::from(i32::MAX) {
+        b.powi(e as i32)
+    } else {
+        b.powf(e)
+    }
+}
 
 /// One instruction; its result goes to the slot with its own index.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -11,9 +11,10 @@ use super::model::{
 use super::resolve::{is_reserved, lower_with, Binding, Context, Parameters};
 use crate::expr::{ExprPool, Id, Symbol, SymbolKind};
 use crate::parse::ast::{
-    ExprNode, FlowVelocity, LoadValue, MassLaw, StatementKind, SystemAst, VectorNode,
+    BodyDecl, ExprNode, FlowVelocity, LoadValue, MassDecl, MassLaw, StatementKind, SystemAst,
+    VectorNode,
 };
-use crate::parse::{keywords, Diagnostic, Span};
+use crate::parse::{keywords, Diagnostic, Span, Spanned};
 
 /// Builds the model, collecting every diagnostic.
 pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
@@ -103,64 +104,12 @@ impl Builder {
             match &statement.kind {
                 StatementKind::Coordinates(names) => {
                     for name in names {
-                        if !self.check_new_name(&name.node, name.span, "coordinate") {
-                            continue;
-                        }
-                        let symbols = self.model.pool.symbols_mut();
-                        let q = symbols.add_coordinate(&name.node);
-                        let (velocity, acceleration, momentum) = match (
-                            symbols.velocity_of(q),
-                            symbols.acceleration_of(q),
-                            symbols.momentum_of(q),
-                        ) {
-                            (Some(v), Some(a), Some(p)) => (v, a, p),
-                            _ => continue,
-                        };
-                        self.model.names.insert(
-                            name.node.clone(),
-                            Binding::Coordinate {
-                                q,
-                                velocity,
-                                acceleration,
-                            },
-                        );
-                        self.model.coordinates.push(Coordinate {
-                            name: name.node.clone(),
-                            q,
-                            velocity,
-                            acceleration,
-                            momentum,
-                            span: name.span,
-                        });
+                        self.declare_coordinate(name);
                     }
                 }
                 StatementKind::Mass(decl) | StatementKind::Inertia(decl) => {
                     let inertia = matches!(statement.kind, StatementKind::Inertia(_));
-                    let what = if inertia { "inertia" } else { "mass" };
-                    if !self.check_new_name(&decl.name.node, decl.name.span, what) {
-                        continue;
-                    }
-                    let symbol = self
-                        .model
-                        .pool
-                        .symbols_mut()
-                        .add(&decl.name.node, SymbolKind::Frozen);
-                    self.model
-                        .names
-                        .insert(decl.name.node.clone(), Binding::Mass(symbol));
-                    // The kind's expression is a placeholder until the second pass lowers it.
-                    let placeholder = self.model.pool.int(0);
-                    let kind = match decl.law {
-                        MassLaw::Law(_) => MassKind::Law(placeholder),
-                        MassLaw::State { .. } => MassKind::State { rate: placeholder },
-                    };
-                    self.model.masses.push(Mass {
-                        name: decl.name.node.clone(),
-                        symbol,
-                        kind,
-                        inertia,
-                        span: statement.span,
-                    });
+                    self.declare_mass(decl, inertia, statement.span);
                 }
                 StatementKind::Let { name, .. } => {
                     self.check_new_name(&name.node, name.span, "definition");
@@ -182,6 +131,68 @@ impl Builder {
         self.model
             .masses
             .sort_by_key(|m| !matches!(m.kind, MassKind::State { .. }));
+    }
+
+    /// A coordinate with its velocity, acceleration and momentum symbols.
+    fn declare_coordinate(&mut self, name: &Spanned<String>) {
+        if !self.check_new_name(&name.node, name.span, "coordinate") {
+            return;
+        }
+        let symbols = self.model.pool.symbols_mut();
+        let q = symbols.add_coordinate(&name.node);
+        let (velocity, acceleration, momentum) = match (
+            symbols.velocity_of(q),
+            symbols.acceleration_of(q),
+            symbols.momentum_of(q),
+        ) {
+            (Some(v), Some(a), Some(p)) => (v, a, p),
+            _ => return,
+        };
+        self.model.names.insert(
+            name.node.clone(),
+            Binding::Coordinate {
+                q,
+                velocity,
+                acceleration,
+            },
+        );
+        self.model.coordinates.push(Coordinate {
+            name: name.node.clone(),
+            q,
+            velocity,
+            acceleration,
+            momentum,
+            span: name.span,
+        });
+    }
+
+    /// A mass or inertia, its law or rate a placeholder until the second pass.
+    fn declare_mass(&mut self, decl: &MassDecl, inertia: bool, span: Span) {
+        let what = if inertia { "inertia" } else { "mass" };
+        if !self.check_new_name(&decl.name.node, decl.name.span, what) {
+            return;
+        }
+        let symbol = self
+            .model
+            .pool
+            .symbols_mut()
+            .add(&decl.name.node, SymbolKind::Frozen);
+        self.model
+            .names
+            .insert(decl.name.node.clone(), Binding::Mass(symbol));
+        // The kind's expression is a placeholder until the second pass lowers it.
+        let placeholder = self.model.pool.int(0);
+        let kind = match decl.law {
+            MassLaw::Law(_) => MassKind::Law(placeholder),
+            MassLaw::State { .. } => MassKind::State { rate: placeholder },
+        };
+        self.model.masses.push(Mass {
+            name: decl.name.node.clone(),
+            symbol,
+            kind,
+            inertia,
+            span,
+        });
     }
 }
 
@@ -273,57 +284,9 @@ impl Builder {
                     }
                 }
                 StatementKind::Mass(decl) | StatementKind::Inertia(decl) => {
-                    let Some(index) = self.mass_index(&decl.name.node) else {
-                        continue;
-                    };
-                    let kind = match &decl.law {
-                        MassLaw::Law(law) => {
-                            let Some(law) = self.lower(law) else { continue };
-                            let what = format!("the law of `{}`", decl.name.node);
-                            if !self.require_configuration(law, span, &what) {
-                                continue;
-                            }
-                            MassKind::Law(law)
-                        }
-                        MassLaw::State { rate } => match self.lower(rate) {
-                            Some(rate) => MassKind::State { rate },
-                            None => continue,
-                        },
-                    };
-                    self.model.masses[index].kind = kind;
+                    self.lower_mass(decl, span);
                 }
-                StatementKind::Body(body) => {
-                    let Some(mass) = self.mass_index(&body.mass.node) else {
-                        let mut d = Diagnostic::new(
-                            body.mass.span,
-                            format!("`{}` is not a declared mass", body.mass.node),
-                        );
-                        d = d.with_help(format!(
-                            "declare it first, e.g. `{} {} = m0` or `{} {}: state, rate -mu`",
-                            keywords::MASS,
-                            body.mass.node,
-                            keywords::MASS,
-                            body.mass.node
-                        ));
-                        self.errors.push(d);
-                        continue;
-                    };
-                    let Some(position) = self.lower_vector(&body.position) else {
-                        continue;
-                    };
-                    let what = format!("the position of body `{}`", body.name.node);
-                    if position
-                        .iter()
-                        .all(|p| self.require_configuration(*p, body.position.span, &what))
-                    {
-                        self.model.bodies.push(Body {
-                            name: body.name.node.clone(),
-                            mass,
-                            position,
-                            span,
-                        });
-                    }
-                }
+                StatementKind::Body(body) => self.lower_body(body, span),
                 StatementKind::Kinetic(e)
                 | StatementKind::Potential(e)
                 | StatementKind::Lagrangian(e) => {
@@ -363,6 +326,62 @@ impl Builder {
                 }),
                 _ => {}
             }
+        }
+    }
+
+    /// The law or the rate of a declared mass, replacing its placeholder.
+    fn lower_mass(&mut self, decl: &MassDecl, span: Span) {
+        let Some(index) = self.mass_index(&decl.name.node) else {
+            return;
+        };
+        let kind = match &decl.law {
+            MassLaw::Law(law) => {
+                let Some(law) = self.lower(law) else { return };
+                let what = format!("the law of `{}`", decl.name.node);
+                if !self.require_configuration(law, span, &what) {
+                    return;
+                }
+                MassKind::Law(law)
+            }
+            MassLaw::State { rate } => match self.lower(rate) {
+                Some(rate) => MassKind::State { rate },
+                None => return,
+            },
+        };
+        self.model.masses[index].kind = kind;
+    }
+
+    /// A body on a declared mass, its position a function of configuration only.
+    fn lower_body(&mut self, body: &BodyDecl, span: Span) {
+        let Some(mass) = self.mass_index(&body.mass.node) else {
+            let mut d = Diagnostic::new(
+                body.mass.span,
+                format!("`{}` is not a declared mass", body.mass.node),
+            );
+            d = d.with_help(format!(
+                "declare it first, e.g. `{} {} = m0` or `{} {}: state, rate -mu`",
+                keywords::MASS,
+                body.mass.node,
+                keywords::MASS,
+                body.mass.node
+            ));
+            self.errors.push(d);
+            return;
+        };
+        let Some(position) = self.lower_vector(&body.position) else {
+            return;
+        };
+        let what = format!("the position of body `{}`", body.name.node);
+        if position
+            .iter()
+            .all(|p| self.require_configuration(*p, body.position.span, &what))
+        {
+            self.model.bodies.push(Body {
+                name: body.name.node.clone(),
+                mass,
+                position,
+                span,
+            });
         }
     }
 

@@ -17,6 +17,7 @@ use super::lagrangian::{energies, momenta, require_regular, Energies, Momenta};
 use super::linear::Matrix;
 use super::masses::{closed_laws, flow_rates, mass_rates};
 use super::model::{Coordinate, Mass, MassKind, Model};
+use super::outputs::Outputs;
 use crate::expr::{ExprPool, Id, Symbol};
 use crate::parse::Diagnostic;
 
@@ -123,10 +124,12 @@ pub struct Derivation {
     /// dH/dt = −∂*L/∂t + q̇·(Q* − R1 + R2 + Σ ṁ ∂*p/∂m) − Σ ṁᵢ ∂*L/∂mᵢ (with
     /// ∂*H/∂t = −∂*L/∂t and ∂H/∂mᵢ|_(q,p) = −∂*L/∂mᵢ|_(q,q̇)).
     pub power: Id,
-    /// The Jacobian of the state rate.
-    pub jacobian: JacobianParts,
+    /// The Jacobian of the state rate (`None` when not asked for, see [`Outputs`]).
+    pub jacobian: Option<JacobianParts>,
     /// The `check`s and how each was decided.
     pub checks: Vec<CheckOutcome>,
+    /// The units of the names and quantities, when the system declares `units`.
+    pub units: Option<crate::units::UnitTable>,
 }
 
 impl Derivation {
@@ -182,21 +185,24 @@ pub(crate) struct Equations {
     pub hamiltonian: Hamiltonian,
     /// dH/dt.
     pub power: Id,
-    /// The Jacobian of the state rate.
-    pub jacobian: JacobianParts,
+    /// The Jacobian of the state rate (`None` when not asked for, see [`Outputs`]).
+    pub jacobian: Option<JacobianParts>,
 }
 
 /// Derives every equation from a checked model, verifies its `check`s, then assembles the
 /// [`Derivation`].
-pub(crate) fn derive_model(mut model: Model) -> Result<Derivation, Vec<Diagnostic>> {
-    let equations = derive_equations(&mut model)?;
+pub(crate) fn derive_model(
+    mut model: Model,
+    outputs: Outputs,
+) -> Result<Derivation, Vec<Diagnostic>> {
+    let equations = derive_equations(&mut model, outputs)?;
     let checks = run_checks(&mut model, &equations)?;
     Ok(assemble(model, equations, checks))
 }
 
 /// The equations in dependency order: mass laws and rates, energies, forces, momenta, then
 /// eq. 14, eq. 6, eqs. 9–10, the power and the Jacobian.
-fn derive_equations(model: &mut Model) -> Result<Equations, Vec<Diagnostic>> {
+fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Vec<Diagnostic>> {
     let velocities: Vec<Symbol> = model.coordinates.iter().map(|c| c.velocity).collect();
     let closed_laws = closed_laws(model)?;
     let mass_rates = mass_rates(model, &closed_laws)?;
@@ -211,14 +217,16 @@ fn derive_equations(model: &mut Model) -> Result<Equations, Vec<Diagnostic>> {
     let inverse_mass = accelerations.inverse_mass.as_ref();
     let hamiltonian = hamiltonian(model, lagrangian, &momenta, inverse_mass);
     let power = power(model, lagrangian, &rates, &mass_rates);
-    let jacobian = jacobian_parts(
-        model,
-        &closed_laws,
-        &momenta.momenta,
-        &rates.total,
-        &mass_rates,
-        &velocities,
-    );
+    let jacobian = outputs.jacobian.then(|| {
+        jacobian_parts(
+            model,
+            &closed_laws,
+            &momenta.momenta,
+            &rates.total,
+            &mass_rates,
+            &velocities,
+        )
+    });
     Ok(Equations {
         closed_laws,
         mass_rates,
@@ -266,5 +274,6 @@ fn assemble(model: Model, e: Equations, checks: Vec<CheckOutcome>) -> Derivation
         power: e.power,
         jacobian: e.jacobian,
         checks,
+        units: None,
     }
 }

@@ -2,7 +2,7 @@
 //! checks that make the Legendre transform possible (L at most quadratic in q̇, M regular).
 
 use super::linear::Matrix;
-use super::model::{Model, TermKind};
+use super::model::{Model, Term, TermKind};
 use crate::expr::{ExprPool, Id, Rational, SamplePoints, Symbol};
 use crate::parse::Diagnostic;
 
@@ -22,6 +22,46 @@ pub(crate) fn energies(
     velocities: &[Symbol],
 ) -> Result<Energies, Vec<Diagnostic>> {
     let mut errors = Vec::new();
+    let (mut kinetic_terms, body_velocities) = body_kinetic_terms(model, &mut errors);
+    let mut potential_terms = Vec::new();
+    let mut lagrangian_terms = Vec::new();
+    let pool = &mut model.pool;
+    for term in &model.terms {
+        if let Some(offender) = non_quadratic_term(pool, term.value, velocities) {
+            errors.push(non_quadratic_diagnostic(pool, term, offender));
+            continue;
+        }
+        match term.kind {
+            TermKind::Kinetic => kinetic_terms.push(term.value),
+            TermKind::Potential => potential_terms.push(term.value),
+            TermKind::Lagrangian => lagrangian_terms.push(term.value),
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    // Expanded and trigonometrically reduced, so that a linkage's T reads as in a textbook
+    // (sin² + cos² = 1, cos a cos b + sin a sin b = cos(a − b)) and every quantity derived
+    // from L starts from its simplest form.
+    let kinetic = pool.add(&kinetic_terms);
+    let kinetic = pool.reduce_trig(kinetic);
+    let potential = pool.add(&potential_terms);
+    let potential = pool.reduce_trig(potential);
+    let minus_v = pool.neg(potential);
+    lagrangian_terms.push(kinetic);
+    lagrangian_terms.push(minus_v);
+    let lagrangian = pool.add(&lagrangian_terms);
+    let lagrangian = pool.reduce_trig(lagrangian);
+    Ok(Energies {
+        kinetic,
+        potential,
+        lagrangian,
+        body_velocities,
+    })
+}
+
+/// ½ m |ṙ|² and ṙ for every body; a position that cannot be differentiated is a diagnostic.
+fn body_kinetic_terms(model: &mut Model, errors: &mut Vec<Diagnostic>) -> (Vec<Id>, Vec<Vec<Id>>) {
     let pool = &mut model.pool;
     let half = pool.rational(Rational::HALF);
     let mut kinetic_terms = Vec::new();
@@ -52,54 +92,25 @@ pub(crate) fn energies(
         kinetic_terms.push(pool.mul(&[half, mass, speed_squared]));
         body_velocities.push(v);
     }
-    let mut potential_terms = Vec::new();
-    let mut lagrangian_terms = Vec::new();
-    for term in &model.terms {
-        if let Some(offender) = non_quadratic_term(pool, term.value, velocities) {
-            let what = match term.kind {
-                TermKind::Kinetic => "kinetic energy",
-                TermKind::Potential => "potential",
-                TermKind::Lagrangian => "Lagrangian",
-            };
-            errors.push(
-                Diagnostic::new(
-                    term.span,
-                    format!(
-                        "L must be at most quadratic in the velocities, but the {what} term `{}` is not",
-                        pool.display(offender)
-                    ),
-                )
-                .with_help("the Legendre transform p = ∂*L/∂q̇ needs L = ½ q̇ᵀ M q̇ + b·q̇ + L₀"),
-            );
-            continue;
-        }
-        match term.kind {
-            TermKind::Kinetic => kinetic_terms.push(term.value),
-            TermKind::Potential => potential_terms.push(term.value),
-            TermKind::Lagrangian => lagrangian_terms.push(term.value),
-        }
-    }
-    if !errors.is_empty() {
-        return Err(errors);
-    }
-    // Expanded and trigonometrically reduced, so that a linkage's T reads as in a textbook
-    // (sin² + cos² = 1, cos a cos b + sin a sin b = cos(a − b)) and every quantity derived
-    // from L starts from its simplest form.
-    let kinetic = pool.add(&kinetic_terms);
-    let kinetic = pool.reduce_trig(kinetic);
-    let potential = pool.add(&potential_terms);
-    let potential = pool.reduce_trig(potential);
-    let minus_v = pool.neg(potential);
-    lagrangian_terms.push(kinetic);
-    lagrangian_terms.push(minus_v);
-    let lagrangian = pool.add(&lagrangian_terms);
-    let lagrangian = pool.reduce_trig(lagrangian);
-    Ok(Energies {
-        kinetic,
-        potential,
-        lagrangian,
-        body_velocities,
-    })
+    (kinetic_terms, body_velocities)
+}
+
+/// A term of T, V or L beyond quadratic in the velocities, which the Legendre transform
+/// cannot take.
+fn non_quadratic_diagnostic(pool: &ExprPool, term: &Term, offender: Id) -> Diagnostic {
+    let what = match term.kind {
+        TermKind::Kinetic => "kinetic energy",
+        TermKind::Potential => "potential",
+        TermKind::Lagrangian => "Lagrangian",
+    };
+    Diagnostic::new(
+        term.span,
+        format!(
+            "L must be at most quadratic in the velocities, but the {what} term `{}` is not",
+            pool.display(offender)
+        ),
+    )
+    .with_help("the Legendre transform p = ∂*L/∂q̇ needs L = ½ q̇ᵀ M q̇ + b·q̇ + L₀")
 }
 
 /// The first term of `e` (as a sum) that is not a polynomial of degree ≤ 2 in `velocities`.

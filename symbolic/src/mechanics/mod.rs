@@ -30,6 +30,7 @@ mod lagrangian;
 mod linear;
 mod masses;
 mod model;
+mod outputs;
 mod render;
 mod resolve;
 
@@ -41,6 +42,7 @@ pub use model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
     Model, Term, TermKind,
 };
+pub use outputs::{Outputs, UnknownOutput};
 pub use resolve::{is_reserved, Parameters};
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
@@ -50,10 +52,24 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
     build::build_model(ast, parameters)
 }
 
-/// Derives a parsed system and verifies its `check`s.
+/// Derives a parsed system and verifies its `check`s. A system with a `units` statement
+/// is first checked for dimensions ([`crate::units::check_units`]).
 pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
+    derive_for(ast, parameters, Outputs::FULL)
+}
+
+/// [`derive`], deriving only the optional quantities `outputs` asks for (the Jacobian is
+/// `None` without [`Outputs::jacobian`]).
+pub fn derive_for(
+    ast: &SystemAst,
+    parameters: Parameters,
+    outputs: Outputs,
+) -> Result<Derivation, Vec<Diagnostic>> {
     let model = build::build_model(ast, parameters)?;
-    derivation::derive_model(model)
+    let units = crate::units::check_units(ast)?;
+    let mut derivation = derivation::derive_model(model, outputs)?;
+    derivation.units = units;
+    Ok(derivation)
 }
 
 /// Parses and derives DSL source text.

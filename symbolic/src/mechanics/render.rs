@@ -38,150 +38,159 @@ impl Derivation {
     }
 
     fn sections(&mut self) -> Vec<Section> {
-        let mut sections = Vec::new();
-        let mut masses = Vec::new();
-        for i in 0..self.masses.len() {
-            let (name, symbol, kind) = {
-                let m = &self.masses[i];
-                (m.name.clone(), m.symbol, m.kind.clone())
-            };
-            let symbol_id = self.pool.sym(symbol);
+        vec![
+            self.masses_section(),
+            Section {
+                heading: "Lagrangian L = T − V (eq. 7)",
+                lines: vec![
+                    line("T =", "T =", self.kinetic),
+                    line("V =", "V =", self.potential),
+                    line("L =", "L =", self.lagrangian),
+                ],
+            },
+            Section {
+                heading: "Generalized momenta p = ∂*L/∂q̇ (eq. 8)",
+                lines: self.per_coordinate("p_# =", "p_{#} =", &self.momenta),
+            },
+            self.hamiltonian_section(),
+            self.forces_section(),
+            self.canonical_section(),
+            self.rates_section(),
+        ]
+    }
+
+    /// Each mass law with its rate, or the rate of a state mass.
+    fn masses_section(&mut self) -> Section {
+        let mut lines = Vec::new();
+        for (mass, rate) in self.masses.iter().zip(&self.mass_rates) {
+            let symbol_id = self.pool.sym(mass.symbol);
             let tex = self.pool.latex(symbol_id);
-            match kind {
+            let name = &mass.name;
+            match mass.kind {
                 MassKind::Law(law) => {
-                    masses.push(Line {
+                    lines.push(Line {
                         text: format!("{name} ="),
                         latex: tex.clone(),
                         value: law,
                     });
-                    masses.push(Line {
+                    lines.push(Line {
                         text: format!("d{name}/dt ="),
                         latex: format!("\\dot{{{tex}}}"),
-                        value: self.mass_rates[i],
+                        value: *rate,
                     });
                 }
-                MassKind::State { .. } => masses.push(Line {
+                MassKind::State { .. } => lines.push(Line {
                     text: format!("d{name}/dt (state mass) ="),
                     latex: format!("\\dot{{{tex}}}"),
-                    value: self.mass_rates[i],
+                    value: *rate,
                 }),
             }
         }
-        sections.push(Section {
+        Section {
             heading: "Masses (frozen under ∂*, d*/dt)",
-            lines: masses,
-        });
-        sections.push(Section {
-            heading: "Lagrangian L = T − V (eq. 7)",
-            lines: vec![
-                line("T =", "T =", self.kinetic),
-                line("V =", "V =", self.potential),
-                line("L =", "L =", self.lagrangian),
-            ],
-        });
-        let coords: Vec<(String, String)> = self
-            .coordinates
+            lines,
+        }
+    }
+
+    /// One line per coordinate: `#` in the labels stands for the coordinate's name, which
+    /// both labels spell as declared.
+    fn per_coordinate(&self, label: &str, latex: &str, values: &[Id]) -> Vec<Line> {
+        self.coordinates
             .iter()
-            .map(|c| (c.name.clone(), latex_name(&c.name)))
-            .collect();
-        let per_coordinate = |label: &str, latex: &str, values: &[Id]| -> Vec<Line> {
-            coords
-                .iter()
-                .zip(values)
-                .map(|((name, tex), value)| Line {
-                    text: label.replace('#', name),
-                    latex: latex.replace('#', tex),
-                    value: *value,
-                })
-                .collect()
-        };
-        sections.push(Section {
-            heading: "Generalized momenta p = ∂*L/∂q̇ (eq. 8)",
-            lines: per_coordinate("p_# =", "p_{#} =", &self.momenta.clone()),
-        });
-        let mut hamilton = vec![line(
+            .zip(values)
+            .map(|(c, value)| Line {
+                text: label.replace('#', &c.name),
+                latex: latex.replace('#', &c.name),
+                value: *value,
+            })
+            .collect()
+    }
+
+    fn hamiltonian_section(&self) -> Section {
+        let mut lines = vec![line(
             "H = p·q̇ − L =",
             "H = p \\cdot \\dot q - L =",
             self.energy,
         )];
         if let Some(h) = self.hamiltonian {
-            hamilton.push(line("H(q, p, t) =", "H(q, p, t) =", h));
+            lines.push(line("H(q, p, t) =", "H(q, p, t) =", h));
         }
-        sections.push(Section {
+        Section {
             heading: "Hamiltonian (eqs. 9–10)",
-            lines: hamilton,
-        });
-        let mut forces = per_coordinate("Q*_# =", "Q^*_{#} =", &self.active_force.clone());
-        forces.extend(per_coordinate(
-            "R1_# =",
-            "R_{1,#} =",
-            &self.reactive_thrust.clone(),
-        ));
-        forces.extend(per_coordinate(
-            "R2_# =",
-            "R_{2,#} =",
-            &self.impact_force.clone(),
-        ));
-        sections.push(Section {
+            lines,
+        }
+    }
+
+    fn forces_section(&self) -> Section {
+        let mut lines = self.per_coordinate("Q*_# =", "Q^*_{#} =", &self.active_force);
+        lines.extend(self.per_coordinate("R1_# =", "R_{1,#} =", &self.reactive_thrust));
+        lines.extend(self.per_coordinate("R2_# =", "R_{2,#} =", &self.impact_force));
+        Section {
             heading: "Generalized forces: active Q*, reactive thrust R1, impact R2",
-            lines: forces,
-        });
-        let mut canonical = Vec::new();
-        match self.velocities.clone() {
+            lines,
+        }
+    }
+
+    /// Eq. 14 in Hamilton form when q̇(q, p) is symbolic, else with q̇ from M q̇ = p − b.
+    fn canonical_section(&mut self) -> Section {
+        let lines = match self.velocities.clone() {
             VelocitySolve::Symbolic(v) => {
-                canonical.extend(per_coordinate(
+                let mut lines = self.per_coordinate(
                     "#' = ∂*H/∂p_# =",
                     "\\dot{#} = \\frac{\\partial^* H}{\\partial p_{#}} =",
                     &v,
-                ));
+                );
                 let rates: Vec<Id> = self
                     .frozen_momentum_rate
                     .clone()
                     .into_iter()
                     .map(|e| self.in_hamilton_form(e).unwrap_or(e))
                     .collect();
-                canonical.extend(per_coordinate(
+                lines.extend(self.per_coordinate(
                     "d*p_#/dt = −∂*H/∂# + Q*_# − R1_# + R2_# =",
                     "\\frac{d^* p_{#}}{dt} = -\\frac{\\partial^* H}{\\partial #} + Q^*_{#} - R_{1,#} + R_{2,#} =",
                     &rates,
                 ));
+                lines
             }
-            VelocitySolve::Numeric => {
-                canonical.extend(per_coordinate(
-                    "d*p_#/dt = ∂*L/∂# + Q*_# − R1_# + R2_# (q̇ from M q̇ = p − b) =",
-                    "\\frac{d^* p_{#}}{dt} = \\frac{\\partial^* L}{\\partial #} + Q^*_{#} - R_{1,#} + R_{2,#} =",
-                    &self.frozen_momentum_rate.clone(),
-                ));
-            }
-        }
-        sections.push(Section {
+            VelocitySolve::Numeric => self.per_coordinate(
+                "d*p_#/dt = ∂*L/∂# + Q*_# − R1_# + R2_# (q̇ from M q̇ = p − b) =",
+                "\\frac{d^* p_{#}}{dt} = \\frac{\\partial^* L}{\\partial #} + Q^*_{#} - R_{1,#} + R_{2,#} =",
+                &self.frozen_momentum_rate,
+            ),
+        };
+        Section {
             heading: "Canonical equations (eq. 14)",
-            lines: canonical,
-        });
-        let mut rates = per_coordinate(
-            "dp_#/dt = d*p_#/dt + Σ ṁ ∂*p_#/∂m =",
-            "\\dot p_{#} = \\frac{d^* p_{#}}{dt} + \\sum_i \\dot m_i \\frac{\\partial^* p_{#}}{\\partial m_i} =",
-            &self.momentum_rate.clone(),
-        );
-        if let Some(acc) = self.accelerations.clone() {
-            rates.extend(per_coordinate("#'' =", "\\ddot{#} =", &acc));
+            lines,
         }
-        rates.push(line("dH/dt =", "\\frac{dH}{dt} =", self.power));
-        sections.push(Section {
-            heading: "True rates, Lagrange form (eq. 6) and energy budget",
-            lines: rates,
-        });
-        sections
     }
 
-    /// The whole derivation as plain text.
+    fn rates_section(&self) -> Section {
+        let mut lines = self.per_coordinate(
+            "dp_#/dt = d*p_#/dt + Σ ṁ ∂*p_#/∂m =",
+            "\\dot p_{#} = \\frac{d^* p_{#}}{dt} + \\sum_i \\dot m_i \\frac{\\partial^* p_{#}}{\\partial m_i} =",
+            &self.momentum_rate,
+        );
+        if let Some(acc) = &self.accelerations {
+            lines.extend(self.per_coordinate("#'' =", "\\ddot{#} =", acc));
+        }
+        lines.push(line("dH/dt =", "\\frac{dH}{dt} =", self.power));
+        Section {
+            heading: "True rates, Lagrange form (eq. 6) and energy budget",
+            lines,
+        }
+    }
+
+    /// The whole derivation as plain text. A system with `units` starts with the unit of
+    /// every coordinate and parameter, and each line ends with its quantity's unit.
     pub fn to_text(&mut self) -> String {
         let sections = self.sections();
-        let mut out = String::new();
+        let mut out = self.units_heading();
         for section in sections {
             let _ = writeln!(out, "{}", section.heading);
             for l in section.lines {
-                let _ = writeln!(out, "    {} {}", l.text, self.pool.display(l.value));
+                let unit = self.line_unit(&l.text);
+                let _ = writeln!(out, "    {} {}{unit}", l.text, self.pool.display(l.value));
             }
         }
         if !self.checks.is_empty() {
@@ -216,14 +225,48 @@ impl Derivation {
     }
 }
 
+impl Derivation {
+    /// `Units` and `x in m, theta in rad, …`, or nothing for a system without units.
+    fn units_heading(&self) -> String {
+        match self.units_line() {
+            Some(line) => format!("Units (rad is dimensionless)\n    {line}\n"),
+            None => String::new(),
+        }
+    }
+
+    /// `x in m, theta in rad, …`: the unit of every coordinate, then every parameter, as
+    /// `units` writes it; `None` for a system without units.
+    pub(crate) fn units_line(&self) -> Option<String> {
+        let units = self.units.as_ref()?;
+        let names = self.coordinates.iter().map(|c| c.name.as_str());
+        let names = names.chain(self.parameters.iter().map(|(name, _)| name.as_str()));
+        let stated: Vec<String> = names
+            .filter_map(|name| {
+                let unit = units
+                    .written(name)
+                    .map(str::to_string)
+                    .or_else(|| units.dimension(name).map(|d| d.to_string()))?;
+                Some(format!("{name} in {unit}"))
+            })
+            .collect();
+        Some(stated.join(", "))
+    }
+
+    /// `   [J]` after a line whose label (`H = …`, `p_x =`, `Q*_th =`) names a quantity
+    /// with a known unit; empty without units.
+    pub(crate) fn line_unit(&self, label: &str) -> String {
+        let first = label.split([' ', '=']).next().unwrap_or("");
+        self.units
+            .as_ref()
+            .and_then(|units| units.label_unit(first))
+            .map_or(String::new(), |unit| format!("   [{unit}]"))
+    }
+}
+
 fn line(text: &str, latex: &str, value: Id) -> Line {
     Line {
         text: text.to_string(),
         latex: latex.to_string(),
         value,
     }
-}
-
-fn latex_name(name: &str) -> String {
-    name.to_string()
 }

@@ -9,6 +9,8 @@ pub mod ast;
 mod grammar;
 pub mod keywords;
 mod span;
+mod tags;
 
 pub use grammar::{parse_expression, parse_system, MAX_DEPTH, MAX_DIAGNOSTICS, MAX_NESTING};
 pub use span::{Diagnostic, Origin, Span, Spanned};
+pub use tags::{known_tags, select_tags, UnknownTag};

@@ -108,6 +108,17 @@ impl Diagnostic {
     /// [`Diagnostic::render`] for DSL text that sits inside a larger file (a string literal
     /// in Rust source): line and column numbers are shown in the file's terms.
     pub fn render_at(&self, source: &str, origin: Origin) -> String {
+        self.render_located(source, origin, "")
+    }
+
+    /// [`Diagnostic::render`] for DSL text read from a file: the position line names the
+    /// file, `--> models/sled.vms:3:10`.
+    pub fn render_in_file(&self, source: &str, file: &str) -> String {
+        self.render_located(source, Origin::default(), &format!("{file}:"))
+    }
+
+    /// The rendering, with `prefix` before the position.
+    fn render_located(&self, source: &str, origin: Origin, prefix: &str) -> String {
         let span = Span::from_range(source, self.span.start, self.span.end);
         let file_line = |line: u32| line + origin.line.saturating_sub(1);
         let file_column = |line: u32, column: u32| {
@@ -128,7 +139,7 @@ impl Diagnostic {
         let gutter = file_line(last_line).to_string().len();
         let pad = " ".repeat(gutter);
         let mut out = format!(
-            "error: {}\n{pad}--> {}:{}\n{pad} |",
+            "error: {}\n{pad}--> {prefix}{}:{}\n{pad} |",
             self.message,
             file_line(span.line),
             file_column(span.line, span.column)

@@ -21,7 +21,14 @@ use crate::parse::keywords::STATEMENTS;
 /// something that can follow a keyword. Keywords are not reserved inside expressions, so
 /// this is a heuristic; `mass * g` at the start of a continuation line does not match.
 pub(super) fn looks_like_statement(text: &str) -> bool {
-    let text = text.trim_start_matches([' ', '\t', '\r']);
+    let mut text = text.trim_start_matches([' ', '\t', '\r']);
+    // Tags before the keyword: `[drag] force …`.
+    if let Some(tagged) = text.strip_prefix('[') {
+        let Some(close) = tagged.find(']') else {
+            return false;
+        };
+        text = tagged[close + 1..].trim_start_matches([' ', '\t']);
+    }
     let length = text
         .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
         .unwrap_or(text.len());

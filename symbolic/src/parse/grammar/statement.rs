@@ -3,7 +3,7 @@
 use super::{Grammar, PResult, STATEMENT_LEVEL};
 use crate::parse::ast::{
     BodyDecl, Flow, FlowVelocity, Load, LoadValue, MassDecl, MassLaw, Statement, StatementKind,
-    VectorNode,
+    UnitDecl, VectorNode,
 };
 use crate::parse::keywords::{self, closest};
 use crate::parse::span::{Diagnostic, Span, Spanned};
@@ -14,6 +14,8 @@ const AFTER_EXPRESSION: &str = "an operator, `;` or a newline";
 const AFTER_LIST: &str = "`,`, `;` or a newline";
 /// What may follow `inflow b` / `outflow b` without options.
 const AFTER_FLOW_NAME: &str = "`:`, `;` or a newline";
+/// What may follow a unit in a `units` statement.
+const AFTER_UNIT: &str = "an operator, `,`, `;` or a newline";
 /// What may follow a statement ending in a vector.
 const AFTER_VECTOR: &str = "`;` or a newline";
 
@@ -33,6 +35,7 @@ impl<'a> Grammar<'a> {
     /// One statement, from its keyword up to (not including) the `;`, newline or end of
     /// input that ends it.
     pub(super) fn statement(&self, input: &'a str) -> PResult<'a, Statement> {
+        let (input, tags) = self.tags(input)?;
         let head = match self.identifier(input) {
             Ok((_, head)) => head,
             Err(_) => {
@@ -72,6 +75,7 @@ impl<'a> Grammar<'a> {
             keywords::OUTFLOW => self.flow(after, keywords::OUTFLOW, StatementKind::Outflow)?,
             keywords::INFLOW => self.flow(after, keywords::INFLOW, StatementKind::Inflow)?,
             keywords::CHECK => self.check(after)?,
+            keywords::UNITS => self.units(after)?,
             _ => return Err(self.unknown_statement(head, after)),
         };
         let span = self.span(head.span.start, self.offset(rest));
@@ -79,7 +83,32 @@ impl<'a> Grammar<'a> {
         if !(at.is_empty() || at.starts_with('\n') || at.starts_with(';')) {
             return Err(self.unexpected(at, follow));
         }
-        Ok((rest, Statement { kind, span }))
+        Ok((rest, Statement { kind, span, tags }))
+    }
+
+    /// The optional tags before a statement's keyword: `[tag]` or `[tag1, tag2]`.
+    fn tags(&self, input: &'a str) -> PResult<'a, Vec<Spanned<String>>> {
+        let Ok((mut rest, _)) = self.punct(input, '[') else {
+            return Ok((input, Vec::new()));
+        };
+        let mut tags: Vec<Spanned<String>> = Vec::new();
+        let mut after = "[".to_string();
+        loop {
+            let (next, tag) = self.required(rest, false, "a tag name", &after, |i| self.name(i))?;
+            after = tag.node.clone();
+            tags.push(tag);
+            match self.punct_after_blanks(next, ',') {
+                Ok((next, _)) => (rest, after) = (next, ",".to_string()),
+                Err(_) => {
+                    rest = next;
+                    break;
+                }
+            }
+        }
+        let (rest, _) = self.required(rest, false, "`,` or `]`", &after, |i| {
+            self.punct_after_blanks(i, ']')
+        })?;
+        Ok((self.skip_blanks(rest, false), tags))
     }
 
     fn unknown_statement(
@@ -227,6 +256,29 @@ impl<'a> Grammar<'a> {
         };
         let (rest, (rhs, _)) = self.required_expression(after, STATEMENT_LEVEL, "=")?;
         Ok((rest, (StatementKind::Check { lhs, rhs }, AFTER_EXPRESSION)))
+    }
+
+    /// `units x: m, g: m/s^2, …`: each unit is read as an expression here; the `units`
+    /// module checks that it is made of known units.
+    fn units(&self, input: &'a str) -> PResult<'a, Parts> {
+        let mut entries = Vec::new();
+        let mut rest = input;
+        let mut after = keywords::UNITS;
+        loop {
+            let (at, name) = self.required(rest, false, "a name", after, |i| self.name(i))?;
+            let (at, _) = self.required(at, false, "`:`", &name.node, |i| {
+                self.punct_after_blanks(i, ':')
+            })?;
+            let (at, (unit, _)) = self.required_expression(at, STATEMENT_LEVEL, ":")?;
+            entries.push(UnitDecl { name, unit });
+            match self.punct_after_blanks(at, ',') {
+                Ok((next, _)) => {
+                    rest = next;
+                    after = ",";
+                }
+                Err(_) => return Ok((at, (StatementKind::Units(entries), AFTER_UNIT))),
+            }
+        }
     }
 
     /// `body b: mass m, position [..]`, options in any order, each exactly once.

@@ -1,0 +1,106 @@
+//! The command line, declared with clap's derive API.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+/// Check, derive and run variable-mass model files (the varmass DSL) without writing Rust.
+#[derive(Debug, Parser)]
+#[command(name = "varmass", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Derive the model and verify its `check`s; exit 1 with every diagnostic if one fails.
+    Check(ModelArgs),
+    /// Print the whole derivation (masses, L, p, H, forces, canonical equations, power).
+    Derive(DeriveArgs),
+    /// Integrate the model from an initial state with one of the core's steppers.
+    Run(Box<RunArgs>),
+}
+
+/// The model file and the optional effects it is built with.
+#[derive(Debug, Args)]
+pub struct ModelArgs {
+    /// The model file (varmass DSL).
+    pub file: PathBuf,
+    /// Include the statements tagged `[TAG]` (repeat for several effects).
+    #[arg(long = "with", value_name = "TAG")]
+    pub with: Vec<String>,
+}
+
+/// `varmass derive`.
+#[derive(Debug, Args)]
+pub struct DeriveArgs {
+    /// The model.
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Print LaTeX (`align*` environments) instead of text.
+    #[arg(long)]
+    pub latex: bool,
+}
+
+/// `varmass run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The model.
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// A parameter value, NAME=VALUE (repeat for each parameter).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// An initial value: a coordinate `x`, a velocity `x'` (0 if unset) or a state mass `m`.
+    #[arg(long = "init", value_name = "NAME=VALUE")]
+    pub init: Vec<String>,
+    /// The start time.
+    #[arg(long, default_value_t = 0.0, value_name = "T0")]
+    pub from: f64,
+    /// The end time.
+    #[arg(long, value_name = "T")]
+    pub until: f64,
+    /// Stop at the first crossing of a coordinate, velocity or mass: 'NAME = VALUE'.
+    #[arg(long = "stop-when", value_name = "CONDITION")]
+    pub stop_when: Vec<String>,
+    /// The stepper.
+    #[arg(long, value_enum, default_value_t = Method::DormandPrince)]
+    pub method: Method,
+    /// Relative and absolute tolerance of the adaptive Dormand–Prince stepper.
+    #[arg(long, value_name = "TOL", conflicts_with = "step")]
+    pub tol: Option<f64>,
+    /// The fixed step size (required by the fixed-step methods; makes Dormand–Prince fixed).
+    #[arg(long, value_name = "H")]
+    pub step: Option<f64>,
+    /// The quantities to record, comma-separated: x, x', x'', p_x, m, H, power, Q_x, R1_x,
+    /// R2_x, pdot_x (default: coordinates, velocities and state masses).
+    #[arg(long, value_delimiter = ',', value_name = "NAMES")]
+    pub record: Vec<String>,
+    /// Record every DT seconds instead of at every accepted step.
+    #[arg(long, value_name = "DT")]
+    pub every: Option<f64>,
+    /// Write the recorded quantities as CSV (header `t,<names>`).
+    #[arg(long, value_name = "PATH")]
+    pub csv: Option<PathBuf>,
+    /// Plot the recorded quantities against t (SVG, or PNG with the `png` feature).
+    #[arg(long, value_name = "PATH")]
+    pub plot: Option<PathBuf>,
+}
+
+/// The core's steppers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Method {
+    /// Dormand–Prince 5(4), adaptive (`--tol`) or fixed (`--step`).
+    DormandPrince,
+    /// Classical Runge–Kutta 4, fixed step.
+    Rk4,
+    /// Explicit Euler, fixed step.
+    Euler,
+    /// Implicit midpoint, fixed step, Newton on the Jacobian.
+    ImplicitMidpoint,
+    /// Midpoint discretisation of the corrected Hamilton principle, fixed step.
+    Variational,
+}

@@ -1,0 +1,50 @@
+//! `varmass check FILE`: derive the model and verify its `check`s.
+
+use varmass::symbolic::expr::Identity;
+
+use crate::args::ModelArgs;
+use crate::error::CliError;
+use crate::model::load;
+
+/// Derives the model; on success prints how each `check` was decided.
+pub fn check(args: &ModelArgs) -> Result<String, CliError> {
+    let model = load(args)?;
+    let file = &args.file;
+    let d = &model.derivation;
+    let mut out = format!(
+        "{}: derives ({} coordinate{}, {} mass{}, parameters: {})\n",
+        file.display(),
+        d.coordinates.len(),
+        plural(d.coordinates.len()),
+        d.masses.len(),
+        if d.masses.len() == 1 { "" } else { "es" },
+        list(&d.used_parameters()),
+    );
+    for (i, c) in d.checks.iter().enumerate() {
+        let text = model.check_texts.get(i).cloned();
+        let text = text.unwrap_or_else(|| format!("check {}", c.text));
+        let how = match &c.verdict {
+            Identity::Proven => "proven".to_string(),
+            Identity::Numerical { points } => format!("holds at {points} random points"),
+            other => format!("{other:?}"),
+        };
+        out.push_str(&format!("{text} ... ok ({how})\n"));
+    }
+    Ok(out)
+}
+
+fn plural(count: usize) -> &'static str {
+    if count == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+fn list(names: &[String]) -> String {
+    if names.is_empty() {
+        "none".to_string()
+    } else {
+        names.join(", ")
+    }
+}

@@ -1,0 +1,54 @@
+//! `varmass`: check, derive and run variable-mass model files without writing Rust.
+//!
+//! ```text
+//! varmass check models/sled.vms
+//! varmass derive models/sled.vms --latex
+//! varmass run models/sled.vms --set m0=10 … --init x=0 --until 100 --stop-when 'x = 50'
+//! ```
+//!
+//! A run evaluates the derivation at run time ([`varmass::interpret::TapeSystem`]) and
+//! integrates it with the core's steppers, the ones generated code uses.
+#![warn(missing_docs)]
+
+use std::io::Write;
+use std::process::ExitCode;
+
+use clap::Parser;
+
+mod args;
+mod commands;
+mod error;
+mod model;
+mod run;
+
+use args::{Cli, Command};
+use error::CliError;
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Check(a) => commands::check::check(&a),
+        Command::Derive(a) => commands::derive::derive(&a.model, a.latex),
+        Command::Run(a) => run::run(&a),
+    };
+    match result {
+        Ok(text) => {
+            // A closed pipe (`varmass derive … | head`) is not an error worth a panic.
+            let _ = std::io::stdout().write_all(text.as_bytes());
+            ExitCode::SUCCESS
+        }
+        Err(error) => report(&error),
+    }
+}
+
+fn report(error: &CliError) -> ExitCode {
+    match error {
+        CliError::Model { rendered, count } => {
+            eprintln!("{rendered}\n");
+            let plural = if *count == 1 { "" } else { "s" };
+            eprintln!("error: the model does not derive ({count} error{plural})");
+        }
+        other => eprintln!("error: {other}"),
+    }
+    ExitCode::from(error.exit_code())
+}

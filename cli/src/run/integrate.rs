@@ -1,0 +1,209 @@
+//! The one part of a run that knows the sizes at compile time: build the chosen core
+//! stepper for a [`TapeSystem<N, S>`], watch the `--stop-when` events, and drive
+//! [`varmass::core::run`] to the end (or to each output time in turn with `--every`).
+
+use varmass::core::nalgebra::SVector;
+use varmass::core::steppers::{
+    AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
+    ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
+};
+use varmass::core::{
+    run, Direction, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper,
+    StopReason,
+};
+use varmass::interpret::{Program, TapeSystem};
+
+use super::names::{evaluate, Observable};
+use super::plan::{Plan, Steps};
+use super::watch::Watched;
+use crate::args::Method;
+use crate::error::CliError;
+
+/// What a run produced, sizes erased.
+pub struct Outcome {
+    /// The output times and states `[q, p, m_s]`.
+    pub points: Vec<(f64, Vec<f64>)>,
+    /// The index of the `--stop-when` condition that ended the run, if one did.
+    pub stopped_by: Option<usize>,
+    /// The stepper's work.
+    pub statistics: Statistics,
+    /// The program, given back for recording.
+    pub program: Program,
+}
+
+/// Integrates `program` (with `N` coordinates and state length `S`) as `plan` says.
+pub fn integrate<const N: usize, const S: usize>(
+    program: Program,
+    plan: &Plan,
+) -> Result<Outcome, CliError> {
+    let system = TapeSystem::<N, S>::new(program).map_err(|e| CliError::Input(e.to_string()))?;
+    let start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
+    let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, e));
+    let (points, stopped_by, statistics) = match (plan.method, plan.steps) {
+        (Method::DormandPrince, steps) => {
+            let control = match steps {
+                Steps::Adaptive(tol) => StepControl::Adaptive(AdaptiveControl {
+                    relative_tolerance: tol,
+                    absolute_tolerance: tol,
+                    ..AdaptiveControl::default()
+                }),
+                Steps::Fixed(step) => StepControl::Fixed(FixedStep { step }),
+            };
+            drive(
+                &system,
+                DormandPrince::new(&system, t0, start, control).map_err(fail)?,
+                plan,
+            )
+        }
+        (Method::Rk4, steps) => {
+            let config = FixedStep { step: step(steps) };
+            drive(
+                &system,
+                ClassicalRk4::new(&system, t0, start, config).map_err(fail)?,
+                plan,
+            )
+        }
+        (Method::Euler, steps) => {
+            let config = FixedStep { step: step(steps) };
+            drive(
+                &system,
+                ExplicitEuler::new(&system, t0, start, config).map_err(fail)?,
+                plan,
+            )
+        }
+        (Method::ImplicitMidpoint, steps) => {
+            let config = ImplicitMidpointConfig {
+                step: step(steps),
+                ..ImplicitMidpointConfig::default()
+            };
+            drive(
+                &system,
+                ImplicitMidpoint::new(&system, t0, start, config).map_err(fail)?,
+                plan,
+            )
+        }
+        (Method::Variational, steps) => {
+            let config = VariationalConfig {
+                step: step(steps),
+                ..VariationalConfig::default()
+            };
+            drive(
+                &system,
+                Variational::new(&system, t0, start, config).map_err(fail)?,
+                plan,
+            )
+        }
+    }
+    .map_err(fail)?;
+    Ok(Outcome {
+        points,
+        stopped_by,
+        statistics,
+        program: system.into_program(),
+    })
+}
+
+/// The step of a fixed-step method (the plan guarantees one; the adaptive tolerance never
+/// reaches a fixed-step method).
+fn step(steps: Steps) -> f64 {
+    match steps {
+        Steps::Fixed(step) | Steps::Adaptive(step) => step,
+    }
+}
+
+type Points = Vec<(f64, Vec<f64>)>;
+
+/// An event function g(t, state) borrowing the program.
+type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
+
+/// Runs `stepper` to the end or a stopping event: one run over every accepted step, or
+/// with `--every` one run to each output time in turn (the stepper lands on each).
+fn drive<St, const N: usize, const S: usize>(
+    system: &TapeSystem<N, S>,
+    stepper: St,
+    plan: &Plan,
+) -> Result<(Points, Option<usize>, Statistics), StepError<S>>
+where
+    St: Stepper<N, S, System = TapeSystem<N, S>>,
+{
+    let program = system.program();
+    let watchers: Vec<Watcher<'_, S>> = plan
+        .stop_when
+        .iter()
+        .map(|c| watcher(program, c.observable, c.value))
+        .collect();
+    let events: Vec<Event<'_, S>> = plan
+        .stop_when
+        .iter()
+        .zip(&watchers)
+        .map(|(c, w)| match c.observable {
+            Observable::Coordinate(a) => Event::state_reaches(a, c.value, Direction::Either),
+            _ => Event::function(w.as_ref(), Direction::Either, EventAction::Stop),
+        })
+        .collect();
+    let mut stepper = Watched::new(stepper, plan.from, plan.until);
+    let mut points = vec![(plan.from, stepper.state().as_slice().to_vec())];
+    let targets = output_times(plan);
+    for target in targets {
+        let solution = run(&mut stepper, &RunConfig::until(target), &events)?;
+        let fresh = solution.times.iter().zip(&solution.states).skip(1);
+        match plan.every {
+            None => points.extend(fresh.map(|(t, s)| (*t, s.as_slice().to_vec()))),
+            Some(_) => points.extend(fresh.last().map(|(t, s)| (*t, s.as_slice().to_vec()))),
+        }
+        if let StopReason::EventFound { index } = solution.stop {
+            return Ok((points, Some(index), *stepper.statistics()));
+        }
+    }
+    Ok((points, None, *stepper.statistics()))
+}
+
+/// The end times of the runs: the end, or every `--every` step and the end.
+fn output_times(plan: &Plan) -> Vec<f64> {
+    let Some(every) = plan.every else {
+        return vec![plan.until];
+    };
+    let mut times = Vec::new();
+    let mut k = 1.0;
+    loop {
+        let t = plan.from + k * every;
+        // A last interval shorter than a millionth of `every` is merged into the end.
+        if t >= plan.until - 1e-6 * every {
+            times.push(plan.until);
+            return times;
+        }
+        times.push(t);
+        k += 1.0;
+    }
+}
+
+/// g(t, state) = observable − value; NaN where the observable cannot be had.
+fn watcher<const S: usize>(
+    program: &Program,
+    observable: Observable,
+    value: f64,
+) -> Watcher<'_, S> {
+    Box::new(move |t, state| {
+        evaluate(program, observable, t, state.as_slice()).map_or(f64::NAN, |v| v - value)
+    })
+}
+
+/// A failed run as a message with the error, its time and the state by name.
+fn describe<const N: usize, const S: usize>(
+    system: &TapeSystem<N, S>,
+    error: StepError<S>,
+) -> CliError {
+    let program = system.program();
+    let what = match error.kind {
+        StepErrorKind::NonPositiveMass { index } => match program.mass_names().nth(index) {
+            Some(name) => format!("the mass `{name}` is not positive"),
+            None => error.kind.to_string(),
+        },
+        kind => kind.to_string(),
+    };
+    let state = super::output::state_lines(program, error.time, error.state.as_slice());
+    CliError::Run(format!(
+        "the run failed at t = {}: {what}\nstate there:{state}",
+        error.time
+    ))
+}

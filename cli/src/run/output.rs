@@ -1,0 +1,108 @@
+//! What a run prints and writes: the summary, the recorded table and its CSV.
+
+use std::fmt::Write;
+use std::path::Path;
+
+use varmass::core::Statistics;
+use varmass::interpret::Program;
+
+use super::names::{evaluate, Observable};
+use crate::error::CliError;
+
+/// The recorded quantities: names, and one row of values per output time.
+pub struct Table {
+    /// The column names (without `t`).
+    pub names: Vec<String>,
+    /// (t, values) per output time.
+    pub rows: Vec<(f64, Vec<f64>)>,
+}
+
+/// Evaluates `record` at every point; a quantity that cannot be had is an error with its time.
+pub fn table(
+    program: &Program,
+    record: &[(String, Observable)],
+    points: &[(f64, Vec<f64>)],
+) -> Result<Table, CliError> {
+    let mut rows = Vec::with_capacity(points.len());
+    for (t, state) in points {
+        let values = record
+            .iter()
+            .map(|(name, o)| {
+                evaluate(program, *o, *t, state)
+                    .map_err(|e| CliError::Run(format!("cannot record {name} at t = {t}: {e}")))
+            })
+            .collect::<Result<Vec<f64>, CliError>>()?;
+        rows.push((*t, values));
+    }
+    Ok(Table {
+        names: record.iter().map(|(n, _)| n.clone()).collect(),
+        rows,
+    })
+}
+
+/// Writes `table` as CSV: a header `t,<names>` and one row per output time, each number
+/// in Rust's shortest round-trip form.
+pub fn write_csv(table: &Table, path: &Path) -> Result<(), CliError> {
+    let mut text = format!("t,{}\n", table.names.join(","));
+    for (t, values) in &table.rows {
+        let _ = write!(text, "{t}");
+        for v in values {
+            let _ = write!(text, ",{v}");
+        }
+        text.push('\n');
+    }
+    std::fs::write(path, text).map_err(|e| CliError::Write {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    })
+}
+
+/// The state by name: coordinates, velocities (when they can be had), momenta and state
+/// masses, one per line.
+pub fn state_lines(program: &Program, time: f64, state: &[f64]) -> String {
+    let n = program.coordinate_count();
+    let mut velocities = vec![f64::NAN; n];
+    let have_velocities = program.velocities(time, state, &mut velocities).is_ok();
+    let mut out = String::new();
+    for (a, x) in program.coordinate_names().enumerate() {
+        let _ = write!(out, "\n  {x} = {}", state[a]);
+        if have_velocities {
+            let _ = write!(out, "\n  {x}' = {}", velocities[a]);
+        }
+        let _ = write!(out, "\n  p_{x} = {}", state[n + a]);
+    }
+    for (k, m) in program
+        .mass_names()
+        .take(program.state_mass_count())
+        .enumerate()
+    {
+        let _ = write!(out, "\n  {m} = {}", state[2 * n + k]);
+    }
+    out
+}
+
+/// The summary printed after a run.
+pub fn summary(
+    program: &Program,
+    time: f64,
+    state: &[f64],
+    stopped_by: Option<&str>,
+    statistics: &Statistics,
+) -> String {
+    let why = match stopped_by {
+        Some(condition) => format!("--stop-when {condition}"),
+        None => "reached --until".to_string(),
+    };
+    let mut out = format!("stopped at t = {time} ({why})\nstate:");
+    out.push_str(&state_lines(program, time, state));
+    let _ = write!(
+        out,
+        "\nsteps: {} accepted, {} rejected; {} rate evaluations, {} Jacobians, {} Newton iterations\n",
+        statistics.accepted_steps,
+        statistics.rejected_steps,
+        statistics.rate_evaluations,
+        statistics.jacobian_evaluations,
+        statistics.newton_iterations
+    );
+    out
+}

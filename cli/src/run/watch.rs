@@ -1,0 +1,97 @@
+//! A progress bar for long runs: a [`Stepper`] adapter that forwards every call to the
+//! wrapped stepper and moves an `indicatif` bar on stderr after each step. The bar appears
+//! only once the run has lasted about a second, and never when stderr is not a terminal.
+
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use varmass::core::nalgebra::SVector;
+use varmass::core::{Progress, StepError, StepOutcome, Stepper};
+
+/// How long a run goes before its bar is shown.
+const QUIET_FOR: Duration = Duration::from_secs(1);
+/// The bar's resolution.
+const TICKS: u64 = 1000;
+
+/// A stepper with a progress bar over `[from, until]`.
+pub struct Watched<St> {
+    inner: St,
+    bar: ProgressBar,
+    started: Instant,
+    shown: bool,
+    from: f64,
+    until: f64,
+}
+
+impl<St> Watched<St> {
+    /// Wraps `inner` for a run from `from` to `until`.
+    pub fn new(inner: St, from: f64, until: f64) -> Self {
+        let bar = ProgressBar::with_draw_target(Some(TICKS), ProgressDrawTarget::hidden());
+        if let Ok(style) = ProgressStyle::with_template("{bar:40} {msg} [{elapsed}, eta {eta}]") {
+            bar.set_style(style);
+        }
+        Self {
+            inner,
+            bar,
+            started: Instant::now(),
+            shown: false,
+            from,
+            until,
+        }
+    }
+
+    fn tick(&mut self, time: f64) {
+        if !self.shown && self.started.elapsed() >= QUIET_FOR {
+            // Draws nothing when stderr is not a terminal.
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+            self.shown = true;
+        }
+        let span = self.until - self.from;
+        let fraction = if span > 0.0 {
+            ((time - self.from) / span).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        self.bar.set_position((fraction * TICKS as f64) as u64);
+        self.bar.set_message(format!("t = {time:.6e}"));
+    }
+}
+
+impl<St> Drop for Watched<St> {
+    fn drop(&mut self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+impl<St, const N: usize, const S: usize> Stepper<N, S> for Watched<St>
+where
+    St: Stepper<N, S>,
+{
+    type System = St::System;
+
+    fn system(&self) -> &Self::System {
+        self.inner.system()
+    }
+
+    fn progress(&self) -> &Progress<S> {
+        self.inner.progress()
+    }
+
+    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
+        self.inner.set_stop_time(stop_time)
+    }
+
+    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
+        self.inner.restart(time, state)
+    }
+
+    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
+        let outcome = self.inner.step()?;
+        self.tick(self.inner.time());
+        Ok(outcome)
+    }
+
+    fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
+        self.inner.dense_output(time)
+    }
+}

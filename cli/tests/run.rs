@@ -1,0 +1,185 @@
+//! `varmass run` against closed forms: the paper's sled to x = 50 m (eq. 24) and a vertical
+//! rocket to burnout (Tsiolkovsky with gravity loss).
+
+use std::path::PathBuf;
+
+use assert_cmd::Command;
+
+/// A model file of the repository's `models/`.
+fn model(name: &str) -> String {
+    format!("{}/../models/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name)
+}
+
+/// The last row of a CSV written by the tool, as numbers, with the header.
+fn last_row(path: &PathBuf) -> (Vec<String>, Vec<f64>) {
+    let text = std::fs::read_to_string(path).expect("the CSV was written");
+    let mut lines = text.lines();
+    let header = lines
+        .next()
+        .expect("a header")
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let last = lines.last().expect("at least one row");
+    let values = last
+        .split(',')
+        .map(|v| v.parse().expect("a number"))
+        .collect();
+    (header, values)
+}
+
+const SLED: [&str; 5] = [
+    "m0=10",
+    "c=2",
+    "g=9.81",
+    "theta=0.5235987755982988",
+    "f_d=0.1",
+];
+
+fn sled_run(until: &str, extra: &[&str]) -> Command {
+    let mut cmd = Command::cargo_bin("varmass").expect("the binary is built");
+    cmd.args([
+        "run",
+        &model("sled.vms"),
+        "--with",
+        "impact",
+        "--init",
+        "x=0",
+        "--until",
+        until,
+    ]);
+    for s in SLED {
+        cmd.args(["--set", s]);
+    }
+    cmd.args(extra);
+    cmd
+}
+
+/// v(x) of eq. 24 in the stable form: ε = c x/m0, v² = (2/3) a x (3 + 3ε + ε²)/(1 + ε)².
+fn sled_speed(x: f64) -> f64 {
+    let theta = 30f64.to_radians();
+    let a = 9.81 * (theta.sin() - 0.1 * theta.cos());
+    let eps = 2.0 * x / 10.0;
+    (2.0 / 3.0 * a * x * (3.0 + 3.0 * eps + eps * eps) / ((1.0 + eps) * (1.0 + eps))).sqrt()
+}
+
+#[test]
+fn the_sled_to_50_m_matches_the_closed_form() {
+    let csv = scratch("sled.csv");
+    let assert = sled_run(
+        "100",
+        &[
+            "--stop-when",
+            "x = 50",
+            "--tol",
+            "1e-12",
+            "--record",
+            "x,x',m",
+        ],
+    )
+    .arg("--csv")
+    .arg(&csv)
+    .assert()
+    .success();
+    let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+    assert!(stdout.contains("(--stop-when 'x = 50')"), "{stdout}");
+    let (header, row) = last_row(&csv);
+    assert_eq!(header, ["t", "x", "x'", "m"]);
+    let (x, v, m) = (row[1], row[2], row[3]);
+    assert!((x - 50.0).abs() < 1e-9, "stopped at x = {x}");
+    // Measured: 7.3e-14 relative; bound 1e-9 (the acceptance figure).
+    let error = (v - sled_speed(x)).abs() / sled_speed(x);
+    assert!(
+        error < 1e-9,
+        "v = {v}, closed form {}, error {error:e}",
+        sled_speed(x)
+    );
+    assert!((m - (10.0 + 2.0 * x)).abs() < 1e-12 * m);
+}
+
+#[test]
+fn every_spaces_the_rows_and_each_row_is_on_the_closed_form() {
+    let csv = scratch("sled_every.csv");
+    sled_run(
+        "2",
+        &["--every", "0.25", "--tol", "1e-12", "--record", "x,x'"],
+    )
+    .arg("--csv")
+    .arg(&csv)
+    .assert()
+    .success();
+    let text = std::fs::read_to_string(&csv).expect("written");
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().expect("number")).collect())
+        .collect();
+    let times: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    let expected: Vec<f64> = (0..=8).map(|k| 0.25 * k as f64).collect();
+    assert_eq!(times, expected);
+    for row in rows.iter().filter(|r| r[1] >= 1.0) {
+        // Measured: at most 2.3e-13; bound 1e-9.
+        let error = (row[2] - sled_speed(row[1])).abs() / sled_speed(row[1]);
+        assert!(error < 1e-9, "row {row:?}: error {error:e}");
+    }
+}
+
+#[test]
+fn the_rocket_to_burnout_matches_tsiolkovsky() {
+    let csv = scratch("rocket.csv");
+    let mut cmd = Command::cargo_bin("varmass").expect("the binary is built");
+    cmd.args(["run", &model("rocket.vms")]);
+    cmd.args(["--set", "mu=10", "--set", "u_e=2500", "--set", "g=9.81"]);
+    cmd.args(["--init", "y=0", "--init", "m=1000", "--until", "1000"]);
+    cmd.args([
+        "--stop-when",
+        "m = 100",
+        "--tol",
+        "1e-12",
+        "--record",
+        "y,y',m,R1_y",
+    ]);
+    cmd.arg("--csv").arg(&csv).assert().success();
+    let (_, row) = last_row(&csv);
+    let (t, v, m, thrust) = (row[0], row[2], row[3], row[4]);
+    // m = 1000 − 10 t reaches 100 at t = 90; v = u_e ln(m0/m) − g t.
+    assert!((t - 90.0).abs() < 1e-9, "burnout at t = {t}");
+    assert!((m - 100.0).abs() < 1e-9, "burnout mass {m}");
+    let exact = 2500.0 * 10f64.ln() - 9.81 * 90.0;
+    // Measured: 4.4e-14 relative (and 1.1e-12 s in the burnout time); bound 1e-9.
+    assert!(
+        (v - exact).abs() < 1e-9 * exact,
+        "v = {v}, Tsiolkovsky {exact}"
+    );
+    assert_eq!(thrust, -10.0 * 2500.0);
+}
+
+#[test]
+fn every_method_runs_the_sled() {
+    // Relative error of v at t = 1 s, measured: RK4 0 (rounding), Euler 3.0e-5, implicit
+    // midpoint and variational 7.2e-9, fixed-step Dormand–Prince 4e-16; bounds with margin.
+    for (method, setting, bound) in [
+        ("rk4", "--step=1e-3", 1e-12),
+        ("euler", "--step=1e-4", 1e-4),
+        ("implicit-midpoint", "--step=1e-3", 1e-7),
+        ("variational", "--step=1e-3", 1e-7),
+        ("dormand-prince", "--step=1e-3", 1e-12),
+    ] {
+        let csv = scratch(&format!("sled_{method}.csv"));
+        sled_run("1", &["--method", method, setting, "--record", "x,x'"])
+            .arg("--csv")
+            .arg(&csv)
+            .assert()
+            .success();
+        let (_, row) = last_row(&csv);
+        let error = (row[2] - sled_speed(row[1])).abs() / sled_speed(row[1]);
+        assert!(
+            row[0] == 1.0 && error < bound,
+            "{method}: {row:?}, error {error:e}"
+        );
+    }
+}

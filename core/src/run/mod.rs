@@ -1,0 +1,191 @@
+//! Runs: drive any [`Stepper`] to an end time, watching events and recording the extras
+//! asked for, and return a [`Solution`].
+//!
+//! The parts of a run, one file each in `run/`: `point.rs` (what the run computes at the end
+//! of a step), `interpolation.rs` (states within the last step: the stepper's dense output or
+//! a cubic Hermite interpolant), `watch.rs` (events), `energy.rs` (the energy budget and its
+//! guard) and `record.rs` (the solution being filled). [`run`] only sequences them.
+
+mod energy;
+pub(crate) mod interpolation;
+pub(crate) mod point;
+mod record;
+mod watch;
+
+use crate::error::{StepError, StepErrorKind};
+use crate::events::Event;
+use crate::solution::{Record, Solution, StopReason};
+use crate::stepper::{StepOutcome, Stepper};
+
+use interpolation::over_last_step;
+use point::{Needs, Point};
+use record::Recorder;
+use watch::EventWatch;
+
+/// How to run: the end time, the step limit, what to record and how finely to locate
+/// events. Start from [`RunConfig::until`] and adjust the fields.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunConfig {
+    /// The time to integrate to (not before the stepper's current time).
+    pub end_time: f64,
+    /// The most steps a run may take before [`StepErrorKind::TooManySteps`].
+    pub max_steps: usize,
+    /// The extras to record at every point.
+    pub record: Record,
+    /// How finely events are located in time (absolute, never below rounding of t).
+    pub event_tolerance: f64,
+    /// If set, the run fails with [`StepErrorKind::EnergyBudgetExceeded`] once the energy-budget
+    /// residual exceeds this fraction of the largest |H| or |p·q̇| seen: a guard against the finite
+    /// garbage of a fixed step past the stability limit. Costs H and the power at every
+    /// point (and a midpoint), as recording the residual does.
+    pub energy_tolerance: Option<f64>,
+}
+
+impl RunConfig {
+    /// A run to `end_time` with at most 10⁷ steps, nothing extra recorded and events
+    /// located to 1e-12 in t.
+    pub fn until(end_time: f64) -> Self {
+        Self {
+            end_time,
+            max_steps: 10_000_000,
+            record: Record::default(),
+            event_tolerance: 1e-12,
+            energy_tolerance: None,
+        }
+    }
+
+    /// The same run, failing once the energy budget misses by more than `tolerance` of the
+    /// largest |H| or |p·q̇| (see [`RunConfig::energy_tolerance`]).
+    pub fn guarding_energy(self, tolerance: f64) -> Self {
+        Self {
+            energy_tolerance: Some(tolerance),
+            ..self
+        }
+    }
+
+    /// The same run, recording `record`.
+    pub fn recording(self, record: Record) -> Self {
+        Self { record, ..self }
+    }
+
+    /// Whether H and the power are needed at every point (to record the residual or to
+    /// guard it).
+    fn needs_energy(&self) -> bool {
+        self.record.energy_residual || self.energy_tolerance.is_some()
+    }
+
+    /// Checks the energy and event tolerances.
+    fn check(&self) -> Result<(), &'static str> {
+        if self
+            .energy_tolerance
+            .is_some_and(|t| t.is_nan() || t <= 0.0)
+        {
+            return Err("the energy tolerance must be positive");
+        }
+        if self.event_tolerance.is_nan() || self.event_tolerance < 0.0 {
+            return Err("the event tolerance must be non-negative");
+        }
+        Ok(())
+    }
+}
+
+/// Integrates with `stepper` to `config.end_time` or the first stopping event.
+///
+/// On a stopping event the solution ends at the located event time; the stepper itself is
+/// left at the end of the step that contained it ([`Stepper::restart`] it at the event to
+/// continue). On error, the error carries the time and state; the points so far are lost.
+pub fn run<St, const N: usize, const S: usize>(
+    stepper: &mut St,
+    config: &RunConfig,
+    events: &[Event<'_, S>],
+) -> Result<Solution<N, S>, StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    check(stepper, config, events)?;
+    stepper.set_stop_time(config.end_time)?;
+    let start_time = stepper.time();
+    let needs = Needs {
+        rate: (config.needs_energy() || !events.is_empty())
+            && stepper.dense_output(start_time).is_none(),
+        energy: config.needs_energy(),
+    };
+    let start = Point::at(stepper.system(), start_time, *stepper.state(), needs)?;
+    let mut recorder = Recorder::start(stepper.system(), config, &start)?;
+    // A run to where the stepper already is takes no step (a zero-length step would divide
+    // by zero in some steppers and count work in others).
+    if config.end_time == start_time {
+        return Ok(recorder.finish(stepper, StopReason::ReachedEnd));
+    }
+    let mut watch = EventWatch::start(events, stepper.system(), &start);
+    let mut previous = start;
+    for _ in 0..config.max_steps {
+        let outcome = stepper.step()?;
+        let current = Point::at(stepper.system(), stepper.time(), *stepper.state(), needs)?;
+        let step = (&previous, &current);
+        let event_stop = record_step(&*stepper, &mut recorder, &mut watch, config, step)?;
+        let end_stop = (outcome == StepOutcome::ReachedStopTime).then_some(StopReason::ReachedEnd);
+        if let Some(stop) = event_stop.or(end_stop) {
+            return Ok(recorder.finish(stepper, stop));
+        }
+        previous = current;
+    }
+    let kind = StepErrorKind::TooManySteps {
+        max_steps: config.max_steps,
+    };
+    Err(StepError::new(stepper.time(), *stepper.state(), kind))
+}
+
+/// Records the step from `previous` to `current` the stepper just took: the events in it
+/// first, and if one of them stops the run, the point and the energy budget up to that event
+/// and the reason to stop; otherwise the energy budget, its guard and `current`.
+fn record_step<St, const N: usize, const S: usize>(
+    stepper: &St,
+    recorder: &mut Recorder<N, S>,
+    watch: &mut EventWatch<'_, '_, S>,
+    config: &RunConfig,
+    (previous, current): (&Point<S>, &Point<S>),
+) -> Result<Option<StopReason>, StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    let system = stepper.system();
+    let interpolate = |time| over_last_step(stepper, previous, current, time);
+    let step = (previous, current);
+    let hits = recorder.hits();
+    if let Some(hit) = watch.check_step(system, step, &interpolate, config.event_tolerance, hits) {
+        let needs = Needs {
+            rate: false,
+            energy: config.needs_energy(),
+        };
+        let end = Point::at(system, hit.time, hit.state, needs)?;
+        recorder.add_step(system, previous, &end, &interpolate)?;
+        recorder.push(system, &end)?;
+        return Ok(Some(StopReason::EventFound { index: hit.index }));
+    }
+    recorder.add_step(system, previous, current, &interpolate)?;
+    recorder.guard(system, current)?;
+    recorder.push(system, current)?;
+    Ok(None)
+}
+
+/// Checks the run's configuration and events before any step, reporting a problem at the
+/// stepper's time and state.
+fn check<St, const N: usize, const S: usize>(
+    stepper: &St,
+    config: &RunConfig,
+    events: &[Event<'_, S>],
+) -> Result<(), StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    let invalid =
+        |reason| StepError::invalid_configuration(stepper.time(), *stepper.state(), reason);
+    config.check().map_err(invalid)?;
+    for event in events {
+        event
+            .validate::<St::System, N>()
+            .map_err(|error| invalid(error.reason))?;
+    }
+    Ok(())
+}

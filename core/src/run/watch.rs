@@ -1,0 +1,84 @@
+//! The events a run watches: g at the end of every step, the sign changes located on the
+//! interpolated state, the hits recorded in time order up to the first stopping one.
+
+use alloc::vec::Vec;
+
+use nalgebra::SVector;
+
+use super::point::Point;
+use crate::events::{locate_root, Event, EventAction, EventHit};
+use crate::system::VariableMassSystem;
+
+/// The run's events with g at the last point, and room for the hits of one step.
+pub(crate) struct EventWatch<'e, 'a, const S: usize> {
+    events: &'e [Event<'a, S>],
+    /// g of each event at the last point.
+    values: Vec<f64>,
+    /// (located time, event index) of the hits within the current step.
+    pending: Vec<(f64, usize)>,
+}
+
+impl<'e, 'a, const S: usize> EventWatch<'e, 'a, S> {
+    /// Starts watching `events` from `start`.
+    pub(crate) fn start<Sys, const N: usize>(
+        events: &'e [Event<'a, S>],
+        system: &Sys,
+        start: &Point<S>,
+    ) -> Self
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        Self {
+            events,
+            values: events
+                .iter()
+                .map(|event| event.value(system, start.time, &start.state))
+                .collect(),
+            pending: Vec::with_capacity(events.len()),
+        }
+    }
+
+    /// Checks the step from `start` to `end`: locates every event that triggered to within
+    /// `tolerance` in t, on the states given by `interpolate`, and appends the hits to `hits`
+    /// in time order up to and including the first whose action is
+    /// [`EventAction::Stop`], which it returns.
+    pub(crate) fn check_step<Sys, const N: usize>(
+        &mut self,
+        system: &Sys,
+        (start, end): (&Point<S>, &Point<S>),
+        interpolate: &impl Fn(f64) -> SVector<f64, S>,
+        tolerance: f64,
+        hits: &mut Vec<EventHit<S>>,
+    ) -> Option<EventHit<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        self.pending.clear();
+        for (index, (event, before)) in self.events.iter().zip(&mut self.values).enumerate() {
+            let after = event.value(system, end.time, &end.state);
+            if event.triggered(*before, after) {
+                let time = locate_root(
+                    |time| event.value(system, time, &interpolate(time)),
+                    (start.time, *before),
+                    (end.time, after),
+                    tolerance,
+                );
+                self.pending.push((time, index));
+            }
+            *before = after;
+        }
+        self.pending.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for &(time, index) in &self.pending {
+            let hit = EventHit {
+                index,
+                time,
+                state: interpolate(time),
+            };
+            hits.push(hit);
+            if self.events.get(index).map(|event| event.action) == Some(EventAction::Stop) {
+                return Some(hit);
+            }
+        }
+        None
+    }
+}

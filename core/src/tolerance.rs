@@ -1,0 +1,143 @@
+//! Error tolerances and the weighted RMS norm every error control measures with.
+//!
+//! A tolerance gives each component i the weight wᵢ = atol + rtol·mᵢ, mᵢ a magnitude of that
+//! component (|y₀ᵢ|, max(|y₀ᵢ|, |y₁ᵢ|), |zᵢ|, … as the method chooses), and an error vector e
+//! meets it when the weighted RMS √(Σ (eᵢ/wᵢ)² / D) is at most 1 (Hairer–Nørsett–Wanner I,
+//! II.4). Dormand–Prince (its step-size control and its first step) and the Newton iteration of
+//! the implicit steppers all measure with [`weighted_rms`]; their configurations are checked
+//! by [`Tolerance::new`].
+
+use nalgebra::SVector;
+
+use crate::error::ConfigError;
+use crate::math::sqrt;
+
+/// The root mean square of `values[i] / weight(i)` over all D components:
+/// √(Σᵢ (vᵢ / wᵢ)² / D).
+///
+/// The 0/0 rule: a component whose value is exactly zero contributes 0, whatever its weight.
+/// With a purely relative tolerance (atol = 0) a component that is exactly zero has weight 0,
+/// and a zero error there meets any tolerance; without the rule 0/0 = NaN would poison the
+/// norm and fail every test against it. A non-zero value over a zero weight still gives an
+/// infinite norm: an error where no error is tolerated.
+///
+/// The sum runs over i = 0, 1, …, D − 1 in that order, so the result is reproducible to the
+/// last bit.
+pub fn weighted_rms<const D: usize>(
+    values: &SVector<f64, D>,
+    weight: impl Fn(usize) -> f64,
+) -> f64 {
+    let sum: f64 = (0..D)
+        .map(|i| {
+            let value = values[i];
+            if value == 0.0 {
+                0.0
+            } else {
+                let scaled = value / weight(i);
+                scaled * scaled
+            }
+        })
+        .sum();
+    sqrt(sum / D as f64)
+}
+
+/// A relative and an absolute tolerance, checked: both finite and non-negative, not both
+/// zero. Component i of an error is weighed against [`Tolerance::weight`]: atol + rtol·mᵢ.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    relative: f64,
+    absolute: f64,
+}
+
+impl Tolerance {
+    /// A tolerance of `relative` (rtol) and `absolute` (atol); fails unless both are finite
+    /// and non-negative and at least one is positive.
+    pub fn new(relative: f64, absolute: f64) -> Result<Self, ConfigError> {
+        let usable = relative >= 0.0
+            && absolute >= 0.0
+            && relative.is_finite()
+            && absolute.is_finite()
+            && relative + absolute > 0.0;
+        if usable {
+            Ok(Self { relative, absolute })
+        } else {
+            Err(ConfigError {
+                reason: "tolerances must be finite, non-negative and not both zero",
+            })
+        }
+    }
+
+    /// The relative tolerance rtol.
+    pub fn relative(&self) -> f64 {
+        self.relative
+    }
+
+    /// The absolute tolerance atol.
+    pub fn absolute(&self) -> f64 {
+        self.absolute
+    }
+
+    /// The weight atol + rtol·`magnitude` of a component of that magnitude.
+    pub fn weight(&self, magnitude: f64) -> f64 {
+        self.absolute + self.relative * magnitude
+    }
+
+    /// The [`weighted_rms`] of `values` with the weights of components of magnitudes
+    /// `magnitude(i)`; at most 1 means the tolerance is met.
+    pub fn norm<const D: usize>(
+        &self,
+        values: &SVector<f64, D>,
+        magnitude: impl Fn(usize) -> f64,
+    ) -> f64 {
+        weighted_rms(values, |i| self.weight(magnitude(i)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// (3/1, 4/2) has mean square (9 + 4)/2: exact in binary, so compared exactly.
+    #[test]
+    fn weighted_rms_of_a_hand_computed_vector() {
+        let values = SVector::<f64, 2>::new(3.0, 4.0);
+        let weights = [1.0, 2.0];
+        assert_eq!(weighted_rms(&values, |i| weights[i]), sqrt(6.5));
+    }
+
+    /// The 0/0 rule: a zero value over a zero weight counts 0; a non-zero one is infinite.
+    #[test]
+    fn zero_over_zero_counts_zero_and_only_that() {
+        let weights = [0.0, 1.0];
+        let zero_first = SVector::<f64, 2>::new(0.0, 2.0);
+        assert_eq!(weighted_rms(&zero_first, |i| weights[i]), sqrt(2.0));
+        let nonzero_first = SVector::<f64, 2>::new(1e-300, 2.0);
+        assert_eq!(weighted_rms(&nonzero_first, |i| weights[i]), f64::INFINITY);
+    }
+
+    #[test]
+    fn tolerance_weights_and_norm() {
+        let tolerance = Tolerance::new(0.5, 0.25).unwrap();
+        assert_eq!(tolerance.weight(2.0), 1.25);
+        let values = SVector::<f64, 1>::new(2.5);
+        assert_eq!(tolerance.norm(&values, |_| 2.0), 2.0);
+        assert_eq!((tolerance.relative(), tolerance.absolute()), (0.5, 0.25));
+    }
+
+    #[test]
+    fn unusable_tolerances_are_rejected() {
+        for (relative, absolute) in [
+            (0.0, 0.0),
+            (-1e-6, 1e-9),
+            (1e-6, -1e-9),
+            (f64::NAN, 1e-9),
+            (1e-6, f64::INFINITY),
+        ] {
+            let error = Tolerance::new(relative, absolute).unwrap_err();
+            assert!(error.reason.contains("tolerances"), "{relative} {absolute}");
+        }
+        // Either alone is usable.
+        assert_eq!(Tolerance::new(1e-6, 0.0).map(|t| t.weight(2.0)), Ok(2e-6));
+        assert_eq!(Tolerance::new(0.0, 1e-9).map(|t| t.weight(2.0)), Ok(1e-9));
+    }
+}

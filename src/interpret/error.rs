@@ -1,0 +1,60 @@
+//! Why a [`super::Program`] or a [`super::TapeSystem`] could not be made.
+
+/// A parameter list that does not fit the model, or sizes that do not fit it.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ProgramError {
+    /// A value was given for a name that is not a parameter of the model.
+    #[error("`{name}` is not a parameter of the model{}; its parameters are: {}",
+        suggestion.as_ref().map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default(),
+        list(parameters))]
+    UnknownParameter {
+        /// The name given.
+        name: String,
+        /// The nearest parameter name, if one is a likely typo of it.
+        suggestion: Option<String>,
+        /// Every parameter of the model.
+        parameters: Vec<String>,
+    },
+    /// Parameters the equations read were given no value.
+    #[error(
+        "missing value for {}; the model's parameters are: {}",
+        list(missing),
+        list(parameters)
+    )]
+    MissingParameters {
+        /// The parameters without a value.
+        missing: Vec<String>,
+        /// Every parameter of the model.
+        parameters: Vec<String>,
+    },
+    /// A parameter value is NaN or infinite.
+    #[error("the value of parameter `{name}` is not finite ({value})")]
+    NonFiniteParameter {
+        /// The parameter.
+        name: String,
+        /// Its value.
+        value: f64,
+    },
+    /// The sizes of a [`super::TapeSystem`] do not match the model's.
+    #[error(
+        "the model has {coordinates} coordinates and {state_masses} state masses, \
+         not the N = {n}, S = {s} asked for"
+    )]
+    WrongSize {
+        /// The model's number of coordinates.
+        coordinates: usize,
+        /// The model's number of state masses.
+        state_masses: usize,
+        /// The N asked for.
+        n: usize,
+        /// The S asked for.
+        s: usize,
+    },
+}
+
+fn list(names: &[String]) -> String {
+    if names.is_empty() {
+        return "(none)".to_string();
+    }
+    names.join(", ")
+}

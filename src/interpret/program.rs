@@ -1,0 +1,449 @@
+//! [`Program`]: a derivation with its parameter values, compiled into tapes and evaluated
+//! on run-time sized slices.
+
+use std::cell::RefCell;
+
+use varmass_core::SystemError;
+use varmass_symbolic::expr::{Id, Tape};
+use varmass_symbolic::mechanics::{Derivation, MassKind, VelocitySolve};
+use varmass_symbolic::parse::keywords::closest;
+
+use super::cholesky::cholesky_solve;
+use super::error::ProgramError;
+
+/// How each group of quantities is evaluated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Evaluation {
+    /// A straight-line [`Tape`] per group (`ExprPool::compile`): the fast way.
+    #[default]
+    Tape,
+    /// `ExprPool::eval` on each expression, a recursive walk with no compilation; kept to
+    /// measure what the tapes save.
+    Tree,
+}
+
+/// The velocity-form quantities a [`Program`] evaluates (functions of t, q, q̇ and the
+/// masses), each a group of values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    /// ṁ of every mass, in [`Program::mass_names`] order.
+    MassRates,
+    /// p = ∂*L/∂q̇ (N values).
+    Momenta,
+    /// M = ∂²L/∂q̇², row-major (N² values).
+    MassMatrix,
+    /// L = T − V (one value).
+    Lagrangian,
+    /// ∂*L/∂q (N values).
+    LagrangianGradient,
+    /// Q*, the active force (N values).
+    ActiveForce,
+    /// R1, the reactive thrust (N values).
+    ReactiveThrust,
+    /// R2, the impact force (N values).
+    ImpactForce,
+    /// Σᵢ ṁᵢ ∂*p/∂mᵢ (N values).
+    MassFluxForce,
+    /// The true ṗ = d*p/dt + Σᵢ ṁᵢ ∂*p/∂mᵢ (N values).
+    MomentumRate,
+    /// The right side of M q̈ = … (eq. 6) (N values).
+    AccelerationRhs,
+    /// The energy-budget power dH/dt (one value).
+    Power,
+    /// The energy function p·q̇ − L, equal to H on p = ∂*L/∂q̇ (one value).
+    Energy,
+}
+
+impl Quantity {
+    /// Every quantity, in declaration order (the index of each is its position here).
+    pub const ALL: [Quantity; 13] = [
+        Quantity::MassRates,
+        Quantity::Momenta,
+        Quantity::MassMatrix,
+        Quantity::Lagrangian,
+        Quantity::LagrangianGradient,
+        Quantity::ActiveForce,
+        Quantity::ReactiveThrust,
+        Quantity::ImpactForce,
+        Quantity::MassFluxForce,
+        Quantity::MomentumRate,
+        Quantity::AccelerationRhs,
+        Quantity::Power,
+        Quantity::Energy,
+    ];
+
+    /// The expressions of this quantity in a derivation.
+    fn roots(self, d: &Derivation) -> Vec<Id> {
+        match self {
+            Quantity::MassRates => d.mass_rates.clone(),
+            Quantity::Momenta => d.momenta.clone(),
+            Quantity::MassMatrix => d.mass_matrix.iter().flatten().copied().collect(),
+            Quantity::Lagrangian => vec![d.lagrangian],
+            Quantity::LagrangianGradient => d.lagrangian_gradient.clone(),
+            Quantity::ActiveForce => d.active_force.clone(),
+            Quantity::ReactiveThrust => d.reactive_thrust.clone(),
+            Quantity::ImpactForce => d.impact_force.clone(),
+            Quantity::MassFluxForce => d.mass_flux_force.clone(),
+            Quantity::MomentumRate => d.momentum_rate.clone(),
+            Quantity::AccelerationRhs => d.acceleration_rhs.clone(),
+            Quantity::Power => vec![d.power],
+            Quantity::Energy => vec![d.energy],
+        }
+    }
+}
+
+/// A group of expressions and their tape.
+#[derive(Debug)]
+struct Stage {
+    roots: Vec<Id>,
+    tape: Tape,
+}
+
+/// The buffers of an evaluation: the environment (one slot per symbol, parameters filled
+/// in) and the values of a stage.
+#[derive(Debug)]
+struct Scratch {
+    env: Vec<f64>,
+    values: Vec<f64>,
+}
+
+/// A derivation with its parameter values, ready to evaluate its state rate and any
+/// [`Quantity`] at run time. Not `Sync` (it reuses internal buffers): one per thread.
+#[derive(Debug)]
+pub struct Program {
+    d: Derivation,
+    evaluation: Evaluation,
+    /// Env slots of the law masses, in mass order.
+    law_slots: Vec<usize>,
+    laws: Stage,
+    /// q̇ in closed form, or the mass-matrix entries (row-major) then the offsets b.
+    velocities: Stage,
+    numeric: bool,
+    /// ṗ then ṁ of the state masses.
+    rates: Stage,
+    /// One stage per [`Quantity::ALL`] entry.
+    quantities: Vec<Stage>,
+    scratch: RefCell<Scratch>,
+}
+
+impl Program {
+    /// Compiles `derivation` with the given parameter values into tapes. Every parameter
+    /// the equations read needs a finite value; a name that is no parameter is an error
+    /// naming the nearest one.
+    pub fn new(derivation: Derivation, parameters: &[(&str, f64)]) -> Result<Self, ProgramError> {
+        Self::with_evaluation(derivation, parameters, Evaluation::Tape)
+    }
+
+    /// [`Program::new`] with a choice of [`Evaluation`].
+    pub fn with_evaluation(
+        d: Derivation,
+        parameters: &[(&str, f64)],
+        evaluation: Evaluation,
+    ) -> Result<Self, ProgramError> {
+        let env = parameter_env(&d, parameters)?;
+        let mut law_slots = Vec::new();
+        let mut law_roots = Vec::new();
+        for (mass, law) in d.masses.iter().zip(&d.closed_laws) {
+            if let (MassKind::Law(_), Some(law)) = (&mass.kind, law) {
+                law_slots.push(mass.symbol.index());
+                law_roots.push(*law);
+            }
+        }
+        let (velocity_roots, numeric) = match &d.velocities {
+            VelocitySolve::Symbolic(v) => (v.clone(), false),
+            VelocitySolve::Numeric => {
+                let mut roots: Vec<Id> = d.mass_matrix.iter().flatten().copied().collect();
+                roots.extend(&d.momentum_offset);
+                (roots, true)
+            }
+        };
+        let mut rate_roots = d.momentum_rate.clone();
+        rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
+        let stage = |roots: Vec<Id>| Stage {
+            tape: d.pool.compile(&roots),
+            roots,
+        };
+        let quantities = Quantity::ALL.iter().map(|q| stage(q.roots(&d))).collect();
+        Ok(Self {
+            evaluation,
+            law_slots,
+            laws: stage(law_roots),
+            velocities: stage(velocity_roots),
+            numeric,
+            rates: stage(rate_roots),
+            quantities,
+            scratch: RefCell::new(Scratch {
+                env,
+                values: Vec::new(),
+            }),
+            d,
+        })
+    }
+
+    /// The derivation this program evaluates.
+    pub fn derivation(&self) -> &Derivation {
+        &self.d
+    }
+
+    /// N, the number of coordinates.
+    pub fn coordinate_count(&self) -> usize {
+        self.d.coordinates.len()
+    }
+
+    /// K, the number of state masses.
+    pub fn state_mass_count(&self) -> usize {
+        self.d.state_mass_count()
+    }
+
+    /// S = 2N + K, the length of a state `[q, p, m_s]`.
+    pub fn state_len(&self) -> usize {
+        2 * self.coordinate_count() + self.state_mass_count()
+    }
+
+    /// The coordinates' names, in state order.
+    pub fn coordinate_names(&self) -> impl Iterator<Item = &str> {
+        self.d.coordinates.iter().map(|c| c.name.as_str())
+    }
+
+    /// Every mass's name: state masses first (in state order), then the laws.
+    pub fn mass_names(&self) -> impl Iterator<Item = &str> {
+        self.d.masses.iter().map(|m| m.name.as_str())
+    }
+
+    /// Instructions in the law, velocity and rate tapes together: the work of one state
+    /// rate.
+    pub fn tape_length(&self) -> usize {
+        self.laws.tape.len() + self.velocities.tape.len() + self.rates.tape.len()
+    }
+
+    /// Instructions of the q̇ stage alone.
+    pub fn velocity_tape_length(&self) -> usize {
+        self.velocities.tape.len()
+    }
+
+    /// Every mass at `(t, state)` into `out` (in [`Program::mass_names`] order). Only q and
+    /// the state masses are read, so a state or a velocity state may be passed.
+    pub fn masses(&self, t: f64, state: &[f64], out: &mut [f64]) {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_positions(scratch, t, state);
+        for (o, m) in out.iter_mut().zip(&self.d.masses) {
+            *o = scratch
+                .env
+                .get(m.symbol.index())
+                .copied()
+                .unwrap_or(f64::NAN);
+        }
+    }
+
+    /// q̇(q, p, t) at a state `[q, p, m_s]` into `out`.
+    pub fn velocities(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<(), SystemError> {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_state(scratch, t, state)?;
+        self.read_velocities(&scratch.env, out);
+        Ok(())
+    }
+
+    /// The state rate `[q̇, ṗ, ṁ_s]` at `(t, state)` into `out`.
+    pub fn state_rate(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<(), SystemError> {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_state(scratch, t, state)?;
+        self.read_velocities(&scratch.env, out);
+        let n = self.coordinate_count();
+        self.run(&self.rates, scratch);
+        for (o, v) in out.iter_mut().skip(n).zip(&scratch.values) {
+            *o = *v;
+        }
+        Ok(())
+    }
+
+    /// A velocity-form quantity at a velocity state `[q, q̇, m_s]` into `out`.
+    pub fn evaluate(&self, quantity: Quantity, t: f64, velocity_state: &[f64], out: &mut [f64]) {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_velocity_state(scratch, t, velocity_state);
+        self.run(self.stage(quantity), scratch);
+        copy(&scratch.values, out);
+    }
+
+    /// A velocity-form quantity at a state `[q, p, m_s]` (q̇ recovered from p) into `out`.
+    pub fn evaluate_at_state(
+        &self,
+        quantity: Quantity,
+        t: f64,
+        state: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), SystemError> {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_state(scratch, t, state)?;
+        self.run(self.stage(quantity), scratch);
+        copy(&scratch.values, out);
+        Ok(())
+    }
+
+    /// q̈ at a velocity state `[q, q̇, m_s]` into `out`: M q̈ = rhs (eq. 6) solved by
+    /// Cholesky.
+    pub fn accelerations(
+        &self,
+        t: f64,
+        velocity_state: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), SystemError> {
+        let n = self.coordinate_count();
+        let mut matrix = vec![f64::NAN; n * n];
+        self.evaluate(Quantity::MassMatrix, t, velocity_state, &mut matrix);
+        let mut rhs = vec![f64::NAN; n];
+        self.evaluate(Quantity::AccelerationRhs, t, velocity_state, &mut rhs);
+        if !cholesky_solve(&mut matrix, &mut rhs, n) {
+            return Err(SystemError::SingularMassMatrix);
+        }
+        copy(&rhs, out);
+        Ok(())
+    }
+
+    fn stage(&self, quantity: Quantity) -> &Stage {
+        let index = Quantity::ALL
+            .iter()
+            .position(|q| *q == quantity)
+            .unwrap_or(0);
+        &self.quantities[index]
+    }
+
+    /// Evaluates `stage` on the loaded environment into `scratch.values`.
+    fn run(&self, stage: &Stage, scratch: &mut Scratch) {
+        let Scratch { env, values } = scratch;
+        values.clear();
+        values.resize(stage.roots.len(), f64::NAN);
+        match self.evaluation {
+            Evaluation::Tape => stage.tape.eval(env, values),
+            Evaluation::Tree => {
+                for (value, root) in values.iter_mut().zip(&stage.roots) {
+                    *value = self.d.pool.eval(*root, env);
+                }
+            }
+        }
+    }
+
+    /// Sets t, q and the state masses, then the law masses.
+    fn load_positions(&self, scratch: &mut Scratch, t: f64, state: &[f64]) {
+        let n = self.coordinate_count();
+        let env = &mut scratch.env;
+        set(env, self.d.time.index(), t);
+        for (a, c) in self.d.coordinates.iter().enumerate() {
+            set(env, c.q.index(), component(state, a));
+        }
+        let state_masses = self.d.masses.iter().take(self.state_mass_count());
+        for (k, m) in state_masses.enumerate() {
+            set(env, m.symbol.index(), component(state, 2 * n + k));
+        }
+        self.run(&self.laws, scratch);
+        for (slot, value) in self.law_slots.iter().zip(&scratch.values) {
+            set(&mut scratch.env, *slot, *value);
+        }
+    }
+
+    /// Loads a velocity state `[q, q̇, m_s]`.
+    fn load_velocity_state(&self, scratch: &mut Scratch, t: f64, velocity_state: &[f64]) {
+        self.load_positions(scratch, t, velocity_state);
+        let n = self.coordinate_count();
+        for (a, c) in self.d.coordinates.iter().enumerate() {
+            set(
+                &mut scratch.env,
+                c.velocity.index(),
+                component(velocity_state, n + a),
+            );
+        }
+    }
+
+    /// Loads a state `[q, p, m_s]` and the velocities recovered from it.
+    fn load_state(&self, scratch: &mut Scratch, t: f64, state: &[f64]) -> Result<(), SystemError> {
+        self.load_positions(scratch, t, state);
+        let n = self.coordinate_count();
+        for (a, c) in self.d.coordinates.iter().enumerate() {
+            set(
+                &mut scratch.env,
+                c.momentum.index(),
+                component(state, n + a),
+            );
+        }
+        self.run(&self.velocities, scratch);
+        let Scratch { env, values } = scratch;
+        if self.numeric {
+            let split = (n * n).min(values.len());
+            let (matrix, offset) = values.split_at_mut(split);
+            for (a, b) in offset.iter_mut().enumerate() {
+                *b = component(state, n + a) - *b;
+            }
+            if !cholesky_solve(matrix, offset, n) {
+                return Err(SystemError::SingularMassMatrix);
+            }
+            values.drain(..split);
+        }
+        let inputs_finite = state.iter().all(|x| x.is_finite());
+        for (c, v) in self.d.coordinates.iter().zip(values.iter()) {
+            // A closed-form q̇ that is not finite at a finite state divided by det M = 0.
+            if inputs_finite && !v.is_finite() {
+                return Err(SystemError::SingularMassMatrix);
+            }
+            set(env, c.velocity.index(), *v);
+        }
+        Ok(())
+    }
+
+    fn read_velocities(&self, env: &[f64], out: &mut [f64]) {
+        for (o, c) in out.iter_mut().zip(&self.d.coordinates) {
+            *o = env.get(c.velocity.index()).copied().unwrap_or(f64::NAN);
+        }
+    }
+}
+
+/// The environment with the parameter values in their slots (NaN elsewhere), after
+/// checking the parameters against the model.
+fn parameter_env(d: &Derivation, parameters: &[(&str, f64)]) -> Result<Vec<f64>, ProgramError> {
+    let names: Vec<String> = d.parameters.iter().map(|(n, _)| n.clone()).collect();
+    let mut env = vec![f64::NAN; d.pool.symbols().len()];
+    for (name, value) in parameters {
+        let Some((_, symbol)) = d.parameters.iter().find(|(n, _)| n == name) else {
+            let candidates: Vec<&str> = names.iter().map(String::as_str).collect();
+            return Err(ProgramError::UnknownParameter {
+                name: name.to_string(),
+                suggestion: closest(name, &candidates).map(str::to_string),
+                parameters: names,
+            });
+        };
+        if !value.is_finite() {
+            return Err(ProgramError::NonFiniteParameter {
+                name: name.to_string(),
+                value: *value,
+            });
+        }
+        set(&mut env, symbol.index(), *value);
+    }
+    let missing: Vec<String> = d
+        .used_parameters()
+        .into_iter()
+        .filter(|used| !parameters.iter().any(|(name, _)| name == used))
+        .collect();
+    if missing.is_empty() {
+        Ok(env)
+    } else {
+        Err(ProgramError::MissingParameters {
+            missing,
+            parameters: names,
+        })
+    }
+}
+
+fn set(env: &mut [f64], slot: usize, value: f64) {
+    if let Some(s) = env.get_mut(slot) {
+        *s = value;
+    }
+}
+
+fn component(values: &[f64], index: usize) -> f64 {
+    values.get(index).copied().unwrap_or(f64::NAN)
+}
+
+fn copy(from: &[f64], to: &mut [f64]) {
+    for (t, f) in to.iter_mut().zip(from) {
+        *t = *f;
+    }
+}

@@ -1,0 +1,181 @@
+//! [`TapeSystem`]: a [`Program`] with its sizes fixed at compile time, so that the core's
+//! steppers integrate it like generated code.
+
+use varmass_core::nalgebra::{SMatrix, SVector};
+use varmass_core::{SystemError, VariableMassSystem};
+
+use super::error::ProgramError;
+use super::program::{Program, Quantity};
+
+/// A run-time model as a [`VariableMassSystem`] with `N` coordinates and state dimension
+/// `S = 2N + K`. Every required method evaluates the program's tapes; q̇(q, p), H, the
+/// state rate and the power are overridden with their tapes too, and the Jacobian is the
+/// trait's central-difference default.
+///
+/// Associated constants cannot hold names known only at run time, so
+/// [`VariableMassSystem::COORDINATES`] holds empty names and
+/// [`VariableMassSystem::MASSES`] is empty: read the names from [`Program::coordinate_names`]
+/// and [`Program::mass_names`]. [`VariableMassSystem::check_masses`] is overridden to check
+/// every mass of the model all the same. A mass event therefore cannot be given by index
+/// ([`varmass_core::Event::mass_reaches`] is rejected as out of range): stop on a state
+/// mass with [`varmass_core::Event::state_reaches`], or on any mass with an
+/// [`varmass_core::Event::function`].
+#[derive(Debug)]
+pub struct TapeSystem<const N: usize, const S: usize> {
+    program: Program,
+}
+
+impl<const N: usize, const S: usize> TapeSystem<N, S> {
+    /// Fixes the sizes of `program`; they must be its number of coordinates and its state
+    /// length.
+    pub fn new(program: Program) -> Result<Self, ProgramError> {
+        if program.coordinate_count() != N || program.state_len() != S {
+            return Err(ProgramError::WrongSize {
+                coordinates: program.coordinate_count(),
+                state_masses: program.state_mass_count(),
+                n: N,
+                s: S,
+            });
+        }
+        Ok(Self { program })
+    }
+
+    /// The program evaluated.
+    pub fn program(&self) -> &Program {
+        &self.program
+    }
+
+    /// Gives the program back.
+    pub fn into_program(self) -> Program {
+        self.program
+    }
+
+    fn vector(
+        &self,
+        quantity: Quantity,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+    ) -> SVector<f64, N> {
+        let mut out = SVector::<f64, N>::from_element(f64::NAN);
+        self.program
+            .evaluate(quantity, t, velocity_state.as_slice(), out.as_mut_slice());
+        out
+    }
+
+    fn scalar(&self, quantity: Quantity, t: f64, velocity_state: &SVector<f64, S>) -> f64 {
+        let mut out = [f64::NAN];
+        self.program
+            .evaluate(quantity, t, velocity_state.as_slice(), &mut out);
+        out[0]
+    }
+}
+
+impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, S> {
+    const COORDINATES: [&'static str; N] = [""; N];
+    const MASSES: &'static [&'static str] = &[];
+
+    fn mass(&self, index: usize, t: f64, state: &SVector<f64, S>) -> f64 {
+        let mut masses = vec![f64::NAN; self.program.derivation().masses.len()];
+        self.program.masses(t, state.as_slice(), &mut masses);
+        masses.get(index).copied().unwrap_or(f64::NAN)
+    }
+
+    fn mass_rate(&self, index: usize, t: f64, velocity_state: &SVector<f64, S>) -> f64 {
+        let mut rates = vec![f64::NAN; self.program.derivation().masses.len()];
+        self.program.evaluate(
+            Quantity::MassRates,
+            t,
+            velocity_state.as_slice(),
+            &mut rates,
+        );
+        rates.get(index).copied().unwrap_or(f64::NAN)
+    }
+
+    fn mass_matrix(&self, t: f64, state: &SVector<f64, S>) -> SMatrix<f64, N, N> {
+        let mut entries = SMatrix::<f64, N, N>::from_element(f64::NAN);
+        // Row-major values into a column-major matrix: M is symmetric.
+        self.program.evaluate(
+            Quantity::MassMatrix,
+            t,
+            state.as_slice(),
+            entries.as_mut_slice(),
+        );
+        entries.transpose()
+    }
+
+    fn momenta(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+        self.vector(Quantity::Momenta, t, velocity_state)
+    }
+
+    fn lagrangian(&self, t: f64, velocity_state: &SVector<f64, S>) -> f64 {
+        self.scalar(Quantity::Lagrangian, t, velocity_state)
+    }
+
+    fn lagrangian_gradient(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+        self.vector(Quantity::LagrangianGradient, t, velocity_state)
+    }
+
+    fn active_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+        self.vector(Quantity::ActiveForce, t, velocity_state)
+    }
+
+    fn reactive_thrust(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+        self.vector(Quantity::ReactiveThrust, t, velocity_state)
+    }
+
+    fn impact_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+        self.vector(Quantity::ImpactForce, t, velocity_state)
+    }
+
+    fn mass_flux_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
+        self.vector(Quantity::MassFluxForce, t, velocity_state)
+    }
+
+    fn accelerations(
+        &self,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+    ) -> Result<SVector<f64, N>, SystemError> {
+        let mut out = SVector::<f64, N>::from_element(f64::NAN);
+        self.program
+            .accelerations(t, velocity_state.as_slice(), out.as_mut_slice())?;
+        Ok(out)
+    }
+
+    fn check_masses(&self, t: f64, state: &SVector<f64, S>) -> Result<(), SystemError> {
+        let mut masses = vec![f64::NAN; self.program.derivation().masses.len()];
+        self.program.masses(t, state.as_slice(), &mut masses);
+        match masses.iter().position(|m| m.is_nan() || *m <= 0.0) {
+            Some(index) => Err(SystemError::NonPositiveMass { index }),
+            None => Ok(()),
+        }
+    }
+
+    fn velocities(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, N>, SystemError> {
+        let mut out = SVector::<f64, N>::from_element(f64::NAN);
+        self.program
+            .velocities(t, state.as_slice(), out.as_mut_slice())?;
+        Ok(out)
+    }
+
+    fn hamiltonian(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
+        let mut out = [f64::NAN];
+        self.program
+            .evaluate_at_state(Quantity::Energy, t, state.as_slice(), &mut out)?;
+        Ok(out[0])
+    }
+
+    fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
+        let mut out = SVector::<f64, S>::from_element(f64::NAN);
+        self.program
+            .state_rate(t, state.as_slice(), out.as_mut_slice())?;
+        Ok(out)
+    }
+
+    fn power(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
+        let mut out = [f64::NAN];
+        self.program
+            .evaluate_at_state(Quantity::Power, t, state.as_slice(), &mut out)?;
+        Ok(out[0])
+    }
+}

@@ -1,0 +1,188 @@
+//! One walk over the arena for every printer (DSL text, LaTeX, Rust tokens): the nodes
+//! below a root are printed bottom-up, in ascending id order (children before parents, see
+//! [`ExprPool`]), each by a small [`Syntax`] from the printed forms of its descendants. No
+//! recursion, so deep expressions cannot overflow the stack.
+
+use std::collections::HashSet;
+
+use super::func::Func;
+use super::node::{Id, Node};
+use super::pool::ExprPool;
+use super::rational::Rational;
+use super::symbol::Symbol;
+
+/// How tightly a printed form binds, loosest first. A child printed where a tighter form
+/// is needed is grouped (parenthesised).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum Prec {
+    /// `a + b`, `a - b`, and a leading minus in the DSL and LaTeX.
+    Sum,
+    /// `a*b`, `a/b`.
+    Product,
+    /// Tighter than `*`: `a^b` in the DSL and LaTeX; a unary minus in Rust (which has no
+    /// power operator).
+    Power,
+    /// A name, a number, a call, a group.
+    Atom,
+}
+
+/// A printed form and how tightly it binds.
+#[derive(Clone, Debug)]
+pub(crate) struct Printed<T> {
+    pub(crate) text: T,
+    pub(crate) prec: Prec,
+}
+
+impl<T> Printed<T> {
+    pub(crate) fn new(text: T, prec: Prec) -> Printed<T> {
+        Printed { text, prec }
+    }
+}
+
+/// One target's spelling of the expression grammar. The walk calls one method per node,
+/// after every node below it is printed (read them through the [`Printer`]).
+pub(crate) trait Syntax: Sized {
+    /// The printed text: a `String`, or Rust tokens.
+    type Text: Clone + Default;
+
+    /// `text` in parentheses.
+    fn group(&self, text: &Self::Text) -> Self::Text;
+    /// An exact constant.
+    fn number(&self, r: Rational) -> Printed<Self::Text>;
+    /// An inexact constant.
+    fn float(&self, x: f64) -> Printed<Self::Text>;
+    /// A symbol.
+    fn symbol(&self, pool: &ExprPool, s: Symbol) -> Printed<Self::Text>;
+    /// A call.
+    fn call(&self, p: &Printer<'_, Self>, f: Func, args: &[Id]) -> Printed<Self::Text>;
+    /// A product.
+    fn product(&self, p: &Printer<'_, Self>, factors: &[Id]) -> Printed<Self::Text>;
+    /// `base ^ exponent`.
+    fn power(&self, p: &Printer<'_, Self>, base: Id, exponent: Id) -> Printed<Self::Text>;
+    /// The terms of a sum in print order, each with whether it is printed after ` - `.
+    fn terms(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Vec<(Id, bool)>;
+    /// The magnitude of a term that [`terms`](Self::terms) calls negative.
+    fn negated(&self, p: &Printer<'_, Self>, term: Id) -> Printed<Self::Text>;
+    /// The first term of a sum.
+    fn lead(&self, p: &Printer<'_, Self>, term: Id, negative: bool) -> Self::Text;
+    /// Appends ` + term`, or ` - term` when `negative`, to `sum`.
+    fn join(&self, sum: &mut Self::Text, negative: bool, term: Self::Text);
+
+    /// `printed`, grouped if it binds more loosely than `prec`.
+    fn at_least(&self, printed: &Printed<Self::Text>, prec: Prec) -> Self::Text {
+        if printed.prec < prec {
+            self.group(&printed.text)
+        } else {
+            printed.text.clone()
+        }
+    }
+
+    /// A sum: the lead term, then every other after ` + ` or ` - `, binding at least like
+    /// a product.
+    fn sum(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Printed<Self::Text> {
+        let mut text: Option<Self::Text> = None;
+        for (t, negative) in self.terms(p, terms) {
+            match &mut text {
+                None => text = Some(self.lead(p, t, negative)),
+                Some(sum) => {
+                    let term = if negative {
+                        self.at_least(&self.negated(p, t), Prec::Product)
+                    } else {
+                        self.at_least(p.get(t), Prec::Product)
+                    };
+                    self.join(sum, negative, term);
+                }
+            }
+        }
+        Printed::new(text.unwrap_or_default(), Prec::Sum)
+    }
+}
+
+/// The printed forms of the nodes below the one being printed.
+pub(crate) struct Printer<'a, S: Syntax> {
+    pool: &'a ExprPool,
+    /// The nodes printed so far, in ascending id order (the order of the walk).
+    printed: Vec<(Id, Printed<S::Text>)>,
+    /// The nodes whose printed form the caller replaced (temporaries of generated code).
+    bound: HashSet<Id>,
+    /// What [`get`](Self::get) answers for a node not printed (unreachable).
+    missing: Printed<S::Text>,
+}
+
+impl<S: Syntax> Printer<'_, S> {
+    /// The arena.
+    pub(crate) fn pool(&self) -> &ExprPool {
+        self.pool
+    }
+
+    /// Whether `id` is printed as the caller replaced it (a temporary of generated code,
+    /// by name), so that its structure is not to be looked into.
+    pub(crate) fn is_bound(&self, id: Id) -> bool {
+        self.bound.contains(&id)
+    }
+
+    /// The printed form of a node below the current one.
+    pub(crate) fn get(&self, id: Id) -> &Printed<S::Text> {
+        match self.printed.binary_search_by_key(&id, |(i, _)| *i) {
+            Ok(at) => &self.printed[at].1,
+            // Unreachable: the walk prints every node below a parent before it.
+            Err(_) => &self.missing,
+        }
+    }
+
+    fn print_node(&self, syntax: &S, id: Id) -> Printed<S::Text> {
+        match self.pool.node(id) {
+            Node::Num(r) => syntax.number(*r),
+            Node::Float(bits) => syntax.float(f64::from_bits(*bits)),
+            Node::Sym(s) => syntax.symbol(self.pool, *s),
+            Node::Call(f, args) => syntax.call(self, *f, args),
+            Node::Add(terms) => syntax.sum(self, terms),
+            Node::Mul(factors) => syntax.product(self, factors),
+            Node::Pow(b, x) => syntax.power(self, *b, *x),
+        }
+    }
+}
+
+/// Prints `root` in `syntax`.
+pub(crate) fn print<S: Syntax>(pool: &ExprPool, syntax: &S, root: Id) -> Printed<S::Text> {
+    let mut printed = print_all(pool, syntax, &[root], |_, _| None);
+    printed
+        .pop()
+        .unwrap_or_else(|| syntax.number(Rational::ZERO))
+}
+
+/// Prints every root in `syntax`, in one walk over the nodes below them. After each node
+/// is printed, `bind` may replace its printed form (a temporary of generated code, then
+/// printed by name in every node above it, which [`Printer::is_bound`] then tells).
+pub(crate) fn print_all<S: Syntax>(
+    pool: &ExprPool,
+    syntax: &S,
+    roots: &[Id],
+    mut bind: impl FnMut(Id, &Printed<S::Text>) -> Option<Printed<S::Text>>,
+) -> Vec<Printed<S::Text>> {
+    let order = pool.reachable(roots, false);
+    let mut printer = Printer {
+        pool,
+        printed: Vec::with_capacity(order.len()),
+        bound: HashSet::new(),
+        missing: Printed::new(S::Text::default(), Prec::Atom),
+    };
+    for id in order {
+        let mut printed = printer.print_node(syntax, id);
+        if let Some(replaced) = bind(id, &printed) {
+            printed = replaced;
+            printer.bound.insert(id);
+        }
+        printer.printed.push((id, printed));
+    }
+    roots
+        .iter()
+        .map(
+            |r| match printer.printed.binary_search_by_key(r, |(i, _)| *i) {
+                Ok(at) => printer.printed[at].1.clone(),
+                // An id of another pool reads as the zero constant (see `ExprPool::node`).
+                Err(_) => syntax.number(Rational::ZERO),
+            },
+        )
+        .collect()
+}

@@ -1,0 +1,88 @@
+//! What a system's generated code provides beyond what every system needs.
+//!
+//! Every system gets the masses, M, p, L, ∂*L/∂q, the forces, q̈, q̇(q, p), the canonical
+//! equations and the state rate: the steppers need them. The rest is optional: a quantity
+//! that is not asked for is neither derived (where it costs derivation time) nor emitted,
+//! and the runtime trait's default serves in its place (H = p·q̇ − L from q̇(q, p); the
+//! power by central differences of H; the Jacobian by central differences of the state
+//! rate; no `DERIVATION` text).
+
+/// The optional outputs of a system. [`Outputs::FULL`] (the default) has all of them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Outputs {
+    /// The closed-form `hamiltonian` method.
+    pub hamiltonian: bool,
+    /// The closed-form energy-budget `power` method.
+    pub power: bool,
+    /// The symbolic Jacobian (derived and emitted), for the implicit steppers.
+    pub jacobian: bool,
+    /// The `DERIVATION` and `DERIVATION_LATEX` texts.
+    pub derivation: bool,
+}
+
+/// The name of an output that does not exist.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown output `{name}`; expected one of {}", Outputs::NAMES.map(|n| format!("`{n}`")).join(", "))]
+pub struct UnknownOutput {
+    /// The name as given.
+    pub name: String,
+    /// Its position in the list given.
+    pub index: usize,
+}
+
+impl Outputs {
+    /// Everything.
+    pub const FULL: Outputs = Outputs {
+        hamiltonian: true,
+        power: true,
+        jacobian: true,
+        derivation: true,
+    };
+
+    /// Only what the steppers need.
+    pub const MINIMAL: Outputs = Outputs {
+        hamiltonian: false,
+        power: false,
+        jacobian: false,
+        derivation: false,
+    };
+
+    /// The names of the optional outputs, as [`Outputs::from_names`] reads them.
+    pub const NAMES: [&'static str; 4] = ["hamiltonian", "power", "jacobian", "derivation"];
+
+    /// The outputs named (the others left out): `[]` is [`Outputs::MINIMAL`].
+    ///
+    /// ```
+    /// use varmass_symbolic::mechanics::Outputs;
+    /// let outputs = Outputs::from_names(&["power"]).unwrap();
+    /// assert!(outputs.power && !outputs.jacobian);
+    /// assert_eq!(Outputs::from_names(&["jacobain"]).unwrap_err()[0].index, 0);
+    /// ```
+    pub fn from_names<S: AsRef<str>>(names: &[S]) -> Result<Outputs, Vec<UnknownOutput>> {
+        let mut outputs = Outputs::MINIMAL;
+        let mut unknown = Vec::new();
+        for (index, name) in names.iter().enumerate() {
+            match name.as_ref() {
+                "hamiltonian" => outputs.hamiltonian = true,
+                "power" => outputs.power = true,
+                "jacobian" => outputs.jacobian = true,
+                "derivation" => outputs.derivation = true,
+                other => unknown.push(UnknownOutput {
+                    name: other.to_string(),
+                    index,
+                }),
+            }
+        }
+        if unknown.is_empty() {
+            Ok(outputs)
+        } else {
+            Err(unknown)
+        }
+    }
+}
+
+impl Default for Outputs {
+    fn default() -> Self {
+        Outputs::FULL
+    }
+}
