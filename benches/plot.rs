@@ -8,7 +8,8 @@ use plotters::prelude::*;
 use crate::{Method, Point};
 
 /// Colours that stay apart in print and for common colour-vision deficiencies (Okabe–Ito).
-const PALETTE: [RGBColor; 7] = [
+/// Three more (Tol's muted scheme) for the high-order and stiff methods.
+const PALETTE: [RGBColor; 10] = [
     RGBColor(0, 0, 0),
     RGBColor(230, 159, 0),
     RGBColor(86, 180, 233),
@@ -16,6 +17,9 @@ const PALETTE: [RGBColor; 7] = [
     RGBColor(213, 94, 0),
     RGBColor(0, 114, 178),
     RGBColor(204, 121, 167),
+    RGBColor(136, 34, 85),
+    RGBColor(153, 153, 51),
+    RGBColor(136, 136, 136),
 ];
 
 /// Errors above this are off the chart (the method has not converged at that setting).

@@ -1,10 +1,15 @@
 //! Work-precision: every stepper on every system with a closed-form reference (the paper's
 //! sled to 50 m, the vertical rocket, a Kepler orbit), swept over step sizes (fixed-step
-//! methods) or tolerances (adaptive Dormand–Prince, and the `ode_solvers` crate's Dopri5 as a
-//! peer on the same right-hand side). One point per setting: the relative error at the end
+//! methods) or tolerances (adaptive Dormand–Prince, DOP853 and SDIRK4, and the `ode_solvers`
+//! crate's Dopri5 and Dop853 as peers on the same right-hand side). One point per setting: the relative error at the end
 //! against the reference, the fastest of several runs, and the work counters.
 //!
-//! Writes a table to stdout and `docs/bench/work_precision.{csv,svg}`.
+//! Then the stiff scene (`common/stiff.rs`: the leaking spring pendulum, k = 1e2…1e8) for
+//! Dormand–Prince, DOP853 and SDIRK4, the error being that of the angle at 10 s against a
+//! tight explicit run.
+//!
+//! Writes a table to stdout, `docs/bench/work_precision.{csv,svg}` and
+//! `docs/bench/stiff.{csv,svg}`.
 //!
 //! ```sh
 //! cargo bench -p varmass-benches --bench work_precision
@@ -18,12 +23,13 @@ use std::path::PathBuf;
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{
-    AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
-    ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
+    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
 };
 use varmass::core::{Statistics, StepOutcome, Stepper, VariableMassSystem};
 
 use common::problems::{KeplerProblem, Problem, RocketProblem, SledProblem};
+use common::stiff::{self, StiffScene};
 use common::timing::fastest;
 
 /// A stepper and how it is configured.
@@ -43,10 +49,16 @@ pub enum Method {
     Variational,
     /// `ode_solvers::Dopri5` on the same state rate: the peer.
     PeerDopri5,
+    /// DOP853, adaptive, without dense output (as the peer's sparse output).
+    Dop853,
+    /// `ode_solvers::Dop853` on the same state rate: the high-order peer.
+    PeerDop853,
+    /// SDIRK4, adaptive, L-stable (Newton on the generated Jacobian).
+    Sdirk4,
 }
 
 impl Method {
-    const ALL: [Method; 7] = [
+    const ALL: [Method; 10] = [
         Method::Euler,
         Method::Rk4,
         Method::DormandPrinceFixed,
@@ -54,6 +66,9 @@ impl Method {
         Method::ImplicitMidpoint,
         Method::Variational,
         Method::PeerDopri5,
+        Method::Dop853,
+        Method::PeerDop853,
+        Method::Sdirk4,
     ];
 
     /// The name in tables, the CSV and the plot legend.
@@ -66,11 +81,21 @@ impl Method {
             Method::ImplicitMidpoint => "implicit midpoint",
             Method::Variational => "variational",
             Method::PeerDopri5 => "ode_solvers Dopri5",
+            Method::Dop853 => "DOP853",
+            Method::PeerDop853 => "ode_solvers Dop853",
+            Method::Sdirk4 => "SDIRK4",
         }
     }
 
     fn adaptive(self) -> bool {
-        matches!(self, Method::DormandPrinceAdaptive | Method::PeerDopri5)
+        matches!(
+            self,
+            Method::DormandPrinceAdaptive
+                | Method::PeerDopri5
+                | Method::Dop853
+                | Method::PeerDop853
+                | Method::Sdirk4
+        )
     }
 
     /// The sweep: tolerances 1e-3…1e-13 for adaptive methods, step counts 2^k otherwise,
@@ -81,9 +106,11 @@ impl Method {
             (from..=to).step_by(by).map(|k| 2f64.powi(k)).collect()
         };
         match self {
-            Method::DormandPrinceAdaptive | Method::PeerDopri5 => {
-                (3..=13).map(|k| 10f64.powi(-k)).collect()
-            }
+            Method::DormandPrinceAdaptive
+            | Method::PeerDopri5
+            | Method::Dop853
+            | Method::PeerDop853 => (3..=13).map(|k| 10f64.powi(-k)).collect(),
+            Method::Sdirk4 => (3..=11).map(|k| 10f64.powi(-k)).collect(),
             Method::Euler => powers(8, 20, 2),
             Method::Rk4 => powers(5, 16, 1),
             Method::DormandPrinceFixed => powers(4, 13, 1),
@@ -154,7 +181,49 @@ where
     }
 }
 
-fn run_peer<Sys, const N: usize, const S: usize>(
+/// Runs one of the `ode_solvers` peers (same constructor for both) and returns what
+/// `integrate` returns for ours.
+macro_rules! run_peer {
+    ($solver:ty, $system:expr, $start:expr, $end:expr, $tolerance:expr, $controller:expr) => {{
+        let (safety, beta, fac_min, fac_max) = $controller;
+        let y0 = ode_solvers::SVector::<f64, S>::from_column_slice($start.as_slice());
+        // Sparse output: the state at every accepted step, of which the last is at `end`.
+        // (Dense output at `dx = end` returned a wrong final state in ode_solvers 0.6.2,
+        // see the README.)
+        let mut solver = <$solver>::from_param(
+            PeerSystem::<Sys, N, S>($system),
+            0.0,
+            $end,
+            $end,
+            y0,
+            $tolerance,
+            $tolerance,
+            safety,
+            beta,
+            fac_min,
+            fac_max,
+            $end,
+            0.0,
+            10_000_000,
+            1000,
+            ode_solvers::OutputType::Sparse,
+        );
+        let stats = solver.integrate().map_err(|e| e.to_string())?;
+        let (Some(t), Some(y)) = (solver.x_out().last(), solver.y_out().last()) else {
+            return Err("the peer returned no output".into());
+        };
+        let statistics = Statistics {
+            accepted_steps: stats.accepted_steps as usize,
+            rejected_steps: stats.rejected_steps as usize,
+            rate_evaluations: stats.num_eval as usize,
+            ..Statistics::default()
+        };
+        Ok((*t, SVector::from_column_slice(y.as_slice()), statistics))
+    }};
+}
+
+/// `ode_solvers::Dopri5` with Hairer's `dopri5` defaults (as ours).
+fn run_peer_dopri5<Sys, const N: usize, const S: usize>(
     system: &Sys,
     start: SVector<f64, S>,
     end: f64,
@@ -163,39 +232,22 @@ fn run_peer<Sys, const N: usize, const S: usize>(
 where
     Sys: VariableMassSystem<N, S>,
 {
-    let y0 = ode_solvers::SVector::<f64, S>::from_column_slice(start.as_slice());
-    // Hairer's defaults (as ours), and sparse output: the state at every accepted step, of
-    // which the last is at `end`. (Dense output at `dx = end` returned a wrong final state
-    // in ode_solvers 0.6.2, see the README.)
-    let mut solver = ode_solvers::Dopri5::from_param(
-        PeerSystem::<Sys, N, S>(system),
-        0.0,
-        end,
-        end,
-        y0,
-        tolerance,
-        tolerance,
-        0.9,
-        0.04,
-        0.2,
-        10.0,
-        end,
-        0.0,
-        10_000_000,
-        1000,
-        ode_solvers::OutputType::Sparse,
-    );
-    let stats = solver.integrate().map_err(|e| e.to_string())?;
-    let (Some(t), Some(y)) = (solver.x_out().last(), solver.y_out().last()) else {
-        return Err("the peer returned no output".into());
-    };
-    let statistics = Statistics {
-        accepted_steps: stats.accepted_steps as usize,
-        rejected_steps: stats.rejected_steps as usize,
-        rate_evaluations: stats.num_eval as usize,
-        ..Statistics::default()
-    };
-    Ok((*t, SVector::from_column_slice(y.as_slice()), statistics))
+    let controller = (0.9, 0.04, 0.2, 10.0);
+    run_peer!(ode_solvers::Dopri5<_, _, _>, system, start, end, tolerance, controller)
+}
+
+/// `ode_solvers::Dop853` with Hairer's `dop853` defaults (as [`AdaptiveControl::dop853`]).
+fn run_peer_dop853<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    start: SVector<f64, S>,
+    end: f64,
+    tolerance: f64,
+) -> Result<(f64, SVector<f64, S>, Statistics), String>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let controller = (0.9, 0.0, 1.0 / 3.0, 6.0);
+    run_peer!(ode_solvers::Dop853<_, _, _>, system, start, end, tolerance, controller)
 }
 
 /// One run of `method` at `setting` on `problem`.
@@ -207,9 +259,20 @@ fn run_once<P, const N: usize, const S: usize>(
 where
     P: Problem<N, S>,
 {
-    let system = problem.system();
-    let y0 = problem.initial_state();
-    let end = problem.end_time();
+    let (y0, end) = (problem.initial_state(), problem.end_time());
+    run_method(problem.system(), (y0, end), method, setting)
+}
+
+/// One run of `method` at `setting` on `system` from `y0` at t = 0 to `end`.
+fn run_method<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    (y0, end): (SVector<f64, S>, f64),
+    method: Method,
+    setting: f64,
+) -> Result<(f64, SVector<f64, S>, Statistics), String>
+where
+    Sys: VariableMassSystem<N, S>,
+{
     let step = end / setting;
     let fixed = FixedStep { step };
     let started = |e: varmass::core::StepError<S>| e.to_string();
@@ -258,7 +321,28 @@ where
                 end,
             )
         }
-        Method::PeerDopri5 => run_peer(system, y0, end, setting),
+        Method::PeerDopri5 => run_peer_dopri5(system, y0, end, setting),
+        Method::PeerDop853 => run_peer_dop853(system, y0, end, setting),
+        Method::Dop853 => {
+            let control = AdaptiveControl {
+                relative_tolerance: setting,
+                absolute_tolerance: setting,
+                ..AdaptiveControl::dop853()
+            };
+            let stepper = Dop853::new(system, 0.0, y0, StepControl::Adaptive(control));
+            integrate(stepper.map_err(started)?.without_dense_output(), end)
+        }
+        Method::Sdirk4 => {
+            let control = AdaptiveControl {
+                relative_tolerance: setting,
+                absolute_tolerance: setting,
+                ..AdaptiveControl::sdirk4()
+            };
+            integrate(
+                Sdirk4::new(system, 0.0, y0, StepControl::Adaptive(control)).map_err(started)?,
+                end,
+            )
+        }
     }
 }
 
@@ -300,6 +384,47 @@ where
     }
 }
 
+/// The stiff scene: Dormand–Prince, DOP853 and SDIRK4 at tolerances 1e-4…1e-10 on the
+/// leaking spring pendulum for each stiffness, the error being that of θ(10).
+fn stiff_sweep(points: &mut Vec<Point>) -> Result<(), Box<dyn std::error::Error>> {
+    for (k, name) in stiff::SCENES {
+        let scene = StiffScene::new(k, name)?;
+        for method in [
+            Method::DormandPrinceAdaptive,
+            Method::Dop853,
+            Method::Sdirk4,
+        ] {
+            for exponent in (4..=10).step_by(2) {
+                let setting = 10f64.powi(-exponent);
+                let start = (scene.start(), stiff::END);
+                let (elapsed, outcome) =
+                    fastest(|| run_method(&scene.system, start, method, setting));
+                let (_, state, statistics) = match outcome {
+                    Ok(result) => result,
+                    Err(error) => {
+                        println!(
+                            "{name:<24} {:<20} {setting:>9.1e}  failed: {error}",
+                            method.name()
+                        );
+                        continue;
+                    }
+                };
+                let point = Point {
+                    problem: name,
+                    method,
+                    setting,
+                    error: scene.error(&state),
+                    seconds: elapsed.as_secs_f64(),
+                    statistics,
+                };
+                println!("{}", row(&point));
+                points.push(point);
+            }
+        }
+    }
+    Ok(())
+}
+
 fn row(point: &Point) -> String {
     let setting = if point.method.adaptive() {
         format!("tol {:.0e}", point.setting)
@@ -307,7 +432,7 @@ fn row(point: &Point) -> String {
         format!("{} steps", point.setting)
     };
     format!(
-        "{:<24} {:<20} {:>14} {:>10.2e} {:>12.1} {:>10} {:>8}",
+        "{:<24} {:<20} {:>14} {:>10.2e} {:>12.1} {:>10} {:>8} {:>8} {:>6}",
         point.problem,
         point.method.name(),
         setting,
@@ -315,18 +440,24 @@ fn row(point: &Point) -> String {
         point.seconds * 1e6,
         point.statistics.rate_evaluations,
         point.statistics.jacobian_evaluations,
+        point.statistics.accepted_steps,
+        if point.statistics.stiffness_detected {
+            "stiff"
+        } else {
+            ""
+        },
     )
 }
 
 fn csv(points: &[Point]) -> String {
     let mut out = String::from(
-        "problem,method,setting,error,seconds,rate_evaluations,jacobian_evaluations,newton_iterations,accepted_steps,rejected_steps\n",
+        "problem,method,setting,error,seconds,rate_evaluations,jacobian_evaluations,newton_iterations,accepted_steps,rejected_steps,stiffness_detected\n",
     );
     for p in points {
         let s = &p.statistics;
         let _ = writeln!(
             out,
-            "\"{}\",\"{}\",{:e},{:e},{:e},{},{},{},{},{}",
+            "\"{}\",\"{}\",{:e},{:e},{:e},{},{},{},{},{},{}",
             p.problem,
             p.method.name(),
             p.setting,
@@ -336,7 +467,8 @@ fn csv(points: &[Point]) -> String {
             s.jacobian_evaluations,
             s.newton_iterations,
             s.accepted_steps,
-            s.rejected_steps
+            s.rejected_steps,
+            s.stiffness_detected
         );
     }
     out
@@ -344,8 +476,15 @@ fn csv(points: &[Point]) -> String {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
-        "{:<24} {:<20} {:>14} {:>10} {:>12} {:>10} {:>8}",
-        "problem", "method", "setting", "rel. error", "time (µs)", "rate evals", "Jacobians"
+        "{:<24} {:<20} {:>14} {:>10} {:>12} {:>10} {:>8} {:>8}",
+        "problem",
+        "method",
+        "setting",
+        "rel. error",
+        "time (µs)",
+        "rate evals",
+        "Jacobians",
+        "steps"
     );
     let mut points = Vec::new();
     sweep(&SledProblem::standard(), &mut points);
@@ -361,5 +500,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "wrote {}",
         folder.join("work_precision.{csv,svg}").display()
     );
+
+    let mut stiff_points = Vec::new();
+    stiff_sweep(&mut stiff_points)?;
+    std::fs::write(folder.join("stiff.csv"), csv(&stiff_points))?;
+    let scenes = stiff::SCENES.map(|(_, name)| name);
+    plot::work_precision(&folder.join("stiff.svg"), &scenes, &stiff_points)?;
+    println!("wrote {}", folder.join("stiff.{csv,svg}").display());
     Ok(())
 }

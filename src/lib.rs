@@ -65,8 +65,8 @@ pub mod prelude {
     pub use crate::variable_mass_system;
     pub use varmass_core::nalgebra::{SMatrix, SVector};
     pub use varmass_core::steppers::{
-        AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
-        StepControl, Variational,
+        AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
+        ImplicitMidpoint, Sdirk4, StepControl, Variational,
     };
     pub use varmass_core::{
         run, Direction, Event, RunConfig, Solution, StepError, StepErrorKind, Stepper, StopReason,

@@ -10,6 +10,7 @@ pub mod generated;
 pub mod hand;
 pub mod interpreted;
 pub mod problems;
+pub mod stiff;
 pub mod timing;
 pub mod workloads;
 

@@ -7,6 +7,11 @@
 //!
 //! * [`steppers::ExplicitEuler`] and [`steppers::ClassicalRk4`], fixed step;
 //! * [`steppers::DormandPrince`], 5(4), adaptive (PI control) or fixed, with dense output;
+//! * [`steppers::Dop853`], 8(5,3), adaptive or fixed, with seventh-order dense output: for
+//!   tight tolerances;
+//! * [`steppers::Sdirk4`], L-stable, order 4(3), adaptive or fixed, Newton on the
+//!   Jacobian: for stiff scenes (Dormand–Prince and DOP853 report stiffness in their
+//!   [`Statistics`](stepper::Statistics));
 //! * [`steppers::ImplicitMidpoint`], symplectic for constant masses, Newton on the Jacobian;
 //! * [`steppers::Variational`], the midpoint discretisation of the corrected Hamilton
 //!   principle.

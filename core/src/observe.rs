@@ -269,5 +269,7 @@ fn work_since(before: &Statistics, after: &Statistics) -> Statistics {
         rate_evaluations: after.rate_evaluations - before.rate_evaluations,
         jacobian_evaluations: after.jacobian_evaluations - before.jacobian_evaluations,
         newton_iterations: after.newton_iterations - before.newton_iterations,
+        // A verdict, not a count: whether the scene has been found stiff by now.
+        stiffness_detected: after.stiffness_detected,
     }
 }

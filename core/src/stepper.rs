@@ -31,6 +31,10 @@ pub struct Statistics {
     pub jacobian_evaluations: usize,
     /// Newton iterations of implicit steppers.
     pub newton_iterations: usize,
+    /// Whether Hairer's stiffness test of an explicit pair (Dormand–Prince, DOP853) found
+    /// the step size limited by stability rather than accuracy: the scene is stiff, and an
+    /// implicit stepper would take far fewer steps.
+    pub stiffness_detected: bool,
 }
 
 /// Where a stepper is: its time and state, the start of its last step, the stop time it

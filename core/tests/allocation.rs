@@ -10,8 +10,8 @@ use support::problems::{KeplerProblem, RocketProblem};
 use support::Problem;
 use varmass_core::nalgebra::SVector;
 use varmass_core::steppers::{
-    ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
-    ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
+    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
 };
 use varmass_core::{observe, Observable, Stepper};
 
@@ -90,6 +90,32 @@ fn steppers_do_not_allocate_per_step() {
             "Dormand–Prince",
             allocations_while_stepping(
                 DormandPrince::new(system, 0.0, y0, StepControl::default()).unwrap(),
+                steps,
+            ),
+        ),
+        (
+            "DOP853",
+            allocations_while_stepping(
+                Dop853::new(
+                    system,
+                    0.0,
+                    y0,
+                    StepControl::Adaptive(AdaptiveControl::dop853()),
+                )
+                .unwrap(),
+                steps,
+            ),
+        ),
+        (
+            "SDIRK4",
+            allocations_while_stepping(
+                Sdirk4::new(
+                    system,
+                    0.0,
+                    y0,
+                    StepControl::Adaptive(AdaptiveControl::sdirk4()),
+                )
+                .unwrap(),
                 steps,
             ),
         ),

@@ -22,16 +22,21 @@
 //! `CONTD5` (HNW I, II.6, and the `dopri5` code): a quartic in θ = (t − t₀)/h through y₀ and
 //! y₁ with the end slopes k₁ and k₇ and one more combination of the stages (coefficients dⱼ).
 //! The step-size controller is Gustafsson's PI controller (HNW II, IV.2) as in Hairer's
-//! `dopri5`: β = 0.04, safety 0.9, factor in [0.2, 10].
+//! `dopri5`: β = 0.04, safety 0.9, factor in [0.2, 10]. Hairer's stiffness test (stages 6
+//! and 7, both at t₀ + h; bound h|λ| = 3.25) sets [`Statistics::stiffness_detected`].
 
 use nalgebra::SVector;
 
+use super::stiffness::StiffnessTest;
 use super::FixedStep;
 use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::powf;
 use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
 use crate::tolerance::{weighted_rms, Tolerance};
+
+/// h|λ| beyond which the stiffness test counts a step as stiff (`dopri5.f`).
+const STIFFNESS_BOUND: f64 = 3.25;
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -112,7 +117,7 @@ impl Default for AdaptiveControl {
 
 impl AdaptiveControl {
     /// Checks the settings and returns the tolerance they give.
-    fn validated(&self) -> Result<Tolerance, ConfigError> {
+    pub(crate) fn validated(&self) -> Result<Tolerance, ConfigError> {
         let tolerance =
             Tolerance::new(self.relative_tolerance, self.absolute_tolerance).map_err(|_| {
                 ConfigError {
@@ -193,12 +198,16 @@ pub struct DormandPrince<'a, Sys, const N: usize, const S: usize> {
     previous_error: f64,
     /// Whether the last attempt was rejected, so the next step may not grow.
     last_rejected: bool,
+    /// Hairer's stiffness test on stages 6 and 7 (both at t₀ + h).
+    stiffness: StiffnessTest,
 }
 
-/// One attempted step: the new state, its stages and its scaled error.
+/// One attempted step: the new state, its stages, the state of stage 6 (for the stiffness
+/// test) and its scaled error.
 struct Attempt<const S: usize> {
     state: SVector<f64, S>,
     stages: [SVector<f64, S>; 7],
+    stage_6_state: SVector<f64, S>,
     error: f64,
 }
 
@@ -224,6 +233,7 @@ where
             current_rate: None,
             previous_error: 1e-4,
             last_rejected: false,
+            stiffness: StiffnessTest::default(),
         })
     }
 
@@ -286,76 +296,88 @@ where
         Ok(Attempt {
             state: y1,
             stages: [k1, k2, k3, k4, k5, k6, k7],
+            stage_6_state: y6,
             error,
         })
     }
 
-    /// The first step for the adaptive mode (HNW I, II.4, the `hinit` of `dopri5`): a step
-    /// for which an explicit Euler step would change the state by about 1 % of its size,
-    /// refined by an estimate of the second derivative.
+    /// The first step for the adaptive mode: [`initial_step`] for a fifth-order method.
     fn initial_step(
         &mut self,
         k1: &SVector<f64, S>,
         control: &AdaptiveControl,
         tolerance: &Tolerance,
     ) -> f64 {
-        let t0 = self.progress.time();
-        let y0 = *self.progress.state();
-        // HNW's heuristic (I, II.4) has absolute constants (1e-6, 1e-5) and mixes ‖f‖ ~ 1/t
-        // with ‖f′‖ ~ 1/t². Running it in τ = t/T, T the length of the integration, makes
-        // the first step independent of the unit of time; T = 1 (HNW's own) without a stop.
-        let unit = self
-            .progress
-            .stop_time()
-            .map(|stop| stop - t0)
-            .filter(|length| *length > 0.0 && length.is_finite())
-            .unwrap_or(1.0);
-        let weight = |i: usize| tolerance.weight(y0[i].abs());
-        // A component without a scale (atol = 0 and y = 0) says nothing about the step size
-        // here: it does not vote (its value is taken as 0, which counts 0).
-        let norm = |v: &SVector<f64, S>| {
-            let voting =
-                SVector::<f64, S>::from_fn(|i, _| if weight(i) > 0.0 { v[i] } else { 0.0 });
-            weighted_rms(&voting, weight)
-        };
-        let rate_norm = norm(k1) * unit;
-        let state_norm = norm(&y0);
-        let mut tau = if rate_norm <= 1e-5 || state_norm <= 1e-5 {
-            1e-6
-        } else {
-            0.01 * state_norm / rate_norm
-        };
-        // Norms that overflow (a tiny absolute tolerance) give 0 or NaN: fall back to the
-        // heuristic's own small default, which the controller then grows.
-        if !(tau > 0.0 && tau.is_finite()) {
-            tau = 1e-6;
-        }
-        let h = (tau * unit).min(control.max_step);
-        let probe = y0 + k1 * h;
-        let Ok(k_probe) = state_rate(self.system, &mut self.progress.statistics, t0 + h, &probe)
-        else {
-            // The probe left the domain (e.g. a mass went negative): the first guess is
-            // already small enough to try; rejections will shrink it further if needed.
-            return h;
-        };
-        let second_derivative = norm(&(k_probe - k1)) / h * unit * unit;
-        let scale = second_derivative.max(rate_norm);
-        let refined = if scale <= 1e-15 {
-            (tau * 1e-3).max(1e-6)
-        } else {
-            powf(0.01 / scale, 1.0 / 5.0)
-        };
-        let first = ((100.0 * tau).min(refined) * unit).min(control.max_step);
-        if first > 0.0 && first.is_finite() {
-            first
-        } else {
-            h
-        }
+        initial_step(self.system, &mut self.progress, k1, (control, tolerance), 5)
+    }
+}
+
+/// The first step of an adaptive method of order `order` (HNW I, II.4, the `hinit` of
+/// `dopri5` and `dop853`): a step for which an explicit Euler step would change the state by
+/// about 1 % of its size, refined by an estimate of the second derivative.
+pub(crate) fn initial_step<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    progress: &mut Progress<S>,
+    k1: &SVector<f64, S>,
+    (control, tolerance): (&AdaptiveControl, &Tolerance),
+    order: u32,
+) -> f64
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let t0 = progress.time();
+    let y0 = *progress.state();
+    // HNW's heuristic (I, II.4) has absolute constants (1e-6, 1e-5) and mixes ‖f‖ ~ 1/t
+    // with ‖f′‖ ~ 1/t². Running it in τ = t/T, T the length of the integration, makes
+    // the first step independent of the unit of time; T = 1 (HNW's own) without a stop.
+    let unit = progress
+        .stop_time()
+        .map(|stop| stop - t0)
+        .filter(|length| *length > 0.0 && length.is_finite())
+        .unwrap_or(1.0);
+    let weight = |i: usize| tolerance.weight(y0[i].abs());
+    // A component without a scale (atol = 0 and y = 0) says nothing about the step size
+    // here: it does not vote (its value is taken as 0, which counts 0).
+    let norm = |v: &SVector<f64, S>| {
+        let voting = SVector::<f64, S>::from_fn(|i, _| if weight(i) > 0.0 { v[i] } else { 0.0 });
+        weighted_rms(&voting, weight)
+    };
+    let rate_norm = norm(k1) * unit;
+    let state_norm = norm(&y0);
+    let mut tau = if rate_norm <= 1e-5 || state_norm <= 1e-5 {
+        1e-6
+    } else {
+        0.01 * state_norm / rate_norm
+    };
+    // Norms that overflow (a tiny absolute tolerance) give 0 or NaN: fall back to the
+    // heuristic's own small default, which the controller then grows.
+    if !(tau > 0.0 && tau.is_finite()) {
+        tau = 1e-6;
+    }
+    let h = (tau * unit).min(control.max_step);
+    let probe = y0 + k1 * h;
+    let Ok(k_probe) = state_rate(system, &mut progress.statistics, t0 + h, &probe) else {
+        // The probe left the domain (e.g. a mass went negative): the first guess is
+        // already small enough to try; rejections will shrink it further if needed.
+        return h;
+    };
+    let second_derivative = norm(&(k_probe - k1)) / h * unit * unit;
+    let scale = second_derivative.max(rate_norm);
+    let refined = if scale <= 1e-15 {
+        (tau * 1e-3).max(1e-6)
+    } else {
+        powf(0.01 / scale, 1.0 / f64::from(order))
+    };
+    let first = ((100.0 * tau).min(refined) * unit).min(control.max_step);
+    if first > 0.0 && first.is_finite() {
+        first
+    } else {
+        h
     }
 }
 
 /// Whether a step of size `h` from `t0` is positive and moves t at all.
-fn resolvable(t0: f64, h: f64) -> bool {
+pub(crate) fn resolvable(t0: f64, h: f64) -> bool {
     h > 0.0 && t0 + h != t0
 }
 
@@ -536,6 +558,15 @@ where
         let outcome = self
             .progress
             .accept(self.system, h, reaches_stop, attempt.state)?;
+        let statistics = &mut self.progress.statistics;
+        let stiff = self.stiffness.observe(
+            statistics.accepted_steps,
+            h,
+            (&attempt.state, &attempt.stages[6]),
+            (&attempt.stage_6_state, &attempt.stages[5]),
+            STIFFNESS_BOUND,
+        );
+        statistics.stiffness_detected |= stiff;
         self.stages = attempt.stages;
         self.current_rate = Some(attempt.stages[6]);
         self.last_step = h;

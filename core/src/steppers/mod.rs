@@ -1,18 +1,25 @@
 //! The steppers, one per file. Each is generic over the system (monomorphized: no `dyn`, no
 //! allocation per step) and implements [`crate::stepper::Stepper`].
 
+pub mod dop853;
 pub mod dormand_prince;
 pub mod euler;
 pub mod implicit_midpoint;
 pub mod newton;
+#[cfg(test)]
+mod order_conditions;
 pub mod rk4;
+pub mod sdirk4;
+mod stiffness;
 pub mod variational;
 
+pub use dop853::Dop853;
 pub use dormand_prince::{AdaptiveControl, DormandPrince, StepControl};
 pub use euler::ExplicitEuler;
 pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig};
 pub use newton::NewtonConfig;
 pub use rk4::ClassicalRk4;
+pub use sdirk4::{Sdirk4, Sdirk4Newton};
 pub use variational::{Principle, Variational, VariationalConfig};
 
 use crate::error::ConfigError;

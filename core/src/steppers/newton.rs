@@ -123,7 +123,8 @@ where
 
 /// An LU factorisation P A = L U with partial pivoting; L (unit diagonal) and U share one
 /// matrix.
-struct Lu<const S: usize> {
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lu<const S: usize> {
     factors: SMatrix<f64, S, S>,
     /// Row `k` of the factorised matrix is row `pivots[k]` of A.
     pivots: [usize; S],
@@ -132,7 +133,7 @@ struct Lu<const S: usize> {
 impl<const S: usize> Lu<S> {
     /// Factors `a`; `None` if a pivot is zero or not finite (A singular to working
     /// precision, or not finite).
-    fn factor(mut a: SMatrix<f64, S, S>) -> Option<Self> {
+    pub(crate) fn factor(mut a: SMatrix<f64, S, S>) -> Option<Self> {
         let mut pivots = [0; S];
         for (k, pivot) in pivots.iter_mut().enumerate() {
             *pivot = k;
@@ -165,7 +166,7 @@ impl<const S: usize> Lu<S> {
     }
 
     /// Solves A x = b.
-    fn solve(&self, b: SVector<f64, S>) -> SVector<f64, S> {
+    pub(crate) fn solve(&self, b: SVector<f64, S>) -> SVector<f64, S> {
         let a = &self.factors;
         let mut x = SVector::<f64, S>::from_fn(|row, _| b[self.pivots[row]]);
         for row in 0..S {

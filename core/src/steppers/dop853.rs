@@ -1,0 +1,537 @@
+//! DOP853: Dormand & Prince's explicit Runge–Kutta pair of order 8 with a fifth- and a
+//! third-order error estimate and a seventh-order continuous extension (HNW I, II.10; the
+//! coefficients and the step logic follow Hairer & Wanner's `dop853.f`, see
+//! `dop853/coefficients.rs`).
+//!
+//! Twelve stages per step, the FSAL rate f(t₁, y₁) becoming the first stage of the next step.
+//! The error estimate combines the two embedded solutions as in `dop853.f`:
+//! err = |h| ε₅² / √(S (ε₅² + 0.01 ε₃²)), with ε₅, ε₃ the RMS of the scaled estimates
+//! times √S, so that it behaves like an eighth-order estimate for small h.
+//! The dense output needs three more stages per step; a stepper built
+//! [`without_dense_output`](Dop853::without_dense_output) skips them (runs then interpolate
+//! by cubic Hermite, enough for output but not for events to 1e-10).
+//! Hairer's stiffness test (stages 12 and 13, both at t₀ + h; bound h|λ| = 6.1) sets
+//! [`Statistics::stiffness_detected`].
+
+mod coefficients;
+
+use nalgebra::SVector;
+
+use self::coefficients::*;
+use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
+use super::stiffness::StiffnessTest;
+use super::{FixedStep, StepControl};
+use crate::error::{StepError, StepErrorKind};
+use crate::math::{powf, sqrt};
+use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
+use crate::system::VariableMassSystem;
+use crate::tolerance::Tolerance;
+
+/// h|λ| beyond which DOP853's stiffness test counts a step as stiff (`dop853.f`).
+const STIFFNESS_BOUND: f64 = 6.1;
+
+/// The DOP853 stepper on the state `[q, p, m_s]`.
+#[derive(Clone, Debug)]
+pub struct Dop853<'a, Sys, const N: usize, const S: usize> {
+    system: &'a Sys,
+    progress: Progress<S>,
+    control: StepControl,
+    /// The checked tolerance of the adaptive mode.
+    tolerance: Option<Tolerance>,
+    /// Whether the three extra stages of the dense output are computed.
+    dense: bool,
+    /// The size of the next step to try (0 until the first step chooses it).
+    next_step: f64,
+    /// The size of the last accepted step, for the dense output.
+    last_step: f64,
+    /// The coefficients of the dense output over the last accepted step (`CONT` of
+    /// `dop853.f`).
+    continuous: [SVector<f64, S>; 8],
+    /// The rate at the current state (FSAL), if known.
+    current_rate: Option<SVector<f64, S>>,
+    /// The PI controller's memory of the last accepted error.
+    previous_error: f64,
+    /// Whether the last attempt was rejected, so the next step may not grow.
+    last_rejected: bool,
+    stiffness: StiffnessTest,
+}
+
+impl AdaptiveControl {
+    /// The adaptive control with the defaults of `dop853.f`: tolerances as
+    /// [`AdaptiveControl::default`], safety 0.9, step factors in [1/3, 6], β = 0.
+    pub fn dop853() -> Self {
+        Self {
+            min_factor: 1.0 / 3.0,
+            max_factor: 6.0,
+            beta: 0.0,
+            ..Self::default()
+        }
+    }
+}
+
+/// One attempted step: the new state, the twelve stages, the state of stage 12 (for the
+/// stiffness test) and the scaled error.
+struct Attempt<const S: usize> {
+    state: SVector<f64, S>,
+    stages: [SVector<f64, S>; 12],
+    stage_12_state: SVector<f64, S>,
+    error: f64,
+}
+
+impl<'a, Sys, const N: usize, const S: usize> Dop853<'a, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    /// Starts at `(time, state)`; the state and the control are checked. See
+    /// [`AdaptiveControl::dop853`] for the settings of `dop853.f`.
+    pub fn new(
+        system: &'a Sys,
+        time: f64,
+        state: SVector<f64, S>,
+        control: StepControl,
+    ) -> Result<Self, StepError<S>> {
+        let (control, tolerance) = match control {
+            StepControl::Adaptive(adaptive) => {
+                let tolerance = adaptive.validated().map_err(|e| e.at(time, &state))?;
+                (control, Some(tolerance))
+            }
+            StepControl::Fixed(fixed) => {
+                FixedStep::validated(fixed.step).map_err(|e| e.at(time, &state))?;
+                (control, None)
+            }
+        };
+        Ok(Self {
+            system,
+            progress: Progress::new(system, time, state)?,
+            control,
+            tolerance,
+            dense: true,
+            next_step: 0.0,
+            last_step: 0.0,
+            continuous: [SVector::zeros(); 8],
+            current_rate: None,
+            previous_error: 1e-4,
+            last_rejected: false,
+            stiffness: StiffnessTest::default(),
+        })
+    }
+
+    /// The same stepper without the dense output: three rate evaluations fewer per step
+    /// (12 instead of 15), and [`Stepper::dense_output`] returns `None`.
+    pub fn without_dense_output(self) -> Self {
+        Self {
+            dense: false,
+            ..self
+        }
+    }
+
+    /// The seventh-order dense output over the last accepted step at `time` (`CONTD8`),
+    /// or `None` without dense output. Before the first step it returns the current state.
+    pub fn interpolate(&self, time: f64) -> Option<SVector<f64, S>> {
+        if !self.dense {
+            return None;
+        }
+        let h = self.last_step;
+        if h <= 0.0 {
+            return Some(*self.progress.state());
+        }
+        let c = &self.continuous;
+        let s = (time - self.progress.previous_time()) / h;
+        let s1 = 1.0 - s;
+        let inner = c[4] + (c[5] + (c[6] + c[7] * s) * s1) * s;
+        Some(c[0] + (c[1] + (c[2] + (c[3] + inner * s1) * s) * s1) * s)
+    }
+
+    /// The size of the step the stepper will try next (0 before the first step).
+    pub fn proposed_step(&self) -> f64 {
+        self.next_step
+    }
+}
+
+/// The eleven new stages and the new state of a step of size `h` from `(t0, y0)`.
+fn attempt<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    statistics: &mut Statistics,
+    (t0, y0): (f64, &SVector<f64, S>),
+    k1: &SVector<f64, S>,
+    h: f64,
+    tolerance: Option<&Tolerance>,
+) -> Result<Attempt<S>, StepError<S>>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let mut rate = |c: f64, y: &SVector<f64, S>| state_rate(system, statistics, t0 + c * h, y);
+    let k1 = *k1;
+    let k2 = rate(C2, &(y0 + k1 * (A21 * h)))?;
+    let k3 = rate(C3, &(y0 + (k1 * A31 + k2 * A32) * h))?;
+    let k4 = rate(C4, &(y0 + (k1 * A41 + k3 * A43) * h))?;
+    let k5 = rate(C5, &(y0 + (k1 * A51 + k3 * A53 + k4 * A54) * h))?;
+    let k6 = rate(C6, &(y0 + (k1 * A61 + k4 * A64 + k5 * A65) * h))?;
+    let k7 = rate(C7, &(y0 + (k1 * A71 + k4 * A74 + k5 * A75 + k6 * A76) * h))?;
+    let y8 = y0 + (k1 * A81 + k4 * A84 + k5 * A85 + k6 * A86 + k7 * A87) * h;
+    let k8 = rate(C8, &y8)?;
+    let y9 = y0 + (k1 * A91 + k4 * A94 + k5 * A95 + k6 * A96 + k7 * A97 + k8 * A98) * h;
+    let k9 = rate(C9, &y9)?;
+    let y10 = y0
+        + (k1 * A101 + k4 * A104 + k5 * A105 + k6 * A106 + k7 * A107 + k8 * A108 + k9 * A109) * h;
+    let k10 = rate(C10, &y10)?;
+    let y11 = y0
+        + (k1 * A111
+            + k4 * A114
+            + k5 * A115
+            + k6 * A116
+            + k7 * A117
+            + k8 * A118
+            + k9 * A119
+            + k10 * A1110)
+            * h;
+    let k11 = rate(C11, &y11)?;
+    let y12 = y0
+        + (k1 * A121
+            + k4 * A124
+            + k5 * A125
+            + k6 * A126
+            + k7 * A127
+            + k8 * A128
+            + k9 * A129
+            + k10 * A1210
+            + k11 * A1211)
+            * h;
+    let k12 = rate(1.0, &y12)?;
+    let increment =
+        k1 * B1 + k6 * B6 + k7 * B7 + k8 * B8 + k9 * B9 + k10 * B10 + k11 * B11 + k12 * B12;
+    let y1 = y0 + increment * h;
+    check_state(system, t0 + h, &y1)?;
+    let stages = [k1, k2, k3, k4, k5, k6, k7, k8, k9, k10, k11, k12];
+    let error = match tolerance {
+        None => 0.0,
+        Some(tolerance) => {
+            let fifth = k1 * ER1
+                + k6 * ER6
+                + k7 * ER7
+                + k8 * ER8
+                + k9 * ER9
+                + k10 * ER10
+                + k11 * ER11
+                + k12 * ER12;
+            let third = increment - k1 * BHH1 - k9 * BHH2 - k12 * BHH3;
+            error_norm(&fifth, &third, (y0, &y1), tolerance, h)
+        }
+    };
+    Ok(Attempt {
+        state: y1,
+        stages,
+        stage_12_state: y12,
+        error,
+    })
+}
+
+/// `dop853.f`'s scaled error from the fifth- and third-order estimates (per unit step),
+/// each weighed by atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|): with the mean squares m₅, m₃ of the
+/// weighted estimates, err = |h| m₅ / √(m₅ + 0.01 m₃).
+fn error_norm<const S: usize>(
+    fifth: &SVector<f64, S>,
+    third: &SVector<f64, S>,
+    (y0, y1): (&SVector<f64, S>, &SVector<f64, S>),
+    tolerance: &Tolerance,
+    h: f64,
+) -> f64 {
+    let magnitude = |i: usize| y0[i].abs().max(y1[i].abs());
+    let mean_fifth = tolerance.norm(fifth, magnitude).powi(2);
+    let mean_third = tolerance.norm(third, magnitude).powi(2);
+    let denominator = mean_fifth + 0.01 * mean_third;
+    let denominator = if denominator > 0.0 { denominator } else { 1.0 };
+    h.abs() * mean_fifth / sqrt(denominator)
+}
+
+/// The coefficients of the dense output of an accepted step (the `CONT` array of
+/// `dop853.f`): three more stages, 14–16, from the twelve and k₁₃ = f(t₀ + h, y₁).
+fn dense_coefficients<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    statistics: &mut Statistics,
+    (t0, y0): (f64, &SVector<f64, S>),
+    h: f64,
+    attempt: &Attempt<S>,
+    k13: &SVector<f64, S>,
+) -> Result<[SVector<f64, S>; 8], StepError<S>>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let [k1, _, _, _, _, k6, k7, k8, k9, k10, k11, k12] = attempt.stages;
+    let k13 = *k13;
+    let mut rate = |c: f64, y: &SVector<f64, S>| state_rate(system, statistics, t0 + c * h, y);
+    let k14 = rate(
+        C14,
+        &(y0 + (k1 * A141
+            + k7 * A147
+            + k8 * A148
+            + k9 * A149
+            + k10 * A1410
+            + k11 * A1411
+            + k12 * A1412
+            + k13 * A1413)
+            * h),
+    )?;
+    let k15 = rate(
+        C15,
+        &(y0 + (k1 * A151
+            + k6 * A156
+            + k7 * A157
+            + k8 * A158
+            + k11 * A1511
+            + k12 * A1512
+            + k13 * A1513
+            + k14 * A1514)
+            * h),
+    )?;
+    let k16 = rate(
+        C16,
+        &(y0 + (k1 * A161
+            + k6 * A166
+            + k7 * A167
+            + k8 * A168
+            + k9 * A169
+            + k13 * A1613
+            + k14 * A1614
+            + k15 * A1615)
+            * h),
+    )?;
+    let stages = [k1, k6, k7, k8, k9, k10, k11, k12, k13, k14, k15, k16];
+    let row = |d: [f64; 12]| {
+        stages
+            .iter()
+            .zip(d)
+            .map(|(k, d)| k * d)
+            .sum::<SVector<f64, S>>()
+            * h
+    };
+    let difference = attempt.state - y0;
+    let first = k1 * h - difference;
+    Ok([
+        *y0,
+        difference,
+        first,
+        difference - k13 * h - first,
+        row([
+            D41, D46, D47, D48, D49, D410, D411, D412, D413, D414, D415, D416,
+        ]),
+        row([
+            D51, D56, D57, D58, D59, D510, D511, D512, D513, D514, D515, D516,
+        ]),
+        row([
+            D61, D66, D67, D68, D69, D610, D611, D612, D613, D614, D615, D616,
+        ]),
+        row([
+            D71, D76, D77, D78, D79, D710, D711, D712, D713, D714, D715, D716,
+        ]),
+    ])
+}
+
+/// What an accepted step adds to its attempt: the FSAL rate and the dense output.
+struct Completion<const S: usize> {
+    rate: SVector<f64, S>,
+    continuous: Option<[SVector<f64, S>; 8]>,
+}
+
+impl<Sys, const N: usize, const S: usize> Dop853<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    /// The rate at the new state and, if wanted, the dense output of an attempt that
+    /// passed the error test.
+    fn complete(
+        &mut self,
+        (t0, y0): (f64, &SVector<f64, S>),
+        h: f64,
+        attempt: &Attempt<S>,
+    ) -> Result<Completion<S>, StepError<S>> {
+        let statistics = &mut self.progress.statistics;
+        let rate = state_rate(self.system, statistics, t0 + h, &attempt.state)?;
+        let continuous = if self.dense {
+            let step = (t0, y0);
+            Some(dense_coefficients(
+                self.system,
+                statistics,
+                step,
+                h,
+                attempt,
+                &rate,
+            )?)
+        } else {
+            None
+        };
+        Ok(Completion { rate, continuous })
+    }
+
+    fn accept(
+        &mut self,
+        h: f64,
+        reaches_stop: bool,
+        attempt: Attempt<S>,
+        completion: Completion<S>,
+    ) -> Result<StepOutcome, StepError<S>> {
+        let outcome = self
+            .progress
+            .accept(self.system, h, reaches_stop, attempt.state)?;
+        let statistics = &mut self.progress.statistics;
+        let stiff = self.stiffness.observe(
+            statistics.accepted_steps,
+            h,
+            (&attempt.state, &completion.rate),
+            (&attempt.stage_12_state, &attempt.stages[11]),
+            STIFFNESS_BOUND,
+        );
+        statistics.stiffness_detected |= stiff;
+        if let Some(continuous) = completion.continuous {
+            self.continuous = continuous;
+        }
+        self.current_rate = Some(completion.rate);
+        self.last_step = h;
+        Ok(outcome)
+    }
+
+    /// The rate at the current state, evaluated once and then carried from step to step.
+    fn current_rate(&mut self) -> Result<SVector<f64, S>, StepError<S>> {
+        if let Some(rate) = self.current_rate {
+            return Ok(rate);
+        }
+        let (t0, y0) = (self.progress.time(), *self.progress.state());
+        let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;
+        self.current_rate = Some(rate);
+        Ok(rate)
+    }
+
+    /// Shrinks the step after a failed attempt; `Err(error)` once the step would underflow.
+    fn shrink_after(
+        &mut self,
+        h: f64,
+        factor: f64,
+        error: StepError<S>,
+    ) -> Result<(), StepError<S>> {
+        self.next_step = h * factor;
+        self.last_rejected = true;
+        self.progress.statistics.rejected_steps += 1;
+        if resolvable(self.progress.time(), self.next_step) {
+            Ok(())
+        } else {
+            Err(error)
+        }
+    }
+}
+
+impl<Sys, const N: usize, const S: usize> Stepper<N, S> for Dop853<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    type System = Sys;
+
+    fn system(&self) -> &Sys {
+        self.system
+    }
+
+    fn progress(&self) -> &Progress<S> {
+        &self.progress
+    }
+
+    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
+        self.progress.set_stop_time(stop_time)
+    }
+
+    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
+        self.progress.restart(self.system, time, state)?;
+        self.current_rate = None;
+        self.last_step = 0.0;
+        self.previous_error = 1e-4;
+        self.last_rejected = false;
+        Ok(())
+    }
+
+    fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
+        self.interpolate(time)
+    }
+
+    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
+        let t0 = self.progress.time();
+        let y0 = *self.progress.state();
+        let k1 = self.current_rate()?;
+        if self.next_step <= 0.0 {
+            self.next_step = match self.control {
+                StepControl::Fixed(fixed) => fixed.step,
+                StepControl::Adaptive(control) => match control.initial_step {
+                    Some(h) => h.min(control.max_step),
+                    None => {
+                        let tolerance = self.tolerance.expect("adaptive mode has a tolerance");
+                        let settings = (&control, &tolerance);
+                        initial_step(self.system, &mut self.progress, &k1, settings, 8)
+                    }
+                },
+            };
+        }
+        let StepControl::Adaptive(control) = self.control else {
+            let (h, reaches_stop) = self.progress.next_step(self.next_step);
+            let statistics = &mut self.progress.statistics;
+            let attempt = attempt(self.system, statistics, (t0, &y0), &k1, h, None)?;
+            let completion = self.complete((t0, &y0), h, &attempt)?;
+            return self.accept(h, reaches_stop, attempt, completion);
+        };
+        loop {
+            let (h, reaches_stop) = self.progress.next_step(self.next_step);
+            if !resolvable(t0, h) {
+                let kind = StepErrorKind::StepSizeUnderflow { step: h };
+                return Err(StepError::new(t0, y0, kind));
+            }
+            let statistics = &mut self.progress.statistics;
+            let tolerance = self.tolerance.as_ref();
+            let trial = attempt(self.system, statistics, (t0, &y0), &k1, h, tolerance);
+            let attempt = match trial {
+                Ok(attempt) => attempt,
+                // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
+                // matrix) is a step too long, not yet a failure: shrink and retry.
+                Err(error) => {
+                    self.shrink_after(h, control.min_factor, error)?;
+                    continue;
+                }
+            };
+            // `dop853.f`: fac11 = err^(1/8 − 0.2β), bounded by the factor limits.
+            let error = attempt.error;
+            let fac11 = powf(error, 0.125 - 0.2 * control.beta);
+            if error > 1.0 || !error.is_finite() {
+                let factor = if error.is_finite() {
+                    (control.safety / fac11).max(control.min_factor)
+                } else {
+                    control.min_factor
+                };
+                let kind = StepErrorKind::StepSizeUnderflow { step: h * factor };
+                let underflow = StepError::new(t0, y0, kind);
+                self.shrink_after(h, factor, underflow)?;
+                continue;
+            }
+            let completion = match self.complete((t0, &y0), h, &attempt) {
+                Ok(completion) => completion,
+                Err(error) => {
+                    self.shrink_after(h, control.min_factor, error)?;
+                    continue;
+                }
+            };
+            // (β = 0, `dop853.f`'s default, needs no second power.)
+            let memory = if control.beta == 0.0 {
+                1.0
+            } else {
+                powf(self.previous_error, control.beta)
+            };
+            let factor = fac11 / memory / control.safety;
+            let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
+            let mut next = h / factor;
+            if self.last_rejected {
+                next = next.min(h);
+            }
+            self.previous_error = error.max(1e-4);
+            self.last_rejected = false;
+            let outcome = self.accept(h, reaches_stop, attempt, completion)?;
+            if !reaches_stop || next > self.next_step {
+                self.next_step = next.min(control.max_step);
+            }
+            return Ok(outcome);
+        }
+    }
+}
