@@ -15,7 +15,10 @@
 //!   A failed member never aborts the ensemble.
 //! * [`Ensemble::run_until`] stops at the first batch boundary where a [`StopRule`] is met.
 //! * [`Shard`] `i` of `n` runs a slice; [`Partial::merge`] joins partials (also across
-//!   machines, through serde), exactly.
+//!   machines, through serde), exactly. With JSON, enable `serde_json`'s `float_roundtrip`
+//!   feature: without it a float read back can be one ulp off and the merge is no longer
+//!   bit-identical. A partial read back is checked (every member once, one value per
+//!   observable) and refused if inconsistent.
 //! * [`Partial::summary`] gives count, mean, standard deviation, extremes, quantiles and a
 //!   confidence interval of the mean.
 //!

@@ -1,8 +1,9 @@
 //! The trait methods, one generator each.
 
-use proc_macro2::{Literal, TokenStream};
-use quote::quote;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
 
+use super::factor::ldlt_solve;
 use super::signature::Method;
 use super::system::Emitter;
 use crate::expr::Id;
@@ -157,15 +158,17 @@ impl Emitter<'_> {
                     "Lagrange-form accelerations: solves M q̈ = rhs (eq. 6, masses frozen) with",
                     self.per_coordinate("rhs_#", &self.d.acceleration_rhs),
                 );
+                let zero = self.zero_pattern();
                 let body = self.body_input_velocity(&roots, |outs| {
                     let (matrix, rhs) = outs.split_at(m);
+                    let error = quote!(#runtime::SystemError::SingularMassMatrix);
+                    let names: Vec<Ident> = (0..rhs.len())
+                        .map(|i| format_ident!("__ldl_x{}", i))
+                        .collect();
+                    let solve = ldlt_solve(matrix, &zero, rhs, &names, &error);
                     quote! {
-                        let __mass_matrix = #runtime::nalgebra::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#matrix),*]);
-                        let __rhs = #runtime::nalgebra::SVector::<f64, #n_lit>::from([#(#rhs),*]);
-                        __mass_matrix
-                            .cholesky()
-                            .map(|c| c.solve(&__rhs))
-                            .ok_or(#runtime::SystemError::SingularMassMatrix)
+                        #solve
+                        Ok(#runtime::nalgebra::SVector::<f64, #n_lit>::from([#(#names),*]))
                     }
                 });
                 (docs, body)

@@ -7,6 +7,7 @@
 //! LaTeX constants.
 
 mod expression;
+mod factor;
 mod methods;
 mod signature;
 mod system;

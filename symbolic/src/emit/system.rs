@@ -7,6 +7,7 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use super::expression::{block, staged_block, symbol_ident};
+use super::factor::ldlt_solve;
 use super::signature::Method;
 use crate::expr::{Id, Symbol, SymbolKind};
 use crate::mechanics::{Derivation, VelocitySolve};
@@ -174,23 +175,26 @@ impl Emitter<'_> {
                     .iter()
                     .map(|c| symbol_ident(&self.d.pool, c.momentum))
                     .collect();
-                let n = Literal::usize_unsuffixed(self.n());
+                let error = quote!(#runtime::SystemError::SingularMassMatrix);
+                let zero = self.zero_pattern();
                 let bridge = move |values: Vec<TokenStream>| {
                     let (matrix, offset) = values.split_at(entries);
-                    let indices = (0..names.len()).map(Literal::usize_unsuffixed);
-                    vec![quote! {
-                        let __mass_matrix = #runtime::nalgebra::SMatrix::<f64, #n, #n>::from_row_slice(&[#(#matrix),*]);
-                        let __excess = #runtime::nalgebra::SVector::<f64, #n>::from_column_slice(&[#(#momenta - (#offset)),*]);
-                        let __velocities = __mass_matrix
-                            .cholesky()
-                            .ok_or(#runtime::SystemError::SingularMassMatrix)?
-                            .solve(&__excess);
-                        #(let #names = __velocities[#indices];)*
-                    }]
+                    let excess: Vec<TokenStream> = momenta
+                        .iter()
+                        .zip(offset)
+                        .map(|(p, b)| quote!(#p - (#b)))
+                        .collect();
+                    vec![ldlt_solve(matrix, &zero, &excess, &names, &error)]
                 };
                 (first, Box::new(bridge))
             }
         }
+    }
+
+    /// Which entries of M (row-major) are identically zero.
+    pub(crate) fn zero_pattern(&self) -> Vec<bool> {
+        let entries = self.d.mass_matrix.iter().flatten();
+        entries.map(|e| self.d.pool.is_zero(*e)).collect()
     }
 
     /// Whether evaluating `roots` needs any velocity.
