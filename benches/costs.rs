@@ -1,6 +1,7 @@
 //! The cost of generated code, against code written by hand and against run-time
 //! interpretation of the same derivation; the cost of the derivation itself (the macro's
-//! expansion) for 1 to 6 degrees of freedom; and the two sides of the symbolic-inverse
+//! expansion) for 1 to 6 degrees of freedom; the minimal emission (`emit = []`) against the
+//! full one for the model files and the chains; and the two sides of the symbolic-inverse
 //! threshold (`SYMBOLIC_INVERSE_MAX_DOF`).
 //!
 //! First a summary of ratios, timed as the fastest of interleaved runs (robust on a shared
@@ -18,12 +19,13 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion};
 use varmass::core::nalgebra::SVector;
 use varmass::core::VariableMassSystem;
-use varmass_symbolic::mechanics::{derive, derive_source};
+use varmass_symbolic::mechanics::{derive, derive_source, Outputs, Parameters};
 use varmass_symbolic::parse::parse_system;
 
 use common::adjugate::closed_velocities;
 use common::chain::chain_source;
 use common::chains::{Chain1, Chain2, Chain2Numeric, Chain3, Chain3Closed, Chain4, Chain5, Chain6};
+use common::emission::{expand_for, formatted_size, Subject};
 use common::generated::{Kepler, KeplerPolar, Rocket, Sled};
 use common::hand::{HandKepler, HandRocket, HandSled};
 use common::interpreted::{Interpreted, Mode};
@@ -219,6 +221,8 @@ fn summary() {
         );
     }
 
+    emission_costs();
+
     say!("\n== symbolic-inverse threshold: q̇ from p in closed form vs Cholesky");
     threshold_row(
         2,
@@ -245,6 +249,69 @@ fn summary() {
     chain_rate(5, &chain(|m0, c, l, g| Chain5 { m0, c, l, g }));
     chain_rate(6, &chain(|m0, c, l, g| Chain6 { m0, c, l, g }));
     say!("");
+}
+
+/// The systems whose minimal and full emissions are compared: the model files and the
+/// 1–6-link chains.
+fn emission_subjects() -> Vec<(Subject, Parameters)> {
+    let models = [
+        ("sled.vms", &["impact"][..]),
+        ("sled_paper_form.vms", &[]),
+        ("rocket.vms", &[]),
+        ("rocket.vms", &["drag"]),
+        ("leaking_spring_pendulum.vms", &[]),
+        ("leaking_spring_pendulum_cartesian.vms", &[]),
+        ("double_pendulum.vms", &[]),
+        ("swinging_tank.vms", &[]),
+    ];
+    let mut subjects: Vec<(Subject, Parameters)> = models
+        .iter()
+        .map(|(file, with)| (Subject::model(file, with), Parameters::Inferred))
+        .collect();
+    for links in 1..=6 {
+        let chain = Subject {
+            name: format!("chain, {links} links"),
+            source: chain_source(links),
+            with: Vec::new(),
+        };
+        subjects.push((chain, chain_parameters()));
+    }
+    subjects
+}
+
+/// Expansion time and generated code size, `emit = []` against every output.
+fn emission_costs() {
+    say!(
+        "\n== minimal (emit = []) vs full emission: expansion (parse, tags, derive, emit) and code"
+    );
+    say!(
+        "{:<40} {:>9} {:>9} {:>6} {:>10} {:>10} {:>6}",
+        "system",
+        "full ms",
+        "min ms",
+        "ratio",
+        "full B",
+        "min B",
+        "ratio"
+    );
+    let budget = Duration::from_secs(2);
+    for (subject, parameters) in emission_subjects() {
+        let (full_time, full) = fastest_of(3, 10, budget, || {
+            expand_for(&subject, &parameters, Outputs::FULL)
+        });
+        let (min_time, minimal) = fastest_of(3, 10, budget, || {
+            expand_for(&subject, &parameters, Outputs::MINIMAL)
+        });
+        let (full_size, min_size) = (formatted_size(full), formatted_size(minimal));
+        say!(
+            "{:<40} {:>9.2} {:>9.2} {:>6.2} {full_size:>10} {min_size:>10} {:>6.2}",
+            subject.name,
+            full_time.as_secs_f64() * 1e3,
+            min_time.as_secs_f64() * 1e3,
+            min_time.as_secs_f64() / full_time.as_secs_f64(),
+            min_size as f64 / full_size.max(1) as f64,
+        );
+    }
 }
 
 /// (generated, tape, tree) ns per call and the largest disagreement.
@@ -429,6 +496,17 @@ fn criterion_benches(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("chain", links), |b| {
             b.iter(|| expand(links, &source))
         });
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("emission");
+    group.sample_size(10);
+    for (subject, parameters) in emission_subjects() {
+        for (label, outputs) in [("full", Outputs::FULL), ("minimal", Outputs::MINIMAL)] {
+            group.bench_function(BenchmarkId::new(&subject.name, label), |b| {
+                b.iter(|| expand_for(&subject, &parameters, outputs))
+            });
+        }
     }
     group.finish();
 }

@@ -6,5 +6,6 @@ fn ui() {
     let cases = trybuild::TestCases::new();
     cases.compile_fail("tests/ui/dsl/*.rs");
     cases.compile_fail("tests/ui/struct/*.rs");
+    cases.compile_fail("tests/ui/units/*.rs");
     cases.compile_fail("tests/ui/models/*.rs");
 }

@@ -14,6 +14,7 @@
 //! With the `run` feature (default), [`run::run`] drives any of them to an end time or an
 //! [`events::Event`] and returns a [`solution::Solution`] with the extras asked for.
 //! Failures are typed [`StepError`]s carrying the time and the state.
+//! Feature `ensemble` (and `parallel`, `serde`) adds `ensemble`: many sampled runs, shardable.
 //!
 //! Without the `std` feature the crate is `no_std`; `run` then needs only `alloc`.
 //!
@@ -93,8 +94,14 @@ pub mod steppers;
 pub mod system;
 pub mod tolerance;
 
+#[cfg(feature = "ensemble")]
+pub mod ensemble;
 #[cfg(feature = "run")]
 pub mod events;
+#[cfg(all(feature = "run", feature = "std"))]
+pub mod fidelity;
+#[cfg(feature = "run")]
+pub mod observe;
 #[cfg(feature = "run")]
 pub mod run;
 #[cfg(feature = "run")]
@@ -109,6 +116,8 @@ pub use system::{SystemError, VariableMassSystem};
 
 #[cfg(feature = "run")]
 pub use events::{Direction, Event, EventAction, EventCondition, EventHit};
+#[cfg(feature = "run")]
+pub use observe::{observe, Observable, Quantity, Recording};
 #[cfg(feature = "run")]
 pub use run::{run, RunConfig};
 #[cfg(feature = "run")]

@@ -8,11 +8,12 @@ use std::cell::Cell;
 
 use support::problems::{KeplerProblem, RocketProblem};
 use support::Problem;
+use varmass_core::nalgebra::SVector;
 use varmass_core::steppers::{
     ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
     ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
 };
-use varmass_core::Stepper;
+use varmass_core::{observe, Observable, Stepper};
 
 /// Counts allocations made by the current thread only, so the test harness's other
 /// threads cannot disturb the count.
@@ -116,4 +117,37 @@ fn steppers_do_not_allocate_per_step() {
         assert_eq!(count, 0, "{name} allocated");
     }
     assert_eq!(variational, 0, "variational allocated");
+}
+
+/// Allocations made by one `observe` of `times` with a fixed RK4 step `step`.
+fn allocations_while_observing(step: f64, times: &[f64]) -> usize {
+    let kepler = KeplerProblem::standard();
+    let (system, y0) = (&kepler.system, kepler.initial_state());
+    let Ok(mut stepper) = ClassicalRk4::new(system, 0.0, y0, FixedStep { step }) else {
+        return usize::MAX;
+    };
+    let radius = |_t: f64, state: &SVector<f64, 4>| state[0].hypot(state[1]);
+    let observables = [
+        Observable::function("r", &radius),
+        Observable::hamiltonian(),
+    ];
+    let before = allocations();
+    let recorded = observe(&mut stepper, times, &observables);
+    let count = allocations() - before;
+    match recorded {
+        Ok(recording) if recording.times.len() == times.len() => count,
+        _ => usize::MAX,
+    }
+}
+
+#[test]
+fn observing_allocates_the_recording_once_whatever_the_number_of_steps() {
+    let times: Vec<f64> = (1..=50).map(|k| 0.02 * k as f64).collect();
+    // 1000 and 10 000 steps to t = 1: the same allocations (the recording's vectors and the
+    // names), so none is made per step or per output.
+    let coarse = allocations_while_observing(1e-3, &times);
+    let fine = allocations_while_observing(1e-4, &times);
+    assert_eq!(coarse, fine);
+    // By construction 5: the times, the values, the vector of names and its two strings.
+    assert!(coarse <= 5, "{coarse} allocations");
 }

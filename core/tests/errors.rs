@@ -7,7 +7,8 @@ use nalgebra::Complex;
 use support::problems::{KeplerProblem, OscillatorProblem, RocketProblem};
 use support::{solve, Method, Problem};
 use varmass_core::steppers::{
-    AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, StepControl,
+    AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
+    ImplicitMidpointConfig, NewtonConfig, StepControl,
 };
 use varmass_core::{run, RunConfig, StepError, StepErrorKind, Stepper};
 
@@ -172,6 +173,23 @@ fn invalid_configurations_are_rejected_before_stepping() {
     let error = run(&mut stepper, &RunConfig::until(0.5), &[]).unwrap_err();
     assert!(is_invalid(&error), "{error}");
     assert_eq!((error.time, error.state), (1.0, y0));
+    // Newton settings of an implicit stepper: no iteration allowed, or no usable tolerance.
+    for newton in [
+        NewtonConfig {
+            max_iterations: 0,
+            ..NewtonConfig::default()
+        },
+        NewtonConfig {
+            relative_tolerance: 0.0,
+            absolute_tolerance: 0.0,
+            ..NewtonConfig::default()
+        },
+    ] {
+        let config = ImplicitMidpointConfig { step: 0.1, newton };
+        let error = ImplicitMidpoint::new(&problem.system, 0.25, y0, config).unwrap_err();
+        assert!(is_invalid(&error), "{newton:?}: {error}");
+        assert_eq!((error.time, error.state), (0.25, y0), "{newton:?}");
+    }
     // A non-finite initial state is reported with its time.
     let mut nan_state = y0;
     nan_state[1] = f64::NAN;

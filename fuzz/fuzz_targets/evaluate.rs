@@ -221,7 +221,7 @@ where
 }
 
 /// Up to three steps of one stepper: each accepted state finite with positive masses, each
-/// failure a typed error with a finite time and the state.
+/// failure a typed error at a finite time (it carries the state by construction).
 fn take_steps<Sys, St, const N: usize, const S: usize>(sys: &Sys, stepper: Result<St, StepError<S>>)
 where
     Sys: VariableMassSystem<N, S>,
@@ -245,10 +245,9 @@ where
                 );
             }
             Err(error) => {
-                let time = error.time();
                 assert!(
-                    time.is_some_and(f64::is_finite) && error.state().is_some(),
-                    "a step failed without a finite time and state: {error:?}"
+                    error.time.is_finite(),
+                    "a step failed without a finite time: {error:?}"
                 );
                 return;
             }

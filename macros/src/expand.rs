@@ -4,16 +4,17 @@
 use proc_macro2::TokenStream;
 use quote::{quote, ToTokens};
 use varmass_symbolic::emit::{emit_system_for, Target};
-use varmass_symbolic::mechanics::{derive_for, Derivation, Outputs, Parameters};
+use varmass_symbolic::mechanics::{derive_for, Outputs, Parameters};
 use varmass_symbolic::parse::ast::{MassLaw, StatementKind, SystemAst};
 use varmass_symbolic::parse::{parse_system, select_tags};
-use varmass_symbolic::Diagnostic;
 
 use crate::ast::{parse_attribute, parse_struct, Attribute};
 use crate::ctxt::Ctxt;
 use crate::fallback::stub;
 use crate::model::ModelText;
-use crate::valid::parameter_fields;
+use crate::valid::{
+    check_generated_names, check_unused_fields, parameter_fields, rust_name_diagnostics,
+};
 
 pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
     let item_struct = match parse_struct(item.clone()) {
@@ -126,76 +127,6 @@ fn finish(
         }
         (Ok(()), None) => quote!(#item_tokens #tracking),
     }
-}
-
-/// A field the equations never read is most likely a misspelt or forgotten parameter.
-/// Fields starting with `_` are exempt.
-fn check_unused_fields(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
-    let used = d.used_parameters();
-    for field in fields {
-        let name = field.to_string();
-        let reserved = varmass_symbolic::mechanics::is_reserved(&name);
-        if !name.starts_with('_') && !reserved && !used.contains(&name) {
-            cx.error_spanned_by(
-                field,
-                format!("field `{name}` is not used by the system's equations; use it in the DSL, remove it, or name it `_{name}`"),
-            );
-        }
-    }
-}
-
-/// Generated code binds `x_dot` for the velocity of coordinate `x`; a field or mass of that
-/// name would be shadowed, silently feeding the velocity where the parameter was meant.
-fn check_generated_names(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
-    let generated: Vec<String> = d
-        .coordinates
-        .iter()
-        .flat_map(|c| [format!("{}_dot", c.name), format!("{}_ddot", c.name)])
-        .collect();
-    for field in fields {
-        let name = field.to_string();
-        if varmass_symbolic::mechanics::is_reserved(&name) {
-            cx.error_spanned_by(
-                field,
-                format!("field `{name}` has a reserved name: in the DSL `t` is the time and `H`, `L`, `T`, `V`, `power`, `p_…`, `Q_…`, `R1_…`, `R2_…`, `dp_…`, `pdot_…`, `mdot_…` are derived quantities; rename it"),
-            );
-        } else if generated.contains(&name) {
-            cx.error_spanned_by(
-                field,
-                format!("field `{name}` clashes with the generated name of a coordinate's velocity; rename it"),
-            );
-        }
-    }
-}
-
-/// Coordinates and masses become locals of the generated code (`x`, `x_dot`, `p_x`, `m`), so
-/// each must be a Rust identifier: not a keyword, not `_`, and not `__…`, which the generated
-/// temporaries use.
-fn rust_name_diagnostics(d: &Derivation) -> Vec<Diagnostic> {
-    let names = d
-        .coordinates
-        .iter()
-        .map(|c| (&c.name, c.span, "coordinate"))
-        .chain(d.masses.iter().map(|m| (&m.name, m.span, "mass")));
-    let velocities: Vec<String> = d
-        .coordinates
-        .iter()
-        .map(|c| format!("{}_dot", c.name))
-        .collect();
-    names
-        .filter(|(name, _, _)| {
-            name.starts_with("__")
-                || velocities.contains(name)
-                || syn::parse_str::<syn::Ident>(name).is_err()
-        })
-        .map(|(name, span, what)| {
-            Diagnostic::new(
-                span,
-                format!("`{name}` cannot name a {what}: generated Rust code uses it as a variable, and it is a Rust keyword or reserved"),
-            )
-            .with_help("rename it (names starting with `__` are reserved for generated temporaries)")
-        })
-        .collect()
 }
 
 /// The number of coordinates and of state masses, for the stub.

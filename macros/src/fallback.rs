@@ -3,6 +3,7 @@
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
+use varmass_symbolic::emit::REQUIRED;
 
 /// A stub impl of `VariableMassSystem<n, s>` for `item` (none for a generic struct).
 pub fn stub(item: &syn::ItemStruct, coordinates: usize, state_masses: usize) -> TokenStream {
@@ -16,6 +17,11 @@ pub fn stub(item: &syn::ItemStruct, coordinates: usize, state_masses: usize) -> 
     let unreachable = quote!(::core::unreachable!(
         "the variable-mass system failed to compile"
     ));
+    // The required methods, spelled by the same list the emitter uses.
+    let methods = REQUIRED.iter().map(|m| {
+        let signature = m.signature(&rt, coordinates, 2 * coordinates + state_masses);
+        quote!(#signature { #unreachable })
+    });
     quote! {
         impl #name {
             /// (The system failed to compile.)
@@ -31,18 +37,7 @@ pub fn stub(item: &syn::ItemStruct, coordinates: usize, state_masses: usize) -> 
         impl #rt::VariableMassSystem<#n, #s> for #name {
             const COORDINATES: [&'static str; #n] = [""; #n];
             const MASSES: &'static [&'static str] = &[];
-            fn mass(&self, index: usize, t: f64, state: &#rt::nalgebra::SVector<f64, #s>) -> f64 { #unreachable }
-            fn mass_rate(&self, index: usize, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>) -> f64 { #unreachable }
-            fn mass_matrix(&self, t: f64, state: &#rt::nalgebra::SVector<f64, #s>) -> #rt::nalgebra::SMatrix<f64, #n, #n> { #unreachable }
-            fn momenta(&self, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>) -> #rt::nalgebra::SVector<f64, #n> { #unreachable }
-            fn lagrangian(&self, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>) -> f64 { #unreachable }
-            fn lagrangian_gradient(&self, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>) -> #rt::nalgebra::SVector<f64, #n> { #unreachable }
-            fn active_force(&self, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>) -> #rt::nalgebra::SVector<f64, #n> { #unreachable }
-            fn reactive_thrust(&self, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>) -> #rt::nalgebra::SVector<f64, #n> { #unreachable }
-            fn impact_force(&self, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>) -> #rt::nalgebra::SVector<f64, #n> { #unreachable }
-            fn mass_flux_force(&self, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>) -> #rt::nalgebra::SVector<f64, #n> { #unreachable }
-            fn accelerations(&self, t: f64, velocity_state: &#rt::nalgebra::SVector<f64, #s>)
-                -> ::core::result::Result<#rt::nalgebra::SVector<f64, #n>, #rt::SystemError> { #unreachable }
+            #(#methods)*
         }
     }
 }

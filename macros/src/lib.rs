@@ -1,10 +1,12 @@
 //! The `#[variable_mass_system("…")]` attribute macro of varmass.
 //!
 //! A thin entry point; the stages are files named after them (as in thiserror's `impl/`):
-//! [`ast`] reads the attribute and the struct, [`valid`] checks the struct, [`expand`] runs
-//! the symbolic pipeline (parse → derive → emit, in `varmass-symbolic`) and [`fallback`]
-//! emits a stub impl when anything fails, so one mistake does not cascade. Errors are
-//! collected in a [`ctxt::Ctxt`] and reported together.
+//! [`ast`] reads the attribute and the struct, [`valid`] checks the struct and the names
+//! the generated code will bind, [`expand`] runs the symbolic pipeline (parse → derive →
+//! emit, in `varmass-symbolic`) and [`fallback`] emits a stub impl when anything fails, so
+//! one mistake does not cascade (its method signatures come from the emitter's own list,
+//! `varmass_symbolic::emit::REQUIRED`). Errors are collected in a [`ctxt::Ctxt`] and
+//! reported together.
 
 mod ast;
 mod ctxt;

@@ -12,6 +12,9 @@
 //! 4. [`emit`] — the derivation as Rust: the `VariableMassSystem` impl that the
 //!    `#[variable_mass_system]` macro adds, straight-line code with shared subexpressions.
 //!
+//! Beside the stages, [`units`] checks the dimensions of a system that declares `units`,
+//! between name resolution and the derivation (see `docs/dsl-units.md`).
+//!
 //! `ARCHITECTURE.md` at the repository root describes the stages and their invariants.
 //!
 //! Nothing in this crate panics on user input: every problem is a [`Diagnostic`] with the
@@ -22,5 +25,6 @@ pub mod emit;
 pub mod expr;
 pub mod mechanics;
 pub mod parse;
+pub mod units;
 
 pub use parse::{Diagnostic, Span};

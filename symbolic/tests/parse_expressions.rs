@@ -190,16 +190,25 @@ fn tree_depth_is_bounded_even_for_flat_chains() {
         "{}",
         error.message
     );
-    // Depth adds up across nesting levels: 5 parenthesized chains of 300 under one product.
-    let nested = format!("({})", chain(300)).repeat(1) + &format!("*({})", chain(300)).repeat(1);
-    assert!(parse_expression(&nested).is_ok());
-    let mut deep = chain(300);
+    // Depth is the longest path, not the size: five parenthesized chains of 300 side by
+    // side under one product (1500 terms) parse, while the same five chains nested in one
+    // another (depth about 5 × 300, with as many operations) are refused.
+    let side_by_side = vec![format!("({})", chain(300)); 5].join("*");
+    assert_eq!(side_by_side.matches('+').count(), 5 * 299);
+    assert!(parse_expression(&side_by_side).is_ok());
+    let mut nested = chain(300);
     for _ in 0..4 {
-        deep = format!("({deep}) + {}", chain(299));
+        nested = format!("({nested}) + {}", chain(299));
     }
+    assert_eq!(
+        nested.matches('+').count(),
+        side_by_side.matches('+').count()
+    );
+    let error = parse_expression(&nested).unwrap_err();
     assert!(
-        parse_expression(&deep).is_err(),
-        "depth 1500 must be refused"
+        error.message.starts_with("expression too deep"),
+        "depth 1500 must be refused as too deep: {}",
+        error.message
     );
 }
 

@@ -87,6 +87,13 @@ fn summary(kind: &StatementKind) -> String {
             format!("{head} {}: {}", f.body.node, options.join(", "))
         }
         StatementKind::Check { lhs, rhs } => format!("check {} = {}", show(lhs), show(rhs)),
+        StatementKind::Units(entries) => {
+            let entries: Vec<String> = entries
+                .iter()
+                .map(|e| format!("{}: {}", e.name.node, show(&e.unit)))
+                .collect();
+            format!("units {}", entries.join(", "))
+        }
     }
 }
 

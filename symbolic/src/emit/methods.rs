@@ -1,8 +1,10 @@
 //! The trait methods, one generator each.
 
-use proc_macro2::{Literal, TokenStream};
-use quote::quote;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
 
+use super::factor::ldlt_solve;
+use super::signature::Method;
 use super::system::Emitter;
 use crate::expr::Id;
 use crate::mechanics::VelocitySolve;
@@ -18,10 +20,15 @@ impl Emitter<'_> {
         )
     }
 
+    /// The signature of `method` for this system (see `signature.rs`).
+    fn signature(&self, method: Method) -> TokenStream {
+        let (_, _, n, k) = self.sizes();
+        method.signature(&self.target.runtime, n, 2 * n + k)
+    }
+
     /// `mass(index, t, state)`: a state mass is read from the state, a law is evaluated.
     pub(crate) fn mass(&self) -> TokenStream {
-        let runtime = &self.target.runtime;
-        let (_, s, n, _) = self.sizes();
+        let (_, _, n, _) = self.sizes();
         let mut arms = Vec::new();
         let mut docs = Vec::new();
         for (i, (m, law)) in self.d.masses.iter().zip(&self.d.closed_laws).enumerate() {
@@ -41,10 +48,11 @@ impl Emitter<'_> {
             }
         }
         let docs = self.docs("The masses and inertias, state masses first.", docs);
+        let signature = self.signature(Method::Mass);
         quote! {
             #docs
             #[inline]
-            fn mass(&self, index: usize, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>) -> f64 {
+            #signature {
                 match index {
                     #(#arms)*
                     _ => f64::NAN,
@@ -55,8 +63,6 @@ impl Emitter<'_> {
 
     /// `mass_rate(index, t, velocity_state)`.
     pub(crate) fn mass_rate(&self) -> TokenStream {
-        let runtime = &self.target.runtime;
-        let (_, s, _, _) = self.sizes();
         let mut arms = Vec::new();
         let mut docs = Vec::new();
         for (i, (m, rate)) in self.d.masses.iter().zip(&self.d.mass_rates).enumerate() {
@@ -71,10 +77,11 @@ impl Emitter<'_> {
             }
         }
         let docs = self.docs("ṁ of every mass along the motion.", docs);
+        let signature = self.signature(Method::MassRate);
         quote! {
             #docs
             #[inline]
-            fn mass_rate(&self, index: usize, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>) -> f64 {
+            #signature {
                 match index {
                     #(#arms)*
                     _ => f64::NAN,
@@ -86,7 +93,7 @@ impl Emitter<'_> {
     /// `mass_matrix(t, state)`.
     pub(crate) fn mass_matrix(&self) -> TokenStream {
         let runtime = &self.target.runtime;
-        let (n_lit, s, n, _) = self.sizes();
+        let (n_lit, _, n, _) = self.sizes();
         let entries: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
         let docs = self.docs(
             "The mass matrix M = ∂²L/∂q̇² (masses frozen), row by row.",
@@ -100,10 +107,11 @@ impl Emitter<'_> {
         let body = self.body_configuration(&entries, |outs| {
             quote!(#runtime::nalgebra::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#outs),*]))
         });
+        let signature = self.signature(Method::MassMatrix);
         quote! {
             #docs
             #[inline]
-            fn mass_matrix(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>) -> #runtime::nalgebra::SMatrix<f64, #n_lit, #n_lit> {
+            #signature {
                 #body
             }
         }
@@ -111,18 +119,17 @@ impl Emitter<'_> {
 
     /// `lagrangian(t, velocity_state)`.
     pub(crate) fn lagrangian(&self) -> TokenStream {
-        let runtime = &self.target.runtime;
-        let (_, s, _, _) = self.sizes();
         let docs = self.docs(
             "The Lagrangian L = T − V.",
             [format!("L = {}", self.display(self.d.lagrangian))],
         );
         let body =
             self.body_input_velocity(&[self.d.lagrangian], |mut o| o.pop().unwrap_or_default());
+        let signature = self.signature(Method::Lagrangian);
         quote! {
             #docs
             #[inline]
-            fn lagrangian(&self, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>) -> f64 {
+            #signature {
                 #body
             }
         }
@@ -131,7 +138,7 @@ impl Emitter<'_> {
     /// `accelerations(t, velocity_state)`: q̈ in closed form, or M q̈ = rhs solved by Cholesky.
     pub(crate) fn accelerations(&self) -> TokenStream {
         let runtime = &self.target.runtime;
-        let (n_lit, s, _, _) = self.sizes();
+        let (n_lit, _, _, _) = self.sizes();
         let (docs, body) = match &self.d.accelerations {
             Some(acc) => (
                 self.docs(
@@ -151,25 +158,27 @@ impl Emitter<'_> {
                     "Lagrange-form accelerations: solves M q̈ = rhs (eq. 6, masses frozen) with",
                     self.per_coordinate("rhs_#", &self.d.acceleration_rhs),
                 );
+                let zero = self.zero_pattern();
                 let body = self.body_input_velocity(&roots, |outs| {
                     let (matrix, rhs) = outs.split_at(m);
+                    let error = quote!(#runtime::SystemError::SingularMassMatrix);
+                    let names: Vec<Ident> = (0..rhs.len())
+                        .map(|i| format_ident!("__ldl_x{}", i))
+                        .collect();
+                    let solve = ldlt_solve(matrix, &zero, rhs, &names, &error);
                     quote! {
-                        let __mass_matrix = #runtime::nalgebra::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#matrix),*]);
-                        let __rhs = #runtime::nalgebra::SVector::<f64, #n_lit>::from([#(#rhs),*]);
-                        __mass_matrix
-                            .cholesky()
-                            .map(|c| c.solve(&__rhs))
-                            .ok_or(#runtime::SystemError::SingularMassMatrix)
+                        #solve
+                        Ok(#runtime::nalgebra::SVector::<f64, #n_lit>::from([#(#names),*]))
                     }
                 });
                 (docs, body)
             }
         };
+        let signature = self.signature(Method::Accelerations);
         quote! {
             #docs
             #[inline]
-            fn accelerations(&self, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>)
-                -> Result<#runtime::nalgebra::SVector<f64, #n_lit>, #runtime::SystemError> {
+            #signature {
                 #body
             }
         }
@@ -180,8 +189,6 @@ impl Emitter<'_> {
         let VelocitySolve::Symbolic(v) = &self.d.velocities else {
             return TokenStream::new();
         };
-        let runtime = &self.target.runtime;
-        let (n_lit, s, _, _) = self.sizes();
         let docs = self.docs(
             "q̇(q, p, t) = M⁻¹ (p − b), in closed form.",
             self.per_coordinate("#'", v),
@@ -190,11 +197,11 @@ impl Emitter<'_> {
             let v = self.vector(outs);
             quote!(Ok(#v))
         });
+        let signature = self.signature(Method::Velocities);
         quote! {
             #docs
             #[inline]
-            fn velocities(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>)
-                -> Result<#runtime::nalgebra::SVector<f64, #n_lit>, #runtime::SystemError> {
+            #signature {
                 #body
             }
         }
@@ -202,8 +209,6 @@ impl Emitter<'_> {
 
     /// `hamiltonian(t, state)`.
     pub(crate) fn hamiltonian(&self) -> TokenStream {
-        let runtime = &self.target.runtime;
-        let (_, s, _, _) = self.sizes();
         let (root, line) = match self.d.hamiltonian {
             Some(h) => (h, format!("H = {}", self.display(h))),
             None => (
@@ -216,10 +221,11 @@ impl Emitter<'_> {
             let h = o.pop().unwrap_or_default();
             quote!(Ok(#h))
         });
+        let signature = self.signature(Method::Hamiltonian);
         quote! {
             #docs
             #[inline]
-            fn hamiltonian(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>) -> Result<f64, #runtime::SystemError> {
+            #signature {
                 #body
             }
         }
@@ -227,8 +233,7 @@ impl Emitter<'_> {
 
     /// `canonical_rates(t, state)`: (q̇, d*p/dt) of eq. 14.
     pub(crate) fn canonical_rates(&self) -> TokenStream {
-        let runtime = &self.target.runtime;
-        let (n_lit, s, n, _) = self.sizes();
+        let n = self.sizes().2;
         let velocities: Vec<Id> = self.velocity_roots();
         let mut roots = velocities.clone();
         roots.extend(&self.d.frozen_momentum_rate);
@@ -243,11 +248,11 @@ impl Emitter<'_> {
             let (v, dp) = (self.vector(v.to_vec()), self.vector(dp.to_vec()));
             quote!(Ok((#v, #dp)))
         });
+        let signature = self.signature(Method::CanonicalRates);
         quote! {
             #docs
             #[inline]
-            fn canonical_rates(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>)
-                -> Result<(#runtime::nalgebra::SVector<f64, #n_lit>, #runtime::nalgebra::SVector<f64, #n_lit>), #runtime::SystemError> {
+            #signature {
                 #body
             }
         }
@@ -268,8 +273,7 @@ impl Emitter<'_> {
 
     /// `state_rate(t, state)`: [q̇, ṗ, ṁ_s], the integration hot path, fused.
     pub(crate) fn state_rate(&self) -> TokenStream {
-        let runtime = &self.target.runtime;
-        let (_, s, _, k) = self.sizes();
+        let k = self.sizes().3;
         let mut roots = self.velocity_roots();
         roots.extend(&self.d.momentum_rate);
         roots.extend(self.d.mass_rates.iter().take(k));
@@ -286,11 +290,11 @@ impl Emitter<'_> {
             let v = self.vector(outs);
             quote!(Ok(#v))
         });
+        let signature = self.signature(Method::StateRate);
         quote! {
             #docs
             #[inline]
-            fn state_rate(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>)
-                -> Result<#runtime::nalgebra::SVector<f64, #s>, #runtime::SystemError> {
+            #signature {
                 #body
             }
         }
@@ -298,8 +302,6 @@ impl Emitter<'_> {
 
     /// `power(t, state)`: the energy-budget dH/dt.
     pub(crate) fn power(&self) -> TokenStream {
-        let runtime = &self.target.runtime;
-        let (_, s, _, _) = self.sizes();
         let docs = self.docs(
             "The energy-budget power dH/dt = ∂*H/∂t + q̇·(Q* − R1 + R2 + Σ ṁ ∂*p/∂m) + Σ ṁ ∂H/∂m.",
             [format!("dH/dt = {}", self.display(self.d.power))],
@@ -308,10 +310,11 @@ impl Emitter<'_> {
             let p = o.pop().unwrap_or_default();
             quote!(Ok(#p))
         });
+        let signature = self.signature(Method::Power);
         quote! {
             #docs
             #[inline]
-            fn power(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>) -> Result<f64, #runtime::SystemError> {
+            #signature {
                 #body
             }
         }
@@ -385,11 +388,11 @@ impl Emitter<'_> {
                 Ok(__jacobian)
             }
         });
+        let signature = self.signature(Method::Jacobian);
         quote! {
             #docs
             #[inline]
-            fn jacobian(&self, t: f64, state: &#runtime::nalgebra::SVector<f64, #s>)
-                -> Result<#runtime::nalgebra::SMatrix<f64, #s, #s>, #runtime::SystemError> {
+            #signature {
                 #body
             }
         }

@@ -7,12 +7,15 @@
 //! LaTeX constants.
 
 mod expression;
+mod factor;
 mod methods;
+mod signature;
 mod system;
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
+pub use signature::{Method, REQUIRED};
 pub use system::Target;
 
 use crate::mechanics::{Derivation, Outputs};
@@ -69,38 +72,38 @@ pub fn emit_system_for(
         emitter.mass_rate(),
         emitter.mass_matrix(),
         emitter.coordinate_vector_method(
-            "momenta",
+            Method::Momenta,
             "The generalized momenta p = ∂*L/∂q̇ (eq. 8).",
             "p_#",
             &d.momenta,
         ),
         emitter.lagrangian(),
         emitter.coordinate_vector_method(
-            "lagrangian_gradient",
+            Method::LagrangianGradient,
             "∂*L/∂q, masses frozen (= −∂*H/∂q, eq. 13).",
             "∂*L/∂#",
             &d.lagrangian_gradient,
         ),
         emitter.coordinate_vector_method(
-            "active_force",
+            Method::ActiveForce,
             "The generalized active force Q* (eq. 22 for the sled).",
             "Q*_#",
             &d.active_force,
         ),
         emitter.coordinate_vector_method(
-            "reactive_thrust",
+            Method::ReactiveThrust,
             "The generalized reactive thrust R1 = Σ Q1 v_r1 · ∂r/∂q.",
             "R1_#",
             &d.reactive_thrust,
         ),
         emitter.coordinate_vector_method(
-            "impact_force",
+            Method::ImpactForce,
             "The generalized impact force R2 = Σ Q2 v_r2 · ∂r/∂q (eq. 23 for the sled).",
             "R2_#",
             &d.impact_force,
         ),
         emitter.coordinate_vector_method(
-            "mass_flux_force",
+            Method::MassFluxForce,
             "The mass-flux term Σ ṁᵢ ∂*p/∂mᵢ of the true ṗ.",
             "flux_#",
             &d.mass_flux_force,
@@ -113,12 +116,17 @@ pub fn emit_system_for(
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
     ];
+    let units_doc = d.units_line().map(|line| {
+        let line = format!("Units: {line}.");
+        quote!(#[doc = ""] #[doc = #line])
+    });
     quote! {
         impl #name {
             /// The system in the DSL, as written.
             pub const SOURCE: &'static str = #source;
             #texts
             /// The parameters (fields) the equations use, in order.
+            #units_doc
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
         }
 

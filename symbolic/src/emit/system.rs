@@ -7,6 +7,8 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use super::expression::{block, staged_block, symbol_ident};
+use super::factor::ldlt_solve;
+use super::signature::Method;
 use crate::expr::{Id, Symbol, SymbolKind};
 use crate::mechanics::{Derivation, VelocitySolve};
 
@@ -173,23 +175,26 @@ impl Emitter<'_> {
                     .iter()
                     .map(|c| symbol_ident(&self.d.pool, c.momentum))
                     .collect();
-                let n = Literal::usize_unsuffixed(self.n());
+                let error = quote!(#runtime::SystemError::SingularMassMatrix);
+                let zero = self.zero_pattern();
                 let bridge = move |values: Vec<TokenStream>| {
                     let (matrix, offset) = values.split_at(entries);
-                    let indices = (0..names.len()).map(Literal::usize_unsuffixed);
-                    vec![quote! {
-                        let __mass_matrix = #runtime::nalgebra::SMatrix::<f64, #n, #n>::from_row_slice(&[#(#matrix),*]);
-                        let __excess = #runtime::nalgebra::SVector::<f64, #n>::from_column_slice(&[#(#momenta - (#offset)),*]);
-                        let __velocities = __mass_matrix
-                            .cholesky()
-                            .ok_or(#runtime::SystemError::SingularMassMatrix)?
-                            .solve(&__excess);
-                        #(let #names = __velocities[#indices];)*
-                    }]
+                    let excess: Vec<TokenStream> = momenta
+                        .iter()
+                        .zip(offset)
+                        .map(|(p, b)| quote!(#p - (#b)))
+                        .collect();
+                    vec![ldlt_solve(matrix, &zero, &excess, &names, &error)]
                 };
                 (first, Box::new(bridge))
             }
         }
+    }
+
+    /// Which entries of M (row-major) are identically zero.
+    pub(crate) fn zero_pattern(&self) -> Vec<bool> {
+        let entries = self.d.mass_matrix.iter().flatten();
+        entries.map(|e| self.d.pool.is_zero(*e)).collect()
     }
 
     /// Whether evaluating `roots` needs any velocity.
@@ -263,7 +268,7 @@ impl Emitter<'_> {
         let mut text = vec![title.to_string()];
         if !lines.is_empty() {
             text.extend([String::new(), "```text".to_string()]);
-            text.extend(lines);
+            text.extend(lines.iter().map(|l| format!("{l}{}", self.d.line_unit(l))));
             text.push("```".to_string());
         }
         quote!(#(#[doc = #text])*)
@@ -282,15 +287,14 @@ impl Emitter<'_> {
     /// when every entry is identically zero.
     pub(crate) fn coordinate_vector_method(
         &self,
-        name: &str,
+        method: Method,
         title: &str,
         label: &str,
         values: &[Id],
     ) -> TokenStream {
         let runtime = &self.target.runtime;
         let n = Literal::usize_unsuffixed(self.n());
-        let s = Literal::usize_unsuffixed(2 * self.n() + self.k());
-        let ident = format_ident!("{}", name);
+        let signature = method.signature(runtime, self.n(), 2 * self.n() + self.k());
         let docs = self.docs(title, self.per_coordinate(label, values));
         let all_zero = values.iter().all(|v| self.d.pool.is_zero(*v));
         let body = if all_zero {
@@ -301,7 +305,7 @@ impl Emitter<'_> {
         quote! {
             #docs
             #[inline]
-            fn #ident(&self, t: f64, velocity_state: &#runtime::nalgebra::SVector<f64, #s>) -> #runtime::nalgebra::SVector<f64, #n> {
+            #signature {
                 #body
             }
         }

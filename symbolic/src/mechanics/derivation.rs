@@ -128,6 +128,8 @@ pub struct Derivation {
     pub jacobian: Option<JacobianParts>,
     /// The `check`s and how each was decided.
     pub checks: Vec<CheckOutcome>,
+    /// The units of the names and quantities, when the system declares `units`.
+    pub units: Option<crate::units::UnitTable>,
 }
 
 impl Derivation {
@@ -272,5 +274,6 @@ fn assemble(model: Model, e: Equations, checks: Vec<CheckOutcome>) -> Derivation
         power: e.power,
         jacobian: e.jacobian,
         checks,
+        units: None,
     }
 }

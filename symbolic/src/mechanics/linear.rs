@@ -3,7 +3,9 @@
 
 use crate::expr::{ExprPool, Id};
 
-/// A square matrix of expressions, row-major.
+/// A matrix of expressions, row-major (a list of rows of equal length). Square for the
+/// mass matrix and its inverse; the Jacobian blocks are (N + K) × N, (N + K) × K, N × N or
+/// N × K (see [`JacobianParts`](super::JacobianParts)).
 pub type Matrix = Vec<Vec<Id>>;
 
 /// The symbolic inverse adj(M)/det(M) for n ≤ 3, `None` beyond.

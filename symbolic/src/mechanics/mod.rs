@@ -52,7 +52,8 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
     build::build_model(ast, parameters)
 }
 
-/// Derives a parsed system and verifies its `check`s.
+/// Derives a parsed system and verifies its `check`s. A system with a `units` statement
+/// is first checked for dimensions ([`crate::units::check_units`]).
 pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
     derive_for(ast, parameters, Outputs::FULL)
 }
@@ -65,7 +66,10 @@ pub fn derive_for(
     outputs: Outputs,
 ) -> Result<Derivation, Vec<Diagnostic>> {
     let model = build::build_model(ast, parameters)?;
-    derivation::derive_model(model, outputs)
+    let units = crate::units::check_units(ast)?;
+    let mut derivation = derivation::derive_model(model, outputs)?;
+    derivation.units = units;
+    Ok(derivation)
 }
 
 /// Parses and derives DSL source text.

@@ -56,7 +56,7 @@ impl Outputs {
     /// use varmass_symbolic::mechanics::Outputs;
     /// let outputs = Outputs::from_names(&["power"]).unwrap();
     /// assert!(outputs.power && !outputs.jacobian);
-    /// assert_eq!(Outputs::from_names(&["jacobain"]).unwrap_err().index, 0);
+    /// assert_eq!(Outputs::from_names(&["jacobain"]).unwrap_err()[0].index, 0);
     /// ```
     pub fn from_names<S: AsRef<str>>(names: &[S]) -> Result<Outputs, Vec<UnknownOutput>> {
         let mut outputs = Outputs::MINIMAL;

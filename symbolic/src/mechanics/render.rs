@@ -181,14 +181,16 @@ impl Derivation {
         }
     }
 
-    /// The whole derivation as plain text.
+    /// The whole derivation as plain text. A system with `units` starts with the unit of
+    /// every coordinate and parameter, and each line ends with its quantity's unit.
     pub fn to_text(&mut self) -> String {
         let sections = self.sections();
-        let mut out = String::new();
+        let mut out = self.units_heading();
         for section in sections {
             let _ = writeln!(out, "{}", section.heading);
             for l in section.lines {
-                let _ = writeln!(out, "    {} {}", l.text, self.pool.display(l.value));
+                let unit = self.line_unit(&l.text);
+                let _ = writeln!(out, "    {} {}{unit}", l.text, self.pool.display(l.value));
             }
         }
         if !self.checks.is_empty() {
@@ -220,6 +222,44 @@ impl Derivation {
             let _ = writeln!(out, "\\end{{align*}}");
         }
         out
+    }
+}
+
+impl Derivation {
+    /// `Units` and `x in m, theta in rad, …`, or nothing for a system without units.
+    fn units_heading(&self) -> String {
+        match self.units_line() {
+            Some(line) => format!("Units (rad is dimensionless)\n    {line}\n"),
+            None => String::new(),
+        }
+    }
+
+    /// `x in m, theta in rad, …`: the unit of every coordinate, then every parameter, as
+    /// `units` writes it; `None` for a system without units.
+    pub(crate) fn units_line(&self) -> Option<String> {
+        let units = self.units.as_ref()?;
+        let names = self.coordinates.iter().map(|c| c.name.as_str());
+        let names = names.chain(self.parameters.iter().map(|(name, _)| name.as_str()));
+        let stated: Vec<String> = names
+            .filter_map(|name| {
+                let unit = units
+                    .written(name)
+                    .map(str::to_string)
+                    .or_else(|| units.dimension(name).map(|d| d.to_string()))?;
+                Some(format!("{name} in {unit}"))
+            })
+            .collect();
+        Some(stated.join(", "))
+    }
+
+    /// `   [J]` after a line whose label (`H = …`, `p_x =`, `Q*_th =`) names a quantity
+    /// with a known unit; empty without units.
+    pub(crate) fn line_unit(&self, label: &str) -> String {
+        let first = label.split([' ', '=']).next().unwrap_or("");
+        self.units
+            .as_ref()
+            .and_then(|units| units.label_unit(first))
+            .map_or(String::new(), |unit| format!("   [{unit}]"))
     }
 }
 

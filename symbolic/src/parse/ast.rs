@@ -135,6 +135,19 @@ pub enum StatementKind {
         /// Right side.
         rhs: ExprNode,
     },
+    /// `units x: m, g: m/s^2`: the unit of each name; with it, every term is
+    /// dimension-checked (see `docs/dsl-units.md`).
+    Units(Vec<UnitDecl>),
+}
+
+/// One `name: unit` of a `units` statement. The unit is kept as an expression (`kg*m^2`,
+/// `m/s^2`, `1`) and read by the `units` module, which reports unknown units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UnitDecl {
+    /// The name given a unit.
+    pub name: Spanned<String>,
+    /// Its unit, as written.
+    pub unit: ExprNode,
 }
 
 /// A `mass` or `inertia` declaration.

@@ -29,6 +29,8 @@ pub const OUTFLOW: &str = "outflow";
 pub const INFLOW: &str = "inflow";
 /// `check lhs = rhs`
 pub const CHECK: &str = "check";
+/// `units x: m, g: m/s^2`
+pub const UNITS: &str = "units";
 /// `: state` in a mass declaration.
 pub const STATE: &str = "state";
 /// `rate …` option of a state mass or a flow.
@@ -58,6 +60,7 @@ pub const STATEMENTS: &[&str] = &[
     OUTFLOW,
     INFLOW,
     CHECK,
+    UNITS,
 ];
 
 /// The functions the DSL knows, with their arity.

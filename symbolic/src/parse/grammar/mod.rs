@@ -14,6 +14,7 @@
 //!                  flow-option := `rate` expr | `velocity` vector | `relative_velocity` vector
 //!                  (each at most once; `velocity` and `relative_velocity` exclude each other)
 //!            | `check` expr `=` expr
+//!            | `units` name `:` expr { `,` name `:` expr }     (each expr a unit: kg*m/s^2)
 //! vector    := `[` expr { `,` expr } `]`                  (1 to 3 components)
 //! expr      := product { (`+` | `-`) product }            (left-associative)
 //! product   := unary { (`*` | `/`) unary }                (left-associative)

@@ -3,7 +3,7 @@
 use super::{Grammar, PResult, STATEMENT_LEVEL};
 use crate::parse::ast::{
     BodyDecl, Flow, FlowVelocity, Load, LoadValue, MassDecl, MassLaw, Statement, StatementKind,
-    VectorNode,
+    UnitDecl, VectorNode,
 };
 use crate::parse::keywords::{self, closest};
 use crate::parse::span::{Diagnostic, Span, Spanned};
@@ -14,6 +14,8 @@ const AFTER_EXPRESSION: &str = "an operator, `;` or a newline";
 const AFTER_LIST: &str = "`,`, `;` or a newline";
 /// What may follow `inflow b` / `outflow b` without options.
 const AFTER_FLOW_NAME: &str = "`:`, `;` or a newline";
+/// What may follow a unit in a `units` statement.
+const AFTER_UNIT: &str = "an operator, `,`, `;` or a newline";
 /// What may follow a statement ending in a vector.
 const AFTER_VECTOR: &str = "`;` or a newline";
 
@@ -73,6 +75,7 @@ impl<'a> Grammar<'a> {
             keywords::OUTFLOW => self.flow(after, keywords::OUTFLOW, StatementKind::Outflow)?,
             keywords::INFLOW => self.flow(after, keywords::INFLOW, StatementKind::Inflow)?,
             keywords::CHECK => self.check(after)?,
+            keywords::UNITS => self.units(after)?,
             _ => return Err(self.unknown_statement(head, after)),
         };
         let span = self.span(head.span.start, self.offset(rest));
@@ -253,6 +256,29 @@ impl<'a> Grammar<'a> {
         };
         let (rest, (rhs, _)) = self.required_expression(after, STATEMENT_LEVEL, "=")?;
         Ok((rest, (StatementKind::Check { lhs, rhs }, AFTER_EXPRESSION)))
+    }
+
+    /// `units x: m, g: m/s^2, …`: each unit is read as an expression here; the `units`
+    /// module checks that it is made of known units.
+    fn units(&self, input: &'a str) -> PResult<'a, Parts> {
+        let mut entries = Vec::new();
+        let mut rest = input;
+        let mut after = keywords::UNITS;
+        loop {
+            let (at, name) = self.required(rest, false, "a name", after, |i| self.name(i))?;
+            let (at, _) = self.required(at, false, "`:`", &name.node, |i| {
+                self.punct_after_blanks(i, ':')
+            })?;
+            let (at, (unit, _)) = self.required_expression(at, STATEMENT_LEVEL, ":")?;
+            entries.push(UnitDecl { name, unit });
+            match self.punct_after_blanks(at, ',') {
+                Ok((next, _)) => {
+                    rest = next;
+                    after = ",";
+                }
+                Err(_) => return Ok((at, (StatementKind::Units(entries), AFTER_UNIT))),
+            }
+        }
     }
 
     /// `body b: mass m, position [..]`, options in any order, each exactly once.

@@ -1,0 +1,141 @@
+//! Straight-line solves of M x = b for the mass matrix when q̇ or q̈ is not in closed form:
+//! the LDLᵀ factorisation written out for the system's size, so that the generated code
+//! has no loops, no generic matrix type and no square roots.
+//!
+//! For a symmetric positive definite M, column by column (k < j < i):
+//!
+//! ```text
+//! v_jk = l_jk d_k,   d_j = m_jj − Σ_k l_jk v_jk,   l_ij = (m_ij − Σ_k l_ik v_jk) / d_j
+//! z_i = b_i − Σ_{k<i} l_ik z_k          (L z = b)
+//! x_i = z_i / d_i − Σ_{k>i} l_ki x_k    (D Lᵀ x = z, from the last row up)
+//! ```
+//!
+//! A pivot d_j that is not positive (or NaN) means M is not positive definite there: the
+//! code returns the given error, as the Cholesky it replaces did.
+
+use proc_macro2::{Ident, TokenStream};
+use quote::{format_ident, quote};
+
+fn l(i: usize, j: usize) -> Ident {
+    format_ident!("__ldl_l{}_{}", i, j)
+}
+
+fn v(j: usize, k: usize) -> Ident {
+    format_ident!("__ldl_v{}_{}", j, k)
+}
+
+fn inverse_pivot(j: usize) -> Ident {
+    format_ident!("__ldl_inv{}", j)
+}
+
+fn z(i: usize) -> Ident {
+    format_ident!("__ldl_z{}", i)
+}
+
+/// `let`s that bind `solution[i]` to x_i of M x = b, with M given row-major (`matrix`, only
+/// its lower triangle is read; `zero[i * n + j]` when that entry is identically zero) and b
+/// as `rhs`; `error` is returned (`return Err(error)`) when M is not positive definite.
+/// Entries of L that are zero whatever the state (no fill-in reaches them) are left out.
+pub(crate) fn ldlt_solve(
+    matrix: &[TokenStream],
+    zero: &[bool],
+    rhs: &[TokenStream],
+    solution: &[Ident],
+    error: &TokenStream,
+) -> TokenStream {
+    let n = solution.len();
+    let lower = structure(zero, n);
+    let mut out = factorisation(matrix, &lower, n, error);
+    out.extend(substitution(rhs, solution, &lower));
+    out
+}
+
+/// Which l_ij (i > j, row-major) can be nonzero: m_ij is, or some k < j has both l_ik and
+/// l_jk nonzero (fill-in).
+fn structure(zero: &[bool], n: usize) -> Vec<bool> {
+    let mut nonzero = vec![false; n * n];
+    for j in 0..n {
+        for i in j + 1..n {
+            let fill = (0..j).any(|k| nonzero[i * n + k] && nonzero[j * n + k]);
+            nonzero[i * n + j] = !zero.get(i * n + j).copied().unwrap_or(false) || fill;
+        }
+    }
+    nonzero
+}
+
+/// L and the inverse pivots 1/d_j.
+fn factorisation(
+    matrix: &[TokenStream],
+    nonzero: &[bool],
+    n: usize,
+    error: &TokenStream,
+) -> TokenStream {
+    let entry = |i: usize, j: usize| matrix.get(i * n + j).cloned().unwrap_or_default();
+    let used = |i: usize, j: usize| nonzero[i * n + j];
+    let mut out = TokenStream::new();
+    for j in 0..n {
+        let scaled = (0..j).filter(|k| used(j, *k)).map(|k| {
+            let (vjk, ljk, d) = (v(j, k), l(j, k), format_ident!("__ldl_d{}", k));
+            quote!(let #vjk = #ljk * #d;)
+        });
+        let (m, d, inv) = (entry(j, j), format_ident!("__ldl_d{}", j), inverse_pivot(j));
+        let minus = (0..j).filter(|k| used(j, *k)).map(|k| {
+            let (ljk, vjk) = (l(j, k), v(j, k));
+            quote!(- #ljk * #vjk)
+        });
+        let pivot = minus_terms(m, minus);
+        out.extend(quote! {
+            #(#scaled)*
+            let #d = #pivot;
+            if !(#d > 0.0) {
+                return Err(#error);
+            }
+            let #inv = 1.0 / #d;
+        });
+        for i in (j + 1..n).filter(|i| used(*i, j)) {
+            let (m, lij) = (entry(i, j), l(i, j));
+            let minus = (0..j).filter(|k| used(i, *k) && used(j, *k)).map(|k| {
+                let (lik, vjk) = (l(i, k), v(j, k));
+                quote!(- #lik * #vjk)
+            });
+            let numerator = minus_terms(m, minus);
+            out.extend(quote!(let #lij = (#numerator) * #inv;));
+        }
+    }
+    out
+}
+
+/// L z = b forward, then D Lᵀ x = z backward into the solution's names.
+fn substitution(rhs: &[TokenStream], solution: &[Ident], nonzero: &[bool]) -> TokenStream {
+    let n = solution.len();
+    let used = |i: usize, j: usize| nonzero[i * n + j];
+    let mut out = TokenStream::new();
+    for i in 0..n {
+        let (zi, b) = (z(i), rhs.get(i).cloned().unwrap_or_default());
+        let minus = (0..i).filter(|k| used(i, *k)).map(|k| {
+            let (lik, zk) = (l(i, k), z(k));
+            quote!(- #lik * #zk)
+        });
+        let value = minus_terms(b, minus);
+        out.extend(quote!(let #zi = #value;));
+    }
+    for i in (0..n).rev() {
+        let (xi, zi, inv) = (&solution[i], z(i), inverse_pivot(i));
+        let minus = (i + 1..n).filter(|k| used(*k, i)).map(|k| {
+            let (lki, xk) = (l(k, i), &solution[k]);
+            quote!(- #lki * #xk)
+        });
+        out.extend(quote!(let #xi = #zi * #inv #(#minus)*;));
+    }
+    out
+}
+
+/// `first`, or `(first) - t₁ - t₂ …` when there are terms to subtract.
+fn minus_terms(first: TokenStream, terms: impl Iterator<Item = TokenStream>) -> TokenStream {
+    let terms: Vec<TokenStream> = terms.collect();
+    if terms.is_empty() {
+        first
+    } else {
+        quote!((#first) #(#terms)*)
+    }
+}

@@ -1,0 +1,402 @@
+//! The dimension check of a system with a `units` statement: each statement's rule, on
+//! the spanned AST, with every problem reported together.
+
+use super::dimension::Dimension;
+use super::infer::Dim;
+use super::table::UnitTable;
+use super::text::text;
+use super::unit::unit_dimension;
+use crate::mechanics::is_reserved;
+use crate::parse::ast::{
+    BinOp, Expr, ExprNode, Flow, FlowVelocity, Load, LoadValue, MassDecl, MassLaw, Statement,
+    StatementKind, SystemAst, UnitDecl,
+};
+use crate::parse::keywords;
+use crate::parse::{Diagnostic, Span};
+use std::collections::{HashMap, HashSet};
+
+/// The state of one check.
+#[derive(Default)]
+pub(crate) struct Checker {
+    table: UnitTable,
+    /// `let` definitions without a declared unit: their inferred dimension (`None` when it
+    /// could not be inferred, so that their uses stay silent).
+    lets: HashMap<String, Option<Dim>>,
+    /// Names whose unit was given but could not be read (already reported).
+    unreadable: HashSet<String>,
+    /// Whether the expression being checked is in a `check` (derived quantities allowed).
+    in_check: bool,
+    /// Every name met in an expression.
+    used: HashSet<String>,
+    /// Names without a unit, with their first use.
+    missing: Vec<(String, Span)>,
+    diagnostics: Vec<Diagnostic>,
+}
+
+/// Checks the dimensions of every statement of `ast` when it has a `units` statement.
+/// Returns `Ok(None)` for a system without one (nothing is checked), the table of units
+/// when every rule holds, and otherwise every problem found.
+///
+/// ```
+/// use varmass_symbolic::parse::parse_system;
+/// use varmass_symbolic::units::check_units;
+/// let ast = parse_system("coordinates x\nunits x: m, k: N/m\npotential k*x'^2").unwrap();
+/// let errors = check_units(&ast).unwrap_err();
+/// assert_eq!(
+///     errors[0].message,
+///     "potential term k*x'^2 has kg·m²/s⁴, expected an energy, kg·m²/s²"
+/// );
+/// ```
+pub fn check_units(ast: &SystemAst) -> Result<Option<UnitTable>, Vec<Diagnostic>> {
+    let Some(first) = ast
+        .statements
+        .iter()
+        .find(|s| matches!(s.kind, StatementKind::Units(_)))
+    else {
+        return Ok(None);
+    };
+    let mut checker = Checker::default();
+    checker.declare(ast);
+    for statement in &ast.statements {
+        checker.statement(statement);
+    }
+    checker.bodies_with_units(ast);
+    checker.missing_units(ast, first.span);
+    let Checker {
+        table,
+        lets,
+        mut diagnostics,
+        ..
+    } = checker;
+    if !diagnostics.is_empty() {
+        diagnostics.sort_by_key(|d| d.span.start);
+        return Err(diagnostics);
+    }
+    let mut table = table;
+    for (name, dim) in lets {
+        if let Some(Dim::Of(dimension)) = dim {
+            table.dimensions.insert(name, dimension);
+        }
+    }
+    Ok(Some(table))
+}
+
+/// `has kg·m` or `is dimensionless`, for messages.
+pub(crate) fn has(dimension: Dimension) -> String {
+    if dimension.is_dimensionless() {
+        "is dimensionless".to_string()
+    } else {
+        format!("has {dimension}")
+    }
+}
+
+/// The `units` entries of `ast`, in source order.
+fn unit_entries(ast: &SystemAst) -> impl Iterator<Item = &UnitDecl> {
+    ast.statements.iter().flat_map(|s| match &s.kind {
+        StatementKind::Units(entries) => entries.as_slice(),
+        _ => &[],
+    })
+}
+
+impl Checker {
+    pub(crate) fn report(&mut self, diagnostic: Diagnostic) {
+        self.diagnostics.push(diagnostic);
+    }
+
+    /// What `name` is in an expression: its dimension, or `None` (and, the first time, a
+    /// note that it has no unit).
+    pub(crate) fn name(&mut self, name: &str, span: Span) -> Option<Dim> {
+        self.used.insert(name.to_string());
+        if let Some(dim) = self.lets.get(name) {
+            return *dim;
+        }
+        if let Some(dimension) = self.table.dimension(name) {
+            return Some(Dim::Of(dimension));
+        }
+        if self.in_check {
+            if let Some(dimension) = self.table.quantity(name) {
+                return Some(Dim::Of(dimension));
+            }
+        }
+        if !self.unreadable.contains(name) && !self.missing.iter().any(|(n, _)| n == name) {
+            self.missing.push((name.to_string(), span));
+        }
+        None
+    }
+
+    /// Reads the units, then the coordinates, masses and inertias, which every statement
+    /// may use.
+    fn declare(&mut self, ast: &SystemAst) {
+        for entry in unit_entries(ast) {
+            self.declare_unit(entry);
+        }
+        for statement in &ast.statements {
+            match &statement.kind {
+                StatementKind::Coordinates(names) => {
+                    for name in names {
+                        self.table.coordinates.push(name.node.clone());
+                        if self.table.dimension(&name.node).is_none() {
+                            self.name(&name.node, name.span);
+                        }
+                    }
+                }
+                StatementKind::Mass(decl) => self.declare_mass(decl, Dimension::MASS, "a mass"),
+                StatementKind::Inertia(decl) => {
+                    self.declare_mass(decl, Dimension::INERTIA, "an inertia")
+                }
+                _ => {}
+            }
+        }
+    }
+
+    fn declare_unit(&mut self, entry: &UnitDecl) {
+        let name = &entry.name;
+        if is_reserved(&name.node) {
+            let message = if name.node == keywords::TIME {
+                format!("`{}` is the time, always in s", keywords::TIME)
+            } else {
+                format!(
+                    "`{}` is a derived quantity: its unit follows from the others",
+                    name.node
+                )
+            };
+            return self.report(Diagnostic::new(name.span, message));
+        }
+        if self.table.written.contains_key(&name.node) || self.unreadable.contains(&name.node) {
+            let message = format!("the unit of `{}` is given twice", name.node);
+            return self.report(Diagnostic::new(name.span, message));
+        }
+        match unit_dimension(&entry.unit) {
+            Ok(dimension) => {
+                self.table.dimensions.insert(name.node.clone(), dimension);
+                let written = text(&entry.unit);
+                self.table.written.insert(name.node.clone(), written);
+            }
+            Err(diagnostic) => {
+                self.unreadable.insert(name.node.clone());
+                self.report(diagnostic);
+            }
+        }
+    }
+
+    /// A mass is in kg and an inertia in kg·m²: a unit given for one must say so.
+    fn declare_mass(&mut self, decl: &MassDecl, dimension: Dimension, what: &str) {
+        let name = &decl.name.node;
+        self.table.masses.push(name.clone());
+        // Whatever `units` says, the mass is checked as what it is.
+        if let Some(given) = self.table.dimensions.insert(name.clone(), dimension) {
+            if given != dimension {
+                let message =
+                    format!("`{name}` is {what}, in {dimension}, but `units` gives it {given}");
+                self.report(Diagnostic::new(decl.name.span, message));
+            }
+        }
+    }
+
+    /// The rules of one statement.
+    fn statement(&mut self, statement: &Statement) {
+        match &statement.kind {
+            StatementKind::Let { name, value } => self.definition(&name.node, value),
+            StatementKind::Mass(decl) => self.mass_law(decl, "mass"),
+            StatementKind::Inertia(decl) => self.mass_law(decl, "inertia"),
+            StatementKind::Body(body) => {
+                let label = |t: &str| format!("position of body `{}`: {t}", body.name.node);
+                for component in &body.position.node {
+                    self.expect(component, Dimension::LENGTH, None, &label);
+                }
+            }
+            StatementKind::Kinetic(e) => self.energy(e, "kinetic"),
+            StatementKind::Potential(e) => self.energy(e, "potential"),
+            StatementKind::Lagrangian(e) => self.energy(e, "lagrangian"),
+            StatementKind::Force(load) => self.load(load, "generalized force", "force"),
+            StatementKind::Thrust(load) => self.load(load, "thrust", "thrust"),
+            StatementKind::Impact(load) => self.load(load, "impact force", "impact force"),
+            StatementKind::Outflow(flow) => self.flow(flow, "outflow from"),
+            StatementKind::Inflow(flow) => self.flow(flow, "inflow into"),
+            StatementKind::Check { lhs, rhs } => self.check(lhs, rhs),
+            StatementKind::Coordinates(_) | StatementKind::Units(_) => {}
+        }
+    }
+
+    /// Every term of `node` (split at top-level `+` and `-`) has dimension `expected`:
+    /// otherwise "<label(term)> has <found>, expected <expected>".
+    fn expect(
+        &mut self,
+        node: &ExprNode,
+        expected: Dimension,
+        explained: Option<&str>,
+        label: &dyn Fn(&str) -> String,
+    ) {
+        match &*node.node {
+            Expr::Binary {
+                op: BinOp::Add | BinOp::Sub,
+                lhs,
+                rhs,
+            } => {
+                self.expect(lhs, expected, explained, label);
+                self.expect(rhs, expected, explained, label);
+            }
+            _ => {
+                if let Some(Dim::Of(found)) = self.infer(node) {
+                    if found != expected {
+                        let expected = match explained {
+                            Some(why) => format!("{} ({why})", expected.described()),
+                            None => expected.described(),
+                        };
+                        let term = label(&text(node));
+                        let message = format!("{term} {}, expected {expected}", has(found));
+                        self.report(Diagnostic::new(node.span, message));
+                    }
+                }
+            }
+        }
+    }
+
+    fn energy(&mut self, node: &ExprNode, kind: &str) {
+        self.expect(node, Dimension::ENERGY, None, &|t| {
+            format!("{kind} term {t}")
+        });
+    }
+
+    /// A `let` is inferred, or checked against the unit `units` gives it.
+    fn definition(&mut self, name: &str, value: &ExprNode) {
+        match self.table.dimension(name) {
+            Some(given) => {
+                let label = |t: &str| format!("definition of `{name}`: {t}");
+                self.expect(
+                    value,
+                    given,
+                    Some(&format!("the unit `units` gives `{name}`")),
+                    &label,
+                );
+            }
+            None if !self.unreadable.contains(name) => {
+                let dim = self.infer(value);
+                self.lets.insert(name.to_string(), dim);
+            }
+            None => {}
+        }
+    }
+
+    fn mass_law(&mut self, decl: &MassDecl, kind: &str) {
+        let name = &decl.name.node;
+        let Some(dimension) = self.table.dimension(name) else {
+            return;
+        };
+        match &decl.law {
+            MassLaw::Law(law) => {
+                let label = |t: &str| format!("{kind} law of `{name}`: {t}");
+                self.expect(law, dimension, None, &label);
+            }
+            MassLaw::State { rate } => {
+                let Some(per_second) = dimension.checked_div(Dimension::TIME) else {
+                    return;
+                };
+                let label = |t: &str| format!("rate of `{name}`: {t}");
+                self.expect(rate, per_second, None, &label);
+            }
+        }
+    }
+
+    /// A load on a coordinate q has dimension energy / dim(q); on a body, a force.
+    fn load(&mut self, load: &Load, generalized: &str, on_body: &str) {
+        let target = &load.target.node;
+        match &load.value {
+            LoadValue::Scalar(value) => {
+                if !self.table.coordinates.contains(target) {
+                    return;
+                }
+                let Some(q) = self.table.dimension(target) else {
+                    return;
+                };
+                let Some(expected) = Dimension::ENERGY.checked_div(q) else {
+                    return;
+                };
+                let unit = self.table.written(target).unwrap_or("1").to_string();
+                let why = format!("energy per unit of `{target}`, J/{unit}");
+                let label = |t: &str| format!("{generalized} on `{target}`: {t}");
+                self.expect(value, expected, Some(&why), &label);
+            }
+            LoadValue::Vector(vector) => {
+                let label = |t: &str| format!("{on_body} on body `{target}`: {t}");
+                for component in &vector.node {
+                    self.expect(component, Dimension::FORCE, None, &label);
+                }
+            }
+        }
+    }
+
+    fn flow(&mut self, flow: &Flow, direction: &str) {
+        let body = &flow.body.node;
+        if let Some(rate) = &flow.rate {
+            let label = |t: &str| format!("rate of {direction} `{body}`: {t}");
+            self.expect(rate, Dimension::MASS_FLOW, None, &label);
+        }
+        let (vector, what) = match &flow.velocity {
+            Some(FlowVelocity::Absolute(v)) => (v, "velocity"),
+            Some(FlowVelocity::Relative(v)) => (v, "relative velocity"),
+            None => return,
+        };
+        let label = |t: &str| format!("{what} of {direction} `{body}`: {t}");
+        for component in &vector.node {
+            self.expect(component, Dimension::VELOCITY, None, &label);
+        }
+    }
+
+    /// Both sides of a `check` have the same dimension.
+    fn check(&mut self, lhs: &ExprNode, rhs: &ExprNode) {
+        self.in_check = true;
+        let (left, right) = (self.infer(lhs), self.infer(rhs));
+        self.in_check = false;
+        if let (Some(left), Some(right)) = (left, right) {
+            let what = "the two sides of this check disagree";
+            self.agree(what, lhs, left, rhs, right, lhs.span.join(rhs.span));
+        }
+    }
+
+    /// A body has no unit. A unit for a name the system does not use is allowed (one
+    /// `units` line serves every tag selection); [`Checker::missing_units`] points out a
+    /// likely typo among them.
+    fn bodies_with_units(&mut self, ast: &SystemAst) {
+        for statement in &ast.statements {
+            let StatementKind::Body(body) = &statement.kind else {
+                continue;
+            };
+            for entry in unit_entries(ast).filter(|e| e.name.node == body.name.node) {
+                let name = &entry.name.node;
+                let message =
+                    format!("`{name}` is a body: it has no unit; its mass and position do");
+                self.report(Diagnostic::new(entry.name.span, message));
+            }
+        }
+    }
+
+    /// One diagnostic listing every name used without a unit, with a hint when a unit was
+    /// given for a name the system does not use that looks like a typo of a missing one.
+    fn missing_units(&mut self, ast: &SystemAst, units: Span) {
+        if self.missing.is_empty() {
+            return;
+        }
+        let listed: Vec<String> = self.missing.iter().map(|(n, _)| format!("`{n}`")).collect();
+        let names: Vec<String> = self
+            .missing
+            .iter()
+            .map(|(n, _)| format!("{n}: …"))
+            .collect();
+        let message = format!(
+            "no unit for {}: with `units`, every coordinate and parameter needs one",
+            listed.join(", ")
+        );
+        let mut help = format!("add `{}` to the `units` statement", names.join(", "));
+        let unused: Vec<&str> = unit_entries(ast)
+            .map(|e| e.name.node.as_str())
+            .filter(|name| !self.used.contains(*name))
+            .collect();
+        for (name, _) in &self.missing {
+            if let Some(typo) = keywords::closest(name, &unused) {
+                help.push_str(&format!("; `{typo}` has one: a typo of `{name}`?"));
+            }
+        }
+        self.report(Diagnostic::new(units, message).with_help(help));
+    }
+}
