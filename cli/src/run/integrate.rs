@@ -207,3 +207,36 @@ fn describe<const N: usize, const S: usize>(
         error.time
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan(from: f64, until: f64, every: Option<f64>) -> Plan {
+        Plan {
+            from,
+            until,
+            initial_state: Vec::new(),
+            method: Method::Rk4,
+            steps: Steps::Fixed(0.1),
+            stop_when: Vec::new(),
+            every,
+            record: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn output_times_end_exactly_at_the_end() {
+        assert_eq!(output_times(&plan(0.0, 1.0, None)), [1.0]);
+        assert_eq!(
+            output_times(&plan(1.0, 2.0, Some(0.25))),
+            [1.25, 1.5, 1.75, 2.0]
+        );
+        // A remainder shorter than the spacing is a last, shorter interval.
+        assert_eq!(output_times(&plan(0.0, 1.0, Some(0.4))), [0.4, 0.8, 1.0]);
+        // Rounding of k·dt just below the end does not add a sliver interval.
+        let times = output_times(&plan(0.0, 0.3, Some(0.1)));
+        assert_eq!(times.len(), 3);
+        assert_eq!(times.last(), Some(&0.3));
+    }
+}

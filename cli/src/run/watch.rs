@@ -95,3 +95,30 @@ where
         self.inner.dense_output(time)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use varmass::core::steppers::{DormandPrince, StepControl};
+    use varmass::core::{run, RunConfig};
+    use varmass::interpret::{Program, TapeSystem};
+    use varmass::symbolic::mechanics::{derive_source, Parameters};
+
+    use super::*;
+
+    /// The bar only watches: a run through it is the bare stepper's run, bit for bit.
+    #[test]
+    fn a_watched_run_is_the_bare_run() {
+        let source = "coordinates y; mass m = m0; body b: mass m, position [y]; potential m*g*y";
+        let derivation = derive_source(source, Parameters::Inferred).expect("derives");
+        let program = Program::new(derivation, &[("m0", 2.0), ("g", 9.81)]).expect("fits");
+        let system = TapeSystem::<1, 2>::new(program).expect("sizes");
+        let start = SVector::<f64, 2>::new(0.0, 10.0);
+        let stepper = || DormandPrince::new(&system, 0.0, start, StepControl::default());
+        let config = RunConfig::until(3.0);
+        let bare = run(&mut stepper().expect("starts"), &config, &[]).expect("runs");
+        let mut watched = Watched::new(stepper().expect("starts"), 0.0, 3.0);
+        let seen = run(&mut watched, &config, &[]).expect("runs");
+        assert_eq!(bare, seen);
+        assert_eq!(watched.bar.position(), TICKS);
+    }
+}
