@@ -8,7 +8,7 @@
 //! * the same physics in Cartesian coordinates (x, y), where the nozzle direction is
 //!   (−y, x)/r, must give the same bob path (a check of the frozen-mass rule under a change
 //!   of coordinates: the polar equations carry ṁ r² θ̇ terms the Cartesian ones do not);
-//! * each stepper's energy-budget residual ∫ power dt − (H − H₀) (SPEC §1), an error estimate
+//! * each stepper's energy-budget residual ∫ power dt − (H − H₀) (docs/mechanics.md#energy-budget), an error estimate
 //!   that needs no reference solution.
 //!
 //! Run with `cargo run --release --example leaking_spring_pendulum`.

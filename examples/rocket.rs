@@ -1,6 +1,6 @@
 //! A vertical rocket in uniform gravity: a state mass burning at a constant rate μ with the
 //! exhaust leaving at −u_e relative to the rocket, up to burnout at the dry mass, then a
-//! ballistic coast to the apex. Each phase is checked against its closed form (SPEC §1):
+//! ballistic coast to the apex. Each phase is checked against its closed form (docs/mechanics.md#vertical-rocket):
 //!
 //! * burning, m = m0 − μ t: v(t) = u_e ln(m0/m) − g t,
 //!   y(t) = u_e (t − (m/μ) ln(m0/m)) − ½ g t² (Tsiolkovsky with gravity loss);
@@ -33,7 +33,7 @@ const M0: f64 = 1000.0;
 const DRY_MASS: f64 = 100.0;
 
 impl Rocket {
-    /// (y, v) while burning from rest at y = 0 (SPEC §1).
+    /// (y, v) while burning from rest at y = 0 (docs/mechanics.md#vertical-rocket).
     fn burning(&self, t: f64) -> (f64, f64) {
         let m = M0 - self.mu * t;
         let log_ratio = (M0 / m).ln();

@@ -38,7 +38,7 @@ const MEASURED_FROM: f64 = 1.0;
 const THRESHOLD: f64 = 1e-9;
 
 impl Sled {
-    /// The closed form of eq. 24 in the stable form of SPEC §1: with ε = c x / m0,
+    /// The closed form of eq. 24 in the stable form (docs/mechanics.md#sled-stable-form): with ε = c x / m0,
     /// v²(x) = (2/3) a x (3 + 3ε + ε²)/(1 + ε)², a = g (sin θ − f_d cos θ). The paper's form
     /// [m0 + c x − m0³/(m0 + c x)²]/(3c) cancels catastrophically as c x/m0 → 0.
     fn exact_speed(&self, x: f64) -> f64 {

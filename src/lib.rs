@@ -39,7 +39,7 @@
 //! let (x, p) = (state[0], state[1]);
 //! let v = p / sled.mass(0, 0.0, state);
 //!
-//! // The closed form (SPEC §1), stable for small c: ε = c x / m0.
+//! // The closed form (docs/mechanics.md#sled-stable-form), stable for small c: ε = c x / m0.
 //! let a = sled.g * (sled.theta.sin() - sled.f_d * sled.theta.cos());
 //! let eps = sled.c * x / sled.m0;
 //! let v_exact = (2.0 / 3.0 * a * x * (3.0 + 3.0 * eps + eps * eps) / (1.0 + eps).powi(2)).sqrt();

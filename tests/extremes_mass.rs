@@ -1,4 +1,4 @@
-//! Extremes of the mass (SPEC §5): mass ratios up to 10⁶, accretion rates from 10⁻¹² to 10⁶,
+//! Extremes of the mass (ARCHITECTURE.md#extremes): mass ratios up to 10⁶, accretion rates from 10⁻¹² to 10⁶,
 //! a near-massless start, and masses that run out. Each test states what is expected.
 
 mod validation_support;

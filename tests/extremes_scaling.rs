@@ -1,4 +1,4 @@
-//! Every parameter scaled by 10^±100 in consistent units (SPEC §5): masses by M, lengths by
+//! Every parameter scaled by 10^±100 in consistent units (ARCHITECTURE.md#extremes): masses by M, lengths by
 //! L, times by T. The motion is the same in the new units, so the relative error of a run
 //! against the closed form must be unchanged — provided the tolerances are relative: an
 //! absolute tolerance, an absolute event tolerance or an absolute Newton tolerance carries

@@ -1,4 +1,4 @@
-//! Extremes of the step (SPEC §5): a long horizon of 10⁷ steps, and fixed steps at and past
+//! Extremes of the step (ARCHITECTURE.md#extremes): a long horizon of 10⁷ steps, and fixed steps at and past
 //! the stability limit. Each test states what is expected.
 
 mod validation_support;

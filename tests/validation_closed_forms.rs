@@ -1,4 +1,4 @@
-//! Every closed form of SPEC §1 against runs of the generated systems: the sled's v(x)
+//! Every closed form of docs/mechanics.md#reference-solutions against runs of the generated systems: the sled's v(x)
 //! (eq. 24), the vertical rocket's y(t) and v(t), Tsiolkovsky in free space, and the
 //! constant-mass limits, which must be ordinary mechanics.
 

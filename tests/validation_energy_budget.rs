@@ -1,4 +1,4 @@
-//! The energy-budget residual ∫ power dt − (H − H₀) (SPEC §1) is small on every example
+//! The energy-budget residual ∫ power dt − (H − H₀) (docs/mechanics.md#energy-budget) is small on every example
 //! system at a tight tolerance, and large when the integration is poor, so it is a usable
 //! error estimate without a reference solution.
 

@@ -1,5 +1,5 @@
 //! Hamilton form against Lagrange form: the run on the state [q, p, m_s] with the true
-//! momentum rate (SPEC §1) and a run on the velocity state [q, q̇, m_s] with the generated
+//! momentum rate (docs/mechanics.md#true-momentum-rate) and a run on the velocity state [q, q̇, m_s] with the generated
 //! Lagrange-form accelerations q̈ (eq. 6 with the frozen-mass rule) trace the same motion.
 //! Also the polar and Cartesian forms of the leaking pendulum trace the same bob path.
 
@@ -155,7 +155,7 @@ fn leaking_pendulum_polar_and_cartesian_agree() {
 #[test]
 fn literal_eq_19_is_detected_by_the_lagrange_form() {
     // A control: the Lagrange form is sensitive to the mass-flux term. Removing it (the
-    // variational stepper's LiteralEq19, which the SPEC calls wrong) moves the sled by far
+    // variational stepper's LiteralEq19, which docs/mechanics.md#corrected-hamilton-principle shows to be wrong) moves the sled by far
     // more than the tolerance above, so agreement is not automatic.
     use varmass::core::steppers::{Principle, VariationalConfig};
     let sled = Sled::paper();

@@ -23,7 +23,7 @@ pub struct Sled {
     pub f_d: f64,
 }
 
-/// A vertical rocket burning at the constant rate μ, exhaust at −u_e relative (SPEC §1).
+/// A vertical rocket burning at the constant rate μ, exhaust at −u_e relative (docs/mechanics.md#vertical-rocket).
 #[variable_mass_system(
     "
     coordinates y

@@ -9,7 +9,7 @@ use varmass::core::{SystemError, VariableMassSystem};
 use super::generated::{Kepler, Rocket, Sled};
 
 /// The sled by hand: m = m0 + c x, ẋ = p/m and, since the snow arrives at rest, the true
-/// ṗ = m g (sin θ − f_d cos θ) (SPEC §1, after eq. 24).
+/// ṗ = m g (sin θ − f_d cos θ) (docs/mechanics.md#the-sled, after eq. 24).
 #[derive(Clone, Copy, Debug)]
 pub struct HandSled(pub Sled);
 

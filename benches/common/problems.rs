@@ -25,7 +25,7 @@ pub trait Problem<const N: usize, const S: usize> {
 }
 
 /// The paper's sled (§4) from rest, run until x ≈ 50 m. The reference is the closed form
-/// v²(x) (eq. 24, SPEC §1 stable form), so the error |v − v(x)|/v(x) at the numerical x does
+/// v²(x) (eq. 24, the stable form of docs/mechanics.md#sled-stable-form), so the error |v − v(x)|/v(x) at the numerical x does
 /// not depend on where the run stops; the end time only makes it stop near 50 m.
 pub struct SledProblem {
     /// The sled (the generated system; the hand-written twin shares its parameters).
@@ -113,7 +113,7 @@ impl Problem<1, 2> for SledProblem {
 
 /// The vertical rocket from rest, burning three quarters of its mass (m0 = 1, μ = 0.05,
 /// u_e = 300, 15 s): m = m0 − μt, v = u_e ln(m0/m) − g t,
-/// y = u_e (t − (m/μ) ln(m0/m)) − ½ g t² (SPEC §1).
+/// y = u_e (t − (m/μ) ln(m0/m)) − ½ g t² (docs/mechanics.md#vertical-rocket).
 pub struct RocketProblem {
     /// The rocket.
     pub system: Rocket,

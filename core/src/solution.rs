@@ -18,7 +18,7 @@ pub struct Record {
     pub hamiltonian: bool,
     /// The generalized forces Q*, R1, R2 and the mass-flux term.
     pub forces: bool,
-    /// The energy-budget power dH/dt (SPEC §1).
+    /// The energy-budget power dH/dt (docs/mechanics.md#energy-budget).
     pub power: bool,
     /// The energy-budget residual ∫ power dt − (H − H₀), an error estimate needing no
     /// reference solution.

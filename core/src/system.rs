@@ -81,7 +81,7 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// The generalized impact force R2 = Σᵢ Q2ᵢ v_r2ᵢ · ∂rᵢ/∂q.
     fn impact_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N>;
 
-    /// The mass-flux term Σᵢ ṁᵢ ∂*p/∂mᵢ that turns d*p/dt into the true ṗ (SPEC §1).
+    /// The mass-flux term Σᵢ ṁᵢ ∂*p/∂mᵢ that turns d*p/dt into the true ṗ (docs/mechanics.md#true-momentum-rate).
     fn mass_flux_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N>;
 
     /// Lagrange-form accelerations q̈(q, q̇, t), from eq. 6 with the frozen-mass rule:
@@ -191,7 +191,7 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(rate)
     }
 
-    /// The energy-budget power dH/dt along the motion (SPEC §1). The default differentiates
+    /// The energy-budget power dH/dt along the motion (docs/mechanics.md#energy-budget). The default differentiates
     /// H along the state rate by central differences; generated systems return the formula
     /// ∂*H/∂t + q̇·(Q* − R1 + R2 + Σ ṁᵢ ∂*p/∂mᵢ) + Σ ṁᵢ ∂H/∂mᵢ.
     fn power(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {

@@ -65,7 +65,7 @@ fn recorded_extras_match_the_sleds_closed_forms() {
         assert!((forces.impact[0] + sled.accretion * v * v).abs() < 1e-12 * scale);
         assert!((forces.mass_flux[0] - sled.accretion * v * v).abs() < 1e-12 * scale);
         assert_eq!(forces.reactive_thrust[0], 0.0);
-        // Energy budget (SPEC §1): R2 and the mass-flux term cancel in q̇·(…), leaving
+        // Energy budget (docs/mechanics.md#energy-budget): R2 and the mass-flux term cancel in q̇·(…), leaving
         // dH/dt = −f_d m g cos θ ẋ + ṁ ∂H/∂m|(q,p) with ṁ = c ẋ, ∂H/∂m = −ẋ²/2 − g x sin θ.
         let power = -sled.friction * m * sled.gravity * cos * v
             - sled.accretion * v * (0.5 * v * v + sled.gravity * x * sin);

@@ -85,7 +85,7 @@ fn time_derivative_refuses_accelerations_and_momenta() {
 
 #[test]
 fn diff_with_respect_to_a_frozen_mass_is_one_on_itself() {
-    // SPEC §1 needs ∂*p/∂m: it is ẋ for p = m ẋ.
+    // The true momentum rate (docs/mechanics.md#true-momentum-rate) needs ∂*p/∂m: it is ẋ for p = m ẋ.
     let mut p = sled_pool();
     let e = build(&mut p, "m*x'");
     let d = p.diff(e, sym(&p, "m"));

@@ -29,7 +29,7 @@ fn proven_by_canonical_form_or_expansion() {
 
 #[test]
 fn the_sled_identity_is_proven() {
-    // SPEC §1: substituting m = m0 + c x before differentiating adds c(½ẋ² + g x sin θ).
+    // The frozen-mass rule (docs/mechanics.md#the-frozen-mass-rule): substituting m = m0 + c x before differentiating adds c(½ẋ² + g x sin θ).
     let mut p = sled_pool();
     let l = build(&mut p, "1/2*m*x'^2 + m*g*x*sin(theta)");
     let (x, m) = (

@@ -1,7 +1,7 @@
 //! Printing: DSL text that reads back to the same expression, and LaTeX samples.
 //!
 //! The round trip here reads the printed text with the test reader in `expr_support`
-//! (an independent recursive-descent parser of SPEC §2's expression grammar), then lowers
+//! (an independent recursive-descent parser of the expression grammar of docs/dsl.md#grammar), then lowers
 //! it; the parser-based round trip belongs to the integration of the real nom parser.
 
 mod expr_support;

@@ -1,5 +1,5 @@
 //! A variational integrator for variable-mass systems: the midpoint discretisation of the
-//! corrected Hamilton principle (SPEC §1)
+//! corrected Hamilton principle (docs/mechanics.md#corrected-hamilton-principle)
 //!
 //! ```text
 //! ∫ [ δ*L + Σ_α (Q*_α − R1_α + R2_α + Σᵢ ṁᵢ ∂*p_α/∂mᵢ) δq_α ] dt = 0
@@ -39,7 +39,7 @@ const SQRT_EPSILON: f64 = 1.490_116_119_384_765_6e-8;
 /// Which Hamilton principle the variational stepper discretises.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Principle {
-    /// The corrected principle of SPEC §1, with the mass-flux term: the right equations.
+    /// The corrected principle (docs/mechanics.md#corrected-hamilton-principle), with the mass-flux term: the right equations.
     #[default]
     Corrected,
     /// The paper's eq. 19 taken literally (no mass-flux term): wrong whenever ṁ ≠ 0.

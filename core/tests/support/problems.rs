@@ -141,7 +141,7 @@ impl Problem<2, 4> for KeplerProblem {
 }
 
 /// The paper's sled from rest at x = 0. The reference is the closed form v²(x) (eq. 24 and
-/// SPEC §1, stable form): the error is |ẋ² − v²(x)| at the numerical x.
+/// docs/mechanics.md#sled-stable-form): the error is |ẋ² − v²(x)| at the numerical x.
 pub struct SledProblem {
     pub system: Sled,
     pub end_time: f64,

@@ -1,4 +1,4 @@
-//! Stage 4: Rust code for a derivation (SPEC §3).
+//! Stage 4: Rust code for a derivation (ARCHITECTURE.md#stage-4-emit).
 //!
 //! [`emit_system`] turns a [`Derivation`] into the `VariableMassSystem` impl that the
 //! `#[variable_mass_system]` macro adds to the user's struct: straight-line functions with

@@ -1,4 +1,4 @@
-//! The `VariableMassSystem` impl for a derivation (SPEC §3): one straight-line function per
+//! The `VariableMassSystem` impl for a derivation (ARCHITECTURE.md#stage-4-emit): one straight-line function per
 //! trait method, each with its formula in a doc comment.
 
 use std::collections::BTreeSet;

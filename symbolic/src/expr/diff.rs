@@ -1,4 +1,4 @@
-//! The frozen-mass calculus (SPEC §1): ∂*/∂s and d*/dt.
+//! The frozen-mass calculus (docs/mechanics.md#the-frozen-mass-rule): ∂*/∂s and d*/dt.
 //!
 //! Both are one bottom-up pass over the DAG (ascending ids are a topological order), so
 //! a shared subexpression is differentiated once and deep expressions cost no stack.

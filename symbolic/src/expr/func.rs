@@ -1,4 +1,4 @@
-//! The elementary functions of the DSL (SPEC §2). `sqrt` is not among them: it is the
+//! The elementary functions of the DSL (docs/dsl.md#functions). `sqrt` is not among them: it is the
 //! power `u^(1/2)`, so that one set of power rules covers it.
 
 /// A function the DSL knows.

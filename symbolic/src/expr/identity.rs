@@ -1,6 +1,6 @@
 //! Deciding whether two expressions are equal: by canonical form, then by expansion, then
-//! by evaluation at random points (SPEC §2: "Identities are decided by simplification and,
-//! where that is not conclusive, by evaluation at many random points").
+//! by evaluation at random points (docs/dsl.md#checks: identities are decided by simplification and,
+//! where that is not conclusive, by evaluation at many random points).
 
 use super::node::Id;
 use super::pool::ExprPool;

@@ -9,7 +9,7 @@
 //!
 //! Constants are exact [`Rational`]s (falling back to inexact `f64` constants on overflow).
 //! The calculus is the frozen-mass calculus of Zhang Jiuzhu (2015): under ∂* and d*/dt
-//! every `Frozen` symbol (mass, inertia) is held constant (SPEC §1).
+//! every `Frozen` symbol (mass, inertia) is held constant (docs/mechanics.md#the-frozen-mass-rule).
 //!
 //! ```
 //! use varmass_symbolic::expr::{ExprPool, SymbolKind};

@@ -1,5 +1,5 @@
 //! Questions about an expression's symbols: which occur, and the polynomial degree in some
-//! of them (L must be at most quadratic in the velocities, SPEC §2).
+//! of them (L must be at most quadratic in the velocities, docs/dsl.md#kinetic-potential-lagrangian).
 
 use super::node::{Id, Node};
 use super::pool::ExprPool;

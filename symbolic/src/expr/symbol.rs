@@ -1,6 +1,6 @@
 //! Symbols and the table that names them.
 //!
-//! A symbol's *kind* decides how the frozen-mass calculus treats it (SPEC §1): `Frozen`
+//! A symbol's *kind* decides how the frozen-mass calculus treats it (docs/mechanics.md#the-frozen-mass-rule): `Frozen`
 //! and `Parameter` symbols have zero derivative under ∂* and d*/dt even where a mass law
 //! makes them depend on q or t.
 

@@ -1,5 +1,5 @@
 //! Mass laws and mass rates: closed laws m(q, t, m_s), ṁ for every mass, and the rates of
-//! the flows, checked against the mass law (ṁ = Q2 − Q1, SPEC §1).
+//! the flows, checked against the mass law (ṁ = Q2 − Q1, docs/mechanics.md#systems-bodies-and-flows).
 
 use std::collections::HashMap;
 

@@ -1,4 +1,4 @@
-//! Stage 3: from a parsed system to its derivation (SPEC §1, §3).
+//! Stage 3: from a parsed system to its derivation (docs/mechanics.md; ARCHITECTURE.md#stage-3-mechanics).
 //!
 //! [`derive`] runs the whole stage: it resolves names and lowers every expression into a
 //! checked [`Model`], derives every quantity into a [`Derivation`], then verifies the

@@ -1,5 +1,5 @@
 //! The checked model: every name resolved, every expression lowered, every declaration
-//! validated (SPEC §2). This is the input of the derivation; `build.rs` makes it.
+//! validated (docs/dsl.md). This is the input of the derivation; `build.rs` makes it.
 
 use std::collections::HashMap;
 

@@ -1,4 +1,4 @@
-//! The typed view of a DSL system (SPEC §2): statements and expressions, each with its
+//! The typed view of a DSL system (docs/dsl.md): statements and expressions, each with its
 //! [`Span`]. The AST is purely syntactic: names are not resolved here (that is the
 //! `mechanics` stage's job), so `x` in an expression is just [`Expr::Name`].
 
@@ -94,7 +94,7 @@ pub struct Statement {
     pub tags: Vec<Spanned<String>>,
 }
 
-/// The statements of SPEC §2.
+/// The statements of the DSL (docs/dsl.md#statements).
 #[derive(Clone, Debug, PartialEq)]
 pub enum StatementKind {
     /// `coordinates x, y`

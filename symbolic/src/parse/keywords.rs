@@ -1,4 +1,4 @@
-//! The DSL's keywords, named once (SPEC §2). The parser and the diagnostics use these
+//! The DSL's keywords, named once (docs/dsl.md). The parser and the diagnostics use these
 //! constants, never the literals.
 
 /// `coordinates x, y`

@@ -1,4 +1,4 @@
-//! Stage 1: DSL text → [`ast::SystemAst`], with positions (SPEC §2).
+//! Stage 1: DSL text → [`ast::SystemAst`], with positions (docs/dsl.md).
 //!
 //! One `nom` grammar serves the attribute macro (a string literal) and `.vms` files.
 //! Statements are separated by newlines or `;` (a newline inside an open `(` or `[`

@@ -1,4 +1,4 @@
-//! Test support: a small recursive-descent reader of the DSL expression grammar (SPEC §2)
+//! Test support: a small recursive-descent reader of the DSL expression grammar (docs/dsl.md#grammar)
 //! producing the parser's AST, so that tests can write expressions as text and exercise
 //! `lower` too. It stands in for the real nom parser, which is built elsewhere; it is
 //! independent of the engine's printer, so a display → read → lower round trip is a real

@@ -1,7 +1,7 @@
 //! The test systems, in the DSL.
 #![allow(dead_code)]
 
-/// The paper's sled, paper form (SPEC §2), with the checks of eqs. 21–24.
+/// The paper's sled, paper form (docs/dsl.md#the-sled-both-ways), with the checks of eqs. 21–24.
 pub const SLED_PAPER: &str = "
 coordinates x
 mass m = m0 + c*x

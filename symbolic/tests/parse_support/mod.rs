@@ -108,7 +108,7 @@ pub fn fuzz_cases(default: u32) -> u32 {
         .unwrap_or(default)
 }
 
-/// The paper's sled (SPEC §2), written with the impact force given directly.
+/// The paper's sled (docs/dsl.md#the-sled-both-ways), written with the impact force given directly.
 pub const SLED_PAPER: &str = "\
 # paper form
 coordinates x
@@ -118,7 +118,7 @@ force x: -f_d*m*g*cos(theta)
 impact x: -c*x'^2
 ";
 
-/// The same sled with a body and an inflow (SPEC §2).
+/// The same sled with a body and an inflow (docs/dsl.md#the-sled-both-ways).
 pub const SLED_BODY: &str = "\
 # body form: R2 derived from the inflow
 coordinates x

@@ -1,4 +1,4 @@
-//! The nom grammar of the DSL (SPEC §2).
+//! The nom grammar of the DSL (docs/dsl.md#grammar).
 //!
 //! ```text
 //! system    := { separator | [ tags ] statement }       separator := newline | `;`

@@ -1,4 +1,4 @@
-//! Statements (SPEC §2): one parser per statement form, dispatched on the head keyword.
+//! Statements (docs/dsl.md#statements): one parser per statement form, dispatched on the head keyword.
 
 use super::{Grammar, PResult, STATEMENT_LEVEL};
 use crate::parse::ast::{
