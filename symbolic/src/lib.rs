@@ -13,7 +13,7 @@
 //!    `#[variable_mass_system]` macro adds, straight-line code with shared subexpressions.
 //!
 //! Beside the stages, [`units`] checks the dimensions of a system that declares `units`,
-//! between name resolution and the derivation (see `docs/dsl-units.md`).
+//! between name resolution and the derivation (see `docs/dsl.md#units`).
 //!
 //! `ARCHITECTURE.md` at the repository root describes the stages and their invariants.
 //!

@@ -136,7 +136,7 @@ pub enum StatementKind {
         rhs: ExprNode,
     },
     /// `units x: m, g: m/s^2`: the unit of each name; with it, every term is
-    /// dimension-checked (see `docs/dsl-units.md`).
+    /// dimension-checked (see `docs/dsl.md#units`).
     Units(Vec<UnitDecl>),
 }
 

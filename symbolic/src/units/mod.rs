@@ -1,5 +1,5 @@
 //! Units and dimensions, checked before the derivation when a system has a `units`
-//! statement (see `docs/dsl-units.md`).
+//! statement (see `docs/dsl.md#units`).
 //!
 //! [`Dimension`] is the algebra (exact rational exponents of kg, m, s; rad dimensionless),
 //! [`unit_dimension`] reads a unit expression, and [`check_units`] applies every rule to
