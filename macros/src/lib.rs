@@ -24,7 +24,11 @@ use proc_macro::TokenStream;
 /// varmass DSL, and implements `varmass::core::VariableMassSystem` for the struct, whose
 /// `f64` fields are the parameters.
 ///
-/// See the `varmass` crate for the DSL and an example.
+/// The system is given inline, `#[variable_mass_system("coordinates x …")]`, or in a model
+/// file relative to the crate's directory, `#[variable_mass_system(file = "models/sled.vms")]`;
+/// options follow: `with = ["drag"]` selects tagged statements (optional effects) and
+/// `emit = [...]` the optional outputs (`"hamiltonian"`, `"power"`, `"jacobian"`,
+/// `"derivation"`; all without it). See the `varmass` crate for the DSL and an example.
 #[proc_macro_attribute]
 pub fn variable_mass_system(attr: TokenStream, item: TokenStream) -> TokenStream {
     expand::expand(attr.into(), item.into()).into()
