@@ -40,6 +40,13 @@ pub enum StepErrorKind {
         /// Index into [`VariableMassSystem::MASSES`].
         index: usize,
     },
+    /// The end of the next step, t + h, is not a finite time (it overflows f64). The error's
+    /// time and state are those at the start of the step, which are finite.
+    #[error("the time t + {step:e} is not finite")]
+    NonFiniteTime {
+        /// The step that would have been taken.
+        step: f64,
+    },
     /// The mass matrix ∂²L/∂q̇² is singular here, so q̇ cannot be recovered from p.
     #[error("the mass matrix is singular")]
     SingularMassMatrix,

@@ -142,10 +142,22 @@ impl<const S: usize> Progress<S> {
     /// time when that is (nearly) less. The `bool` says whether the step reaches it. A
     /// remainder within a millionth of a step of the stop time is absorbed into this step
     /// rather than left as a sliver step that only rounding would create.
-    pub(crate) fn next_step(&self, nominal: f64) -> (f64, bool) {
-        match self.stop_time {
+    ///
+    /// Fails with [`StepErrorKind::NonFiniteTime`] at the current time and state when the end
+    /// of the step would not be a finite time (t + h overflows f64).
+    pub(crate) fn next_step(&self, nominal: f64) -> Result<(f64, bool), StepError<S>> {
+        let (step, reaches) = match self.stop_time {
             Some(stop) if self.time + nominal * (1.0 + 1e-6) >= stop => (stop - self.time, true),
             _ => (nominal, false),
+        };
+        if (self.time + step).is_finite() {
+            Ok((step, reaches))
+        } else {
+            Err(StepError::new(
+                self.time,
+                self.state,
+                StepErrorKind::NonFiniteTime { step },
+            ))
         }
     }
 

@@ -7,8 +7,8 @@ use nalgebra::Complex;
 use support::problems::{KeplerProblem, OscillatorProblem, RocketProblem};
 use support::{solve, Method, Problem};
 use varmass_core::steppers::{
-    AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
-    ImplicitMidpointConfig, NewtonConfig, StepControl,
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
+    ImplicitMidpoint, ImplicitMidpointConfig, NewtonConfig, StepControl,
 };
 use varmass_core::{run, RunConfig, StepError, StepErrorKind, Stepper};
 
@@ -246,4 +246,47 @@ fn newton_failure_is_a_typed_error() {
         "{error:?}"
     );
     assert_eq!((error.time, error.state), (0.0, problem.initial_state()));
+}
+
+/// A step whose end t + h overflows f64 is refused before it is taken, at the (finite)
+/// start time and state, instead of accepting a state at t = ∞ (found by the `evaluate`
+/// fuzz target: a start at 1.7e308 with h = 1e300 reported a failure "at t = inf").
+#[test]
+fn a_step_past_the_largest_time_is_a_typed_error_at_the_start() {
+    let problem = OscillatorProblem::standard();
+    let system = &problem.system;
+    let y0 = problem.exact(0.0);
+    let t0 = 1.79e308; // f64::MAX ≈ 1.7977e308: t0 + 1e306 overflows, t0 + 1e290 does not
+    let fixed = FixedStep { step: 1e306 };
+    let errors = [
+        ExplicitEuler::new(system, t0, y0, fixed).unwrap().step(),
+        ClassicalRk4::new(system, t0, y0, fixed).unwrap().step(),
+        DormandPrince::new(system, t0, y0, StepControl::Fixed(fixed))
+            .unwrap()
+            .step(),
+        Dop853::new(system, t0, y0, StepControl::Fixed(fixed))
+            .unwrap()
+            .step(),
+        ImplicitMidpoint::new(
+            system,
+            t0,
+            y0,
+            ImplicitMidpointConfig {
+                step: 1e306,
+                ..Default::default()
+            },
+        )
+        .unwrap()
+        .step(),
+    ];
+    for (method, result) in errors.into_iter().enumerate() {
+        let error = result.expect_err("a step to t = ∞ must fail");
+        assert_eq!(
+            error.kind,
+            StepErrorKind::NonFiniteTime { step: 1e306 },
+            "method {method}: {error:?}"
+        );
+        assert_eq!(error.time, t0, "method {method}");
+        assert_eq!(error.state, y0, "method {method}");
+    }
 }

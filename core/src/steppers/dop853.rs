@@ -468,14 +468,14 @@ where
             };
         }
         let StepControl::Adaptive(control) = self.control else {
-            let (h, reaches_stop) = self.progress.next_step(self.next_step);
+            let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
             let statistics = &mut self.progress.statistics;
             let attempt = attempt(self.system, statistics, (t0, &y0), &k1, h, None)?;
             let completion = self.complete((t0, &y0), h, &attempt)?;
             return self.accept(h, reaches_stop, attempt, completion);
         };
         loop {
-            let (h, reaches_stop) = self.progress.next_step(self.next_step);
+            let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
             if !resolvable(t0, h) {
                 let kind = StepErrorKind::StepSizeUnderflow { step: h };
                 return Err(StepError::new(t0, y0, kind));

@@ -420,7 +420,7 @@ where
             self.next_step = self.first_step(&k1);
         }
         loop {
-            let (h, reaches_stop) = self.progress.next_step(self.next_step);
+            let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
             if !resolvable(t0, h) {
                 let kind = StepErrorKind::StepSizeUnderflow { step: h };
                 return Err(StepError::new(t0, y0, kind));

@@ -66,7 +66,7 @@ where
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (h, reaches_stop) = self.progress.next_step(self.step);
+        let (h, reaches_stop) = self.progress.next_step(self.step)?;
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
         let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;

@@ -93,7 +93,7 @@ where
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (h, reaches_stop) = self.progress.next_step(self.step);
+        let (h, reaches_stop) = self.progress.next_step(self.step)?;
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
         let t_mid = t0 + 0.5 * h;

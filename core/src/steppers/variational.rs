@@ -210,7 +210,7 @@ where
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (h, reaches_stop) = self.progress.next_step(self.step);
+        let (h, reaches_stop) = self.progress.next_step(self.step)?;
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
         let system = self.system;
