@@ -48,7 +48,7 @@ pub enum EventCondition<'a, const S: usize> {
         /// The mass at which the event triggers.
         threshold: f64,
     },
-    /// g = state\[index\] − value: a coordinate, momentum or state mass reaching a value.
+    /// g = `state[index]` − value: a coordinate, momentum or state mass reaching a value.
     StateComponent {
         /// Index into the state `[q, p, m_s]`.
         index: usize,

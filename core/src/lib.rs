@@ -11,7 +11,7 @@
 //!   tight tolerances;
 //! * [`steppers::Sdirk4`], L-stable, order 4(3), adaptive or fixed, Newton on the
 //!   Jacobian: for stiff scenes (Dormand–Prince and DOP853 report stiffness in their
-//!   [`Statistics`](stepper::Statistics));
+//!   [`Statistics`]);
 //! * [`steppers::ImplicitMidpoint`], symplectic for constant masses, Newton on the Jacobian;
 //! * [`steppers::Variational`], the midpoint discretisation of the corrected Hamilton
 //!   principle.

@@ -1,11 +1,11 @@
 //! The `#[variable_mass_system("…")]` attribute macro of varmass.
 //!
 //! A thin entry point; the stages are files named after them (as in thiserror's `impl/`):
-//! [`ast`] reads the attribute and the struct, [`valid`] checks the struct and the names
-//! the generated code will bind, [`expand`] runs the symbolic pipeline (parse → derive →
-//! emit, in `varmass-symbolic`) and [`fallback`] emits a stub impl when anything fails, so
+//! `ast.rs` reads the attribute and the struct, `valid.rs` checks the struct and the names
+//! the generated code will bind, `expand.rs` runs the symbolic pipeline (parse → derive →
+//! emit, in `varmass-symbolic`) and `fallback.rs` emits a stub impl when anything fails, so
 //! one mistake does not cascade (its method signatures come from the emitter's own list,
-//! `varmass_symbolic::emit::REQUIRED`). Errors are collected in a [`ctxt::Ctxt`] and
+//! `varmass_symbolic::emit::REQUIRED`). Errors are collected in a `ctxt::Ctxt` and
 //! reported together.
 
 mod ast;

@@ -12,7 +12,7 @@
 //!
 //! [`TapeSystem<N, S>`] fixes the sizes and implements
 //! [`VariableMassSystem`](varmass_core::VariableMassSystem), so the core's steppers and
-//! [`run`](varmass_core::run) integrate a run-time model exactly as they integrate
+//! [`run`](fn@varmass_core::run::run) integrate a run-time model exactly as they integrate
 //! generated code: the same monomorphized stepper code, only the system differs.
 //!
 //! ```

@@ -13,7 +13,7 @@
 //!
 //! A Newton iteration that diverges or contracts too slowly is retried with a fresh
 //! Jacobian, then with half the step; when the step can shrink no further the step fails
-//! with [`StepError::NewtonDivergence`] at its start time.
+//! with a [`StepError`] of kind [`NewtonDivergence`](crate::StepErrorKind::NewtonDivergence) at its start time.
 
 mod coefficients;
 

@@ -1,6 +1,6 @@
 //! Stage 3: from a parsed system to its derivation (docs/mechanics.md; ARCHITECTURE.md#stage-3-mechanics).
 //!
-//! [`derive`] runs the whole stage: it resolves names and lowers every expression into a
+//! [`derive()`](fn@derive) runs the whole stage: it resolves names and lowers every expression into a
 //! checked [`Model`], derives every quantity into a [`Derivation`], then verifies the
 //! system's `check`s against it. Every problem is a [`Diagnostic`] with the position of the
 //! statement it is about.
@@ -58,7 +58,7 @@ pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec
     derive_for(ast, parameters, Outputs::FULL)
 }
 
-/// [`derive`], deriving only the optional quantities `outputs` asks for (the Jacobian is
+/// [`derive()`](fn@derive), deriving only the optional quantities `outputs` asks for (the Jacobian is
 /// `None` without [`Outputs::jacobian`]).
 pub fn derive_for(
     ast: &SystemAst,
