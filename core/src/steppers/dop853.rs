@@ -20,7 +20,7 @@ use nalgebra::SVector;
 use self::coefficients::*;
 use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
 use super::stiffness::StiffnessTest;
-use super::{FixedStep, StepControl};
+use super::StepControl;
 use crate::error::{StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
 use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
@@ -90,16 +90,9 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let (control, tolerance) = match control {
-            StepControl::Adaptive(adaptive) => {
-                let tolerance = adaptive.validated().map_err(|e| e.at(time, &state))?;
-                (control, Some(tolerance))
-            }
-            StepControl::Fixed(fixed) => {
-                FixedStep::validated(fixed.step).map_err(|e| e.at(time, &state))?;
-                (control, None)
-            }
-        };
+        let tolerance = control
+            .checked_tolerance()
+            .map_err(|e| e.at(time, &state))?;
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,

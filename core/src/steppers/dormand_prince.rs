@@ -162,6 +162,15 @@ impl Default for StepControl {
 }
 
 impl StepControl {
+    /// Checks the settings and returns the tolerance of the adaptive mode (`None` for fixed
+    /// steps): the check every stepper with a [`StepControl`] makes at construction.
+    pub(crate) fn checked_tolerance(&self) -> Result<Option<Tolerance>, ConfigError> {
+        match self {
+            Self::Adaptive(control) => control.validated().map(Some),
+            Self::Fixed(fixed) => FixedStep::validated(fixed.step).map(|_| None),
+        }
+    }
+
     /// Checks the settings.
     fn validated(self) -> Result<Mode, ConfigError> {
         match self {
