@@ -2,47 +2,17 @@
 //! per member, and a run's only allocations are its solution's vectors, which grow by
 //! doubling (so their count grows with the logarithm of the steps, not with the steps).
 
+#[path = "support/counting.rs"]
+mod counting;
 mod support;
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
+use counting::allocations;
 use nalgebra::Vector3;
 use support::systems::Rocket;
 use varmass_core::ensemble::rand::RngExt;
 use varmass_core::ensemble::{Ensemble, MemberRng};
 use varmass_core::steppers::{DormandPrince, FixedStep, StepControl};
 use varmass_core::{run, Event, RunConfig, StepError};
-
-/// Counts allocations made by the current thread only (see `allocation.rs`).
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator; the counter is a
-// const-initialised thread-local `Cell`, which needs no allocation and no destructor.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|count| count.set(count.get() + 1));
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|count| count.set(count.get() + 1));
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
 
 /// A burning rocket run with a fixed step `step` to t = 5 (so 5/step steps), with a mass
 /// event that does not trigger; observables: the final height and the step count.
