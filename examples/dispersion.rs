@@ -17,15 +17,7 @@ use varmass::core::ensemble::rand::RngExt;
 use varmass::core::ensemble::{Ensemble, MemberRng, Partial, Summary, SummaryConfig};
 use varmass::prelude::*;
 
-#[variable_mass_system(
-    "
-    coordinates y
-    mass m: state, rate -mu
-    body rocket: mass m, position [y]
-    potential m*g*y
-    outflow rocket: rate mu, relative_velocity [-u_e]
-"
-)]
+#[variable_mass_system(file = "models/rocket.vms")]
 struct Rocket {
     mu: f64,
     u_e: f64,
