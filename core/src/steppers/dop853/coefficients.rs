@@ -168,6 +168,61 @@ pub(crate) const D714: f64 = 0.96324553959188282948394950600e+02;
 pub(crate) const D715: f64 = -0.39177261675615439165231486172e+02;
 pub(crate) const D716: f64 = -0.14972683625798562581422125276e+03;
 
+/// The explicit stages 2–12 as a step evaluates them, in order: the node cᵢ and the
+/// non-zero aᵢⱼ as (j, aᵢⱼ), stages numbered from 1 as in the Fortran.
+pub(crate) const STAGE_ROWS: [(f64, &[(usize, f64)]); 11] = [
+    (C2, &[(1, A21)]),
+    (C3, &[(1, A31), (2, A32)]),
+    (C4, &[(1, A41), (3, A43)]),
+    (C5, &[(1, A51), (3, A53), (4, A54)]),
+    (C6, &[(1, A61), (4, A64), (5, A65)]),
+    (C7, &[(1, A71), (4, A74), (5, A75), (6, A76)]),
+    (C8, &[(1, A81), (4, A84), (5, A85), (6, A86), (7, A87)]),
+    (
+        C9,
+        &[(1, A91), (4, A94), (5, A95), (6, A96), (7, A97), (8, A98)],
+    ),
+    (
+        C10,
+        &[
+            (1, A101),
+            (4, A104),
+            (5, A105),
+            (6, A106),
+            (7, A107),
+            (8, A108),
+            (9, A109),
+        ],
+    ),
+    (
+        C11,
+        &[
+            (1, A111),
+            (4, A114),
+            (5, A115),
+            (6, A116),
+            (7, A117),
+            (8, A118),
+            (9, A119),
+            (10, A1110),
+        ],
+    ),
+    (
+        1.0,
+        &[
+            (1, A121),
+            (4, A124),
+            (5, A125),
+            (6, A126),
+            (7, A127),
+            (8, A128),
+            (9, A129),
+            (10, A1210),
+            (11, A1211),
+        ],
+    ),
+];
+
 #[cfg(test)]
 mod tests {
     //! The table against the order conditions it claims, in f64 (the decimals are not
@@ -187,56 +242,10 @@ mod tests {
                 a[row - 1][column - 1] = value;
             }
         };
-        set(2, &[(1, A21)]);
-        set(3, &[(1, A31), (2, A32)]);
-        set(4, &[(1, A41), (3, A43)]);
-        set(5, &[(1, A51), (3, A53), (4, A54)]);
-        set(6, &[(1, A61), (4, A64), (5, A65)]);
-        set(7, &[(1, A71), (4, A74), (5, A75), (6, A76)]);
-        set(8, &[(1, A81), (4, A84), (5, A85), (6, A86), (7, A87)]);
-        set(
-            9,
-            &[(1, A91), (4, A94), (5, A95), (6, A96), (7, A97), (8, A98)],
-        );
-        set(
-            10,
-            &[
-                (1, A101),
-                (4, A104),
-                (5, A105),
-                (6, A106),
-                (7, A107),
-                (8, A108),
-                (9, A109),
-            ],
-        );
-        set(
-            11,
-            &[
-                (1, A111),
-                (4, A114),
-                (5, A115),
-                (6, A116),
-                (7, A117),
-                (8, A118),
-                (9, A119),
-                (10, A1110),
-            ],
-        );
-        set(
-            12,
-            &[
-                (1, A121),
-                (4, A124),
-                (5, A125),
-                (6, A126),
-                (7, A127),
-                (8, A128),
-                (9, A129),
-                (10, A1210),
-                (11, A1211),
-            ],
-        );
+        // Rows 2–12 are the table the step runs.
+        for (row, (_, entries)) in STAGE_ROWS.iter().enumerate() {
+            set(row + 2, entries);
+        }
         let b = weights();
         for (column, value) in b.iter().enumerate() {
             a[12][column] = *value;
@@ -329,9 +338,12 @@ mod tests {
     #[test]
     fn the_nodes_are_the_row_sums() {
         let a = tableau();
-        let nodes = [
-            0.0, C2, C3, C4, C5, C6, C7, C8, C9, C10, C11, 1.0, 1.0, C14, C15, C16,
-        ];
+        // Nodes 2–12 as the step uses them (from `STAGE_ROWS`).
+        let mut nodes = [0.0; STAGES];
+        for (row, (c, _)) in STAGE_ROWS.iter().enumerate() {
+            nodes[row + 1] = *c;
+        }
+        (nodes[12], nodes[13], nodes[14], nodes[15]) = (1.0, C14, C15, C16);
         let worst = a
             .iter()
             .zip(nodes)
