@@ -8,14 +8,19 @@
 //! Dormand–Prince, DOP853 and SDIRK4, the error being that of the angle at 10 s against a
 //! tight explicit run.
 //!
-//! Writes a table to stdout, `docs/bench/work_precision.{csv,svg}` and
-//! `docs/bench/stiff.{csv,svg}`.
+//! Then the high-order end at equal final error (`equal_error.rs`): DOP853's evaluations
+//! and time against adaptive Dormand–Prince and `ode_solvers`' Dop853, each read off its
+//! curve at the sled's 1e-12, the rocket's 1e-11 and the Kepler orbit's 1e-10.
+//!
+//! Writes a table to stdout, `docs/bench/work_precision.{csv,svg}`,
+//! `docs/bench/equal_error.txt` and `docs/bench/stiff.{csv,svg}`.
 //!
 //! ```sh
 //! cargo bench -p varmass-benches --bench work_precision
 //! ```
 
 mod common;
+mod equal_error;
 mod plot;
 
 use std::fmt::Write as _;
@@ -474,6 +479,23 @@ fn csv(points: &[Point]) -> String {
     out
 }
 
+/// The equal-error table of the high-order end (see `equal_error.rs`) at the errors the
+/// comparison is made at: the sled's 1e-12, the rocket's 1e-11, the Kepler orbit's 1e-10
+/// (the criteria are judged on the sled and the orbit; the rocket is shown for reference).
+fn equal_error_summary(points: &[Point]) -> String {
+    let mut lines = vec![equal_error::header()];
+    let sled = SledProblem::standard();
+    let costs = equal_error::costs(&sled, points, 1e-12);
+    lines.extend(equal_error::rows(SledProblem::NAME, 1e-12, &costs, true));
+    let rocket = RocketProblem::standard();
+    let costs = equal_error::costs(&rocket, points, 1e-11);
+    lines.extend(equal_error::rows(RocketProblem::NAME, 1e-11, &costs, false));
+    let kepler = KeplerProblem::standard();
+    let costs = equal_error::costs(&kepler, points, 1e-10);
+    lines.extend(equal_error::rows(KeplerProblem::NAME, 1e-10, &costs, true));
+    lines.join("\n") + "\n"
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "{:<24} {:<20} {:>14} {:>10} {:>12} {:>10} {:>8} {:>8}",
@@ -500,6 +522,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "wrote {}",
         folder.join("work_precision.{csv,svg}").display()
     );
+    let summary = equal_error_summary(&points);
+    println!("{summary}");
+    std::fs::write(folder.join("equal_error.txt"), summary)?;
 
     let mut stiff_points = Vec::new();
     stiff_sweep(&mut stiff_points)?;
