@@ -45,19 +45,38 @@ fn observed_order<P: Problem<N, S>, const N: usize, const S: usize>(
     (coarse / fine).log2()
 }
 
-/// Eighth order ± 0.3, with step counts where the error is well above rounding (≥ 1e-11).
-/// Measured: oscillator 8.01 (16 → 32 steps), rocket 7.87 (12 → 24; 7.58 at 6 → 12, where
-/// the 1/m growth towards burn-out is not yet resolved), Kepler 8.09 (20 → 40). The
-/// eccentric orbit's error constant (its periapsis passage) still varies at finer steps:
-/// Kepler measures 7.30 at 40 → 80 and 7.42 at 80 → 160, the last near rounding (8e-14);
-/// a seventh-order method would give 7.0 at most, and the tableau test checks every
-/// condition to order 8 exactly.
+/// The Kepler orbit's first quarter period from periapsis (through the periapsis passage,
+/// the fastest part of the orbit).
+fn kepler_quarter_orbit() -> KeplerProblem {
+    let mut problem = KeplerProblem::standard();
+    problem.end_time = 0.25 * problem.period();
+    problem
+}
+
+/// Eighth order ± 0.3, each problem at step counts in its asymptotic range (where the
+/// observed order settles as the steps shrink) and above its rounding floor. Measured:
+///
+/// * oscillator 8.01 (16 → 32 steps; 1.5e-10 → 5.9e-13, floor ~1e-14);
+/// * rocket 7.89 (12 → 24; 4.7e-8 → 2.0e-10; 7.58 at 6 → 12, where the 1/m growth towards
+///   burn-out is not yet resolved). Its error is absolute in y ~ 1e3, so its floor is ~1e-11:
+///   24 → 48 is already on it;
+/// * Kepler, first quarter orbit, 7.94 (20 → 40; 4.8e-11 → 1.9e-13, floor ~2e-15). In steps
+///   of √2 from 10 to 56 steps it reads 7.88, 7.85, 7.92, 7.95, 8.20 (the last on the floor).
+///
+/// The orbit's three quarters (`KeplerProblem::standard`) are not in their asymptotic range
+/// anywhere above rounding: in steps of √2 from 14 to 160 steps the observed order reads
+/// 10.3, 7.6, 8.6, 7.3, 7.3, 7.6, 7.4 (errors 6e-7 … 7e-14), and the floor, ~1.5e-14, comes at
+/// 226 steps, before it settles. Not a defect of this code: `ode_solvers`' DOP853, written
+/// independently from the same paper, gives the same errors to five digits at fixed steps
+/// on the benchmarks' three-orbit Kepler problem, where the observed order wanders from 9 to
+/// 12 and back to 7.4 before its floor. Half an orbit reads 7.6 over 40 … 113 steps;
+/// only the quarter orbit reaches 8 above the floor, so it is the Kepler case here.
 #[test]
 fn fixed_steps_converge_with_order_eight() {
     let orders = [
         observed_order(&OscillatorProblem::standard(), 16),
         observed_order(&RocketProblem::standard(), 12),
-        observed_order(&KeplerProblem::standard(), 20),
+        observed_order(&kepler_quarter_orbit(), 20),
     ];
     eprintln!("orders {orders:?}");
     for order in orders {
