@@ -368,7 +368,7 @@ where
         &mut self,
         h: f64,
         reaches_stop: bool,
-        attempt: Attempt<S>,
+        attempt: &Attempt<S>,
         completion: Completion<S>,
     ) -> Result<StepOutcome, StepError<S>> {
         let outcome = self
@@ -473,7 +473,7 @@ where
             let statistics = &mut self.progress.statistics;
             let attempt = attempt(self.system, statistics, (t0, &y0), &k1, h, None)?;
             let completion = self.complete((t0, &y0), h, &attempt)?;
-            return self.accept(h, reaches_stop, attempt, completion);
+            return self.accept(h, reaches_stop, &attempt, completion);
         };
         loop {
             let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
@@ -484,8 +484,9 @@ where
             let statistics = &mut self.progress.statistics;
             let tolerance = self.tolerance.as_ref();
             let trial = attempt(self.system, statistics, (t0, &y0), &k1, h, tolerance);
+            // Borrowed, not moved out: a step's stages are a few hundred bytes.
             let attempt = match trial {
-                Ok(attempt) => attempt,
+                Ok(ref attempt) => attempt,
                 // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
                 // matrix) is a step too long, not yet a failure: shrink and retry.
                 Err(error) => {
@@ -507,7 +508,7 @@ where
                 self.shrink_after(h, factor, underflow)?;
                 continue;
             }
-            let completion = match self.complete((t0, &y0), h, &attempt) {
+            let completion = match self.complete((t0, &y0), h, attempt) {
                 Ok(completion) => completion,
                 Err(error) => {
                     self.shrink_after(h, control.min_factor, error)?;
