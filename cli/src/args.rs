@@ -63,7 +63,8 @@ pub struct RunArgs {
     /// The end time.
     #[arg(long, value_name = "T")]
     pub until: f64,
-    /// Stop at the first crossing of a coordinate, velocity or mass: 'NAME = VALUE'.
+    /// Stop at the first crossing of a recorded quantity through a value: 'NAME = VALUE'
+    /// (either way), 'NAME > VALUE' (rising through it), 'NAME < VALUE' (falling).
     #[arg(long = "stop-when", value_name = "CONDITION")]
     pub stop_when: Vec<String>,
     /// The stepper.

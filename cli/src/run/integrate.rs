@@ -8,8 +8,7 @@ use varmass::core::steppers::{
     ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
 };
 use varmass::core::{
-    run, Direction, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper,
-    StopReason,
+    run, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper, StopReason,
 };
 use varmass::interpret::{Program, TapeSystem};
 
@@ -137,8 +136,8 @@ where
         .iter()
         .zip(&watchers)
         .map(|(c, w)| match c.observable {
-            Observable::Coordinate(a) => Event::state_reaches(a, c.value, Direction::Either),
-            _ => Event::function(w.as_ref(), Direction::Either, EventAction::Stop),
+            Observable::Coordinate(a) => Event::state_reaches(a, c.value, c.direction),
+            _ => Event::function(w.as_ref(), c.direction, EventAction::Stop),
         })
         .collect();
     let mut stepper = Watched::new(stepper, plan.from, plan.until);
