@@ -4,8 +4,8 @@
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{
-    AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
-    ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
+    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
 };
 use varmass::core::{
     run, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper, StopReason,
@@ -39,21 +39,39 @@ pub fn integrate<const N: usize, const S: usize>(
     let start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
     let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, e));
     let (points, stopped_by, statistics) = match (plan.method, plan.steps) {
-        (Method::DormandPrince, steps) => {
-            let control = match steps {
-                Steps::Adaptive(tol) => StepControl::Adaptive(AdaptiveControl {
-                    relative_tolerance: tol,
-                    absolute_tolerance: tol,
-                    ..AdaptiveControl::default()
-                }),
-                Steps::Fixed(step) => StepControl::Fixed(FixedStep { step }),
-            };
-            drive(
+        (Method::DormandPrince, steps) => drive(
+            &system,
+            DormandPrince::new(
                 &system,
-                DormandPrince::new(&system, t0, start, control).map_err(fail)?,
-                plan,
+                t0,
+                start,
+                control(steps, AdaptiveControl::default()),
             )
-        }
+            .map_err(fail)?,
+            plan,
+        ),
+        (Method::Dop853, steps) => drive(
+            &system,
+            Dop853::new(
+                &system,
+                t0,
+                start,
+                control(steps, AdaptiveControl::dop853()),
+            )
+            .map_err(fail)?,
+            plan,
+        ),
+        (Method::Sdirk4, steps) => drive(
+            &system,
+            Sdirk4::new(
+                &system,
+                t0,
+                start,
+                control(steps, AdaptiveControl::sdirk4()),
+            )
+            .map_err(fail)?,
+            plan,
+        ),
         (Method::Rk4, steps) => {
             let config = FixedStep { step: step(steps) };
             drive(
@@ -100,6 +118,19 @@ pub fn integrate<const N: usize, const S: usize>(
         statistics,
         program: system.into_program(),
     })
+}
+
+/// The step control of an adaptive method: `defaults` (the method's own safety and step
+/// factors) at the tolerance asked for, or the fixed step.
+fn control(steps: Steps, defaults: AdaptiveControl) -> StepControl {
+    match steps {
+        Steps::Adaptive(tol) => StepControl::Adaptive(AdaptiveControl {
+            relative_tolerance: tol,
+            absolute_tolerance: tol,
+            ..defaults
+        }),
+        Steps::Fixed(step) => StepControl::Fixed(FixedStep { step }),
+    }
 }
 
 /// The step of a fixed-step method (the plan guarantees one; the adaptive tolerance never

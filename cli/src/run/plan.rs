@@ -24,7 +24,7 @@ pub struct StopWhen {
 /// How the stepper takes its steps.
 #[derive(Clone, Copy, Debug)]
 pub enum Steps {
-    /// Dormand–Prince with error control at this tolerance (relative and absolute).
+    /// An adaptive method with error control at this tolerance (relative and absolute).
     Adaptive(f64),
     /// A fixed step.
     Fixed(f64),
@@ -51,7 +51,7 @@ pub struct Plan {
     pub record: Vec<(String, Observable)>,
 }
 
-/// The default tolerance of Dormand–Prince when `--tol` is not given.
+/// The default tolerance of the adaptive methods when `--tol` is not given.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
 /// Parses `--set` into (name, value) pairs.
@@ -171,10 +171,9 @@ fn positive(value: f64, flag: &str) -> Result<f64, CliError> {
 fn steps(args: &RunArgs) -> Result<Steps, CliError> {
     match (args.method, args.step, args.tol) {
         (_, Some(h), _) => Ok(Steps::Fixed(positive(h, "--step")?)),
-        (Method::DormandPrince, None, tol) => Ok(Steps::Adaptive(positive(
-            tol.unwrap_or(DEFAULT_TOLERANCE),
-            "--tol",
-        )?)),
+        (Method::DormandPrince | Method::Dop853 | Method::Sdirk4, None, tol) => Ok(
+            Steps::Adaptive(positive(tol.unwrap_or(DEFAULT_TOLERANCE), "--tol")?),
+        ),
         (method, None, _) => Err(CliError::Input(format!(
             "--method {} takes a fixed step: give --step H",
             clap::ValueEnum::to_possible_value(&method)
