@@ -1,5 +1,5 @@
 //! The diagonally implicit Runge–Kutta stepper shared by [`super::Sdirk4`] (Hairer &
-//! Wanner's SDIRK4) and [`super::Esdirk43`] (Kennedy & Carpenter's ESDIRK4(3)6L[2]SA):
+//! Wanner's SDIRK4) and [`super::Esdirk43`] (Kennedy & Carpenter's ESDIRK4(3)6L\[2\]SA):
 //! one implementation, two tableaus ([`DirkTableau`], in the stage increment form of
 //! `sdirk4.f` extended to an explicit first stage).
 //!

@@ -1,6 +1,6 @@
-//! ESDIRK4(3)6L[2]SA: Kennedy & Carpenter's L-stable, stiffly accurate explicit-first-stage
+//! ESDIRK4(3)6L\[2\]SA: Kennedy & Carpenter's L-stable, stiffly accurate explicit-first-stage
 //! singly diagonally implicit Runge–Kutta pair of orders 4 and 3 (the implicit half of
-//! ARK4(3)6L[2]SA; SUNDIALS' `ARK436L2SA_DIRK_6_3_4`, OrdinaryDiffEq's `KenCarp4`), with
+//! ARK4(3)6L\[2\]SA; SUNDIALS' `ARK436L2SA_DIRK_6_3_4`, OrdinaryDiffEq's `KenCarp4`), with
 //! its published third-order dense output. Coefficients and sources:
 //! `esdirk43/coefficients.rs`.
 //!
@@ -19,7 +19,7 @@ use self::coefficients::{a, dense_weights, row, value, EMBEDDED};
 use super::dirk::{explicit_parts, on_increments, rate_transform};
 use super::dirk::{Dirk, DirkMethod, DirkTableau};
 
-/// The ESDIRK4(3)6L[2]SA stepper on the state `[q, p, m_s]`: [`Dirk`] with the tableau
+/// The ESDIRK4(3)6L\[2\]SA stepper on the state `[q, p, m_s]`: [`Dirk`] with the tableau
 /// of [`Esdirk43Method`]. Use [`super::AdaptiveControl::sdirk4`] for its step-size
 /// control.
 pub type Esdirk43<'a, Sys, const N: usize, const S: usize> = Dirk<'a, Sys, Esdirk43Method, N, S, 6>;

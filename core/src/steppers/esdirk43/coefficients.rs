@@ -1,11 +1,12 @@
-//! The coefficients of ESDIRK4(3)6L[2]SA, the implicit half of Kennedy & Carpenter's
-//! ARK4(3)6L[2]SA (Appl. Numer. Math. 44 (2003) 139–181, Table 6 and the dense-output
-//! b*ᵢⱼ of its appendix): six stages, the first explicit, γ = 1/4,
+//! The coefficients of ESDIRK4(3)6L\[2\]SA, the implicit half of Kennedy & Carpenter's
+//! ARK4(3)6L\[2\]SA (Appl. Numer. Math. 44 (2003) 139–181, with its dense-output
+//! coefficients b*ᵢⱼ): six stages, the first explicit, γ = 1/4,
 //! c = (0, 1/2, 83/250, 31/50, 17/20, 1), order 4, stiffly accurate and L-stable, stage
 //! order 2, an embedded third-order solution and a third-order dense output.
 //!
-//! The rationals are those of SUNDIALS ARKODE's `ARK436L2SA_DIRK_6_3_4`
-//! (<https://github.com/LLNL/sundials/blob/aaf8abe8b2856e778ae259f4141f94f772df1f0b/src/arkode/arkode_butcher_dirk.c>)
+//! The rationals are those of SUNDIALS ARKODE's `ARKODE_ARK436L2SA_DIRK_6_3_4`
+//! (<https://github.com/LLNL/sundials/blob/86245688d1547b5fc600d592d8167e201e88f3cb/src/arkode/arkode_butcher_dirk.def>,
+//! loaded by `arkode_butcher_dirk.c`)
 //! and OrdinaryDiffEq's `KenCarp4Tableau`; the dense-output coefficients, which ARKODE does
 //! not carry, are PETSc's `binterpt` of `TSARKIMEX4`
 //! (<https://github.com/petsc/petsc/blob/9ace16cde02cabf8d09861e743518d008f430653/src/ts/impls/arkimex/arkimex.c>),

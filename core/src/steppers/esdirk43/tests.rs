@@ -1,4 +1,4 @@
-//! The tableau of ESDIRK4(3)6L[2]SA against its order conditions (exact rationals for
+//! The tableau of ESDIRK4(3)6L\[2\]SA against its order conditions (exact rationals for
 //! A, b, b̂; f64 for the dense output, whose published coefficients are rational
 //! approximations), its L-stability, and the stage increment form the stepper runs on.
 
