@@ -12,6 +12,12 @@
 //! stage 2). Newton, the Jacobian reuse, the error estimate filtered through
 //! (I − hγJ)⁻¹ and the step-size control are those of SDIRK4: both are the one stepper
 //! [`Dirk`].
+//!
+//! Its embedded third-order solution is accurate by design, so the error estimate is less
+//! conservative than SDIRK4's: at the same tolerance it takes longer steps and ends with a
+//! larger error (Kepler orbit: 75× the tolerance against SDIRK4's 3×; stiff pendulum:
+//! about 120×, proportional to the tolerance). Ask for about two orders below the error
+//! you need.
 
 mod coefficients;
 
