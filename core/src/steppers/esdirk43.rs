@@ -15,9 +15,9 @@
 //!
 //! Its embedded third-order solution is accurate by design, so the error estimate is less
 //! conservative than SDIRK4's: at the same tolerance it takes longer steps and ends with a
-//! larger error (Kepler orbit at 1e-9: 75× the tolerance against SDIRK4's 2.7×; stiff pendulum:
-//! about 120×, proportional to the tolerance). Ask for about two orders below the error
-//! you need.
+//! larger error (Kepler orbit at 1e-9: 75× the tolerance against SDIRK4's 2.7×; stiff
+//! pendulum: about 120×, proportional to the tolerance). Ask for about two orders below
+//! the error you need.
 
 mod coefficients;
 
