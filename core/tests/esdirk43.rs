@@ -208,3 +208,32 @@ fn newton_failure_is_a_typed_error_at_the_start_of_the_step() {
         StepErrorKind::InvalidConfiguration { .. }
     ));
 }
+
+/// A step too small to advance the time is a typed underflow error at the start time,
+/// carrying the step: at t = 1e20 a step of 1e-3 rounds away (the spacing of doubles
+/// there is 16 384). SDIRK4 shares the code path; both are checked.
+#[test]
+fn a_step_that_cannot_advance_the_time_is_a_typed_underflow() {
+    let problem = OscillatorProblem::standard();
+    let start_time = 1e20;
+    let control = StepControl::Adaptive(AdaptiveControl {
+        initial_step: Some(1e-3),
+        ..AdaptiveControl::sdirk4()
+    });
+    let start = problem.exact(0.0);
+    let esdirk = Esdirk43::new(&problem.system, start_time, start, control).unwrap();
+    let sdirk = varmass_core::steppers::Sdirk4::new(&problem.system, start_time, start, control);
+    let errors = [
+        integrate(esdirk, start_time + 1e6).unwrap_err(),
+        integrate(sdirk.unwrap(), start_time + 1e6).unwrap_err(),
+    ];
+    for error in errors {
+        assert_eq!(error.time, start_time, "{error:?}");
+        assert_eq!(
+            error.kind,
+            StepErrorKind::StepSizeUnderflow { step: 1e-3 },
+            "{error:?}"
+        );
+        assert_eq!(error.state, start);
+    }
+}
