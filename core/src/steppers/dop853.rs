@@ -18,6 +18,7 @@ mod coefficients;
 use nalgebra::SVector;
 
 use self::coefficients::*;
+use super::control::ControlState;
 use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
 use super::stiffness::StiffnessTest;
 use super::StepControl;
@@ -40,19 +41,11 @@ pub struct Dop853<'a, Sys, const N: usize, const S: usize> {
     tolerance: Option<Tolerance>,
     /// Whether the three extra stages of the dense output are computed.
     dense: bool,
-    /// The size of the next step to try (0 until the first step chooses it).
-    next_step: f64,
-    /// The size of the last accepted step, for the dense output.
-    last_step: f64,
+    /// Next and last step, the controller's memory, the FSAL rate.
+    memory: ControlState<S>,
     /// The coefficients of the dense output over the last accepted step (`CONT` of
     /// `dop853.f`).
     continuous: [SVector<f64, S>; 8],
-    /// The rate at the current state (FSAL), if known.
-    current_rate: Option<SVector<f64, S>>,
-    /// The PI controller's memory of the last accepted error.
-    previous_error: f64,
-    /// Whether the last attempt was rejected, so the next step may not grow.
-    last_rejected: bool,
     stiffness: StiffnessTest,
 }
 
@@ -99,12 +92,8 @@ where
             control,
             tolerance,
             dense: true,
-            next_step: 0.0,
-            last_step: 0.0,
+            memory: ControlState::new(),
             continuous: [SVector::zeros(); 8],
-            current_rate: None,
-            previous_error: 1e-4,
-            last_rejected: false,
             stiffness: StiffnessTest::default(),
         })
     }
@@ -124,7 +113,7 @@ where
         if !self.dense {
             return None;
         }
-        let h = self.last_step;
+        let h = self.memory.last_step;
         if h <= 0.0 {
             return Some(*self.progress.state());
         }
@@ -137,7 +126,7 @@ where
 
     /// The size of the step the stepper will try next (0 before the first step).
     pub fn proposed_step(&self) -> f64 {
-        self.next_step
+        self.memory.next_step
     }
 }
 
@@ -386,20 +375,8 @@ where
         if let Some(continuous) = completion.continuous {
             self.continuous = continuous;
         }
-        self.current_rate = Some(completion.rate);
-        self.last_step = h;
+        self.memory.accepted(h, completion.rate);
         Ok(outcome)
-    }
-
-    /// The rate at the current state, evaluated once and then carried from step to step.
-    fn current_rate(&mut self) -> Result<SVector<f64, S>, StepError<S>> {
-        if let Some(rate) = self.current_rate {
-            return Ok(rate);
-        }
-        let (t0, y0) = (self.progress.time(), *self.progress.state());
-        let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;
-        self.current_rate = Some(rate);
-        Ok(rate)
     }
 
     /// Shrinks the step after a failed attempt; `Err(error)` once the step would underflow.
@@ -409,10 +386,8 @@ where
         factor: f64,
         error: StepError<S>,
     ) -> Result<(), StepError<S>> {
-        self.next_step = h * factor;
-        self.last_rejected = true;
-        self.progress.statistics.rejected_steps += 1;
-        if resolvable(self.progress.time(), self.next_step) {
+        self.memory.reject(h * factor, &mut self.progress);
+        if resolvable(self.progress.time(), self.memory.next_step) {
             Ok(())
         } else {
             Err(error)
@@ -440,10 +415,7 @@ where
 
     fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
         self.progress.restart(self.system, time, state)?;
-        self.current_rate = None;
-        self.last_step = 0.0;
-        self.previous_error = 1e-4;
-        self.last_rejected = false;
+        self.memory.restart();
         Ok(())
     }
 
@@ -454,9 +426,9 @@ where
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
-        let k1 = self.current_rate()?;
-        if self.next_step <= 0.0 {
-            self.next_step = match self.control {
+        let k1 = self.memory.rate_at_start(self.system, &mut self.progress)?;
+        if self.memory.next_step <= 0.0 {
+            self.memory.next_step = match self.control {
                 StepControl::Fixed(fixed) => fixed.step,
                 StepControl::Adaptive(control) => match control.initial_step {
                     Some(h) => h.min(control.max_step),
@@ -469,14 +441,14 @@ where
             };
         }
         let StepControl::Adaptive(control) = self.control else {
-            let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
+            let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
             let statistics = &mut self.progress.statistics;
             let attempt = attempt(self.system, statistics, (t0, &y0), &k1, h, None)?;
             let completion = self.complete((t0, &y0), h, &attempt)?;
             return self.accept(h, reaches_stop, &attempt, completion);
         };
         loop {
-            let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
+            let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
             if !resolvable(t0, h) {
                 let kind = StepErrorKind::StepSizeUnderflow { step: h };
                 return Err(StepError::new(t0, y0, kind));
@@ -516,23 +488,16 @@ where
                 }
             };
             // (β = 0, `dop853.f`'s default, needs no second power.)
-            let memory = if control.beta == 0.0 {
+            let previous = if control.beta == 0.0 {
                 1.0
             } else {
-                powf(self.previous_error, control.beta)
+                powf(self.memory.previous_error, control.beta)
             };
-            let factor = fac11 / memory / control.safety;
+            let factor = fac11 / previous / control.safety;
             let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
-            let mut next = h / factor;
-            if self.last_rejected {
-                next = next.min(h);
-            }
-            self.previous_error = error.max(1e-4);
-            self.last_rejected = false;
+            let next = self.memory.after_acceptance(h, h / factor, error);
             let outcome = self.accept(h, reaches_stop, attempt, completion)?;
-            if !reaches_stop || next > self.next_step {
-                self.next_step = next.min(control.max_step);
-            }
+            self.memory.propose(next, reaches_stop, control.max_step);
             return Ok(outcome);
         }
     }

@@ -27,6 +27,7 @@
 
 use nalgebra::SVector;
 
+use super::control::ControlState;
 use super::stiffness::StiffnessTest;
 use super::FixedStep;
 use crate::error::{ConfigError, StepError, StepErrorKind};
@@ -195,18 +196,10 @@ pub struct DormandPrince<'a, Sys, const N: usize, const S: usize> {
     system: &'a Sys,
     progress: Progress<S>,
     mode: Mode,
-    /// The size of the next step to try (0 until the first step chooses it).
-    next_step: f64,
-    /// The size of the last accepted step, for the dense output.
-    last_step: f64,
+    /// Next and last step, the controller's memory, the FSAL rate.
+    memory: ControlState<S>,
     /// The stages k₁…k₇ of the last accepted step.
     stages: [SVector<f64, S>; 7],
-    /// The rate at the current state (FSAL), if known.
-    current_rate: Option<SVector<f64, S>>,
-    /// The PI controller's memory of the last accepted error.
-    previous_error: f64,
-    /// Whether the last attempt was rejected, so the next step may not grow.
-    last_rejected: bool,
     /// Hairer's stiffness test on stages 6 and 7 (both at t₀ + h).
     stiffness: StiffnessTest,
 }
@@ -236,12 +229,8 @@ where
             system,
             progress: Progress::new(system, time, state)?,
             mode,
-            next_step: 0.0,
-            last_step: 0.0,
+            memory: ControlState::new(),
             stages: [SVector::zeros(); 7],
-            current_rate: None,
-            previous_error: 1e-4,
-            last_rejected: false,
             stiffness: StiffnessTest::default(),
         })
     }
@@ -250,7 +239,7 @@ where
     /// evaluated at `time` (meant for `time` within the step; outside it extrapolates).
     /// Before the first step it returns the current state.
     pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
-        let h = self.last_step;
+        let h = self.memory.last_step;
         let y0 = self.progress.previous_state();
         let y1 = self.progress.state();
         if h <= 0.0 {
@@ -268,7 +257,7 @@ where
 
     /// The size of the step the stepper will try next (0 before the first step).
     pub fn proposed_step(&self) -> f64 {
-        self.next_step
+        self.memory.next_step
     }
 
     /// The six new stages and the new state of a step of size `h` from `(t0, y0)`.
@@ -410,10 +399,7 @@ where
 
     fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
         self.progress.restart(self.system, time, state)?;
-        self.current_rate = None;
-        self.last_step = 0.0;
-        self.previous_error = 1e-4;
-        self.last_rejected = false;
+        self.memory.restart();
         Ok(())
     }
 
@@ -424,12 +410,12 @@ where
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         let t0 = self.progress.time();
         let y0 = *self.progress.state();
-        let k1 = self.rate_at_start()?;
-        if self.next_step <= 0.0 {
-            self.next_step = self.first_step(&k1);
+        let k1 = self.memory.rate_at_start(self.system, &mut self.progress)?;
+        if self.memory.next_step <= 0.0 {
+            self.memory.next_step = self.first_step(&k1);
         }
         loop {
-            let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
+            let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
             if !resolvable(t0, h) {
                 let kind = StepErrorKind::StepSizeUnderflow { step: h };
                 return Err(StepError::new(t0, y0, kind));
@@ -461,18 +447,6 @@ impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
 where
     Sys: VariableMassSystem<N, S>,
 {
-    /// The rate k₁ at the current state: the last stage of the previous step (FSAL), or
-    /// evaluated after a start or restart.
-    fn rate_at_start(&mut self) -> Result<SVector<f64, S>, StepError<S>> {
-        if let Some(rate) = self.current_rate {
-            return Ok(rate);
-        }
-        let (time, state) = (self.progress.time(), *self.progress.state());
-        let rate = state_rate(self.system, &mut self.progress.statistics, time, &state)?;
-        self.current_rate = Some(rate);
-        Ok(rate)
-    }
-
     /// The size of the first step: the fixed step, or the adaptive control's initial step,
     /// or one chosen from the problem.
     fn first_step(&mut self, k1: &SVector<f64, S>) -> f64 {
@@ -515,7 +489,7 @@ where
                 // matrix) is a step too long, not yet a failure: shrink and retry. If the
                 // step underflows, report the cause rather than the underflow.
                 self.reject(h * control.min_factor);
-                if resolvable(self.progress.time(), self.next_step) {
+                if resolvable(self.progress.time(), self.memory.next_step) {
                     Ok(None)
                 } else {
                     Err(error)
@@ -535,27 +509,18 @@ where
         attempt: Attempt<S>,
     ) -> Result<StepOutcome, StepError<S>> {
         let alpha = 0.2 - 0.75 * control.beta;
-        let factor =
-            powf(attempt.error, alpha) / powf(self.previous_error, control.beta) / control.safety;
+        let previous = powf(self.memory.previous_error, control.beta);
+        let factor = powf(attempt.error, alpha) / previous / control.safety;
         let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
-        let mut next = h / factor;
-        if self.last_rejected {
-            next = next.min(h);
-        }
-        self.previous_error = attempt.error.max(1e-4);
-        self.last_rejected = false;
+        let next = self.memory.after_acceptance(h, h / factor, attempt.error);
         let outcome = self.accept(h, reaches_stop, attempt)?;
-        if !reaches_stop || next > self.next_step {
-            self.next_step = next.min(control.max_step);
-        }
+        self.memory.propose(next, reaches_stop, control.max_step);
         Ok(outcome)
     }
 
     /// Rejects an attempt: the next attempt has size `next`.
     fn reject(&mut self, next: f64) {
-        self.next_step = next;
-        self.last_rejected = true;
-        self.progress.statistics.rejected_steps += 1;
+        self.memory.reject(next, &mut self.progress);
     }
 
     fn accept(
@@ -577,8 +542,7 @@ where
         );
         statistics.stiffness_detected |= stiff;
         self.stages = attempt.stages;
-        self.current_rate = Some(attempt.stages[6]);
-        self.last_step = h;
+        self.memory.accepted(h, attempt.stages[6]);
         Ok(outcome)
     }
 }
