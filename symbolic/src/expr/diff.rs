@@ -11,7 +11,7 @@ use super::node::{Id, Node};
 use super::pool::ExprPool;
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// d*/dt was asked of an expression containing a symbol whose rate is not a symbol:
 /// an acceleration (there is no q''') or a momentum (ṗ comes from the canonical equations,
@@ -88,7 +88,7 @@ impl ExprPool {
 
     fn derivative(&mut self, e: Id, leaf: Leaf) -> Result<Id, UnsupportedDerivative> {
         let zero = self.int(0);
-        let mut d: HashMap<Id, Id> = HashMap::new();
+        let mut d: FxHashMap<Id, Id> = FxHashMap::default();
         for id in self.reachable(&[e], true) {
             let of = |c: &Id| d.get(c).copied().unwrap_or(zero);
             let value = match self.node(id).clone() {

@@ -3,7 +3,7 @@
 use super::node::{Id, Node, Number};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind, SymbolTable};
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// A flat, hash-consed arena of expressions (after egg's `RecExpr`).
 ///
@@ -22,9 +22,9 @@ pub struct ExprPool {
     /// Height of each node (a leaf is 0): a cheap structural key that settles most
     /// comparisons of deep expressions at once (see `structural_cmp`).
     heights: Vec<u32>,
-    index: HashMap<Node, Id>,
+    index: FxHashMap<Node, Id>,
     symbols: SymbolTable,
-    definitions: HashMap<Symbol, Id>,
+    definitions: FxHashMap<Symbol, Id>,
 }
 
 /// What `node` answers for an id that is not in the pool (an id of another pool).
@@ -42,9 +42,9 @@ impl ExprPool {
         ExprPool {
             nodes: Vec::new(),
             heights: Vec::new(),
-            index: HashMap::new(),
+            index: FxHashMap::default(),
             symbols: SymbolTable::new(),
-            definitions: HashMap::new(),
+            definitions: FxHashMap::default(),
         }
     }
 
@@ -231,7 +231,7 @@ impl ExprPool {
     pub(crate) fn reachable(&self, roots: &[Id], through_definitions: bool) -> Vec<Id> {
         // A set, not a bitmap of the whole pool: the cost follows the expression, not the
         // (ever-growing) arena.
-        let mut seen: HashSet<Id> = HashSet::new();
+        let mut seen: FxHashSet<Id> = FxHashSet::default();
         let mut stack: Vec<Id> = roots.to_vec();
         let mut out = Vec::new();
         while let Some(id) = stack.pop() {

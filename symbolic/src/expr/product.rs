@@ -18,7 +18,7 @@
 use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
 use super::rational::Rational;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// Folds `b^e` for constants when the result is exact (or either side is inexact and the
 /// result is finite); `None` leaves the power unfolded.
@@ -50,7 +50,7 @@ impl ExprPool {
     /// The canonical product of `factors` (1 for none).
     pub fn mul(&mut self, factors: &[Id]) -> Id {
         let mut coefficient = Number::ONE;
-        let mut exponents: HashMap<Id, Vec<Id>> = HashMap::new();
+        let mut exponents: FxHashMap<Id, Vec<Id>> = FxHashMap::default();
         let one = self.int(1);
         let mut work: Vec<Id> = factors.to_vec();
         while let Some(f) = work.pop() {

@@ -4,7 +4,8 @@
 use super::node::{Id, Node};
 use super::pool::ExprPool;
 use super::symbol::Symbol;
-use std::collections::{BTreeSet, HashMap};
+use rustc_hash::FxHashMap;
+use std::collections::BTreeSet;
 
 impl ExprPool {
     /// Whether `s` occurs in `e`, directly or inside the value of a defined symbol.
@@ -27,7 +28,7 @@ impl ExprPool {
     /// or `1/x'`. Defined symbols are looked through.
     pub fn degree(&self, e: Id, vars: &[Symbol]) -> Option<u32> {
         // None = not polynomial; Some(0) = free of vars (canonical form has no `x - x`).
-        let mut degrees: HashMap<Id, Option<u32>> = HashMap::new();
+        let mut degrees: FxHashMap<Id, Option<u32>> = FxHashMap::default();
         for id in self.reachable(&[e], true) {
             let of = |c: &Id| degrees.get(c).copied().flatten();
             let degree = match self.node(id) {

@@ -4,6 +4,7 @@
 use super::node::{Id, Node};
 use super::pool::ExprPool;
 use super::symbol::Symbol;
+use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 
 /// What happens to a defined symbol during a rebuild.
@@ -32,7 +33,7 @@ impl ExprPool {
     }
 
     fn rebuild(&mut self, e: Id, map: &HashMap<Symbol, Id>, policy: Definitions) -> Id {
-        let mut new: HashMap<Id, Id> = HashMap::new();
+        let mut new: FxHashMap<Id, Id> = FxHashMap::default();
         for id in self.reachable(&[e], true) {
             let image = |c: &Id| new.get(c).copied().unwrap_or(*c);
             let node = self.node(id).clone();

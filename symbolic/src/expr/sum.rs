@@ -3,14 +3,14 @@
 
 use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
+use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 
 impl ExprPool {
     /// The canonical sum of `terms` (0 for none).
     pub fn add(&mut self, terms: &[Id]) -> Id {
         let mut constant = Number::ZERO;
-        let mut coefficients: HashMap<Id, Number> = HashMap::new();
+        let mut coefficients: FxHashMap<Id, Number> = FxHashMap::default();
         // Canonical sums never nest, so one level of flattening suffices.
         let mut flat = Vec::with_capacity(terms.len());
         for &t in terms {

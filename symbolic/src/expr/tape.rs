@@ -7,8 +7,8 @@ use super::func::Func;
 use super::node::{Id, Node};
 use super::pool::ExprPool;
 use super::rational::Rational;
+use rustc_hash::FxHashMap;
 use std::cell::RefCell;
-use std::collections::HashMap;
 
 /// `b^e`, by `powi` for integer exponents (it keeps `(-2)^3 = -8` and is more accurate),
 /// `powf` otherwise: a power whose exponent is not a constant.
@@ -71,7 +71,7 @@ impl ExprPool {
     /// Compiles `roots` into one [`Tape`]; `out[i]` of [`Tape::eval`] is the value of
     /// `roots[i]`.
     pub fn compile(&self, roots: &[Id]) -> Tape {
-        let mut slot: HashMap<Id, usize> = HashMap::new();
+        let mut slot: FxHashMap<Id, usize> = FxHashMap::default();
         let mut code = Vec::new();
         let mut operands = Vec::new();
         for id in self.reachable(roots, true) {

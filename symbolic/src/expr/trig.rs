@@ -193,7 +193,7 @@ impl ExprPool {
     /// cos(θᵢ − θⱼ) for every pair, n(n−1)/2 calls; expanded, generated code computes the 2n
     /// values sin θᵢ, cos θᵢ once and shares them.
     pub fn expand_trig_arguments(&mut self, e: Id) -> Id {
-        let mut image: std::collections::HashMap<Id, Id> = std::collections::HashMap::new();
+        let mut image: rustc_hash::FxHashMap<Id, Id> = rustc_hash::FxHashMap::default();
         for id in self.reachable(&[e], false) {
             let node = self.node(id).clone();
             let children: Vec<Id> = node
