@@ -8,7 +8,7 @@
 
 use super::func::Func;
 use super::node::{Id, Node};
-use super::pool::ExprPool;
+use super::pool::{symbol_bit, ExprPool};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind};
 use rustc_hash::FxHashMap;
@@ -86,10 +86,31 @@ impl ExprPool {
         })
     }
 
+    /// The symbols (as a filter, see [`symbol_bit`]) whose leaf derivative is not 0 or fails:
+    /// an expression free of them has derivative 0 and needs no visit.
+    fn leaf_symbols(&self, leaf: Leaf) -> u64 {
+        match leaf {
+            Leaf::Partial(wrt) => symbol_bit(wrt),
+            Leaf::Time => self
+                .symbols()
+                .iter()
+                .filter(|s| {
+                    !matches!(
+                        self.symbols().kind(*s),
+                        SymbolKind::Parameter | SymbolKind::Frozen | SymbolKind::Definition
+                    )
+                })
+                .fold(0, |mask, s| mask | symbol_bit(s)),
+        }
+    }
+
     fn derivative(&mut self, e: Id, leaf: Leaf) -> Result<Id, UnsupportedDerivative> {
         let zero = self.int(0);
         let mut d: FxHashMap<Id, Id> = FxHashMap::default();
-        for id in self.reachable(&[e], true) {
+        // Only the nodes that may contain a symbol with a nonzero rate: the others have
+        // derivative 0 (the default below) and computing it would build no node.
+        let symbols = self.leaf_symbols(leaf);
+        for id in self.reachable_depending_on(&[e], symbols) {
             let of = |c: &Id| d.get(c).copied().unwrap_or(zero);
             let value = match self.node(id).clone() {
                 Node::Num(_) | Node::Float(_) => zero,

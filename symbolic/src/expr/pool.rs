@@ -22,9 +22,20 @@ pub struct ExprPool {
     /// Height of each node (a leaf is 0): a cheap structural key that settles most
     /// comparisons of deep expressions at once (see `structural_cmp`).
     heights: Vec<u32>,
+    /// For each node, a filter of the symbols it depends on, through definitions: bit
+    /// `s.index() % 64` for each such symbol `s` (see [`symbol_bit`]). A clear bit proves a
+    /// symbol absent, so passes that only care about some symbols (∂/∂s, substitution)
+    /// skip whole subtrees without visiting them; a set bit may be another symbol.
+    symbol_masks: Vec<u64>,
     index: FxHashMap<Node, Id>,
     symbols: SymbolTable,
     definitions: FxHashMap<Symbol, Id>,
+}
+
+/// The bit of `s` in a node's symbol filter: symbols 64 apart share a bit, which only
+/// costs a pass some needless visits.
+pub(crate) fn symbol_bit(s: Symbol) -> u64 {
+    1 << (s.index() % 64)
 }
 
 /// What `node` answers for an id that is not in the pool (an id of another pool).
@@ -42,6 +53,7 @@ impl ExprPool {
         ExprPool {
             nodes: Vec::new(),
             heights: Vec::new(),
+            symbol_masks: Vec::new(),
             index: FxHashMap::default(),
             symbols: SymbolTable::new(),
             definitions: FxHashMap::default(),
@@ -73,6 +85,11 @@ impl ExprPool {
         self.heights.get(e.index()).copied().unwrap_or(0)
     }
 
+    /// The filter of the symbols `e` depends on (see [`symbol_bit`]): 0 for a constant.
+    pub(crate) fn symbol_mask(&self, e: Id) -> u64 {
+        self.symbol_masks.get(e.index()).copied().unwrap_or(0)
+    }
+
     /// Every id of the pool, ascending (children before parents).
     pub fn ids(&self) -> impl Iterator<Item = Id> {
         (0..self.nodes.len() as u32).map(Id)
@@ -95,7 +112,13 @@ impl ExprPool {
             .map(|c| self.height(c).saturating_add(1))
             .max()
             .unwrap_or(0);
+        let mask = match &node {
+            // A defined symbol depends on its value's symbols (the value exists already).
+            Node::Sym(s) => symbol_bit(*s) | self.definition(*s).map_or(0, |v| self.symbol_mask(v)),
+            _ => node.children().fold(0, |m, c| m | self.symbol_mask(c)),
+        };
         self.heights.push(height);
+        self.symbol_masks.push(mask);
         self.nodes.push(node.clone());
         self.index.insert(node, id);
         id
@@ -171,6 +194,11 @@ impl ExprPool {
         self.definitions.get(&s).copied()
     }
 
+    /// Every symbol that carries a value, in no particular order.
+    pub(crate) fn defined_symbols(&self) -> impl Iterator<Item = Symbol> + '_ {
+        self.definitions.keys().copied()
+    }
+
     /// The value behind a `Sym` node of a defined symbol.
     pub(crate) fn definition_of_node(&self, id: Id) -> Option<Id> {
         match self.node(id) {
@@ -229,13 +257,26 @@ impl ExprPool {
     /// Every id reachable from `roots` (looking through definitions if asked), ascending,
     /// hence children before parents. Iterative: no recursion on deep expressions.
     pub(crate) fn reachable(&self, roots: &[Id], through_definitions: bool) -> Vec<Id> {
+        self.walk(roots, through_definitions, |_| true)
+    }
+
+    /// Like [`reachable`](Self::reachable) through definitions, but only through the nodes
+    /// that may depend on a symbol of `symbols` (a union of [`symbol_bit`]s): every other
+    /// node is left out with its whole subtree. Every node that contains such a symbol is
+    /// in the answer.
+    pub(crate) fn reachable_depending_on(&self, roots: &[Id], symbols: u64) -> Vec<Id> {
+        self.walk(roots, true, |id| self.symbol_mask(id) & symbols != 0)
+    }
+
+    /// The ids reachable from `roots` through nodes that pass `keep`, ascending.
+    fn walk(&self, roots: &[Id], through_definitions: bool, keep: impl Fn(Id) -> bool) -> Vec<Id> {
         // A set, not a bitmap of the whole pool: the cost follows the expression, not the
         // (ever-growing) arena.
         let mut seen: FxHashSet<Id> = FxHashSet::default();
         let mut stack: Vec<Id> = roots.to_vec();
         let mut out = Vec::new();
         while let Some(id) = stack.pop() {
-            if id.index() >= self.nodes.len() || !seen.insert(id) {
+            if id.index() >= self.nodes.len() || !keep(id) || !seen.insert(id) {
                 continue;
             }
             out.push(id);

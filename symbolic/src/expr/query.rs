@@ -2,7 +2,7 @@
 //! of them (L must be at most quadratic in the velocities, docs/dsl.md#kinetic-potential-lagrangian).
 
 use super::node::{Id, Node};
-use super::pool::ExprPool;
+use super::pool::{symbol_bit, ExprPool};
 use super::symbol::Symbol;
 use rustc_hash::FxHashMap;
 use std::collections::BTreeSet;
@@ -10,7 +10,7 @@ use std::collections::BTreeSet;
 impl ExprPool {
     /// Whether `s` occurs in `e`, directly or inside the value of a defined symbol.
     pub fn contains(&self, e: Id, s: Symbol) -> bool {
-        self.reachable(&[e], true)
+        self.reachable_depending_on(&[e], symbol_bit(s))
             .into_iter()
             .any(|id| *self.node(id) == Node::Sym(s))
     }
