@@ -3,7 +3,7 @@
 use super::node::{Id, Node, Number};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind, SymbolTable};
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 /// A flat, hash-consed arena of expressions (after egg's `RecExpr`).
 ///
@@ -270,22 +270,83 @@ impl ExprPool {
 
     /// The ids reachable from `roots` through nodes that pass `keep`, ascending.
     fn walk(&self, roots: &[Id], through_definitions: bool, keep: impl Fn(Id) -> bool) -> Vec<Id> {
-        // A set, not a bitmap of the whole pool: the cost follows the expression, not the
-        // (ever-growing) arena.
-        let mut seen: FxHashSet<Id> = FxHashSet::default();
-        let mut stack: Vec<Id> = roots.to_vec();
-        let mut out = Vec::new();
-        while let Some(id) = stack.pop() {
-            if id.index() >= self.nodes.len() || !keep(id) || !seen.insert(id) {
-                continue;
-            }
-            out.push(id);
-            stack.extend(self.node(id).children());
-            if through_definitions {
-                stack.extend(self.definition_of_node(id));
+        let roots: Vec<Id> = roots
+            .iter()
+            .copied()
+            .filter(|r| r.index() < self.nodes.len() && keep(*r))
+            .collect();
+        // Everything reachable from a node has a smaller id (children and definition
+        // values come first), so a bitmap up to the largest root holds the visited set:
+        // no hashing per node.
+        let mut seen = Visited::up_to(roots.iter().copied().max());
+        let mut stack: Vec<Id> = Vec::new();
+        for r in roots {
+            if seen.insert(r) {
+                stack.push(r);
             }
         }
-        out.sort_unstable();
+        while let Some(id) = stack.pop() {
+            let definition = through_definitions
+                .then(|| self.definition_of_node(id))
+                .flatten();
+            for c in self.node(id).children().chain(definition) {
+                if keep(c) && seen.insert(c) {
+                    stack.push(c);
+                }
+            }
+        }
+        seen.into_ascending()
+    }
+}
+
+/// A set of ids below a bound, as a bitmap, that also lists its members in insertion
+/// order (for small sets of a large pool, sorting that list is cheaper than scanning
+/// the bitmap).
+struct Visited {
+    bits: Vec<u64>,
+    members: Vec<Id>,
+}
+
+impl Visited {
+    /// An empty set for the ids up to `top` (none if `None`).
+    fn up_to(top: Option<Id>) -> Visited {
+        let words = top.map_or(0, |t| t.index() / 64 + 1);
+        Visited {
+            bits: vec![0; words],
+            members: Vec::new(),
+        }
+    }
+
+    /// Adds `id`; false if it was there already. `id` must not exceed the bound.
+    fn insert(&mut self, id: Id) -> bool {
+        let (word, bit) = (id.index() / 64, 1u64 << (id.index() % 64));
+        let Some(w) = self.bits.get_mut(word) else {
+            return false;
+        };
+        let fresh = *w & bit == 0;
+        *w |= bit;
+        if fresh {
+            self.members.push(id);
+        }
+        fresh
+    }
+
+    /// The members, ascending: the bitmap's bits in order when the set fills a fair part
+    /// of it, else the sorted list.
+    fn into_ascending(mut self) -> Vec<Id> {
+        if self.members.len() < self.bits.len() {
+            self.members.sort_unstable();
+            return self.members;
+        }
+        let mut out = Vec::with_capacity(self.members.len());
+        for (w, &word) in self.bits.iter().enumerate() {
+            let mut rest = word;
+            while rest != 0 {
+                // At most 2^32 nodes, so the id fits a u32.
+                out.push(Id((w * 64) as u32 + rest.trailing_zeros()));
+                rest &= rest - 1;
+            }
+        }
         out
     }
 }
