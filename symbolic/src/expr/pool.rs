@@ -1,5 +1,6 @@
 //! The arena: hash-consed nodes, leaf constructors, definitions and simple queries.
 
+use super::diff::Leaf;
 use super::node::{Id, Node, Number};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind, SymbolTable};
@@ -30,6 +31,10 @@ pub struct ExprPool {
     index: FxHashMap<Node, Id>,
     symbols: SymbolTable,
     definitions: FxHashMap<Symbol, Id>,
+    /// Every derivative taken so far, of each node it visited (see `diff.rs`): nodes never
+    /// change, so neither do their derivatives, and the Jacobian's many derivatives of
+    /// the same rows share most of their work.
+    pub(super) derivatives: FxHashMap<(Id, Leaf), Id>,
 }
 
 /// The bit of `s` in a node's symbol filter: symbols 64 apart share a bit, which only
@@ -57,6 +62,7 @@ impl ExprPool {
             index: FxHashMap::default(),
             symbols: SymbolTable::new(),
             definitions: FxHashMap::default(),
+            derivatives: FxHashMap::default(),
         }
     }
 
@@ -257,7 +263,7 @@ impl ExprPool {
     /// Every id reachable from `roots` (looking through definitions if asked), ascending,
     /// hence children before parents. Iterative: no recursion on deep expressions.
     pub(crate) fn reachable(&self, roots: &[Id], through_definitions: bool) -> Vec<Id> {
-        self.walk(roots, through_definitions, |_| true)
+        self.reachable_where(roots, through_definitions, |_| true)
     }
 
     /// Like [`reachable`](Self::reachable) through definitions, but only through the nodes
@@ -265,11 +271,16 @@ impl ExprPool {
     /// node is left out with its whole subtree. Every node that contains such a symbol is
     /// in the answer.
     pub(crate) fn reachable_depending_on(&self, roots: &[Id], symbols: u64) -> Vec<Id> {
-        self.walk(roots, true, |id| self.symbol_mask(id) & symbols != 0)
+        self.reachable_where(roots, true, |id| self.symbol_mask(id) & symbols != 0)
     }
 
     /// The ids reachable from `roots` through nodes that pass `keep`, ascending.
-    fn walk(&self, roots: &[Id], through_definitions: bool, keep: impl Fn(Id) -> bool) -> Vec<Id> {
+    pub(crate) fn reachable_where(
+        &self,
+        roots: &[Id],
+        through_definitions: bool,
+        keep: impl Fn(Id) -> bool,
+    ) -> Vec<Id> {
         let roots: Vec<Id> = roots
             .iter()
             .copied()
