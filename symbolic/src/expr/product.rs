@@ -18,7 +18,6 @@
 use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
 use super::rational::Rational;
-use rustc_hash::FxHashMap;
 
 /// Folds `b^e` for constants when the result is exact (or either side is inexact and the
 /// result is finite); `None` leaves the power unfolded.
@@ -50,7 +49,8 @@ impl ExprPool {
     /// The canonical product of `factors` (1 for none).
     pub fn mul(&mut self, factors: &[Id]) -> Id {
         let mut coefficient = Number::ONE;
-        let mut exponents: FxHashMap<Id, Vec<Id>> = FxHashMap::default();
+        // (base, exponent) of every non-constant factor, in the order met.
+        let mut powers: Vec<(Id, Id)> = Vec::with_capacity(factors.len());
         let one = self.int(1);
         let mut work: Vec<Id> = factors.to_vec();
         while let Some(f) = work.pop() {
@@ -61,16 +61,24 @@ impl ExprPool {
                     }
                 }
                 Node::Mul(inner) => work.extend_from_slice(inner),
-                Node::Pow(b, e) => exponents.entry(*b).or_default().push(*e),
-                _ => exponents.entry(f).or_default().push(one),
+                Node::Pow(b, e) => powers.push((*b, *e)),
+                _ => powers.push((f, one)),
             }
         }
         if coefficient.is_zero() {
             return self.number(Number::ZERO);
         }
-        // Bases in structural order so that the result does not depend on hash order.
-        let mut bases: Vec<(Id, Vec<Id>)> = exponents.into_iter().collect();
-        bases.sort_by(|(a, _), (b, _)| self.structural_cmp(*a, *b));
+        // Bases in structural order so that the result does not depend on the order of the
+        // factors; the sort is stable, so each base's exponents stay in the order met. (A
+        // sorted list instead of a map from base to exponents: no hashing, one allocation.)
+        powers.sort_by(|(a, _), (b, _)| self.structural_cmp(*a, *b));
+        let mut bases: Vec<(Id, Vec<Id>)> = Vec::with_capacity(powers.len());
+        for (base, exponent) in powers {
+            match bases.last_mut() {
+                Some((last, exps)) if *last == base => exps.push(exponent),
+                _ => bases.push((base, vec![exponent])),
+            }
+        }
         let all_bases: Vec<Id> = bases.iter().map(|(b, _)| *b).collect();
         let mut out: Vec<Id> = Vec::with_capacity(bases.len() + 1);
         let mut again: Vec<Id> = Vec::new();
