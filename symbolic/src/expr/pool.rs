@@ -35,6 +35,10 @@ pub struct ExprPool {
     /// change, so neither do their derivatives, and the Jacobian's many derivatives of
     /// the same rows share most of their work.
     pub(super) derivatives: FxHashMap<(Id, Leaf), Id>,
+    /// The ids of the integers −1, 0, 1, 2 once interned (every constructor asks for
+    /// them, and interning hashes the node each time); filled on first use, so the order
+    /// in which nodes are created does not change.
+    small_ints: [Option<Id>; 4],
 }
 
 /// The bit of `s` in a node's symbol filter: symbols 64 apart share a bit, which only
@@ -63,6 +67,7 @@ impl ExprPool {
             symbols: SymbolTable::new(),
             definitions: FxHashMap::default(),
             derivatives: FxHashMap::default(),
+            small_ints: [None; 4],
         }
     }
 
@@ -132,7 +137,18 @@ impl ExprPool {
 
     /// The integer `n`.
     pub fn int(&mut self, n: i64) -> Id {
-        self.rational(Rational::from(n))
+        let Some(slot) = usize::try_from(n + 1)
+            .ok()
+            .filter(|i| *i < self.small_ints.len())
+        else {
+            return self.rational(Rational::from(n));
+        };
+        if let Some(id) = self.small_ints[slot] {
+            return id;
+        }
+        let id = self.rational(Rational::from(n));
+        self.small_ints[slot] = Some(id);
+        id
     }
 
     /// An exact rational constant.
