@@ -118,16 +118,15 @@ impl ExprPool {
         }
         // 2^32 nodes would need far more memory than any derivation uses.
         let id = Id(self.nodes.len() as u32);
-        let height = node
-            .children()
-            .map(|c| self.height(c).saturating_add(1))
-            .max()
-            .unwrap_or(0);
-        let mask = match &node {
+        let (mut height, mut mask) = (0, 0);
+        node.for_each_child(|c| {
+            height = height.max(self.height(c).saturating_add(1));
+            mask |= self.symbol_mask(c);
+        });
+        if let Node::Sym(s) = node {
             // A defined symbol depends on its value's symbols (the value exists already).
-            Node::Sym(s) => symbol_bit(*s) | self.definition(*s).map_or(0, |v| self.symbol_mask(v)),
-            _ => node.children().fold(0, |m, c| m | self.symbol_mask(c)),
-        };
+            mask = symbol_bit(s) | self.definition(s).map_or(0, |v| self.symbol_mask(v));
+        }
         self.heights.push(height);
         self.symbol_masks.push(mask);
         self.nodes.push(node.clone());
@@ -316,11 +315,13 @@ impl ExprPool {
             let definition = through_definitions
                 .then(|| self.definition_of_node(id))
                 .flatten();
-            for c in self.node(id).children().chain(definition) {
+            let mut visit = |c: Id| {
                 if keep(c) && seen.insert(c) {
                     stack.push(c);
                 }
-            }
+            };
+            self.node(id).for_each_child(&mut visit);
+            definition.into_iter().for_each(visit);
         }
         seen.into_ascending()
     }

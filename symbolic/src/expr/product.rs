@@ -173,12 +173,15 @@ impl ExprPool {
         }
         let integer_exponent = self.as_rational(exp).and_then(|r| r.as_integer()).is_some();
         if integer_exponent {
-            match self.node(base).clone() {
-                Node::Pow(b, inner) => {
+            // Copy out only what these two cases need: cloning the node would copy the
+            // terms of every sum raised to a power.
+            match self.node(base) {
+                &Node::Pow(b, inner) => {
                     let product = self.mul(&[inner, exp]);
                     return self.pow(b, product);
                 }
                 Node::Mul(factors) => {
+                    let factors = factors.clone();
                     let powers: Vec<Id> = factors.iter().map(|f| self.pow(*f, exp)).collect();
                     return self.mul(&powers);
                 }
