@@ -72,20 +72,18 @@ impl ExprPool {
         // factors; the sort is stable, so each base's exponents stay in the order met. (A
         // sorted list instead of a map from base to exponents: no hashing, one allocation.)
         powers.sort_by(|(a, _), (b, _)| self.structural_cmp(*a, *b));
-        let mut bases: Vec<(Id, Vec<Id>)> = Vec::with_capacity(powers.len());
-        for (base, exponent) in powers {
-            match bases.last_mut() {
-                Some((last, exps)) if *last == base => exps.push(exponent),
-                _ => bases.push((base, vec![exponent])),
-            }
-        }
-        let all_bases: Vec<Id> = bases.iter().map(|(b, _)| *b).collect();
-        let mut out: Vec<Id> = Vec::with_capacity(bases.len() + 1);
+        let mut out: Vec<Id> = Vec::with_capacity(powers.len() + 1);
         let mut again: Vec<Id> = Vec::new();
-        for (base, exps) in bases {
-            let e = match exps.as_slice() {
-                [single] => *single,
-                _ => self.add(&exps),
+        for group in powers.chunk_by(|(a, _), (b, _)| a == b) {
+            let [(base, first), rest @ ..] = group else {
+                continue;
+            };
+            let base = *base;
+            let e = if rest.is_empty() {
+                *first
+            } else {
+                let exponents: Vec<Id> = group.iter().map(|(_, e)| *e).collect();
+                self.add(&exponents)
             };
             let p = self.pow(base, e);
             match self.node(p) {
@@ -101,7 +99,7 @@ impl ExprPool {
                 // a base here: collect once more, or the product would hold `x` twice. Each
                 // such round merges two factors, so this ends.
                 _ if collected_base(self, p) != base
-                    && all_bases.contains(&collected_base(self, p)) =>
+                    && powers.iter().any(|(b, _)| *b == collected_base(self, p)) =>
                 {
                     again.push(p)
                 }
