@@ -7,6 +7,9 @@ use super::pool::ExprPool;
 impl ExprPool {
     /// The canonical sum of `terms` (0 for none).
     pub fn add(&mut self, terms: &[Id]) -> Id {
+        if let Some(single) = self.single_term_sum(terms) {
+            return single;
+        }
         let mut constant = Number::ZERO;
         // Canonical sums never nest, so one level of flattening suffices.
         let mut flat = Vec::with_capacity(terms.len());
@@ -50,6 +53,25 @@ impl ExprPool {
             [] => self.number(Number::ZERO),
             [single] => *single,
             _ => self.intern(Node::Add(out.into_boxed_slice())),
+        }
+    }
+
+    /// The sum of one canonical term that is not a sum: the term itself (distributing and
+    /// differentiating ask for many of these). The general path would split off its
+    /// coefficient, which may create the node of the rest (`x*y` for `2*x*y`), then scale
+    /// it back to the same term; the split is kept so that the nodes created, and their
+    /// order, stay exactly those of the general path.
+    fn single_term_sum(&mut self, terms: &[Id]) -> Option<Id> {
+        let [single] = *terms else {
+            return None;
+        };
+        match self.node(single) {
+            Node::Add(_) => None,
+            Node::Num(_) | Node::Float(_) => Some(single),
+            _ => {
+                self.split_coefficient(single);
+                Some(single)
+            }
         }
     }
 
