@@ -49,8 +49,8 @@ impl ExprPool {
     /// The canonical product of `factors` (1 for none).
     pub fn mul(&mut self, factors: &[Id]) -> Id {
         let mut coefficient = Number::ONE;
-        // (base, exponent) of every non-constant factor, in the order met.
-        let mut powers: Vec<(Id, Id)> = Vec::with_capacity(factors.len());
+        // (base, exponent, factor) of every non-constant factor, in the order met.
+        let mut powers: Vec<(Id, Id, Id)> = Vec::with_capacity(factors.len());
         let one = self.int(1);
         let mut work: Vec<Id> = factors.to_vec();
         while let Some(f) = work.pop() {
@@ -61,8 +61,8 @@ impl ExprPool {
                     }
                 }
                 Node::Mul(inner) => work.extend_from_slice(inner),
-                Node::Pow(b, e) => powers.push((*b, *e)),
-                _ => powers.push((f, one)),
+                Node::Pow(b, e) => powers.push((*b, *e, f)),
+                _ => powers.push((f, one, f)),
             }
         }
         if coefficient.is_zero() {
@@ -71,20 +71,23 @@ impl ExprPool {
         // Bases in structural order so that the result does not depend on the order of the
         // factors; the sort is stable, so each base's exponents stay in the order met. (A
         // sorted list instead of a map from base to exponents: no hashing, one allocation.)
-        powers.sort_by(|(a, _), (b, _)| self.structural_cmp(*a, *b));
+        powers.sort_by(|(a, ..), (b, ..)| self.structural_cmp(*a, *b));
         let mut out: Vec<Id> = Vec::with_capacity(powers.len() + 1);
         let mut again: Vec<Id> = Vec::new();
-        for group in powers.chunk_by(|(a, _), (b, _)| a == b) {
-            let [(base, first), rest @ ..] = group else {
+        for group in powers.chunk_by(|(a, ..), (b, ..)| a == b) {
+            let [(base, _, factor), rest @ ..] = group else {
                 continue;
             };
             let base = *base;
-            let e = if rest.is_empty() {
-                *first
-            } else {
-                let exponents: Vec<Id> = group.iter().map(|(_, e)| *e).collect();
-                self.add(&exponents)
-            };
+            if rest.is_empty() {
+                // A base met once keeps its factor: that factor is `base` (exponent 1) or a
+                // `Pow` node, which only `pow(base, exponent)` creates, so calling it again
+                // would return the factor, after an interning lookup.
+                out.push(*factor);
+                continue;
+            }
+            let exponents: Vec<Id> = group.iter().map(|(_, e, _)| *e).collect();
+            let e = self.add(&exponents);
             let p = self.pow(base, e);
             match self.node(p) {
                 Node::Num(_) | Node::Float(_) => {
@@ -99,7 +102,7 @@ impl ExprPool {
                 // a base here: collect once more, or the product would hold `x` twice. Each
                 // such round merges two factors, so this ends.
                 _ if collected_base(self, p) != base
-                    && powers.iter().any(|(b, _)| *b == collected_base(self, p)) =>
+                    && powers.iter().any(|(b, ..)| *b == collected_base(self, p)) =>
                 {
                     again.push(p)
                 }
