@@ -14,8 +14,8 @@ use crate::expr::{ExprPool, Id, Identity, Symbol};
 use crate::parse::Diagnostic;
 
 /// The names a `check` may use for derived quantities, in velocity form.
-fn quantities(model: &Model, e: &Equations) -> HashMap<String, Id> {
-    let mut q = HashMap::new();
+fn quantities(model: &Model, e: &Equations) -> FxHashMap<String, Id> {
+    let mut q = FxHashMap::default();
     q.insert("H".to_string(), e.hamiltonian.energy);
     q.insert("L".to_string(), e.energies.lagrangian);
     q.insert("T".to_string(), e.energies.kinetic);
@@ -81,7 +81,7 @@ pub(crate) fn run_checks(
 fn lower_sides(
     model: &mut Model,
     check: &Check,
-    quantities: &HashMap<String, Id>,
+    quantities: &FxHashMap<String, Id>,
 ) -> Result<(Id, Id), Vec<Diagnostic>> {
     let mut lower = |node| {
         lower_with(
