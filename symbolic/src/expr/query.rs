@@ -17,6 +17,15 @@ impl ExprPool {
 
     /// Every symbol that occurs in `e`: defined symbols and the symbols of their values.
     pub fn free_symbols(&self, e: Id) -> BTreeSet<Symbol> {
+        if self.symbols().len() <= 64 {
+            // With at most 64 symbols, bit i of the node's symbol filter is exactly symbol
+            // i (the filter holds every symbol reachable through definitions): no walk.
+            let mask = self.symbol_mask(e);
+            return (0..64u32)
+                .filter(|i| mask >> i & 1 == 1)
+                .map(Symbol)
+                .collect();
+        }
         self.reachable(&[e], true)
             .into_iter()
             .filter_map(|id| self.as_symbol(id))
