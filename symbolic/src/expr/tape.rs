@@ -189,10 +189,8 @@ impl Tape {
             Instr::Const(c) => c,
             Instr::Var(k) => slot(env, k),
             Instr::Copy(k) => slot(slots, k),
-            Instr::Add { start, len } => self.operands(start, len).map(|k| slot(slots, k)).sum(),
-            Instr::Mul { start, len } => {
-                self.operands(start, len).map(|k| slot(slots, k)).product()
-            }
+            Instr::Add { start, len } => self.sum(start, len, slots),
+            Instr::Mul { start, len } => self.product(start, len, slots),
             Instr::PowI(a, n) => slot(slots, a).powi(n),
             Instr::Sqrt(a) => slot(slots, a).sqrt(),
             Instr::Pow(a, b) => power(slot(slots, a), slot(slots, b)),
@@ -202,12 +200,28 @@ impl Tape {
     }
 
     /// The slots an `Add` or `Mul` reads.
-    fn operands(&self, start: usize, len: usize) -> impl Iterator<Item = usize> + '_ {
-        self.operands
-            .get(start..start + len)
-            .unwrap_or(&[])
-            .iter()
-            .copied()
+    fn operands(&self, start: usize, len: usize) -> &[usize] {
+        self.operands.get(start..start + len).unwrap_or(&[])
+    }
+
+    /// The sum of the operands' slots, in order from -0.0 as `Iterator::sum` does. (A plain
+    /// loop: iterator adapters cost calls per element in unoptimized builds, and the
+    /// numerical identity check evaluates a tape at least 32 times.)
+    fn sum(&self, start: usize, len: usize, slots: &[f64]) -> f64 {
+        let mut total = -0.0;
+        for &k in self.operands(start, len) {
+            total += slot(slots, k);
+        }
+        total
+    }
+
+    /// The product of the operands' slots, in order from 1 as `Iterator::product` does.
+    fn product(&self, start: usize, len: usize, slots: &[f64]) -> f64 {
+        let mut total = 1.0;
+        for &k in self.operands(start, len) {
+            total *= slot(slots, k);
+        }
+        total
     }
 
     /// Like [`eval_with`](Self::eval_with), and also the *magnitude* of each root: the same
@@ -229,13 +243,8 @@ impl Tape {
             let value = slot(scratch, i).abs();
             let magnitude = match *instr {
                 Instr::Copy(k) => slot(magnitudes, k),
-                Instr::Add { start, len } => {
-                    self.operands(start, len).map(|k| slot(magnitudes, k)).sum()
-                }
-                Instr::Mul { start, len } => self
-                    .operands(start, len)
-                    .map(|k| slot(magnitudes, k))
-                    .product(),
+                Instr::Add { start, len } => self.sum(start, len, magnitudes),
+                Instr::Mul { start, len } => self.product(start, len, magnitudes),
                 Instr::PowI(a, n) if n > 0 => slot(magnitudes, a).powi(n),
                 // Nonlinear: the value's size is the best cheap scale.
                 _ => value,
