@@ -35,6 +35,10 @@ pub struct ExprPool {
     /// change, so neither do their derivatives, and the Jacobian's many derivatives of
     /// the same rows share most of their work.
     pub(super) derivatives: FxHashMap<(Id, Leaf), Id>,
+    /// The image of every node an
+    /// [`expand_trig_arguments`](Self::expand_trig_arguments) visited: like derivatives, it
+    /// never changes.
+    pub(super) trig_images: FxHashMap<Id, Id>,
     /// The ids of the integers −1, 0, 1, 2 once interned (every constructor asks for
     /// them, and interning hashes the node each time); filled on first use, so the order
     /// in which nodes are created does not change.
@@ -72,6 +76,7 @@ impl ExprPool {
             symbols: SymbolTable::new(),
             definitions: FxHashMap::default(),
             derivatives: FxHashMap::default(),
+            trig_images: FxHashMap::default(),
             small_ints: [None; 4],
         }
     }

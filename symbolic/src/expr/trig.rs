@@ -224,46 +224,56 @@ impl ExprPool {
     /// cos(θᵢ − θⱼ) for every pair, n(n−1)/2 calls; expanded, generated code computes the 2n
     /// values sin θᵢ, cos θᵢ once and shares them.
     pub fn expand_trig_arguments(&mut self, e: Id) -> Id {
-        let mut image: rustc_hash::FxHashMap<Id, Id> = rustc_hash::FxHashMap::default();
-        for id in self.reachable(&[e], false) {
-            let node = self.node(id).clone();
-            let children: Vec<Id> = node
-                .children()
-                .map(|c| image.get(&c).copied().unwrap_or(c))
-                .collect();
-            let unchanged = node.children().eq(children.iter().copied());
-            let rebuilt = match (node, children.as_slice()) {
-                (Node::Num(_) | Node::Float(_) | Node::Sym(_), _) => id,
-                (Node::Call(func @ (Func::Sin | Func::Cos), _), &[argument]) => {
-                    match self.two_symbol_sum(argument) {
-                        Some((u, v)) => {
-                            let (su, cu) = (self.call(Func::Sin, &[u]), self.call(Func::Cos, &[u]));
-                            let (sv, cv) = (self.call(Func::Sin, &[v]), self.call(Func::Cos, &[v]));
-                            if func == Func::Sin {
-                                // sin(u + v) = sin u cos v + cos u sin v
-                                let (a, b) = (self.mul(&[su, cv]), self.mul(&[cu, sv]));
-                                self.add(&[a, b])
-                            } else {
-                                // cos(u + v) = cos u cos v − sin u sin v
-                                let (a, b) = (self.mul(&[cu, cv]), self.mul(&[su, sv]));
-                                self.sub(a, b)
-                            }
-                        }
-                        None if unchanged => id,
-                        None => self.call(func, &children),
-                    }
-                }
-                // Nothing below changed: the node is already canonical.
-                _ if unchanged => id,
-                (Node::Add(_), _) => self.add(&children),
-                (Node::Mul(_), _) => self.mul(&children),
-                (Node::Pow(..), &[base, exponent]) => self.pow(base, exponent),
-                (Node::Call(func, _), _) => self.call(func, &children),
-                (Node::Pow(..), _) => id,
-            };
-            image.insert(id, rebuilt);
+        // Only the nodes no earlier call rewrote (the pool remembers every image): emission
+        // rewrites hundreds of roots that share most of their nodes, and rewriting a node
+        // again would only re-intern existing nodes, so skipping it changes neither the
+        // result nor the order in which nodes are created.
+        let todo = self.reachable_where(&[e], false, |id| !self.trig_images.contains_key(&id));
+        for id in todo {
+            let rebuilt = self.trig_image(id);
+            self.trig_images.insert(id, rebuilt);
         }
-        image.get(&e).copied().unwrap_or(e)
+        self.trig_images.get(&e).copied().unwrap_or(e)
+    }
+
+    /// The image of node `id` under [`expand_trig_arguments`](Self::expand_trig_arguments),
+    /// from the images of its children.
+    fn trig_image(&mut self, id: Id) -> Id {
+        let node = self.node(id).clone();
+        let children: Vec<Id> = node
+            .children()
+            .map(|c| self.trig_images.get(&c).copied().unwrap_or(c))
+            .collect();
+        let unchanged = node.children().eq(children.iter().copied());
+        match (node, children.as_slice()) {
+            (Node::Num(_) | Node::Float(_) | Node::Sym(_), _) => id,
+            (Node::Call(func @ (Func::Sin | Func::Cos), _), &[argument]) => {
+                match self.two_symbol_sum(argument) {
+                    Some((u, v)) => {
+                        let (su, cu) = (self.call(Func::Sin, &[u]), self.call(Func::Cos, &[u]));
+                        let (sv, cv) = (self.call(Func::Sin, &[v]), self.call(Func::Cos, &[v]));
+                        if func == Func::Sin {
+                            // sin(u + v) = sin u cos v + cos u sin v
+                            let (a, b) = (self.mul(&[su, cv]), self.mul(&[cu, sv]));
+                            self.add(&[a, b])
+                        } else {
+                            // cos(u + v) = cos u cos v − sin u sin v
+                            let (a, b) = (self.mul(&[cu, cv]), self.mul(&[su, sv]));
+                            self.sub(a, b)
+                        }
+                    }
+                    None if unchanged => id,
+                    None => self.call(func, &children),
+                }
+            }
+            // Nothing below changed: the node is already canonical.
+            _ if unchanged => id,
+            (Node::Add(_), _) => self.add(&children),
+            (Node::Mul(_), _) => self.mul(&children),
+            (Node::Pow(..), &[base, exponent]) => self.pow(base, exponent),
+            (Node::Call(func, _), _) => self.call(func, &children),
+            (Node::Pow(..), _) => id,
+        }
     }
 
     /// `(u, v)` if `e` is `u + v` with each of u, v a symbol or minus a symbol.
