@@ -70,7 +70,7 @@ pub struct RunArgs {
     /// The stepper.
     #[arg(long, value_enum, default_value_t = Method::DormandPrince)]
     pub method: Method,
-    /// Relative and absolute tolerance of the adaptive steppers (dormand-prince, dop853, sdirk4).
+    /// Relative and absolute tolerance of the adaptive steppers (dormand-prince, dop853, sdirk4, esdirk43).
     #[arg(long, value_name = "TOL", conflicts_with = "step")]
     pub tol: Option<f64>,
     /// The fixed step size (required by the fixed-step methods; makes an adaptive one fixed).
@@ -100,6 +100,9 @@ pub enum Method {
     Dop853,
     /// SDIRK4, L-stable implicit, adaptive (`--tol`) or fixed (`--step`): for stiff models.
     Sdirk4,
+    /// ESDIRK4(3)6L[2]SA, L-stable implicit with an explicit first stage, adaptive (`--tol`)
+    /// or fixed (`--step`); its error runs above the tolerance: ask two orders tighter.
+    Esdirk43,
     /// Classical Runge–Kutta 4, fixed step.
     Rk4,
     /// Explicit Euler, fixed step.

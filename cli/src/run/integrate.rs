@@ -4,7 +4,7 @@
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{
-    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
     ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
 };
 use varmass::core::{
@@ -57,6 +57,17 @@ pub fn integrate<const N: usize, const S: usize>(
                 t0,
                 start,
                 control(steps, AdaptiveControl::dop853()),
+            )
+            .map_err(fail)?,
+            plan,
+        ),
+        (Method::Esdirk43, steps) => drive(
+            &system,
+            Esdirk43::new(
+                &system,
+                t0,
+                start,
+                control(steps, AdaptiveControl::sdirk4()),
             )
             .map_err(fail)?,
             plan,
