@@ -50,6 +50,12 @@ pub fn emit_system_for(
             for_code.insert(e, expanded);
         }
     }
+    let shown = doc_roots(d);
+    let shown_texts = shown
+        .iter()
+        .copied()
+        .zip(d.pool.display_all(&shown))
+        .collect();
     let name = &target.name;
     let runtime = &target.runtime;
     let emitter = Emitter {
@@ -57,6 +63,7 @@ pub fn emit_system_for(
         target,
         velocity_ids,
         for_code,
+        texts: shown_texts,
     };
     let n = d.coordinates.len();
     let k = d.state_mass_count();
@@ -141,8 +148,7 @@ pub fn emit_system_for(
 
 /// The `DERIVATION` and `DERIVATION_LATEX` constants.
 fn derivation_texts(d: &mut Derivation) -> TokenStream {
-    let text = d.to_text();
-    let latex = d.to_latex();
+    let (text, latex) = d.to_text_and_latex();
     quote! {
         /// The derivation of this system as text, in the order of the paper
         /// (L, p, H, forces, canonical equations, true rates).
@@ -159,6 +165,33 @@ fn optional(asked: bool, method: impl FnOnce() -> TokenStream) -> TokenStream {
     } else {
         TokenStream::new()
     }
+}
+
+/// Every expression of `d` that the doc comments of the methods show.
+fn doc_roots(d: &Derivation) -> Vec<crate::expr::Id> {
+    let mut roots = vec![d.lagrangian, d.energy, d.power];
+    roots.extend(d.hamiltonian);
+    roots.extend(d.closed_laws.iter().flatten());
+    for list in [
+        &d.mass_rates,
+        &d.momenta,
+        &d.lagrangian_gradient,
+        &d.active_force,
+        &d.reactive_thrust,
+        &d.impact_force,
+        &d.mass_flux_force,
+        &d.frozen_momentum_rate,
+        &d.momentum_rate,
+        &d.acceleration_rhs,
+    ] {
+        roots.extend(list);
+    }
+    roots.extend(d.accelerations.iter().flatten());
+    if let crate::mechanics::VelocitySolve::Symbolic(v) = &d.velocities {
+        roots.extend(v);
+    }
+    roots.extend(d.mass_matrix.iter().flatten());
+    roots
 }
 
 /// Every expression of `d` that generated code evaluates with `outputs`.

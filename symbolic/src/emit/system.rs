@@ -42,6 +42,8 @@ pub(crate) struct Emitter<'a> {
     pub velocity_ids: Vec<Id>,
     /// Expressions rewritten for evaluation (see `expand_trig_arguments`); others as is.
     pub for_code: std::collections::HashMap<Id, Id>,
+    /// The DSL text of the expressions the doc comments show, printed in one walk.
+    pub texts: std::collections::HashMap<Id, String>,
 }
 
 impl Emitter<'_> {
@@ -63,16 +65,20 @@ impl Emitter<'_> {
         self.d.state_mass_count()
     }
 
+    /// `id` in DSL text, for a doc comment: from [`Self::texts`] when it is there.
     pub(crate) fn display(&self, id: Id) -> String {
-        self.d.pool.display(id).to_string()
+        match self.texts.get(&id) {
+            Some(text) => text.clone(),
+            None => self.d.pool.display(id).to_string(),
+        }
     }
 
     /// Symbols needed to evaluate `roots`, closed under the laws of the law masses.
     fn used(&self, roots: &[Id]) -> BTreeSet<Symbol> {
-        let mut used = BTreeSet::new();
-        for r in roots {
-            used.extend(self.d.pool.free_symbols(*r));
-        }
+        // The free symbols of all roots from one walk (one per root repeats the shared parts).
+        let pool = &self.d.pool;
+        let reachable = pool.reachable(roots, true).into_iter();
+        let mut used: BTreeSet<Symbol> = reachable.filter_map(|id| pool.as_symbol(id)).collect();
         // A law may name state masses and parameters, never other law masses (closed laws).
         for (m, law) in self.d.masses.iter().zip(&self.d.closed_laws) {
             if let (true, Some(law)) = (used.contains(&m.symbol), law) {

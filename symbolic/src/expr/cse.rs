@@ -28,11 +28,16 @@ impl ExprPool {
     /// Finds the shared subexpressions of `roots`. Defined symbols are not looked
     /// through: inline them first if their values should be shared too.
     pub fn cse(&self, roots: &[Id]) -> Cse {
+        self.cse_in(roots, self.reachable(roots, false))
+    }
+
+    /// [`cse`](Self::cse) with `order`, the ids reachable from `roots` in ascending order,
+    /// for a caller that has it already.
+    pub(crate) fn cse_in(&self, roots: &[Id], order: Vec<Id>) -> Cse {
         let mut uses: HashMap<Id, usize> = HashMap::new();
         for r in roots {
             *uses.entry(*r).or_default() += 1;
         }
-        let order = self.reachable(roots, false);
         for id in &order {
             for c in self.node(*id).children() {
                 *uses.entry(c).or_default() += 1;

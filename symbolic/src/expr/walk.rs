@@ -158,9 +158,20 @@ pub(crate) fn print_all<S: Syntax>(
     pool: &ExprPool,
     syntax: &S,
     roots: &[Id],
+    bind: impl FnMut(Id, &Printed<S::Text>) -> Option<Printed<S::Text>>,
+) -> Vec<Printed<S::Text>> {
+    print_in(pool, syntax, roots, pool.reachable(roots, false), bind)
+}
+
+/// [`print_all`] over `order`, the ids reachable from `roots` in ascending order, for a
+/// caller that has it already.
+pub(crate) fn print_in<S: Syntax>(
+    pool: &ExprPool,
+    syntax: &S,
+    roots: &[Id],
+    order: Vec<Id>,
     mut bind: impl FnMut(Id, &Printed<S::Text>) -> Option<Printed<S::Text>>,
 ) -> Vec<Printed<S::Text>> {
-    let order = pool.reachable(roots, false);
     let mut printer = Printer {
         pool,
         printed: Vec::with_capacity(order.len()),
