@@ -18,6 +18,9 @@ use quote::quote;
 pub use signature::{Method, REQUIRED};
 pub use system::Target;
 
+use std::collections::HashSet;
+
+use crate::expr::{ExprPool, Func, Id, Node};
 use crate::mechanics::{Derivation, Outputs};
 use system::Emitter;
 
@@ -44,7 +47,7 @@ pub fn emit_system_for(
     // The code evaluates sin/cos of sums of two coordinates through the sines and cosines
     // of the coordinates themselves (shared by CSE); the text above keeps cos(a - b).
     let mut for_code = std::collections::HashMap::new();
-    for e in code_roots(d, outputs) {
+    for e in with_angle_sums(&d.pool, &code_roots(d, outputs)) {
         let expanded = d.pool.expand_trig_arguments(e);
         if expanded != e {
             for_code.insert(e, expanded);
@@ -167,8 +170,29 @@ fn optional(asked: bool, method: impl FnOnce() -> TokenStream) -> TokenStream {
     }
 }
 
+/// The roots, each once and in order, under which some sine or cosine takes a sum of two
+/// terms: the only ones `expand_trig_arguments` can change. One walk over all roots
+/// replaces a walk of each root's whole tree (the roots share most of their nodes).
+fn with_angle_sums(pool: &ExprPool, roots: &[Id]) -> Vec<Id> {
+    let mut below: HashSet<Id> = HashSet::new();
+    for id in pool.reachable(roots, false) {
+        let found = match pool.node(id) {
+            Node::Call(Func::Sin | Func::Cos, args) => args
+                .iter()
+                .any(|a| matches!(pool.node(*a), Node::Add(terms) if terms.len() == 2)),
+            node => node.children().any(|c| below.contains(&c)),
+        };
+        if found {
+            below.insert(id);
+        }
+    }
+    let mut seen = HashSet::new();
+    let unique = roots.iter().copied().filter(|r| seen.insert(*r));
+    unique.filter(|r| below.contains(r)).collect()
+}
+
 /// Every expression of `d` that the doc comments of the methods show.
-fn doc_roots(d: &Derivation) -> Vec<crate::expr::Id> {
+fn doc_roots(d: &Derivation) -> Vec<Id> {
     let mut roots = vec![d.lagrangian, d.energy, d.power];
     roots.extend(d.hamiltonian);
     roots.extend(d.closed_laws.iter().flatten());
@@ -195,7 +219,7 @@ fn doc_roots(d: &Derivation) -> Vec<crate::expr::Id> {
 }
 
 /// Every expression of `d` that generated code evaluates with `outputs`.
-fn code_roots(d: &Derivation, outputs: Outputs) -> Vec<crate::expr::Id> {
+fn code_roots(d: &Derivation, outputs: Outputs) -> Vec<Id> {
     let mut roots = vec![d.lagrangian, d.energy];
     if outputs.power {
         roots.push(d.power);
