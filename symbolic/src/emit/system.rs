@@ -183,12 +183,19 @@ impl Emitter<'_> {
                     .collect();
                 let error = quote!(#runtime::SystemError::SingularMassMatrix);
                 let zero = self.zero_pattern();
+                let no_offset: Vec<bool> = self
+                    .d
+                    .momentum_offset
+                    .iter()
+                    .map(|b| self.d.pool.is_zero(*b))
+                    .collect();
                 let bridge = move |values: Vec<TokenStream>| {
                     let (matrix, offset) = values.split_at(entries);
                     let excess: Vec<TokenStream> = momenta
                         .iter()
                         .zip(offset)
-                        .map(|(p, b)| quote!(#p - (#b)))
+                        .zip(&no_offset)
+                        .map(|((p, b), none)| if *none { quote!(#p) } else { quote!(#p - (#b)) })
                         .collect();
                     vec![ldlt_solve(matrix, &zero, &excess, &names, &error)]
                 };
