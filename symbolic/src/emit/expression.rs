@@ -6,7 +6,7 @@
 //! are one node, so a node reached more than once from the outputs is computed once into a
 //! temporary. Children have smaller ids than parents, so ascending ids are a valid order.
 
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
@@ -82,7 +82,7 @@ pub(crate) fn staged_block(
         .into_iter()
         .partition(|id| late_ids.contains(id));
     // Early temporaries are numbered first, then late ones, each in id order.
-    let names: HashMap<Id, String> = early
+    let names: FxHashMap<Id, String> = early
         .iter()
         .chain(&late)
         .enumerate()
@@ -90,7 +90,7 @@ pub(crate) fn staged_block(
         .collect();
     // One walk over everything: a shared node is printed once, bound to its temporary,
     // and printed by name wherever it is used above.
-    let mut values: HashMap<Id, String> = HashMap::new();
+    let mut values: FxHashMap<Id, String> = FxHashMap::default();
     let syntax = RustSyntax {
         runtime: runtime.to_string(),
     };
@@ -121,8 +121,8 @@ pub(crate) fn staged_block(
 /// The ids of `order` (ascending, closed under children) whose expression uses one of
 /// `bound`, looking through defined symbols as [`ExprPool::contains`] does: one pass,
 /// children before parents, instead of one walk per id and symbol.
-fn using_any(pool: &ExprPool, order: &[Id], bound: &[Symbol]) -> HashSet<Id> {
-    let mut using = HashSet::new();
+fn using_any(pool: &ExprPool, order: &[Id], bound: &[Symbol]) -> FxHashSet<Id> {
+    let mut using = FxHashSet::default();
     if bound.is_empty() {
         return using;
     }

@@ -18,7 +18,7 @@ use quote::quote;
 pub use signature::{Method, REQUIRED};
 pub use system::Target;
 
-use std::collections::HashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::expr::{ExprPool, Func, Id, Node};
 use crate::mechanics::{Derivation, Outputs};
@@ -46,7 +46,7 @@ pub fn emit_system_for(
         .collect();
     // The code evaluates sin/cos of sums of two coordinates through the sines and cosines
     // of the coordinates themselves (shared by CSE); the text above keeps cos(a - b).
-    let mut for_code = std::collections::HashMap::new();
+    let mut for_code = FxHashMap::default();
     for e in with_angle_sums(&d.pool, &code_roots(d, outputs)) {
         let expanded = d.pool.expand_trig_arguments(e);
         if expanded != e {
@@ -174,7 +174,7 @@ fn optional(asked: bool, method: impl FnOnce() -> TokenStream) -> TokenStream {
 /// terms: the only ones `expand_trig_arguments` can change. One walk over all roots
 /// replaces a walk of each root's whole tree (the roots share most of their nodes).
 fn with_angle_sums(pool: &ExprPool, roots: &[Id]) -> Vec<Id> {
-    let mut below: HashSet<Id> = HashSet::new();
+    let mut below: FxHashSet<Id> = FxHashSet::default();
     for id in pool.reachable(roots, false) {
         let found = match pool.node(id) {
             Node::Call(Func::Sin | Func::Cos, args) => args
@@ -186,7 +186,7 @@ fn with_angle_sums(pool: &ExprPool, roots: &[Id]) -> Vec<Id> {
             below.insert(id);
         }
     }
-    let mut seen = HashSet::new();
+    let mut seen = FxHashSet::default();
     let unique = roots.iter().copied().filter(|r| seen.insert(*r));
     unique.filter(|r| below.contains(r)).collect()
 }

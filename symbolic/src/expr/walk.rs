@@ -3,7 +3,7 @@
 //! [`ExprPool`]), each by a small [`Syntax`] from the printed forms of its descendants. No
 //! recursion, so deep expressions cannot overflow the stack.
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 
 use super::func::Func;
 use super::node::{Id, Node};
@@ -104,7 +104,7 @@ pub(crate) struct Printer<'a, S: Syntax> {
     /// The nodes printed so far, in ascending id order (the order of the walk).
     printed: Vec<(Id, Printed<S::Text>)>,
     /// The nodes whose printed form the caller replaced (temporaries of generated code).
-    bound: HashSet<Id>,
+    bound: FxHashSet<Id>,
     /// What [`get`](Self::get) answers for a node not printed (unreachable).
     missing: Printed<S::Text>,
 }
@@ -175,7 +175,7 @@ pub(crate) fn print_in<S: Syntax>(
     let mut printer = Printer {
         pool,
         printed: Vec::with_capacity(order.len()),
-        bound: HashSet::new(),
+        bound: FxHashSet::default(),
         missing: Printed::new(S::Text::default(), Prec::Atom),
     };
     for id in order {
