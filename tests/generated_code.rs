@@ -424,3 +424,35 @@ fn the_derivation_is_exposed_as_text_and_latex() {
     assert_eq!(SledBody::PARAMETERS, &["m0", "c", "g", "theta", "f_d"]);
     assert_eq!(<Rocket as VariableMassSystem<1, 3>>::MASSES, &["m"]);
 }
+
+/// A user's own `Result` alias in scope does not change the generated signatures (they
+/// name `::core::result::Result`): this module compiles only if they do not use it.
+mod own_result_alias {
+    use varmass::prelude::*;
+
+    #[allow(dead_code)]
+    type Result<T> = core::result::Result<T, String>;
+
+    #[variable_mass_system(
+        "
+        coordinates y
+        mass m = m0
+        body ball: mass m, position [0, y]
+        potential m*g*y
+    "
+    )]
+    pub struct Ball {
+        pub m0: f64,
+        pub g: f64,
+    }
+
+    #[test]
+    fn falls_freely_with_a_result_alias_in_scope() {
+        let ball = Ball { m0: 2.0, g: 9.81 };
+        let state = SVector::<f64, 2>::new(1.0, 3.0);
+        // ẏ = p/m = 1.5, ṗ = −m g = −19.62.
+        let rate = ball.state_rate(0.0, &state).expect("M = m0 > 0");
+        assert!((rate[0] - 1.5).abs() < 1e-15, "ẏ = {}", rate[0]);
+        assert!((rate[1] + 19.62).abs() < 1e-13, "ṗ = {}", rate[1]);
+    }
+}
