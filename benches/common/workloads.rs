@@ -155,7 +155,7 @@ pub fn pair_rounds(
     mut b: impl FnMut() -> f64,
 ) -> (f64, f64) {
     let mut best = (f64::INFINITY, f64::INFINITY);
-    let mut time = |work: &mut dyn FnMut() -> f64| {
+    let time = |work: &mut dyn FnMut() -> f64| {
         let (t, _) = fastest_of(1, 1, Duration::ZERO, || {
             (0..repeat).map(|_| black_box(work())).sum::<f64>()
         });
