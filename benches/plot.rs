@@ -28,7 +28,11 @@ const WORST_SHOWN: f64 = 1.0;
 const BEST_SHOWN: f64 = 1e-15;
 
 fn colour(method: Method) -> RGBColor {
-    let index = Method::ALL.iter().position(|m| *m == method).unwrap_or(0);
+    let index = Method::ALL
+        .iter()
+        .chain(&Method::STIFF_ONLY)
+        .position(|m| *m == method)
+        .unwrap_or(0);
     PALETTE[index % PALETTE.len()]
 }
 
@@ -94,7 +98,7 @@ pub fn work_precision(
                 .x_label_formatter(&|x| format!("{x:.0e}"))
                 .y_label_formatter(&|y| format!("{y:.0e}"))
                 .draw()?;
-            for method in Method::ALL {
+            for &method in Method::ALL.iter().chain(&Method::STIFF_ONLY) {
                 let series: Vec<(f64, f64)> = shown
                     .iter()
                     .filter(|p| p.method == method)

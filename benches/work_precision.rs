@@ -28,6 +28,7 @@ use varmass::core::steppers::{
 };
 use varmass::core::{Statistics, StepOutcome, Stepper, VariableMassSystem};
 
+use common::diffsol_peer::{run_diffsol, DiffsolMethod};
 use common::problems::{KeplerProblem, Problem, RocketProblem, SledProblem};
 use common::stiff::{self, StiffScene};
 use common::timing::fastest;
@@ -55,6 +56,12 @@ pub enum Method {
     PeerDop853,
     /// SDIRK4, adaptive, L-stable (Newton on the generated Jacobian).
     Sdirk4,
+    /// ESDIRK4(3)6L[2]SA, adaptive, L-stable, explicit first stage (stiff scene only).
+    Esdirk43,
+    /// diffsol's BDF on the same state rate and Jacobian: the stiff peer (stiff scene only).
+    PeerDiffsolBdf,
+    /// diffsol's ESDIRK34 on the same state rate and Jacobian (stiff scene only).
+    PeerDiffsolEsdirk34,
 }
 
 impl Method {
@@ -71,6 +78,13 @@ impl Method {
         Method::Sdirk4,
     ];
 
+    /// The methods run on the stiff scene only (after [`Method::ALL`] in the plots).
+    const STIFF_ONLY: [Method; 3] = [
+        Method::Esdirk43,
+        Method::PeerDiffsolBdf,
+        Method::PeerDiffsolEsdirk34,
+    ];
+
     /// The name in tables, the CSV and the plot legend.
     pub fn name(self) -> &'static str {
         match self {
@@ -84,6 +98,9 @@ impl Method {
             Method::Dop853 => "DOP853",
             Method::PeerDop853 => "ode_solvers Dop853",
             Method::Sdirk4 => "SDIRK4",
+            Method::Esdirk43 => "ESDIRK4(3)",
+            Method::PeerDiffsolBdf => "diffsol BDF",
+            Method::PeerDiffsolEsdirk34 => "diffsol ESDIRK34",
         }
     }
 
@@ -95,6 +112,9 @@ impl Method {
                 | Method::Dop853
                 | Method::PeerDop853
                 | Method::Sdirk4
+                | Method::Esdirk43
+                | Method::PeerDiffsolBdf
+                | Method::PeerDiffsolEsdirk34
         )
     }
 
@@ -110,7 +130,10 @@ impl Method {
             | Method::PeerDopri5
             | Method::Dop853
             | Method::PeerDop853 => (3..=13).map(|k| 10f64.powi(-k)).collect(),
-            Method::Sdirk4 => (3..=11).map(|k| 10f64.powi(-k)).collect(),
+            Method::Sdirk4
+            | Method::Esdirk43
+            | Method::PeerDiffsolBdf
+            | Method::PeerDiffsolEsdirk34 => (3..=11).map(|k| 10f64.powi(-k)).collect(),
             Method::Euler => powers(8, 20, 2),
             Method::Rk4 => powers(5, 16, 1),
             Method::DormandPrinceFixed => powers(4, 13, 1),
@@ -343,6 +366,27 @@ where
                 end,
             )
         }
+        Method::Esdirk43 => {
+            let control = AdaptiveControl {
+                relative_tolerance: setting,
+                absolute_tolerance: setting,
+                ..AdaptiveControl::sdirk4()
+            };
+            integrate(
+                varmass::core::steppers::Esdirk43::new(
+                    system,
+                    0.0,
+                    y0,
+                    StepControl::Adaptive(control),
+                )
+                .map_err(started)?,
+                end,
+            )
+        }
+        Method::PeerDiffsolBdf => run_diffsol(system, (y0, end), DiffsolMethod::Bdf, setting),
+        Method::PeerDiffsolEsdirk34 => {
+            run_diffsol(system, (y0, end), DiffsolMethod::Esdirk34, setting)
+        }
     }
 }
 
@@ -384,8 +428,10 @@ where
     }
 }
 
-/// The stiff scene: Dormand–Prince, DOP853 and SDIRK4 at tolerances 1e-4…1e-10 on the
-/// leaking spring pendulum for each stiffness, the error being that of θ(10).
+/// The stiff scene: Dormand–Prince, DOP853, SDIRK4, ESDIRK4(3) and diffsol's BDF and
+/// ESDIRK34 on the leaking spring pendulum for each stiffness, the error being that of
+/// θ(10), at tolerances 1e-4…1e-11, every decade: the methods map a tolerance to quite
+/// different errors, so they are compared at equal error.
 fn stiff_sweep(points: &mut Vec<Point>) -> Result<(), Box<dyn std::error::Error>> {
     for (k, name) in stiff::SCENES {
         let scene = StiffScene::new(k, name)?;
@@ -393,8 +439,11 @@ fn stiff_sweep(points: &mut Vec<Point>) -> Result<(), Box<dyn std::error::Error>
             Method::DormandPrinceAdaptive,
             Method::Dop853,
             Method::Sdirk4,
+            Method::Esdirk43,
+            Method::PeerDiffsolBdf,
+            Method::PeerDiffsolEsdirk34,
         ] {
-            for exponent in (4..=10).step_by(2) {
+            for exponent in 4..=11 {
                 let setting = 10f64.powi(-exponent);
                 let start = (scene.start(), stiff::END);
                 let (elapsed, outcome) =

@@ -65,7 +65,7 @@ pub mod prelude {
     pub use crate::variable_mass_system;
     pub use varmass_core::nalgebra::{SMatrix, SVector};
     pub use varmass_core::steppers::{
-        AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
+        AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
         ImplicitMidpoint, Sdirk4, StepControl, Variational,
     };
     pub use varmass_core::{

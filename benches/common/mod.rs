@@ -5,6 +5,7 @@
 
 pub mod adjugate;
 pub mod chain;
+pub mod diffsol_peer;
 pub mod emission;
 pub mod generated;
 pub mod hand;

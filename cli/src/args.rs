@@ -63,16 +63,17 @@ pub struct RunArgs {
     /// The end time.
     #[arg(long, value_name = "T")]
     pub until: f64,
-    /// Stop at the first crossing of a coordinate, velocity or mass: 'NAME = VALUE'.
+    /// Stop at the first crossing of a recorded quantity through a value: 'NAME = VALUE'
+    /// (either way), 'NAME > VALUE' (rising through it), 'NAME < VALUE' (falling).
     #[arg(long = "stop-when", value_name = "CONDITION")]
     pub stop_when: Vec<String>,
     /// The stepper.
     #[arg(long, value_enum, default_value_t = Method::DormandPrince)]
     pub method: Method,
-    /// Relative and absolute tolerance of the adaptive Dormand–Prince stepper.
+    /// Relative and absolute tolerance of the adaptive steppers (dormand-prince, dop853, sdirk4, esdirk43).
     #[arg(long, value_name = "TOL", conflicts_with = "step")]
     pub tol: Option<f64>,
-    /// The fixed step size (required by the fixed-step methods; makes Dormand–Prince fixed).
+    /// The fixed step size (required by the fixed-step methods; makes an adaptive one fixed).
     #[arg(long, value_name = "H")]
     pub step: Option<f64>,
     /// The quantities to record, comma-separated: x, x', x'', p_x, m, H, power, Q_x, R1_x,
@@ -95,6 +96,13 @@ pub struct RunArgs {
 pub enum Method {
     /// Dormand–Prince 5(4), adaptive (`--tol`) or fixed (`--step`).
     DormandPrince,
+    /// DOP853, eighth order, adaptive (`--tol`) or fixed (`--step`): for tight tolerances.
+    Dop853,
+    /// SDIRK4, L-stable implicit, adaptive (`--tol`) or fixed (`--step`): for stiff models.
+    Sdirk4,
+    /// ESDIRK4(3)6L[2]SA, L-stable implicit with an explicit first stage, adaptive (`--tol`)
+    /// or fixed (`--step`); its error runs above the tolerance: ask two orders tighter.
+    Esdirk43,
     /// Classical Runge–Kutta 4, fixed step.
     Rk4,
     /// Explicit Euler, fixed step.

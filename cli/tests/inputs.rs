@@ -162,6 +162,21 @@ fn an_unknown_recorded_name_suggests_the_nearest() {
 }
 
 #[test]
+fn a_stop_condition_must_be_a_comparison_not_yet_true() {
+    let stderr = run_sled("", &["--stop-when", "x ~ 5"], 2);
+    assert!(
+        stderr.contains("--stop-when `x ~ 5`: expected NAME = VALUE, NAME > VALUE or NAME < VALUE"),
+        "{stderr}"
+    );
+    // x starts at 0: `x < 1` holds already, and a crossing would never come.
+    let stderr = run_sled("", &["--stop-when", "x < 1"], 2);
+    assert!(
+        stderr.contains("--stop-when `x < 1` already holds at the start (the value there is 0)"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn an_unparsable_number_is_named() {
     let stderr = run_sled("m0", &["--set", "m0=ten"], 2);
     assert!(stderr.contains("--set: `ten` is not a number"), "{stderr}");

@@ -12,6 +12,8 @@
 //! * [`steppers::Sdirk4`], L-stable, order 4(3), adaptive or fixed, Newton on the
 //!   Jacobian: for stiff scenes (Dormand–Prince and DOP853 report stiffness in their
 //!   [`Statistics`]);
+//! * [`steppers::Esdirk43`], Kennedy & Carpenter's ESDIRK4(3)6L\[2\]SA: L-stable, order
+//!   4(3), explicit first stage, the same stepper as SDIRK4 with another tableau;
 //! * [`steppers::ImplicitMidpoint`], symplectic for constant masses, Newton on the Jacobian;
 //! * [`steppers::Variational`], the midpoint discretisation of the corrected Hamilton
 //!   principle.

@@ -10,7 +10,7 @@ use support::problems::{KeplerProblem, RocketProblem};
 use support::Problem;
 use varmass_core::nalgebra::SVector;
 use varmass_core::steppers::{
-    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
     ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
 };
 use varmass_core::{observe, Observable, Stepper};
@@ -79,6 +79,19 @@ fn steppers_do_not_allocate_per_step() {
             "SDIRK4",
             allocations_while_stepping(
                 Sdirk4::new(
+                    system,
+                    0.0,
+                    y0,
+                    StepControl::Adaptive(AdaptiveControl::sdirk4()),
+                )
+                .unwrap(),
+                steps,
+            ),
+        ),
+        (
+            "ESDIRK4(3)",
+            allocations_while_stepping(
+                Esdirk43::new(
                     system,
                     0.0,
                     y0,

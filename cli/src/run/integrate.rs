@@ -4,12 +4,11 @@
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{
-    AdaptiveControl, ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
-    ImplicitMidpointConfig, StepControl, Variational, VariationalConfig,
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
+    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
 };
 use varmass::core::{
-    run, Direction, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper,
-    StopReason,
+    run, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper, StopReason,
 };
 use varmass::interpret::{Program, TapeSystem};
 
@@ -40,21 +39,50 @@ pub fn integrate<const N: usize, const S: usize>(
     let start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
     let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, e));
     let (points, stopped_by, statistics) = match (plan.method, plan.steps) {
-        (Method::DormandPrince, steps) => {
-            let control = match steps {
-                Steps::Adaptive(tol) => StepControl::Adaptive(AdaptiveControl {
-                    relative_tolerance: tol,
-                    absolute_tolerance: tol,
-                    ..AdaptiveControl::default()
-                }),
-                Steps::Fixed(step) => StepControl::Fixed(FixedStep { step }),
-            };
-            drive(
+        (Method::DormandPrince, steps) => drive(
+            &system,
+            DormandPrince::new(
                 &system,
-                DormandPrince::new(&system, t0, start, control).map_err(fail)?,
-                plan,
+                t0,
+                start,
+                control(steps, AdaptiveControl::default()),
             )
-        }
+            .map_err(fail)?,
+            plan,
+        ),
+        (Method::Dop853, steps) => drive(
+            &system,
+            Dop853::new(
+                &system,
+                t0,
+                start,
+                control(steps, AdaptiveControl::dop853()),
+            )
+            .map_err(fail)?,
+            plan,
+        ),
+        (Method::Esdirk43, steps) => drive(
+            &system,
+            Esdirk43::new(
+                &system,
+                t0,
+                start,
+                control(steps, AdaptiveControl::sdirk4()),
+            )
+            .map_err(fail)?,
+            plan,
+        ),
+        (Method::Sdirk4, steps) => drive(
+            &system,
+            Sdirk4::new(
+                &system,
+                t0,
+                start,
+                control(steps, AdaptiveControl::sdirk4()),
+            )
+            .map_err(fail)?,
+            plan,
+        ),
         (Method::Rk4, steps) => {
             let config = FixedStep { step: step(steps) };
             drive(
@@ -103,6 +131,19 @@ pub fn integrate<const N: usize, const S: usize>(
     })
 }
 
+/// The step control of an adaptive method: `defaults` (the method's own safety and step
+/// factors) at the tolerance asked for, or the fixed step.
+fn control(steps: Steps, defaults: AdaptiveControl) -> StepControl {
+    match steps {
+        Steps::Adaptive(tol) => StepControl::Adaptive(AdaptiveControl {
+            relative_tolerance: tol,
+            absolute_tolerance: tol,
+            ..defaults
+        }),
+        Steps::Fixed(step) => StepControl::Fixed(FixedStep { step }),
+    }
+}
+
 /// The step of a fixed-step method (the plan guarantees one; the adaptive tolerance never
 /// reaches a fixed-step method).
 fn step(steps: Steps) -> f64 {
@@ -137,8 +178,8 @@ where
         .iter()
         .zip(&watchers)
         .map(|(c, w)| match c.observable {
-            Observable::Coordinate(a) => Event::state_reaches(a, c.value, Direction::Either),
-            _ => Event::function(w.as_ref(), Direction::Either, EventAction::Stop),
+            Observable::Coordinate(a) => Event::state_reaches(a, c.value, c.direction),
+            _ => Event::function(w.as_ref(), c.direction, EventAction::Stop),
         })
         .collect();
     let mut stepper = Watched::new(stepper, plan.from, plan.until);

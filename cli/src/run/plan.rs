@@ -1,9 +1,12 @@
 //! From the command line to a run plan: parameter values, the initial state `[q, p, m_s]`,
 //! the stop conditions, the stepper and the output times, all checked against the model.
 
+use varmass::core::Direction;
 use varmass::interpret::{Program, Quantity};
 
-use super::names::{assignment, observables, resolve, velocity_state, Observable};
+use super::names::{
+    assignment, evaluate, number, observables, resolve, velocity_state, Observable,
+};
 use crate::args::{Method, RunArgs};
 use crate::error::CliError;
 
@@ -14,12 +17,14 @@ pub struct StopWhen {
     pub observable: Observable,
     /// The value whose crossing stops the run.
     pub value: f64,
+    /// Which crossings count: `=` either, `>` rising through the value, `<` falling.
+    pub direction: Direction,
 }
 
 /// How the stepper takes its steps.
 #[derive(Clone, Copy, Debug)]
 pub enum Steps {
-    /// Dormand–Prince with error control at this tolerance (relative and absolute).
+    /// An adaptive method with error control at this tolerance (relative and absolute).
     Adaptive(f64),
     /// A fixed step.
     Fixed(f64),
@@ -46,7 +51,7 @@ pub struct Plan {
     pub record: Vec<(String, Observable)>,
 }
 
-/// The default tolerance of Dormand–Prince when `--tol` is not given.
+/// The default tolerance of the adaptive methods when `--tol` is not given.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
 /// Parses `--set` into (name, value) pairs.
@@ -64,11 +69,18 @@ pub fn plan(args: &RunArgs, program: &Program) -> Result<Plan, CliError> {
         )));
     }
     let known = observables(program);
+    let initial_state = initial_state(args, program)?;
     let mut stop_when = Vec::new();
-    for condition in &args.stop_when {
-        let (name, value) = assignment(condition, "--stop-when")?;
+    for text in &args.stop_when {
+        let (name, direction, value) = condition(text)?;
         let observable = resolve(&name, &known, "a quantity")?;
-        stop_when.push(StopWhen { observable, value });
+        let condition = StopWhen {
+            observable,
+            value,
+            direction,
+        };
+        not_yet_true(program, &condition, text, from, &initial_state)?;
+        stop_when.push(condition);
     }
     let record = match args.record.is_empty() {
         true => default_record(&known, program),
@@ -85,13 +97,65 @@ pub fn plan(args: &RunArgs, program: &Program) -> Result<Plan, CliError> {
     Ok(Plan {
         from,
         until,
-        initial_state: initial_state(args, program)?,
+        initial_state,
         method: args.method,
         steps: steps(args)?,
         stop_when,
         every,
         record,
     })
+}
+
+/// Splits a `--stop-when` condition `NAME = VALUE`, `NAME > VALUE` or `NAME < VALUE`
+/// (`>=` and `<=` read as `>` and `<`: a crossing has no width).
+fn condition(text: &str) -> Result<(String, Direction, f64), CliError> {
+    let Some(at) = text.find(['=', '<', '>']) else {
+        return Err(CliError::Input(format!(
+            "--stop-when `{text}`: expected NAME = VALUE, NAME > VALUE or NAME < VALUE"
+        )));
+    };
+    let (name, rest) = text.split_at(at);
+    let (direction, value) = match rest.split_at(1) {
+        (">", value) => (Direction::Rising, value.strip_prefix('=').unwrap_or(value)),
+        ("<", value) => (Direction::Falling, value.strip_prefix('=').unwrap_or(value)),
+        (_, value) => (Direction::Either, value),
+    };
+    let name = name.trim();
+    if name.is_empty() {
+        return Err(CliError::Input(format!(
+            "--stop-when `{text}`: the name is empty"
+        )));
+    }
+    Ok((
+        name.to_string(),
+        direction,
+        number(value.trim(), "--stop-when")?,
+    ))
+}
+
+/// A `>` or `<` condition that already holds at the start would wait for a crossing the
+/// user did not mean: refused, with the value there.
+fn not_yet_true(
+    program: &Program,
+    condition: &StopWhen,
+    text: &str,
+    from: f64,
+    state: &[f64],
+) -> Result<(), CliError> {
+    let start = evaluate(program, condition.observable, from, state)
+        .map_err(|e| CliError::Input(format!("--stop-when `{text}`: {e} at the start")))?;
+    let holds = match condition.direction {
+        Direction::Rising => start > condition.value,
+        Direction::Falling => start < condition.value,
+        Direction::Either => false,
+    };
+    if holds {
+        return Err(CliError::Input(format!(
+            "--stop-when `{text}` already holds at the start (the value there is {start}): \
+             a run stops when the quantity crosses the value"
+        )));
+    }
+    Ok(())
 }
 
 fn positive(value: f64, flag: &str) -> Result<f64, CliError> {
@@ -107,10 +171,12 @@ fn positive(value: f64, flag: &str) -> Result<f64, CliError> {
 fn steps(args: &RunArgs) -> Result<Steps, CliError> {
     match (args.method, args.step, args.tol) {
         (_, Some(h), _) => Ok(Steps::Fixed(positive(h, "--step")?)),
-        (Method::DormandPrince, None, tol) => Ok(Steps::Adaptive(positive(
-            tol.unwrap_or(DEFAULT_TOLERANCE),
-            "--tol",
-        )?)),
+        (Method::DormandPrince | Method::Dop853 | Method::Sdirk4 | Method::Esdirk43, None, tol) => {
+            Ok(Steps::Adaptive(positive(
+                tol.unwrap_or(DEFAULT_TOLERANCE),
+                "--tol",
+            )?))
+        }
         (method, None, _) => Err(CliError::Input(format!(
             "--method {} takes a fixed step: give --step H",
             clap::ValueEnum::to_possible_value(&method)

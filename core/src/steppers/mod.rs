@@ -1,8 +1,10 @@
 //! The steppers, one per file. Each is generic over the system (monomorphized: no `dyn`, no
 //! allocation per step) and implements [`crate::stepper::Stepper`].
 
+pub mod dirk;
 pub mod dop853;
 pub mod dormand_prince;
+pub mod esdirk43;
 pub mod euler;
 pub mod implicit_midpoint;
 pub mod newton;
@@ -13,13 +15,15 @@ pub mod sdirk4;
 mod stiffness;
 pub mod variational;
 
+pub use dirk::{Dirk, DirkMethod, DirkNewton, DirkTableau};
 pub use dop853::Dop853;
 pub use dormand_prince::{AdaptiveControl, DormandPrince, StepControl};
+pub use esdirk43::{Esdirk43, Esdirk43Method};
 pub use euler::ExplicitEuler;
 pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig};
 pub use newton::NewtonConfig;
 pub use rk4::ClassicalRk4;
-pub use sdirk4::{Sdirk4, Sdirk4Newton};
+pub use sdirk4::{Sdirk4, Sdirk4Method, Sdirk4Newton};
 pub use variational::{Principle, Variational, VariationalConfig};
 
 use crate::error::ConfigError;

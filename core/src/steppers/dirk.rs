@@ -1,0 +1,471 @@
+//! The diagonally implicit Runge–Kutta stepper shared by [`super::Sdirk4`] (Hairer &
+//! Wanner's SDIRK4) and [`super::Esdirk43`] (Kennedy & Carpenter's ESDIRK4(3)6L\[2\]SA):
+//! one implementation, two tableaus ([`DirkTableau`], in the stage increment form of
+//! `sdirk4.f` extended to an explicit first stage).
+//!
+//! Each implicit stage solves Zᵢ = Σ_{j<i} αᵢⱼ Wⱼ + hγ f(t₀ + cᵢh, y₀ + Zᵢ) by simplified
+//! Newton with the one matrix I − hγJ, J = [`VariableMassSystem::jacobian`] at the start of
+//! a step, kept over the following steps while Newton contracts fast (rate ≤
+//! [`DirkNewton::jacobian_reuse_rate`]) and refreshed when it does not. Both methods are
+//! stiffly accurate: y₁ = y₀ + Z_M. An explicit first stage costs no evaluation after the
+//! first step: its rate f(t₀, y₀) is the last stage's rate of the step before (FSAL), read
+//! off the converged stage as (Z_M − G_M)/(hγ). The error estimate is `sdirk4.f`'s filtered
+//! difference (I − hγJ)⁻¹(y₁ − ŷ₁), which stays bounded on stiff components; the step size
+//! follows err^(−1/4) with the safety factor lowered when Newton needed many iterations.
+//!
+//! A Newton iteration that diverges or contracts too slowly is retried with a fresh
+//! Jacobian, then with half the step; when the step can shrink no further the step fails
+//! with a [`StepError`] of kind [`NewtonDivergence`](crate::StepErrorKind::NewtonDivergence)
+//! at its start time.
+
+mod stage;
+mod tableau;
+
+use core::marker::PhantomData;
+
+use nalgebra::{SMatrix, SVector};
+
+use self::stage::{weighted_norm, StepContext};
+pub(crate) use self::tableau::{explicit_parts, on_increments, rate_transform};
+pub use self::tableau::{DirkMethod, DirkTableau};
+use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
+use super::newton::Lu;
+use super::StepControl;
+use crate::error::{StepError, StepErrorKind};
+use crate::math::powf;
+use crate::stepper::{check_state, state_rate, Progress, StepOutcome, Stepper};
+use crate::system::VariableMassSystem;
+
+/// The Newton settings of the diagonally implicit steppers (defaults of `sdirk4.f`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirkNewton {
+    /// Iterations allowed per stage (`NIT`, default 7).
+    pub max_iterations: usize,
+    /// The iteration stops when its estimated remaining error is below this fraction of
+    /// the error tolerance (`FNEWT`, default 0.03).
+    pub tolerance_fraction: f64,
+    /// The Jacobian is kept for the next step when Newton's contraction rate stayed below
+    /// this (`THET`, default 0.001; larger values reuse it more).
+    pub jacobian_reuse_rate: f64,
+}
+
+impl Default for DirkNewton {
+    fn default() -> Self {
+        Self {
+            max_iterations: 7,
+            tolerance_fraction: 0.03,
+            jacobian_reuse_rate: 0.001,
+        }
+    }
+}
+
+/// The error weights of fixed-step mode, where there is no tolerance: Newton then
+/// iterates to about 3e-12 relative.
+const FIXED_MODE_TOLERANCE: f64 = 1e-10;
+
+/// A diagonally implicit stepper with M stages on the state `[q, p, m_s]`; use it through
+/// [`super::Sdirk4`] or [`super::Esdirk43`].
+#[derive(Clone, Debug)]
+pub struct Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> {
+    system: &'a Sys,
+    progress: Progress<S>,
+    control: StepControl,
+    /// The checked tolerance of the adaptive mode.
+    tolerance: Option<crate::tolerance::Tolerance>,
+    newton: DirkNewton,
+    /// The size of the next step to try (0 until the first step chooses it).
+    next_step: f64,
+    /// The size of the last accepted step, for the dense output.
+    last_step: f64,
+    /// The stage vectors W₁…W_M of the last accepted step.
+    increments: [SVector<f64, S>; M],
+    /// The Jacobian in use, and whether it was evaluated at the current state.
+    jacobian: Option<(SMatrix<f64, S, S>, bool)>,
+    /// Hairer's `FACCO`: the last contraction factor θ/(1 − θ) of each stage's Newton
+    /// iteration, which lets a fast-converging iteration stop after one update.
+    contraction: [f64; M],
+    /// Whether the last attempt was rejected, so the next step may not grow.
+    last_rejected: bool,
+    /// With an explicit first stage: f at the current state, once known (FSAL).
+    rate: Option<SVector<f64, S>>,
+    method: PhantomData<T>,
+}
+
+/// Why the stages of an attempt could not be solved.
+enum StageFailure<const S: usize> {
+    /// Newton diverged or converged too slowly after this many iterations; `shrink` is
+    /// the factor `sdirk4.f` proposes for the next try.
+    Newton { iterations: usize, shrink: f64 },
+    /// A rate could not be evaluated (a trial state outside the domain).
+    Rate(StepError<S>),
+}
+
+/// One attempted step: the stage vectors, the new state, the last stage's rate (for the
+/// next step's explicit stage), the scaled error and the Newton work of the last stage
+/// (for the step-size safety factor).
+struct Attempt<const S: usize, const M: usize> {
+    increments: [SVector<f64, S>; M],
+    state: SVector<f64, S>,
+    last_rate: SVector<f64, S>,
+    error: f64,
+    last_iterations: usize,
+    slowest_rate: f64,
+}
+
+/// Σ_{j<upto} coefficientsⱼ Wⱼ, skipping zero coefficients.
+fn combination<const S: usize, const M: usize>(
+    coefficients: &[f64; M],
+    w: &[SVector<f64, S>; M],
+    upto: usize,
+) -> SVector<f64, S> {
+    let mut sum = SVector::zeros();
+    for (coefficient, w) in coefficients.iter().zip(w).take(upto) {
+        if *coefficient != 0.0 {
+            sum += w * *coefficient;
+        }
+    }
+    sum
+}
+
+impl<'a, Sys, T, const N: usize, const S: usize, const M: usize> Dirk<'a, Sys, T, N, S, M>
+where
+    Sys: VariableMassSystem<N, S>,
+    T: DirkMethod<M>,
+{
+    /// Starts at `(time, state)`; the state and the control are checked. See
+    /// [`AdaptiveControl::sdirk4`] for the step-size settings of `sdirk4.f`.
+    pub fn new(
+        system: &'a Sys,
+        time: f64,
+        state: SVector<f64, S>,
+        control: StepControl,
+    ) -> Result<Self, StepError<S>> {
+        let tolerance = control
+            .checked_tolerance()
+            .map_err(|e| e.at(time, &state))?;
+        Ok(Self {
+            system,
+            progress: Progress::new(system, time, state)?,
+            control,
+            tolerance,
+            newton: DirkNewton::default(),
+            next_step: 0.0,
+            last_step: 0.0,
+            increments: [SVector::zeros(); M],
+            jacobian: None,
+            contraction: [1.0; M],
+            last_rejected: false,
+            rate: None,
+            method: PhantomData,
+        })
+    }
+
+    /// The same stepper with other Newton settings (checked).
+    pub fn with_newton(self, newton: DirkNewton) -> Result<Self, StepError<S>> {
+        let valid = newton.max_iterations >= 2
+            && newton.tolerance_fraction > 0.0
+            && newton.tolerance_fraction < 1.0
+            && (0.0..1.0).contains(&newton.jacobian_reuse_rate);
+        if !valid {
+            let reason = "DIRK Newton: at least 2 iterations, tolerance fraction in (0, 1), \
+                          Jacobian reuse rate in [0, 1)";
+            let kind = StepErrorKind::InvalidConfiguration { reason };
+            return Err(StepError::new(self.time(), *self.state(), kind));
+        }
+        Ok(Self { newton, ..self })
+    }
+
+    /// The third-order dense output over the last accepted step at `time` (meant for
+    /// `time` within the step; outside it extrapolates). Before the first step it returns
+    /// the current state.
+    pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
+        let h = self.last_step;
+        if h <= 0.0 {
+            return *self.progress.state();
+        }
+        let [d1, d2, d3, d4] = &T::TABLEAU.dense;
+        let row = |d| combination(d, &self.increments, M);
+        let s = (time - self.progress.previous_time()) / h;
+        let (c1, c2, c3, c4) = (row(d1), row(d2), row(d3), row(d4));
+        self.progress.previous_state() + (c1 + (c2 + (c3 + c4 * s) * s) * s) * s
+    }
+
+    /// The size of the step the stepper will try next (0 before the first step).
+    pub fn proposed_step(&self) -> f64 {
+        self.next_step
+    }
+
+    /// The error weights atol + rtol·|y| (fixed mode: [`FIXED_MODE_TOLERANCE`]).
+    fn weights(&self, y: &SVector<f64, S>) -> SVector<f64, S> {
+        let (atol, rtol) = match &self.control {
+            StepControl::Adaptive(c) => (c.absolute_tolerance, c.relative_tolerance),
+            StepControl::Fixed(_) => (FIXED_MODE_TOLERANCE, FIXED_MODE_TOLERANCE),
+        };
+        y.map(|yi| atol + rtol * yi.abs())
+    }
+
+    /// The Jacobian at the current state if the one in hand is stale or missing.
+    fn refresh_jacobian(&mut self, force: bool) -> Result<SMatrix<f64, S, S>, StepError<S>> {
+        match self.jacobian {
+            Some((jacobian, fresh)) if fresh || !force => Ok(jacobian),
+            _ => {
+                let (t0, y0) = (self.progress.time(), *self.progress.state());
+                self.progress.statistics.jacobian_evaluations += 1;
+                let jacobian = self
+                    .system
+                    .jacobian(t0, &y0)
+                    .map_err(|error| StepError::from_system(self.system, error, t0, &y0))?;
+                if !jacobian.iter().all(|x| x.is_finite()) {
+                    return Err(StepError::new(t0, y0, StepErrorKind::NonFiniteState));
+                }
+                self.jacobian = Some((jacobian, true));
+                Ok(jacobian)
+            }
+        }
+    }
+
+    /// f(t₀, y₀) at the current state: kept from the last step (FSAL) or evaluated.
+    fn rate_at_start(&mut self) -> Result<SVector<f64, S>, StepError<S>> {
+        if let Some(rate) = self.rate {
+            return Ok(rate);
+        }
+        let (t0, y0) = (self.progress.time(), *self.progress.state());
+        let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;
+        self.rate = Some(rate);
+        Ok(rate)
+    }
+
+    /// The stages, the new state and the error of a step with the context's `h`.
+    /// `extrapolate` starts the first implicit stage from the last step's dense output.
+    fn attempt(
+        &mut self,
+        context: &StepContext<'_, Sys, S>,
+        extrapolate: bool,
+    ) -> Result<Attempt<S, M>, StageFailure<S>> {
+        let tableau = &T::TABLEAU;
+        let (t0, y0, h) = (context.t0, context.y0, context.h);
+        let mut w = [SVector::zeros(); M];
+        let first = usize::from(tableau.explicit_first);
+        if tableau.explicit_first {
+            w[0] = self.rate_at_start().map_err(StageFailure::Rate)? * h;
+        }
+        let (mut explicit, mut last_iterations, mut slowest_rate) = (SVector::zeros(), 0, 0.0f64);
+        for i in first..M {
+            explicit = combination(&tableau.alpha[i], &w, i);
+            let start = if i == first && extrapolate && self.last_step > 0.0 {
+                self.interpolate(t0 + tableau.c[i] * h) - y0
+            } else {
+                combination(&tableau.start[i], &w, i)
+            };
+            let statistics = &mut self.progress.statistics;
+            let eta = &mut self.contraction[i];
+            let stage = context.solve_stage(statistics, tableau.c[i], &explicit, start, eta)?;
+            w[i] = stage.increment;
+            last_iterations = stage.iterations;
+            slowest_rate = slowest_rate.max(stage.slowest_rate);
+        }
+        let state = y0 + w[M - 1];
+        check_state(self.system, t0 + h, &state).map_err(StageFailure::Rate)?;
+        let embedded = combination(&tableau.embedded, &w, M);
+        let estimate = context.lu.solve(w[M - 1] - embedded);
+        let weights = self.weights(&y0.zip_map(&state, |a, b| a.abs().max(b.abs())));
+        Ok(Attempt {
+            last_rate: (w[M - 1] - explicit) / (h * tableau.gamma),
+            increments: w,
+            state,
+            error: weighted_norm(&estimate, &weights).max(1e-10),
+            last_iterations,
+            slowest_rate,
+        })
+    }
+
+    /// The step size `sdirk4.f` proposes after an attempt with this error: err^(−1/4) with
+    /// a safety factor lowered when the last stage needed many Newton iterations.
+    fn proposed_after(&self, h: f64, attempt: &Attempt<S, M>, control: &AdaptiveControl) -> f64 {
+        let iterations = self.newton.max_iterations as f64;
+        let work = control.safety * (1.0 + 2.0 * iterations)
+            / (attempt.last_iterations as f64 + 2.0 * iterations);
+        let safety = control.safety.min(work);
+        let quotient = (powf(attempt.error, 0.25) / safety)
+            .clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
+        h / quotient
+    }
+
+    fn accept(
+        &mut self,
+        h: f64,
+        reaches_stop: bool,
+        attempt: Attempt<S, M>,
+    ) -> Result<StepOutcome, StepError<S>> {
+        let outcome = self
+            .progress
+            .accept(self.system, h, reaches_stop, attempt.state)?;
+        self.increments = attempt.increments;
+        self.last_step = h;
+        self.last_rejected = false;
+        self.rate = T::TABLEAU.explicit_first.then_some(attempt.last_rate);
+        // Keep the Jacobian (now from an earlier state) while Newton contracts fast.
+        self.jacobian = match self.jacobian {
+            Some((jacobian, _)) if attempt.slowest_rate <= self.newton.jacobian_reuse_rate => {
+                Some((jacobian, false))
+            }
+            _ => None,
+        };
+        Ok(outcome)
+    }
+
+    /// The first step: the fixed step, the configured one, or HNW's heuristic for order 4.
+    fn first_step(&mut self) -> Result<f64, StepError<S>> {
+        Ok(match self.control {
+            StepControl::Fixed(fixed) => fixed.step,
+            StepControl::Adaptive(control) => match control.initial_step {
+                Some(h) => h.min(control.max_step),
+                None => {
+                    let (t0, y0) = (self.progress.time(), *self.progress.state());
+                    let statistics = &mut self.progress.statistics;
+                    let rate = state_rate(self.system, statistics, t0, &y0)?;
+                    let tolerance = self.tolerance.expect("adaptive mode has a tolerance");
+                    let settings = (&control, &tolerance);
+                    initial_step(self.system, &mut self.progress, &rate, settings, 4)
+                }
+            },
+        })
+    }
+
+    /// After a failed attempt: a fresh Jacobian if the one used was stale, else a shorter
+    /// step; an error when neither is possible (fixed steps, or a step that would
+    /// underflow).
+    fn recover(
+        &mut self,
+        failure: StageFailure<S>,
+        fresh: bool,
+        (t0, y0): (f64, SVector<f64, S>),
+        h: f64,
+    ) -> Result<(), StepError<S>> {
+        let (error, shrink) = match failure {
+            StageFailure::Newton { iterations, shrink } => {
+                if !fresh {
+                    self.refresh_jacobian(true)?;
+                    return Ok(());
+                }
+                let kind = StepErrorKind::NewtonDivergence { iterations };
+                let error = StepError::new(t0, y0, kind);
+                (error, shrink)
+            }
+            StageFailure::Rate(error) => (error, 0.25),
+        };
+        self.next_step = h * shrink;
+        let fixed = matches!(self.control, StepControl::Fixed(_));
+        if fixed || !resolvable(t0, self.next_step) {
+            return Err(error);
+        }
+        Ok(())
+    }
+}
+
+impl<Sys, T, const N: usize, const S: usize, const M: usize> Stepper<N, S>
+    for Dirk<'_, Sys, T, N, S, M>
+where
+    Sys: VariableMassSystem<N, S>,
+    T: DirkMethod<M>,
+{
+    type System = Sys;
+
+    fn system(&self) -> &Sys {
+        self.system
+    }
+
+    fn progress(&self) -> &Progress<S> {
+        &self.progress
+    }
+
+    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
+        self.progress.set_stop_time(stop_time)
+    }
+
+    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
+        self.progress.restart(self.system, time, state)?;
+        self.last_step = 0.0;
+        self.jacobian = None;
+        self.contraction = [1.0; M];
+        self.last_rejected = false;
+        self.rate = None;
+        Ok(())
+    }
+
+    fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
+        Some(self.interpolate(time))
+    }
+
+    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
+        let (t0, y0) = (self.progress.time(), *self.progress.state());
+        if self.next_step <= 0.0 {
+            self.next_step = self.first_step()?;
+        }
+        let adaptive = match self.control {
+            StepControl::Adaptive(control) => Some(control),
+            StepControl::Fixed(_) => None,
+        };
+        let mut extrapolate = true;
+        loop {
+            let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
+            if !resolvable(t0, h) {
+                let kind = StepErrorKind::StepSizeUnderflow { step: h };
+                return Err(StepError::new(t0, y0, kind));
+            }
+            let (jacobian, fresh) = match self.jacobian {
+                Some(pair) => pair,
+                None => (self.refresh_jacobian(true)?, true),
+            };
+            let gamma = T::TABLEAU.gamma;
+            let matrix = SMatrix::<f64, S, S>::identity() - jacobian * (h * gamma);
+            let failure = match Lu::factor(matrix) {
+                Some(lu) => {
+                    let newton = self.newton;
+                    let context = StepContext {
+                        system: self.system,
+                        t0,
+                        y0,
+                        h,
+                        lu: &lu,
+                        fresh_jacobian: fresh,
+                        weights: self.weights(&y0),
+                        newton: &newton,
+                        gamma,
+                    };
+                    match (self.attempt(&context, extrapolate), adaptive) {
+                        (Ok(attempt), None) => return self.accept(h, reaches_stop, attempt),
+                        (Ok(attempt), Some(control)) => {
+                            let proposed = self.proposed_after(h, &attempt, &control);
+                            if attempt.error <= 1.0 {
+                                let next = if self.last_rejected {
+                                    proposed.min(h)
+                                } else {
+                                    proposed
+                                };
+                                let outcome = self.accept(h, reaches_stop, attempt)?;
+                                if !reaches_stop || next > self.next_step {
+                                    self.next_step = next.min(control.max_step);
+                                }
+                                return Ok(outcome);
+                            }
+                            self.next_step = proposed;
+                            self.last_rejected = true;
+                            self.progress.statistics.rejected_steps += 1;
+                            continue;
+                        }
+                        (Err(failure), _) => failure,
+                    }
+                }
+                None => StageFailure::Newton {
+                    iterations: 0,
+                    shrink: 0.5,
+                },
+            };
+            extrapolate = false;
+            self.progress.statistics.rejected_steps += 1;
+            self.last_rejected = true;
+            self.recover(failure, fresh, (t0, y0), h)?;
+        }
+    }
+}
