@@ -223,7 +223,7 @@ fn summary() {
 
     emission_costs();
 
-    say!("\n== symbolic-inverse threshold: q̇ from p in closed form vs Cholesky (fastest of 101 alternating rounds)");
+    say!("\n== symbolic-inverse threshold: q̇ from p in closed form vs LDLᵀ or Cholesky (fastest of 101 alternating rounds)");
     threshold_row(
         2,
         chain(|m0, c, l, g| Chain2 { m0, c, l, g }),
@@ -236,7 +236,7 @@ fn summary() {
         chain(|m0, c, l, g| Chain3Closed { m0, c, l, g }),
         chain3,
         "closed",
-        "Cholesky (macro)",
+        "LDLᵀ (macro)",
     );
     velocity_tapes(2);
     velocity_tapes(3);
