@@ -375,6 +375,44 @@ fn three_coordinate_system_solves_velocities_numerically() {
     });
 }
 
+/// M = [[M+m, 0, −m l sin θ], [0, M+m, m l cos θ], [−m l sin θ, m l cos θ, J + m l²]] has
+/// leading minors M+m, (M+m)², and det = (M+m)((M+m)(J + m l²) − m² l²): with J < 0 the first
+/// two are positive and the last is not, so only the last pivot of the straight-line solve
+/// can refuse it.
+#[test]
+fn indefinite_mass_matrix_is_refused_at_its_last_pivot() {
+    let sys = SwingingTank {
+        mu: 0.3,
+        M0: 5.0,
+        J0: -1.0,
+        l: 1.0,
+        g: 9.81,
+        K: 4.0,
+        u_e: 20.0,
+    };
+    // θ = 0.4, m = 1: det = 6 (6 · (−1 + 1) − 1) = −6.
+    let state = SVector::<f64, 7>::from_column_slice(&[0.1, 0.2, 0.4, 1.0, 2.0, 3.0, 1.0]);
+    let minors = [6.0, 36.0, -6.0];
+    let m = sys.mass_matrix(0.0, &state);
+    let (m2, m3) = (m.fixed_view::<2, 2>(0, 0).determinant(), m.determinant());
+    // Measured: agree to 1e-14; the signs are what matter.
+    for (got, want) in [m[(0, 0)], m2, m3].iter().zip(minors) {
+        assert!(
+            (got - want).abs() < 1e-12,
+            "leading minor {got}, expected {want}"
+        );
+    }
+    assert_eq!(
+        sys.state_rate(0.0, &state),
+        Err(SystemError::SingularMassMatrix)
+    );
+    let velocity_state = SVector::<f64, 7>::from_column_slice(&[0.1, 0.2, 0.4, 1.0, 2.0, 3.0, 1.0]);
+    assert_eq!(
+        sys.accelerations(0.0, &velocity_state),
+        Err(SystemError::SingularMassMatrix)
+    );
+}
+
 #[test]
 fn the_derivation_is_exposed_as_text_and_latex() {
     assert!(
@@ -385,4 +423,36 @@ fn the_derivation_is_exposed_as_text_and_latex() {
     assert!(SledBody::DERIVATION_LATEX.contains("\\begin{align*}"));
     assert_eq!(SledBody::PARAMETERS, &["m0", "c", "g", "theta", "f_d"]);
     assert_eq!(<Rocket as VariableMassSystem<1, 3>>::MASSES, &["m"]);
+}
+
+/// A user's own `Result` alias in scope does not change the generated signatures (they
+/// name `::core::result::Result`): this module compiles only if they do not use it.
+mod own_result_alias {
+    use varmass::prelude::*;
+
+    #[allow(dead_code)]
+    type Result<T> = core::result::Result<T, String>;
+
+    #[variable_mass_system(
+        "
+        coordinates y
+        mass m = m0
+        body ball: mass m, position [0, y]
+        potential m*g*y
+    "
+    )]
+    pub struct Ball {
+        pub m0: f64,
+        pub g: f64,
+    }
+
+    #[test]
+    fn falls_freely_with_a_result_alias_in_scope() {
+        let ball = Ball { m0: 2.0, g: 9.81 };
+        let state = SVector::<f64, 2>::new(1.0, 3.0);
+        // ẏ = p/m = 1.5, ṗ = −m g = −19.62.
+        let rate = ball.state_rate(0.0, &state).expect("M = m0 > 0");
+        assert!((rate[0] - 1.5).abs() < 1e-15, "ẏ = {}", rate[0]);
+        assert!((rate[1] + 19.62).abs() < 1e-13, "ṗ = {}", rate[1]);
+    }
 }

@@ -141,18 +141,36 @@ where
 }
 
 /// Nanoseconds of the fastest of interleaved runs of `a` and `b`, each run `repeat` calls.
-pub fn pair(repeat: usize, mut a: impl FnMut() -> f64, mut b: impl FnMut() -> f64) -> (f64, f64) {
+pub fn pair(repeat: usize, a: impl FnMut() -> f64, b: impl FnMut() -> f64) -> (f64, f64) {
+    pair_rounds(15, repeat, a, b)
+}
+
+/// [`pair`] over `rounds` rounds. Interleaving puts both under the same load and the
+/// minimum discards the noise; the order alternates from round to round, so neither
+/// workload always runs with the caches and the branch predictor left by the other.
+pub fn pair_rounds(
+    rounds: usize,
+    repeat: usize,
+    mut a: impl FnMut() -> f64,
+    mut b: impl FnMut() -> f64,
+) -> (f64, f64) {
     let mut best = (f64::INFINITY, f64::INFINITY);
-    // Interleaving puts both under the same load; the minimum discards the noise.
-    for _ in 0..15 {
-        let (ta, _) = fastest_of(1, 1, Duration::ZERO, || {
-            (0..repeat).map(|_| black_box(a())).sum::<f64>()
+    let time = |work: &mut dyn FnMut() -> f64| {
+        let (t, _) = fastest_of(1, 1, Duration::ZERO, || {
+            (0..repeat).map(|_| black_box(work())).sum::<f64>()
         });
-        let (tb, _) = fastest_of(1, 1, Duration::ZERO, || {
-            (0..repeat).map(|_| black_box(b())).sum::<f64>()
-        });
-        best.0 = best.0.min(ta.as_nanos() as f64 / repeat as f64);
-        best.1 = best.1.min(tb.as_nanos() as f64 / repeat as f64);
+        t.as_nanos() as f64 / repeat as f64
+    };
+    for round in 0..rounds {
+        let (ta, tb) = if round % 2 == 0 {
+            let ta = time(&mut a);
+            (ta, time(&mut b))
+        } else {
+            let tb = time(&mut b);
+            (time(&mut a), tb)
+        };
+        best.0 = best.0.min(ta);
+        best.1 = best.1.min(tb);
     }
     best
 }

@@ -247,6 +247,39 @@ fn terms_contains_and_free_symbols() {
     assert_eq!(names, ["x", "x'", "g", "theta", "m"], "in table order");
 }
 
+/// The symbol filter behind `contains`, `free_symbols` and the derivatives maps symbol i to
+/// bit i % 64: past 64 symbols, symbols 64 apart share a bit, and the answers must not
+/// change. Here `a64` shares `a0`'s bit and `b` is a defined symbol whose value uses `a1`.
+#[test]
+fn symbol_queries_are_exact_past_64_symbols() {
+    let mut p = ExprPool::new();
+    let a: Vec<Symbol> = (0..70)
+        .map(|i| p.symbols_mut().add(&format!("a{i}"), SymbolKind::Parameter))
+        .collect();
+    let value = build(&mut p, "2*a1");
+    let b = p.define("b", value);
+    let e = build(&mut p, "a0*sin(b) + a65");
+    let names: Vec<&str> = p
+        .free_symbols(e)
+        .into_iter()
+        .map(|s| p.symbols().name(s))
+        .collect();
+    assert_eq!(names, ["a0", "a1", "a65", "b"]);
+    assert!(p.contains(e, b));
+    assert!(p.contains(e, a[1]), "through the definition of b");
+    assert!(
+        !p.contains(e, a[64]),
+        "a64 shares a0's bit but does not occur"
+    );
+    assert!(!p.contains(e, a[2]));
+    // ∂/∂a64 visits the subtrees that hold a0 (same bit) and still finds 0.
+    let d = p.diff(e, a[64]);
+    assert!(p.is_zero(d));
+    let d = p.diff(e, a[1]);
+    let expected = build(&mut p, "2*a0*cos(b)");
+    assert_eq!(d, expected);
+}
+
 #[test]
 fn deep_expressions_do_not_overflow_the_stack() {
     // sin(sin(…sin(x)…)) 3000 deep: every pass is iterative, none recurses. (The derivative

@@ -6,24 +6,40 @@
 //! are one node, so a node reached more than once from the outputs is computed once into a
 //! temporary. Children have smaller ids than parents, so ascending ids are a valid order.
 
-use std::collections::HashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
-use proc_macro2::{Ident, Literal, Span, TokenStream};
-use quote::{format_ident, quote};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
 
-use crate::expr::walk::{print_all, Prec, Printed, Printer, Syntax};
+use crate::expr::walk::{print_in, Prec, Printed, Printer, Syntax};
 use crate::expr::{ExprPool, Func, Id, Node, Rational, Symbol, SymbolKind};
 
 /// The Rust local that holds a symbol's value in generated code.
 pub(crate) fn symbol_ident(pool: &ExprPool, s: Symbol) -> Ident {
+    Ident::new(&symbol_name(pool, s), Span::call_site())
+}
+
+/// The name of [`symbol_ident`].
+fn symbol_name(pool: &ExprPool, s: Symbol) -> String {
     let table = pool.symbols();
-    let name = match table.kind(s) {
+    match table.kind(s) {
         SymbolKind::Velocity { coordinate } => format!("{}_dot", table.name(coordinate)),
         SymbolKind::Acceleration { coordinate } => format!("{}_ddot", table.name(coordinate)),
         SymbolKind::Momentum { coordinate } => format!("p_{}", table.name(coordinate)),
         _ => table.name(s).to_string(),
-    };
-    Ident::new(&name, Span::call_site())
+    }
+}
+
+/// Rust source text parsed into tokens. The generated code is printed as text and lexed
+/// once per block instead of being assembled from many small token streams: proc macros
+/// run unoptimized, where every `quote!` of a printed child clones its tokens into the
+/// parent (and, inside the compiler, every token is a call through the proc-macro bridge).
+/// The text always lexes; should it not, the expansion reports it instead of panicking.
+pub(crate) fn tokens(text: &str) -> TokenStream {
+    text.parse().unwrap_or_else(|_| {
+        let message = format!("varmass: internal error, generated code does not lex: {text}");
+        quote!(::core::compile_error!(#message);)
+    })
 }
 
 /// Straight-line code for a set of outputs.
@@ -57,73 +73,108 @@ pub(crate) fn staged_block(
 ) -> Block {
     let mut all: Vec<Id> = first.to_vec();
     all.extend(roots);
+    // One walk serves the CSE, the split into early and late, and the printing.
+    let order = pool.reachable(&all, false);
+    let late_ids = using_any(pool, &order, bound);
     let (late, early): (Vec<Id>, Vec<Id>) = pool
-        .cse(&all)
+        .cse_in(&all, order.clone())
         .shared
         .into_iter()
-        .partition(|id| bound.iter().any(|s| pool.contains(*id, *s)));
+        .partition(|id| late_ids.contains(id));
     // Early temporaries are numbered first, then late ones, each in id order.
-    let names: HashMap<Id, Ident> = early
+    let names: FxHashMap<Id, String> = early
         .iter()
         .chain(&late)
         .enumerate()
-        .map(|(n, id)| (*id, format_ident!("__{}{}", prefix, n)))
+        .map(|(n, id)| (*id, format!("__{prefix}{n}")))
         .collect();
     // One walk over everything: a shared node is printed once, bound to its temporary,
     // and printed by name wherever it is used above.
-    let mut values: HashMap<Id, TokenStream> = HashMap::new();
-    let mut printed = print_all(pool, &RustSyntax { runtime }, &all, |id, value| {
+    let mut values: FxHashMap<Id, String> = FxHashMap::default();
+    let syntax = RustSyntax {
+        runtime: runtime.to_string(),
+    };
+    let mut printed = print_in(pool, &syntax, &all, order, |id, value| {
         let name = names.get(&id)?;
         values.insert(id, value.text.clone());
-        Some(atom(quote!(#name)))
+        Some(atom(name.clone()))
     })
     .into_iter()
-    .map(|p| p.text);
-    let mut lets_of = |ids: &[Id]| -> Vec<TokenStream> {
-        ids.iter()
-            .filter_map(|id| {
-                let (name, value) = (names.get(id)?, values.remove(id)?);
-                Some(quote!(let #name = #value;))
-            })
-            .collect()
+    .map(|p| tokens(&p.text));
+    let mut lets_of = |ids: &[Id]| -> TokenStream {
+        let mut text = String::new();
+        for id in ids {
+            if let (Some(name), Some(value)) = (names.get(id), values.remove(id)) {
+                text.push_str(&format!("let {name} = {value};\n"));
+            }
+        }
+        tokens(&text)
     };
-    let mut lets = lets_of(&early);
+    let mut lets = vec![lets_of(&early)];
     let first_values = printed.by_ref().take(first.len()).collect();
     lets.extend(bridge(first_values));
-    lets.extend(lets_of(&late));
+    lets.push(lets_of(&late));
     let outputs = printed.collect();
     Block { lets, outputs }
 }
 
-/// Rust tokens: `f64` arithmetic and methods (`.powi`, `.sqrt`, `.sin()`), temporaries
-/// printed by name.
-struct RustSyntax<'a> {
-    runtime: &'a TokenStream,
+/// The ids of `order` (ascending, closed under children) whose expression uses one of
+/// `bound`, looking through defined symbols as [`ExprPool::contains`] does: one pass,
+/// children before parents, instead of one walk per id and symbol.
+fn using_any(pool: &ExprPool, order: &[Id], bound: &[Symbol]) -> FxHashSet<Id> {
+    let mut using = FxHashSet::default();
+    if bound.is_empty() {
+        return using;
+    }
+    for &id in order {
+        let uses = match pool.node(id) {
+            Node::Sym(s) => {
+                bound.contains(s)
+                    || pool
+                        .definition(*s)
+                        .is_some_and(|v| bound.iter().any(|b| pool.contains(v, *b)))
+            }
+            node => node.children().any(|c| using.contains(&c)),
+        };
+        if uses {
+            using.insert(id);
+        }
+    }
+    using
 }
 
-type Rendered = Printed<TokenStream>;
-
-fn atom(tokens: TokenStream) -> Rendered {
-    Printed::new(tokens, Prec::Atom)
+/// Rust source text: `f64` arithmetic and methods (`.powi`, `.sqrt`, `.sin()`),
+/// temporaries printed by name. Binary operators are spaced so that no two punctuation
+/// marks lex as one (`- -x`, never `--x`).
+struct RustSyntax {
+    /// The path to the runtime, as text.
+    runtime: String,
 }
 
+type Rendered = Printed<String>;
+
+fn atom(text: String) -> Rendered {
+    Printed::new(text, Prec::Atom)
+}
+
+/// An `f64` literal as `proc_macro2::Literal::f64_suffixed` spells it (`2f64`, `0.5f64`).
 fn float_literal(value: f64) -> Rendered {
     if value.is_nan() {
-        return atom(quote!(f64::NAN));
+        return atom("f64::NAN".to_string());
     }
     if value.is_infinite() {
         return atom(if value > 0.0 {
-            quote!(f64::INFINITY)
+            "f64::INFINITY".to_string()
         } else {
-            quote!(f64::NEG_INFINITY)
+            "f64::NEG_INFINITY".to_string()
         });
     }
-    let literal = Literal::f64_suffixed(value.abs());
+    let literal = format!("{}f64", value.abs());
     if value.is_sign_negative() && value != 0.0 {
         // A unary minus binds tighter than `*` (the `Power` level).
-        Printed::new(quote!(-#literal), Prec::Power)
+        Printed::new(format!("-{literal}"), Prec::Power)
     } else {
-        atom(quote!(#literal))
+        atom(literal)
     }
 }
 
@@ -134,11 +185,11 @@ fn rational(pool: &ExprPool, id: Id) -> Option<Rational> {
     }
 }
 
-impl Syntax for RustSyntax<'_> {
-    type Text = TokenStream;
+impl Syntax for RustSyntax {
+    type Text = String;
 
-    fn group(&self, text: &TokenStream) -> TokenStream {
-        quote!((#text))
+    fn group(&self, text: &String) -> String {
+        format!("({text})")
     }
 
     fn number(&self, r: Rational) -> Rendered {
@@ -150,28 +201,26 @@ impl Syntax for RustSyntax<'_> {
     }
 
     fn symbol(&self, pool: &ExprPool, s: Symbol) -> Rendered {
-        let name = symbol_ident(pool, s);
-        atom(quote!(#name))
+        atom(symbol_name(pool, s))
     }
 
     fn call(&self, p: &Printer<'_, Self>, func: Func, args: &[Id]) -> Rendered {
         let Some(first) = args.first() else {
-            return atom(quote!(f64::NAN));
+            return atom("f64::NAN".to_string());
         };
         // `f64::signum(0.0)` is 1, but the derivative of |x| needs sign(0) = 0.
         if func == Func::Sign {
-            let runtime = self.runtime;
             let a = &p.get(*first).text;
-            return atom(quote!(#runtime::math::sign(#a)));
+            return atom(format!("{}::math::sign({a})", self.runtime));
         }
         let receiver = self.at_least(p.get(*first), Prec::Atom);
-        let method = format_ident!("{}", func.name());
+        let method = func.name();
         match args.get(1).filter(|_| func.arity() == 2) {
             Some(second) => {
                 let second = &p.get(*second).text;
-                atom(quote!(#receiver.#method(#second)))
+                atom(format!("{receiver}.{method}({second})"))
             }
-            None => atom(quote!(#receiver.#method())),
+            None => atom(format!("{receiver}.{method}()")),
         }
     }
 
@@ -180,7 +229,7 @@ impl Syntax for RustSyntax<'_> {
             Some(c) if c.numer() == -1 && c.denom() == 1 => {
                 let rest = self.product_of(p, None, &factors[1..]);
                 let rest = self.at_least(&rest, Prec::Power);
-                Printed::new(quote!(-#rest), Prec::Power)
+                Printed::new(format!("-{rest}"), Prec::Power)
             }
             Some(c) => self.product_of(p, Some(c.to_f64()), &factors[1..]),
             None => self.product_of(p, None, factors),
@@ -192,13 +241,13 @@ impl Syntax for RustSyntax<'_> {
             Some(e) if e.is_negative() => {
                 let below = self.power_rational(p, base, Rational::new(-e.numer(), e.denom()));
                 let below = self.at_least(&below, Prec::Atom);
-                Printed::new(quote!(1.0f64 / #below), Prec::Product)
+                Printed::new(format!("1.0f64 / {below}"), Prec::Product)
             }
             Some(e) => self.power_rational(p, base, Some(e)),
             None => {
                 let b = self.at_least(p.get(base), Prec::Atom);
                 let e = &p.get(exponent).text;
-                atom(quote!(#b.powf(#e)))
+                atom(format!("{b}.powf({e})"))
             }
         }
     }
@@ -217,25 +266,22 @@ impl Syntax for RustSyntax<'_> {
             .unwrap_or_else(|| p.get(term).clone())
     }
 
-    fn lead(&self, p: &Printer<'_, Self>, term: Id, negative: bool) -> TokenStream {
+    fn lead(&self, p: &Printer<'_, Self>, term: Id, negative: bool) -> String {
         if negative {
             let m = self.at_least(&self.negated(p, term), Prec::Product);
-            quote!(-#m)
+            format!("-{m}")
         } else {
             p.get(term).text.clone()
         }
     }
 
-    fn join(&self, sum: &mut TokenStream, negative: bool, term: TokenStream) {
-        sum.extend(if negative {
-            quote!(- #term)
-        } else {
-            quote!(+ #term)
-        });
+    fn join(&self, sum: &mut String, negative: bool, term: String) {
+        sum.push_str(if negative { " - " } else { " + " });
+        sum.push_str(&term);
     }
 }
 
-impl RustSyntax<'_> {
+impl RustSyntax {
     /// The magnitude of a term with a negative constant coefficient (`-3*x` is `3*x`
     /// printed after `-`); `None` for any other term.
     fn split_sign(&self, p: &Printer<'_, Self>, id: Id) -> Option<Rendered> {
@@ -280,13 +326,13 @@ impl RustSyntax<'_> {
                 None => numerator.push(self.at_least(p.get(*f), Prec::Power)),
             }
         }
-        let numerator_tokens = if numerator.is_empty() {
-            quote!(1.0f64)
+        let numerator_text = if numerator.is_empty() {
+            "1.0f64".to_string()
         } else {
-            times(numerator)
+            numerator.join(" * ")
         };
         if denominator.is_empty() {
-            return Printed::new(numerator_tokens, Prec::Product);
+            return Printed::new(numerator_text, Prec::Product);
         }
         let below = if denominator.len() == 1 {
             denominator
@@ -294,51 +340,34 @@ impl RustSyntax<'_> {
                 .map(|d| self.at_least(&d, Prec::Atom))
                 .unwrap_or_default()
         } else {
-            let parts = times(
-                denominator
-                    .into_iter()
-                    .map(|d| self.at_least(&d, Prec::Power))
-                    .collect(),
-            );
-            quote!((#parts))
+            let parts: Vec<String> = denominator
+                .iter()
+                .map(|d| self.at_least(d, Prec::Power))
+                .collect();
+            format!("({})", parts.join(" * "))
         };
-        Printed::new(quote!(#numerator_tokens / #below), Prec::Product)
+        Printed::new(format!("{numerator_text} / {below}"), Prec::Product)
     }
 
     /// `base ^ e` for a constant exponent, with `e = 1` meaning the base itself.
     fn power_rational(&self, p: &Printer<'_, Self>, base: Id, e: Option<Rational>) -> Rendered {
         let Some(e) = e else {
-            return atom(quote!(f64::NAN));
+            return atom("f64::NAN".to_string());
         };
         let b = p.get(base);
         if e.is_one() {
             return b.clone();
         }
         let receiver = self.at_least(b, Prec::Atom);
-        let tokens = match (e.numer(), e.denom()) {
-            (1, 2) => quote!(#receiver.sqrt()),
-            (1, 3) => quote!(#receiver.cbrt()),
-            (n, 1) if i32::try_from(n).is_ok() => {
-                let n = Literal::i32_unsuffixed(n as i32);
-                quote!(#receiver.powi(#n))
-            }
+        let text = match (e.numer(), e.denom()) {
+            (1, 2) => format!("{receiver}.sqrt()"),
+            (1, 3) => format!("{receiver}.cbrt()"),
+            (n, 1) if i32::try_from(n).is_ok() => format!("{receiver}.powi({n})"),
             _ => {
                 let e = self.at_least(&float_literal(e.to_f64()), Prec::Atom);
-                quote!(#receiver.powf(#e))
+                format!("{receiver}.powf({e})")
             }
         };
-        atom(tokens)
+        atom(text)
     }
-}
-
-/// `a * b * …`.
-fn times(parts: Vec<TokenStream>) -> TokenStream {
-    let mut t = TokenStream::new();
-    for (i, part) in parts.into_iter().enumerate() {
-        if i > 0 {
-            t.extend(quote!(*));
-        }
-        t.extend(part);
-    }
-    t
 }

@@ -5,23 +5,25 @@
 //! For a symmetric positive definite M, column by column (k < j < i):
 //!
 //! ```text
-//! v_jk = l_jk d_k,   d_j = m_jj − Σ_k l_jk v_jk,   l_ij = (m_ij − Σ_k l_ik v_jk) / d_j
+//! d_j = m_jj − Σ_k l_jk u_jk,   u_ij = m_ij − Σ_k l_ik u_jk,   l_ij = u_ij / d_j
 //! z_i = b_i − Σ_{k<i} l_ik z_k          (L z = b)
 //! x_i = z_i / d_i − Σ_{k>i} l_ki x_k    (D Lᵀ x = z, from the last row up)
 //! ```
 //!
+//! u_ij = l_ij d_j is the entry of L before its division by the pivot, kept rather than
+//! recomputed as a product: each pivot costs one division, and no multiplication undoes it.
 //! A pivot d_j that is not positive (or NaN) means M is not positive definite there: the
 //! code returns the given error, as the Cholesky it replaces did.
 
-use proc_macro2::{Ident, TokenStream};
+use proc_macro2::{Ident, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 
 fn l(i: usize, j: usize) -> Ident {
     format_ident!("__ldl_l{}_{}", i, j)
 }
 
-fn v(j: usize, k: usize) -> Ident {
-    format_ident!("__ldl_v{}_{}", j, k)
+fn u(i: usize, j: usize) -> Ident {
+    format_ident!("__ldl_u{}_{}", i, j)
 }
 
 fn inverse_pivot(j: usize) -> Ident {
@@ -63,7 +65,7 @@ fn structure(zero: &[bool], n: usize) -> Vec<bool> {
     nonzero
 }
 
-/// L and the inverse pivots 1/d_j.
+/// L (with its undivided entries u) and the inverse pivots 1/d_j.
 fn factorisation(
     matrix: &[TokenStream],
     nonzero: &[bool],
@@ -72,20 +74,17 @@ fn factorisation(
 ) -> TokenStream {
     let entry = |i: usize, j: usize| matrix.get(i * n + j).cloned().unwrap_or_default();
     let used = |i: usize, j: usize| nonzero[i * n + j];
+    // u_ij as the code names it: the entry itself when it is one token, else a local.
+    let mut undivided: Vec<TokenStream> = vec![TokenStream::new(); n * n];
     let mut out = TokenStream::new();
     for j in 0..n {
-        let scaled = (0..j).filter(|k| used(j, *k)).map(|k| {
-            let (vjk, ljk, d) = (v(j, k), l(j, k), format_ident!("__ldl_d{}", k));
-            quote!(let #vjk = #ljk * #d;)
-        });
         let (m, d, inv) = (entry(j, j), format_ident!("__ldl_d{}", j), inverse_pivot(j));
         let minus = (0..j).filter(|k| used(j, *k)).map(|k| {
-            let (ljk, vjk) = (l(j, k), v(j, k));
-            quote!(- #ljk * #vjk)
+            let (ljk, ujk) = (l(j, k), &undivided[j * n + k]);
+            quote!(- #ljk * #ujk)
         });
         let pivot = minus_terms(m, minus);
         out.extend(quote! {
-            #(#scaled)*
             let #d = #pivot;
             if !(#d > 0.0) {
                 return Err(#error);
@@ -93,16 +92,36 @@ fn factorisation(
             let #inv = 1.0 / #d;
         });
         for i in (j + 1..n).filter(|i| used(*i, j)) {
-            let (m, lij) = (entry(i, j), l(i, j));
-            let minus = (0..j).filter(|k| used(i, *k) && used(j, *k)).map(|k| {
-                let (lik, vjk) = (l(i, k), v(j, k));
-                quote!(- #lik * #vjk)
-            });
-            let numerator = minus_terms(m, minus);
-            out.extend(quote!(let #lij = (#numerator) * #inv;));
+            let minus: Vec<TokenStream> = (0..j)
+                .filter(|k| used(i, *k) && used(j, *k))
+                .map(|k| {
+                    let (lik, ujk) = (l(i, k), &undivided[j * n + k]);
+                    quote!(- #lik * #ujk)
+                })
+                .collect();
+            let m = entry(i, j);
+            let uij = if minus.is_empty() && is_single_token(&m) {
+                m
+            } else {
+                let (name, value) = (u(i, j), minus_terms(m, minus.into_iter()));
+                out.extend(quote!(let #name = #value;));
+                quote!(#name)
+            };
+            let lij = l(i, j);
+            out.extend(quote!(let #lij = #uij * #inv;));
+            undivided[i * n + j] = uij;
         }
     }
     out
+}
+
+/// Whether `tokens` is a single name or literal (needs no parentheses as an operand).
+fn is_single_token(tokens: &TokenStream) -> bool {
+    let mut trees = tokens.clone().into_iter();
+    matches!(
+        (trees.next(), trees.next()),
+        (Some(TokenTree::Ident(_) | TokenTree::Literal(_)), None)
+    )
 }
 
 /// L z = b forward, then D Lᵀ x = z backward into the solution's names.
@@ -135,6 +154,8 @@ fn minus_terms(first: TokenStream, terms: impl Iterator<Item = TokenStream>) -> 
     let terms: Vec<TokenStream> = terms.collect();
     if terms.is_empty() {
         first
+    } else if is_single_token(&first) {
+        quote!(#first #(#terms)*)
     } else {
         quote!((#first) #(#terms)*)
     }

@@ -5,7 +5,7 @@ use quote::{format_ident, quote};
 
 use super::factor::ldlt_solve;
 use super::signature::Method;
-use super::system::Emitter;
+use super::system::{method_item, Emitter};
 use crate::expr::Id;
 use crate::mechanics::VelocitySolve;
 
@@ -49,16 +49,13 @@ impl Emitter<'_> {
         }
         let docs = self.docs("The masses and inertias, state masses first.", docs);
         let signature = self.signature(Method::Mass);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                match index {
-                    #(#arms)*
-                    _ => f64::NAN,
-                }
+        let body = quote! {
+            match index {
+                #(#arms)*
+                _ => f64::NAN,
             }
-        }
+        };
+        method_item(docs, signature, body)
     }
 
     /// `mass_rate(index, t, velocity_state)`.
@@ -78,16 +75,13 @@ impl Emitter<'_> {
         }
         let docs = self.docs("ṁ of every mass along the motion.", docs);
         let signature = self.signature(Method::MassRate);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                match index {
-                    #(#arms)*
-                    _ => f64::NAN,
-                }
+        let body = quote! {
+            match index {
+                #(#arms)*
+                _ => f64::NAN,
             }
-        }
+        };
+        method_item(docs, signature, body)
     }
 
     /// `mass_matrix(t, state)`.
@@ -108,13 +102,7 @@ impl Emitter<'_> {
             quote!(#runtime::nalgebra::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#outs),*]))
         });
         let signature = self.signature(Method::MassMatrix);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 
     /// `lagrangian(t, velocity_state)`.
@@ -126,13 +114,7 @@ impl Emitter<'_> {
         let body =
             self.body_input_velocity(&[self.d.lagrangian], |mut o| o.pop().unwrap_or_default());
         let signature = self.signature(Method::Lagrangian);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 
     /// `accelerations(t, velocity_state)`: q̈ in closed form, or M q̈ = rhs solved by Cholesky.
@@ -175,13 +157,7 @@ impl Emitter<'_> {
             }
         };
         let signature = self.signature(Method::Accelerations);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 
     /// `velocities(t, state)`: q̇(q, p), overridden only when it is in closed form.
@@ -198,13 +174,7 @@ impl Emitter<'_> {
             quote!(Ok(#v))
         });
         let signature = self.signature(Method::Velocities);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 
     /// `hamiltonian(t, state)`.
@@ -222,13 +192,7 @@ impl Emitter<'_> {
             quote!(Ok(#h))
         });
         let signature = self.signature(Method::Hamiltonian);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 
     /// `canonical_rates(t, state)`: (q̇, d*p/dt) of eq. 14.
@@ -249,13 +213,7 @@ impl Emitter<'_> {
             quote!(Ok((#v, #dp)))
         });
         let signature = self.signature(Method::CanonicalRates);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 
     /// The velocity symbols as expressions (q̇ itself, bound by the prologue).
@@ -291,13 +249,7 @@ impl Emitter<'_> {
             quote!(Ok(#v))
         });
         let signature = self.signature(Method::StateRate);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 
     /// `power(t, state)`: the energy-budget dH/dt.
@@ -311,13 +263,7 @@ impl Emitter<'_> {
             quote!(Ok(#p))
         });
         let signature = self.signature(Method::Power);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 
     /// `jacobian(t, state)` from the derivation's blocks, combined with M⁻¹ numerically.
@@ -389,12 +335,6 @@ impl Emitter<'_> {
             }
         });
         let signature = self.signature(Method::Jacobian);
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
 }

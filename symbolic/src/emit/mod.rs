@@ -18,6 +18,9 @@ use quote::quote;
 pub use signature::{Method, REQUIRED};
 pub use system::Target;
 
+use rustc_hash::{FxHashMap, FxHashSet};
+
+use crate::expr::{ExprPool, Func, Id, Node};
 use crate::mechanics::{Derivation, Outputs};
 use system::Emitter;
 
@@ -43,13 +46,19 @@ pub fn emit_system_for(
         .collect();
     // The code evaluates sin/cos of sums of two coordinates through the sines and cosines
     // of the coordinates themselves (shared by CSE); the text above keeps cos(a - b).
-    let mut for_code = std::collections::HashMap::new();
-    for e in code_roots(d, outputs) {
+    let mut for_code = FxHashMap::default();
+    for e in with_angle_sums(&d.pool, &code_roots(d, outputs)) {
         let expanded = d.pool.expand_trig_arguments(e);
         if expanded != e {
             for_code.insert(e, expanded);
         }
     }
+    let shown = doc_roots(d);
+    let shown_texts = shown
+        .iter()
+        .copied()
+        .zip(d.pool.display_all(&shown))
+        .collect();
     let name = &target.name;
     let runtime = &target.runtime;
     let emitter = Emitter {
@@ -57,6 +66,7 @@ pub fn emit_system_for(
         target,
         velocity_ids,
         for_code,
+        texts: shown_texts,
     };
     let n = d.coordinates.len();
     let k = d.state_mass_count();
@@ -141,8 +151,7 @@ pub fn emit_system_for(
 
 /// The `DERIVATION` and `DERIVATION_LATEX` constants.
 fn derivation_texts(d: &mut Derivation) -> TokenStream {
-    let text = d.to_text();
-    let latex = d.to_latex();
+    let (text, latex) = d.to_text_and_latex();
     quote! {
         /// The derivation of this system as text, in the order of the paper
         /// (L, p, H, forces, canonical equations, true rates).
@@ -161,8 +170,56 @@ fn optional(asked: bool, method: impl FnOnce() -> TokenStream) -> TokenStream {
     }
 }
 
+/// The roots, each once and in order, under which some sine or cosine takes a sum of two
+/// terms: the only ones `expand_trig_arguments` can change. One walk over all roots
+/// replaces a walk of each root's whole tree (the roots share most of their nodes).
+fn with_angle_sums(pool: &ExprPool, roots: &[Id]) -> Vec<Id> {
+    let mut below: FxHashSet<Id> = FxHashSet::default();
+    for id in pool.reachable(roots, false) {
+        let found = match pool.node(id) {
+            Node::Call(Func::Sin | Func::Cos, args) => args
+                .iter()
+                .any(|a| matches!(pool.node(*a), Node::Add(terms) if terms.len() == 2)),
+            node => node.children().any(|c| below.contains(&c)),
+        };
+        if found {
+            below.insert(id);
+        }
+    }
+    let mut seen = FxHashSet::default();
+    let unique = roots.iter().copied().filter(|r| seen.insert(*r));
+    unique.filter(|r| below.contains(r)).collect()
+}
+
+/// Every expression of `d` that the doc comments of the methods show.
+fn doc_roots(d: &Derivation) -> Vec<Id> {
+    let mut roots = vec![d.lagrangian, d.energy, d.power];
+    roots.extend(d.hamiltonian);
+    roots.extend(d.closed_laws.iter().flatten());
+    for list in [
+        &d.mass_rates,
+        &d.momenta,
+        &d.lagrangian_gradient,
+        &d.active_force,
+        &d.reactive_thrust,
+        &d.impact_force,
+        &d.mass_flux_force,
+        &d.frozen_momentum_rate,
+        &d.momentum_rate,
+        &d.acceleration_rhs,
+    ] {
+        roots.extend(list);
+    }
+    roots.extend(d.accelerations.iter().flatten());
+    if let crate::mechanics::VelocitySolve::Symbolic(v) = &d.velocities {
+        roots.extend(v);
+    }
+    roots.extend(d.mass_matrix.iter().flatten());
+    roots
+}
+
 /// Every expression of `d` that generated code evaluates with `outputs`.
-fn code_roots(d: &Derivation, outputs: Outputs) -> Vec<crate::expr::Id> {
+fn code_roots(d: &Derivation, outputs: Outputs) -> Vec<Id> {
     let mut roots = vec![d.lagrangian, d.energy];
     if outputs.power {
         roots.push(d.power);

@@ -115,7 +115,9 @@ impl Method {
             quote!(state)
         };
         let index = indexed.then(|| quote!(index: usize,));
-        let result = |ok: TokenStream| quote!(Result<#ok, #runtime::SystemError>);
+        // Qualified: a `type Result<T> = …` of the user's in scope must not change the
+        // signatures.
+        let result = |ok: TokenStream| quote!(::core::result::Result<#ok, #runtime::SystemError>);
         let output = match output {
             Output::Scalar => quote!(f64),
             Output::Coordinates => vector(&n),

@@ -3,7 +3,7 @@
 
 use std::collections::BTreeSet;
 
-use proc_macro2::{Ident, Literal, TokenStream};
+use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 
 use super::expression::{block, staged_block, symbol_ident};
@@ -41,7 +41,9 @@ pub(crate) struct Emitter<'a> {
     /// The velocity symbols as expressions, in coordinate order.
     pub velocity_ids: Vec<Id>,
     /// Expressions rewritten for evaluation (see `expand_trig_arguments`); others as is.
-    pub for_code: std::collections::HashMap<Id, Id>,
+    pub for_code: rustc_hash::FxHashMap<Id, Id>,
+    /// The DSL text of the expressions the doc comments show, printed in one walk.
+    pub texts: rustc_hash::FxHashMap<Id, String>,
 }
 
 impl Emitter<'_> {
@@ -63,16 +65,20 @@ impl Emitter<'_> {
         self.d.state_mass_count()
     }
 
+    /// `id` in DSL text, for a doc comment: from [`Self::texts`] when it is there.
     pub(crate) fn display(&self, id: Id) -> String {
-        self.d.pool.display(id).to_string()
+        match self.texts.get(&id) {
+            Some(text) => text.clone(),
+            None => self.d.pool.display(id).to_string(),
+        }
     }
 
     /// Symbols needed to evaluate `roots`, closed under the laws of the law masses.
     fn used(&self, roots: &[Id]) -> BTreeSet<Symbol> {
-        let mut used = BTreeSet::new();
-        for r in roots {
-            used.extend(self.d.pool.free_symbols(*r));
-        }
+        // The free symbols of all roots from one walk (one per root repeats the shared parts).
+        let pool = &self.d.pool;
+        let reachable = pool.reachable(roots, true).into_iter();
+        let mut used: BTreeSet<Symbol> = reachable.filter_map(|id| pool.as_symbol(id)).collect();
         // A law may name state masses and parameters, never other law masses (closed laws).
         for (m, law) in self.d.masses.iter().zip(&self.d.closed_laws) {
             if let (true, Some(law)) = (used.contains(&m.symbol), law) {
@@ -177,12 +183,19 @@ impl Emitter<'_> {
                     .collect();
                 let error = quote!(#runtime::SystemError::SingularMassMatrix);
                 let zero = self.zero_pattern();
+                let no_offset: Vec<bool> = self
+                    .d
+                    .momentum_offset
+                    .iter()
+                    .map(|b| self.d.pool.is_zero(*b))
+                    .collect();
                 let bridge = move |values: Vec<TokenStream>| {
                     let (matrix, offset) = values.split_at(entries);
                     let excess: Vec<TokenStream> = momenta
                         .iter()
                         .zip(offset)
-                        .map(|(p, b)| quote!(#p - (#b)))
+                        .zip(&no_offset)
+                        .map(|((p, b), none)| if *none { quote!(#p) } else { quote!(#p - (#b)) })
                         .collect();
                     vec![ldlt_solve(matrix, &zero, &excess, &names, &error)]
                 };
@@ -224,10 +237,11 @@ impl Emitter<'_> {
         } else {
             block(&self.d.pool, roots, "t", runtime)
         };
-        let prologue = self.prologue(&used, input);
-        let lets = b.lets;
-        let out = finish(b.outputs);
-        quote! { #prologue #(#lets)* #out }
+        // Moved, not interpolated: `quote!` would clone every token of each part.
+        let mut code = self.prologue(&used, input);
+        code.extend(b.lets);
+        code.extend(finish(b.outputs));
+        code
     }
 
     /// [`Self::body`] for a method taking `state = [q, p, m_s]`.
@@ -260,7 +274,11 @@ impl Emitter<'_> {
     pub(crate) fn vector(&self, values: Vec<TokenStream>) -> TokenStream {
         let runtime = &self.target.runtime;
         let len = Literal::usize_unsuffixed(values.len());
-        quote!(#runtime::nalgebra::SVector::<f64, #len>::from([#(#values),*]))
+        let mut code = quote!(#runtime::nalgebra::SVector::<f64, #len>::from);
+        let array = Group::new(Delimiter::Bracket, comma_separated(values));
+        let call = TokenStream::from(TokenTree::Group(array));
+        code.extend([TokenTree::Group(Group::new(Delimiter::Parenthesis, call))]);
+        code
     }
 
     pub(crate) fn docs(&self, title: &str, lines: impl IntoIterator<Item = String>) -> TokenStream {
@@ -302,12 +320,32 @@ impl Emitter<'_> {
         } else {
             self.body(Input::VelocityState, values, |outs| self.vector(outs))
         };
-        quote! {
-            #docs
-            #[inline]
-            #signature {
-                #body
-            }
-        }
+        method_item(docs, signature, body)
     }
+}
+
+/// `docs #[inline] signature { body }`, each part moved into place: `quote!` would clone
+/// every token of the streams it interpolates, and a body is most of a method's tokens.
+pub(crate) fn method_item(
+    docs: TokenStream,
+    signature: TokenStream,
+    body: TokenStream,
+) -> TokenStream {
+    let mut code = docs;
+    code.extend(quote!(#[inline]));
+    code.extend(signature);
+    code.extend([TokenTree::Group(Group::new(Delimiter::Brace, body))]);
+    code
+}
+
+/// `a, b, c`, the parts moved into place (see [`method_item`]).
+pub(crate) fn comma_separated(parts: Vec<TokenStream>) -> TokenStream {
+    let mut list = TokenStream::new();
+    for (i, part) in parts.into_iter().enumerate() {
+        if i > 0 {
+            list.extend([TokenTree::Punct(Punct::new(',', Spacing::Alone))]);
+        }
+        list.extend(part);
+    }
+    list
 }

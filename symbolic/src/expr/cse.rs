@@ -3,7 +3,7 @@
 
 use super::node::{Id, Node};
 use super::pool::ExprPool;
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// The subexpressions shared by some roots, for emitting straight-line code: compute
 /// each of [`shared`](Self::shared) once, in order, into a local, then the roots.
@@ -14,7 +14,7 @@ pub struct Cse {
     pub shared: Vec<Id>,
     /// The roots, as given.
     pub roots: Vec<Id>,
-    set: HashSet<Id>,
+    set: FxHashSet<Id>,
 }
 
 impl Cse {
@@ -28,11 +28,16 @@ impl ExprPool {
     /// Finds the shared subexpressions of `roots`. Defined symbols are not looked
     /// through: inline them first if their values should be shared too.
     pub fn cse(&self, roots: &[Id]) -> Cse {
-        let mut uses: HashMap<Id, usize> = HashMap::new();
+        self.cse_in(roots, self.reachable(roots, false))
+    }
+
+    /// [`cse`](Self::cse) with `order`, the ids reachable from `roots` in ascending order,
+    /// for a caller that has it already.
+    pub(crate) fn cse_in(&self, roots: &[Id], order: Vec<Id>) -> Cse {
+        let mut uses: FxHashMap<Id, usize> = FxHashMap::default();
         for r in roots {
             *uses.entry(*r).or_default() += 1;
         }
-        let order = self.reachable(roots, false);
         for id in &order {
             for c in self.node(*id).children() {
                 *uses.entry(c).or_default() += 1;

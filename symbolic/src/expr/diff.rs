@@ -8,10 +8,9 @@
 
 use super::func::Func;
 use super::node::{Id, Node};
-use super::pool::ExprPool;
+use super::pool::{symbol_bit, ExprPool};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind};
-use std::collections::HashMap;
 
 /// d*/dt was asked of an expression containing a symbol whose rate is not a symbol:
 /// an acceleration (there is no q''') or a momentum (ṗ comes from the canonical equations,
@@ -27,9 +26,10 @@ pub struct UnsupportedDerivative {
     pub reason: &'static str,
 }
 
-/// What the derivative of a bare symbol is.
-#[derive(Clone, Copy)]
-enum Leaf {
+/// What the derivative of a bare symbol is; also what a derivative was taken with respect
+/// to, in the pool's memo of derivatives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Leaf {
     /// ∂*/∂s: 1 for `s`, 0 for every other symbol.
     Partial(Symbol),
     /// d*/dt: q → q', q' → q'', t → 1; parameters, frozen symbols and definitions
@@ -86,36 +86,81 @@ impl ExprPool {
         })
     }
 
+    /// The symbols (as a filter, see [`symbol_bit`]) whose leaf derivative is not 0 or fails:
+    /// an expression free of them has derivative 0 and needs no visit.
+    fn leaf_symbols(&self, leaf: Leaf) -> u64 {
+        match leaf {
+            Leaf::Partial(wrt) => symbol_bit(wrt),
+            Leaf::Time => self
+                .symbols()
+                .iter()
+                .filter(|s| {
+                    !matches!(
+                        self.symbols().kind(*s),
+                        SymbolKind::Parameter | SymbolKind::Frozen | SymbolKind::Definition
+                    )
+                })
+                .fold(0, |mask, s| mask | symbol_bit(s)),
+        }
+    }
+
+    /// One bottom-up pass over the nodes below `e` whose derivative is not known yet.
+    ///
+    /// Skipped: the nodes free of every symbol with a nonzero rate (their derivative is 0,
+    /// and computing it would build no node) and the nodes whose derivative an earlier
+    /// call remembered (recomputing it would build the same nodes again, which all exist).
+    /// So skipping changes neither the results nor the order in which nodes are created.
     fn derivative(&mut self, e: Id, leaf: Leaf) -> Result<Id, UnsupportedDerivative> {
         let zero = self.int(0);
-        let mut d: HashMap<Id, Id> = HashMap::new();
-        for id in self.reachable(&[e], true) {
-            let of = |c: &Id| d.get(c).copied().unwrap_or(zero);
-            let value = match self.node(id).clone() {
-                Node::Num(_) | Node::Float(_) => zero,
-                Node::Sym(s) => match (self.definition(s), leaf) {
-                    // ∂w/∂w = 1 even for a defined w; otherwise look through its value.
-                    (Some(v), Leaf::Partial(wrt)) if wrt != s => of(&v),
-                    (Some(v), Leaf::Time) => of(&v),
-                    _ => self.leaf_derivative(s, leaf)?,
-                },
-                Node::Add(terms) => {
-                    let dt: Vec<Id> = terms.iter().map(of).collect();
-                    self.add(&dt)
-                }
-                Node::Mul(factors) => {
-                    let df: Vec<Id> = factors.iter().map(of).collect();
-                    self.product_rule(&factors, &df)
-                }
-                Node::Pow(u, v) => self.power_rule(id, u, v, of(&u), of(&v)),
-                Node::Call(f, args) => {
-                    let da: Vec<Id> = args.iter().map(of).collect();
-                    self.chain_rule(id, f, &args, &da)
-                }
-            };
-            d.insert(id, value);
+        let symbols = self.leaf_symbols(leaf);
+        let todo = self.reachable_where(&[e], true, |id| {
+            self.symbol_mask(id) & symbols != 0 && !self.derivatives.contains_key(&(id, leaf))
+        });
+        for id in todo {
+            let value = self.derivative_of_node(id, leaf, zero)?;
+            self.derivatives.insert((id, leaf), value);
         }
-        Ok(d.get(&e).copied().unwrap_or(zero))
+        Ok(self.known_derivative(e, leaf, zero))
+    }
+
+    /// The remembered derivative of `id`, else 0 (for a node free of the leaf's symbols).
+    fn known_derivative(&self, id: Id, leaf: Leaf, zero: Id) -> Id {
+        self.derivatives.get(&(id, leaf)).copied().unwrap_or(zero)
+    }
+
+    /// The derivative of the node `id` from the known derivatives of its children.
+    fn derivative_of_node(
+        &mut self,
+        id: Id,
+        leaf: Leaf,
+        zero: Id,
+    ) -> Result<Id, UnsupportedDerivative> {
+        let of = |pool: &ExprPool, c: &Id| pool.known_derivative(*c, leaf, zero);
+        Ok(match self.node(id).clone() {
+            Node::Num(_) | Node::Float(_) => zero,
+            Node::Sym(s) => match (self.definition(s), leaf) {
+                // ∂w/∂w = 1 even for a defined w; otherwise look through its value.
+                (Some(v), Leaf::Partial(wrt)) if wrt != s => of(self, &v),
+                (Some(v), Leaf::Time) => of(self, &v),
+                _ => self.leaf_derivative(s, leaf)?,
+            },
+            Node::Add(terms) => {
+                let dt: Vec<Id> = terms.iter().map(|c| of(self, c)).collect();
+                self.add(&dt)
+            }
+            Node::Mul(factors) => {
+                let df: Vec<Id> = factors.iter().map(|c| of(self, c)).collect();
+                self.product_rule(&factors, &df)
+            }
+            Node::Pow(u, v) => {
+                let (du, dv) = (of(self, &u), of(self, &v));
+                self.power_rule(id, u, v, du, dv)
+            }
+            Node::Call(f, args) => {
+                let da: Vec<Id> = args.iter().map(|c| of(self, c)).collect();
+                self.chain_rule(id, f, &args, &da)
+            }
+        })
     }
 
     /// (Π fᵢ)' = Σᵢ fᵢ' Π_{j≠i} fⱼ

@@ -4,7 +4,7 @@
 
 use super::node::{Id, Node};
 use super::pool::ExprPool;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// A product whose expansion would exceed this many terms is left as a product: the
 /// identity check then falls back to numerical evaluation instead of running out of memory.
@@ -17,7 +17,7 @@ impl ExprPool {
     /// The expanded form of `e`: a sum of products with no sum inside a product or under an
     /// integer power (within the size limits above). Defined symbols are kept as symbols.
     pub fn expand(&mut self, e: Id) -> Id {
-        let mut new: HashMap<Id, Id> = HashMap::new();
+        let mut new: FxHashMap<Id, Id> = FxHashMap::default();
         for id in self.reachable(&[e], false) {
             let image = |c: &Id| new.get(c).copied().unwrap_or(*c);
             let value = match self.node(id).clone() {

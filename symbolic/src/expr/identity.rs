@@ -98,8 +98,14 @@ impl ExprPool {
         if self.is_zero(difference) {
             return Identity::Proven;
         }
-        let (a, b) = (self.inline_definitions(a), self.inline_definitions(b));
-        let difference = self.sub(a, b);
+        let (inlined_a, inlined_b) = (self.inline_definitions(a), self.inline_definitions(b));
+        // Without definitions to inline, the difference is the one just built.
+        let difference = if (inlined_a, inlined_b) == (a, b) {
+            difference
+        } else {
+            self.sub(inlined_a, inlined_b)
+        };
+        let (a, b) = (inlined_a, inlined_b);
         let expanded = self.expand(difference);
         if self.is_zero(expanded) {
             return Identity::Proven;

@@ -8,7 +8,7 @@ use super::pool::ExprPool;
 use super::print::{float_literal, Exponent, PrintedText};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind};
-use super::walk::{print, Prec, Printed, Printer, Syntax};
+use super::walk::{print, print_all, Prec, Printed, Printer, Syntax};
 
 const GREEK: &[&str] = &[
     "alpha",
@@ -129,6 +129,13 @@ impl ExprPool {
     /// `e` in LaTeX (math mode, without delimiters).
     pub fn latex(&self, e: Id) -> String {
         print(self, &Latex, e).text
+    }
+
+    /// The [`latex`](Self::latex) of each of `roots`, from one walk: a subexpression shared
+    /// by several roots is printed once.
+    pub fn latex_all(&self, roots: &[Id]) -> Vec<String> {
+        let printed = print_all(self, &Latex, roots, |_, _| None);
+        printed.into_iter().map(|p| p.text).collect()
     }
 
     /// The LaTeX of a symbol: `\dot{x}` for x', `\ddot{x}` for x'', else from its name.

@@ -57,6 +57,24 @@ impl Node {
         list.iter().copied().chain(pair.into_iter().flatten())
     }
 
+    /// Calls `f` on each child, in order: what [`children`](Self::children) yields, without
+    /// its chained iterators (which cost a call per step in the unoptimized builds where
+    /// proc macros run).
+    pub(crate) fn for_each_child(&self, mut f: impl FnMut(Id)) {
+        match self {
+            Node::Num(_) | Node::Float(_) | Node::Sym(_) => {}
+            Node::Add(c) | Node::Mul(c) | Node::Call(_, c) => {
+                for &child in c.iter() {
+                    f(child);
+                }
+            }
+            Node::Pow(b, e) => {
+                f(*b);
+                f(*e);
+            }
+        }
+    }
+
     /// The constant's value, if the node is a constant.
     pub(crate) fn number(&self) -> Option<Number> {
         match self {

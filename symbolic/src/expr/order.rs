@@ -102,10 +102,17 @@ impl ExprPool {
                 // Equal ranks with different variants cannot happen; order by rank alone.
                 _ => return Ordering::Equal,
             };
-            match ca.iter().zip(cb).find(|(x, y)| x != y) {
-                Some((x, y)) => (a, b) = (*x, *y),
-                None => return ca.len().cmp(&cb.len()),
+            // The first pair of different children (a plain loop: the zip/find chain costs
+            // several calls per child unoptimized, and sorting compares a lot).
+            let shared = ca.len().min(cb.len());
+            let mut i = 0;
+            while i < shared && ca[i] == cb[i] {
+                i += 1;
             }
+            if i == shared {
+                return ca.len().cmp(&cb.len());
+            }
+            (a, b) = (ca[i], cb[i]);
         }
     }
 }

@@ -1,9 +1,10 @@
 //! The arena: hash-consed nodes, leaf constructors, definitions and simple queries.
 
+use super::diff::Leaf;
 use super::node::{Id, Node, Number};
 use super::rational::Rational;
 use super::symbol::{Symbol, SymbolKind, SymbolTable};
-use std::collections::{HashMap, HashSet};
+use rustc_hash::FxHashMap;
 
 /// A flat, hash-consed arena of expressions (after egg's `RecExpr`).
 ///
@@ -22,9 +23,37 @@ pub struct ExprPool {
     /// Height of each node (a leaf is 0): a cheap structural key that settles most
     /// comparisons of deep expressions at once (see `structural_cmp`).
     heights: Vec<u32>,
-    index: HashMap<Node, Id>,
+    /// For each node, a filter of the symbols it depends on, through definitions: bit
+    /// `s.index() % 64` for each such symbol `s` (see [`symbol_bit`]). A clear bit proves a
+    /// symbol absent, so passes that only care about some symbols (∂/∂s, substitution)
+    /// skip whole subtrees without visiting them; a set bit may be another symbol.
+    symbol_masks: Vec<u64>,
+    index: FxHashMap<Node, Id>,
     symbols: SymbolTable,
-    definitions: HashMap<Symbol, Id>,
+    definitions: FxHashMap<Symbol, Id>,
+    /// Every derivative taken so far, of each node it visited (see `diff.rs`): nodes never
+    /// change, so neither do their derivatives, and the Jacobian's many derivatives of
+    /// the same rows share most of their work.
+    pub(super) derivatives: FxHashMap<(Id, Leaf), Id>,
+    /// The image of every node an
+    /// [`expand_trig_arguments`](Self::expand_trig_arguments) visited: like derivatives, it
+    /// never changes.
+    pub(super) trig_images: FxHashMap<Id, Id>,
+    /// The ids of the integers −1, 0, 1, 2 once interned (every constructor asks for
+    /// them, and interning hashes the node each time); filled on first use, so the order
+    /// in which nodes are created does not change.
+    small_ints: [Option<Id>; 4],
+}
+
+/// Room reserved for nodes at the start: the example systems derive into 60 to 900 nodes
+/// (the 3-link chain), and each growth of the interning index re-hashes every node stored
+/// so far. (Not more: the index of 512 nodes already takes 64 KiB.)
+const INITIAL_NODES: usize = 512;
+
+/// The bit of `s` in a node's symbol filter: symbols 64 apart share a bit, which only
+/// costs a pass some needless visits.
+pub(crate) fn symbol_bit(s: Symbol) -> u64 {
+    1 << (s.index() % 64)
 }
 
 /// What `node` answers for an id that is not in the pool (an id of another pool).
@@ -40,11 +69,15 @@ impl ExprPool {
     /// An empty pool with an empty symbol table.
     pub fn new() -> ExprPool {
         ExprPool {
-            nodes: Vec::new(),
-            heights: Vec::new(),
-            index: HashMap::new(),
+            nodes: Vec::with_capacity(INITIAL_NODES),
+            heights: Vec::with_capacity(INITIAL_NODES),
+            symbol_masks: Vec::with_capacity(INITIAL_NODES),
+            index: FxHashMap::with_capacity_and_hasher(INITIAL_NODES, Default::default()),
             symbols: SymbolTable::new(),
-            definitions: HashMap::new(),
+            definitions: FxHashMap::default(),
+            derivatives: FxHashMap::default(),
+            trig_images: FxHashMap::default(),
+            small_ints: [None; 4],
         }
     }
 
@@ -73,6 +106,11 @@ impl ExprPool {
         self.heights.get(e.index()).copied().unwrap_or(0)
     }
 
+    /// The filter of the symbols `e` depends on (see [`symbol_bit`]): 0 for a constant.
+    pub(crate) fn symbol_mask(&self, e: Id) -> u64 {
+        self.symbol_masks.get(e.index()).copied().unwrap_or(0)
+    }
+
     /// Every id of the pool, ascending (children before parents).
     pub fn ids(&self) -> impl Iterator<Item = Id> {
         (0..self.nodes.len() as u32).map(Id)
@@ -90,12 +128,17 @@ impl ExprPool {
         }
         // 2^32 nodes would need far more memory than any derivation uses.
         let id = Id(self.nodes.len() as u32);
-        let height = node
-            .children()
-            .map(|c| self.height(c).saturating_add(1))
-            .max()
-            .unwrap_or(0);
+        let (mut height, mut mask) = (0, 0);
+        node.for_each_child(|c| {
+            height = height.max(self.height(c).saturating_add(1));
+            mask |= self.symbol_mask(c);
+        });
+        if let Node::Sym(s) = node {
+            // A defined symbol depends on its value's symbols (the value exists already).
+            mask = symbol_bit(s) | self.definition(s).map_or(0, |v| self.symbol_mask(v));
+        }
         self.heights.push(height);
+        self.symbol_masks.push(mask);
         self.nodes.push(node.clone());
         self.index.insert(node, id);
         id
@@ -103,7 +146,18 @@ impl ExprPool {
 
     /// The integer `n`.
     pub fn int(&mut self, n: i64) -> Id {
-        self.rational(Rational::from(n))
+        let Some(slot) = usize::try_from(n + 1)
+            .ok()
+            .filter(|i| *i < self.small_ints.len())
+        else {
+            return self.rational(Rational::from(n));
+        };
+        if let Some(id) = self.small_ints[slot] {
+            return id;
+        }
+        let id = self.rational(Rational::from(n));
+        self.small_ints[slot] = Some(id);
+        id
     }
 
     /// An exact rational constant.
@@ -171,6 +225,11 @@ impl ExprPool {
         self.definitions.get(&s).copied()
     }
 
+    /// Every symbol that carries a value, in no particular order.
+    pub(crate) fn defined_symbols(&self) -> impl Iterator<Item = Symbol> + '_ {
+        self.definitions.keys().copied()
+    }
+
     /// The value behind a `Sym` node of a defined symbol.
     pub(crate) fn definition_of_node(&self, id: Id) -> Option<Id> {
         match self.node(id) {
@@ -229,22 +288,103 @@ impl ExprPool {
     /// Every id reachable from `roots` (looking through definitions if asked), ascending,
     /// hence children before parents. Iterative: no recursion on deep expressions.
     pub(crate) fn reachable(&self, roots: &[Id], through_definitions: bool) -> Vec<Id> {
-        // A set, not a bitmap of the whole pool: the cost follows the expression, not the
-        // (ever-growing) arena.
-        let mut seen: HashSet<Id> = HashSet::new();
-        let mut stack: Vec<Id> = roots.to_vec();
-        let mut out = Vec::new();
-        while let Some(id) = stack.pop() {
-            if id.index() >= self.nodes.len() || !seen.insert(id) {
-                continue;
-            }
-            out.push(id);
-            stack.extend(self.node(id).children());
-            if through_definitions {
-                stack.extend(self.definition_of_node(id));
+        self.reachable_where(roots, through_definitions, |_| true)
+    }
+
+    /// Like [`reachable`](Self::reachable) through definitions, but only through the nodes
+    /// that may depend on a symbol of `symbols` (a union of [`symbol_bit`]s): every other
+    /// node is left out with its whole subtree. Every node that contains such a symbol is
+    /// in the answer.
+    pub(crate) fn reachable_depending_on(&self, roots: &[Id], symbols: u64) -> Vec<Id> {
+        self.reachable_where(roots, true, |id| self.symbol_mask(id) & symbols != 0)
+    }
+
+    /// The ids reachable from `roots` through nodes that pass `keep`, ascending.
+    pub(crate) fn reachable_where(
+        &self,
+        roots: &[Id],
+        through_definitions: bool,
+        keep: impl Fn(Id) -> bool,
+    ) -> Vec<Id> {
+        let roots: Vec<Id> = roots
+            .iter()
+            .copied()
+            .filter(|r| r.index() < self.nodes.len() && keep(*r))
+            .collect();
+        // Everything reachable from a node has a smaller id (children and definition
+        // values come first), so a bitmap up to the largest root holds the visited set:
+        // no hashing per node.
+        let mut seen = Visited::up_to(roots.iter().copied().max());
+        let mut stack: Vec<Id> = Vec::new();
+        for r in roots {
+            if seen.insert(r) {
+                stack.push(r);
             }
         }
-        out.sort_unstable();
+        while let Some(id) = stack.pop() {
+            let definition = through_definitions
+                .then(|| self.definition_of_node(id))
+                .flatten();
+            let mut visit = |c: Id| {
+                if keep(c) && seen.insert(c) {
+                    stack.push(c);
+                }
+            };
+            self.node(id).for_each_child(&mut visit);
+            definition.into_iter().for_each(visit);
+        }
+        seen.into_ascending()
+    }
+}
+
+/// A set of ids below a bound, as a bitmap, that also lists its members in insertion
+/// order (for small sets of a large pool, sorting that list is cheaper than scanning
+/// the bitmap).
+struct Visited {
+    bits: Vec<u64>,
+    members: Vec<Id>,
+}
+
+impl Visited {
+    /// An empty set for the ids up to `top` (none if `None`).
+    fn up_to(top: Option<Id>) -> Visited {
+        let words = top.map_or(0, |t| t.index() / 64 + 1);
+        Visited {
+            bits: vec![0; words],
+            members: Vec::new(),
+        }
+    }
+
+    /// Adds `id`; false if it was there already. `id` must not exceed the bound.
+    fn insert(&mut self, id: Id) -> bool {
+        let (word, bit) = (id.index() / 64, 1u64 << (id.index() % 64));
+        let Some(w) = self.bits.get_mut(word) else {
+            return false;
+        };
+        let fresh = *w & bit == 0;
+        *w |= bit;
+        if fresh {
+            self.members.push(id);
+        }
+        fresh
+    }
+
+    /// The members, ascending: the bitmap's bits in order when the set fills a fair part
+    /// of it, else the sorted list.
+    fn into_ascending(mut self) -> Vec<Id> {
+        if self.members.len() < self.bits.len() {
+            self.members.sort_unstable();
+            return self.members;
+        }
+        let mut out = Vec::with_capacity(self.members.len());
+        for (w, &word) in self.bits.iter().enumerate() {
+            let mut rest = word;
+            while rest != 0 {
+                // At most 2^32 nodes, so the id fits a u32.
+                out.push(Id((w * 64) as u32 + rest.trailing_zeros()));
+                rest &= rest - 1;
+            }
+        }
         out
     }
 }

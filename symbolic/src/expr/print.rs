@@ -10,7 +10,7 @@ use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
 use super::rational::Rational;
 use super::symbol::Symbol;
-use super::walk::{print, Prec, Printed, Printer, Syntax};
+use super::walk::{print, print_all, Prec, Printed, Printer, Syntax};
 
 /// The exponent of a power as printed: either the node itself or its negation (a negative
 /// power printed as a denominator).
@@ -54,6 +54,13 @@ impl ExprPool {
     /// canonical expression (inexact constants to the same value).
     pub fn display(&self, e: Id) -> DisplayExpr<'_> {
         DisplayExpr { pool: self, id: e }
+    }
+
+    /// The [`display`](Self::display) text of each of `roots`, from one walk: a
+    /// subexpression shared by several roots is printed once.
+    pub fn display_all(&self, roots: &[Id]) -> Vec<String> {
+        let printed = print_all(self, &Dsl, roots, |_, _| None);
+        printed.into_iter().map(|p| p.text).collect()
     }
 
     /// Whether the exponent `x` is negative as printed (a negative constant, or a product

@@ -18,7 +18,6 @@
 use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
 use super::rational::Rational;
-use std::collections::HashMap;
 
 /// Folds `b^e` for constants when the result is exact (or either side is inexact and the
 /// result is finite); `None` leaves the power unfolded.
@@ -49,57 +48,11 @@ fn collected_base(pool: &ExprPool, factor: Id) -> Id {
 impl ExprPool {
     /// The canonical product of `factors` (1 for none).
     pub fn mul(&mut self, factors: &[Id]) -> Id {
-        let mut coefficient = Number::ONE;
-        let mut exponents: HashMap<Id, Vec<Id>> = HashMap::new();
-        let one = self.int(1);
-        let mut work: Vec<Id> = factors.to_vec();
-        while let Some(f) = work.pop() {
-            match self.node(f) {
-                Node::Num(_) | Node::Float(_) => {
-                    if let Some(n) = self.node(f).number() {
-                        coefficient = coefficient.mul(n);
-                    }
-                }
-                Node::Mul(inner) => work.extend_from_slice(inner),
-                Node::Pow(b, e) => exponents.entry(*b).or_default().push(*e),
-                _ => exponents.entry(f).or_default().push(one),
-            }
-        }
+        let (mut coefficient, mut powers) = self.gather_factors(factors);
         if coefficient.is_zero() {
             return self.number(Number::ZERO);
         }
-        // Bases in structural order so that the result does not depend on hash order.
-        let mut bases: Vec<(Id, Vec<Id>)> = exponents.into_iter().collect();
-        bases.sort_by(|(a, _), (b, _)| self.structural_cmp(*a, *b));
-        let all_bases: Vec<Id> = bases.iter().map(|(b, _)| *b).collect();
-        let mut out: Vec<Id> = Vec::with_capacity(bases.len() + 1);
-        let mut again: Vec<Id> = Vec::new();
-        for (base, exps) in bases {
-            let e = match exps.as_slice() {
-                [single] => *single,
-                _ => self.add(&exps),
-            };
-            let p = self.pow(base, e);
-            match self.node(p) {
-                Node::Num(_) | Node::Float(_) => {
-                    if let Some(n) = self.node(p).number() {
-                        coefficient = coefficient.mul(n);
-                    }
-                }
-                // Collected exponents made an integer power of a product, which distributes
-                // over factors that may meet others here: collect once more.
-                Node::Mul(_) => again.push(p),
-                // The power simplified to another base (`sqrt(x^2)^2` is `x^2`) that is also
-                // a base here: collect once more, or the product would hold `x` twice. Each
-                // such round merges two factors, so this ends.
-                _ if collected_base(self, p) != base
-                    && all_bases.contains(&collected_base(self, p)) =>
-                {
-                    again.push(p)
-                }
-                _ => out.push(p),
-            }
-        }
+        let (mut out, mut again) = self.collect_bases(&mut powers, &mut coefficient);
         if coefficient.is_zero() {
             return self.number(Number::ZERO);
         }
@@ -129,6 +82,79 @@ impl ExprPool {
             [single] => *single,
             _ => self.intern(Node::Mul(out.into_boxed_slice())),
         }
+    }
+
+    /// The numeric coefficient of `factors` (nested products flattened) and the
+    /// (base, exponent, factor) of every other factor, in the order met.
+    fn gather_factors(&mut self, factors: &[Id]) -> (Number, Vec<(Id, Id, Id)>) {
+        let mut coefficient = Number::ONE;
+        let mut powers: Vec<(Id, Id, Id)> = Vec::with_capacity(factors.len());
+        let one = self.int(1);
+        let mut work: Vec<Id> = factors.to_vec();
+        while let Some(f) = work.pop() {
+            match self.node(f) {
+                Node::Num(_) | Node::Float(_) => {
+                    if let Some(n) = self.node(f).number() {
+                        coefficient = coefficient.mul(n);
+                    }
+                }
+                Node::Mul(inner) => work.extend_from_slice(inner),
+                Node::Pow(b, e) => powers.push((*b, *e, f)),
+                _ => powers.push((f, one, f)),
+            }
+        }
+        (coefficient, powers)
+    }
+
+    /// Equal bases collected by adding their exponents: the resulting factors, and those
+    /// to collect once more (see below); constants go into `coefficient`.
+    fn collect_bases(
+        &mut self,
+        powers: &mut [(Id, Id, Id)],
+        coefficient: &mut Number,
+    ) -> (Vec<Id>, Vec<Id>) {
+        // Bases in structural order so that the result does not depend on the order of the
+        // factors; the sort is stable, so each base's exponents stay in the order met. (A
+        // sorted list instead of a map from base to exponents: no hashing, one allocation.)
+        powers.sort_by(|(a, ..), (b, ..)| self.structural_cmp(*a, *b));
+        let mut out: Vec<Id> = Vec::with_capacity(powers.len() + 1);
+        let mut again: Vec<Id> = Vec::new();
+        for group in powers.chunk_by(|(a, ..), (b, ..)| a == b) {
+            let [(base, _, factor), rest @ ..] = group else {
+                continue;
+            };
+            let base = *base;
+            if rest.is_empty() {
+                // A base met once keeps its factor: that factor is `base` (exponent 1) or a
+                // `Pow` node, which only `pow(base, exponent)` creates, so calling it again
+                // would return the factor, after an interning lookup.
+                out.push(*factor);
+                continue;
+            }
+            let exponents: Vec<Id> = group.iter().map(|(_, e, _)| *e).collect();
+            let e = self.add(&exponents);
+            let p = self.pow(base, e);
+            match self.node(p) {
+                Node::Num(_) | Node::Float(_) => {
+                    if let Some(n) = self.node(p).number() {
+                        *coefficient = coefficient.mul(n);
+                    }
+                }
+                // Collected exponents made an integer power of a product, which distributes
+                // over factors that may meet others here: collect once more.
+                Node::Mul(_) => again.push(p),
+                // The power simplified to another base (`sqrt(x^2)^2` is `x^2`) that is also
+                // a base here: collect once more, or the product would hold `x` twice. Each
+                // such round merges two factors, so this ends.
+                _ if collected_base(self, p) != base
+                    && powers.iter().any(|(b, ..)| *b == collected_base(self, p)) =>
+                {
+                    again.push(p)
+                }
+                _ => out.push(p),
+            }
+        }
+        (out, again)
     }
 
     /// `a / b`, that is `a * b^-1`.
@@ -165,12 +191,15 @@ impl ExprPool {
         }
         let integer_exponent = self.as_rational(exp).and_then(|r| r.as_integer()).is_some();
         if integer_exponent {
-            match self.node(base).clone() {
-                Node::Pow(b, inner) => {
+            // Copy out only what these two cases need: cloning the node would copy the
+            // terms of every sum raised to a power.
+            match self.node(base) {
+                &Node::Pow(b, inner) => {
                     let product = self.mul(&[inner, exp]);
                     return self.pow(b, product);
                 }
                 Node::Mul(factors) => {
+                    let factors = factors.clone();
                     let powers: Vec<Id> = factors.iter().map(|f| self.pow(*f, exp)).collect();
                     return self.mul(&powers);
                 }

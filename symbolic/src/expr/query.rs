@@ -2,20 +2,30 @@
 //! of them (L must be at most quadratic in the velocities, docs/dsl.md#kinetic-potential-lagrangian).
 
 use super::node::{Id, Node};
-use super::pool::ExprPool;
+use super::pool::{symbol_bit, ExprPool};
 use super::symbol::Symbol;
-use std::collections::{BTreeSet, HashMap};
+use rustc_hash::FxHashMap;
+use std::collections::BTreeSet;
 
 impl ExprPool {
     /// Whether `s` occurs in `e`, directly or inside the value of a defined symbol.
     pub fn contains(&self, e: Id, s: Symbol) -> bool {
-        self.reachable(&[e], true)
+        self.reachable_depending_on(&[e], symbol_bit(s))
             .into_iter()
             .any(|id| *self.node(id) == Node::Sym(s))
     }
 
     /// Every symbol that occurs in `e`: defined symbols and the symbols of their values.
     pub fn free_symbols(&self, e: Id) -> BTreeSet<Symbol> {
+        if self.symbols().len() <= 64 {
+            // With at most 64 symbols, bit i of the node's symbol filter is exactly symbol
+            // i (the filter holds every symbol reachable through definitions): no walk.
+            let mask = self.symbol_mask(e);
+            return (0..64u32)
+                .filter(|i| mask >> i & 1 == 1)
+                .map(Symbol)
+                .collect();
+        }
         self.reachable(&[e], true)
             .into_iter()
             .filter_map(|id| self.as_symbol(id))
@@ -27,7 +37,7 @@ impl ExprPool {
     /// or `1/x'`. Defined symbols are looked through.
     pub fn degree(&self, e: Id, vars: &[Symbol]) -> Option<u32> {
         // None = not polynomial; Some(0) = free of vars (canonical form has no `x - x`).
-        let mut degrees: HashMap<Id, Option<u32>> = HashMap::new();
+        let mut degrees: FxHashMap<Id, Option<u32>> = FxHashMap::default();
         for id in self.reachable(&[e], true) {
             let of = |c: &Id| degrees.get(c).copied().flatten();
             let degree = match self.node(id) {

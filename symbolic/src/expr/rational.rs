@@ -137,6 +137,10 @@ impl Rational {
 
     /// `self + other`.
     pub fn checked_add(self, other: Rational) -> Option<Rational> {
+        // Integers (most constants) need no gcd: i128 division is slow unoptimized.
+        if self.den == 1 && other.den == 1 {
+            return Some(Rational::integer(self.num.checked_add(other.num)?));
+        }
         let g = i128::try_from(gcd(self.den.unsigned_abs(), other.den.unsigned_abs())).ok()?;
         let left = self.num.checked_mul(other.den / g)?;
         let right = other.num.checked_mul(self.den / g)?;
@@ -153,6 +157,9 @@ impl Rational {
 
     /// `self * other`.
     pub fn checked_mul(self, other: Rational) -> Option<Rational> {
+        if self.den == 1 && other.den == 1 {
+            return Some(Rational::integer(self.num.checked_mul(other.num)?));
+        }
         // Cross-reduce first so that products that fit are never rejected.
         let g1 = i128::try_from(gcd(self.num.unsigned_abs(), other.den.unsigned_abs())).ok()?;
         let g2 = i128::try_from(gcd(other.num.unsigned_abs(), self.den.unsigned_abs())).ok()?;

@@ -2,8 +2,9 @@
 //! constructors, so the result is canonical (`m` := `m0 + c*x` in `m - m0` gives `c*x`).
 
 use super::node::{Id, Node};
-use super::pool::ExprPool;
+use super::pool::{symbol_bit, ExprPool};
 use super::symbol::Symbol;
+use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 
 /// What happens to a defined symbol during a rebuild.
@@ -32,8 +33,16 @@ impl ExprPool {
     }
 
     fn rebuild(&mut self, e: Id, map: &HashMap<Symbol, Id>, policy: Definitions) -> Id {
-        let mut new: HashMap<Id, Id> = HashMap::new();
-        for id in self.reachable(&[e], true) {
+        let mut new: FxHashMap<Id, Id> = FxHashMap::default();
+        // Only the nodes that may contain a replaced symbol, or (to inline) a defined one:
+        // the others are their own image, and rebuilding them would build no node.
+        let mut symbols = map.keys().fold(0, |mask, s| mask | symbol_bit(*s));
+        if policy == Definitions::Inline {
+            symbols = self
+                .defined_symbols()
+                .fold(symbols, |mask, s| mask | symbol_bit(s));
+        }
+        for id in self.reachable_depending_on(&[e], symbols) {
             let image = |c: &Id| new.get(c).copied().unwrap_or(*c);
             let node = self.node(id).clone();
             let children: Vec<Id> = node.children().collect();

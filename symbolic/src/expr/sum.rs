@@ -3,14 +3,14 @@
 
 use super::node::{Id, Node, Number};
 use super::pool::ExprPool;
-use std::cmp::Ordering;
-use std::collections::HashMap;
 
 impl ExprPool {
     /// The canonical sum of `terms` (0 for none).
     pub fn add(&mut self, terms: &[Id]) -> Id {
+        if let Some(single) = self.single_term_sum(terms) {
+            return single;
+        }
         let mut constant = Number::ZERO;
-        let mut coefficients: HashMap<Id, Number> = HashMap::new();
         // Canonical sums never nest, so one level of flattening suffices.
         let mut flat = Vec::with_capacity(terms.len());
         for &t in terms {
@@ -19,28 +19,27 @@ impl ExprPool {
                 _ => flat.push(t),
             }
         }
+        // (rest, coefficient) of every non-constant term, in the order met.
+        let mut split: Vec<(Id, Number)> = Vec::with_capacity(flat.len());
         for t in flat {
             if let Some(n) = self.node(t).number() {
                 constant = constant.add(n);
                 continue;
             }
             let (c, rest) = self.split_coefficient(t);
-            let entry = coefficients.entry(rest).or_insert(Number::ZERO);
-            *entry = entry.add(c);
+            split.push((rest, c));
         }
-        let mut collected: Vec<(Id, Number)> = coefficients
-            .into_iter()
-            .filter(|(_, c)| !c.is_zero())
-            .collect();
-        // Distinct rests never compare equal, so the coefficient never decides the order;
-        // it is only a tie-break for completeness.
-        collected.sort_by(|(r1, c1), (r2, c2)| {
-            self.structural_cmp(*r1, *r2).then_with(|| {
-                c1.to_f64()
-                    .partial_cmp(&c2.to_f64())
-                    .unwrap_or(Ordering::Equal)
-            })
-        });
+        // Terms in structural order; the sort is stable, so like terms are summed in the
+        // order met. (A sorted list instead of a map from rest to coefficient: no hashing.)
+        split.sort_by(|(r1, _), (r2, _)| self.structural_cmp(*r1, *r2));
+        let mut collected: Vec<(Id, Number)> = Vec::with_capacity(split.len());
+        for (rest, c) in split {
+            match collected.last_mut() {
+                Some((last, sum)) if *last == rest => *sum = sum.add(c),
+                _ => collected.push((rest, Number::ZERO.add(c))),
+            }
+        }
+        collected.retain(|(_, c)| !c.is_zero());
         let mut out = Vec::with_capacity(collected.len() + 1);
         let constant = constant.normalized();
         if !constant.is_zero() {
@@ -54,6 +53,25 @@ impl ExprPool {
             [] => self.number(Number::ZERO),
             [single] => *single,
             _ => self.intern(Node::Add(out.into_boxed_slice())),
+        }
+    }
+
+    /// The sum of one canonical term that is not a sum: the term itself (distributing and
+    /// differentiating ask for many of these). The general path would split off its
+    /// coefficient, which may create the node of the rest (`x*y` for `2*x*y`), then scale
+    /// it back to the same term; the split is kept so that the nodes created, and their
+    /// order, stay exactly those of the general path.
+    fn single_term_sum(&mut self, terms: &[Id]) -> Option<Id> {
+        let [single] = *terms else {
+            return None;
+        };
+        match self.node(single) {
+            Node::Add(_) => None,
+            Node::Num(_) | Node::Float(_) => Some(single),
+            _ => {
+                self.split_coefficient(single);
+                Some(single)
+            }
         }
     }
 

@@ -4,7 +4,7 @@
 //! and `Parameter` symbols have zero derivative under ∂* and d*/dt even where a mass law
 //! makes them depend on q or t.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// A symbol: an index into its pool's [`SymbolTable`]. Symbols are ordered by that index,
 /// so the canonical order of expressions is the order of declaration.
@@ -65,7 +65,7 @@ pub struct SymbolTable {
     names: Vec<String>,
     kinds: Vec<SymbolKind>,
     families: Vec<Option<Family>>,
-    by_name: HashMap<String, Symbol>,
+    by_name: FxHashMap<String, Symbol>,
 }
 
 impl SymbolTable {

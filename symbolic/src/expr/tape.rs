@@ -7,8 +7,8 @@ use super::func::Func;
 use super::node::{Id, Node};
 use super::pool::ExprPool;
 use super::rational::Rational;
+use rustc_hash::FxHashMap;
 use std::cell::RefCell;
-use std::collections::HashMap;
 
 /// `b^e`, by `powi` for integer exponents (it keeps `(-2)^3 = -8` and is more accurate),
 /// `powf` otherwise: a power whose exponent is not a constant.
@@ -17,6 +17,14 @@ fn power(b: f64, e: f64) -> f64 {
         b.powi(e as i32)
     } else {
         b.powf(e)
+    }
+}
+
+/// `slots[k]`, NaN past the end (a missing value, never a panic).
+fn slot(slots: &[f64], k: usize) -> f64 {
+    match slots.get(k) {
+        Some(x) => *x,
+        None => f64::NAN,
     }
 }
 
@@ -71,7 +79,7 @@ impl ExprPool {
     /// Compiles `roots` into one [`Tape`]; `out[i]` of [`Tape::eval`] is the value of
     /// `roots[i]`.
     pub fn compile(&self, roots: &[Id]) -> Tape {
-        let mut slot: HashMap<Id, usize> = HashMap::new();
+        let mut slot: FxHashMap<Id, usize> = FxHashMap::default();
         let mut code = Vec::new();
         let mut operands = Vec::new();
         for id in self.reachable(roots, true) {
@@ -164,35 +172,56 @@ impl Tape {
     pub fn eval_with(&self, env: &[f64], scratch: &mut Vec<f64>, out: &mut [f64]) {
         scratch.clear();
         scratch.resize(self.code.len(), 0.0);
-        for i in 0..self.code.len() {
-            let v = |k: usize| scratch.get(k).copied().unwrap_or(f64::NAN);
-            let ops = |start: usize, len: usize| {
-                self.operands
-                    .get(start..start + len)
-                    .unwrap_or(&[])
-                    .iter()
-                    .copied()
-            };
-            let value = match self.code.get(i) {
-                Some(Instr::Const(c)) => *c,
-                Some(Instr::Var(k)) => env.get(*k).copied().unwrap_or(f64::NAN),
-                Some(Instr::Copy(k)) => v(*k),
-                Some(Instr::Add { start, len }) => ops(*start, *len).map(v).sum(),
-                Some(Instr::Mul { start, len }) => ops(*start, *len).map(v).product(),
-                Some(Instr::PowI(a, n)) => v(*a).powi(*n),
-                Some(Instr::Sqrt(a)) => v(*a).sqrt(),
-                Some(Instr::Pow(a, b)) => power(v(*a), v(*b)),
-                Some(Instr::Call1(f, a)) => f.apply(&[v(*a)]),
-                Some(Instr::Call2(f, a, b)) => f.apply(&[v(*a), v(*b)]),
-                None => f64::NAN,
-            };
+        for (i, instr) in self.code.iter().enumerate() {
+            let value = self.value(instr, env, scratch);
             if let Some(slot) = scratch.get_mut(i) {
                 *slot = value;
             }
         }
         for (o, k) in out.iter_mut().zip(&self.outputs) {
-            *o = scratch.get(*k).copied().unwrap_or(f64::NAN);
+            *o = slot(scratch, *k);
         }
+    }
+
+    /// The value of one instruction, from the slots computed so far.
+    fn value(&self, instr: &Instr, env: &[f64], slots: &[f64]) -> f64 {
+        match *instr {
+            Instr::Const(c) => c,
+            Instr::Var(k) => slot(env, k),
+            Instr::Copy(k) => slot(slots, k),
+            Instr::Add { start, len } => self.sum(start, len, slots),
+            Instr::Mul { start, len } => self.product(start, len, slots),
+            Instr::PowI(a, n) => slot(slots, a).powi(n),
+            Instr::Sqrt(a) => slot(slots, a).sqrt(),
+            Instr::Pow(a, b) => power(slot(slots, a), slot(slots, b)),
+            Instr::Call1(f, a) => f.apply(&[slot(slots, a)]),
+            Instr::Call2(f, a, b) => f.apply(&[slot(slots, a), slot(slots, b)]),
+        }
+    }
+
+    /// The slots an `Add` or `Mul` reads.
+    fn operands(&self, start: usize, len: usize) -> &[usize] {
+        self.operands.get(start..start + len).unwrap_or(&[])
+    }
+
+    /// The sum of the operands' slots, in order from -0.0 as `Iterator::sum` does. (A plain
+    /// loop: iterator adapters cost calls per element in unoptimized builds, and the
+    /// numerical identity check evaluates a tape at least 32 times.)
+    fn sum(&self, start: usize, len: usize, slots: &[f64]) -> f64 {
+        let mut total = -0.0;
+        for &k in self.operands(start, len) {
+            total += slot(slots, k);
+        }
+        total
+    }
+
+    /// The product of the operands' slots, in order from 1 as `Iterator::product` does.
+    fn product(&self, start: usize, len: usize, slots: &[f64]) -> f64 {
+        let mut total = 1.0;
+        for &k in self.operands(start, len) {
+            total *= slot(slots, k);
+        }
+        total
     }
 
     /// Like [`eval_with`](Self::eval_with), and also the *magnitude* of each root: the same
@@ -210,21 +239,13 @@ impl Tape {
         self.eval_with(env, scratch, out);
         magnitudes.clear();
         magnitudes.resize(self.code.len(), 0.0);
-        for i in 0..self.code.len() {
-            let m = |k: usize| magnitudes.get(k).copied().unwrap_or(f64::NAN);
-            let ops = |start: usize, len: usize| {
-                self.operands
-                    .get(start..start + len)
-                    .unwrap_or(&[])
-                    .iter()
-                    .copied()
-            };
-            let value = scratch.get(i).copied().unwrap_or(f64::NAN).abs();
-            let magnitude = match self.code.get(i) {
-                Some(Instr::Copy(k)) => m(*k),
-                Some(Instr::Add { start, len }) => ops(*start, *len).map(m).sum(),
-                Some(Instr::Mul { start, len }) => ops(*start, *len).map(m).product(),
-                Some(Instr::PowI(a, n)) if *n > 0 => m(*a).powi(*n),
+        for (i, instr) in self.code.iter().enumerate() {
+            let value = slot(scratch, i).abs();
+            let magnitude = match *instr {
+                Instr::Copy(k) => slot(magnitudes, k),
+                Instr::Add { start, len } => self.sum(start, len, magnitudes),
+                Instr::Mul { start, len } => self.product(start, len, magnitudes),
+                Instr::PowI(a, n) if n > 0 => slot(magnitudes, a).powi(n),
                 // Nonlinear: the value's size is the best cheap scale.
                 _ => value,
             };
@@ -233,7 +254,7 @@ impl Tape {
             }
         }
         for (o, k) in out_magnitude.iter_mut().zip(&self.outputs) {
-            *o = magnitudes.get(*k).copied().unwrap_or(f64::NAN);
+            *o = slot(magnitudes, *k);
         }
     }
 }

@@ -16,6 +16,7 @@
 use super::func::Func;
 use super::node::{Id, Node};
 use super::pool::ExprPool;
+use rustc_hash::FxHashMap;
 
 /// Two sine/cosine factors of one term, with a normal order: same-function arguments
 /// sorted by id, a mixed pair always as (sine, cosine).
@@ -38,18 +39,33 @@ impl Pair {
     }
 }
 
-/// A term as a product of factors (the numeric coefficient included).
-struct Term {
-    factors: Vec<Id>,
+/// The sine/cosine patterns of one term, each with the rest R of the term.
+#[derive(Clone, Default)]
+struct Patterns {
+    /// `f(u)² R` as `(R, f, u)`.
+    squares: Vec<(Id, Func, Id)>,
+    /// `f(u) g(v) R` as `(R, pair)`.
+    pairs: Vec<(Id, Pair)>,
+}
+
+/// What the rounds of one [`ExprPool::reduce_trig`] share: a term that survives a rewrite
+/// has the same patterns in the next round, and a rest the same negation. Each is computed
+/// once, where the first round needs it; recomputing would only re-intern existing nodes,
+/// so the nodes created, and their order, are unchanged.
+#[derive(Default)]
+struct Rounds {
+    patterns: FxHashMap<Id, Patterns>,
+    negations: FxHashMap<Id, Id>,
 }
 
 impl ExprPool {
     /// `e` expanded, with the identities above applied to its terms until none applies.
     pub fn reduce_trig(&mut self, e: Id) -> Id {
         let mut current = self.expand(e);
+        let mut rounds = Rounds::default();
         // Each rewrite removes at least one term, so this many rounds always suffice.
         for _ in 0..self.terms(current).len() {
-            match self.reduce_once(current) {
+            match self.reduce_once(current, &mut rounds) {
                 Some(next) => current = next,
                 None => break,
             }
@@ -90,37 +106,45 @@ impl ExprPool {
         self.mul(&kept)
     }
 
+    /// The patterns of term `t`, computed on its first round.
+    fn patterns(&mut self, t: Id, rounds: &mut Rounds) -> Patterns {
+        if let Some(known) = rounds.patterns.get(&t) {
+            return known.clone();
+        }
+        let factors = self.factors(t);
+        let mut found = Patterns::default();
+        for (a, fa) in factors.iter().enumerate() {
+            if let Some((func, u)) = self.trig_square(*fa) {
+                let rest = self.rest(&factors, &[a]);
+                found.squares.push((rest, func, u));
+            }
+            let Some(first) = self.trig_factor(*fa) else {
+                continue;
+            };
+            for (b, fb) in factors.iter().enumerate().skip(a + 1) {
+                if let Some(second) = self.trig_factor(*fb) {
+                    let rest = self.rest(&factors, &[a, b]);
+                    found.pairs.push((rest, Pair::new(first, second)));
+                }
+            }
+        }
+        rounds.patterns.insert(t, found.clone());
+        found
+    }
+
     /// One rewrite, if any applies.
-    fn reduce_once(&mut self, sum: Id) -> Option<Id> {
-        let terms: Vec<Term> = self
-            .terms(sum)
-            .into_iter()
-            .map(|t| Term {
-                factors: self.factors(t),
-            })
-            .collect();
+    fn reduce_once(&mut self, sum: Id, rounds: &mut Rounds) -> Option<Id> {
+        let terms = self.terms(sum);
         if terms.len() < 2 {
             return None;
         }
         // Candidate patterns per term, each with the rest R of the term.
         let mut squares = Vec::new(); // (R, func, u, term): f(u)² R
         let mut pairs = Vec::new(); // (R, pair, term)
-        for (i, term) in terms.iter().enumerate() {
-            for (a, fa) in term.factors.iter().enumerate() {
-                if let Some((func, u)) = self.trig_square(*fa) {
-                    let rest = self.rest(&term.factors, &[a]);
-                    squares.push((rest, func, u, i));
-                }
-                let Some(first) = self.trig_factor(*fa) else {
-                    continue;
-                };
-                for (b, fb) in term.factors.iter().enumerate().skip(a + 1) {
-                    if let Some(second) = self.trig_factor(*fb) {
-                        let rest = self.rest(&term.factors, &[a, b]);
-                        pairs.push((rest, Pair::new(first, second), i));
-                    }
-                }
-            }
+        for (i, t) in terms.iter().enumerate() {
+            let found = self.patterns(*t, rounds);
+            squares.extend(found.squares.iter().map(|&(r, f, u)| (r, f, u, i)));
+            pairs.extend(found.pairs.iter().map(|&(r, pair)| (r, pair, i)));
         }
         // Pythagoras: sin(u)² R + cos(u)² R = R.
         for &(rest, func, u, i) in &squares {
@@ -136,7 +160,14 @@ impl ExprPool {
         }
         // Sums and differences of angles.
         for &(rest, pair, i) in &pairs {
-            let negated = self.neg(rest);
+            let negated = match rounds.negations.get(&rest) {
+                Some(known) => *known,
+                None => {
+                    let negated = self.neg(rest);
+                    rounds.negations.insert(rest, negated);
+                    negated
+                }
+            };
             for &(other_rest, other, j) in &pairs {
                 if j == i || !(other_rest == rest || other_rest == negated) {
                     continue;
@@ -193,46 +224,56 @@ impl ExprPool {
     /// cos(θᵢ − θⱼ) for every pair, n(n−1)/2 calls; expanded, generated code computes the 2n
     /// values sin θᵢ, cos θᵢ once and shares them.
     pub fn expand_trig_arguments(&mut self, e: Id) -> Id {
-        let mut image: std::collections::HashMap<Id, Id> = std::collections::HashMap::new();
-        for id in self.reachable(&[e], false) {
-            let node = self.node(id).clone();
-            let children: Vec<Id> = node
-                .children()
-                .map(|c| image.get(&c).copied().unwrap_or(c))
-                .collect();
-            let unchanged = node.children().eq(children.iter().copied());
-            let rebuilt = match (node, children.as_slice()) {
-                (Node::Num(_) | Node::Float(_) | Node::Sym(_), _) => id,
-                (Node::Call(func @ (Func::Sin | Func::Cos), _), &[argument]) => {
-                    match self.two_symbol_sum(argument) {
-                        Some((u, v)) => {
-                            let (su, cu) = (self.call(Func::Sin, &[u]), self.call(Func::Cos, &[u]));
-                            let (sv, cv) = (self.call(Func::Sin, &[v]), self.call(Func::Cos, &[v]));
-                            if func == Func::Sin {
-                                // sin(u + v) = sin u cos v + cos u sin v
-                                let (a, b) = (self.mul(&[su, cv]), self.mul(&[cu, sv]));
-                                self.add(&[a, b])
-                            } else {
-                                // cos(u + v) = cos u cos v − sin u sin v
-                                let (a, b) = (self.mul(&[cu, cv]), self.mul(&[su, sv]));
-                                self.sub(a, b)
-                            }
-                        }
-                        None if unchanged => id,
-                        None => self.call(func, &children),
-                    }
-                }
-                // Nothing below changed: the node is already canonical.
-                _ if unchanged => id,
-                (Node::Add(_), _) => self.add(&children),
-                (Node::Mul(_), _) => self.mul(&children),
-                (Node::Pow(..), &[base, exponent]) => self.pow(base, exponent),
-                (Node::Call(func, _), _) => self.call(func, &children),
-                (Node::Pow(..), _) => id,
-            };
-            image.insert(id, rebuilt);
+        // Only the nodes no earlier call rewrote (the pool remembers every image): emission
+        // rewrites hundreds of roots that share most of their nodes, and rewriting a node
+        // again would only re-intern existing nodes, so skipping it changes neither the
+        // result nor the order in which nodes are created.
+        let todo = self.reachable_where(&[e], false, |id| !self.trig_images.contains_key(&id));
+        for id in todo {
+            let rebuilt = self.trig_image(id);
+            self.trig_images.insert(id, rebuilt);
         }
-        image.get(&e).copied().unwrap_or(e)
+        self.trig_images.get(&e).copied().unwrap_or(e)
+    }
+
+    /// The image of node `id` under [`expand_trig_arguments`](Self::expand_trig_arguments),
+    /// from the images of its children.
+    fn trig_image(&mut self, id: Id) -> Id {
+        let node = self.node(id).clone();
+        let children: Vec<Id> = node
+            .children()
+            .map(|c| self.trig_images.get(&c).copied().unwrap_or(c))
+            .collect();
+        let unchanged = node.children().eq(children.iter().copied());
+        match (node, children.as_slice()) {
+            (Node::Num(_) | Node::Float(_) | Node::Sym(_), _) => id,
+            (Node::Call(func @ (Func::Sin | Func::Cos), _), &[argument]) => {
+                match self.two_symbol_sum(argument) {
+                    Some((u, v)) => {
+                        let (su, cu) = (self.call(Func::Sin, &[u]), self.call(Func::Cos, &[u]));
+                        let (sv, cv) = (self.call(Func::Sin, &[v]), self.call(Func::Cos, &[v]));
+                        if func == Func::Sin {
+                            // sin(u + v) = sin u cos v + cos u sin v
+                            let (a, b) = (self.mul(&[su, cv]), self.mul(&[cu, sv]));
+                            self.add(&[a, b])
+                        } else {
+                            // cos(u + v) = cos u cos v − sin u sin v
+                            let (a, b) = (self.mul(&[cu, cv]), self.mul(&[su, sv]));
+                            self.sub(a, b)
+                        }
+                    }
+                    None if unchanged => id,
+                    None => self.call(func, &children),
+                }
+            }
+            // Nothing below changed: the node is already canonical.
+            _ if unchanged => id,
+            (Node::Add(_), _) => self.add(&children),
+            (Node::Mul(_), _) => self.mul(&children),
+            (Node::Pow(..), &[base, exponent]) => self.pow(base, exponent),
+            (Node::Call(func, _), _) => self.call(func, &children),
+            (Node::Pow(..), _) => id,
+        }
     }
 
     /// `(u, v)` if `e` is `u + v` with each of u, v a symbol or minus a symbol.

@@ -3,7 +3,7 @@
 //! [`ExprPool`]), each by a small [`Syntax`] from the printed forms of its descendants. No
 //! recursion, so deep expressions cannot overflow the stack.
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 
 use super::func::Func;
 use super::node::{Id, Node};
@@ -104,7 +104,7 @@ pub(crate) struct Printer<'a, S: Syntax> {
     /// The nodes printed so far, in ascending id order (the order of the walk).
     printed: Vec<(Id, Printed<S::Text>)>,
     /// The nodes whose printed form the caller replaced (temporaries of generated code).
-    bound: HashSet<Id>,
+    bound: FxHashSet<Id>,
     /// What [`get`](Self::get) answers for a node not printed (unreachable).
     missing: Printed<S::Text>,
 }
@@ -158,13 +158,24 @@ pub(crate) fn print_all<S: Syntax>(
     pool: &ExprPool,
     syntax: &S,
     roots: &[Id],
+    bind: impl FnMut(Id, &Printed<S::Text>) -> Option<Printed<S::Text>>,
+) -> Vec<Printed<S::Text>> {
+    print_in(pool, syntax, roots, pool.reachable(roots, false), bind)
+}
+
+/// [`print_all`] over `order`, the ids reachable from `roots` in ascending order, for a
+/// caller that has it already.
+pub(crate) fn print_in<S: Syntax>(
+    pool: &ExprPool,
+    syntax: &S,
+    roots: &[Id],
+    order: Vec<Id>,
     mut bind: impl FnMut(Id, &Printed<S::Text>) -> Option<Printed<S::Text>>,
 ) -> Vec<Printed<S::Text>> {
-    let order = pool.reachable(roots, false);
     let mut printer = Printer {
         pool,
         printed: Vec::with_capacity(order.len()),
-        bound: HashSet::new(),
+        bound: FxHashSet::default(),
         missing: Printed::new(S::Text::default(), Prec::Atom),
     };
     for id in order {

@@ -2,7 +2,7 @@
 //! name any coordinate or mass), then every expression lowered in its scope, each rule a
 //! diagnostic at the statement it is about.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use super::model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
@@ -27,14 +27,14 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
 struct Builder {
     model: Model,
     errors: Vec<Diagnostic>,
-    declared_at: HashMap<String, Span>,
+    declared_at: FxHashMap<String, Span>,
 }
 
 impl Builder {
     fn new(parameters: Parameters) -> Builder {
         let mut pool = ExprPool::new();
         let time = pool.symbols_mut().add(keywords::TIME, SymbolKind::Time);
-        let mut names = HashMap::new();
+        let mut names = FxHashMap::default();
         names.insert(keywords::TIME.to_string(), Binding::Time(time));
         let mut declared = Vec::new();
         if let Parameters::Declared(list) = &parameters {
@@ -64,7 +64,7 @@ impl Builder {
                 parameter_mode: parameters,
             },
             errors: Vec::new(),
-            declared_at: HashMap::new(),
+            declared_at: FxHashMap::default(),
         }
     }
 
@@ -201,7 +201,7 @@ pub(crate) fn lower_in(
     model: &mut Model,
     node: &ExprNode,
     context: Context,
-    quantities: Option<&HashMap<String, Id>>,
+    quantities: Option<&FxHashMap<String, Id>>,
 ) -> Result<Id, Vec<Diagnostic>> {
     let Model {
         pool,

@@ -2,6 +2,7 @@
 //! equations before the derivation is assembled (see `docs/dsl.md`). Both sides are brought to velocity form with the mass laws substituted, then
 //! compared by canonical form and, failing that, at random points.
 
+use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 
 use super::derivation::{CheckOutcome, Equations};
@@ -13,8 +14,8 @@ use crate::expr::{ExprPool, Id, Identity, Symbol};
 use crate::parse::Diagnostic;
 
 /// The names a `check` may use for derived quantities, in velocity form.
-fn quantities(model: &Model, e: &Equations) -> HashMap<String, Id> {
-    let mut q = HashMap::new();
+fn quantities(model: &Model, e: &Equations) -> FxHashMap<String, Id> {
+    let mut q = FxHashMap::default();
     q.insert("H".to_string(), e.hamiltonian.energy);
     q.insert("L".to_string(), e.energies.lagrangian);
     q.insert("T".to_string(), e.energies.kinetic);
@@ -52,6 +53,7 @@ pub(crate) fn run_checks(
         .collect();
     let mut errors = Vec::new();
     let mut outcomes = Vec::new();
+    let mut verdicts = Verdicts::default();
     let checks = std::mem::take(&mut model.checks);
     for check in &checks {
         let sides = lower_sides(model, check, &quantities).and_then(|(lhs, rhs)| {
@@ -60,7 +62,7 @@ pub(crate) fn run_checks(
         });
         match sides {
             Ok((lhs, rhs)) => {
-                let outcome = decide(&mut model.pool, lhs, rhs, &laws);
+                let outcome = decide(&mut model.pool, lhs, rhs, &laws, &mut verdicts);
                 errors.extend(verdict_error(&model.pool, check, lhs, rhs, &outcome));
                 outcomes.push(outcome);
             }
@@ -79,7 +81,7 @@ pub(crate) fn run_checks(
 fn lower_sides(
     model: &mut Model,
     check: &Check,
-    quantities: &HashMap<String, Id>,
+    quantities: &FxHashMap<String, Id>,
 ) -> Result<(Id, Id), Vec<Diagnostic>> {
     let mut lower = |node| {
         lower_with(
@@ -115,11 +117,25 @@ fn require_solved(model: &Model, check: &Check, lhs: Id, rhs: Id) -> Result<(), 
     )])
 }
 
+/// The verdicts already reached, by the two sides compared: tagged checks often state
+/// one identity twice (`x'' = … + R2_x/m` and, under a tag, `x'' = … - c*x'^2/m` with
+/// R2_x = -c*x'^2), and a numerical decision costs hundreds of evaluations.
+type Verdicts = FxHashMap<(Id, Id), Identity>;
+
 /// Compares both sides with the mass laws substituted.
-fn decide(pool: &mut ExprPool, lhs: Id, rhs: Id, laws: &HashMap<Symbol, Id>) -> CheckOutcome {
+fn decide(
+    pool: &mut ExprPool,
+    lhs: Id,
+    rhs: Id,
+    laws: &HashMap<Symbol, Id>,
+    verdicts: &mut Verdicts,
+) -> CheckOutcome {
     let lhs_physical = pool.substitute(lhs, laws);
     let rhs_physical = pool.substitute(rhs, laws);
-    let verdict = pool.identical(lhs_physical, rhs_physical);
+    let verdict = verdicts
+        .entry((lhs_physical, rhs_physical))
+        .or_insert_with(|| pool.identical(lhs_physical, rhs_physical))
+        .clone();
     let text = format!("{} = {}", pool.display(lhs), pool.display(rhs));
     CheckOutcome { text, verdict }
 }

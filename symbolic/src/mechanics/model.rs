@@ -1,7 +1,7 @@
 //! The checked model: every name resolved, every expression lowered, every declaration
 //! validated (docs/dsl.md). This is the input of the derivation; `build.rs` makes it.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use super::resolve::{Binding, Parameters};
 use crate::expr::{ExprPool, Id, Symbol};
@@ -178,6 +178,6 @@ pub struct Model {
     pub terms: Vec<Term>,
     /// Checks, in source order.
     pub checks: Vec<Check>,
-    pub(crate) names: HashMap<String, Binding>,
+    pub(crate) names: FxHashMap<String, Binding>,
     pub(crate) parameter_mode: Parameters,
 }

@@ -185,12 +185,37 @@ impl Derivation {
     /// every coordinate and parameter, and each line ends with its quantity's unit.
     pub fn to_text(&mut self) -> String {
         let sections = self.sections();
+        self.text_of(&sections)
+    }
+
+    /// The whole derivation as LaTeX (`align*` environments, one per section).
+    pub fn to_latex(&mut self) -> String {
+        let sections = self.sections();
+        self.latex_of(&sections)
+    }
+
+    /// [`to_text`](Self::to_text) and [`to_latex`](Self::to_latex) at once: the sections
+    /// (with their substitutions into Hamilton form) are built once for both.
+    pub fn to_text_and_latex(&mut self) -> (String, String) {
+        let sections = self.sections();
+        (self.text_of(&sections), self.latex_of(&sections))
+    }
+
+    /// The values of every line, in order.
+    fn values(sections: &[Section]) -> Vec<Id> {
+        let lines = sections.iter().flat_map(|s| &s.lines);
+        lines.map(|l| l.value).collect()
+    }
+
+    fn text_of(&self, sections: &[Section]) -> String {
+        // One printing walk for every line: the lines share most of their subexpressions.
+        let mut values = self.pool.display_all(&Self::values(sections)).into_iter();
         let mut out = self.units_heading();
         for section in sections {
             let _ = writeln!(out, "{}", section.heading);
-            for l in section.lines {
+            for (l, value) in section.lines.iter().zip(values.by_ref()) {
                 let unit = self.line_unit(&l.text);
-                let _ = writeln!(out, "    {} {}{unit}", l.text, self.pool.display(l.value));
+                let _ = writeln!(out, "    {} {value}{unit}", l.text);
             }
         }
         if !self.checks.is_empty() {
@@ -207,17 +232,16 @@ impl Derivation {
         out
     }
 
-    /// The whole derivation as LaTeX (`align*` environments, one per section).
-    pub fn to_latex(&mut self) -> String {
-        let sections = self.sections();
+    fn latex_of(&self, sections: &[Section]) -> String {
+        let mut values = self.pool.latex_all(&Self::values(sections)).into_iter();
         let mut out = String::new();
         for section in sections {
             let _ = writeln!(out, "% {}\n\\begin{{align*}}", section.heading);
             let count = section.lines.len();
-            for (i, l) in section.lines.into_iter().enumerate() {
+            for (i, (l, value)) in section.lines.iter().zip(values.by_ref()).enumerate() {
                 let end = if i + 1 < count { " \\\\" } else { "" };
                 let label = l.latex.trim_end().trim_end_matches('=').trim_end();
-                let _ = writeln!(out, "  {label} &= {}{end}", self.pool.latex(l.value));
+                let _ = writeln!(out, "  {label} &= {value}{end}");
             }
             let _ = writeln!(out, "\\end{{align*}}");
         }

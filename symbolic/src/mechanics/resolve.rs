@@ -1,6 +1,6 @@
 //! Name resolution: what each identifier of the DSL means, and where it may be used.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use crate::expr::{lower, ExprPool, Id, Resolver, Symbol, SymbolKind};
 use crate::parse::ast::ExprNode;
@@ -47,12 +47,12 @@ pub enum Parameters {
 
 /// The resolver handed to expression lowering.
 pub(crate) struct NameResolver<'a> {
-    pub names: &'a mut HashMap<String, Binding>,
+    pub names: &'a mut FxHashMap<String, Binding>,
     pub parameters: &'a Parameters,
     pub inferred: &'a mut Vec<(String, Symbol)>,
     pub context: Context,
     /// Derived quantities a `check` may name (velocity form).
-    pub quantities: Option<&'a HashMap<String, Id>>,
+    pub quantities: Option<&'a FxHashMap<String, Id>>,
 }
 
 impl Resolver for NameResolver<'_> {
@@ -207,12 +207,12 @@ fn edit_distance(a: &str, b: &str) -> usize {
 /// Lowers `node` with the given scope.
 pub(crate) fn lower_with(
     pool: &mut ExprPool,
-    names: &mut HashMap<String, Binding>,
+    names: &mut FxHashMap<String, Binding>,
     parameter_mode: &Parameters,
     parameters: &mut Vec<(String, Symbol)>,
     node: &ExprNode,
     context: Context,
-    quantities: Option<&HashMap<String, Id>>,
+    quantities: Option<&FxHashMap<String, Id>>,
 ) -> Result<Id, Vec<Diagnostic>> {
     let mut resolver = NameResolver {
         names,

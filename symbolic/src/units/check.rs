@@ -13,7 +13,7 @@ use crate::parse::ast::{
 };
 use crate::parse::keywords;
 use crate::parse::{Diagnostic, Span};
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// The state of one check.
 #[derive(Default)]
@@ -21,13 +21,13 @@ pub(crate) struct Checker {
     table: UnitTable,
     /// `let` definitions without a declared unit: their inferred dimension (`None` when it
     /// could not be inferred, so that their uses stay silent).
-    lets: HashMap<String, Option<Dim>>,
+    lets: FxHashMap<String, Option<Dim>>,
     /// Names whose unit was given but could not be read (already reported).
-    unreadable: HashSet<String>,
+    unreadable: FxHashSet<String>,
     /// Whether the expression being checked is in a `check` (derived quantities allowed).
     in_check: bool,
     /// Every name met in an expression.
-    used: HashSet<String>,
+    used: FxHashSet<String>,
     /// Names without a unit, with their first use.
     missing: Vec<(String, Span)>,
     diagnostics: Vec<Diagnostic>,

@@ -2,15 +2,15 @@
 //! quantities (`H`, `p_x`, `Q_th`, …) whose dimensions follow from the coordinates'.
 
 use super::dimension::Dimension;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// What a system with a `units` statement says about dimensions.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct UnitTable {
     /// Coordinates, parameters, masses, inertias and definitions with their dimensions.
-    pub(crate) dimensions: HashMap<String, Dimension>,
+    pub(crate) dimensions: FxHashMap<String, Dimension>,
     /// The unit as the `units` statement writes it (`N/m`, `rad`).
-    pub(crate) written: HashMap<String, String>,
+    pub(crate) written: FxHashMap<String, String>,
     /// Coordinate names, in declaration order.
     pub(crate) coordinates: Vec<String>,
     /// Mass and inertia names.
