@@ -1,7 +1,9 @@
-//! What an explicit embedded pair with FSAL and a PI step-size controller (Dormand–Prince,
-//! DOP853) carries from one step to the next, and the bookkeeping both do the same way: the
-//! rate at the start of a step, a rejection, the step after an acceptance, a restart. Each
-//! stepper keeps its own controller formula (the exponents and factors differ).
+//! What an adaptive stepper with FSAL carries from one step to the next (the explicit pairs
+//! Dormand–Prince and DOP853 with their PI controllers, and the diagonally implicit
+//! stepper of SDIRK4 and ESDIRK4(3), which leaves the PI memory unused), and the
+//! bookkeeping they do the same way: the rate at the start of a step, a rejection, the step
+//! after an acceptance, a restart. Each stepper keeps its own controller formula (the
+//! exponents and factors differ).
 
 use nalgebra::SVector;
 
@@ -12,7 +14,7 @@ use crate::system::VariableMassSystem;
 /// The PI controller's memory of the last accepted error before any step, and its floor.
 const ERROR_FLOOR: f64 = 1e-4;
 
-/// The adaptive-control state of an explicit embedded pair.
+/// The adaptive-control state of an embedded pair.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ControlState<const S: usize> {
     /// The size of the next step to try (0 until the first step chooses it).

@@ -28,6 +28,7 @@ use nalgebra::{SMatrix, SVector};
 use self::stage::{weighted_norm, StepContext};
 pub(crate) use self::tableau::{explicit_parts, on_increments, rate_transform};
 pub use self::tableau::{DirkMethod, DirkTableau};
+use super::control::ControlState;
 use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
 use super::newton::Lu;
 use super::StepControl;
@@ -73,10 +74,9 @@ pub struct Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> {
     /// The checked tolerance of the adaptive mode.
     tolerance: Option<crate::tolerance::Tolerance>,
     newton: DirkNewton,
-    /// The size of the next step to try (0 until the first step chooses it).
-    next_step: f64,
-    /// The size of the last accepted step, for the dense output.
-    last_step: f64,
+    /// Next and last step, the last rejection, and (with an explicit first stage) the
+    /// FSAL rate; the PI memory it also holds is unused here.
+    memory: ControlState<S>,
     /// The stage vectors W₁…W_M of the last accepted step.
     increments: [SVector<f64, S>; M],
     /// The Jacobian in use, and whether it was evaluated at the current state.
@@ -84,10 +84,6 @@ pub struct Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> {
     /// Hairer's `FACCO`: the last contraction factor θ/(1 − θ) of each stage's Newton
     /// iteration, which lets a fast-converging iteration stop after one update.
     contraction: [f64; M],
-    /// Whether the last attempt was rejected, so the next step may not grow.
-    last_rejected: bool,
-    /// With an explicit first stage: f at the current state, once known (FSAL).
-    rate: Option<SVector<f64, S>>,
     method: PhantomData<T>,
 }
 
@@ -149,13 +145,10 @@ where
             control,
             tolerance,
             newton: DirkNewton::default(),
-            next_step: 0.0,
-            last_step: 0.0,
+            memory: ControlState::new(),
             increments: [SVector::zeros(); M],
             jacobian: None,
             contraction: [1.0; M],
-            last_rejected: false,
-            rate: None,
             method: PhantomData,
         })
     }
@@ -179,7 +172,7 @@ where
     /// `time` within the step; outside it extrapolates). Before the first step it returns
     /// the current state.
     pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
-        let h = self.last_step;
+        let h = self.memory.last_step;
         if h <= 0.0 {
             return *self.progress.state();
         }
@@ -192,7 +185,7 @@ where
 
     /// The size of the step the stepper will try next (0 before the first step).
     pub fn proposed_step(&self) -> f64 {
-        self.next_step
+        self.memory.next_step
     }
 
     /// The error weights atol + rtol·|y| (fixed mode: [`FIXED_MODE_TOLERANCE`]).
@@ -224,17 +217,6 @@ where
         }
     }
 
-    /// f(t₀, y₀) at the current state: kept from the last step (FSAL) or evaluated.
-    fn rate_at_start(&mut self) -> Result<SVector<f64, S>, StepError<S>> {
-        if let Some(rate) = self.rate {
-            return Ok(rate);
-        }
-        let (t0, y0) = (self.progress.time(), *self.progress.state());
-        let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;
-        self.rate = Some(rate);
-        Ok(rate)
-    }
-
     /// The stages, the new state and the error of a step with the context's `h`.
     /// `extrapolate` starts the first implicit stage from the last step's dense output.
     fn attempt(
@@ -247,12 +229,13 @@ where
         let mut w = [SVector::zeros(); M];
         let first = usize::from(tableau.explicit_first);
         if tableau.explicit_first {
-            w[0] = self.rate_at_start().map_err(StageFailure::Rate)? * h;
+            let rate = self.memory.rate_at_start(self.system, &mut self.progress);
+            w[0] = rate.map_err(StageFailure::Rate)? * h;
         }
         let (mut explicit, mut last_iterations, mut slowest_rate) = (SVector::zeros(), 0, 0.0f64);
         for i in first..M {
             explicit = combination(&tableau.alpha[i], &w, i);
-            let start = if i == first && extrapolate && self.last_step > 0.0 {
+            let start = if i == first && extrapolate && self.memory.last_step > 0.0 {
                 self.interpolate(t0 + tableau.c[i] * h) - y0
             } else {
                 combination(&tableau.start[i], &w, i)
@@ -301,9 +284,9 @@ where
             .progress
             .accept(self.system, h, reaches_stop, attempt.state)?;
         self.increments = attempt.increments;
-        self.last_step = h;
-        self.last_rejected = false;
-        self.rate = T::TABLEAU.explicit_first.then_some(attempt.last_rate);
+        // The last stage's rate is f at the new state: the next step's explicit first
+        // stage (SDIRK4, without one, never reads it).
+        self.memory.accepted(h, attempt.last_rate);
         // Keep the Jacobian (now from an earlier state) while Newton contracts fast.
         self.jacobian = match self.jacobian {
             Some((jacobian, _)) if attempt.slowest_rate <= self.newton.jacobian_reuse_rate => {
@@ -311,6 +294,21 @@ where
             }
             _ => None,
         };
+        Ok(outcome)
+    }
+
+    /// Accepts a step whose error met the tolerance and takes `proposed` as the next step,
+    /// not growing right after a rejection nor beyond the maximum step.
+    fn accept_controlled(
+        &mut self,
+        control: &AdaptiveControl,
+        proposed: f64,
+        (h, reaches_stop, attempt): (f64, bool, Attempt<S, M>),
+    ) -> Result<StepOutcome, StepError<S>> {
+        let error = attempt.error;
+        let outcome = self.accept(h, reaches_stop, attempt)?;
+        let next = self.memory.after_acceptance(h, proposed, error);
+        self.memory.propose(next, reaches_stop, control.max_step);
         Ok(outcome)
     }
 
@@ -354,9 +352,9 @@ where
             }
             StageFailure::Rate(error) => (error, 0.25),
         };
-        self.next_step = h * shrink;
+        self.memory.next_step = h * shrink;
         let fixed = matches!(self.control, StepControl::Fixed(_));
-        if fixed || !resolvable(t0, self.next_step) {
+        if fixed || !resolvable(t0, self.memory.next_step) {
             return Err(error);
         }
         Ok(())
@@ -385,11 +383,9 @@ where
 
     fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
         self.progress.restart(self.system, time, state)?;
-        self.last_step = 0.0;
+        self.memory.restart();
         self.jacobian = None;
         self.contraction = [1.0; M];
-        self.last_rejected = false;
-        self.rate = None;
         Ok(())
     }
 
@@ -399,8 +395,8 @@ where
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         let (t0, y0) = (self.progress.time(), *self.progress.state());
-        if self.next_step <= 0.0 {
-            self.next_step = self.first_step()?;
+        if self.memory.next_step <= 0.0 {
+            self.memory.next_step = self.first_step()?;
         }
         let adaptive = match self.control {
             StepControl::Adaptive(control) => Some(control),
@@ -408,7 +404,7 @@ where
         };
         let mut extrapolate = true;
         loop {
-            let (h, reaches_stop) = self.progress.next_step(self.next_step)?;
+            let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
             if !resolvable(t0, h) {
                 let kind = StepErrorKind::StepSizeUnderflow { step: h };
                 return Err(StepError::new(t0, y0, kind));
@@ -438,20 +434,10 @@ where
                         (Ok(attempt), Some(control)) => {
                             let proposed = self.proposed_after(h, &attempt, &control);
                             if attempt.error <= 1.0 {
-                                let next = if self.last_rejected {
-                                    proposed.min(h)
-                                } else {
-                                    proposed
-                                };
-                                let outcome = self.accept(h, reaches_stop, attempt)?;
-                                if !reaches_stop || next > self.next_step {
-                                    self.next_step = next.min(control.max_step);
-                                }
-                                return Ok(outcome);
+                                let accepted = (h, reaches_stop, attempt);
+                                return self.accept_controlled(&control, proposed, accepted);
                             }
-                            self.next_step = proposed;
-                            self.last_rejected = true;
-                            self.progress.statistics.rejected_steps += 1;
+                            self.memory.reject(proposed, &mut self.progress);
                             continue;
                         }
                         (Err(failure), _) => failure,
@@ -464,7 +450,7 @@ where
             };
             extrapolate = false;
             self.progress.statistics.rejected_steps += 1;
-            self.last_rejected = true;
+            self.memory.last_rejected = true;
             self.recover(failure, fresh, (t0, y0), h)?;
         }
     }
