@@ -311,7 +311,10 @@ fn compile(source: &str) -> Compiled {
         roots.extend(v);
     }
     roots.extend(d.accelerations.iter().flatten());
-    roots.extend(d.jacobian.rate_wrt_q.iter().flatten());
+    // The Jacobian is derived unless `emit` leaves it out (derive_source derives it).
+    if let Some(jacobian) = &d.jacobian {
+        roots.extend(jacobian.rate_wrt_q.iter().flatten());
+    }
     Compiled {
         tape: d.pool.compile(&roots),
         symbols: d.pool.symbols().len(),

@@ -38,89 +38,42 @@ pub fn integrate<const N: usize, const S: usize>(
     let system = TapeSystem::<N, S>::new(program).map_err(|e| CliError::Input(e.to_string()))?;
     let start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
     let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, e));
+    // Every stepper is built as `Type::new(&system, t0, start, settings)` and driven alike;
+    // only the type and its settings differ.
+    macro_rules! drive_with {
+        ($stepper:ident, $settings:expr) => {
+            drive(
+                &system,
+                $stepper::new(&system, t0, start, $settings).map_err(fail)?,
+                plan,
+            )
+        };
+    }
     let (points, stopped_by, statistics) = match (plan.method, plan.steps) {
-        (Method::DormandPrince, steps) => drive(
-            &system,
-            DormandPrince::new(
-                &system,
-                t0,
-                start,
-                control(steps, AdaptiveControl::default()),
-            )
-            .map_err(fail)?,
-            plan,
-        ),
-        (Method::Dop853, steps) => drive(
-            &system,
-            Dop853::new(
-                &system,
-                t0,
-                start,
-                control(steps, AdaptiveControl::dop853()),
-            )
-            .map_err(fail)?,
-            plan,
-        ),
-        (Method::Esdirk43, steps) => drive(
-            &system,
-            Esdirk43::new(
-                &system,
-                t0,
-                start,
-                control(steps, AdaptiveControl::sdirk4()),
-            )
-            .map_err(fail)?,
-            plan,
-        ),
-        (Method::Sdirk4, steps) => drive(
-            &system,
-            Sdirk4::new(
-                &system,
-                t0,
-                start,
-                control(steps, AdaptiveControl::sdirk4()),
-            )
-            .map_err(fail)?,
-            plan,
-        ),
-        (Method::Rk4, steps) => {
-            let config = FixedStep { step: step(steps) };
-            drive(
-                &system,
-                ClassicalRk4::new(&system, t0, start, config).map_err(fail)?,
-                plan,
-            )
+        (Method::DormandPrince, steps) => {
+            drive_with!(DormandPrince, control(steps, AdaptiveControl::default()))
         }
-        (Method::Euler, steps) => {
-            let config = FixedStep { step: step(steps) };
-            drive(
-                &system,
-                ExplicitEuler::new(&system, t0, start, config).map_err(fail)?,
-                plan,
-            )
+        (Method::Dop853, steps) => drive_with!(Dop853, control(steps, AdaptiveControl::dop853())),
+        (Method::Sdirk4, steps) => drive_with!(Sdirk4, control(steps, AdaptiveControl::sdirk4())),
+        (Method::Esdirk43, steps) => {
+            drive_with!(Esdirk43, control(steps, AdaptiveControl::sdirk4()))
         }
-        (Method::ImplicitMidpoint, steps) => {
-            let config = ImplicitMidpointConfig {
+        (Method::Rk4, steps) => drive_with!(ClassicalRk4, FixedStep { step: step(steps) }),
+        (Method::Euler, steps) => drive_with!(ExplicitEuler, FixedStep { step: step(steps) }),
+        (Method::ImplicitMidpoint, steps) => drive_with!(
+            ImplicitMidpoint,
+            ImplicitMidpointConfig {
                 step: step(steps),
                 ..ImplicitMidpointConfig::default()
-            };
-            drive(
-                &system,
-                ImplicitMidpoint::new(&system, t0, start, config).map_err(fail)?,
-                plan,
-            )
-        }
-        (Method::Variational, steps) => {
-            let config = VariationalConfig {
+            }
+        ),
+        (Method::Variational, steps) => drive_with!(
+            Variational,
+            VariationalConfig {
                 step: step(steps),
                 ..VariationalConfig::default()
-            };
-            drive(
-                &system,
-                Variational::new(&system, t0, start, config).map_err(fail)?,
-                plan,
-            )
-        }
+            }
+        ),
     }
     .map_err(fail)?;
     Ok(Outcome {
