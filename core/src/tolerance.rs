@@ -3,8 +3,9 @@
 //! A tolerance gives each component i the weight wᵢ = atol + rtol·mᵢ, mᵢ a magnitude of that
 //! component (|y₀ᵢ|, max(|y₀ᵢ|, |y₁ᵢ|), |zᵢ|, … as the method chooses), and an error vector e
 //! meets it when the weighted RMS √(Σ (eᵢ/wᵢ)² / D) is at most 1 (Hairer–Nørsett–Wanner I,
-//! II.4). Dormand–Prince (its step-size control and its first step) and the Newton iteration of
-//! the implicit steppers all measure with [`weighted_rms`]; their configurations are checked
+//! II.4). Dormand–Prince (its step-size control and its first step), DOP853 (through
+//! [`Tolerance::mean_squares_pair`]) and the Newton iteration of the implicit steppers all
+//! measure with [`weighted_rms`]'s rule; their configurations are checked
 //! by [`Tolerance::new`].
 
 use nalgebra::SVector;
@@ -27,18 +28,18 @@ pub fn weighted_rms<const D: usize>(
     values: &SVector<f64, D>,
     weight: impl Fn(usize) -> f64,
 ) -> f64 {
-    let sum: f64 = (0..D)
-        .map(|i| {
-            let value = values[i];
-            if value == 0.0 {
-                0.0
-            } else {
-                let scaled = value / weight(i);
-                scaled * scaled
-            }
-        })
-        .sum();
+    let sum: f64 = (0..D).map(|i| scaled_square(values[i], weight(i))).sum();
     sqrt(sum / D as f64)
+}
+
+/// (value / weight)² with the 0/0 rule of [`weighted_rms`]: an exact zero counts 0.
+fn scaled_square(value: f64, weight: f64) -> f64 {
+    if value == 0.0 {
+        0.0
+    } else {
+        let scaled = value / weight;
+        scaled * scaled
+    }
 }
 
 /// A relative and an absolute tolerance, checked: both finite and non-negative, not both
@@ -91,6 +92,24 @@ impl Tolerance {
     ) -> f64 {
         weighted_rms(values, |i| self.weight(magnitude(i)))
     }
+
+    /// The mean squares Σᵢ (aᵢ/wᵢ)²/D and Σᵢ (bᵢ/wᵢ)²/D of two vectors against the same
+    /// weights (the squares of their [`Tolerance::norm`]s), in one pass that computes each
+    /// weight once: for an error estimate measured twice, as DOP853's.
+    pub fn mean_squares_pair<const D: usize>(
+        &self,
+        a: &SVector<f64, D>,
+        b: &SVector<f64, D>,
+        magnitude: impl Fn(usize) -> f64,
+    ) -> (f64, f64) {
+        let (mut sum_a, mut sum_b) = (0.0, 0.0);
+        for i in 0..D {
+            let weight = self.weight(magnitude(i));
+            sum_a += scaled_square(a[i], weight);
+            sum_b += scaled_square(b[i], weight);
+        }
+        (sum_a / D as f64, sum_b / D as f64)
+    }
 }
 
 #[cfg(test)]
@@ -122,6 +141,21 @@ mod tests {
         let values = SVector::<f64, 1>::new(2.5);
         assert_eq!(tolerance.norm(&values, |_| 2.0), 2.0);
         assert_eq!((tolerance.relative(), tolerance.absolute()), (0.5, 0.25));
+    }
+
+    /// The pair is the two squared norms, the 0/0 rule included.
+    #[test]
+    fn mean_squares_pair_is_the_two_squared_norms() {
+        let tolerance = Tolerance::new(0.5, 0.0).unwrap();
+        let magnitudes = [0.0, 2.0, 4.0];
+        let a = SVector::<f64, 3>::new(0.0, 3.0, 1.0);
+        let b = SVector::<f64, 3>::new(0.0, 1.0, 6.0);
+        // Weights 0, 1, 2: a gives (0 + 9 + 0.25)/3, b (0 + 1 + 9)/3, exact in binary up to
+        // the division by 3, which both sides do alike.
+        let (ma, mb) = tolerance.mean_squares_pair(&a, &b, |i| magnitudes[i]);
+        assert_eq!((ma, mb), (9.25 / 3.0, 10.0 / 3.0));
+        let norm_a = tolerance.norm(&a, |i| magnitudes[i]);
+        assert!((norm_a * norm_a - ma).abs() <= 4.0 * f64::EPSILON * ma);
     }
 
     #[test]

@@ -205,8 +205,8 @@ fn step_factor_power(error: f64, beta: f64) -> f64 {
 
 /// `dop853.f`'s scaled error from the fifth- and third-order estimates (per unit step),
 /// each weighed by wᵢ = atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|): with the mean squares m₅, m₃ of the
-/// weighted estimates (the 0/0 rule of [`crate::tolerance::weighted_rms`]),
-/// err = |h| m₅ / √(m₅ + 0.01 m₃). One pass over the components.
+/// weighted estimates ([`Tolerance::mean_squares_pair`]: the 0/0 rule of
+/// [`crate::tolerance::weighted_rms`], one pass), err = |h| m₅ / √(m₅ + 0.01 m₃).
 fn error_norm<const S: usize>(
     fifth: &SVector<f64, S>,
     third: &SVector<f64, S>,
@@ -214,21 +214,8 @@ fn error_norm<const S: usize>(
     tolerance: &Tolerance,
     h: f64,
 ) -> f64 {
-    // One division per component; a zero value over a zero weight (inverse ∞) counts 0.
-    let square = |value: f64, inverse: f64| {
-        if value == 0.0 {
-            0.0
-        } else {
-            (value * inverse) * (value * inverse)
-        }
-    };
-    let (mut sum_fifth, mut sum_third) = (0.0, 0.0);
-    for i in 0..S {
-        let inverse = 1.0 / tolerance.weight(y0[i].abs().max(y1[i].abs()));
-        sum_fifth += square(fifth[i], inverse);
-        sum_third += square(third[i], inverse);
-    }
-    let (mean_fifth, mean_third) = (sum_fifth / S as f64, sum_third / S as f64);
+    let magnitude = |i: usize| y0[i].abs().max(y1[i].abs());
+    let (mean_fifth, mean_third) = tolerance.mean_squares_pair(fifth, third, magnitude);
     let denominator = mean_fifth + 0.01 * mean_third;
     let denominator = if denominator > 0.0 { denominator } else { 1.0 };
     h.abs() * mean_fifth / sqrt(denominator)
