@@ -80,6 +80,11 @@ pub fn assignment(text: &str, flag: &str) -> Result<(String, f64), CliError> {
             "{flag} `{text}`: expected NAME=VALUE"
         )));
     };
+    named(text, flag, name, value)
+}
+
+/// The trimmed `name` (not empty) and the number `value` of `text`, given to `flag`.
+pub fn named(text: &str, flag: &str, name: &str, value: &str) -> Result<(String, f64), CliError> {
     let name = name.trim();
     if name.is_empty() {
         return Err(CliError::Input(format!(

@@ -4,9 +4,7 @@
 use varmass::core::Direction;
 use varmass::interpret::{Program, Quantity};
 
-use super::names::{
-    assignment, evaluate, number, observables, resolve, velocity_state, Observable,
-};
+use super::names::{assignment, evaluate, named, observables, resolve, velocity_state, Observable};
 use crate::args::{Method, RunArgs};
 use crate::error::CliError;
 
@@ -120,17 +118,8 @@ fn condition(text: &str) -> Result<(String, Direction, f64), CliError> {
         ("<", value) => (Direction::Falling, value.strip_prefix('=').unwrap_or(value)),
         (_, value) => (Direction::Either, value),
     };
-    let name = name.trim();
-    if name.is_empty() {
-        return Err(CliError::Input(format!(
-            "--stop-when `{text}`: the name is empty"
-        )));
-    }
-    Ok((
-        name.to_string(),
-        direction,
-        number(value.trim(), "--stop-when")?,
-    ))
+    let (name, value) = named(text, "--stop-when", name, value)?;
+    Ok((name, direction, value))
 }
 
 /// A `>` or `<` condition that already holds at the start would wait for a crossing the
