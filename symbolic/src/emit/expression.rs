@@ -186,9 +186,7 @@ fn rational(pool: &ExprPool, id: Id) -> Option<Rational> {
 }
 
 impl Syntax for RustSyntax {
-    type Text = String;
-
-    fn group(&self, text: &String) -> String {
+    fn group(&self, text: &str) -> String {
         format!("({text})")
     }
 
@@ -204,7 +202,7 @@ impl Syntax for RustSyntax {
         atom(symbol_name(pool, s))
     }
 
-    fn call(&self, p: &Printer<'_, Self>, func: Func, args: &[Id]) -> Rendered {
+    fn call(&self, p: &Printer<'_>, func: Func, args: &[Id]) -> Rendered {
         let Some(first) = args.first() else {
             return atom("f64::NAN".to_string());
         };
@@ -224,7 +222,7 @@ impl Syntax for RustSyntax {
         }
     }
 
-    fn product(&self, p: &Printer<'_, Self>, factors: &[Id]) -> Rendered {
+    fn product(&self, p: &Printer<'_>, factors: &[Id]) -> Rendered {
         match rational(p.pool(), factors[0]) {
             Some(c) if c.numer() == -1 && c.denom() == 1 => {
                 let rest = self.product_of(p, None, &factors[1..]);
@@ -236,7 +234,7 @@ impl Syntax for RustSyntax {
         }
     }
 
-    fn power(&self, p: &Printer<'_, Self>, base: Id, exponent: Id) -> Rendered {
+    fn power(&self, p: &Printer<'_>, base: Id, exponent: Id) -> Rendered {
         match rational(p.pool(), exponent) {
             Some(e) if e.is_negative() => {
                 let below = self.power_rational(p, base, Rational::new(-e.numer(), e.denom()));
@@ -254,19 +252,19 @@ impl Syntax for RustSyntax {
 
     /// The terms in stored order; a term with a negative constant coefficient is printed
     /// after `-`.
-    fn terms(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Vec<(Id, bool)> {
+    fn terms(&self, p: &Printer<'_>, terms: &[Id]) -> Vec<(Id, bool)> {
         terms
             .iter()
             .map(|t| (*t, self.split_sign(p, *t).is_some()))
             .collect()
     }
 
-    fn negated(&self, p: &Printer<'_, Self>, term: Id) -> Rendered {
+    fn negated(&self, p: &Printer<'_>, term: Id) -> Rendered {
         self.split_sign(p, term)
             .unwrap_or_else(|| p.get(term).clone())
     }
 
-    fn lead(&self, p: &Printer<'_, Self>, term: Id, negative: bool) -> String {
+    fn lead(&self, p: &Printer<'_>, term: Id, negative: bool) -> String {
         if negative {
             let m = self.at_least(&self.negated(p, term), Prec::Product);
             format!("-{m}")
@@ -274,17 +272,12 @@ impl Syntax for RustSyntax {
             p.get(term).text.clone()
         }
     }
-
-    fn join(&self, sum: &mut String, negative: bool, term: String) {
-        sum.push_str(if negative { " - " } else { " + " });
-        sum.push_str(&term);
-    }
 }
 
 impl RustSyntax {
     /// The magnitude of a term with a negative constant coefficient (`-3*x` is `3*x`
     /// printed after `-`); `None` for any other term.
-    fn split_sign(&self, p: &Printer<'_, Self>, id: Id) -> Option<Rendered> {
+    fn split_sign(&self, p: &Printer<'_>, id: Id) -> Option<Rendered> {
         match p.pool().node(id) {
             Node::Num(r) if r.is_negative() => Some(float_literal(-r.to_f64())),
             Node::Mul(factors) if !p.is_bound(id) => match rational(p.pool(), factors[0]) {
@@ -299,12 +292,7 @@ impl RustSyntax {
 
     /// `coefficient * numerator / (denominator)`, with factors of negative constant
     /// exponent moved below the line.
-    fn product_of(
-        &self,
-        p: &Printer<'_, Self>,
-        coefficient: Option<f64>,
-        factors: &[Id],
-    ) -> Rendered {
+    fn product_of(&self, p: &Printer<'_>, coefficient: Option<f64>, factors: &[Id]) -> Rendered {
         let mut numerator = Vec::new();
         let mut denominator = Vec::new();
         if let Some(c) = coefficient.filter(|c| *c != 1.0) {
@@ -350,7 +338,7 @@ impl RustSyntax {
     }
 
     /// `base ^ e` for a constant exponent, with `e = 1` meaning the base itself.
-    fn power_rational(&self, p: &Printer<'_, Self>, base: Id, e: Option<Rational>) -> Rendered {
+    fn power_rational(&self, p: &Printer<'_>, base: Id, e: Option<Rational>) -> Rendered {
         let Some(e) = e else {
             return atom("f64::NAN".to_string());
         };

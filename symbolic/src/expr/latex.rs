@@ -156,9 +156,7 @@ impl ExprPool {
 struct Latex;
 
 impl Syntax for Latex {
-    type Text = String;
-
-    fn group(&self, text: &String) -> String {
+    fn group(&self, text: &str) -> String {
         format!("\\left({text}\\right)")
     }
 
@@ -174,15 +172,15 @@ impl Syntax for Latex {
         Printed::new(pool.latex_symbol(s), Prec::Atom)
     }
 
-    fn call(&self, p: &Printer<'_, Self>, f: Func, args: &[Id]) -> PrintedText {
+    fn call(&self, p: &Printer<'_>, f: Func, args: &[Id]) -> PrintedText {
         self.call_to(p, f, args, None)
     }
 
-    fn product(&self, p: &Printer<'_, Self>, factors: &[Id]) -> PrintedText {
+    fn product(&self, p: &Printer<'_>, factors: &[Id]) -> PrintedText {
         self.product_of(p, factors, false)
     }
 
-    fn power(&self, p: &Printer<'_, Self>, b: Id, x: Id) -> PrintedText {
+    fn power(&self, p: &Printer<'_>, b: Id, x: Id) -> PrintedText {
         if p.pool().exponent_is_negative(x) {
             let den = self.power_of(p, b, Exponent::Negated(x)).text;
             Printed::new(format!("\\frac{{1}}{{{den}}}"), Prec::Product)
@@ -191,11 +189,11 @@ impl Syntax for Latex {
         }
     }
 
-    fn terms(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Vec<(Id, bool)> {
+    fn terms(&self, p: &Printer<'_>, terms: &[Id]) -> Vec<(Id, bool)> {
         p.pool().sum_view(terms)
     }
 
-    fn negated(&self, p: &Printer<'_, Self>, e: Id) -> PrintedText {
+    fn negated(&self, p: &Printer<'_>, e: Id) -> PrintedText {
         match p.pool().node(e) {
             Node::Num(r) => rational_tex(r.checked_abs().unwrap_or(*r)),
             Node::Float(bits) => float_tex(f64::from_bits(*bits).abs()),
@@ -206,26 +204,11 @@ impl Syntax for Latex {
             ),
         }
     }
-
-    fn lead(&self, p: &Printer<'_, Self>, term: Id, _negative: bool) -> String {
-        p.get(term).text.clone()
-    }
-
-    fn join(&self, sum: &mut String, negative: bool, term: String) {
-        sum.push_str(if negative { " - " } else { " + " });
-        sum.push_str(&term);
-    }
 }
 
 impl Latex {
     /// `\sin\left(u\right)`, or `\sin^{n}\left(u\right)` for a power of it.
-    fn call_to(
-        &self,
-        p: &Printer<'_, Self>,
-        f: Func,
-        args: &[Id],
-        power: Option<&str>,
-    ) -> PrintedText {
+    fn call_to(&self, p: &Printer<'_>, f: Func, args: &[Id], power: Option<&str>) -> PrintedText {
         let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
         let inner = args.join(", ");
         let named = |command: &str| match power {
@@ -244,7 +227,7 @@ impl Latex {
         Printed::new(text, Prec::Atom)
     }
 
-    fn product_of(&self, p: &Printer<'_, Self>, factors: &[Id], negate: bool) -> PrintedText {
+    fn product_of(&self, p: &Printer<'_>, factors: &[Id], negate: bool) -> PrintedText {
         let view = p.pool().product_view(factors, negate);
         let mut numerator: Vec<PrintedText> = Vec::new();
         let mut denominator: Vec<PrintedText> = Vec::new();
@@ -308,7 +291,7 @@ impl Latex {
         }
     }
 
-    fn power_of(&self, p: &Printer<'_, Self>, b: Id, x: Exponent) -> PrintedText {
+    fn power_of(&self, p: &Printer<'_>, b: Id, x: Exponent) -> PrintedText {
         let pool = p.pool();
         let value = pool.exponent_value(x);
         match value {

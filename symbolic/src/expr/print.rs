@@ -141,9 +141,7 @@ struct Dsl;
 pub(crate) type PrintedText = Printed<String>;
 
 impl Syntax for Dsl {
-    type Text = String;
-
-    fn group(&self, text: &String) -> String {
+    fn group(&self, text: &str) -> String {
         format!("({text})")
     }
 
@@ -160,16 +158,16 @@ impl Syntax for Dsl {
         Printed::new(pool.symbols().name(s).to_owned(), Prec::Atom)
     }
 
-    fn call(&self, p: &Printer<'_, Self>, f: Func, args: &[Id]) -> PrintedText {
+    fn call(&self, p: &Printer<'_>, f: Func, args: &[Id]) -> PrintedText {
         let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
         Printed::new(format!("{}({})", f.name(), args.join(", ")), Prec::Atom)
     }
 
-    fn product(&self, p: &Printer<'_, Self>, factors: &[Id]) -> PrintedText {
+    fn product(&self, p: &Printer<'_>, factors: &[Id]) -> PrintedText {
         self.product_of(p, factors, false)
     }
 
-    fn power(&self, p: &Printer<'_, Self>, b: Id, x: Id) -> PrintedText {
+    fn power(&self, p: &Printer<'_>, b: Id, x: Id) -> PrintedText {
         if p.pool().exponent_is_negative(x) {
             let den = self.at_least(&self.power_of(p, b, Exponent::Negated(x)), Prec::Power);
             Printed::new(format!("1/{den}"), Prec::Product)
@@ -178,12 +176,12 @@ impl Syntax for Dsl {
         }
     }
 
-    fn terms(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Vec<(Id, bool)> {
+    fn terms(&self, p: &Printer<'_>, terms: &[Id]) -> Vec<(Id, bool)> {
         p.pool().sum_view(terms)
     }
 
     /// DSL text of `-e` for a term with a negative coefficient.
-    fn negated(&self, p: &Printer<'_, Self>, e: Id) -> PrintedText {
+    fn negated(&self, p: &Printer<'_>, e: Id) -> PrintedText {
         match p.pool().node(e) {
             Node::Num(r) => rational_text(r.checked_abs().unwrap_or(*r)),
             Node::Float(bits) => {
@@ -196,17 +194,6 @@ impl Syntax for Dsl {
             ),
         }
     }
-
-    /// The lead term whole: `-((a + b)*(c + d))` must keep its grouping (see
-    /// [`Dsl::product_of`]).
-    fn lead(&self, p: &Printer<'_, Self>, term: Id, _negative: bool) -> String {
-        p.get(term).text.clone()
-    }
-
-    fn join(&self, sum: &mut String, negative: bool, term: String) {
-        sum.push_str(if negative { " - " } else { " + " });
-        sum.push_str(&term);
-    }
 }
 
 impl Dsl {
@@ -215,7 +202,7 @@ impl Dsl {
     /// lets the coefficient (or sign) meet a lone sum first: `-((a + b)*(c + d))`,
     /// `3*((a + b)/m)`, `x/((a + b)*(c + d))/2` rather than `-(a + b)*(c + d)`,
     /// `3*(a + b)/m`, `x/(2*(a + b)*(c + d))`.
-    fn product_of(&self, p: &Printer<'_, Self>, factors: &[Id], negate: bool) -> PrintedText {
+    fn product_of(&self, p: &Printer<'_>, factors: &[Id], negate: bool) -> PrintedText {
         let pool = p.pool();
         let view = pool.product_view(factors, negate);
         if let ([single], [], false) = (
@@ -271,7 +258,7 @@ impl Dsl {
     }
 
     /// `b^x` with `x` as printed: `b` alone for 1, `sqrt(b)` for 1/2.
-    fn power_of(&self, p: &Printer<'_, Self>, b: Id, x: Exponent) -> PrintedText {
+    fn power_of(&self, p: &Printer<'_>, b: Id, x: Exponent) -> PrintedText {
         match p.pool().exponent_value(x) {
             Some(n) if n.is_one() => return p.get(b).clone(),
             Some(Number::Exact(r)) if r == Rational::HALF => {

@@ -42,34 +42,38 @@ impl<T> Printed<T> {
 /// One target's spelling of the expression grammar. The walk calls one method per node,
 /// after every node below it is printed (read them through the [`Printer`]).
 pub(crate) trait Syntax: Sized {
-    /// The printed text: a `String`, or Rust tokens.
-    type Text: Clone + Default;
-
     /// `text` in parentheses.
-    fn group(&self, text: &Self::Text) -> Self::Text;
+    fn group(&self, text: &str) -> String;
     /// An exact constant.
-    fn number(&self, r: Rational) -> Printed<Self::Text>;
+    fn number(&self, r: Rational) -> Printed<String>;
     /// An inexact constant.
-    fn float(&self, x: f64) -> Printed<Self::Text>;
+    fn float(&self, x: f64) -> Printed<String>;
     /// A symbol.
-    fn symbol(&self, pool: &ExprPool, s: Symbol) -> Printed<Self::Text>;
+    fn symbol(&self, pool: &ExprPool, s: Symbol) -> Printed<String>;
     /// A call.
-    fn call(&self, p: &Printer<'_, Self>, f: Func, args: &[Id]) -> Printed<Self::Text>;
+    fn call(&self, p: &Printer<'_>, f: Func, args: &[Id]) -> Printed<String>;
     /// A product.
-    fn product(&self, p: &Printer<'_, Self>, factors: &[Id]) -> Printed<Self::Text>;
+    fn product(&self, p: &Printer<'_>, factors: &[Id]) -> Printed<String>;
     /// `base ^ exponent`.
-    fn power(&self, p: &Printer<'_, Self>, base: Id, exponent: Id) -> Printed<Self::Text>;
+    fn power(&self, p: &Printer<'_>, base: Id, exponent: Id) -> Printed<String>;
     /// The terms of a sum in print order, each with whether it is printed after ` - `.
-    fn terms(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Vec<(Id, bool)>;
+    fn terms(&self, p: &Printer<'_>, terms: &[Id]) -> Vec<(Id, bool)>;
     /// The magnitude of a term that [`terms`](Self::terms) calls negative.
-    fn negated(&self, p: &Printer<'_, Self>, term: Id) -> Printed<Self::Text>;
-    /// The first term of a sum.
-    fn lead(&self, p: &Printer<'_, Self>, term: Id, negative: bool) -> Self::Text;
+    fn negated(&self, p: &Printer<'_>, term: Id) -> Printed<String>;
+    /// The first term of a sum: by default as printed, whole, whatever its sign (the DSL
+    /// text must keep `-((a + b)*(c + d))` grouped: see `Dsl::product_of`).
+    fn lead(&self, p: &Printer<'_>, term: Id, _negative: bool) -> String {
+        p.get(term).text.clone()
+    }
+
     /// Appends ` + term`, or ` - term` when `negative`, to `sum`.
-    fn join(&self, sum: &mut Self::Text, negative: bool, term: Self::Text);
+    fn join(&self, sum: &mut String, negative: bool, term: String) {
+        sum.push_str(if negative { " - " } else { " + " });
+        sum.push_str(&term);
+    }
 
     /// `printed`, grouped if it binds more loosely than `prec`.
-    fn at_least(&self, printed: &Printed<Self::Text>, prec: Prec) -> Self::Text {
+    fn at_least(&self, printed: &Printed<String>, prec: Prec) -> String {
         if printed.prec < prec {
             self.group(&printed.text)
         } else {
@@ -79,8 +83,8 @@ pub(crate) trait Syntax: Sized {
 
     /// A sum: the lead term, then every other after ` + ` or ` - `, binding at least like
     /// a product.
-    fn sum(&self, p: &Printer<'_, Self>, terms: &[Id]) -> Printed<Self::Text> {
-        let mut text: Option<Self::Text> = None;
+    fn sum(&self, p: &Printer<'_>, terms: &[Id]) -> Printed<String> {
+        let mut text: Option<String> = None;
         for (t, negative) in self.terms(p, terms) {
             match &mut text {
                 None => text = Some(self.lead(p, t, negative)),
@@ -99,17 +103,17 @@ pub(crate) trait Syntax: Sized {
 }
 
 /// The printed forms of the nodes below the one being printed.
-pub(crate) struct Printer<'a, S: Syntax> {
+pub(crate) struct Printer<'a> {
     pool: &'a ExprPool,
     /// The nodes printed so far, in ascending id order (the order of the walk).
-    printed: Vec<(Id, Printed<S::Text>)>,
+    printed: Vec<(Id, Printed<String>)>,
     /// The nodes whose printed form the caller replaced (temporaries of generated code).
     bound: FxHashSet<Id>,
     /// What [`get`](Self::get) answers for a node not printed (unreachable).
-    missing: Printed<S::Text>,
+    missing: Printed<String>,
 }
 
-impl<S: Syntax> Printer<'_, S> {
+impl Printer<'_> {
     /// The arena.
     pub(crate) fn pool(&self) -> &ExprPool {
         self.pool
@@ -122,7 +126,7 @@ impl<S: Syntax> Printer<'_, S> {
     }
 
     /// The printed form of a node below the current one.
-    pub(crate) fn get(&self, id: Id) -> &Printed<S::Text> {
+    pub(crate) fn get(&self, id: Id) -> &Printed<String> {
         match self.printed.binary_search_by_key(&id, |(i, _)| *i) {
             Ok(at) => &self.printed[at].1,
             // Unreachable: the walk prints every node below a parent before it.
@@ -130,7 +134,7 @@ impl<S: Syntax> Printer<'_, S> {
         }
     }
 
-    fn print_node(&self, syntax: &S, id: Id) -> Printed<S::Text> {
+    fn print_node<S: Syntax>(&self, syntax: &S, id: Id) -> Printed<String> {
         match self.pool.node(id) {
             Node::Num(r) => syntax.number(*r),
             Node::Float(bits) => syntax.float(f64::from_bits(*bits)),
@@ -144,7 +148,7 @@ impl<S: Syntax> Printer<'_, S> {
 }
 
 /// Prints `root` in `syntax`.
-pub(crate) fn print<S: Syntax>(pool: &ExprPool, syntax: &S, root: Id) -> Printed<S::Text> {
+pub(crate) fn print<S: Syntax>(pool: &ExprPool, syntax: &S, root: Id) -> Printed<String> {
     let mut printed = print_all(pool, syntax, &[root], |_, _| None);
     printed
         .pop()
@@ -158,8 +162,8 @@ pub(crate) fn print_all<S: Syntax>(
     pool: &ExprPool,
     syntax: &S,
     roots: &[Id],
-    bind: impl FnMut(Id, &Printed<S::Text>) -> Option<Printed<S::Text>>,
-) -> Vec<Printed<S::Text>> {
+    bind: impl FnMut(Id, &Printed<String>) -> Option<Printed<String>>,
+) -> Vec<Printed<String>> {
     print_in(pool, syntax, roots, pool.reachable(roots, false), bind)
 }
 
@@ -170,13 +174,13 @@ pub(crate) fn print_in<S: Syntax>(
     syntax: &S,
     roots: &[Id],
     order: Vec<Id>,
-    mut bind: impl FnMut(Id, &Printed<S::Text>) -> Option<Printed<S::Text>>,
-) -> Vec<Printed<S::Text>> {
+    mut bind: impl FnMut(Id, &Printed<String>) -> Option<Printed<String>>,
+) -> Vec<Printed<String>> {
     let mut printer = Printer {
         pool,
         printed: Vec::with_capacity(order.len()),
         bound: FxHashSet::default(),
-        missing: Printed::new(S::Text::default(), Prec::Atom),
+        missing: Printed::new(String::default(), Prec::Atom),
     };
     for id in order {
         let mut printed = printer.print_node(syntax, id);
