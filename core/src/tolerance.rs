@@ -28,16 +28,20 @@ pub fn weighted_rms<const D: usize>(
     values: &SVector<f64, D>,
     weight: impl Fn(usize) -> f64,
 ) -> f64 {
-    let sum: f64 = (0..D).map(|i| scaled_square(values[i], weight(i))).sum();
+    let sum: f64 = (0..D)
+        .map(|i| scaled_square(values[i], 1.0 / weight(i)))
+        .sum();
     sqrt(sum / D as f64)
 }
 
-/// (value / weight)² with the 0/0 rule of [`weighted_rms`]: an exact zero counts 0.
-fn scaled_square(value: f64, weight: f64) -> f64 {
+/// (value · inverse)², inverse = 1/weight, with the 0/0 rule of [`weighted_rms`]: an exact
+/// zero counts 0 (over a zero weight, inverse = ∞, too); a non-zero value over a zero weight
+/// is ∞.
+fn scaled_square(value: f64, inverse: f64) -> f64 {
     if value == 0.0 {
         0.0
     } else {
-        let scaled = value / weight;
+        let scaled = value * inverse;
         scaled * scaled
     }
 }
@@ -94,8 +98,8 @@ impl Tolerance {
     }
 
     /// The mean squares Σᵢ (aᵢ/wᵢ)²/D and Σᵢ (bᵢ/wᵢ)²/D of two vectors against the same
-    /// weights (the squares of their [`Tolerance::norm`]s), in one pass that computes each
-    /// weight once: for an error estimate measured twice, as DOP853's.
+    /// weights (the squares of their [`Tolerance::norm`]s), in one pass with one division per
+    /// component: for an error estimate measured twice, as DOP853's.
     pub fn mean_squares_pair<const D: usize>(
         &self,
         a: &SVector<f64, D>,
@@ -104,9 +108,9 @@ impl Tolerance {
     ) -> (f64, f64) {
         let (mut sum_a, mut sum_b) = (0.0, 0.0);
         for i in 0..D {
-            let weight = self.weight(magnitude(i));
-            sum_a += scaled_square(a[i], weight);
-            sum_b += scaled_square(b[i], weight);
+            let inverse = 1.0 / self.weight(magnitude(i));
+            sum_a += scaled_square(a[i], inverse);
+            sum_b += scaled_square(b[i], inverse);
         }
         (sum_a / D as f64, sum_b / D as f64)
     }
