@@ -29,19 +29,20 @@ pub fn weighted_rms<const D: usize>(
     weight: impl Fn(usize) -> f64,
 ) -> f64 {
     let sum: f64 = (0..D)
-        .map(|i| scaled_square(values[i], 1.0 / weight(i)))
+        .map(|i| scaled_square(values[i], |v| v / weight(i)))
         .sum();
     sqrt(sum / D as f64)
 }
 
-/// (value · inverse)², inverse = 1/weight, with the 0/0 rule of [`weighted_rms`]: an exact
-/// zero counts 0 (over a zero weight, inverse = ∞, too); a non-zero value over a zero weight
-/// is ∞.
-fn scaled_square(value: f64, inverse: f64) -> f64 {
+/// scale(value)², scale dividing by the weight, with the 0/0 rule of [`weighted_rms`]: an
+/// exact zero counts 0 whatever its weight; a non-zero value over a zero weight is ∞.
+/// (The caller chooses how to divide: `v / w`, or `v * (1/w)` when one inverse serves two
+/// vectors.)
+fn scaled_square(value: f64, scale: impl FnOnce(f64) -> f64) -> f64 {
     if value == 0.0 {
         0.0
     } else {
-        let scaled = value * inverse;
+        let scaled = scale(value);
         scaled * scaled
     }
 }
@@ -109,8 +110,8 @@ impl Tolerance {
         let (mut sum_a, mut sum_b) = (0.0, 0.0);
         for i in 0..D {
             let inverse = 1.0 / self.weight(magnitude(i));
-            sum_a += scaled_square(a[i], inverse);
-            sum_b += scaled_square(b[i], inverse);
+            sum_a += scaled_square(a[i], |v| v * inverse);
+            sum_b += scaled_square(b[i], |v| v * inverse);
         }
         (sum_a / D as f64, sum_b / D as f64)
     }
