@@ -5,7 +5,6 @@
 use std::path::Path;
 
 use varmass::symbolic::mechanics::{derive, Derivation, Parameters};
-use varmass::symbolic::parse::ast::StatementKind;
 use varmass::symbolic::parse::{parse_system, select_tags};
 use varmass::symbolic::Diagnostic;
 
@@ -16,9 +15,6 @@ use crate::error::CliError;
 pub struct LoadedModel {
     /// The derivation (parameters inferred: every free name is one).
     pub derivation: Derivation,
-    /// The text of each selected `check` statement as written, in order (as
-    /// `derivation.checks`).
-    pub check_texts: Vec<String>,
 }
 
 /// Reads `args.file`, keeps the statements `args.with` selects and derives them; a problem
@@ -40,22 +36,7 @@ pub fn load(args: &ModelArgs) -> Result<LoadedModel, CliError> {
         CliError::Input(messages.join("\n"))
     })?;
     let derivation = derive(&ast, Parameters::Inferred).map_err(failed)?;
-    let check_texts = ast
-        .statements
-        .iter()
-        .filter(|s| matches!(s.kind, StatementKind::Check { .. }))
-        .map(|s| {
-            source
-                .get(s.span.start..s.span.end)
-                .unwrap_or("")
-                .trim()
-                .to_string()
-        })
-        .collect();
-    Ok(LoadedModel {
-        derivation,
-        check_texts,
-    })
+    Ok(LoadedModel { derivation })
 }
 
 /// Every diagnostic, rustc-style, one after another.

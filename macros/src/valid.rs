@@ -88,7 +88,10 @@ pub fn check_generated_names(cx: &Ctxt, fields: &[syn::Ident], d: &Derivation) {
         if varmass_symbolic::mechanics::is_reserved(&name) {
             cx.error_spanned_by(
                 field,
-                format!("field `{name}` has a reserved name: in the DSL `t` is the time and `H`, `L`, `T`, `V`, `power`, `p_…`, `Q_…`, `R1_…`, `R2_…`, `dp_…`, `pdot_…`, `mdot_…` are derived quantities; rename it"),
+                format!(
+                    "field `{name}` has a reserved name: in the DSL `t` is the time and {} are derived quantities; rename it",
+                    varmass_symbolic::quantity::reserved_names()
+                ),
             );
         } else if generated.contains(&name) {
             cx.error_spanned_by(

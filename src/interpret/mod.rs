@@ -5,7 +5,7 @@
 //! A [`Program`] holds a [`Derivation`](varmass_symbolic::mechanics::Derivation) with its
 //! parameter values and compiles each group of quantities into one straight-line
 //! [`Tape`](varmass_symbolic::expr::Tape): the mass laws, q̇ from p (closed form, or
-//! M q̇ = p − b solved by Cholesky beyond
+//! M q̇ = p − b solved by a run-time Cholesky (`cholesky.rs`) beyond
 //! [`SYMBOLIC_INVERSE_MAX_DOF`](varmass_symbolic::mechanics::SYMBOLIC_INVERSE_MAX_DOF)
 //! coordinates), the state rate, and every velocity-form [`Quantity`] (forces, H, the
 //! power, …). It works on slices, so its sizes are run-time values.

@@ -7,6 +7,8 @@ use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Tape};
 use varmass_symbolic::mechanics::{Derivation, MassKind, VelocitySolve};
 use varmass_symbolic::parse::keywords::closest;
+pub use varmass_symbolic::quantity::Quantity;
+use varmass_symbolic::quantity::Evaluated;
 
 use super::cholesky::cholesky_solve;
 use super::error::ProgramError;
@@ -17,79 +19,10 @@ pub enum Evaluation {
     /// A straight-line [`Tape`] per group (`ExprPool::compile`): the fast way.
     #[default]
     Tape,
-    /// `ExprPool::eval` on each expression, a recursive walk with no compilation; kept to
-    /// measure what the tapes save.
+    /// `ExprPool::eval` on each expression, which compiles a one-expression tape at every
+    /// call (nothing shared between expressions, buffers allocated per call): what compiling
+    /// the groups once saves, for the benches' comparison. Never faster than `Tape`.
     Tree,
-}
-
-/// The velocity-form quantities a [`Program`] evaluates (functions of t, q, q̇ and the
-/// masses), each a group of values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Quantity {
-    /// ṁ of every mass, in [`Program::mass_names`] order.
-    MassRates,
-    /// p = ∂*L/∂q̇ (N values).
-    Momenta,
-    /// M = ∂²L/∂q̇², row-major (N² values).
-    MassMatrix,
-    /// L = T − V (one value).
-    Lagrangian,
-    /// ∂*L/∂q (N values).
-    LagrangianGradient,
-    /// Q*, the active force (N values).
-    ActiveForce,
-    /// R1, the reactive thrust (N values).
-    ReactiveThrust,
-    /// R2, the impact force (N values).
-    ImpactForce,
-    /// Σᵢ ṁᵢ ∂*p/∂mᵢ (N values).
-    MassFluxForce,
-    /// The true ṗ = d*p/dt + Σᵢ ṁᵢ ∂*p/∂mᵢ (N values).
-    MomentumRate,
-    /// The right side of M q̈ = … (eq. 6) (N values).
-    AccelerationRhs,
-    /// The energy-budget power dH/dt (one value).
-    Power,
-    /// The energy function p·q̇ − L, equal to H on p = ∂*L/∂q̇ (one value).
-    Energy,
-}
-
-impl Quantity {
-    /// Every quantity, in declaration order (the index of each is its position here).
-    pub const ALL: [Quantity; 13] = [
-        Quantity::MassRates,
-        Quantity::Momenta,
-        Quantity::MassMatrix,
-        Quantity::Lagrangian,
-        Quantity::LagrangianGradient,
-        Quantity::ActiveForce,
-        Quantity::ReactiveThrust,
-        Quantity::ImpactForce,
-        Quantity::MassFluxForce,
-        Quantity::MomentumRate,
-        Quantity::AccelerationRhs,
-        Quantity::Power,
-        Quantity::Energy,
-    ];
-
-    /// The expressions of this quantity in a derivation.
-    fn roots(self, d: &Derivation) -> Vec<Id> {
-        match self {
-            Quantity::MassRates => d.mass_rates.clone(),
-            Quantity::Momenta => d.momenta.clone(),
-            Quantity::MassMatrix => d.mass_matrix.iter().flatten().copied().collect(),
-            Quantity::Lagrangian => vec![d.lagrangian],
-            Quantity::LagrangianGradient => d.lagrangian_gradient.clone(),
-            Quantity::ActiveForce => d.active_force.clone(),
-            Quantity::ReactiveThrust => d.reactive_thrust.clone(),
-            Quantity::ImpactForce => d.impact_force.clone(),
-            Quantity::MassFluxForce => d.mass_flux_force.clone(),
-            Quantity::MomentumRate => d.momentum_rate.clone(),
-            Quantity::AccelerationRhs => d.acceleration_rhs.clone(),
-            Quantity::Power => vec![d.power],
-            Quantity::Energy => vec![d.energy],
-        }
-    }
 }
 
 /// A group of expressions and their tape.
@@ -163,7 +96,7 @@ impl Program {
             tape: d.pool.compile(&roots),
             roots,
         };
-        let quantities = Quantity::ALL.iter().map(|q| stage(q.roots(&d))).collect();
+        let quantities = Quantity::ALL.iter().map(|q| stage(q.read(&d))).collect();
         Ok(Self {
             evaluation,
             law_slots,
@@ -256,7 +189,10 @@ impl Program {
         Ok(())
     }
 
-    /// A velocity-form quantity at a velocity state `[q, q̇, m_s]` into `out`.
+    /// A velocity-form quantity at a velocity state `[q, q̇, m_s]` into `out`. The
+    /// accelerations are here only in closed form (up to `SYMBOLIC_INVERSE_MAX_DOF`
+    /// coordinates); [`Program::evaluate_at_state`] and [`Program::accelerations`] solve
+    /// eq. 6 beyond.
     pub fn evaluate(&self, quantity: Quantity, t: f64, velocity_state: &[f64], out: &mut [f64]) {
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_velocity_state(scratch, t, velocity_state);
@@ -272,11 +208,25 @@ impl Program {
         state: &[f64],
         out: &mut [f64],
     ) -> Result<(), SystemError> {
+        if self.solved_numerically(quantity) {
+            let mut velocity_state = state.to_vec();
+            let n = self.coordinate_count();
+            let velocities = velocity_state.get_mut(n..2 * n).unwrap_or_default();
+            self.velocities(t, state, velocities)?;
+            return self.accelerations(t, &velocity_state, out);
+        }
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_state(scratch, t, state)?;
         self.run(self.stage(quantity), scratch);
         copy(&scratch.values, out);
         Ok(())
+    }
+
+    /// Whether `quantity` is one the derivation leaves to a numerical solve (q̈ beyond the
+    /// closed form).
+    fn solved_numerically(&self, quantity: Quantity) -> bool {
+        quantity.spec().evaluated == Evaluated::SolvedOrNumeric
+            && self.stage(quantity).roots.is_empty()
     }
 
     /// q̈ at a velocity state `[q, q̇, m_s]` into `out`: M q̈ = rhs (eq. 6) solved by
@@ -300,11 +250,7 @@ impl Program {
     }
 
     fn stage(&self, quantity: Quantity) -> &Stage {
-        let index = Quantity::ALL
-            .iter()
-            .position(|q| *q == quantity)
-            .unwrap_or(0);
-        &self.quantities[index]
+        &self.quantities[quantity.index()]
     }
 
     /// Evaluates `stage` on the loaded environment into `scratch.values`.

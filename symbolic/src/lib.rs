@@ -25,6 +25,7 @@ pub mod emit;
 pub mod expr;
 pub mod mechanics;
 pub mod parse;
+pub mod quantity;
 pub mod units;
 
 pub use parse::{Diagnostic, Span};

@@ -86,7 +86,7 @@ fn summary(kind: &StatementKind) -> String {
             }
             format!("{head} {}: {}", f.body.node, options.join(", "))
         }
-        StatementKind::Check { lhs, rhs } => format!("check {} = {}", show(lhs), show(rhs)),
+        StatementKind::Check { lhs, rhs, .. } => format!("check {} = {}", show(lhs), show(rhs)),
         StatementKind::Units(entries) => {
             let entries: Vec<String> = entries
                 .iter()

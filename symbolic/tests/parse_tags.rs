@@ -69,7 +69,12 @@ fn an_unknown_tag_names_the_known_ones() {
     assert_eq!(found, vec![(1, "dragg"), (2, "gust")]);
     assert_eq!(
         unknown[0].to_string(),
-        "unknown tag `dragg`; the model's tags are `drag`, `wind`"
+        "unknown tag `dragg` (did you mean `drag`?); the model's tags are `drag`, `wind`"
+    );
+    assert_eq!(unknown[0].suggestion.as_deref(), Some("drag"));
+    assert_eq!(
+        unknown[1].to_string(),
+        "unknown tag `gust`; the model's tags are `drag`, `wind`"
     );
     let untagged = parse_system("coordinates x\nkinetic x'^2").expect("parses");
     let unknown = select_tags(&untagged, &names(&["drag"])).unwrap_err();

@@ -265,16 +265,41 @@ fn a_dimensioned_base_needs_a_constant_exponent() {
 }
 
 #[test]
-fn symbols_without_a_unit_are_listed_in_one_diagnostic() {
+fn each_symbol_without_a_unit_is_reported_where_it_is_written() {
+    // Coordinates at their declaration, a parameter at its first use; the `units` line is
+    // named in the help as the other place to fix it.
     let source = "coordinates x, y\nunits m: kg\nkinetic 1/2*m*(x'^2 + y'^2)\npotential m*g*y";
+    let errors = errors(source);
+    let found: Vec<(&str, usize, &str)> = errors
+        .iter()
+        .map(|e| (e.message.as_str(), e.span.line as usize, &source[e.span.start..e.span.end]))
+        .collect();
+    let message = |n: &str| {
+        format!("no unit for `{n}`: with `units`, every coordinate and parameter needs one")
+    };
+    let expected = [(message("x"), 1, "x"), (message("y"), 1, "y"), (message("g"), 4, "g")];
+    let expected: Vec<(&str, usize, &str)> =
+        expected.iter().map(|(m, l, t)| (m.as_str(), *l, *t)).collect();
+    assert_eq!(found, expected);
+    assert_eq!(
+        errors[2].help.as_deref(),
+        Some("add `g: …` to the `units` statement (line 2)")
+    );
+}
+
+#[test]
+fn a_typo_in_an_expression_suggests_the_name_used_elsewhere() {
+    // Issue 23: `rate muu` with `mu` used in the relative velocity's statement too.
+    let source = "coordinates y\nunits y: m, mu: kg/s, u_e: m/s\nmass m: state, rate -mu\n\
+                  body b: mass m, position [y]\noutflow b: rate muu, relative_velocity [-u_e]";
     let error = single(
         source,
-        "no unit for `x`, `y`, `g`: with `units`, every coordinate and parameter needs one",
-        "units m: kg",
+        "no unit for `muu`: with `units`, every coordinate and parameter needs one",
+        "muu",
     );
     assert_eq!(
         error.help.as_deref(),
-        Some("add `x: …, y: …, g: …` to the `units` statement")
+        Some("did you mean `mu`? Otherwise add `muu: …` to the `units` statement (line 2)")
     );
 }
 
@@ -382,10 +407,13 @@ fn a_unit_for_an_unused_name_is_allowed_and_a_likely_typo_is_pointed_out() {
         "coordinates x\nunits x: m, m: kg, E: J, thetta: rad\nkinetic 1/2*m*x'^2\n\
          potential E*cos(theta)",
         "no unit for `theta`: with `units`, every coordinate and parameter needs one",
-        "units x: m, m: kg, E: J, thetta: rad",
+        "theta",
     );
     assert_eq!(
         error.help.as_deref(),
-        Some("add `theta: …` to the `units` statement; `thetta` has one: a typo of `theta`?")
+        Some(
+            "`thetta` has a unit in the `units` statement but is used nowhere: did you mean \
+             `theta` there? Otherwise add `theta: …` to the `units` statement (line 2)"
+        )
     );
 }

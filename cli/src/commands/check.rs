@@ -20,9 +20,8 @@ pub fn check(args: &ModelArgs) -> Result<String, CliError> {
         if d.masses.len() == 1 { "" } else { "es" },
         list(&d.used_parameters()),
     );
-    for (i, c) in d.checks.iter().enumerate() {
-        let text = model.check_texts.get(i).cloned();
-        let text = text.unwrap_or_else(|| format!("check {}", c.text));
+    for c in &d.checks {
+        let text = &c.source;
         let how = match &c.verdict {
             Identity::Proven => "proven".to_string(),
             Identity::Numerical { points } => format!("holds at {points} random points"),

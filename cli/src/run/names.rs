@@ -1,5 +1,7 @@
-//! The names a run understands: `NAME=VALUE` pairs, numbers, and the model's quantities
-//! (`x`, `x'`, `x''`, `p_x`, masses, `H`, `power`, `Q_x`, `R1_x`, `R2_x`, `pdot_x`).
+//! The names a run understands: `NAME=VALUE` pairs, numbers, and the model's quantities:
+//! coordinates `x`, velocities `x'`, masses, and every named quantity of the registry
+//! (`varmass_symbolic::quantity`: `H`, `L`, `T`, `V`, `power`, `p_x`, `Q_x`, `R1_x`,
+//! `R2_x`, `dp_x`, `pdot_x`, `x''`, `mdot_m`).
 
 use varmass::core::SystemError;
 use varmass::interpret::{Program, Quantity};
@@ -14,46 +16,27 @@ pub enum Observable {
     Coordinate(usize),
     /// q̇ of coordinate `a`.
     Velocity(usize),
-    /// q̈ of coordinate `a`.
-    Acceleration(usize),
-    /// p of coordinate `a`.
-    Momentum(usize),
     /// Mass `i` (state masses first, then laws).
     Mass(usize),
-    /// H.
-    Hamiltonian,
-    /// dH/dt.
-    Power,
-    /// A per-coordinate velocity-form quantity (Q*, R1, R2, ṗ) of coordinate `a`.
-    Force(Quantity, usize),
+    /// Entry `index` (a coordinate, a mass, or 0 for a scalar) of a registry quantity.
+    Quantity(Quantity, usize),
 }
 
-/// Every quantity of `program` with its name, in a stable order.
+/// Every quantity of `program` with its name, in a stable order: coordinates and their
+/// velocities, masses, then the registry's names ([`Quantity::names`]).
 pub fn observables(program: &Program) -> Vec<(String, Observable)> {
     let mut all = Vec::new();
-    let coordinates: Vec<String> = program.coordinate_names().map(str::to_string).collect();
+    let coordinates: Vec<&str> = program.coordinate_names().collect();
     for (a, x) in coordinates.iter().enumerate() {
-        all.push((x.clone(), Observable::Coordinate(a)));
+        all.push((x.to_string(), Observable::Coordinate(a)));
         all.push((format!("{x}'"), Observable::Velocity(a)));
-        all.push((format!("{x}''"), Observable::Acceleration(a)));
-        all.push((format!("p_{x}"), Observable::Momentum(a)));
     }
-    for (i, m) in program.mass_names().enumerate() {
+    let masses: Vec<&str> = program.mass_names().collect();
+    for (i, m) in masses.iter().enumerate() {
         all.push((m.to_string(), Observable::Mass(i)));
     }
-    all.push(("H".to_string(), Observable::Hamiltonian));
-    all.push(("power".to_string(), Observable::Power));
-    let forces = [
-        ("Q", Quantity::ActiveForce),
-        ("R1", Quantity::ReactiveThrust),
-        ("R2", Quantity::ImpactForce),
-        ("pdot", Quantity::MomentumRate),
-    ];
-    for (prefix, quantity) in forces {
-        for (a, x) in coordinates.iter().enumerate() {
-            all.push((format!("{prefix}_{x}"), Observable::Force(quantity, a)));
-        }
-    }
+    let named = Quantity::names(&coordinates, &masses).into_iter();
+    all.extend(named.map(|(name, q, index)| (name, Observable::Quantity(q, index))));
     all
 }
 
@@ -111,43 +94,30 @@ pub fn evaluate(
     state: &[f64],
 ) -> Result<f64, SystemError> {
     let n = program.coordinate_count();
-    let pick = |values: Vec<f64>, index: usize| values.get(index).copied().unwrap_or(f64::NAN);
     Ok(match observable {
         Observable::Coordinate(a) => state[a],
-        Observable::Momentum(a) => state[n + a],
         Observable::Velocity(a) => {
             let mut v = vec![f64::NAN; n];
             program.velocities(t, state, &mut v)?;
             pick(v, a)
-        }
-        Observable::Acceleration(a) => {
-            let velocity_state = velocity_state(program, t, state)?;
-            let mut q2 = vec![f64::NAN; n];
-            program.accelerations(t, &velocity_state, &mut q2)?;
-            pick(q2, a)
         }
         Observable::Mass(i) => {
             let mut m = vec![f64::NAN; program.derivation().masses.len()];
             program.masses(t, state, &mut m);
             pick(m, i)
         }
-        Observable::Hamiltonian => at_state(program, Quantity::Energy, 1, t, state, 0)?,
-        Observable::Power => at_state(program, Quantity::Power, 1, t, state, 0)?,
-        Observable::Force(quantity, a) => at_state(program, quantity, n, t, state, a)?,
+        Observable::Quantity(quantity, index) => {
+            let len = quantity.read(program.derivation()).len().max(n);
+            let mut out = vec![f64::NAN; len];
+            program.evaluate_at_state(quantity, t, state, &mut out)?;
+            pick(out, index)
+        }
     })
 }
 
-fn at_state(
-    program: &Program,
-    quantity: Quantity,
-    len: usize,
-    t: f64,
-    state: &[f64],
-    index: usize,
-) -> Result<f64, SystemError> {
-    let mut out = vec![f64::NAN; len];
-    program.evaluate_at_state(quantity, t, state, &mut out)?;
-    Ok(out.get(index).copied().unwrap_or(f64::NAN))
+/// Entry `index` of `values`, NaN past its end (an index from [`observables`] is never).
+fn pick(values: Vec<f64>, index: usize) -> f64 {
+    values.get(index).copied().unwrap_or(f64::NAN)
 }
 
 /// `[q, q̇, m_s]` of a state `[q, p, m_s]`.

@@ -58,7 +58,7 @@ pub(crate) fn block(pool: &ExprPool, roots: &[Id], prefix: &str, runtime: &Token
 
 /// Like [`block`], with a first stage that binds symbols the outputs use: `first` is
 /// rendered, then `bridge` turns its rendered values into the `let`s that bind `bound`
-/// (q̇ in closed form, or a Cholesky solve of M q̇ = p − b). One CSE pass covers both
+/// (q̇ in closed form, or an LDLᵀ solve of M q̇ = p − b). One CSE pass covers both
 /// stages, so a subexpression of the first stage that the outputs need too (`cos(a - b)`,
 /// an entry of M) is computed once: temporaries free of the bound symbols come first, then
 /// the bridge, then the temporaries that use them.

@@ -13,7 +13,7 @@
 //! u_ij = l_ij d_j is the entry of L before its division by the pivot, kept rather than
 //! recomputed as a product: each pivot costs one division, and no multiplication undoes it.
 //! A pivot d_j that is not positive (or NaN) means M is not positive definite there: the
-//! code returns the given error, as the Cholesky it replaces did.
+//! code returns the given error (the same test a Cholesky factorisation makes).
 
 use proc_macro2::{Ident, TokenStream, TokenTree};
 use quote::{format_ident, quote};

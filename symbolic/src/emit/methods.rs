@@ -7,7 +7,8 @@ use super::factor::ldlt_solve;
 use super::signature::Method;
 use super::system::{method_item, Emitter};
 use crate::expr::Id;
-use crate::mechanics::VelocitySolve;
+use crate::mechanics::{Of, VelocitySolve};
+use crate::quantity::Quantity;
 
 impl Emitter<'_> {
     fn sizes(&self) -> (Literal, Literal, usize, usize) {
@@ -36,11 +37,12 @@ impl Emitter<'_> {
             match law {
                 None => {
                     let slot = Literal::usize_unsuffixed(2 * n + i);
-                    docs.push(format!("{} = state[{}] (state mass)", m.name, 2 * n + i));
+                    let unit = self.d.unit_suffix(Of::Mass(i));
+                    docs.push(format!("{} = state[{}] (state mass){unit}", m.name, 2 * n + i));
                     arms.push(quote!(#index => state[#slot],));
                 }
                 Some(law) => {
-                    docs.push(format!("{} = {}", m.name, self.display(*law)));
+                    docs.push(self.doc_line(&m.name, *law, Of::Mass(i)));
                     let body =
                         self.body_configuration(&[*law], |mut outs| outs.pop().unwrap_or_default());
                     arms.push(quote!(#index => { #body },));
@@ -64,7 +66,8 @@ impl Emitter<'_> {
         let mut docs = Vec::new();
         for (i, (m, rate)) in self.d.masses.iter().zip(&self.d.mass_rates).enumerate() {
             let index = Literal::usize_unsuffixed(i);
-            docs.push(format!("d{}/dt = {}", m.name, self.display(*rate)));
+            let label = Quantity::MassRates.text_label(&m.name);
+            docs.push(self.doc_line(&label, *rate, Of::Quantity(Quantity::MassRates, i)));
             if self.d.pool.is_zero(*rate) {
                 arms.push(quote!(#index => 0.0,));
             } else {
@@ -73,7 +76,7 @@ impl Emitter<'_> {
                 arms.push(quote!(#index => { #body },));
             }
         }
-        let docs = self.docs("ṁ of every mass along the motion.", docs);
+        let docs = self.docs(Quantity::MassRates.spec().doc, docs);
         let signature = self.signature(Method::MassRate);
         let body = quote! {
             match index {
@@ -108,8 +111,8 @@ impl Emitter<'_> {
     /// `lagrangian(t, velocity_state)`.
     pub(crate) fn lagrangian(&self) -> TokenStream {
         let docs = self.docs(
-            "The Lagrangian L = T − V.",
-            [format!("L = {}", self.display(self.d.lagrangian))],
+            Quantity::Lagrangian.spec().doc,
+            self.quantity_lines(Quantity::Lagrangian, &[self.d.lagrangian]),
         );
         let body =
             self.body_input_velocity(&[self.d.lagrangian], |mut o| o.pop().unwrap_or_default());
@@ -117,7 +120,8 @@ impl Emitter<'_> {
         method_item(docs, signature, body)
     }
 
-    /// `accelerations(t, velocity_state)`: q̈ in closed form, or M q̈ = rhs solved by Cholesky.
+    /// `accelerations(t, velocity_state)`: q̈ in closed form, or M q̈ = rhs solved by the
+    /// straight-line LDLᵀ of `factor.rs`.
     pub(crate) fn accelerations(&self) -> TokenStream {
         let runtime = &self.target.runtime;
         let (n_lit, _, _, _) = self.sizes();
@@ -125,7 +129,7 @@ impl Emitter<'_> {
             Some(acc) => (
                 self.docs(
                     "Lagrange-form accelerations q̈(q, q̇, t) (eq. 6, masses frozen).",
-                    self.per_coordinate("#''", acc),
+                    self.quantity_lines(Quantity::Accelerations, acc),
                 ),
                 self.body_input_velocity(acc, |outs| {
                     let v = self.vector(outs);
@@ -138,7 +142,7 @@ impl Emitter<'_> {
                 roots.extend(&self.d.acceleration_rhs);
                 let docs = self.docs(
                     "Lagrange-form accelerations: solves M q̈ = rhs (eq. 6, masses frozen) with",
-                    self.per_coordinate("rhs_#", &self.d.acceleration_rhs),
+                    self.quantity_lines(Quantity::AccelerationRhs, &self.d.acceleration_rhs),
                 );
                 let zero = self.zero_pattern();
                 let body = self.body_input_velocity(&roots, |outs| {
@@ -167,7 +171,7 @@ impl Emitter<'_> {
         };
         let docs = self.docs(
             "q̇(q, p, t) = M⁻¹ (p − b), in closed form.",
-            self.per_coordinate("#'", v),
+            self.velocity_lines(v),
         );
         let body = self.body_input_state(v, |outs| {
             let v = self.vector(outs);
@@ -179,14 +183,19 @@ impl Emitter<'_> {
 
     /// `hamiltonian(t, state)`.
     pub(crate) fn hamiltonian(&self) -> TokenStream {
+        let energy = Of::Quantity(Quantity::Energy, 0);
         let (root, line) = match self.d.hamiltonian {
-            Some(h) => (h, format!("H = {}", self.display(h))),
+            Some(h) => (h, self.doc_line("H", h, energy)),
             None => (
                 self.d.energy,
-                format!("H = {}   (q̇ from M q̇ = p − b)", self.display(self.d.energy)),
+                format!(
+                    "H = {}   (q̇ from M q̇ = p − b){}",
+                    self.display(self.d.energy),
+                    self.d.unit_suffix(energy)
+                ),
             ),
         };
-        let docs = self.docs("The Hamiltonian H(q, p, t) = p·q̇ − L (eqs. 9–10).", [line]);
+        let docs = self.docs(Quantity::Energy.spec().doc, [line]);
         let body = self.body_input_state(&[root], |mut o| {
             let h = o.pop().unwrap_or_default();
             quote!(Ok(#h))
@@ -202,7 +211,8 @@ impl Emitter<'_> {
         let mut roots = velocities.clone();
         roots.extend(&self.d.frozen_momentum_rate);
         let mut lines = self.velocity_docs();
-        lines.extend(self.per_coordinate("d*p_#/dt", &self.d.frozen_momentum_rate));
+        let frozen = &self.d.frozen_momentum_rate;
+        lines.extend(self.quantity_lines(Quantity::FrozenMomentumRate, frozen));
         let docs = self.docs(
             "The canonical equations (eq. 14): q̇ = ∂*H/∂p, d*p/dt = −∂*H/∂q + Q* − R1 + R2.",
             lines,
@@ -224,8 +234,8 @@ impl Emitter<'_> {
     /// Doc lines for q̇: the closed form, or the linear solve.
     fn velocity_docs(&self) -> Vec<String> {
         match &self.d.velocities {
-            VelocitySolve::Symbolic(v) => self.per_coordinate("#'", v),
-            VelocitySolve::Numeric => vec!["q' from M q' = p - b (Cholesky)".to_string()],
+            VelocitySolve::Symbolic(v) => self.velocity_lines(v),
+            VelocitySolve::Numeric => vec!["q' from M q' = p - b (LDLᵀ)".to_string()],
         }
     }
 
@@ -236,9 +246,11 @@ impl Emitter<'_> {
         roots.extend(&self.d.momentum_rate);
         roots.extend(self.d.mass_rates.iter().take(k));
         let mut lines = self.velocity_docs();
-        lines.extend(self.per_coordinate("dp_#/dt", &self.d.momentum_rate));
-        for (m, rate) in self.d.masses.iter().zip(&self.d.mass_rates).take(k) {
-            lines.push(format!("d{}/dt = {}", m.name, self.display(*rate)));
+        lines.extend(self.quantity_lines(Quantity::MomentumRate, &self.d.momentum_rate));
+        let state_masses = self.d.masses.iter().zip(&self.d.mass_rates).take(k);
+        for (i, (m, rate)) in state_masses.enumerate() {
+            let label = Quantity::MassRates.text_label(&m.name);
+            lines.push(self.doc_line(&label, *rate, Of::Quantity(Quantity::MassRates, i)));
         }
         let docs = self.docs(
             "The state rate [q̇, ṗ, ṁ_s] with the true ṗ = d*p/dt + Σ ṁᵢ ∂*p/∂mᵢ.",
@@ -255,8 +267,8 @@ impl Emitter<'_> {
     /// `power(t, state)`: the energy-budget dH/dt.
     pub(crate) fn power(&self) -> TokenStream {
         let docs = self.docs(
-            "The energy-budget power dH/dt = ∂*H/∂t + q̇·(Q* − R1 + R2 + Σ ṁ ∂*p/∂m) + Σ ṁ ∂H/∂m.",
-            [format!("dH/dt = {}", self.display(self.d.power))],
+            Quantity::Power.spec().doc,
+            self.quantity_lines(Quantity::Power, &[self.d.power]),
         );
         let body = self.body_input_state(&[self.d.power], |mut o| {
             let p = o.pop().unwrap_or_default();

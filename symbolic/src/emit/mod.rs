@@ -22,6 +22,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::expr::{ExprPool, Func, Id, Node};
 use crate::mechanics::{Derivation, Outputs};
+use crate::quantity::{documented_roots, Quantity};
 use system::Emitter;
 
 /// The inherent constants and the trait impl for `target.name`, with every optional output.
@@ -53,7 +54,7 @@ pub fn emit_system_for(
             for_code.insert(e, expanded);
         }
     }
-    let shown = doc_roots(d);
+    let shown = documented_roots(d);
     let shown_texts = shown
         .iter()
         .copied()
@@ -81,43 +82,13 @@ pub fn emit_system_for(
         emitter.mass(),
         emitter.mass_rate(),
         emitter.mass_matrix(),
-        emitter.coordinate_vector_method(
-            Method::Momenta,
-            "The generalized momenta p = ∂*L/∂q̇ (eq. 8).",
-            "p_#",
-            &d.momenta,
-        ),
+        emitter.vector_method(Quantity::Momenta),
         emitter.lagrangian(),
-        emitter.coordinate_vector_method(
-            Method::LagrangianGradient,
-            "∂*L/∂q, masses frozen (= −∂*H/∂q, eq. 13).",
-            "∂*L/∂#",
-            &d.lagrangian_gradient,
-        ),
-        emitter.coordinate_vector_method(
-            Method::ActiveForce,
-            "The generalized active force Q* (eq. 22 for the sled).",
-            "Q*_#",
-            &d.active_force,
-        ),
-        emitter.coordinate_vector_method(
-            Method::ReactiveThrust,
-            "The generalized reactive thrust R1 = Σ Q1 v_r1 · ∂r/∂q.",
-            "R1_#",
-            &d.reactive_thrust,
-        ),
-        emitter.coordinate_vector_method(
-            Method::ImpactForce,
-            "The generalized impact force R2 = Σ Q2 v_r2 · ∂r/∂q (eq. 23 for the sled).",
-            "R2_#",
-            &d.impact_force,
-        ),
-        emitter.coordinate_vector_method(
-            Method::MassFluxForce,
-            "The mass-flux term Σ ṁᵢ ∂*p/∂mᵢ of the true ṗ.",
-            "flux_#",
-            &d.mass_flux_force,
-        ),
+        emitter.vector_method(Quantity::LagrangianGradient),
+        emitter.vector_method(Quantity::ActiveForce),
+        emitter.vector_method(Quantity::ReactiveThrust),
+        emitter.vector_method(Quantity::ImpactForce),
+        emitter.vector_method(Quantity::MassFluxForce),
         emitter.accelerations(),
         emitter.velocities(),
         optional(outputs.hamiltonian, || emitter.hamiltonian()),
@@ -189,33 +160,6 @@ fn with_angle_sums(pool: &ExprPool, roots: &[Id]) -> Vec<Id> {
     let mut seen = FxHashSet::default();
     let unique = roots.iter().copied().filter(|r| seen.insert(*r));
     unique.filter(|r| below.contains(r)).collect()
-}
-
-/// Every expression of `d` that the doc comments of the methods show.
-fn doc_roots(d: &Derivation) -> Vec<Id> {
-    let mut roots = vec![d.lagrangian, d.energy, d.power];
-    roots.extend(d.hamiltonian);
-    roots.extend(d.closed_laws.iter().flatten());
-    for list in [
-        &d.mass_rates,
-        &d.momenta,
-        &d.lagrangian_gradient,
-        &d.active_force,
-        &d.reactive_thrust,
-        &d.impact_force,
-        &d.mass_flux_force,
-        &d.frozen_momentum_rate,
-        &d.momentum_rate,
-        &d.acceleration_rhs,
-    ] {
-        roots.extend(list);
-    }
-    roots.extend(d.accelerations.iter().flatten());
-    if let crate::mechanics::VelocitySolve::Symbolic(v) = &d.velocities {
-        roots.extend(v);
-    }
-    roots.extend(d.mass_matrix.iter().flatten());
-    roots
 }
 
 /// Every expression of `d` that generated code evaluates with `outputs`.

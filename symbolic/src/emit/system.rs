@@ -8,9 +8,9 @@ use quote::{format_ident, quote};
 
 use super::expression::{block, staged_block, symbol_ident};
 use super::factor::ldlt_solve;
-use super::signature::Method;
 use crate::expr::{Id, Symbol, SymbolKind};
-use crate::mechanics::{Derivation, VelocitySolve};
+use crate::mechanics::{Derivation, Of, VelocitySolve};
+use crate::quantity::{Named, Quantity};
 
 /// Where the generated code finds the runtime.
 #[derive(Clone, Debug)]
@@ -151,7 +151,7 @@ impl Emitter<'_> {
 
     /// The first stage of a method on the state that needs q̇: the expressions to render
     /// and the bridge that binds `x_dot`, … from their values — q̇ = M⁻¹(p − b) in closed
-    /// form, or a Cholesky solve of M q̇ = p − b from the entries of M and b.
+    /// form, or an LDLᵀ solve of M q̇ = p − b from the entries of M and b.
     fn velocity_stage(&self) -> (Vec<Id>, Bridge<'_>) {
         let runtime = &self.target.runtime;
         let names: Vec<Ident> = self
@@ -218,7 +218,7 @@ impl Emitter<'_> {
 
     /// Prologue + shared subexpressions + the outputs, handed to `finish`. A method on the
     /// state that needs q̇ first solves it from p: in closed form inside the same CSE pass
-    /// as the outputs, or by a Cholesky solve before them.
+    /// as the outputs, or by an LDLᵀ solve before them.
     fn body(
         &self,
         input: Input,
@@ -286,39 +286,59 @@ impl Emitter<'_> {
         let mut text = vec![title.to_string()];
         if !lines.is_empty() {
             text.extend([String::new(), "```text".to_string()]);
-            text.extend(lines.iter().map(|l| format!("{l}{}", self.d.line_unit(l))));
+            text.extend(lines);
             text.push("```".to_string());
         }
         quote!(#(#[doc = #text])*)
     }
 
-    pub(crate) fn per_coordinate(&self, label: &str, values: &[Id]) -> Vec<String> {
-        self.d
-            .coordinates
+    /// `label = value   [unit]`, the unit from the derivation's units (see
+    /// `Derivation::unit_suffix`).
+    pub(crate) fn doc_line(&self, label: &str, value: Id, of: Of) -> String {
+        let unit = self.d.unit_suffix(of);
+        format!("{label} = {}{unit}", self.display(value))
+    }
+
+    /// One doc line per value of `quantity` (one per coordinate, or one for a scalar),
+    /// labelled as the registry labels it in text.
+    pub(crate) fn quantity_lines(&self, quantity: Quantity, values: &[Id]) -> Vec<String> {
+        let scalar = matches!(quantity.spec().name, Named::Scalar(_));
+        let names = self.d.coordinates.iter().map(|c| c.name.as_str());
+        let names: Vec<&str> = if scalar { vec![""] } else { names.collect() };
+        names
             .iter()
             .zip(values)
-            .map(|(c, v)| format!("{} = {}", label.replace('#', &c.name), self.display(*v)))
+            .enumerate()
+            .map(|(a, (name, v))| self.doc_line(&quantity.text_label(name), *v, Of::Quantity(quantity, a)))
             .collect()
     }
 
-    /// A method `fn name(&self, t, velocity_state) -> SVector<N>` returning `values`, or zeros
-    /// when every entry is identically zero.
-    pub(crate) fn coordinate_vector_method(
-        &self,
-        method: Method,
-        title: &str,
-        label: &str,
-        values: &[Id],
-    ) -> TokenStream {
+    /// The doc lines of q̇ in closed form, `x' = …`.
+    pub(crate) fn velocity_lines(&self, values: &[Id]) -> Vec<String> {
+        let coordinates = self.d.coordinates.iter().zip(values).enumerate();
+        coordinates
+            .map(|(a, (c, v))| self.doc_line(&format!("{}'", c.name), *v, Of::Velocity(a)))
+            .collect()
+    }
+
+    /// The method of a per-coordinate quantity of the registry, `fn name(&self, t,
+    /// velocity_state) -> SVector<N>`, documented by its entry, returning zeros when every
+    /// entry is identically zero. `None` for a quantity that no generated method carries.
+    pub(crate) fn vector_method(&self, quantity: Quantity) -> TokenStream {
+        let spec = quantity.spec();
+        let Some(method) = spec.method else {
+            return TokenStream::new();
+        };
+        let values = quantity.read(self.d);
         let runtime = &self.target.runtime;
         let n = Literal::usize_unsuffixed(self.n());
         let signature = method.signature(runtime, self.n(), 2 * self.n() + self.k());
-        let docs = self.docs(title, self.per_coordinate(label, values));
+        let docs = self.docs(spec.doc, self.quantity_lines(quantity, &values));
         let all_zero = values.iter().all(|v| self.d.pool.is_zero(*v));
         let body = if all_zero {
             quote!(#runtime::nalgebra::SVector::<f64, #n>::zeros())
         } else {
-            self.body(Input::VelocityState, values, |outs| self.vector(outs))
+            self.body(Input::VelocityState, &values, |outs| self.vector(outs))
         };
         method_item(docs, signature, body)
     }

@@ -319,9 +319,10 @@ impl Builder {
                     let inflow = matches!(statement.kind, StatementKind::Inflow(_));
                     self.lower_flow(inflow, flow, span);
                 }
-                StatementKind::Check { lhs, rhs } => self.model.checks.push(Check {
+                StatementKind::Check { lhs, rhs, text } => self.model.checks.push(Check {
                     lhs: lhs.clone(),
                     rhs: rhs.clone(),
+                    source: format!("{} {text}", keywords::CHECK),
                     span,
                 }),
                 _ => {}
@@ -431,10 +432,12 @@ impl Builder {
                 )),
             }
         } else {
-            self.errors.push(Diagnostic::new(
-                target.span,
-                format!("`{}` is neither a coordinate nor a body", target.node),
-            ));
+            let coordinates = self.model.coordinates.iter().map(|c| c.name.as_str());
+            let bodies = self.model.bodies.iter().map(|b| b.name.as_str());
+            let message = format!("`{}` is neither a coordinate nor a body", target.node);
+            let diagnostic = Diagnostic::new(target.span, message);
+            let close = keywords::nearest(&target.node, coordinates.chain(bodies));
+            self.errors.push(did_you_mean(diagnostic, close));
         }
     }
 
@@ -458,13 +461,14 @@ impl Builder {
 
     fn lower_flow(&mut self, inflow: bool, flow: &crate::parse::ast::Flow, span: Span) {
         let Some(body) = self.body_index(&flow.body.node) else {
-            self.errors.push(Diagnostic::new(
-                flow.body.span,
-                format!(
-                    "`{}` is not a body; mass flows in and out of bodies",
-                    flow.body.node
-                ),
-            ));
+            let message = format!(
+                "`{}` is not a body; mass flows in and out of bodies",
+                flow.body.node
+            );
+            let bodies = self.model.bodies.iter().map(|b| b.name.as_str());
+            let close = keywords::nearest(&flow.body.node, bodies);
+            let diagnostic = Diagnostic::new(flow.body.span, message);
+            self.errors.push(did_you_mean(diagnostic, close));
             return;
         };
         let rate = match &flow.rate {
@@ -505,5 +509,13 @@ impl Builder {
         } else {
             Err(self.errors)
         }
+    }
+}
+
+/// `diagnostic` with "did you mean `close`?" when there is a near name.
+fn did_you_mean(diagnostic: Diagnostic, close: Option<&str>) -> Diagnostic {
+    match close {
+        Some(close) => diagnostic.with_help(format!("did you mean `{close}`?")),
+        None => diagnostic,
     }
 }

@@ -5,71 +5,64 @@
 use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 
-use super::derivation::{CheckOutcome, Equations};
+use super::derivation::{CheckOutcome, Derivation};
 use super::equations::SYMBOLIC_INVERSE_MAX_DOF;
-use super::model::{Check, Model};
-use super::resolve::lower_with;
-use super::resolve::Context;
+use super::model::Check;
+use super::resolve::{lower_with, Binding, Context, Parameters};
 use crate::expr::{ExprPool, Id, Identity, Symbol};
 use crate::parse::Diagnostic;
+use crate::quantity::Quantity;
 
-/// The names a `check` may use for derived quantities, in velocity form.
-fn quantities(model: &Model, e: &Equations) -> FxHashMap<String, Id> {
-    let mut q = FxHashMap::default();
-    q.insert("H".to_string(), e.hamiltonian.energy);
-    q.insert("L".to_string(), e.energies.lagrangian);
-    q.insert("T".to_string(), e.energies.kinetic);
-    q.insert("V".to_string(), e.energies.potential);
-    q.insert("power".to_string(), e.power);
-    for (a, c) in model.coordinates.iter().enumerate() {
-        let name = &c.name;
-        q.insert(format!("p_{name}"), e.momenta.momenta[a]);
-        q.insert(format!("Q_{name}"), e.forces.active[a]);
-        q.insert(format!("R1_{name}"), e.forces.reactive_thrust[a]);
-        q.insert(format!("R2_{name}"), e.forces.impact[a]);
-        q.insert(format!("dp_{name}"), e.rates.frozen[a]);
-        q.insert(format!("pdot_{name}"), e.rates.total[a]);
-        if let Some(acc) = &e.accelerations.solved {
-            q.insert(format!("{name}''"), acc[a]);
-        }
-    }
-    for (m, rate) in model.masses.iter().zip(&e.mass_rates) {
-        q.insert(format!("mdot_{}", m.name), *rate);
-    }
-    q
+/// What the `check`s need of the model once its equations are assembled: the names in
+/// scope, how parameters are known, and the checks themselves.
+pub(crate) struct CheckScope {
+    pub names: FxHashMap<String, Binding>,
+    pub parameter_mode: Parameters,
+    pub checks: Vec<Check>,
 }
 
-/// Verifies every check of the model against its equations; the failures are diagnostics.
+/// The names a `check` may use for derived quantities, in velocity form: every named
+/// entry of the registry ([`Quantity::names`]) that `d` holds.
+fn quantities(d: &Derivation) -> FxHashMap<String, Id> {
+    let coordinates: Vec<&str> = d.coordinates.iter().map(|c| c.name.as_str()).collect();
+    let masses: Vec<&str> = d.masses.iter().map(|m| m.name.as_str()).collect();
+    let values: Vec<Vec<Id>> = Quantity::ALL.iter().map(|q| q.read(d)).collect();
+    Quantity::names(&coordinates, &masses)
+        .into_iter()
+        .filter_map(|(name, q, i)| Some((name, *values[q.index()].get(i)?)))
+        .collect()
+}
+
+/// Verifies every check of `scope` against the derivation; the failures are diagnostics.
 pub(crate) fn run_checks(
-    model: &mut Model,
-    equations: &Equations,
+    d: &mut Derivation,
+    mut scope: CheckScope,
 ) -> Result<Vec<CheckOutcome>, Vec<Diagnostic>> {
-    let quantities = quantities(model, equations);
-    let laws: HashMap<Symbol, Id> = model
+    let quantities = quantities(d);
+    let laws: HashMap<Symbol, Id> = d
         .masses
         .iter()
-        .zip(&equations.closed_laws)
+        .zip(&d.closed_laws)
         .filter_map(|(m, law)| law.map(|l| (m.symbol, l)))
         .collect();
     let mut errors = Vec::new();
     let mut outcomes = Vec::new();
     let mut verdicts = Verdicts::default();
-    let checks = std::mem::take(&mut model.checks);
-    for check in &checks {
-        let sides = lower_sides(model, check, &quantities).and_then(|(lhs, rhs)| {
-            require_solved(model, check, lhs, rhs)?;
-            Ok((lhs, rhs))
-        });
+    for check in &scope.checks {
+        let sides = lower_sides(d, &mut scope.names, &scope.parameter_mode, check, &quantities)
+            .and_then(|(lhs, rhs)| {
+                require_solved(d, check, lhs, rhs)?;
+                Ok((lhs, rhs))
+            });
         match sides {
             Ok((lhs, rhs)) => {
-                let outcome = decide(&mut model.pool, lhs, rhs, &laws, &mut verdicts);
-                errors.extend(verdict_error(&model.pool, check, lhs, rhs, &outcome));
+                let outcome = decide(&mut d.pool, check, lhs, rhs, &laws, &mut verdicts);
+                errors.extend(verdict_error(&d.pool, check, lhs, rhs, &outcome));
                 outcomes.push(outcome);
             }
             Err(e) => errors.extend(e),
         }
     }
-    model.checks = checks;
     if errors.is_empty() {
         Ok(outcomes)
     } else {
@@ -79,16 +72,18 @@ pub(crate) fn run_checks(
 
 /// Both sides of a check lowered, with every diagnostic of either side.
 fn lower_sides(
-    model: &mut Model,
+    d: &mut Derivation,
+    names: &mut FxHashMap<String, Binding>,
+    parameter_mode: &Parameters,
     check: &Check,
     quantities: &FxHashMap<String, Id>,
 ) -> Result<(Id, Id), Vec<Diagnostic>> {
     let mut lower = |node| {
         lower_with(
-            &mut model.pool,
-            &mut model.names,
-            &model.parameter_mode,
-            &mut model.parameters,
+            &mut d.pool,
+            names,
+            parameter_mode,
+            &mut d.parameters,
             node,
             Context::Check,
             Some(quantities),
@@ -101,10 +96,11 @@ fn lower_sides(
 }
 
 /// Accelerations left as symbols mean q̈ was not solved symbolically.
-fn require_solved(model: &Model, check: &Check, lhs: Id, rhs: Id) -> Result<(), Vec<Diagnostic>> {
-    let unsolved = model.coordinates.iter().any(|c| {
-        model.pool.contains(lhs, c.acceleration) || model.pool.contains(rhs, c.acceleration)
-    });
+fn require_solved(d: &Derivation, check: &Check, lhs: Id, rhs: Id) -> Result<(), Vec<Diagnostic>> {
+    let unsolved = d
+        .coordinates
+        .iter()
+        .any(|c| d.pool.contains(lhs, c.acceleration) || d.pool.contains(rhs, c.acceleration));
     if !unsolved {
         return Ok(());
     }
@@ -125,6 +121,7 @@ type Verdicts = FxHashMap<(Id, Id), Identity>;
 /// Compares both sides with the mass laws substituted.
 fn decide(
     pool: &mut ExprPool,
+    check: &Check,
     lhs: Id,
     rhs: Id,
     laws: &HashMap<Symbol, Id>,
@@ -137,7 +134,12 @@ fn decide(
         .or_insert_with(|| pool.identical(lhs_physical, rhs_physical))
         .clone();
     let text = format!("{} = {}", pool.display(lhs), pool.display(rhs));
-    CheckOutcome { text, verdict }
+    CheckOutcome {
+        text,
+        source: check.source.clone(),
+        span: check.span,
+        verdict,
+    }
 }
 
 /// The diagnostic of a refuted or undecided check.

@@ -7,7 +7,7 @@
 //! laws first, then q̇ from p, then these expressions; so one set of formulas serves both
 //! the Hamilton and the Lagrange form.
 
-use super::checks::run_checks;
+use super::checks::{run_checks, CheckScope};
 use super::equations::{
     accelerations, hamiltonian, momentum_rates, power, Accelerations, Hamiltonian, MomentumRates,
 };
@@ -60,8 +60,12 @@ pub struct JacobianParts {
 /// The outcome of one `check`.
 #[derive(Clone, Debug)]
 pub struct CheckOutcome {
-    /// The check as written.
+    /// Both sides as the derivation reads them, in canonical DSL text.
     pub text: String,
+    /// The check as written in the source (`check p_x = m*x'`).
+    pub source: String,
+    /// Where the check statement is.
+    pub span: crate::parse::Span,
     /// How it was decided.
     pub verdict: crate::expr::Identity,
 }
@@ -196,8 +200,9 @@ pub(crate) fn derive_model(
     outputs: Outputs,
 ) -> Result<Derivation, Vec<Diagnostic>> {
     let equations = derive_equations(&mut model, outputs)?;
-    let checks = run_checks(&mut model, &equations)?;
-    Ok(assemble(model, equations, checks))
+    let (mut derivation, scope) = assemble(model, equations);
+    derivation.checks = run_checks(&mut derivation, scope)?;
+    Ok(derivation)
 }
 
 /// The equations in dependency order: mass laws and rates, energies, forces, momenta, then
@@ -242,9 +247,15 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
     })
 }
 
-/// Moves the model and its equations into one [`Derivation`].
-fn assemble(model: Model, e: Equations, checks: Vec<CheckOutcome>) -> Derivation {
-    Derivation {
+/// Moves the model and its equations into one [`Derivation`], and what the `check`s need
+/// of the model to be lowered against it.
+fn assemble(model: Model, e: Equations) -> (Derivation, CheckScope) {
+    let scope = CheckScope {
+        names: model.names,
+        parameter_mode: model.parameter_mode,
+        checks: model.checks,
+    };
+    let derivation = Derivation {
         pool: model.pool,
         time: model.time,
         coordinates: model.coordinates,
@@ -273,7 +284,8 @@ fn assemble(model: Model, e: Equations, checks: Vec<CheckOutcome>) -> Derivation
         accelerations: e.accelerations.solved,
         power: e.power,
         jacobian: e.jacobian,
-        checks,
+        checks: Vec::new(),
         units: None,
-    }
+    };
+    (derivation, scope)
 }

@@ -14,14 +14,18 @@ use crate::expr::{ExprPool, Id, Rational, Symbol};
 use crate::parse::Diagnostic;
 
 /// Up to this many coordinates, q̇(q, p) and q̈ are solved symbolically (adjugate of M);
-/// beyond, generated code solves M x = y numerically (Cholesky).
+/// beyond, generated code solves M x = y numerically (the straight-line LDLᵀ of
+/// `emit/factor.rs`).
 ///
-/// Measured (`cargo bench -p varmass-benches --bench costs`, and the expansion of a 3-link
-/// chain of accreting bobs): the closed form makes the state rate cheaper at 2 and 3
-/// coordinates alike (0.56× and 0.54× of the Cholesky path), but at 3 it multiplies the
-/// macro's expansion time by ~3 (80 → 227 ms, unoptimized as proc macros run) and the
-/// generated code by 5 (58K → 307K characters): compile time and code size every user
-/// pays, for a saving of ~60 ns per evaluation.
+/// Measured against the LDLᵀ path (`cargo bench -p varmass-benches --bench costs`, its
+/// "symbolic-inverse threshold" rows, recorded in `docs/bench/costs.txt`): for the 3-link
+/// chain of accreting bobs the closed form's state rate takes 45.5 ns against 50.1 ns for
+/// the straight-line LDLᵀ (ratio 0.91, fastest of 101 alternating rounds), a saving of
+/// under 5 ns per evaluation. Against it, at 3 coordinates the closed form multiplied the
+/// macro's expansion time by ~3 and the generated code by 5 (58K → 307K characters) when it
+/// was last measured (before this round's symbolic-engine work, against the Cholesky path
+/// the LDLᵀ replaced): compile time and code size every user pays. At 2 coordinates the
+/// adjugate is small and stays.
 pub const SYMBOLIC_INVERSE_MAX_DOF: usize = 2;
 
 /// The momentum balance of eq. 14 and the true momentum rate, one entry per coordinate.

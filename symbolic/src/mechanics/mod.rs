@@ -43,6 +43,7 @@ pub use model::{
     Model, Term, TermKind,
 };
 pub use outputs::{Outputs, UnknownOutput};
+pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};

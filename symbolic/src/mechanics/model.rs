@@ -151,6 +151,8 @@ pub struct Check {
     pub lhs: ExprNode,
     /// Right side.
     pub rhs: ExprNode,
+    /// The check as written (`check p_x = m*x'`).
+    pub source: String,
     /// The statement.
     pub span: Span,
 }

@@ -7,12 +7,27 @@ use std::fmt::Write;
 use super::derivation::{Derivation, VelocitySolve};
 use super::model::MassKind;
 use crate::expr::{Id, Identity, Symbol};
+use crate::quantity::{Named, Quantity};
+use crate::units::Dimension;
 
-/// One line of the report: a label (text, LaTeX) and an expression.
+/// One line of the report: a label (text, LaTeX), an expression and what it is (for its
+/// unit).
 struct Line {
     text: String,
     latex: String,
     value: Id,
+    of: Of,
+}
+
+/// What a line's value is, which decides its unit.
+#[derive(Clone, Copy)]
+pub(crate) enum Of {
+    /// Entry `index` (a coordinate or a mass, none for a scalar) of a registry quantity.
+    Quantity(Quantity, usize),
+    /// Mass `index`.
+    Mass(usize),
+    /// q̇ of coordinate `index`.
+    Velocity(usize),
 }
 
 /// One section: a heading and its lines.
@@ -42,15 +57,14 @@ impl Derivation {
             self.masses_section(),
             Section {
                 heading: "Lagrangian L = T − V (eq. 7)",
-                lines: vec![
-                    line("T =", "T =", self.kinetic),
-                    line("V =", "V =", self.potential),
-                    line("L =", "L =", self.lagrangian),
-                ],
+                lines: [Quantity::Kinetic, Quantity::Potential, Quantity::Lagrangian]
+                    .into_iter()
+                    .flat_map(|q| self.per_coordinate(q, "{} =", "{} ="))
+                    .collect(),
             },
             Section {
                 heading: "Generalized momenta p = ∂*L/∂q̇ (eq. 8)",
-                lines: self.per_coordinate("p_# =", "p_{#} =", &self.momenta),
+                lines: self.per_coordinate(Quantity::Momenta, "{} =", "{} ="),
             },
             self.hamiltonian_section(),
             self.forces_section(),
@@ -62,7 +76,8 @@ impl Derivation {
     /// Each mass law with its rate, or the rate of a state mass.
     fn masses_section(&mut self) -> Section {
         let mut lines = Vec::new();
-        for (mass, rate) in self.masses.iter().zip(&self.mass_rates) {
+        let rate_of = |i| Of::Quantity(Quantity::MassRates, i);
+        for (i, (mass, rate)) in self.masses.iter().zip(&self.mass_rates).enumerate() {
             let symbol_id = self.pool.sym(mass.symbol);
             let tex = self.pool.latex(symbol_id);
             let name = &mass.name;
@@ -72,17 +87,20 @@ impl Derivation {
                         text: format!("{name} ="),
                         latex: tex.clone(),
                         value: law,
+                        of: Of::Mass(i),
                     });
                     lines.push(Line {
                         text: format!("d{name}/dt ="),
                         latex: format!("\\dot{{{tex}}}"),
                         value: *rate,
+                        of: rate_of(i),
                     });
                 }
                 MassKind::State { .. } => lines.push(Line {
                     text: format!("d{name}/dt (state mass) ="),
                     latex: format!("\\dot{{{tex}}}"),
                     value: *rate,
+                    of: rate_of(i),
                 }),
             }
         }
@@ -92,28 +110,39 @@ impl Derivation {
         }
     }
 
-    /// One line per coordinate: `#` in the labels stands for the coordinate's name, which
-    /// both labels spell as declared.
-    fn per_coordinate(&self, label: &str, latex: &str, values: &[Id]) -> Vec<Line> {
-        self.coordinates
+    /// One line per value of `quantity` (one per coordinate, or one for a scalar), its
+    /// registry label put in place of `{}` in `text` and `latex`.
+    fn per_coordinate(&self, quantity: Quantity, text: &str, latex: &str) -> Vec<Line> {
+        let values = quantity.read(self);
+        self.lines_of(quantity, &values, text, latex)
+    }
+
+    /// [`Self::per_coordinate`] with other values standing for `quantity` (its Hamilton
+    /// form): `#` in `text` and `latex` is the coordinate's name.
+    fn lines_of(&self, quantity: Quantity, values: &[Id], text: &str, latex: &str) -> Vec<Line> {
+        let names: Vec<&str> = if is_scalar(quantity) {
+            vec![""]
+        } else {
+            self.coordinates.iter().map(|c| c.name.as_str()).collect()
+        };
+        names
             .iter()
             .zip(values)
-            .map(|(c, value)| Line {
-                text: label.replace('#', &c.name),
-                latex: latex.replace('#', &c.name),
+            .enumerate()
+            .map(|(a, (name, value))| Line {
+                text: text.replace("{}", &quantity.text_label(name)).replace('#', name),
+                latex: latex.replace("{}", &quantity.latex_label(name)).replace('#', name),
                 value: *value,
+                of: Of::Quantity(quantity, a),
             })
             .collect()
     }
 
     fn hamiltonian_section(&self) -> Section {
-        let mut lines = vec![line(
-            "H = p·q̇ − L =",
-            "H = p \\cdot \\dot q - L =",
-            self.energy,
-        )];
+        let mut lines =
+            self.per_coordinate(Quantity::Energy, "{} = p·q̇ − L =", "{} = p \\cdot \\dot q - L =");
         if let Some(h) = self.hamiltonian {
-            lines.push(line("H(q, p, t) =", "H(q, p, t) =", h));
+            lines.extend(self.lines_of(Quantity::Energy, &[h], "{}(q, p, t) =", "{}(q, p, t) ="));
         }
         Section {
             heading: "Hamiltonian (eqs. 9–10)",
@@ -122,9 +151,15 @@ impl Derivation {
     }
 
     fn forces_section(&self) -> Section {
-        let mut lines = self.per_coordinate("Q*_# =", "Q^*_{#} =", &self.active_force);
-        lines.extend(self.per_coordinate("R1_# =", "R_{1,#} =", &self.reactive_thrust));
-        lines.extend(self.per_coordinate("R2_# =", "R_{2,#} =", &self.impact_force));
+        let forces = [
+            Quantity::ActiveForce,
+            Quantity::ReactiveThrust,
+            Quantity::ImpactForce,
+        ];
+        let lines = forces
+            .into_iter()
+            .flat_map(|q| self.per_coordinate(q, "{} =", "{} ="))
+            .collect();
         Section {
             heading: "Generalized forces: active Q*, reactive thrust R1, impact R2",
             lines,
@@ -135,10 +170,10 @@ impl Derivation {
     fn canonical_section(&mut self) -> Section {
         let lines = match self.velocities.clone() {
             VelocitySolve::Symbolic(v) => {
-                let mut lines = self.per_coordinate(
+                let mut lines = self.velocity_lines(
+                    &v,
                     "#' = ∂*H/∂p_# =",
                     "\\dot{#} = \\frac{\\partial^* H}{\\partial p_{#}} =",
-                    &v,
                 );
                 let rates: Vec<Id> = self
                     .frozen_momentum_rate
@@ -146,17 +181,18 @@ impl Derivation {
                     .into_iter()
                     .map(|e| self.in_hamilton_form(e).unwrap_or(e))
                     .collect();
-                lines.extend(self.per_coordinate(
-                    "d*p_#/dt = −∂*H/∂# + Q*_# − R1_# + R2_# =",
-                    "\\frac{d^* p_{#}}{dt} = -\\frac{\\partial^* H}{\\partial #} + Q^*_{#} - R_{1,#} + R_{2,#} =",
+                lines.extend(self.lines_of(
+                    Quantity::FrozenMomentumRate,
                     &rates,
+                    "{} = −∂*H/∂# + Q*_# − R1_# + R2_# =",
+                    "{} = -\\frac{\\partial^* H}{\\partial #} + Q^*_{#} - R_{1,#} + R_{2,#} =",
                 ));
                 lines
             }
             VelocitySolve::Numeric => self.per_coordinate(
-                "d*p_#/dt = ∂*L/∂# + Q*_# − R1_# + R2_# (q̇ from M q̇ = p − b) =",
-                "\\frac{d^* p_{#}}{dt} = \\frac{\\partial^* L}{\\partial #} + Q^*_{#} - R_{1,#} + R_{2,#} =",
-                &self.frozen_momentum_rate,
+                Quantity::FrozenMomentumRate,
+                "{} = ∂*L/∂# + Q*_# − R1_# + R2_# (q̇ from M q̇ = p − b) =",
+                "{} = \\frac{\\partial^* L}{\\partial #} + Q^*_{#} - R_{1,#} + R_{2,#} =",
             ),
         };
         Section {
@@ -167,14 +203,12 @@ impl Derivation {
 
     fn rates_section(&self) -> Section {
         let mut lines = self.per_coordinate(
-            "dp_#/dt = d*p_#/dt + Σ ṁ ∂*p_#/∂m =",
-            "\\dot p_{#} = \\frac{d^* p_{#}}{dt} + \\sum_i \\dot m_i \\frac{\\partial^* p_{#}}{\\partial m_i} =",
-            &self.momentum_rate,
+            Quantity::MomentumRate,
+            "{} = d*p_#/dt + Σ ṁ ∂*p_#/∂m =",
+            "{} = \\frac{d^* p_{#}}{dt} + \\sum_i \\dot m_i \\frac{\\partial^* p_{#}}{\\partial m_i} =",
         );
-        if let Some(acc) = &self.accelerations {
-            lines.extend(self.per_coordinate("#'' =", "\\ddot{#} =", acc));
-        }
-        lines.push(line("dH/dt =", "\\frac{dH}{dt} =", self.power));
+        lines.extend(self.per_coordinate(Quantity::Accelerations, "{} =", "{} ="));
+        lines.extend(self.per_coordinate(Quantity::Power, "{} =", "{} ="));
         Section {
             heading: "True rates, Lagrange form (eq. 6) and energy budget",
             lines,
@@ -214,7 +248,7 @@ impl Derivation {
         for section in sections {
             let _ = writeln!(out, "{}", section.heading);
             for (l, value) in section.lines.iter().zip(values.by_ref()) {
-                let unit = self.line_unit(&l.text);
+                let unit = self.unit_suffix(l.of);
                 let _ = writeln!(out, "    {} {value}{unit}", l.text);
             }
         }
@@ -276,21 +310,51 @@ impl Derivation {
         Some(stated.join(", "))
     }
 
-    /// `   [J]` after a line whose label (`H = …`, `p_x =`, `Q*_th =`) names a quantity
-    /// with a known unit; empty without units.
-    pub(crate) fn line_unit(&self, label: &str) -> String {
-        let first = label.split([' ', '=']).next().unwrap_or("");
-        self.units
-            .as_ref()
-            .and_then(|units| units.label_unit(first))
-            .map_or(String::new(), |unit| format!("   [{unit}]"))
+    /// `   [J]` after a line of the derivation text or a doc comment whose value has a
+    /// known unit; empty without units. An unnamed intermediate of the registry (∂*L/∂q,
+    /// the mass-flux force, the right side of eq. 6) is shown without one: the DSL has no
+    /// name for it that a unit could be stated against.
+    pub(crate) fn unit_suffix(&self, of: Of) -> String {
+        let Some(units) = self.units.as_ref() else {
+            return String::new();
+        };
+        let unit = match of {
+            Of::Quantity(q, _) if q.spec().name == Named::Unnamed => None,
+            Of::Quantity(q, i) => {
+                let name = match q.spec().name {
+                    Named::PerMass(_) => self.masses.get(i).map(|m| m.name.as_str()),
+                    Named::Scalar(_) => None,
+                    _ => self.coordinates.get(i).map(|c| c.name.as_str()),
+                };
+                units.quantity_unit(q, name)
+            }
+            Of::Mass(i) => self.masses.get(i).and_then(|m| units.dimension(&m.name)).map(|d| d.unit(false)),
+            Of::Velocity(a) => {
+                let name = self.coordinates.get(a).map(|c| c.name.as_str());
+                let q = name.and_then(|n| units.dimension(n));
+                q.and_then(|q| q.checked_div(Dimension::TIME)).map(|d| d.unit(false))
+            }
+        };
+        unit.map_or(String::new(), |unit| format!("   [{unit}]"))
+    }
+
+    /// One line per coordinate for q̇ in closed form.
+    fn velocity_lines(&self, values: &[Id], text: &str, latex: &str) -> Vec<Line> {
+        self.coordinates
+            .iter()
+            .zip(values)
+            .enumerate()
+            .map(|(a, (c, value))| Line {
+                text: text.replace('#', &c.name),
+                latex: latex.replace('#', &c.name),
+                value: *value,
+                of: Of::Velocity(a),
+            })
+            .collect()
     }
 }
 
-fn line(text: &str, latex: &str, value: Id) -> Line {
-    Line {
-        text: text.to_string(),
-        latex: latex.to_string(),
-        value,
-    }
+/// Whether `quantity` has one value (H, L, power), not one per coordinate.
+fn is_scalar(quantity: Quantity) -> bool {
+    matches!(quantity.spec().name, Named::Scalar(_))
 }

@@ -4,6 +4,7 @@ use rustc_hash::FxHashMap;
 
 use crate::expr::{lower, ExprPool, Id, Resolver, Symbol, SymbolKind};
 use crate::parse::ast::ExprNode;
+pub use crate::quantity::is_reserved;
 use crate::parse::keywords;
 use crate::parse::{Diagnostic, Span};
 
@@ -137,7 +138,7 @@ impl NameResolver<'_> {
                 .into_iter()
                 .flat_map(|q| q.keys().map(String::as_str)),
         );
-        let suggestion = closest(name, candidates).map(|close| format!("did you mean `{close}`?"));
+        let suggestion = keywords::nearest(name, candidates).map(|close| format!("did you mean `{close}`?"));
         let declared = primes == 0 && matches!(self.parameters, Parameters::Declared(_));
         let field = declared.then(|| {
             format!("if `{name}` is a parameter, add the field `{name}: f64` to the struct")
@@ -154,18 +155,6 @@ impl NameResolver<'_> {
     }
 }
 
-/// Names that may not be declared (nor be parameters) because they mean the time or, in
-/// `check`s, a derived quantity: `t`, `H`, `L`, `T`, `V`, `power`, and the prefixes `p_`,
-/// `Q_`, `R1_`, `R2_`, `pdot_`, `dp_`, `mdot_`.
-pub fn is_reserved(name: &str) -> bool {
-    const QUANTITIES: &[&str] = &["H", "L", "T", "V", "power"];
-    name == keywords::TIME
-        || QUANTITIES.contains(&name)
-        || ["p_", "Q_", "R1_", "R2_", "pdot_", "dp_", "mdot_"]
-            .iter()
-            .any(|prefix| name.starts_with(prefix))
-}
-
 fn describe(binding: Binding) -> &'static str {
     match binding {
         Binding::Time(_) => "the time",
@@ -174,34 +163,6 @@ fn describe(binding: Binding) -> &'static str {
         Binding::Let(_) => "a definition",
         Binding::Parameter(_) => "a parameter",
     }
-}
-
-/// The candidate within edit distance 2 of `name`, if any (for "did you mean").
-pub(crate) fn closest<'a>(
-    name: &str,
-    candidates: impl Iterator<Item = &'a str>,
-) -> Option<&'a str> {
-    candidates
-        .map(|c| (edit_distance(name, c), c))
-        // A one-letter name is one edit from every other: suggest only real near-misses.
-        .filter(|(d, _)| *d <= 2 && *d < name.chars().count())
-        .min()
-        .map(|(_, c)| c)
-}
-
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut previous = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let substitution = previous + usize::from(ca != *cb);
-            previous = row[j + 1];
-            row[j + 1] = substitution.min(row[j] + 1).min(previous + 1);
-        }
-    }
-    row[b.len()]
 }
 
 /// Lowers `node` with the given scope.

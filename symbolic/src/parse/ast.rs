@@ -134,6 +134,8 @@ pub enum StatementKind {
         lhs: ExprNode,
         /// Right side.
         rhs: ExprNode,
+        /// The identity as written, from the left side to the end of the right.
+        text: String,
     },
     /// `units x: m, g: m/s^2`: the unit of each name; with it, every term is
     /// dimension-checked (see `docs/dsl.md#units`).

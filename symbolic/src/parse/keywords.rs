@@ -119,6 +119,20 @@ pub fn closest<'k>(word: &str, candidates: &[&'k str]) -> Option<&'k str> {
         .map(|(_, candidate)| candidate)
 }
 
+/// [`closest`] among names from anywhere (a scope, a table): `name` itself is left out, and
+/// the candidates are sorted first so that a tie is decided the same way every time.
+///
+/// ```
+/// use varmass_symbolic::parse::keywords::nearest;
+/// assert_eq!(nearest("muu", ["x", "mu", "muu"].into_iter()), Some("mu"));
+/// ```
+pub fn nearest<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    let mut candidates: Vec<&str> = candidates.filter(|c| *c != name).collect();
+    candidates.sort_unstable();
+    candidates.dedup();
+    closest(name, &candidates)
+}
+
 /// Optimal-string-alignment distance: Levenshtein plus adjacent transpositions, so `msas`
 /// is one edit from `mass` (a swap is the most common typing slip).
 fn edit_distance(a: &str, b: &str) -> usize {

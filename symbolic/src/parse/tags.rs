@@ -12,17 +12,25 @@
 //! that only a left-out statement uses is not a parameter of the selected model.
 
 use super::ast::{Statement, SystemAst};
+use super::keywords::nearest;
 
 /// A tag asked for that no statement of the model has.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown tag `{tag}`; {}", describe_known(known))]
+#[error("unknown tag `{tag}`{}; {}", did_you_mean(suggestion.as_deref()), describe_known(known))]
 pub struct UnknownTag {
     /// The tag as asked for.
     pub tag: String,
+    /// The model's tag nearest to it, if one is a likely typo of it.
+    pub suggestion: Option<String>,
     /// Its position in the list asked for (so a caller can point at it).
     pub index: usize,
     /// The model's tags, sorted.
     pub known: Vec<String>,
+}
+
+/// ` (did you mean `drag`?)`, or nothing.
+fn did_you_mean(suggestion: Option<&str>) -> String {
+    suggestion.map_or(String::new(), |s| format!(" (did you mean `{s}`?)"))
 }
 
 /// "the model's tags are `a`, `b`", or that it has none.
@@ -64,6 +72,9 @@ pub fn known_tags(ast: &SystemAst) -> Vec<String> {
 /// assert_eq!(select_tags(&rocket, &["drag".into()]).unwrap().statements.len(), 5);
 /// let unknown = select_tags(&rocket, &["wind".into()]).unwrap_err();
 /// assert_eq!(unknown[0].to_string(), "unknown tag `wind`; the model's tags are `drag`");
+/// let typo = select_tags(&rocket, &["darg".into()]).unwrap_err();
+/// let message = "unknown tag `darg` (did you mean `drag`?); the model's tags are `drag`";
+/// assert_eq!(typo[0].to_string(), message);
 /// ```
 pub fn select_tags(ast: &SystemAst, with: &[String]) -> Result<SystemAst, Vec<UnknownTag>> {
     let known = known_tags(ast);
@@ -73,6 +84,7 @@ pub fn select_tags(ast: &SystemAst, with: &[String]) -> Result<SystemAst, Vec<Un
         .filter(|(_, tag)| !known.contains(tag))
         .map(|(index, tag)| UnknownTag {
             tag: tag.clone(),
+            suggestion: nearest(tag, known.iter().map(String::as_str)).map(str::to_string),
             index,
             known: known.clone(),
         })

@@ -61,7 +61,7 @@ pub fn check_units(ast: &SystemAst) -> Result<Option<UnitTable>, Vec<Diagnostic>
         checker.statement(statement);
     }
     checker.bodies_with_units(ast);
-    checker.missing_units(ast, first.span);
+    checker.missing_units(first.span);
     let Checker {
         table,
         lets,
@@ -213,7 +213,7 @@ impl Checker {
             StatementKind::Impact(load) => self.load(load, "impact force", "impact force"),
             StatementKind::Outflow(flow) => self.flow(flow, "outflow from"),
             StatementKind::Inflow(flow) => self.flow(flow, "inflow into"),
-            StatementKind::Check { lhs, rhs } => self.check(lhs, rhs),
+            StatementKind::Check { lhs, rhs, .. } => self.check(lhs, rhs),
             StatementKind::Coordinates(_) | StatementKind::Units(_) => {}
         }
     }
@@ -371,32 +371,49 @@ impl Checker {
         }
     }
 
-    /// One diagnostic listing every name used without a unit, with a hint when a unit was
-    /// given for a name the system does not use that looks like a typo of a missing one.
-    fn missing_units(&mut self, ast: &SystemAst, units: Span) {
-        if self.missing.is_empty() {
-            return;
-        }
-        let listed: Vec<String> = self.missing.iter().map(|(n, _)| format!("`{n}`")).collect();
-        let names: Vec<String> = self
-            .missing
-            .iter()
-            .map(|(n, _)| format!("{n}: …"))
+    /// Whether `name` is given a unit by `units` but is no coordinate or mass and is never
+    /// written in an expression: the likely typo when a used name lacks a unit.
+    fn is_unused_entry(&self, name: &str) -> bool {
+        let declared = self.table.coordinates.iter().chain(&self.table.masses);
+        self.table.written.contains_key(name)
+            && !self.used.contains(name)
+            && !declared.into_iter().any(|d| d == name)
+    }
+
+    /// One diagnostic per name used without a unit, its caret on the name where it is
+    /// first written (a coordinate at its declaration), with the nearest name the system
+    /// declares or uses as "did you mean", and the `units` statement (line of `units`) as
+    /// the other place to fix it.
+    fn missing_units(&mut self, units: Span) {
+        let missing = std::mem::take(&mut self.missing);
+        let missing_names: FxHashSet<&str> = missing.iter().map(|(n, _)| n.as_str()).collect();
+        // Every name with a unit or an inferred dimension, and every name written.
+        let known = self.table.dimensions.keys().chain(self.lets.keys());
+        let known: Vec<&str> = known
+            .chain(&self.used)
+            .map(String::as_str)
+            .filter(|n| !missing_names.contains(n))
             .collect();
-        let message = format!(
-            "no unit for {}: with `units`, every coordinate and parameter needs one",
-            listed.join(", ")
-        );
-        let mut help = format!("add `{}` to the `units` statement", names.join(", "));
-        let unused: Vec<&str> = unit_entries(ast)
-            .map(|e| e.name.node.as_str())
-            .filter(|name| !self.used.contains(*name))
-            .collect();
-        for (name, _) in &self.missing {
-            if let Some(typo) = keywords::closest(name, &unused) {
-                help.push_str(&format!("; `{typo}` has one: a typo of `{name}`?"));
-            }
+        let mut diagnostics = Vec::new();
+        for (name, span) in &missing {
+            let message = format!(
+                "no unit for `{name}`: with `units`, every coordinate and parameter needs one"
+            );
+            let add = format!(
+                "add `{name}: …` to the `units` statement (line {})",
+                units.line
+            );
+            let help = match keywords::nearest(name, known.iter().copied()) {
+                Some(close) if self.is_unused_entry(close) => format!(
+                    "`{close}` has a unit in the `units` statement but is used nowhere: did you mean `{name}` there? Otherwise {add}"
+                ),
+                Some(close) => format!("did you mean `{close}`? Otherwise {add}"),
+                None => add,
+            };
+            diagnostics.push(Diagnostic::new(*span, message).with_help(help));
         }
-        self.report(Diagnostic::new(units, message).with_help(help));
+        for diagnostic in diagnostics {
+            self.report(diagnostic);
+        }
     }
 }

@@ -72,7 +72,7 @@ pub fn statement_expressions(statement: &Statement) -> Vec<&ExprNode> {
             }
             all
         }
-        StatementKind::Check { lhs, rhs } => vec![lhs, rhs],
+        StatementKind::Check { lhs, rhs, .. } => vec![lhs, rhs],
         StatementKind::Units(entries) => entries.iter().map(|e| &e.unit).collect(),
     }
 }

@@ -255,7 +255,9 @@ impl<'a> Grammar<'a> {
             return Err(self.fail(at, diagnostic));
         };
         let (rest, (rhs, _)) = self.required_expression(after, STATEMENT_LEVEL, "=")?;
-        Ok((rest, (StatementKind::Check { lhs, rhs }, AFTER_EXPRESSION)))
+        let text = self.source.get(lhs.span.start..rhs.span.end);
+        let text = text.unwrap_or_default().to_string();
+        Ok((rest, (StatementKind::Check { lhs, rhs, text }, AFTER_EXPRESSION)))
     }
 
     /// `units x: m, g: m/s^2, …`: each unit is read as an expression here; the `units`
