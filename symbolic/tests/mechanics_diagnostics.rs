@@ -153,6 +153,21 @@ fn flow_rates_contradict_the_mass_law() {
 }
 
 #[test]
+fn an_undecided_mass_balance_is_rejected() {
+    // ṁ = −μ ln(−1 − x²) and the outflow μ ln(−2 − 2x²) differ in form and are defined at no
+    // real state (the logarithm of a negative number): the balance Q2 − Q1 = ṁ can be
+    // neither proven nor sampled, so the system is rejected (ARCHITECTURE.md, invariants).
+    let d = expect(
+        "coordinates x\nmass m: state, rate -mu*ln(-1 - x^2)\nbody b: mass m, position [x]\n\
+         outflow b: rate mu*ln(-2 - 2*x^2)",
+        "cannot be checked against its mass law",
+        4,
+        1,
+    );
+    assert!(d.message.contains("flow rates of `m`"), "{}", d.message);
+}
+
+#[test]
 fn two_flows_without_rates() {
     expect(
         "coordinates x\nmass m = m0 + c*x\nbody b: mass m, position [x]\ninflow b: velocity [0]\noutflow b: relative_velocity [1]",

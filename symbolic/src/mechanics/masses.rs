@@ -133,8 +133,24 @@ pub(crate) fn flow_rates(model: &mut Model, mass_rates: &[Id]) -> Result<Vec<Id>
         match missing.as_slice() {
             [] => {
                 let verdict = pool.identical(mass_rates[mass_index], given_net);
+                let span = model.flows[flows[0]].span;
+                if verdict == crate::expr::Identity::Undecided {
+                    // Neither proven nor seen to hold: the balance is not known to hold,
+                    // and the forces built on these rates would not be trusted either.
+                    errors.push(
+                        Diagnostic::new(
+                            span,
+                            format!(
+                                "the flow rates of `{}` cannot be checked against its mass law: ṁ = {} and inflow − outflow = {} are not both defined at any sample point",
+                                mass.name,
+                                pool.display(mass_rates[mass_index]),
+                                pool.display(given_net)
+                            ),
+                        )
+                        .with_help("write the rates so that they are defined for the states the system reaches, or leave one flow's `rate` out to have it derived from ṁ"),
+                    );
+                }
                 if matches!(verdict, crate::expr::Identity::Refuted { .. }) {
-                    let span = model.flows[flows[0]].span;
                     errors.push(
                         Diagnostic::new(
                             span,
