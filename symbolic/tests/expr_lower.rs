@@ -4,9 +4,9 @@
 mod expr_support;
 
 use expr_support::{build, read, sled_pool, try_build};
-use varmass_symbolic::expr::{lower, ExprPool, Func, Id, Rational, Resolver};
+use varmass_symbolic::expr::{lower, ExprPool, Func, Id, Rational, Resolver, Written};
 use varmass_symbolic::parse::keywords::FUNCTIONS;
-use varmass_symbolic::{Diagnostic, Span};
+use varmass_symbolic::Diagnostic;
 
 #[test]
 fn the_function_table_agrees_with_the_parser_keywords() {
@@ -71,18 +71,13 @@ fn an_unusable_literal_is_a_diagnostic() {
 struct Fixed(Id);
 
 impl Resolver for Fixed {
-    fn resolve(
-        &mut self,
-        pool: &mut ExprPool,
-        name: &str,
-        primes: u8,
-        span: Span,
-    ) -> Result<Id, Diagnostic> {
-        match (name, primes) {
+    fn resolve(&mut self, pool: &mut ExprPool, written: Written<'_>) -> Result<Id, Diagnostic> {
+        match (written.name, written.primes) {
             ("H", 0) => Ok(self.0),
             _ => {
                 let _ = pool;
-                Err(Diagnostic::new(span, format!("no `{name}` here")))
+                let message = format!("no `{}` here", written.name);
+                Err(Diagnostic::new(written.span, message))
             }
         }
     }

@@ -12,16 +12,28 @@ use crate::parse::ast::{BinOp, Expr, ExprNode};
 use crate::parse::keywords::FUNCTIONS;
 use crate::parse::{Diagnostic, Span};
 
+/// A name as written in the DSL: `x`, `x'` or `x''`, and where.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Written<'a> {
+    /// The name without its primes.
+    pub name: &'a str,
+    /// The number of primes after it (0, 1 or 2 in valid text).
+    pub primes: u8,
+    /// Where it is written.
+    pub span: Span,
+}
+
+impl Written<'_> {
+    /// The name with its primes, as written (`x''`).
+    pub fn text(&self) -> String {
+        format!("{}{}", self.name, "'".repeat(self.primes.into()))
+    }
+}
+
 /// Turns a name written in the DSL into an expression.
 pub trait Resolver {
-    /// The expression for `name` followed by `primes` primes (0, 1 or 2): `x`, `x'`, `x''`.
-    fn resolve(
-        &mut self,
-        pool: &mut ExprPool,
-        name: &str,
-        primes: u8,
-        span: Span,
-    ) -> Result<Id, Diagnostic>;
+    /// The expression for `written`: a name, a velocity `x'` or an acceleration `x''`.
+    fn resolve(&mut self, pool: &mut ExprPool, written: Written<'_>) -> Result<Id, Diagnostic>;
 }
 
 /// Resolves names already in the pool's symbol table: `x` to its symbol, `x'` and `x''`
@@ -30,13 +42,8 @@ pub trait Resolver {
 pub struct TableResolver;
 
 impl Resolver for TableResolver {
-    fn resolve(
-        &mut self,
-        pool: &mut ExprPool,
-        name: &str,
-        primes: u8,
-        span: Span,
-    ) -> Result<Id, Diagnostic> {
+    fn resolve(&mut self, pool: &mut ExprPool, written: Written<'_>) -> Result<Id, Diagnostic> {
+        let Written { name, primes, span } = written;
         let table = pool.symbols();
         let Some(s) = table.lookup(name) else {
             return Err(Diagnostic::new(span, format!("unknown symbol `{name}`")));
@@ -51,14 +58,14 @@ impl Resolver for TableResolver {
             Some(t) => Ok(pool.sym(t)),
             None if table.kind(s) == SymbolKind::Coordinate => Err(Diagnostic::new(
                 span,
-                format!("`{name}{}` has too many primes", "'".repeat(primes.into())),
+                format!("`{}` has too many primes", written.text()),
             )
             .with_help("write `x'` for a velocity or `x''` for an acceleration")),
             None => Err(Diagnostic::new(
                 span,
                 format!(
-                    "`{name}` is not a coordinate, so `{name}{}` has no meaning",
-                    "'".repeat(primes.into())
+                    "`{name}` is not a coordinate, so `{}` has no meaning",
+                    written.text()
                 ),
             )),
         }
@@ -110,9 +117,21 @@ fn lower_node(
             }
             id
         }
-        Expr::Name(name) => record(resolver.resolve(pool, name, 0, span), errors),
+        Expr::Name(name) => {
+            let written = Written {
+                name,
+                primes: 0,
+                span,
+            };
+            record(resolver.resolve(pool, written), errors)
+        }
         Expr::Derivative { name, order } => {
-            record(resolver.resolve(pool, name, *order, span), errors)
+            let written = Written {
+                name,
+                primes: *order,
+                span,
+            };
+            record(resolver.resolve(pool, written), errors)
         }
         Expr::Neg(inner) => {
             let inner = lower_node(pool, inner, resolver, errors)?;

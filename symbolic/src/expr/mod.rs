@@ -58,7 +58,7 @@ pub use cse::Cse;
 pub use diff::UnsupportedDerivative;
 pub use func::Func;
 pub use identity::{Identity, SamplePoints};
-pub use lower::{lower, Resolver, TableResolver};
+pub use lower::{lower, Resolver, TableResolver, Written};
 pub use node::{Id, Node};
 pub use pool::ExprPool;
 pub use print::DisplayExpr;

@@ -2,11 +2,11 @@
 
 use rustc_hash::FxHashMap;
 
-use crate::expr::{lower, ExprPool, Id, Resolver, Symbol, SymbolKind};
+use crate::expr::{lower, ExprPool, Id, Resolver, Symbol, SymbolKind, Written};
 use crate::parse::ast::ExprNode;
-pub use crate::quantity::is_reserved;
 use crate::parse::keywords;
-use crate::parse::{Diagnostic, Span};
+use crate::parse::Diagnostic;
+pub use crate::quantity::is_reserved;
 
 /// What a name is bound to.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,13 +57,8 @@ pub(crate) struct NameResolver<'a> {
 }
 
 impl Resolver for NameResolver<'_> {
-    fn resolve(
-        &mut self,
-        pool: &mut ExprPool,
-        name: &str,
-        primes: u8,
-        span: Span,
-    ) -> Result<Id, Diagnostic> {
+    fn resolve(&mut self, pool: &mut ExprPool, written: Written<'_>) -> Result<Id, Diagnostic> {
+        let Written { name, primes, span } = written;
         if primes == 0 {
             if let Some(value) = self.quantities.and_then(|q| q.get(name)) {
                 return Ok(*value);
@@ -92,26 +87,23 @@ impl Resolver for NameResolver<'_> {
             Some(binding) if primes > 0 => Err(Diagnostic::new(
                 span,
                 format!(
-                    "`{name}{}`: only coordinates have velocities, and `{name}` is {}",
-                    "'".repeat(primes as usize),
+                    "`{}`: only coordinates have velocities, and `{name}` is {}",
+                    written.text(),
                     describe(binding)
                 ),
             )),
             Some(Binding::Time(s) | Binding::Mass(s) | Binding::Parameter(s)) => Ok(pool.sym(s)),
             Some(Binding::Let(value)) => Ok(value),
-            None => self.unknown(pool, name, primes, span),
+            None => self.unknown(pool, written),
         }
     }
 }
 
 impl NameResolver<'_> {
-    fn unknown(
-        &mut self,
-        pool: &mut ExprPool,
-        name: &str,
-        primes: u8,
-        span: Span,
-    ) -> Result<Id, Diagnostic> {
+    /// A name nothing binds: a new parameter when parameters are inferred, else an error
+    /// with the nearest bound name.
+    fn unknown(&mut self, pool: &mut ExprPool, written: Written<'_>) -> Result<Id, Diagnostic> {
+        let Written { name, primes, span } = written;
         if primes == 0 {
             if let Parameters::Inferred = self.parameters {
                 if !is_reserved(name) {
@@ -124,10 +116,7 @@ impl NameResolver<'_> {
             }
         }
         let what = if primes > 0 {
-            format!(
-                "`{name}{}`: `{name}` is not a coordinate",
-                "'".repeat(primes as usize)
-            )
+            format!("`{}`: `{name}` is not a coordinate", written.text())
         } else if self.context == Context::Check && is_reserved(name) {
             format!("`{name}` is not a quantity this system derives")
         } else {
@@ -138,7 +127,8 @@ impl NameResolver<'_> {
                 .into_iter()
                 .flat_map(|q| q.keys().map(String::as_str)),
         );
-        let suggestion = keywords::nearest(name, candidates).map(|close| format!("did you mean `{close}`?"));
+        let suggestion =
+            keywords::nearest(name, candidates).map(|close| format!("did you mean `{close}`?"));
         let declared = primes == 0 && matches!(self.parameters, Parameters::Declared(_));
         let field = declared.then(|| {
             format!("if `{name}` is a parameter, add the field `{name}: f64` to the struct")
