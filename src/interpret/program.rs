@@ -7,8 +7,8 @@ use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Tape};
 use varmass_symbolic::mechanics::{Derivation, MassKind, VelocitySolve};
 use varmass_symbolic::parse::keywords::closest;
-pub use varmass_symbolic::quantity::Quantity;
 use varmass_symbolic::quantity::Evaluated;
+pub use varmass_symbolic::quantity::Quantity;
 
 use super::cholesky::cholesky_solve;
 use super::error::ProgramError;

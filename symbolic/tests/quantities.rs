@@ -84,7 +84,10 @@ fn every_named_quantity_is_reachable_from_a_check_with_its_value() {
         );
     }
     // A wrong value is refuted: the name is bound to its own quantity, not another.
-    let wrong = derive_source(&format!("{ROCKET}check pdot_y = -m*g + mu*u"), Parameters::Inferred);
+    let wrong = derive_source(
+        &format!("{ROCKET}check pdot_y = -m*g + mu*u"),
+        Parameters::Inferred,
+    );
     assert!(wrong.is_err(), "pdot_y is the true ṗ, not d*p/dt");
 }
 
@@ -103,9 +106,18 @@ fn every_named_quantity_has_a_dimension_and_a_unit() {
         let unit = units.quantity_unit(q, of);
         assert_eq!(unit, dimension.map(|d| d.unit(false)), "`{name}`");
     }
-    assert_eq!(units.quantity("p_x").map(|d| d.to_string()).as_deref(), Some("kg·m/s"));
-    assert_eq!(units.quantity("mdot_m").map(|d| d.to_string()).as_deref(), Some("kg/s"));
-    assert_eq!(units.quantity("y''").map(|d| d.to_string()).as_deref(), Some("m/s²"));
+    assert_eq!(
+        units.quantity("p_x").map(|d| d.to_string()).as_deref(),
+        Some("kg·m/s")
+    );
+    assert_eq!(
+        units.quantity("mdot_m").map(|d| d.to_string()).as_deref(),
+        Some("kg/s")
+    );
+    assert_eq!(
+        units.quantity("y''").map(|d| d.to_string()).as_deref(),
+        Some("m/s²")
+    );
 }
 
 #[test]
@@ -126,11 +138,17 @@ fn every_named_quantity_is_in_the_derivation_text_and_its_method_in_the_docs() {
             _ => d.coordinates[i].name.clone(),
         };
         let label = q.text_label(&on);
-        assert!(text.contains(&format!("{label} ")), "`{name}`: `{label}` in\n{text}");
+        assert!(
+            text.contains(&format!("{label} ")),
+            "`{name}`: `{label}` in\n{text}"
+        );
         assert!(latex.contains(&q.latex_label(&on)), "`{name}` in the LaTeX");
         if let Some(method) = q.spec().method {
             let method = method.name();
-            assert!(code.contains(&format!("fn {method}")), "`{name}`: fn {method}");
+            assert!(
+                code.contains(&format!("fn {method}")),
+                "`{name}`: fn {method}"
+            );
             assert!(code.contains(&label), "`{name}`: `{label}` in the docs");
         }
     }

@@ -272,18 +272,30 @@ fn each_symbol_without_a_unit_is_reported_where_it_is_written() {
     let errors = errors(source);
     let found: Vec<(&str, usize, &str)> = errors
         .iter()
-        .map(|e| (e.message.as_str(), e.span.line as usize, &source[e.span.start..e.span.end]))
+        .map(|e| {
+            (
+                e.message.as_str(),
+                e.span.line as usize,
+                &source[e.span.start..e.span.end],
+            )
+        })
         .collect();
     let message = |n: &str| {
         format!("no unit for `{n}`: with `units`, every coordinate and parameter needs one")
     };
-    let expected = [(message("x"), 1, "x"), (message("y"), 1, "y"), (message("g"), 4, "g")];
-    let expected: Vec<(&str, usize, &str)> =
-        expected.iter().map(|(m, l, t)| (m.as_str(), *l, *t)).collect();
+    let expected = [
+        (message("x"), 1, "x"),
+        (message("y"), 1, "y"),
+        (message("g"), 4, "g"),
+    ];
+    let expected: Vec<(&str, usize, &str)> = expected
+        .iter()
+        .map(|(m, l, t)| (m.as_str(), *l, *t))
+        .collect();
     assert_eq!(found, expected);
     assert_eq!(
         errors[2].help.as_deref(),
-        Some("add `g: …` to the `units` statement (line 2)")
+        Some("add `g: …` to the `units` statement")
     );
 }
 
@@ -299,7 +311,7 @@ fn a_typo_in_an_expression_suggests_the_name_used_elsewhere() {
     );
     assert_eq!(
         error.help.as_deref(),
-        Some("did you mean `mu`? Otherwise add `muu: …` to the `units` statement (line 2)")
+        Some("did you mean `mu`? Otherwise add `muu: …` to the `units` statement")
     );
 }
 
@@ -413,7 +425,7 @@ fn a_unit_for_an_unused_name_is_allowed_and_a_likely_typo_is_pointed_out() {
         error.help.as_deref(),
         Some(
             "`thetta` has a unit in the `units` statement but is used nowhere: did you mean \
-             `theta` there? Otherwise add `theta: …` to the `units` statement (line 2)"
+             `theta` there? Otherwise add `theta: …` to the `units` statement"
         )
     );
 }

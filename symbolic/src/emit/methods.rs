@@ -38,7 +38,11 @@ impl Emitter<'_> {
                 None => {
                     let slot = Literal::usize_unsuffixed(2 * n + i);
                     let unit = self.d.unit_suffix(Of::Mass(i));
-                    docs.push(format!("{} = state[{}] (state mass){unit}", m.name, 2 * n + i));
+                    docs.push(format!(
+                        "{} = state[{}] (state mass){unit}",
+                        m.name,
+                        2 * n + i
+                    ));
                     arms.push(quote!(#index => state[#slot],));
                 }
                 Some(law) => {

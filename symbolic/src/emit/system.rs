@@ -309,7 +309,9 @@ impl Emitter<'_> {
             .iter()
             .zip(values)
             .enumerate()
-            .map(|(a, (name, v))| self.doc_line(&quantity.text_label(name), *v, Of::Quantity(quantity, a)))
+            .map(|(a, (name, v))| {
+                self.doc_line(&quantity.text_label(name), *v, Of::Quantity(quantity, a))
+            })
             .collect()
     }
 

@@ -49,11 +49,17 @@ pub(crate) fn run_checks(
     let mut outcomes = Vec::new();
     let mut verdicts = Verdicts::default();
     for check in &scope.checks {
-        let sides = lower_sides(d, &mut scope.names, &scope.parameter_mode, check, &quantities)
-            .and_then(|(lhs, rhs)| {
-                require_solved(d, check, lhs, rhs)?;
-                Ok((lhs, rhs))
-            });
+        let sides = lower_sides(
+            d,
+            &mut scope.names,
+            &scope.parameter_mode,
+            check,
+            &quantities,
+        )
+        .and_then(|(lhs, rhs)| {
+            require_solved(d, check, lhs, rhs)?;
+            Ok((lhs, rhs))
+        });
         match sides {
             Ok((lhs, rhs)) => {
                 let outcome = decide(&mut d.pool, check, lhs, rhs, &laws, &mut verdicts);

@@ -130,8 +130,12 @@ impl Derivation {
             .zip(values)
             .enumerate()
             .map(|(a, (name, value))| Line {
-                text: text.replace("{}", &quantity.text_label(name)).replace('#', name),
-                latex: latex.replace("{}", &quantity.latex_label(name)).replace('#', name),
+                text: text
+                    .replace("{}", &quantity.text_label(name))
+                    .replace('#', name),
+                latex: latex
+                    .replace("{}", &quantity.latex_label(name))
+                    .replace('#', name),
                 value: *value,
                 of: Of::Quantity(quantity, a),
             })
@@ -139,8 +143,11 @@ impl Derivation {
     }
 
     fn hamiltonian_section(&self) -> Section {
-        let mut lines =
-            self.per_coordinate(Quantity::Energy, "{} = p·q̇ − L =", "{} = p \\cdot \\dot q - L =");
+        let mut lines = self.per_coordinate(
+            Quantity::Energy,
+            "{} = p·q̇ − L =",
+            "{} = p \\cdot \\dot q - L =",
+        );
         if let Some(h) = self.hamiltonian {
             lines.extend(self.lines_of(Quantity::Energy, &[h], "{}(q, p, t) =", "{}(q, p, t) ="));
         }
@@ -328,11 +335,16 @@ impl Derivation {
                 };
                 units.quantity_unit(q, name)
             }
-            Of::Mass(i) => self.masses.get(i).and_then(|m| units.dimension(&m.name)).map(|d| d.unit(false)),
+            Of::Mass(i) => self
+                .masses
+                .get(i)
+                .and_then(|m| units.dimension(&m.name))
+                .map(|d| d.unit(false)),
             Of::Velocity(a) => {
                 let name = self.coordinates.get(a).map(|c| c.name.as_str());
                 let q = name.and_then(|n| units.dimension(n));
-                q.and_then(|q| q.checked_div(Dimension::TIME)).map(|d| d.unit(false))
+                q.and_then(|q| q.checked_div(Dimension::TIME))
+                    .map(|d| d.unit(false))
             }
         };
         unit.map_or(String::new(), |unit| format!("   [{unit}]"))

@@ -48,7 +48,7 @@ pub(crate) struct Checker {
 /// );
 /// ```
 pub fn check_units(ast: &SystemAst) -> Result<Option<UnitTable>, Vec<Diagnostic>> {
-    let Some(first) = ast
+    let Some(_) = ast
         .statements
         .iter()
         .find(|s| matches!(s.kind, StatementKind::Units(_)))
@@ -61,7 +61,7 @@ pub fn check_units(ast: &SystemAst) -> Result<Option<UnitTable>, Vec<Diagnostic>
         checker.statement(statement);
     }
     checker.bodies_with_units(ast);
-    checker.missing_units(first.span);
+    checker.missing_units();
     let Checker {
         table,
         lets,
@@ -382,9 +382,9 @@ impl Checker {
 
     /// One diagnostic per name used without a unit, its caret on the name where it is
     /// first written (a coordinate at its declaration), with the nearest name the system
-    /// declares or uses as "did you mean", and the `units` statement (line of `units`) as
-    /// the other place to fix it.
-    fn missing_units(&mut self, units: Span) {
+    /// declares or uses as "did you mean", and the `units` statement as the other place to
+    /// fix it. (A diagnostic has one span: the statement is named in the help, not shown.)
+    fn missing_units(&mut self) {
         let missing = std::mem::take(&mut self.missing);
         let missing_names: FxHashSet<&str> = missing.iter().map(|(n, _)| n.as_str()).collect();
         // Every name with a unit or an inferred dimension, and every name written.
@@ -399,10 +399,7 @@ impl Checker {
             let message = format!(
                 "no unit for `{name}`: with `units`, every coordinate and parameter needs one"
             );
-            let add = format!(
-                "add `{name}: …` to the `units` statement (line {})",
-                units.line
-            );
+            let add = format!("add `{name}: …` to the `units` statement");
             let help = match keywords::nearest(name, known.iter().copied()) {
                 Some(close) if self.is_unused_entry(close) => format!(
                     "`{close}` has a unit in the `units` statement but is used nowhere: did you mean `{name}` there? Otherwise {add}"

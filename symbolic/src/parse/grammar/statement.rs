@@ -257,7 +257,10 @@ impl<'a> Grammar<'a> {
         let (rest, (rhs, _)) = self.required_expression(after, STATEMENT_LEVEL, "=")?;
         let text = self.source.get(lhs.span.start..rhs.span.end);
         let text = text.unwrap_or_default().to_string();
-        Ok((rest, (StatementKind::Check { lhs, rhs, text }, AFTER_EXPRESSION)))
+        Ok((
+            rest,
+            (StatementKind::Check { lhs, rhs, text }, AFTER_EXPRESSION),
+        ))
     }
 
     /// `units x: m, g: m/s^2, …`: each unit is read as an expression here; the `units`
