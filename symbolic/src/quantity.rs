@@ -23,24 +23,39 @@ use crate::expr::Id;
 use crate::mechanics::{Derivation, VelocitySolve};
 use crate::units::Dimension;
 
-/// A derived quantity of a system, one group of values (a scalar, one value per
-/// coordinate or per mass, or the mass matrix).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Quantity {
-    /// ṁ of every mass, in the runtime's `MASSES` order (`mdot_m`).
-    MassRates,
-    /// p = ∂*L/∂q̇ (eq. 8) (`p_x`).
-    Momenta,
-    /// M = ∂²L/∂q̇², row-major (N² values).
-    MassMatrix,
+/// Declares `Quantity` and `Quantity::ALL` from one list, so that `ALL` cannot miss a
+/// variant (the order of the list is the order of `ALL`).
+macro_rules! quantities {
+    ($($(#[$doc:meta])* $variant:ident,)*) => {
+        /// A derived quantity of a system, one group of values (a scalar, one value per
+        /// coordinate or per mass, or the mass matrix).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Quantity {
+            $($(#[$doc])* $variant,)*
+        }
+
+        impl Quantity {
+            /// Every quantity: the named ones in the order messages list them, then the
+            /// intermediates. The position of each is its [`Quantity::index`] (the
+            /// interpreter's group).
+            pub const ALL: &'static [Quantity] = &[$(Quantity::$variant,)*];
+        }
+    };
+}
+
+quantities! {
+    /// The energy function p·q̇ − L, equal to H on p = ∂*L/∂q̇ (eqs. 9–10) (`H`).
+    Energy,
     /// L = T − V (`L`).
     Lagrangian,
     /// T (`T`).
     Kinetic,
     /// V (`V`).
     Potential,
-    /// ∂*L/∂q, masses frozen (= −∂*H/∂q, eq. 13).
-    LagrangianGradient,
+    /// The energy-budget power dH/dt (`power`).
+    Power,
+    /// p = ∂*L/∂q̇ (eq. 8) (`p_x`).
+    Momenta,
     /// Q*, the active force (`Q_x`).
     ActiveForce,
     /// R1, the reactive thrust (`R1_x`).
@@ -49,19 +64,21 @@ pub enum Quantity {
     ImpactForce,
     /// d*p/dt = ∂*L/∂q + Q* − R1 + R2 (eq. 14) (`dp_x`).
     FrozenMomentumRate,
-    /// Σᵢ ṁᵢ ∂*p/∂mᵢ, the mass-flux term of the true ṗ.
-    MassFluxForce,
     /// The true ṗ = d*p/dt + Σᵢ ṁᵢ ∂*p/∂mᵢ (`pdot_x`).
     MomentumRate,
-    /// The right side of M q̈ = d*p/dt − ∂*p/∂q q̇ − ∂*p/∂t (eq. 6).
-    AccelerationRhs,
+    /// ṁ of every mass, in the runtime's `MASSES` order (`mdot_m`).
+    MassRates,
     /// q̈(q, q̇, t) (`x''`); in closed form up to `SYMBOLIC_INVERSE_MAX_DOF` coordinates,
     /// otherwise solved from eq. 6 where it is evaluated.
     Accelerations,
-    /// The energy-budget power dH/dt (`power`).
-    Power,
-    /// The energy function p·q̇ − L, equal to H on p = ∂*L/∂q̇ (eqs. 9–10) (`H`).
-    Energy,
+    /// M = ∂²L/∂q̇², row-major (N² values).
+    MassMatrix,
+    /// ∂*L/∂q, masses frozen (= −∂*H/∂q, eq. 13).
+    LagrangianGradient,
+    /// Σᵢ ṁᵢ ∂*p/∂mᵢ, the mass-flux term of the true ṗ.
+    MassFluxForce,
+    /// The right side of M q̈ = d*p/dt − ∂*p/∂q q̇ − ∂*p/∂t (eq. 6).
+    AccelerationRhs,
 }
 
 /// How a quantity is named in the DSL (in `check`s, `--record`, `units` messages).
@@ -132,29 +149,6 @@ pub struct Spec {
 }
 
 impl Quantity {
-    /// Every quantity: the named ones in the order messages list them, then the
-    /// intermediates. The position of each is its [`Quantity::index`] (the interpreter's
-    /// group).
-    pub const ALL: [Quantity; 17] = [
-        Quantity::Energy,
-        Quantity::Lagrangian,
-        Quantity::Kinetic,
-        Quantity::Potential,
-        Quantity::Power,
-        Quantity::Momenta,
-        Quantity::ActiveForce,
-        Quantity::ReactiveThrust,
-        Quantity::ImpactForce,
-        Quantity::FrozenMomentumRate,
-        Quantity::MomentumRate,
-        Quantity::MassRates,
-        Quantity::Accelerations,
-        Quantity::MassMatrix,
-        Quantity::LagrangianGradient,
-        Quantity::MassFluxForce,
-        Quantity::AccelerationRhs,
-    ];
-
     /// The registry entry of this quantity.
     pub fn spec(self) -> Spec {
         use DimensionRule as D;
@@ -304,7 +298,7 @@ impl Quantity {
 
     /// The position of this quantity in [`Quantity::ALL`].
     pub fn index(self) -> usize {
-        // ALL holds every variant (tested), so the search always succeeds.
+        // ALL holds every variant (one macro declares both), so the search succeeds.
         Quantity::ALL
             .iter()
             .position(|q| *q == self)
@@ -357,7 +351,7 @@ impl Quantity {
     /// masses, with the quantity and index: what a `check` or `--record` may name.
     pub fn names(coordinates: &[&str], masses: &[&str]) -> Vec<(String, Quantity, usize)> {
         let mut all = Vec::new();
-        for q in Quantity::ALL {
+        for &q in Quantity::ALL {
             match q.spec().name {
                 Named::Scalar(s) => all.push((s.to_string(), q, 0)),
                 Named::PerCoordinate { prefix, suffix } => {
@@ -376,12 +370,13 @@ impl Quantity {
         all
     }
 
-    /// The label of entry `index` in the derivation text (`Q*_x`), `#` replaced by `name`.
+    /// The label in the derivation text (`Q*_x`), `#` replaced by the coordinate or mass
+    /// `name` (empty for a scalar).
     pub fn text_label(self, name: &str) -> String {
         self.spec().text.replace('#', name)
     }
 
-    /// The LaTeX label of entry `index` (`Q^*_{x}`), `#` replaced by `name`.
+    /// The LaTeX label (`Q^*_{x}`), `#` replaced by `name`.
     pub fn latex_label(self, name: &str) -> String {
         self.spec().latex.replace('#', name)
     }
