@@ -189,10 +189,6 @@ impl Syntax for Latex {
         }
     }
 
-    fn terms(&self, p: &Printer<'_>, terms: &[Id]) -> Vec<(Id, bool)> {
-        p.pool().sum_view(terms)
-    }
-
     fn negated(&self, p: &Printer<'_>, e: Id) -> PrintedText {
         match p.pool().node(e) {
             Node::Num(r) => rational_tex(r.checked_abs().unwrap_or(*r)),

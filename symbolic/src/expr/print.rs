@@ -176,10 +176,6 @@ impl Syntax for Dsl {
         }
     }
 
-    fn terms(&self, p: &Printer<'_>, terms: &[Id]) -> Vec<(Id, bool)> {
-        p.pool().sum_view(terms)
-    }
-
     /// DSL text of `-e` for a term with a negative coefficient.
     fn negated(&self, p: &Printer<'_>, e: Id) -> PrintedText {
         match p.pool().node(e) {

@@ -56,8 +56,11 @@ pub(crate) trait Syntax: Sized {
     fn product(&self, p: &Printer<'_>, factors: &[Id]) -> Printed<String>;
     /// `base ^ exponent`.
     fn power(&self, p: &Printer<'_>, base: Id, exponent: Id) -> Printed<String>;
-    /// The terms of a sum in print order, each with whether it is printed after ` - `.
-    fn terms(&self, p: &Printer<'_>, terms: &[Id]) -> Vec<(Id, bool)>;
+    /// The terms of a sum in print order, each with whether it is printed after ` - `: by
+    /// default the reading order of `ExprPool::sum_view` (the DSL text and LaTeX).
+    fn terms(&self, p: &Printer<'_>, terms: &[Id]) -> Vec<(Id, bool)> {
+        p.pool().sum_view(terms)
+    }
     /// The magnitude of a term that [`terms`](Self::terms) calls negative.
     fn negated(&self, p: &Printer<'_>, term: Id) -> Printed<String>;
     /// The first term of a sum: by default as printed, whole, whatever its sign (the DSL
