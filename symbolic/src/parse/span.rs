@@ -16,20 +16,26 @@ pub struct Span {
     pub column: u32,
 }
 
+/// `start..end` clamped into `source` and widened to character boundaries: the start
+/// rounded down, the end up, so that `source[start..end]` is always valid text (0 and the
+/// source's length are boundaries, so both loops stop).
+pub(crate) fn char_bounds(source: &str, start: usize, end: usize) -> (usize, usize) {
+    let mut start = start.min(source.len());
+    while !source.is_char_boundary(start) {
+        start -= 1;
+    }
+    let mut end = end.clamp(start, source.len());
+    while !source.is_char_boundary(end) {
+        end += 1;
+    }
+    (start, end)
+}
+
 impl Span {
     /// The span of `source[start..end]`, with line and column computed from `source`.
     /// Offsets past the end or inside a character are clamped, never a panic.
     pub fn from_range(source: &str, start: usize, end: usize) -> Span {
-        let mut start = start.min(source.len());
-        while !source.is_char_boundary(start) {
-            start -= 1;
-        }
-        let mut end = end.clamp(start, source.len());
-        // Round the end up to a character boundary so that `source[start..end]` is always
-        // valid text (the source's length is a boundary, so this stops).
-        while !source.is_char_boundary(end) {
-            end += 1;
-        }
+        let (start, end) = char_bounds(source, start, end);
         let before = &source[..start];
         let line = before.matches('\n').count() as u32 + 1;
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);

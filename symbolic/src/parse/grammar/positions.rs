@@ -6,7 +6,7 @@
 //! is on the same line and not behind (spans are made mostly left to right), so even a huge
 //! single-line input costs linear time. It gives exactly what [`Span::from_range`] gives.
 
-use crate::parse::span::Span;
+use crate::parse::span::{char_bounds, Span};
 use std::cell::Cell;
 
 /// Line starts of one source, plus the last position computed.
@@ -30,14 +30,7 @@ impl LineIndex {
     /// The span of `source[start..end]`, clamped to character boundaries like
     /// [`Span::from_range`].
     pub(super) fn span(&self, source: &str, start: usize, end: usize) -> Span {
-        let mut start = start.min(source.len());
-        while !source.is_char_boundary(start) {
-            start -= 1;
-        }
-        let mut end = end.clamp(start, source.len());
-        while !source.is_char_boundary(end) {
-            end += 1;
-        }
+        let (start, end) = char_bounds(source, start, end);
         // `starts[0] == 0 <= start`, so at least one line starts at or before `start`.
         let line = self.starts.partition_point(|&s| s <= start).max(1);
         let line_start = self.starts.get(line - 1).copied().unwrap_or(0);
