@@ -5,7 +5,7 @@ use quote::{format_ident, quote};
 
 use super::factor::ldlt_solve;
 use super::signature::Method;
-use super::system::{method_item, Emitter};
+use super::system::{method_item, Emitter, Input};
 use crate::expr::Id;
 use crate::mechanics::{Of, VelocitySolve};
 use crate::quantity::Quantity;
@@ -47,21 +47,34 @@ impl Emitter<'_> {
                 }
                 Some(law) => {
                     docs.push(self.doc_line(&m.name, *law, Of::Mass(i)));
-                    let body =
-                        self.body_configuration(&[*law], |mut outs| outs.pop().unwrap_or_default());
+                    let body = self.body(Input::Configuration, &[*law], |mut outs| {
+                        outs.pop().unwrap_or_default()
+                    });
                     arms.push(quote!(#index => { #body },));
                 }
             }
         }
-        let docs = self.docs("The masses and inertias, state masses first.", docs);
-        let signature = self.signature(Method::Mass);
+        let title = "The masses and inertias, state masses first.";
+        self.indexed_method(Method::Mass, title, docs, arms)
+    }
+
+    /// A method taking a mass `index`: one `match` arm per mass, NaN past the last (the
+    /// trait's contract for an index out of range).
+    fn indexed_method(
+        &self,
+        method: Method,
+        title: &str,
+        docs: Vec<String>,
+        arms: Vec<TokenStream>,
+    ) -> TokenStream {
+        let docs = self.docs(title, docs);
         let body = quote! {
             match index {
                 #(#arms)*
                 _ => f64::NAN,
             }
         };
-        method_item(docs, signature, body)
+        method_item(docs, self.signature(method), body)
     }
 
     /// `mass_rate(index, t, velocity_state)`.
@@ -75,20 +88,14 @@ impl Emitter<'_> {
             if self.d.pool.is_zero(*rate) {
                 arms.push(quote!(#index => 0.0,));
             } else {
-                let body =
-                    self.body_input_velocity(&[*rate], |mut outs| outs.pop().unwrap_or_default());
+                let body = self.body(Input::VelocityState, &[*rate], |mut outs| {
+                    outs.pop().unwrap_or_default()
+                });
                 arms.push(quote!(#index => { #body },));
             }
         }
-        let docs = self.docs(Quantity::MassRates.spec().doc, docs);
-        let signature = self.signature(Method::MassRate);
-        let body = quote! {
-            match index {
-                #(#arms)*
-                _ => f64::NAN,
-            }
-        };
-        method_item(docs, signature, body)
+        let title = Quantity::MassRates.spec().doc;
+        self.indexed_method(Method::MassRate, title, docs, arms)
     }
 
     /// `mass_matrix(t, state)`.
@@ -105,7 +112,7 @@ impl Emitter<'_> {
                 format!("[{}]", row.join(", "))
             }),
         );
-        let body = self.body_configuration(&entries, |outs| {
+        let body = self.body(Input::Configuration, &entries, |outs| {
             quote!(#runtime::nalgebra::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#outs),*]))
         });
         let signature = self.signature(Method::MassMatrix);
@@ -118,8 +125,9 @@ impl Emitter<'_> {
             Quantity::Lagrangian.spec().doc,
             self.quantity_lines(Quantity::Lagrangian, &[self.d.lagrangian]),
         );
-        let body =
-            self.body_input_velocity(&[self.d.lagrangian], |mut o| o.pop().unwrap_or_default());
+        let body = self.body(Input::VelocityState, &[self.d.lagrangian], |mut o| {
+            o.pop().unwrap_or_default()
+        });
         let signature = self.signature(Method::Lagrangian);
         method_item(docs, signature, body)
     }
@@ -135,7 +143,7 @@ impl Emitter<'_> {
                     "Lagrange-form accelerations q̈(q, q̇, t) (eq. 6, masses frozen).",
                     self.quantity_lines(Quantity::Accelerations, acc),
                 ),
-                self.body_input_velocity(acc, |outs| {
+                self.body(Input::VelocityState, acc, |outs| {
                     let v = self.vector(outs);
                     quote!(Ok(#v))
                 }),
@@ -149,7 +157,7 @@ impl Emitter<'_> {
                     self.quantity_lines(Quantity::AccelerationRhs, &self.d.acceleration_rhs),
                 );
                 let zero = self.zero_pattern();
-                let body = self.body_input_velocity(&roots, |outs| {
+                let body = self.body(Input::VelocityState, &roots, |outs| {
                     let (matrix, rhs) = outs.split_at(m);
                     let error = quote!(#runtime::SystemError::SingularMassMatrix);
                     let names: Vec<Ident> = (0..rhs.len())
@@ -177,7 +185,7 @@ impl Emitter<'_> {
             "q̇(q, p, t) = M⁻¹ (p − b), in closed form.",
             self.velocity_lines(v),
         );
-        let body = self.body_input_state(v, |outs| {
+        let body = self.body(Input::State, v, |outs| {
             let v = self.vector(outs);
             quote!(Ok(#v))
         });
@@ -200,7 +208,7 @@ impl Emitter<'_> {
             ),
         };
         let docs = self.docs(Quantity::Energy.spec().doc, [line]);
-        let body = self.body_input_state(&[root], |mut o| {
+        let body = self.body(Input::State, &[root], |mut o| {
             let h = o.pop().unwrap_or_default();
             quote!(Ok(#h))
         });
@@ -221,7 +229,7 @@ impl Emitter<'_> {
             "The canonical equations (eq. 14): q̇ = ∂*H/∂p, d*p/dt = −∂*H/∂q + Q* − R1 + R2.",
             lines,
         );
-        let body = self.body_input_state(&roots, |outs| {
+        let body = self.body(Input::State, &roots, |outs| {
             let (v, dp) = outs.split_at(n);
             let (v, dp) = (self.vector(v.to_vec()), self.vector(dp.to_vec()));
             quote!(Ok((#v, #dp)))
@@ -260,7 +268,7 @@ impl Emitter<'_> {
             "The state rate [q̇, ṗ, ṁ_s] with the true ṗ = d*p/dt + Σ ṁᵢ ∂*p/∂mᵢ.",
             lines,
         );
-        let body = self.body_input_state(&roots, |outs| {
+        let body = self.body(Input::State, &roots, |outs| {
             let v = self.vector(outs);
             quote!(Ok(#v))
         });
@@ -274,7 +282,7 @@ impl Emitter<'_> {
             Quantity::Power.spec().doc,
             self.quantity_lines(Quantity::Power, &[self.d.power]),
         );
-        let body = self.body_input_state(&[self.d.power], |mut o| {
+        let body = self.body(Input::State, &[self.d.power], |mut o| {
             let p = o.pop().unwrap_or_default();
             quote!(Ok(#p))
         });
@@ -311,7 +319,7 @@ impl Emitter<'_> {
             "The Jacobian ∂[q̇, ṗ, ṁ_s]/∂[q, p, m_s]: J_q = F_q − F_v M⁻¹ P_q, J_p = F_v M⁻¹, J_m = F_m − F_v M⁻¹ P_m.",
             Vec::<String>::new(),
         );
-        let body = self.body_input_state(&roots, |outs| {
+        let body = self.body(Input::State, &roots, |outs| {
             let mut rest: &[TokenStream] = &outs;
             let mut take = |len: usize| {
                 let (head, tail) = rest.split_at(len);

@@ -26,7 +26,7 @@ type Bridge<'a> = Box<dyn FnOnce(Vec<TokenStream>) -> Vec<TokenStream> + 'a>;
 
 /// Which vector a method receives.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Input {
+pub(crate) enum Input {
     /// `state = [q, p, m_s]`
     State,
     /// `velocity_state = [q, q̇, m_s]`
@@ -219,7 +219,7 @@ impl Emitter<'_> {
     /// Prologue + shared subexpressions + the outputs, handed to `finish`. A method on the
     /// state that needs q̇ first solves it from p: in closed form inside the same CSE pass
     /// as the outputs, or by an LDLᵀ solve before them.
-    fn body(
+    pub(crate) fn body(
         &self,
         input: Input,
         roots: &[Id],
@@ -242,33 +242,6 @@ impl Emitter<'_> {
         code.extend(b.lets);
         code.extend(finish(b.outputs));
         code
-    }
-
-    /// [`Self::body`] for a method taking `state = [q, p, m_s]`.
-    pub(crate) fn body_input_state(
-        &self,
-        roots: &[Id],
-        finish: impl FnOnce(Vec<TokenStream>) -> TokenStream,
-    ) -> TokenStream {
-        self.body(Input::State, roots, finish)
-    }
-
-    /// [`Self::body`] for a method taking `velocity_state = [q, q̇, m_s]`.
-    pub(crate) fn body_input_velocity(
-        &self,
-        roots: &[Id],
-        finish: impl FnOnce(Vec<TokenStream>) -> TokenStream,
-    ) -> TokenStream {
-        self.body(Input::VelocityState, roots, finish)
-    }
-
-    /// [`Self::body`] for a method taking `state` but reading only q, t and m_s.
-    pub(crate) fn body_configuration(
-        &self,
-        roots: &[Id],
-        finish: impl FnOnce(Vec<TokenStream>) -> TokenStream,
-    ) -> TokenStream {
-        self.body(Input::Configuration, roots, finish)
     }
 
     pub(crate) fn vector(&self, values: Vec<TokenStream>) -> TokenStream {
