@@ -4,8 +4,8 @@
 use std::cell::RefCell;
 
 use varmass_core::SystemError;
-use varmass_symbolic::expr::{Id, Tape};
-use varmass_symbolic::mechanics::{Derivation, MassKind, VelocitySolve};
+use varmass_symbolic::expr::{Id, Symbol, Tape};
+use varmass_symbolic::mechanics::{Coordinate, Derivation, MassKind, VelocitySolve};
 use varmass_symbolic::parse::keywords::closest;
 use varmass_symbolic::quantity::Evaluated;
 pub use varmass_symbolic::quantity::Quantity;
@@ -286,30 +286,35 @@ impl Program {
         }
     }
 
-    /// Loads a velocity state `[q, q̇, m_s]`.
-    fn load_velocity_state(&self, scratch: &mut Scratch, t: f64, velocity_state: &[f64]) {
-        self.load_positions(scratch, t, velocity_state);
+    /// Loads t, q, the masses, and the middle block of `values` (q̇ or p) into the slot of
+    /// the symbol `second` picks of each coordinate.
+    fn load_with(
+        &self,
+        scratch: &mut Scratch,
+        t: f64,
+        values: &[f64],
+        second: fn(&Coordinate) -> Symbol,
+    ) {
+        self.load_positions(scratch, t, values);
         let n = self.coordinate_count();
         for (a, c) in self.d.coordinates.iter().enumerate() {
             set(
                 &mut scratch.env,
-                c.velocity.index(),
-                component(velocity_state, n + a),
+                second(c).index(),
+                component(values, n + a),
             );
         }
     }
 
+    /// Loads a velocity state `[q, q̇, m_s]`.
+    fn load_velocity_state(&self, scratch: &mut Scratch, t: f64, velocity_state: &[f64]) {
+        self.load_with(scratch, t, velocity_state, |c| c.velocity);
+    }
+
     /// Loads a state `[q, p, m_s]` and the velocities recovered from it.
     fn load_state(&self, scratch: &mut Scratch, t: f64, state: &[f64]) -> Result<(), SystemError> {
-        self.load_positions(scratch, t, state);
+        self.load_with(scratch, t, state, |c| c.momentum);
         let n = self.coordinate_count();
-        for (a, c) in self.d.coordinates.iter().enumerate() {
-            set(
-                &mut scratch.env,
-                c.momentum.index(),
-                component(state, n + a),
-            );
-        }
         self.run(&self.velocities, scratch);
         let Scratch { env, values } = scratch;
         if self.numeric {

@@ -68,6 +68,19 @@ impl<const N: usize, const S: usize> TapeSystem<N, S> {
             .evaluate(quantity, t, velocity_state.as_slice(), &mut out);
         out[0]
     }
+
+    /// A one-value `quantity` at a state `[q, p, m_s]` (q̇ recovered from p).
+    fn scalar_at_state(
+        &self,
+        quantity: Quantity,
+        t: f64,
+        state: &SVector<f64, S>,
+    ) -> Result<f64, SystemError> {
+        let mut out = [f64::NAN];
+        self.program
+            .evaluate_at_state(quantity, t, state.as_slice(), &mut out)?;
+        Ok(out[0])
+    }
 }
 
 impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, S> {
@@ -159,10 +172,7 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     }
 
     fn hamiltonian(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
-        let mut out = [f64::NAN];
-        self.program
-            .evaluate_at_state(Quantity::Energy, t, state.as_slice(), &mut out)?;
-        Ok(out[0])
+        self.scalar_at_state(Quantity::Energy, t, state)
     }
 
     fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
@@ -173,9 +183,6 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     }
 
     fn power(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
-        let mut out = [f64::NAN];
-        self.program
-            .evaluate_at_state(Quantity::Power, t, state.as_slice(), &mut out)?;
-        Ok(out[0])
+        self.scalar_at_state(Quantity::Power, t, state)
     }
 }
