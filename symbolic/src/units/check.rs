@@ -48,13 +48,10 @@ pub(crate) struct Checker {
 /// );
 /// ```
 pub fn check_units(ast: &SystemAst) -> Result<Option<UnitTable>, Vec<Diagnostic>> {
-    let Some(_) = ast
-        .statements
-        .iter()
-        .find(|s| matches!(s.kind, StatementKind::Units(_)))
-    else {
+    let has_units = |s: &Statement| matches!(s.kind, StatementKind::Units(_));
+    if !ast.statements.iter().any(has_units) {
         return Ok(None);
-    };
+    }
     let mut checker = Checker::default();
     checker.declare(ast);
     for statement in &ast.statements {
