@@ -23,7 +23,9 @@ fn ui() {
 /// `cargo metadata`.
 fn place_model_files() {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
-    let target = tmp.parent().expect("CARGO_TARGET_TMPDIR is inside the target directory");
+    let target = tmp
+        .parent()
+        .expect("CARGO_TARGET_TMPDIR is inside the target directory");
     let project = target.join("tests/trybuild").join(env!("CARGO_PKG_NAME"));
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     for folder in ["models", "tests/ui/models"] {

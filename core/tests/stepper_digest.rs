@@ -23,9 +23,9 @@ use nalgebra::SVector;
 use support::problems::{KeplerProblem, OscillatorProblem, RocketProblem, SledProblem};
 use support::Problem;
 use varmass_core::steppers::{
-    AdaptiveControl, ClassicalRk4, DirkNewton, Dop853, DormandPrince, Esdirk43,
-    ExplicitEuler, FixedStep, ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl,
-    Variational, VariationalConfig,
+    AdaptiveControl, ClassicalRk4, DirkNewton, Dop853, DormandPrince, Esdirk43, ExplicitEuler,
+    FixedStep, ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational,
+    VariationalConfig,
 };
 use varmass_core::{StepError, StepOutcome, Stepper};
 
@@ -154,28 +154,63 @@ where
         }
         for control in adaptive(AdaptiveControl::sdirk4(), tolerance) {
             drive(digest, Sdirk4::new(system, 0.0, y0, control), stop, restart);
-            drive(digest, Esdirk43::new(system, 0.0, y0, control), stop, restart);
+            drive(
+                digest,
+                Esdirk43::new(system, 0.0, y0, control),
+                stop,
+                restart,
+            );
         }
     }
     for steps in [40.0, 400.0] {
         let fixed = FixedStep { step: stop / steps };
         let control = StepControl::Fixed(fixed);
-        drive(digest, DormandPrince::new(system, 0.0, y0, control), stop, restart);
+        drive(
+            digest,
+            DormandPrince::new(system, 0.0, y0, control),
+            stop,
+            restart,
+        );
         drive(digest, Dop853::new(system, 0.0, y0, control), stop, restart);
         drive(digest, Sdirk4::new(system, 0.0, y0, control), stop, restart);
-        drive(digest, Esdirk43::new(system, 0.0, y0, control), stop, restart);
-        drive(digest, ExplicitEuler::new(system, 0.0, y0, fixed), stop, restart);
-        drive(digest, ClassicalRk4::new(system, 0.0, y0, fixed), stop, restart);
+        drive(
+            digest,
+            Esdirk43::new(system, 0.0, y0, control),
+            stop,
+            restart,
+        );
+        drive(
+            digest,
+            ExplicitEuler::new(system, 0.0, y0, fixed),
+            stop,
+            restart,
+        );
+        drive(
+            digest,
+            ClassicalRk4::new(system, 0.0, y0, fixed),
+            stop,
+            restart,
+        );
         let midpoint = ImplicitMidpointConfig {
             step: fixed.step,
             ..Default::default()
         };
-        drive(digest, ImplicitMidpoint::new(system, 0.0, y0, midpoint), stop, restart);
+        drive(
+            digest,
+            ImplicitMidpoint::new(system, 0.0, y0, midpoint),
+            stop,
+            restart,
+        );
         let variational = VariationalConfig {
             step: fixed.step,
             ..Default::default()
         };
-        drive(digest, Variational::new(system, 0.0, y0, variational), stop, restart);
+        drive(
+            digest,
+            Variational::new(system, 0.0, y0, variational),
+            stop,
+            restart,
+        );
     }
     failures(digest, problem, stop);
 }
@@ -213,7 +248,12 @@ where
         relative_tolerance: -1.0,
         ..AdaptiveControl::default()
     });
-    drive(digest, DormandPrince::new(system, 0.0, y0, refused), stop, None);
+    drive(
+        digest,
+        DormandPrince::new(system, 0.0, y0, refused),
+        stop,
+        None,
+    );
     drive(digest, Dop853::new(system, 0.0, y0, refused), stop, None);
     drive(digest, Sdirk4::new(system, 0.0, y0, refused), stop, None);
     let zero = StepControl::Fixed(FixedStep { step: 0.0 });

@@ -20,7 +20,7 @@ use nalgebra::{SMatrix, SVector};
 use super::newton::{self, Newton, NewtonConfig};
 use super::FixedStep;
 use crate::error::StepError;
-use crate::stepper::{state_rate, Progress, StepOutcome, Stepper};
+use crate::stepper::{state_rate, Progress, ProgressMut, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
 
 /// Settings of the implicit midpoint stepper.
@@ -76,20 +76,12 @@ where
 {
     type System = Sys;
 
-    fn system(&self) -> &Sys {
-        self.system
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        (self.system, &self.progress)
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
-    }
-
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)
+    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
+        ProgressMut::new(self.system, &mut self.progress)
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {

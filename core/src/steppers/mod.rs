@@ -16,9 +16,10 @@ pub mod sdirk4;
 mod stiffness;
 pub mod variational;
 
+pub use control::{AdaptiveControl, StepControl};
 pub use dirk::{Dirk, DirkMethod, DirkNewton, DirkTableau};
 pub use dop853::Dop853;
-pub use dormand_prince::{AdaptiveControl, DormandPrince, StepControl};
+pub use dormand_prince::DormandPrince;
 pub use esdirk43::{Esdirk43, Esdirk43Method};
 pub use euler::ExplicitEuler;
 pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig};

@@ -15,7 +15,7 @@ use nalgebra::SVector;
 
 use super::FixedStep;
 use crate::error::StepError;
-use crate::stepper::{state_rate, Progress, StepOutcome, Stepper};
+use crate::stepper::{state_rate, Progress, ProgressMut, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
 
 /// Classical RK4 on the state `[q, p, m_s]`, fixed step.
@@ -51,20 +51,12 @@ where
 {
     type System = Sys;
 
-    fn system(&self) -> &Sys {
-        self.system
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        (self.system, &self.progress)
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
-    }
-
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)
+    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
+        ProgressMut::new(self.system, &mut self.progress)
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
