@@ -3,7 +3,7 @@
 //! every stepper — for its `N` and `S = 2N + K`. A model outside the table is a clear error
 //! naming the limits.
 //!
-//! The table is kept small because each arm compiles the five steppers and the run loop
+//! The table is kept small because each arm compiles the eight steppers and the run loop
 //! again; the build time this costs is noted in the crate's README section.
 
 use varmass::interpret::Program;
