@@ -271,18 +271,10 @@ where
         difference,
         first,
         difference - k13 * h - first,
-        row([
-            D41, D46, D47, D48, D49, D410, D411, D412, D413, D414, D415, D416,
-        ]),
-        row([
-            D51, D56, D57, D58, D59, D510, D511, D512, D513, D514, D515, D516,
-        ]),
-        row([
-            D61, D66, D67, D68, D69, D610, D611, D612, D613, D614, D615, D616,
-        ]),
-        row([
-            D71, D76, D77, D78, D79, D710, D711, D712, D713, D714, D715, D716,
-        ]),
+        row(DENSE_ROWS[0]),
+        row(DENSE_ROWS[1]),
+        row(DENSE_ROWS[2]),
+        row(DENSE_ROWS[3]),
     ])
 }
 
