@@ -5,6 +5,9 @@
 
 pub mod adjugate;
 pub mod chain;
+/// The closed forms the core tests measure against, shared rather than copied.
+#[path = "../../core/tests/support/closed_forms.rs"]
+pub mod closed_forms;
 pub mod diffsol_peer;
 pub mod emission;
 pub mod generated;

@@ -1,11 +1,12 @@
 //! Each benchmark system with an initial value, an end time and its reference solution in
-//! closed form (independent of every stepper), measured as a relative error.
-
-use std::f64::consts::PI;
+//! closed form (independent of every stepper), measured as a relative error. The closed
+//! forms are the core tests' own (`core/tests/support/closed_forms.rs`, included here):
+//! written once for both.
 
 use varmass::core::nalgebra::{SVector, Vector3, Vector4};
 use varmass::core::VariableMassSystem;
 
+use super::closed_forms::{kepler_anomaly, kepler_period, rocket_exact, sled_speed_squared_over_x};
 use super::generated::{Kepler, Rocket, Sled};
 
 /// A system, where to start and stop, and the error of a final state against the reference.
@@ -61,12 +62,7 @@ impl SledProblem {
             theta,
             f_d,
         } = self.system;
-        let epsilon = c * x / m0;
-        2.0 / 3.0
-            * g
-            * (theta.sin() - f_d * theta.cos())
-            * (3.0 + 3.0 * epsilon + epsilon * epsilon)
-            / ((1.0 + epsilon) * (1.0 + epsilon))
+        sled_speed_squared_over_x(g * (theta.sin() - f_d * theta.cos()), c / m0, x)
     }
 
     /// The closed-form speed at x.
@@ -140,12 +136,7 @@ impl RocketProblem {
     /// The closed form (y, v, m) at `time`.
     pub fn exact(&self, time: f64) -> Vector3<f64> {
         let Rocket { mu, u_e, g } = self.system;
-        let m0 = self.initial_mass;
-        let m = m0 - mu * time;
-        let log_ratio = (m0 / m).ln();
-        let v = u_e * log_ratio - g * time;
-        let y = u_e * (time - m / mu * log_ratio) - 0.5 * g * time * time;
-        Vector3::new(y, v, m)
+        Vector3::from(rocket_exact(mu, u_e, g, self.initial_mass, time))
     }
 }
 
@@ -193,24 +184,13 @@ impl KeplerProblem {
     }
 
     fn period(&self) -> f64 {
-        2.0 * PI * (self.semi_major_axis.powi(3) / self.system.k).sqrt()
+        kepler_period(self.semi_major_axis, self.system.k)
     }
 
     /// Cartesian position and velocity (x, y, ẋ, ẏ) at `time`.
     pub fn exact(&self, time: f64) -> Vector4<f64> {
         let (a, e, k) = (self.semi_major_axis, self.eccentricity, self.system.k);
-        let mean_motion = (k / a.powi(3)).sqrt();
-        let mean_anomaly = mean_motion * time;
-        let mut anomaly = mean_anomaly;
-        for _ in 0..50 {
-            let correction =
-                (anomaly - e * anomaly.sin() - mean_anomaly) / (1.0 - e * anomaly.cos());
-            anomaly -= correction;
-            if correction.abs() < 1e-16 {
-                break;
-            }
-        }
-        let anomaly_rate = mean_motion / (1.0 - e * anomaly.cos());
+        let (anomaly, anomaly_rate) = kepler_anomaly(a, e, k, time);
         let b = a * (1.0 - e * e).sqrt();
         Vector4::new(
             a * (anomaly.cos() - e),

@@ -227,25 +227,72 @@ where
         .map_err(|error| StepError::from_system(system, error, time, state))
 }
 
+/// Mutable access to where a stepper is, for the methods [`Stepper`] provides
+/// ([`Stepper::set_stop_time`], [`Stepper::restart`]). Opaque outside this crate: only a
+/// step or a checked restart moves a stepper.
+pub struct ProgressMut<'s, Sys, const S: usize> {
+    pub(crate) system: &'s Sys,
+    pub(crate) progress: &'s mut Progress<S>,
+}
+
+impl<'s, Sys, const S: usize> ProgressMut<'s, Sys, S> {
+    /// The system and the progress of a stepper.
+    pub(crate) fn new(system: &'s Sys, progress: &'s mut Progress<S>) -> Self {
+        Self { system, progress }
+    }
+}
+
+/// The proof that [`Stepper::forget_history`] is called by [`Stepper::restart`]; only this
+/// crate makes one, so a stepper forgets its history only when its progress restarted.
+pub struct Restarting(());
+
 /// A monomorphized one-step method for a [`VariableMassSystem`]. Runs
 /// ([`crate::run::run`]) drive any stepper through this trait.
+///
+/// A stepper provides one accessor, [`parts`](Stepper::parts) (with its mutable form
+/// [`parts_mut`](Stepper::parts_mut)): the system and its [`Progress`]; the system, the
+/// progress, the stop time and the restart are read through it. A stepper that carries
+/// something from one step to the next (an FSAL rate, a controller's memory, a Jacobian)
+/// drops it in [`forget_history`](Stepper::forget_history).
 pub trait Stepper<const N: usize, const S: usize> {
     /// The system being integrated.
     type System: VariableMassSystem<N, S>;
 
+    /// The system being integrated and where the stepper is.
+    fn parts(&self) -> (&Self::System, &Progress<S>);
+
+    /// The same, for the provided methods that move the stepper.
+    fn parts_mut(&mut self) -> ProgressMut<'_, Self::System, S>;
+
+    /// Drops what the stepper carries from one step to the next, which belongs to the old
+    /// initial value; [`restart`](Stepper::restart) calls it after the progress restarted.
+    /// Nothing for a stepper that carries nothing.
+    fn forget_history(&mut self, _restarting: Restarting) {}
+
     /// The system being integrated.
-    fn system(&self) -> &Self::System;
+    fn system(&self) -> &Self::System {
+        self.parts().0
+    }
 
     /// Time, state, last step and statistics.
-    fn progress(&self) -> &Progress<S>;
+    fn progress(&self) -> &Progress<S> {
+        self.parts().1
+    }
 
     /// Sets a time the stepper will land on exactly and not pass. It must be finite and not
     /// before the current time.
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>>;
+    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
+        self.parts_mut().progress.set_stop_time(stop_time)
+    }
 
     /// Restarts from a new initial value (e.g. after an event changed the state), keeping
     /// the statistics and, if still ahead, the stop time.
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>>;
+    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
+        let ProgressMut { system, progress } = self.parts_mut();
+        progress.restart(system, time, state)?;
+        self.forget_history(Restarting(()));
+        Ok(())
+    }
 
     /// Takes one accepted step. The new state is checked (finite, masses positive) before it
     /// is accepted; on error the stepper stays at its last accepted state.

@@ -18,19 +18,14 @@ use libfuzzer_sys::fuzz_target;
 use varmass::core::steppers::{ImplicitMidpointConfig, VariationalConfig};
 use varmass::prelude::*;
 use varmass_symbolic::expr::Tape;
-use varmass_symbolic::mechanics::{derive_source, Derivation, Parameters, VelocitySolve};
+use varmass_symbolic::mechanics::{derive, Derivation, Parameters, VelocitySolve};
+use varmass_symbolic::parse::{parse_system, select_tags};
+
+// The systems are the repository's model files (paths relative to this crate, `fuzz/`),
+// so the fuzzer exercises exactly what the examples, tests and command line tool run.
 
 /// The paper's sled in body form (one coordinate, a mass law, an inflow).
-#[variable_mass_system(
-    "
-    coordinates x
-    mass m = m0 + c*x
-    body sled: mass m, position [x]
-    potential -m*g*x*sin(theta)
-    force sled: [-f_d*m*g*cos(theta)]
-    inflow sled: velocity [0]
-"
-)]
+#[variable_mass_system(file = "../models/sled.vms", with = ["impact"])]
 struct Sled {
     m0: f64,
     c: f64,
@@ -39,16 +34,8 @@ struct Sled {
     f_d: f64,
 }
 
-/// A vertical rocket (a state mass and an outflow).
-#[variable_mass_system(
-    "
-    coordinates y
-    mass m: state, rate -mu
-    body rocket: mass m, position [y]
-    potential m*g*y
-    outflow rocket: rate mu, relative_velocity [-u_e]
-"
-)]
+/// A vertical rocket (a state mass and an outflow), without its optional drag.
+#[variable_mass_system(file = "../models/rocket.vms")]
 struct Rocket {
     mu: f64,
     u_e: f64,
@@ -56,15 +43,7 @@ struct Rocket {
 }
 
 /// A leaking spring pendulum in polar form (two coordinates, closed-form inverse).
-#[variable_mass_system(
-    "
-    coordinates r, th
-    mass m: state, rate -mu
-    body bob: mass m, position [r*sin(th), -r*cos(th)]
-    potential 1/2*k*(r - l0)^2 - m*g*r*cos(th)
-    outflow bob: rate mu, relative_velocity [-u_e*cos(th), -u_e*sin(th)]
-"
-)]
+#[variable_mass_system(file = "../models/leaking_spring_pendulum.vms")]
 struct Pendulum {
     mu: f64,
     u_e: f64,
@@ -73,21 +52,9 @@ struct Pendulum {
     g: f64,
 }
 
-/// A tank on a swinging arm (three coordinates: q̇ by a Cholesky solve).
-#[variable_mass_system(
-    "
-    coordinates x, y, th
-    mass m: state, rate -mu
-    mass M = M0
-    inertia J = J0
-    body hull: mass M, position [x, y]
-    body tank: mass m, position [x + l*cos(th), y + l*sin(th)]
-    kinetic 1/2*J*th'^2
-    potential M*g*y + m*g*(y + l*sin(th)) + 1/2*K*(x^2 + y^2)
-    outflow tank: rate mu, relative_velocity [-u_e*cos(th), -u_e*sin(th)]
-"
-)]
-#[allow(non_snake_case)] // the DSL's names: M0 and K read as in the physics
+/// A tank on a swinging arm (three coordinates: q̇ by an LDLᵀ solve).
+#[variable_mass_system(file = "../models/swinging_tank.vms")]
+#[allow(non_snake_case)] // the model's names: M0 and K read as in the physics
 struct SwingingTank {
     mu: f64,
     M0: f64,
@@ -300,8 +267,12 @@ struct Compiled {
     scratch: Vec<f64>,
 }
 
-fn compile(source: &str) -> Compiled {
-    let d: Derivation = derive_source(source, Parameters::Inferred).expect("a fixed model derives");
+/// The model `source` with the tags `with` selected, as the macro derives it.
+fn compile((source, with): (&str, &[&str])) -> Compiled {
+    let ast = parse_system(source).expect("a model file parses");
+    let with: Vec<String> = with.iter().map(|tag| tag.to_string()).collect();
+    let selected = select_tags(&ast, &with).expect("the model has its tags");
+    let d: Derivation = derive(&selected, Parameters::Inferred).expect("a model file derives");
     let mut roots = vec![d.lagrangian, d.energy, d.power];
     roots.extend(d.hamiltonian);
     roots.extend(&d.momentum_rate);
@@ -311,7 +282,7 @@ fn compile(source: &str) -> Compiled {
         roots.extend(v);
     }
     roots.extend(d.accelerations.iter().flatten());
-    // The Jacobian is derived unless `emit` leaves it out (derive_source derives it).
+    // The Jacobian is derived unless `emit` leaves it out (derive derives it).
     if let Some(jacobian) = &d.jacobian {
         roots.extend(jacobian.rate_wrt_q.iter().flatten());
     }
@@ -324,7 +295,12 @@ fn compile(source: &str) -> Compiled {
 
 thread_local! {
     static TAPES: RefCell<Vec<Compiled>> = RefCell::new(
-        [Sled::SOURCE, Rocket::SOURCE, Pendulum::SOURCE, SwingingTank::SOURCE]
+        [
+            (Sled::SOURCE, &["impact"][..]),
+            (Rocket::SOURCE, &[]),
+            (Pendulum::SOURCE, &[]),
+            (SwingingTank::SOURCE, &[]),
+        ]
             .into_iter()
             .map(compile)
             .collect(),

@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use varmass::core::nalgebra::SVector;
+use varmass::core::stepper::{ProgressMut, Restarting};
 use varmass::core::{Progress, StepError, StepOutcome, Stepper};
 
 /// How long a run goes before its bar is shown.
@@ -69,20 +70,16 @@ where
 {
     type System = St::System;
 
-    fn system(&self) -> &Self::System {
-        self.inner.system()
+    fn parts(&self) -> (&Self::System, &Progress<S>) {
+        self.inner.parts()
     }
 
-    fn progress(&self) -> &Progress<S> {
-        self.inner.progress()
+    fn parts_mut(&mut self) -> ProgressMut<'_, Self::System, S> {
+        self.inner.parts_mut()
     }
 
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.inner.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.inner.restart(time, state)
+    fn forget_history(&mut self, restarting: Restarting) {
+        self.inner.forget_history(restarting);
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {

@@ -28,13 +28,13 @@ use nalgebra::{SMatrix, SVector};
 use self::stage::{weighted_norm, StepContext};
 pub(crate) use self::tableau::{explicit_parts, on_increments, rate_transform};
 pub use self::tableau::{DirkMethod, DirkTableau};
-use super::control::ControlState;
-use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
+use super::control::{resolvable, AdaptiveControl, ControlState, Mode, StepControl};
 use super::newton::Lu;
-use super::StepControl;
 use crate::error::{StepError, StepErrorKind};
 use crate::math::powf;
-use crate::stepper::{check_state, state_rate, Progress, StepOutcome, Stepper};
+use crate::stepper::{
+    check_state, state_rate, Progress, ProgressMut, Restarting, StepOutcome, Stepper,
+};
 use crate::system::VariableMassSystem;
 
 /// The Newton settings of the diagonally implicit steppers (defaults of `sdirk4.f`).
@@ -70,9 +70,7 @@ const FIXED_MODE_TOLERANCE: f64 = 1e-10;
 pub struct Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> {
     system: &'a Sys,
     progress: Progress<S>,
-    control: StepControl,
-    /// The checked tolerance of the adaptive mode.
-    tolerance: Option<crate::tolerance::Tolerance>,
+    mode: Mode,
     newton: DirkNewton,
     /// Next and last step, the last rejection, and (with an explicit first stage) the
     /// FSAL rate; the PI memory it also holds is unused here.
@@ -136,14 +134,11 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let tolerance = control
-            .checked_tolerance()
-            .map_err(|e| e.at(time, &state))?;
+        let mode = control.validated().map_err(|e| e.at(time, &state))?;
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
-            control,
-            tolerance,
+            mode,
             newton: DirkNewton::default(),
             memory: ControlState::new(),
             increments: [SVector::zeros(); M],
@@ -190,9 +185,9 @@ where
 
     /// The error weights atol + rtol·|y| (fixed mode: [`FIXED_MODE_TOLERANCE`]).
     fn weights(&self, y: &SVector<f64, S>) -> SVector<f64, S> {
-        let (atol, rtol) = match &self.control {
-            StepControl::Adaptive(c) => (c.absolute_tolerance, c.relative_tolerance),
-            StepControl::Fixed(_) => (FIXED_MODE_TOLERANCE, FIXED_MODE_TOLERANCE),
+        let (atol, rtol) = match &self.mode {
+            Mode::Adaptive(c, _) => (c.absolute_tolerance, c.relative_tolerance),
+            Mode::Fixed(_) => (FIXED_MODE_TOLERANCE, FIXED_MODE_TOLERANCE),
         };
         y.map(|yi| atol + rtol * yi.abs())
     }
@@ -312,24 +307,6 @@ where
         Ok(outcome)
     }
 
-    /// The first step: the fixed step, the configured one, or HNW's heuristic for order 4.
-    fn first_step(&mut self) -> Result<f64, StepError<S>> {
-        Ok(match self.control {
-            StepControl::Fixed(fixed) => fixed.step,
-            StepControl::Adaptive(control) => match control.initial_step {
-                Some(h) => h.min(control.max_step),
-                None => {
-                    let (t0, y0) = (self.progress.time(), *self.progress.state());
-                    let statistics = &mut self.progress.statistics;
-                    let rate = state_rate(self.system, statistics, t0, &y0)?;
-                    let tolerance = self.tolerance.expect("adaptive mode has a tolerance");
-                    let settings = (&control, &tolerance);
-                    initial_step(self.system, &mut self.progress, &rate, settings, 4)
-                }
-            },
-        })
-    }
-
     /// After a failed attempt: a fresh Jacobian if the one used was stale, else a shorter
     /// step; an error when neither is possible (fixed steps, or a step that would
     /// underflow).
@@ -353,7 +330,7 @@ where
             StageFailure::Rate(error) => (error, 0.25),
         };
         self.memory.next_step = h * shrink;
-        let fixed = matches!(self.control, StepControl::Fixed(_));
+        let fixed = matches!(self.mode, Mode::Fixed(_));
         if fixed || !resolvable(t0, self.memory.next_step) {
             return Err(error);
         }
@@ -369,24 +346,18 @@ where
 {
     type System = Sys;
 
-    fn system(&self) -> &Sys {
-        self.system
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        (self.system, &self.progress)
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
+    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
+        ProgressMut::new(self.system, &mut self.progress)
     }
 
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)?;
+    fn forget_history(&mut self, _: Restarting) {
         self.memory.restart();
         self.jacobian = None;
         self.contraction = [1.0; M];
-        Ok(())
     }
 
     fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
@@ -396,11 +367,16 @@ where
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         let (t0, y0) = (self.progress.time(), *self.progress.state());
         if self.memory.next_step <= 0.0 {
-            self.memory.next_step = self.first_step()?;
+            // HNW's heuristic for order 4, from the rate at the start (evaluated only then).
+            let (system, start) = (self.system, (t0, &y0));
+            let rate = |progress: &mut Progress<S>| {
+                state_rate(system, &mut progress.statistics, start.0, start.1)
+            };
+            self.memory.next_step = self.mode.first_step(system, &mut self.progress, rate, 4)?;
         }
-        let adaptive = match self.control {
-            StepControl::Adaptive(control) => Some(control),
-            StepControl::Fixed(_) => None,
+        let adaptive = match self.mode {
+            Mode::Adaptive(control, _) => Some(control),
+            Mode::Fixed(_) => None,
         };
         let mut extrapolate = true;
         loop {

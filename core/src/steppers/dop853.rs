@@ -18,13 +18,13 @@ mod coefficients;
 use nalgebra::SVector;
 
 use self::coefficients::*;
-use super::control::ControlState;
-use super::dormand_prince::{initial_step, resolvable, AdaptiveControl};
+use super::control::{resolvable, AdaptiveControl, ControlState, Mode, StepControl};
 use super::stiffness::StiffnessTest;
-use super::StepControl;
 use crate::error::{StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
-use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
+use crate::stepper::{
+    check_state, state_rate, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
+};
 use crate::system::VariableMassSystem;
 use crate::tolerance::Tolerance;
 
@@ -36,9 +36,7 @@ const STIFFNESS_BOUND: f64 = 6.1;
 pub struct Dop853<'a, Sys, const N: usize, const S: usize> {
     system: &'a Sys,
     progress: Progress<S>,
-    control: StepControl,
-    /// The checked tolerance of the adaptive mode.
-    tolerance: Option<Tolerance>,
+    mode: Mode,
     /// Whether the three extra stages of the dense output are computed.
     dense: bool,
     /// Next and last step, the controller's memory, the FSAL rate.
@@ -47,19 +45,6 @@ pub struct Dop853<'a, Sys, const N: usize, const S: usize> {
     /// `dop853.f`).
     continuous: [SVector<f64, S>; 8],
     stiffness: StiffnessTest,
-}
-
-impl AdaptiveControl {
-    /// The adaptive control with the defaults of `dop853.f`: tolerances as
-    /// [`AdaptiveControl::default`], safety 0.9, step factors in [1/3, 6], β = 0.
-    pub fn dop853() -> Self {
-        Self {
-            min_factor: 1.0 / 3.0,
-            max_factor: 6.0,
-            beta: 0.0,
-            ..Self::default()
-        }
-    }
 }
 
 /// One attempted step: the new state, the twelve stages, the state of stage 12 (for the
@@ -83,14 +68,11 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let tolerance = control
-            .checked_tolerance()
-            .map_err(|e| e.at(time, &state))?;
+        let mode = control.validated().map_err(|e| e.at(time, &state))?;
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,
-            control,
-            tolerance,
+            mode,
             dense: true,
             memory: ControlState::new(),
             continuous: [SVector::zeros(); 8],
@@ -289,18 +271,10 @@ where
         difference,
         first,
         difference - k13 * h - first,
-        row([
-            D41, D46, D47, D48, D49, D410, D411, D412, D413, D414, D415, D416,
-        ]),
-        row([
-            D51, D56, D57, D58, D59, D510, D511, D512, D513, D514, D515, D516,
-        ]),
-        row([
-            D61, D66, D67, D68, D69, D610, D611, D612, D613, D614, D615, D616,
-        ]),
-        row([
-            D71, D76, D77, D78, D79, D710, D711, D712, D713, D714, D715, D716,
-        ]),
+        row(DENSE_ROWS[0]),
+        row(DENSE_ROWS[1]),
+        row(DENSE_ROWS[2]),
+        row(DENSE_ROWS[3]),
     ])
 }
 
@@ -388,22 +362,16 @@ where
 {
     type System = Sys;
 
-    fn system(&self) -> &Sys {
-        self.system
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        (self.system, &self.progress)
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
+    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
+        ProgressMut::new(self.system, &mut self.progress)
     }
 
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)?;
+    fn forget_history(&mut self, _: Restarting) {
         self.memory.restart();
-        Ok(())
     }
 
     fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
@@ -415,19 +383,12 @@ where
         let y0 = *self.progress.state();
         let k1 = self.memory.rate_at_start(self.system, &mut self.progress)?;
         if self.memory.next_step <= 0.0 {
-            self.memory.next_step = match self.control {
-                StepControl::Fixed(fixed) => fixed.step,
-                StepControl::Adaptive(control) => match control.initial_step {
-                    Some(h) => h.min(control.max_step),
-                    None => {
-                        let tolerance = self.tolerance.expect("adaptive mode has a tolerance");
-                        let settings = (&control, &tolerance);
-                        initial_step(self.system, &mut self.progress, &k1, settings, 8)
-                    }
-                },
-            };
+            let first = self
+                .mode
+                .first_step(self.system, &mut self.progress, |_| Ok(k1), 8);
+            self.memory.next_step = first?;
         }
-        let StepControl::Adaptive(control) = self.control else {
+        let Mode::Adaptive(control, tolerance) = self.mode else {
             let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
             let statistics = &mut self.progress.statistics;
             let attempt = attempt(self.system, statistics, (t0, &y0), &k1, h, None)?;
@@ -441,52 +402,66 @@ where
                 return Err(StepError::new(t0, y0, kind));
             }
             let statistics = &mut self.progress.statistics;
-            let tolerance = self.tolerance.as_ref();
+            let tolerance = Some(&tolerance);
             let trial = attempt(self.system, statistics, (t0, &y0), &k1, h, tolerance);
-            // Borrowed, not moved out: a step's stages are a few hundred bytes.
-            let attempt = match trial {
-                Ok(ref attempt) => attempt,
-                // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
-                // matrix) is a step too long, not yet a failure: shrink and retry.
-                Err(error) => {
-                    self.shrink_after(h, control.min_factor, error)?;
-                    continue;
-                }
-            };
-            // `dop853.f`: fac11 = err^(1/8 − 0.2β), bounded by the factor limits.
-            let error = attempt.error;
-            let fac11 = step_factor_power(error, control.beta);
-            if error > 1.0 || !error.is_finite() {
-                let factor = if error.is_finite() {
-                    (control.safety / fac11).max(control.min_factor)
-                } else {
-                    control.min_factor
-                };
-                let kind = StepErrorKind::StepSizeUnderflow { step: h * factor };
-                let underflow = StepError::new(t0, y0, kind);
-                self.shrink_after(h, factor, underflow)?;
-                continue;
+            let step = ((t0, &y0), h, reaches_stop);
+            if let Some(outcome) = self.control(&control, step, trial)? {
+                return Ok(outcome);
             }
-            let completion = match self.complete((t0, &y0), h, attempt) {
-                Ok(completion) => completion,
-                Err(error) => {
-                    self.shrink_after(h, control.min_factor, error)?;
-                    continue;
-                }
-            };
-            // (β = 0, `dop853.f`'s default, needs no second power.)
-            let previous = if control.beta == 0.0 {
-                1.0
-            } else {
-                powf(self.memory.previous_error, control.beta)
-            };
-            let factor = fac11 / previous / control.safety;
-            let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
-            let next = self.memory.after_acceptance(h, h / factor, error);
-            let outcome = self.accept(h, reaches_stop, attempt, completion)?;
-            self.memory.propose(next, reaches_stop, control.max_step);
-            return Ok(outcome);
         }
+    }
+}
+
+impl<Sys, const N: usize, const S: usize> Dop853<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    /// The step-size controller's verdict on an attempted step of size `h` (`dop853.f`):
+    /// accepted (its outcome) when its error is at most 1 and the rate at its end and its
+    /// dense output can be evaluated, otherwise `None` with a shorter next step; an error
+    /// once the step would underflow.
+    fn control(
+        &mut self,
+        control: &AdaptiveControl,
+        ((t0, y0), h, reaches_stop): ((f64, &SVector<f64, S>), f64, bool),
+        trial: Result<Attempt<S>, StepError<S>>,
+    ) -> Result<Option<StepOutcome>, StepError<S>> {
+        // Borrowed, not moved out: a step's stages are a few hundred bytes.
+        let attempt = match trial {
+            Ok(ref attempt) => attempt,
+            // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
+            // matrix) is a step too long, not yet a failure: shrink and retry.
+            Err(error) => {
+                return self
+                    .shrink_after(h, control.min_factor, error)
+                    .map(|()| None)
+            }
+        };
+        // `dop853.f`: fac11 = err^(1/8 − 0.2β), bounded by the factor limits.
+        let error = attempt.error;
+        let fac11 = step_factor_power(error, control.beta);
+        if error > 1.0 || !error.is_finite() {
+            let factor = if error.is_finite() {
+                (control.safety / fac11).max(control.min_factor)
+            } else {
+                control.min_factor
+            };
+            let kind = StepErrorKind::StepSizeUnderflow { step: h * factor };
+            let underflow = StepError::new(t0, *y0, kind);
+            return self.shrink_after(h, factor, underflow).map(|()| None);
+        }
+        let completion = match self.complete((t0, y0), h, attempt) {
+            Ok(completion) => completion,
+            Err(error) => {
+                return self
+                    .shrink_after(h, control.min_factor, error)
+                    .map(|()| None)
+            }
+        };
+        let next = self.memory.pi_after_acceptance(control, h, error, fac11);
+        let outcome = self.accept(h, reaches_stop, attempt, completion)?;
+        self.memory.propose(next, reaches_stop, control.max_step);
+        Ok(Some(outcome))
     }
 }
 

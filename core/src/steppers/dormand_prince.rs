@@ -27,14 +27,15 @@
 
 use nalgebra::SVector;
 
-use super::control::ControlState;
+use super::control::{resolvable, AdaptiveControl, ControlState, Mode, StepControl};
 use super::stiffness::StiffnessTest;
-use super::FixedStep;
-use crate::error::{ConfigError, StepError, StepErrorKind};
+use crate::error::{StepError, StepErrorKind};
 use crate::math::powf;
-use crate::stepper::{check_state, state_rate, Progress, Statistics, StepOutcome, Stepper};
+use crate::stepper::{
+    check_state, state_rate, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
+};
 use crate::system::VariableMassSystem;
-use crate::tolerance::{weighted_rms, Tolerance};
+use crate::tolerance::Tolerance;
 
 /// h|λ| beyond which the stiffness test counts a step as stiff (`dopri5.f`).
 const STIFFNESS_BOUND: f64 = 3.25;
@@ -77,118 +78,6 @@ const D4: f64 = -10690763975.0 / 1880347072.0;
 const D5: f64 = 701980252875.0 / 199316789632.0;
 const D6: f64 = -1453857185.0 / 822651844.0;
 const D7: f64 = 69997945.0 / 29380423.0;
-
-/// The error-control settings of the adaptive mode. Defaults are those of Hairer's `dopri5`
-/// with tolerances 1e-6 (relative) and 1e-9 (absolute).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AdaptiveControl {
-    /// Relative tolerance per component.
-    pub relative_tolerance: f64,
-    /// Absolute tolerance per component.
-    pub absolute_tolerance: f64,
-    /// The first step; `None` chooses it from the problem (HNW I, II.4).
-    pub initial_step: Option<f64>,
-    /// The largest step allowed.
-    pub max_step: f64,
-    /// Safety factor on the optimal step, in (0, 1].
-    pub safety: f64,
-    /// Smallest factor by which one step may shrink the next, in (0, 1].
-    pub min_factor: f64,
-    /// Largest factor by which one step may grow the next, ≥ 1.
-    pub max_factor: f64,
-    /// The PI controller's weight β on the previous error (0 gives the classical I
-    /// controller).
-    pub beta: f64,
-}
-
-impl Default for AdaptiveControl {
-    fn default() -> Self {
-        Self {
-            relative_tolerance: 1e-6,
-            absolute_tolerance: 1e-9,
-            initial_step: None,
-            max_step: f64::INFINITY,
-            safety: 0.9,
-            min_factor: 0.2,
-            max_factor: 10.0,
-            beta: 0.04,
-        }
-    }
-}
-
-impl AdaptiveControl {
-    /// Checks the settings and returns the tolerance they give.
-    pub(crate) fn validated(&self) -> Result<Tolerance, ConfigError> {
-        let tolerance =
-            Tolerance::new(self.relative_tolerance, self.absolute_tolerance).map_err(|_| {
-                ConfigError {
-                    reason: "adaptive control: tolerances must be finite, non-negative and not \
-                         both zero",
-                }
-            })?;
-        let initial_ok = self.initial_step.is_none_or(|h| h.is_finite() && h > 0.0);
-        let factors_ok = self.safety > 0.0
-            && self.safety <= 1.0
-            && self.min_factor > 0.0
-            && self.min_factor <= 1.0
-            && self.max_factor >= 1.0
-            && self.max_factor.is_finite()
-            && (0.0..0.2).contains(&self.beta)
-            && self.max_step > 0.0;
-        if initial_ok && factors_ok {
-            Ok(tolerance)
-        } else {
-            Err(ConfigError {
-                reason: "adaptive control: steps must be positive, safety and min_factor in \
-                         (0, 1], max_factor ≥ 1, beta in [0, 0.2)",
-            })
-        }
-    }
-}
-
-/// How the Dormand–Prince stepper chooses its steps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum StepControl {
-    /// Error-controlled steps.
-    Adaptive(AdaptiveControl),
-    /// Every step of the same size, accepted without error control (e.g. to measure the
-    /// order of convergence).
-    Fixed(FixedStep),
-}
-
-impl Default for StepControl {
-    fn default() -> Self {
-        Self::Adaptive(AdaptiveControl::default())
-    }
-}
-
-impl StepControl {
-    /// Checks the settings and returns the tolerance of the adaptive mode (`None` for fixed
-    /// steps): the check every stepper with a [`StepControl`] makes at construction.
-    pub(crate) fn checked_tolerance(&self) -> Result<Option<Tolerance>, ConfigError> {
-        match self {
-            Self::Adaptive(control) => control.validated().map(Some),
-            Self::Fixed(fixed) => FixedStep::validated(fixed.step).map(|_| None),
-        }
-    }
-
-    /// Checks the settings.
-    fn validated(self) -> Result<Mode, ConfigError> {
-        match self {
-            Self::Adaptive(control) => control
-                .validated()
-                .map(|tolerance| Mode::Adaptive(control, tolerance)),
-            Self::Fixed(fixed) => FixedStep::validated(fixed.step).map(Mode::Fixed),
-        }
-    }
-}
-
-/// A checked [`StepControl`]: the fixed step, or the adaptive settings with their tolerance.
-#[derive(Clone, Copy, Debug)]
-enum Mode {
-    Fixed(f64),
-    Adaptive(AdaptiveControl, Tolerance),
-}
 
 /// The Dormand–Prince 5(4) stepper on the state `[q, p, m_s]`.
 #[derive(Clone, Debug)]
@@ -298,85 +187,6 @@ where
             error,
         })
     }
-
-    /// The first step for the adaptive mode: [`initial_step`] for a fifth-order method.
-    fn initial_step(
-        &mut self,
-        k1: &SVector<f64, S>,
-        control: &AdaptiveControl,
-        tolerance: &Tolerance,
-    ) -> f64 {
-        initial_step(self.system, &mut self.progress, k1, (control, tolerance), 5)
-    }
-}
-
-/// The first step of an adaptive method of order `order` (HNW I, II.4, the `hinit` of
-/// `dopri5` and `dop853`): a step for which an explicit Euler step would change the state by
-/// about 1 % of its size, refined by an estimate of the second derivative.
-pub(crate) fn initial_step<Sys, const N: usize, const S: usize>(
-    system: &Sys,
-    progress: &mut Progress<S>,
-    k1: &SVector<f64, S>,
-    (control, tolerance): (&AdaptiveControl, &Tolerance),
-    order: u32,
-) -> f64
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    let t0 = progress.time();
-    let y0 = *progress.state();
-    // HNW's heuristic (I, II.4) has absolute constants (1e-6, 1e-5) and mixes ‖f‖ ~ 1/t
-    // with ‖f′‖ ~ 1/t². Running it in τ = t/T, T the length of the integration, makes
-    // the first step independent of the unit of time; T = 1 (HNW's own) without a stop.
-    let unit = progress
-        .stop_time()
-        .map(|stop| stop - t0)
-        .filter(|length| *length > 0.0 && length.is_finite())
-        .unwrap_or(1.0);
-    let weight = |i: usize| tolerance.weight(y0[i].abs());
-    // A component without a scale (atol = 0 and y = 0) says nothing about the step size
-    // here: it does not vote (its value is taken as 0, which counts 0).
-    let norm = |v: &SVector<f64, S>| {
-        let voting = SVector::<f64, S>::from_fn(|i, _| if weight(i) > 0.0 { v[i] } else { 0.0 });
-        weighted_rms(&voting, weight)
-    };
-    let rate_norm = norm(k1) * unit;
-    let state_norm = norm(&y0);
-    let mut tau = if rate_norm <= 1e-5 || state_norm <= 1e-5 {
-        1e-6
-    } else {
-        0.01 * state_norm / rate_norm
-    };
-    // Norms that overflow (a tiny absolute tolerance) give 0 or NaN: fall back to the
-    // heuristic's own small default, which the controller then grows.
-    if !(tau > 0.0 && tau.is_finite()) {
-        tau = 1e-6;
-    }
-    let h = (tau * unit).min(control.max_step);
-    let probe = y0 + k1 * h;
-    let Ok(k_probe) = state_rate(system, &mut progress.statistics, t0 + h, &probe) else {
-        // The probe left the domain (e.g. a mass went negative): the first guess is
-        // already small enough to try; rejections will shrink it further if needed.
-        return h;
-    };
-    let second_derivative = norm(&(k_probe - k1)) / h * unit * unit;
-    let scale = second_derivative.max(rate_norm);
-    let refined = if scale <= 1e-15 {
-        (tau * 1e-3).max(1e-6)
-    } else {
-        powf(0.01 / scale, 1.0 / f64::from(order))
-    };
-    let first = ((100.0 * tau).min(refined) * unit).min(control.max_step);
-    if first > 0.0 && first.is_finite() {
-        first
-    } else {
-        h
-    }
-}
-
-/// Whether a step of size `h` from `t0` is positive and moves t at all.
-pub(crate) fn resolvable(t0: f64, h: f64) -> bool {
-    h > 0.0 && t0 + h != t0
 }
 
 impl<Sys, const N: usize, const S: usize> Stepper<N, S> for DormandPrince<'_, Sys, N, S>
@@ -385,22 +195,16 @@ where
 {
     type System = Sys;
 
-    fn system(&self) -> &Sys {
-        self.system
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        (self.system, &self.progress)
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
+    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
+        ProgressMut::new(self.system, &mut self.progress)
     }
 
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)?;
+    fn forget_history(&mut self, _: Restarting) {
         self.memory.restart();
-        Ok(())
     }
 
     fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
@@ -412,7 +216,10 @@ where
         let y0 = *self.progress.state();
         let k1 = self.memory.rate_at_start(self.system, &mut self.progress)?;
         if self.memory.next_step <= 0.0 {
-            self.memory.next_step = self.first_step(&k1);
+            let first = self
+                .mode
+                .first_step(self.system, &mut self.progress, |_| Ok(k1), 5);
+            self.memory.next_step = first?;
         }
         loop {
             let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
@@ -447,18 +254,6 @@ impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
 where
     Sys: VariableMassSystem<N, S>,
 {
-    /// The size of the first step: the fixed step, or the adaptive control's initial step,
-    /// or one chosen from the problem.
-    fn first_step(&mut self, k1: &SVector<f64, S>) -> f64 {
-        match self.mode {
-            Mode::Fixed(step) => step,
-            Mode::Adaptive(control, tolerance) => match control.initial_step {
-                Some(h) => h.min(control.max_step),
-                None => self.initial_step(k1, &control, &tolerance),
-            },
-        }
-    }
-
     /// The step-size controller's verdict on an attempted step of size `h`: accepted (its
     /// outcome) when its error is at most 1, otherwise `None` with a shorter next step. A
     /// failed attempt is a step too long as well, unless the step cannot shrink any more.
@@ -508,11 +303,10 @@ where
         reaches_stop: bool,
         attempt: Attempt<S>,
     ) -> Result<StepOutcome, StepError<S>> {
-        let alpha = 0.2 - 0.75 * control.beta;
-        let previous = powf(self.memory.previous_error, control.beta);
-        let factor = powf(attempt.error, alpha) / previous / control.safety;
-        let factor = factor.clamp(1.0 / control.max_factor, 1.0 / control.min_factor);
-        let next = self.memory.after_acceptance(h, h / factor, attempt.error);
+        let error_power = powf(attempt.error, 0.2 - 0.75 * control.beta);
+        let next = self
+            .memory
+            .pi_after_acceptance(control, h, attempt.error, error_power);
         let outcome = self.accept(h, reaches_stop, attempt)?;
         self.memory.propose(next, reaches_stop, control.max_step);
         Ok(outcome)

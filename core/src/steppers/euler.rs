@@ -11,66 +11,38 @@
 
 use nalgebra::SVector;
 
+use super::fixed::{step_only, Fixed, FixedMethod};
 use super::FixedStep;
-use crate::error::StepError;
-use crate::stepper::{state_rate, Progress, StepOutcome, Stepper};
+use crate::error::{ConfigError, StepError};
+use crate::stepper::{state_rate, Statistics};
 use crate::system::VariableMassSystem;
 
-/// Explicit Euler, y₁ = y₀ + h f(t₀, y₀), on the state `[q, p, m_s]`.
-#[derive(Clone, Debug)]
-pub struct ExplicitEuler<'a, Sys, const N: usize, const S: usize> {
-    system: &'a Sys,
-    progress: Progress<S>,
-    step: f64,
-}
+/// Explicit Euler, y₁ = y₀ + h f(t₀, y₀), on the state `[q, p, m_s]`: [`Fixed`] with the
+/// step of [`EulerMethod`].
+pub type ExplicitEuler<'a, Sys, const N: usize, const S: usize> = Fixed<'a, Sys, EulerMethod, N, S>;
 
-impl<'a, Sys, const N: usize, const S: usize> ExplicitEuler<'a, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    /// Starts at `(time, state)`; the state is checked (finite, masses positive).
-    pub fn new(
-        system: &'a Sys,
-        time: f64,
-        state: SVector<f64, S>,
-        config: FixedStep,
-    ) -> Result<Self, StepError<S>> {
-        Ok(Self {
-            system,
-            progress: Progress::new(system, time, state)?,
-            step: FixedStep::validated(config.step).map_err(|e| e.at(time, &state))?,
-        })
-    }
-}
+/// The step of [`ExplicitEuler`].
+#[derive(Clone, Copy, Debug)]
+pub struct EulerMethod;
 
-impl<Sys, const N: usize, const S: usize> Stepper<N, S> for ExplicitEuler<'_, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    type System = Sys;
+impl<const N: usize, const S: usize> FixedMethod<N, S> for EulerMethod {
+    type Config = FixedStep;
 
-    fn system(&self) -> &Sys {
-        self.system
+    fn configure(config: FixedStep) -> Result<(f64, Self), ConfigError> {
+        Ok((step_only(config)?, Self))
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
-    }
-
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)
-    }
-
-    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (h, reaches_stop) = self.progress.next_step(self.step)?;
-        let t0 = self.progress.time();
-        let y0 = *self.progress.state();
-        let rate = state_rate(self.system, &mut self.progress.statistics, t0, &y0)?;
-        self.progress
-            .accept(self.system, h, reaches_stop, y0 + rate * h)
+    fn advance<Sys>(
+        &self,
+        system: &Sys,
+        statistics: &mut Statistics,
+        (t0, y0): (f64, &SVector<f64, S>),
+        h: f64,
+    ) -> Result<SVector<f64, S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let rate = state_rate(system, statistics, t0, y0)?;
+        Ok(y0 + rate * h)
     }
 }

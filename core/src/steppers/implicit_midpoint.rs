@@ -17,10 +17,11 @@
 
 use nalgebra::{SMatrix, SVector};
 
+use super::fixed::{Fixed, FixedMethod};
 use super::newton::{self, Newton, NewtonConfig};
 use super::FixedStep;
-use crate::error::StepError;
-use crate::stepper::{state_rate, Progress, StepOutcome, Stepper};
+use crate::error::{ConfigError, StepError};
+use crate::stepper::{state_rate, Statistics};
 use crate::system::VariableMassSystem;
 
 /// Settings of the implicit midpoint stepper.
@@ -41,64 +42,38 @@ impl Default for ImplicitMidpointConfig {
     }
 }
 
-/// The implicit midpoint rule on the state `[q, p, m_s]`, fixed step.
+/// The implicit midpoint rule on the state `[q, p, m_s]`, fixed step: [`Fixed`] with the
+/// step of [`ImplicitMidpointMethod`].
+pub type ImplicitMidpoint<'a, Sys, const N: usize, const S: usize> =
+    Fixed<'a, Sys, ImplicitMidpointMethod, N, S>;
+
+/// The step of [`ImplicitMidpoint`]: its Newton iteration.
 #[derive(Clone, Debug)]
-pub struct ImplicitMidpoint<'a, Sys, const N: usize, const S: usize> {
-    system: &'a Sys,
-    progress: Progress<S>,
-    step: f64,
+pub struct ImplicitMidpointMethod {
     newton: Newton,
 }
 
-impl<'a, Sys, const N: usize, const S: usize> ImplicitMidpoint<'a, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    /// Starts at `(time, state)`; the state and the configuration are checked.
-    pub fn new(
-        system: &'a Sys,
-        time: f64,
-        state: SVector<f64, S>,
-        config: ImplicitMidpointConfig,
-    ) -> Result<Self, StepError<S>> {
-        Ok(Self {
-            system,
-            progress: Progress::new(system, time, state)?,
-            step: FixedStep::validated(config.step).map_err(|e| e.at(time, &state))?,
-            newton: config.newton.validated().map_err(|e| e.at(time, &state))?,
-        })
-    }
-}
+impl<const N: usize, const S: usize> FixedMethod<N, S> for ImplicitMidpointMethod {
+    type Config = ImplicitMidpointConfig;
 
-impl<Sys, const N: usize, const S: usize> Stepper<N, S> for ImplicitMidpoint<'_, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    type System = Sys;
-
-    fn system(&self) -> &Sys {
-        self.system
+    fn configure(config: ImplicitMidpointConfig) -> Result<(f64, Self), ConfigError> {
+        let step = FixedStep::validated(config.step)?;
+        let newton = config.newton.validated()?;
+        Ok((step, Self { newton }))
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
-    }
-
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)
-    }
-
-    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (h, reaches_stop) = self.progress.next_step(self.step)?;
-        let t0 = self.progress.time();
-        let y0 = *self.progress.state();
+    fn advance<Sys>(
+        &self,
+        system: &Sys,
+        statistics: &mut Statistics,
+        (t0, y0): (f64, &SVector<f64, S>),
+        h: f64,
+    ) -> Result<SVector<f64, S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let y0 = *y0;
         let t_mid = t0 + 0.5 * h;
-        let system = self.system;
-        let statistics = &mut self.progress.statistics;
 
         // Explicit Euler half step as the predictor of the stage.
         let predictor = y0 + state_rate(system, statistics, t0, &y0)? * (0.5 * h);
@@ -119,7 +94,6 @@ where
             t0,
             &y0,
         )?;
-        let y1 = stage * 2.0 - y0;
-        self.progress.accept(system, h, reaches_stop, y1)
+        Ok(stage * 2.0 - y0)
     }
 }

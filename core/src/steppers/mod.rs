@@ -7,6 +7,7 @@ pub mod dop853;
 pub mod dormand_prince;
 pub mod esdirk43;
 pub mod euler;
+pub mod fixed;
 pub mod implicit_midpoint;
 pub mod newton;
 #[cfg(test)]
@@ -16,16 +17,18 @@ pub mod sdirk4;
 mod stiffness;
 pub mod variational;
 
+pub use control::{AdaptiveControl, StepControl};
 pub use dirk::{Dirk, DirkMethod, DirkNewton, DirkTableau};
 pub use dop853::Dop853;
-pub use dormand_prince::{AdaptiveControl, DormandPrince, StepControl};
+pub use dormand_prince::DormandPrince;
 pub use esdirk43::{Esdirk43, Esdirk43Method};
-pub use euler::ExplicitEuler;
-pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig};
+pub use euler::{EulerMethod, ExplicitEuler};
+pub use fixed::{Fixed, FixedMethod};
+pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig, ImplicitMidpointMethod};
 pub use newton::NewtonConfig;
-pub use rk4::ClassicalRk4;
+pub use rk4::{ClassicalRk4, Rk4Method};
 pub use sdirk4::{Sdirk4, Sdirk4Method, Sdirk4Newton};
-pub use variational::{Principle, Variational, VariationalConfig};
+pub use variational::{Principle, Variational, VariationalConfig, VariationalMethod};
 
 use crate::error::ConfigError;
 

@@ -13,80 +13,41 @@
 
 use nalgebra::SVector;
 
+use super::fixed::{step_only, Fixed, FixedMethod};
 use super::FixedStep;
-use crate::error::StepError;
-use crate::stepper::{state_rate, Progress, StepOutcome, Stepper};
+use crate::error::{ConfigError, StepError};
+use crate::stepper::{state_rate, Statistics};
 use crate::system::VariableMassSystem;
 
-/// Classical RK4 on the state `[q, p, m_s]`, fixed step.
-#[derive(Clone, Debug)]
-pub struct ClassicalRk4<'a, Sys, const N: usize, const S: usize> {
-    system: &'a Sys,
-    progress: Progress<S>,
-    step: f64,
-}
+/// Classical RK4 on the state `[q, p, m_s]`, fixed step: [`Fixed`] with the step of
+/// [`Rk4Method`].
+pub type ClassicalRk4<'a, Sys, const N: usize, const S: usize> = Fixed<'a, Sys, Rk4Method, N, S>;
 
-impl<'a, Sys, const N: usize, const S: usize> ClassicalRk4<'a, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    /// Starts at `(time, state)`; the state is checked (finite, masses positive).
-    pub fn new(
-        system: &'a Sys,
-        time: f64,
-        state: SVector<f64, S>,
-        config: FixedStep,
-    ) -> Result<Self, StepError<S>> {
-        Ok(Self {
-            system,
-            progress: Progress::new(system, time, state)?,
-            step: FixedStep::validated(config.step).map_err(|e| e.at(time, &state))?,
-        })
-    }
-}
+/// The step of [`ClassicalRk4`].
+#[derive(Clone, Copy, Debug)]
+pub struct Rk4Method;
 
-impl<Sys, const N: usize, const S: usize> Stepper<N, S> for ClassicalRk4<'_, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    type System = Sys;
+impl<const N: usize, const S: usize> FixedMethod<N, S> for Rk4Method {
+    type Config = FixedStep;
 
-    fn system(&self) -> &Sys {
-        self.system
+    fn configure(config: FixedStep) -> Result<(f64, Self), ConfigError> {
+        Ok((step_only(config)?, Self))
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
-    }
-
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)
-    }
-
-    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (h, reaches_stop) = self.progress.next_step(self.step)?;
-        let t0 = self.progress.time();
-        let y0 = *self.progress.state();
-        let statistics = &mut self.progress.statistics;
-        let k1 = state_rate(self.system, statistics, t0, &y0)?;
-        let k2 = state_rate(
-            self.system,
-            statistics,
-            t0 + 0.5 * h,
-            &(y0 + k1 * (0.5 * h)),
-        )?;
-        let k3 = state_rate(
-            self.system,
-            statistics,
-            t0 + 0.5 * h,
-            &(y0 + k2 * (0.5 * h)),
-        )?;
-        let k4 = state_rate(self.system, statistics, t0 + h, &(y0 + k3 * h))?;
-        let y1 = y0 + (k1 + (k2 + k3) * 2.0 + k4) * (h / 6.0);
-        self.progress.accept(self.system, h, reaches_stop, y1)
+    fn advance<Sys>(
+        &self,
+        system: &Sys,
+        statistics: &mut Statistics,
+        (t0, y0): (f64, &SVector<f64, S>),
+        h: f64,
+    ) -> Result<SVector<f64, S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let k1 = state_rate(system, statistics, t0, y0)?;
+        let k2 = state_rate(system, statistics, t0 + 0.5 * h, &(y0 + k1 * (0.5 * h)))?;
+        let k3 = state_rate(system, statistics, t0 + 0.5 * h, &(y0 + k2 * (0.5 * h)))?;
+        let k4 = state_rate(system, statistics, t0 + h, &(y0 + k3 * h))?;
+        Ok(y0 + (k1 + (k2 + k3) * 2.0 + k4) * (h / 6.0))
     }
 }

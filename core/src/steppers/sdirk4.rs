@@ -13,7 +13,6 @@ mod coefficients;
 
 use self::coefficients::*;
 use super::dirk::{Dirk, DirkMethod, DirkNewton, DirkTableau};
-use super::dormand_prince::AdaptiveControl;
 
 /// The Newton settings of [`Sdirk4`] (defaults of `sdirk4.f`).
 pub type Sdirk4Newton = DirkNewton;
@@ -54,18 +53,4 @@ impl DirkMethod<5> for Sdirk4Method {
             [D41, D42, D43, D44, D45],
         ],
     };
-}
-
-impl AdaptiveControl {
-    /// The adaptive control with the defaults of `sdirk4.f`, for [`Sdirk4`] and
-    /// [`super::Esdirk43`]: tolerances as [`AdaptiveControl::default`], safety 0.9, step
-    /// factors in [1/4, 4], no PI term.
-    pub fn sdirk4() -> Self {
-        Self {
-            min_factor: 0.25,
-            max_factor: 4.0,
-            beta: 0.0,
-            ..Self::default()
-        }
-    }
 }

@@ -27,10 +27,11 @@
 
 use nalgebra::{SMatrix, SVector};
 
+use super::fixed::{Fixed, FixedMethod};
 use super::newton::{self, Newton, NewtonConfig};
 use super::FixedStep;
-use crate::error::StepError;
-use crate::stepper::{Progress, Statistics, StepOutcome, Stepper};
+use crate::error::{ConfigError, StepError};
+use crate::stepper::Statistics;
 use crate::system::VariableMassSystem;
 
 /// √ε, the relative step of a forward difference.
@@ -67,35 +68,16 @@ impl Default for VariationalConfig {
     }
 }
 
-/// The midpoint variational integrator on the state `[q, p, m_s]`, fixed step.
+/// The midpoint variational integrator on the state `[q, p, m_s]`, fixed step: [`Fixed`]
+/// with the step of [`VariationalMethod`].
+pub type Variational<'a, Sys, const N: usize, const S: usize> =
+    Fixed<'a, Sys, VariationalMethod, N, S>;
+
+/// The step of [`Variational`]: its Newton iteration and the principle it discretises.
 #[derive(Clone, Debug)]
-pub struct Variational<'a, Sys, const N: usize, const S: usize> {
-    system: &'a Sys,
-    progress: Progress<S>,
-    step: f64,
+pub struct VariationalMethod {
     newton: Newton,
     principle: Principle,
-}
-
-impl<'a, Sys, const N: usize, const S: usize> Variational<'a, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    /// Starts at `(time, state)`; the state and the configuration are checked.
-    pub fn new(
-        system: &'a Sys,
-        time: f64,
-        state: SVector<f64, S>,
-        config: VariationalConfig,
-    ) -> Result<Self, StepError<S>> {
-        Ok(Self {
-            system,
-            progress: Progress::new(system, time, state)?,
-            step: FixedStep::validated(config.step).map_err(|e| e.at(time, &state))?,
-            newton: config.newton.validated().map_err(|e| e.at(time, &state))?,
-            principle: config.principle,
-        })
-    }
 }
 
 /// The discrete equations of one step from `(t0, y0)` with step `h`.
@@ -187,33 +169,27 @@ impl<Sys, const S: usize> DiscreteStep<'_, Sys, S> {
     }
 }
 
-impl<Sys, const N: usize, const S: usize> Stepper<N, S> for Variational<'_, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    type System = Sys;
+impl<const N: usize, const S: usize> FixedMethod<N, S> for VariationalMethod {
+    type Config = VariationalConfig;
 
-    fn system(&self) -> &Sys {
-        self.system
+    fn configure(config: VariationalConfig) -> Result<(f64, Self), ConfigError> {
+        let step = FixedStep::validated(config.step)?;
+        let newton = config.newton.validated()?;
+        let principle = config.principle;
+        Ok((step, Self { newton, principle }))
     }
 
-    fn progress(&self) -> &Progress<S> {
-        &self.progress
-    }
-
-    fn set_stop_time(&mut self, stop_time: f64) -> Result<(), StepError<S>> {
-        self.progress.set_stop_time(stop_time)
-    }
-
-    fn restart(&mut self, time: f64, state: SVector<f64, S>) -> Result<(), StepError<S>> {
-        self.progress.restart(self.system, time, state)
-    }
-
-    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (h, reaches_stop) = self.progress.next_step(self.step)?;
-        let t0 = self.progress.time();
-        let y0 = *self.progress.state();
-        let system = self.system;
+    fn advance<Sys>(
+        &self,
+        system: &Sys,
+        statistics: &mut Statistics,
+        (t0, y0): (f64, &SVector<f64, S>),
+        h: f64,
+    ) -> Result<SVector<f64, S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let y0 = *y0;
         let discrete = DiscreteStep {
             system,
             principle: self.principle,
@@ -221,7 +197,6 @@ where
             y0,
             h,
         };
-        let statistics = &mut self.progress.statistics;
 
         // Predictor: an explicit Euler step of q and of the state masses.
         statistics.rate_evaluations += 1;
@@ -251,6 +226,6 @@ where
         let (_, end_momenta) = discrete.end_momenta(t0 + 0.5 * h, &mid, statistics)?;
         let mut y1 = solution;
         y1.fixed_rows_mut::<N>(N).copy_from(&end_momenta);
-        self.progress.accept(system, h, reaches_stop, y1)
+        Ok(y1)
     }
 }

@@ -2,6 +2,7 @@
 //! harness that runs any stepper on any of them.
 #![allow(dead_code)] // each test binary uses part of the support
 
+pub mod closed_forms;
 pub mod problems;
 pub mod systems;
 

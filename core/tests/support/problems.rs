@@ -1,10 +1,9 @@
 //! Each test system paired with its reference solution (closed forms, independent of any
-//! stepper).
-
-use std::f64::consts::PI;
+//! stepper; those the benchmarks share are in `closed_forms.rs`).
 
 use nalgebra::{SVector, Vector2, Vector3, Vector4};
 
+use super::closed_forms::{kepler_anomaly, kepler_period, rocket_exact, sled_speed_squared_over_x};
 use super::systems::{Kepler, Oscillator, Rocket, Sled};
 use super::Problem;
 
@@ -84,7 +83,7 @@ impl KeplerProblem {
         problem
     }
     pub fn period(&self) -> f64 {
-        2.0 * PI * (self.semi_major_axis.powi(3) / self.system.gravity).sqrt()
+        kepler_period(self.semi_major_axis, self.system.gravity)
     }
     pub fn exact(&self, time: f64) -> SVector<f64, 4> {
         let (a, e, k, m) = (
@@ -93,19 +92,8 @@ impl KeplerProblem {
             self.system.gravity,
             self.system.mass,
         );
-        let mean_motion = (k / a.powi(3)).sqrt();
-        let mean_anomaly = mean_motion * time;
-        let mut anomaly = mean_anomaly;
-        for _ in 0..50 {
-            let correction =
-                (anomaly - e * anomaly.sin() - mean_anomaly) / (1.0 - e * anomaly.cos());
-            anomaly -= correction;
-            if correction.abs() < 1e-16 {
-                break;
-            }
-        }
+        let (anomaly, anomaly_rate) = kepler_anomaly(a, e, k, time);
         let r = a * (1.0 - e * anomaly.cos());
-        let anomaly_rate = mean_motion / (1.0 - e * anomaly.cos());
         let radial_speed = a * e * anomaly.sin() * anomaly_rate;
         let theta = 2.0
             * ((1.0 + e).sqrt() * (anomaly / 2.0).sin())
@@ -164,9 +152,8 @@ impl SledProblem {
     /// v²(x) of the corrected equation m ẍ = m g (sin θ − f_d cos θ) − c ẋ²:
     /// (2/3) a x (3 + 3ε + ε²)/(1 + ε)², ε = c x/m0.
     pub fn speed_squared(&self, x: f64) -> f64 {
-        let epsilon = self.system.accretion * x / self.system.initial_mass;
-        2.0 / 3.0 * self.system.drive() * x * (3.0 + 3.0 * epsilon + epsilon * epsilon)
-            / (1.0 + epsilon).powi(2)
+        let ratio = self.system.accretion / self.system.initial_mass;
+        x * sled_speed_squared_over_x(self.system.drive(), ratio, x)
     }
 
     /// v²(x) of the wrong equation that eq. 19 taken literally gives, m ẍ = … − 2c ẋ²:
@@ -225,15 +212,11 @@ impl RocketProblem {
     }
     pub fn exact(&self, time: f64) -> SVector<f64, 3> {
         let Rocket {
-            burn_rate: mu,
-            exhaust_speed: u,
-            gravity: g,
+            burn_rate,
+            exhaust_speed,
+            gravity,
         } = self.system;
-        let m0 = self.initial_mass;
-        let m = m0 - mu * time;
-        let log_ratio = (m0 / m).ln();
-        let v = u * log_ratio - g * time;
-        let y = u * (time - m / mu * log_ratio) - 0.5 * g * time * time;
+        let [y, v, m] = rocket_exact(burn_rate, exhaust_speed, gravity, self.initial_mass, time);
         Vector3::new(y, m * v, m)
     }
 }

@@ -168,6 +168,23 @@ pub(crate) const D714: f64 = 0.96324553959188282948394950600e+02;
 pub(crate) const D715: f64 = -0.39177261675615439165231486172e+02;
 pub(crate) const D716: f64 = -0.14972683625798562581422125276e+03;
 
+/// The rows d₄…d₇ of the dense output (`CONT(4…7)` of `dop853.f`), each over the stages
+/// k₁, k₆…k₁₆ in that order.
+pub(crate) const DENSE_ROWS: [[f64; 12]; 4] = [
+    [
+        D41, D46, D47, D48, D49, D410, D411, D412, D413, D414, D415, D416,
+    ],
+    [
+        D51, D56, D57, D58, D59, D510, D511, D512, D513, D514, D515, D516,
+    ],
+    [
+        D61, D66, D67, D68, D69, D610, D611, D612, D613, D614, D615, D616,
+    ],
+    [
+        D71, D76, D77, D78, D79, D710, D711, D712, D713, D714, D715, D716,
+    ],
+];
+
 /// The explicit stages 2–12 as a step evaluates them, in order: the node cᵢ and the
 /// non-zero aᵢⱼ as (j, aᵢⱼ), stages numbered from 1 as in the Fortran.
 pub(crate) const STAGE_ROWS: [(f64, &[(usize, f64)]); 11] = [
@@ -406,18 +423,10 @@ mod tests {
             b.clone(),
             first,
             third,
-            row([
-                D41, D46, D47, D48, D49, D410, D411, D412, D413, D414, D415, D416,
-            ]),
-            row([
-                D51, D56, D57, D58, D59, D510, D511, D512, D513, D514, D515, D516,
-            ]),
-            row([
-                D61, D66, D67, D68, D69, D610, D611, D612, D613, D614, D615, D616,
-            ]),
-            row([
-                D71, D76, D77, D78, D79, D710, D711, D712, D713, D714, D715, D716,
-            ]),
+            row(DENSE_ROWS[0]),
+            row(DENSE_ROWS[1]),
+            row(DENSE_ROWS[2]),
+            row(DENSE_ROWS[3]),
         ];
         let (s, s1) = (theta, 1.0 - theta);
         (0..STAGES)

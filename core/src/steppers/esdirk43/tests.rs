@@ -7,7 +7,9 @@ use num_rational::BigRational;
 use super::coefficients::{Ratio, A, DENSE, EMBEDDED};
 use super::Esdirk43Method;
 use crate::steppers::dirk::DirkMethod;
-use crate::steppers::order_conditions::{defects, stage_weights, trees};
+use crate::steppers::order_conditions::{
+    defects, stage_weights, trees, worst_imaginary_axis_modulus,
+};
 
 fn exact((p, q): Ratio) -> BigRational {
     BigRational::new(p.into(), q.into())
@@ -98,32 +100,9 @@ fn the_method_is_l_stable() {
     }
     assert_eq!(at_infinity[5], zero(), "{at_infinity:?}");
     let a = f64_tableau();
-    let mut worst: f64 = 0.0;
-    for k in 0..=4000 {
-        let y = 10f64.powf(-3.0 + 7.0 * f64::from(k) / 4000.0);
-        worst = worst.max(stability_modulus(&a, y));
-    }
+    let worst = worst_imaginary_axis_modulus(&a);
     eprintln!("max |R(iy)| = {worst}");
     assert!(worst <= 1.0 + 1e-12, "{worst}");
-}
-
-/// |R(iy)| = |Y₆| with complex stage values.
-fn stability_modulus(a: &[Vec<f64>], y: f64) -> f64 {
-    let mut stages = [(0.0, 0.0); 6];
-    stages[0] = (1.0, 0.0);
-    for i in 1..6 {
-        // (1 − iy γ) Yᵢ = 1 + iy Σ_{j<i} aᵢⱼ Yⱼ
-        let (mut re, mut im) = (1.0, 0.0);
-        for j in 0..i {
-            re -= y * a[i][j] * stages[j].1;
-            im += y * a[i][j] * stages[j].0;
-        }
-        let (dr, di) = (1.0, -y * a[i][i]);
-        let norm = dr * dr + di * di;
-        stages[i] = ((re * dr + im * di) / norm, (im * dr - re * di) / norm);
-    }
-    let (re, im) = stages[5];
-    (re * re + im * im).sqrt()
 }
 
 /// The dense output b(θ) = Σⱼ b*ᵢⱼθʲ ends on b (θ = 1) and meets the conditions to

@@ -70,7 +70,9 @@ mod tests {
     //! exact rationals (the f64 constants above are the same fractions, each rounded once).
     use num_rational::BigRational;
 
-    use crate::steppers::order_conditions::{defects, ratio, stage_weights, trees};
+    use crate::steppers::order_conditions::{
+        defects, ratio, stage_weights, trees, worst_imaginary_axis_modulus,
+    };
 
     fn q(p: i64, q: i64) -> BigRational {
         ratio(p, q)
@@ -317,35 +319,8 @@ mod tests {
                     .collect()
             })
             .collect();
-        let mut worst: f64 = 0.0;
-        for k in 0..=4000 {
-            let y = 10f64.powf(-3.0 + 7.0 * f64::from(k) / 4000.0);
-            worst = worst.max(stability_modulus(&a, y));
-        }
+        let worst = worst_imaginary_axis_modulus(&a);
         eprintln!("max |R(iy)| = {worst}");
         assert!(worst <= 1.0 + 1e-12, "{worst}");
-    }
-
-    /// |R(iy)| with complex forward substitution on (I − iyA) k = 𝟙.
-    fn stability_modulus(a: &[Vec<f64>], y: f64) -> f64 {
-        let mut k = [(0.0, 0.0); 5];
-        for i in 0..5 {
-            // (1 − iy aᵢᵢ) kᵢ = 1 + iy Σ_{j<i} aᵢⱼ kⱼ
-            let (mut re, mut im) = (1.0, 0.0);
-            for j in 0..i {
-                re -= y * a[i][j] * k[j].1;
-                im += y * a[i][j] * k[j].0;
-            }
-            let (dr, di) = (1.0, -y * a[i][i]);
-            let norm = dr * dr + di * di;
-            k[i] = ((re * dr + im * di) / norm, (im * dr - re * di) / norm);
-        }
-        // R = 1 + iy Σ bⱼ kⱼ, b = last row of A.
-        let (mut re, mut im) = (1.0, 0.0);
-        for j in 0..5 {
-            re -= y * a[4][j] * k[j].1;
-            im += y * a[4][j] * k[j].0;
-        }
-        (re * re + im * im).sqrt()
     }
 }

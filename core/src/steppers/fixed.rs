@@ -1,0 +1,100 @@
+//! The fixed-step steppers — explicit Euler, classical RK4, implicit midpoint and the
+//! variational integrator — as one stepper, [`Fixed`], over the method that takes a step
+//! ([`FixedMethod`]). They hold the same things (the system, where they are, the step) and
+//! step the same way (the step, cut to land on the stop time, from (t₀, y₀) to a new state
+//! checked before it is accepted); only the formula for the new state differs, and it is
+//! all each method's file writes. Nothing is carried from one step to the next.
+
+use nalgebra::SVector;
+
+use super::FixedStep;
+use crate::error::{ConfigError, StepError};
+use crate::stepper::{Progress, ProgressMut, Statistics, StepOutcome, Stepper};
+use crate::system::VariableMassSystem;
+
+/// A fixed-step method: its settings and the formula of one step.
+pub trait FixedMethod<const N: usize, const S: usize>: Sized {
+    /// Its settings: the step size and whatever else the method takes.
+    type Config;
+
+    /// Checks the settings and returns the step size and the method.
+    fn configure(config: Self::Config) -> Result<(f64, Self), ConfigError>;
+
+    /// The new state of a step of size `h` from `(t0, y0)`, its work counted in
+    /// `statistics`; the stepper checks it (finite, masses positive) before accepting it.
+    fn advance<Sys>(
+        &self,
+        system: &Sys,
+        statistics: &mut Statistics,
+        start: (f64, &SVector<f64, S>),
+        h: f64,
+    ) -> Result<SVector<f64, S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>;
+}
+
+/// The step size alone as the settings of a method that has no others.
+pub(crate) fn step_only(config: FixedStep) -> Result<f64, ConfigError> {
+    FixedStep::validated(config.step)
+}
+
+/// A fixed-step stepper on the state `[q, p, m_s]` taking its steps by the method `M`; use
+/// it through [`super::ExplicitEuler`], [`super::ClassicalRk4`],
+/// [`super::ImplicitMidpoint`] or [`super::Variational`].
+#[derive(Clone, Debug)]
+pub struct Fixed<'a, Sys, M, const N: usize, const S: usize> {
+    system: &'a Sys,
+    progress: Progress<S>,
+    step: f64,
+    method: M,
+}
+
+impl<'a, Sys, M, const N: usize, const S: usize> Fixed<'a, Sys, M, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+    M: FixedMethod<N, S>,
+{
+    /// Starts at `(time, state)`; the state is checked (finite, masses positive), then the
+    /// settings.
+    pub fn new(
+        system: &'a Sys,
+        time: f64,
+        state: SVector<f64, S>,
+        config: M::Config,
+    ) -> Result<Self, StepError<S>> {
+        let progress = Progress::new(system, time, state)?;
+        let (step, method) = M::configure(config).map_err(|e| e.at(time, &state))?;
+        Ok(Self {
+            system,
+            progress,
+            step,
+            method,
+        })
+    }
+}
+
+impl<Sys, M, const N: usize, const S: usize> Stepper<N, S> for Fixed<'_, Sys, M, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+    M: FixedMethod<N, S>,
+{
+    type System = Sys;
+
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        (self.system, &self.progress)
+    }
+
+    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
+        ProgressMut::new(self.system, &mut self.progress)
+    }
+
+    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
+        let (h, reaches_stop) = self.progress.next_step(self.step)?;
+        let start = (self.progress.time(), *self.progress.state());
+        let statistics = &mut self.progress.statistics;
+        let y1 = self
+            .method
+            .advance(self.system, statistics, (start.0, &start.1), h)?;
+        self.progress.accept(self.system, h, reaches_stop, y1)
+    }
+}
