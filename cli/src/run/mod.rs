@@ -3,6 +3,7 @@
 //! quantities asked for.
 
 mod dispatch;
+mod flows;
 mod integrate;
 mod names;
 mod output;
@@ -10,20 +11,37 @@ mod plan;
 mod plot;
 mod watch;
 
-use varmass::interpret::Program;
+use varmass::interpret::{Program, ProgramError};
 
 use crate::args::RunArgs;
 use crate::error::CliError;
-use crate::model::load;
+use crate::model::{load, tag_with_parameter};
 
 /// Runs the model as `args` say; returns the summary to print.
 pub fn run(args: &RunArgs) -> Result<String, CliError> {
     let model = load(&args.model)?;
+    for warning in &model.warnings {
+        eprintln!("warning: {warning}");
+    }
     let values = plan::parameters(args)?;
+    for warning in plan::unused_parameters(&model.derivation, &values) {
+        eprintln!("warning: {warning}");
+    }
+    let (ast, with) = (&model.ast, &model.with);
     let borrowed: Vec<(&str, f64)> = values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-    let program =
-        Program::new(model.derivation, &borrowed).map_err(|e| CliError::Input(e.to_string()))?;
-    let plan = plan::plan(args, &program)?;
+    let tag_hint = |e: ProgramError| match &e {
+        ProgramError::UnknownParameter { name, .. } => match tag_with_parameter(&ast, with, name) {
+            Some(tag) => CliError::Input(format!(
+                "`{name}` is a parameter of the statements tagged `[{tag}]`, which this run \
+                 leaves out; add `--with {tag}` to include them"
+            )),
+            None => CliError::Input(e.to_string()),
+        },
+        _ => CliError::Input(e.to_string()),
+    };
+    let program = Program::new(model.derivation, &borrowed).map_err(tag_hint)?;
+    let mut plan = plan::plan(args, &program)?;
+    plan.flows = model.flows;
     let outcome = dispatch::dispatch(program, &plan)?;
     let program = &outcome.program;
     let table = output::table(program, &plan.record, &outcome.points)?;
