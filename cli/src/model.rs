@@ -27,6 +27,8 @@ pub struct LoadedModel {
     pub ast: SystemAst,
     /// The tags asked for.
     pub with: Vec<String>,
+    /// The statements selected by the tags (what was derived).
+    pub selected: SystemAst,
     /// Warnings to print before the command's output (see [`crate::lint`]).
     pub warnings: Vec<String>,
 }
@@ -98,6 +100,7 @@ pub fn load(args: &ModelArgs) -> Result<LoadedModel, CliError> {
         flows,
         ast: full,
         with: args.with.clone(),
+        selected: ast,
         warnings,
     })
 }

@@ -9,6 +9,7 @@ mod names;
 mod output;
 mod plan;
 mod plot;
+mod record;
 mod watch;
 
 use varmass::interpret::{Program, ProgramError};
@@ -40,7 +41,7 @@ pub fn run(args: &RunArgs) -> Result<String, CliError> {
         _ => CliError::Input(e.to_string()),
     };
     let program = Program::new(model.derivation, &borrowed).map_err(tag_hint)?;
-    let mut plan = plan::plan(args, &program)?;
+    let mut plan = plan::plan(args, &program, &model.selected)?;
     plan.flows = model.flows;
     let outcome = dispatch::dispatch(program, &plan)?;
     let program = &outcome.program;

@@ -5,8 +5,10 @@ use varmass::core::tolerance::Tolerance;
 use varmass::core::Direction;
 use varmass::interpret::{Program, Quantity};
 use varmass::symbolic::mechanics::Derivation;
+use varmass::symbolic::parse::ast::SystemAst;
 
 use super::names::{assignment, evaluate, named, observables, resolve, velocity_state, Observable};
+use super::record::{entries, recorded, Recorded, Scope};
 use crate::args::{Method, RunArgs};
 use crate::error::CliError;
 
@@ -47,8 +49,8 @@ pub struct Plan {
     pub stop_when: Vec<StopWhen>,
     /// Output spacing, if not every accepted step.
     pub every: Option<f64>,
-    /// What to record, with the names given.
-    pub record: Vec<(String, Observable)>,
+    /// What to record, with the names given (or the expressions' text).
+    pub record: Vec<(String, Recorded)>,
     /// The most steps the run may take, accepted and rejected together.
     pub max_steps: u64,
     /// The wall-clock limit, if any.
@@ -108,8 +110,9 @@ pub fn unused_parameters(d: &Derivation, values: &[(String, f64)]) -> Vec<String
         .collect()
 }
 
-/// Builds and checks the plan for `program`.
-pub fn plan(args: &RunArgs, program: &Program) -> Result<Plan, CliError> {
+/// Builds and checks the plan for `program`, whose model's statements (after tag
+/// selection) are `ast` (for the `let` names `--record` may use).
+pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, CliError> {
     let from = args.from;
     let until = args.until;
     if !from.is_finite() || !until.is_finite() || until < from {
@@ -131,16 +134,19 @@ pub fn plan(args: &RunArgs, program: &Program) -> Result<Plan, CliError> {
         not_yet_true(program, &condition, text, from, &initial_state)?;
         stop_when.push(condition);
     }
+    let parameters = parameters(args)?;
     let record = match args.record.is_empty() {
-        true => default_record(&known, program),
-        false => args
-            .record
-            .iter()
-            .map(|name| {
-                let name = name.trim();
-                resolve(name, &known, "a quantity").map(|o| (name.to_string(), o))
-            })
-            .collect::<Result<_, _>>()?,
+        true => default_record(&known, program)
+            .into_iter()
+            .map(|(n, o)| (n, Recorded::Quantity(o)))
+            .collect(),
+        false => {
+            let scope = Scope::new(program, ast, &known, &parameters);
+            entries(&args.record)
+                .iter()
+                .map(|entry| recorded(entry, &scope))
+                .collect::<Result<_, _>>()?
+        }
     };
     let every = args.every.map(|dt| positive(dt, "--every")).transpose()?;
     let max_seconds = args
@@ -163,7 +169,7 @@ pub fn plan(args: &RunArgs, program: &Program) -> Result<Plan, CliError> {
         record,
         max_steps: args.max_steps,
         max_seconds,
-        parameters: parameters(args)?,
+        parameters,
         flows: (1..=program.derivation().flow_rates.len())
             .map(|i| format!("flow {i}"))
             .collect(),
