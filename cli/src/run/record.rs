@@ -207,7 +207,7 @@ fn name_term(name: &str, scope: &Scope<'_>, depth: usize) -> Result<Term, CliErr
         }
         return resolve_term(value, scope, depth + 1);
     }
-    match resolve(name, &scope.names(), "a recordable name") {
+    match resolve(name, &scope.names(), "a quantity") {
         Err(unknown) => Err(unknown),
         // Every name of the list was tried above; this is for completeness.
         Ok(()) => Err(CliError::Input(format!("`{name}` cannot be recorded"))),
