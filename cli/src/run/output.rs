@@ -28,8 +28,12 @@ pub fn table(
         let values = record
             .iter()
             .map(|(name, o)| {
-                o.value(program, *t, state)
-                    .map_err(|e| CliError::Run(format!("cannot record {name} at t = {t}: {e}")))
+                o.value(program, *t, state).map_err(|e| {
+                    CliError::Run(format!(
+                        "cannot record `{name}` at t = {t}: {e}; record other quantities, or \
+                         stop the run before this time"
+                    ))
+                })
             })
             .collect::<Result<Vec<f64>, CliError>>()?;
         rows.push((*t, values));

@@ -117,7 +117,10 @@ pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, 
     let until = args.until;
     if !from.is_finite() || !until.is_finite() || until < from {
         return Err(CliError::Input(format!(
-            "--until {until} must be finite and not before the start time {from}"
+            "--until {} must be finite and not before the start time {} (--from): a run goes \
+             forward in time",
+            shown(until),
+            shown(from)
         )));
     }
     let known = observables(program);
@@ -385,21 +388,23 @@ fn masses_positive(program: &Program, t: f64, velocity_state: &[f64]) -> Result<
         let law = law.map_or(String::new(), |l| {
             format!(" ({name} = {})", d.pool.display(l))
         });
-        let what = if value.is_nan() {
-            "undefined"
-        } else {
-            "not positive"
+        let value = match value.is_nan() {
+            true => "undefined".to_string(),
+            false => value.to_string(),
         };
         return Err(CliError::Input(format!(
-            "the mass `{name}` is {value} at the start t = {t}{law}: a mass must be positive \
-             ({what} here); start from a state where it is (--init, --set)"
+            "the mass `{name}` is {value} at the start t = {t}{law}: a mass must be positive; \
+             start from a state where it is (--init, --set)"
         )));
     }
     Ok(())
 }
 
 fn velocity_state_check(program: &Program, t: f64, state: &[f64]) -> Result<(), CliError> {
-    velocity_state(program, t, state)
-        .map(|_| ())
-        .map_err(|e| CliError::Input(format!("the initial state is unusable: {e}")))
+    velocity_state(program, t, state).map(|_| ()).map_err(|e| {
+        CliError::Input(format!(
+            "the initial state is unusable: {e}; the kinetic energy must depend on every \
+                 velocity at the start (check --init and the masses)"
+        ))
+    })
 }

@@ -172,4 +172,63 @@ mod tests {
         assert_eq!(bare, seen);
         assert_eq!(watched.bar.position(), TICKS);
     }
+
+    fn falling_body() -> TapeSystem<1, 2> {
+        let source = "coordinates y; mass m = m0; body b: mass m, position [y]; potential m*g*y";
+        let derivation = derive_source(source, Parameters::Inferred).expect("derives");
+        let program = Program::new(derivation, &[("m0", 2.0), ("g", 9.81)]).expect("fits");
+        TapeSystem::<1, 2>::new(program).expect("sizes")
+    }
+
+    /// The guard is asked after every step and its refusal ends the run at that step's end,
+    /// with the state there: here y < −1 is refused, and the fall from rest, y = −g t²/2,
+    /// passes −1 at t = √(2/9.81) ≈ 0.4515.
+    #[test]
+    fn the_guard_ends_the_run_at_the_first_step_it_refuses() {
+        let system = falling_body();
+        let start = SVector::<f64, 2>::new(0.0, 0.0);
+        let stepper = DormandPrince::new(
+            &system,
+            0.0,
+            start,
+            StepControl::Fixed(varmass::core::steppers::FixedStep { step: 0.1 }),
+        )
+        .expect("starts");
+        let refuse = StepErrorKind::NegativeFlowRate {
+            index: 0,
+            rate: -1.0,
+        };
+        let guard: Guard<'_> = Box::new(move |_, state| match state[0] < -1.0 {
+            true => Err(refuse),
+            false => Ok(()),
+        });
+        let mut watched = Watched::new(stepper, 0.0, 3.0).with_guard(guard);
+        let error = run(&mut watched, &RunConfig::until(3.0), &[]).unwrap_err();
+        // The first step end past 0.4515 is t = 0.5, where y = −9.81/8 (exact for a
+        // quadratic under a fifth-order method, to rounding).
+        assert_eq!(error.kind, refuse);
+        assert!((error.time - 0.5).abs() <= 1e-15, "{}", error.time);
+        assert!(
+            (error.state[0] + 9.81 / 8.0).abs() <= 1e-14,
+            "{}",
+            error.state[0]
+        );
+    }
+
+    /// A wall-clock limit of 0 s is past after the first step, which it then ends.
+    #[test]
+    fn the_time_limit_ends_the_run_after_a_step() {
+        let system = falling_body();
+        let start = SVector::<f64, 2>::new(0.0, 0.0);
+        let stepper =
+            DormandPrince::new(&system, 0.0, start, StepControl::default()).expect("starts");
+        let mut watched = Watched::new(stepper, 0.0, 3.0).with_time_limit(Some(0.0));
+        let error = run(&mut watched, &RunConfig::until(3.0), &[]).unwrap_err();
+        assert_eq!(
+            error.kind,
+            StepErrorKind::WallClockExceeded { seconds: 0.0 }
+        );
+        assert_eq!(watched.steps, 1);
+        assert!(error.time > 0.0 && error.time < 3.0, "{}", error.time);
+    }
 }
