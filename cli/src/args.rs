@@ -45,7 +45,10 @@ pub struct DeriveArgs {
     pub latex: bool,
 }
 
-/// `varmass run`.
+/// `varmass run`. Numbers after an option may be negative: the numeric options take a
+/// value that starts with `-` (`--tol -1e-9` reaches the range check, not clap's "use
+/// `-- -1`" tip, which does not apply to options; clap's own negative-number rule does not
+/// know exponents like `-1e-9`).
 #[derive(Debug, Args)]
 pub struct RunArgs {
     /// The model.
@@ -58,10 +61,15 @@ pub struct RunArgs {
     #[arg(long = "init", value_name = "NAME=VALUE")]
     pub init: Vec<String>,
     /// The start time.
-    #[arg(long, default_value_t = 0.0, value_name = "T0")]
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        value_name = "T0",
+        allow_hyphen_values = true
+    )]
     pub from: f64,
     /// The end time.
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub until: f64,
     /// Stop at the first crossing of a recorded quantity through a value: 'NAME = VALUE'
     /// (either way), 'NAME > VALUE' (rising through it), 'NAME < VALUE' (falling).
@@ -70,18 +78,32 @@ pub struct RunArgs {
     /// The stepper.
     #[arg(long, value_enum, default_value_t = Method::DormandPrince)]
     pub method: Method,
-    /// Relative and absolute tolerance of the adaptive steppers (dormand-prince, dop853, sdirk4, esdirk43).
-    #[arg(long, value_name = "TOL", conflicts_with = "step")]
+    /// Relative and absolute tolerance of the adaptive steppers (dormand-prince, dop853,
+    /// sdirk4, esdirk43), from 100 machine epsilons (2.2e-14, what f64 can honour) to 0.1.
+    #[arg(
+        long,
+        value_name = "TOL",
+        conflicts_with = "step",
+        allow_hyphen_values = true
+    )]
     pub tol: Option<f64>,
     /// The fixed step size (required by the fixed-step methods; makes an adaptive one fixed).
-    #[arg(long, value_name = "H")]
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
     pub step: Option<f64>,
-    /// The quantities to record, comma-separated: x, x', x'', p_x, m, H, power, Q_x, R1_x,
-    /// R2_x, pdot_x (default: coordinates, velocities and state masses).
-    #[arg(long, value_delimiter = ',', value_name = "NAMES")]
+    /// The most steps the run may take; a fixed step that needs more
+    /// to reach --until is refused before the first step.
+    #[arg(long, value_name = "N", default_value_t = 10_000_000)]
+    pub max_steps: u64,
+    /// A wall-clock limit in seconds: the run fails, with its state, once it has taken longer.
+    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
+    pub max_seconds: Option<f64>,
+    /// The quantities to record, comma-separated: x, x', x'', p_x, m, mdot_m, H, power, Q_x,
+    /// R1_x, R2_x, pdot_x, a `let` name, or NAME=EXPRESSION of these and the parameters
+    /// (`--record "E=1/2*m*x'^2"`); default: coordinates, velocities and state masses.
+    #[arg(long, value_name = "NAMES")]
     pub record: Vec<String>,
     /// Record every DT seconds instead of at every accepted step.
-    #[arg(long, value_name = "DT")]
+    #[arg(long, value_name = "DT", allow_hyphen_values = true)]
     pub every: Option<f64>,
     /// Write the recorded quantities as CSV (header `t,<names>`).
     #[arg(long, value_name = "PATH")]

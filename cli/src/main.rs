@@ -18,6 +18,7 @@ use clap::Parser;
 mod args;
 mod commands;
 mod error;
+mod lint;
 mod model;
 mod run;
 

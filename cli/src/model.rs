@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use varmass::symbolic::mechanics::{derive, Derivation, Parameters};
+use varmass::symbolic::parse::ast::{StatementKind, SystemAst};
 use varmass::symbolic::parse::{parse_system, select_tags};
 use varmass::symbolic::Diagnostic;
 
@@ -15,6 +16,38 @@ use crate::error::CliError;
 pub struct LoadedModel {
     /// The derivation (parameters inferred: every free name is one).
     pub derivation: Derivation,
+    /// Each selected flow as the user knows it (`outflow `rocket``), in the derivation's
+    /// flow order (statement order).
+    pub flows: Vec<String>,
+    /// The whole model, every tag included: where a parameter of a tag not asked for is
+    /// found.
+    pub ast: SystemAst,
+    /// The tags asked for.
+    pub with: Vec<String>,
+    /// The statements selected by the tags (what was derived).
+    pub selected: SystemAst,
+    /// Warnings to print before the command's output (see [`crate::lint`]).
+    pub warnings: Vec<String>,
+}
+
+/// The tag, among those not asked for (`with`), whose statements make `name` a parameter
+/// of `ast`: for "`g` is a parameter of `[gravity]`; add `--with gravity`". Each tag is
+/// tried alone with the ones asked for; only called on the error path, so the extra
+/// derivations cost nothing in a good run.
+pub fn tag_with_parameter(ast: &SystemAst, with: &[String], name: &str) -> Option<String> {
+    {
+        varmass::symbolic::parse::known_tags(ast)
+            .into_iter()
+            .filter(|tag| !with.contains(tag))
+            .find(|tag| {
+                let mut with = with.to_vec();
+                with.push(tag.clone());
+                select_tags(ast, &with)
+                    .ok()
+                    .and_then(|ast| derive(&ast, Parameters::Inferred).ok())
+                    .is_some_and(|d| d.parameters.iter().any(|(n, _)| n == name))
+            })
+    }
 }
 
 /// Reads `args.file`, keeps the statements `args.with` selects and derives them; a problem
@@ -30,13 +63,30 @@ pub fn load(args: &ModelArgs) -> Result<LoadedModel, CliError> {
         rendered: render(&diagnostics, &source, path),
         count: diagnostics.len(),
     };
-    let ast = parse_system(&source).map_err(failed)?;
-    let ast = select_tags(&ast, &args.with).map_err(|unknown| {
+    let full = parse_system(&source).map_err(failed)?;
+    let ast = select_tags(&full, &args.with).map_err(|unknown| {
         let messages: Vec<String> = unknown.iter().map(|u| format!("--with: {u}")).collect();
         CliError::Input(messages.join("\n"))
     })?;
     let derivation = derive(&ast, Parameters::Inferred).map_err(failed)?;
-    Ok(LoadedModel { derivation })
+    let flows = ast
+        .statements
+        .iter()
+        .filter_map(|s| match &s.kind {
+            StatementKind::Outflow(f) => Some(format!("outflow `{}`", f.body.node)),
+            StatementKind::Inflow(f) => Some(format!("inflow `{}`", f.body.node)),
+            _ => None,
+        })
+        .collect();
+    let warnings = crate::lint::typo_warnings(&derivation, &ast);
+    Ok(LoadedModel {
+        derivation,
+        flows,
+        ast: full,
+        with: args.with.clone(),
+        selected: ast,
+        warnings,
+    })
 }
 
 /// Every diagnostic, rustc-style, one after another.

@@ -90,6 +90,25 @@ pub enum StepErrorKind {
         /// What is wrong.
         reason: &'static str,
     },
+    /// A flow's rate came out negative (Q1 of an outflow or Q2 of an inflow below 0): the
+    /// statement declares mass leaving (or arriving) and the rate says the opposite, so the
+    /// reactive forces (eqs. 15–16) would act with the wrong sign. Found by
+    /// [`StepError::check_flow_rates`] at the start and after each step, at the error's
+    /// time and state.
+    #[error("the rate of flow {index} is negative ({rate:e})")]
+    NegativeFlowRate {
+        /// The flow's index, in the order the model declares its flows.
+        index: usize,
+        /// Its rate there.
+        rate: f64,
+    },
+    /// The run went on longer than the wall-clock limit its caller set. The error's time
+    /// and state are those reached.
+    #[error("the wall-clock limit of {seconds} s was reached")]
+    WallClockExceeded {
+        /// The limit, in seconds.
+        seconds: f64,
+    },
 }
 
 impl<const S: usize> StepError<S> {
@@ -139,6 +158,26 @@ impl<const S: usize> StepError<S> {
     }
 }
 
+impl<const S: usize> StepError<S> {
+    /// Checks the flow rates `rates` (in the model's flow order) at `(time, state)`: the
+    /// first negative one is a [`StepErrorKind::NegativeFlowRate`]. A rate of exactly 0 (a
+    /// burnt-out motor) is fine; a NaN is left to the state checks, which see it too.
+    pub fn check_flow_rates(
+        time: f64,
+        state: &SVector<f64, S>,
+        rates: impl IntoIterator<Item = f64>,
+    ) -> Result<(), Self> {
+        match rates.into_iter().enumerate().find(|(_, rate)| *rate < 0.0) {
+            Some((index, rate)) => Err(Self::new(
+                time,
+                *state,
+                StepErrorKind::NegativeFlowRate { index, rate },
+            )),
+            None => Ok(()),
+        }
+    }
+}
+
 /// An unusable configuration value found before a stepper exists (a tolerance, a step size,
 /// a Newton setting). It becomes a [`StepError`] with [`ConfigError::at`] once the time and
 /// state it applies to are known.
@@ -153,6 +192,35 @@ impl ConfigError {
     /// The [`StepErrorKind::InvalidConfiguration`] of a stepper at `(time, state)`.
     pub fn at<const S: usize>(self, time: f64, state: &SVector<f64, S>) -> StepError<S> {
         StepError::invalid_configuration(time, *state, self.reason)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The first negative rate is named with its index, value, time and state; zero and
+    /// positive rates pass.
+    #[test]
+    fn a_negative_flow_rate_is_a_typed_error() {
+        let state = SVector::<f64, 2>::new(1.0, 2.0);
+        assert_eq!(StepError::check_flow_rates(0.5, &state, [0.0, 3.0]), Ok(()));
+        let error = StepError::check_flow_rates(0.5, &state, [1.0, -5.0, -7.0]).unwrap_err();
+        assert_eq!(
+            error,
+            StepError::new(
+                0.5,
+                state,
+                StepErrorKind::NegativeFlowRate {
+                    index: 1,
+                    rate: -5.0
+                }
+            )
+        );
+        assert_eq!(
+            error.to_string(),
+            "at t = 0.5: the rate of flow 1 is negative (-5e0)"
+        );
     }
 }
 

@@ -48,7 +48,9 @@ fn scaled_square(value: f64, scale: impl FnOnce(f64) -> f64) -> f64 {
 }
 
 /// A relative and an absolute tolerance, checked: both finite and non-negative, not both
-/// zero. Component i of an error is weighed against [`Tolerance::weight`]: atol + rtol·mᵢ.
+/// zero, and a relative tolerance, when there is one, no finer than
+/// [`Tolerance::MIN_RELATIVE`]. Component i of an error is weighed against
+/// [`Tolerance::weight`]: atol + rtol·mᵢ.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerance {
     relative: f64,
@@ -56,21 +58,35 @@ pub struct Tolerance {
 }
 
 impl Tolerance {
+    /// The finest relative tolerance f64 can honour: 100 machine epsilons (≈ 2.2e-14). The
+    /// rounding of one step's own arithmetic (a few ε per stage, times the stages, times the
+    /// magnitude of the state) is already of that size, so a finer request can never be met
+    /// and an adaptive stepper would shrink its step until the step limit. Hairer's codes
+    /// refuse such tolerances for the same reason (DOPRI5 and DOP853 stop with "tolerances
+    /// are too small" below 10·uround; 100 ε leaves the margin the error estimates need).
+    pub const MIN_RELATIVE: f64 = 100.0 * f64::EPSILON;
+
     /// A tolerance of `relative` (rtol) and `absolute` (atol); fails unless both are finite
-    /// and non-negative and at least one is positive.
+    /// and non-negative, at least one is positive, and a positive `relative` is at least
+    /// [`Tolerance::MIN_RELATIVE`] (a purely absolute tolerance, rtol = 0, stays usable).
     pub fn new(relative: f64, absolute: f64) -> Result<Self, ConfigError> {
         let usable = relative >= 0.0
             && absolute >= 0.0
             && relative.is_finite()
             && absolute.is_finite()
             && relative + absolute > 0.0;
-        if usable {
-            Ok(Self { relative, absolute })
-        } else {
-            Err(ConfigError {
+        if !usable {
+            return Err(ConfigError {
                 reason: "tolerances must be finite, non-negative and not both zero",
-            })
+            });
         }
+        if relative > 0.0 && relative < Self::MIN_RELATIVE {
+            return Err(ConfigError {
+                reason: "the relative tolerance is below 100 machine epsilons (2.2e-14), \
+                         finer than f64 can honour",
+            });
+        }
+        Ok(Self { relative, absolute })
     }
 
     /// The relative tolerance rtol.
@@ -175,6 +191,14 @@ mod tests {
             let error = Tolerance::new(relative, absolute).unwrap_err();
             assert!(error.reason.contains("tolerances"), "{relative} {absolute}");
         }
+        // Finer than f64 can honour: refused with the reason; exactly the limit is usable.
+        let error = Tolerance::new(1e-15, 1e-15).unwrap_err();
+        assert!(
+            error.reason.contains("100 machine epsilons"),
+            "{}",
+            error.reason
+        );
+        assert!(Tolerance::new(Tolerance::MIN_RELATIVE, 0.0).is_ok());
         // Either alone is usable.
         assert_eq!(Tolerance::new(1e-6, 0.0).map(|t| t.weight(2.0)), Ok(2e-6));
         assert_eq!(Tolerance::new(0.0, 1e-9).map(|t| t.weight(2.0)), Ok(1e-9));

@@ -9,6 +9,9 @@ use crate::model::load;
 /// Derives the model; on success prints how each `check` was decided.
 pub fn check(args: &ModelArgs) -> Result<String, CliError> {
     let model = load(args)?;
+    for warning in &model.warnings {
+        eprintln!("warning: {warning}");
+    }
     let file = &args.file;
     let d = &model.derivation;
     let mut out = format!(
@@ -24,7 +27,10 @@ pub fn check(args: &ModelArgs) -> Result<String, CliError> {
         let text = &c.source;
         let how = match &c.verdict {
             Identity::Proven => "proven".to_string(),
-            Identity::Numerical { points } => format!("holds at {points} random points"),
+            Identity::Numerical { points } => format!(
+                "not proven: the two sides agree at {points} random points, which is evidence, \
+                 not proof"
+            ),
             other => format!("{other:?}"),
         };
         out.push_str(&format!("{text} ... ok ({how})\n"));

@@ -12,6 +12,7 @@ use varmass::core::{
 };
 use varmass::interpret::{Program, TapeSystem};
 
+use super::flows::FlowRates;
 use super::names::{evaluate, Observable};
 use super::plan::{Plan, Steps};
 use super::watch::Watched;
@@ -37,7 +38,7 @@ pub fn integrate<const N: usize, const S: usize>(
 ) -> Result<Outcome, CliError> {
     let system = TapeSystem::<N, S>::new(program).map_err(|e| CliError::Input(e.to_string()))?;
     let start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
-    let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, e));
+    let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, plan, e));
     // Every stepper is built as `Type::new(&system, t0, start, settings)` and driven alike;
     // only the type and its settings differ.
     macro_rules! drive_with {
@@ -135,11 +136,29 @@ where
             _ => Event::function(w.as_ref(), c.direction, EventAction::Stop),
         })
         .collect();
-    let mut stepper = Watched::new(stepper, plan.from, plan.until);
-    let mut points = vec![(plan.from, stepper.state().as_slice().to_vec())];
+    let flows = FlowRates::new(program, &plan.parameters);
+    let start = *stepper.state();
+    if !flows.is_empty() {
+        flows
+            .check(plan.from, start.as_slice())
+            .map_err(|kind| StepError::new(plan.from, start, kind))?;
+    }
+    let mut stepper =
+        Watched::new(stepper, plan.from, plan.until).with_time_limit(plan.max_seconds);
+    if !flows.is_empty() {
+        stepper = stepper.with_guard(Box::new(|t, state| flows.check(t, state)));
+    }
+    let mut points = vec![(plan.from, start.as_slice().to_vec())];
     let targets = output_times(plan);
     for target in targets {
-        let solution = run(&mut stepper, &RunConfig::until(target), &events)?;
+        // --max-steps bounds the whole run, over every output interval.
+        let taken = stepper.statistics().accepted_steps as u64;
+        let max_steps = usize::try_from(plan.max_steps.saturating_sub(taken)).unwrap_or(usize::MAX);
+        let config = RunConfig {
+            max_steps,
+            ..RunConfig::until(target)
+        };
+        let solution = run(&mut stepper, &config, &events)?;
         let fresh = solution.times.iter().zip(&solution.states).skip(1);
         match plan.every {
             None => points.extend(fresh.map(|(t, s)| (*t, s.as_slice().to_vec()))),
@@ -182,24 +201,81 @@ fn watcher<const S: usize>(
     })
 }
 
-/// A failed run as a message with the error, its time and the state by name.
+/// A failed run as a message with the error in the user's names, its time, the state by
+/// name and what to do about it.
 fn describe<const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
+    plan: &Plan,
     error: StepError<S>,
 ) -> CliError {
     let program = system.program();
-    let what = match error.kind {
-        StepErrorKind::NonPositiveMass { index } => match program.mass_names().nth(index) {
-            Some(name) => format!("the mass `{name}` is not positive"),
-            None => error.kind.to_string(),
-        },
-        kind => kind.to_string(),
-    };
+    let (what, fix) = explain(program, plan, error.kind);
     let state = super::output::state_lines(program, error.time, error.state.as_slice());
     CliError::Run(format!(
-        "the run failed at t = {}: {what}\nstate there:{state}",
+        "the run failed at t = {}: {what}\nstate there:{state}\nhelp: {fix}",
         error.time
     ))
+}
+
+/// What went wrong, in the model's names, and how to fix it.
+fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, String) {
+    let what = kind.to_string();
+    match kind {
+        StepErrorKind::NonPositiveMass { index } => {
+            let name = program.mass_names().nth(index).unwrap_or("?");
+            (
+                format!("the mass `{name}` is not positive"),
+                format!(
+                    "end the run before `{name}` runs out, e.g. --stop-when '{name} < VALUE' \
+                     or an earlier --until"
+                ),
+            )
+        }
+        StepErrorKind::NegativeFlowRate { index, rate } => {
+            let flow = plan.flows.get(index).map_or("a flow", String::as_str);
+            (
+                format!("the rate of the {flow} is negative ({rate})"),
+                "a flow's rate is the mass it moves per second, ≥ 0 by definition; correct \
+                 the parameters it reads (--set), or write the flow the other way round \
+                 (outflow ↔ inflow)"
+                    .to_string(),
+            )
+        }
+        StepErrorKind::TooManySteps { .. } => (
+            format!("more than --max-steps {} steps were needed", plan.max_steps),
+            "raise --max-steps, loosen --tol, or use --method sdirk4 if the model is stiff"
+                .to_string(),
+        ),
+        StepErrorKind::WallClockExceeded { .. } => (
+            what,
+            "raise --max-seconds, loosen --tol, or shorten --until".to_string(),
+        ),
+        StepErrorKind::NonFiniteState | StepErrorKind::EnergyBudgetExceeded { .. } => (
+            what,
+            "a fixed step past the stability limit does this: use a smaller --step or an \
+             adaptive method (--tol)"
+                .to_string(),
+        ),
+        StepErrorKind::StepSizeUnderflow { .. } => (
+            what,
+            "the solution is singular here, or the model stiff: stop before this time \
+             (--stop-when, --until), or use --method sdirk4"
+                .to_string(),
+        ),
+        StepErrorKind::NewtonDivergence { .. } => (
+            what,
+            "use a smaller --step, or an adaptive method (--tol)".to_string(),
+        ),
+        StepErrorKind::SingularMassMatrix => (
+            format!("{what} (the velocities cannot be recovered from the momenta)"),
+            "the model's kinetic energy stops depending on a velocity here: stop before \
+             this state (--stop-when), or check the masses and positions"
+                .to_string(),
+        ),
+        StepErrorKind::NonFiniteTime { .. } | StepErrorKind::InvalidConfiguration { .. } => {
+            (what, "check --from, --until, --step and --tol".to_string())
+        }
+    }
 }
 
 #[cfg(test)]
@@ -216,6 +292,10 @@ mod tests {
             stop_when: Vec::new(),
             every,
             record: Vec::new(),
+            max_steps: 10,
+            max_seconds: None,
+            parameters: Vec::new(),
+            flows: Vec::new(),
         }
     }
 

@@ -3,27 +3,31 @@
 //! quantities asked for.
 
 mod dispatch;
+mod flows;
+#[cfg(test)]
+mod fuzz;
 mod integrate;
 mod names;
 mod output;
 mod plan;
 mod plot;
+mod record;
 mod watch;
 
-use varmass::interpret::Program;
+use varmass::interpret::{Program, ProgramError};
+use varmass::symbolic::parse::ast::SystemAst;
 
 use crate::args::RunArgs;
 use crate::error::CliError;
-use crate::model::load;
+use crate::model::{load, tag_with_parameter, LoadedModel};
 
 /// Runs the model as `args` say; returns the summary to print.
 pub fn run(args: &RunArgs) -> Result<String, CliError> {
     let model = load(&args.model)?;
-    let values = plan::parameters(args)?;
-    let borrowed: Vec<(&str, f64)> = values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-    let program =
-        Program::new(model.derivation, &borrowed).map_err(|e| CliError::Input(e.to_string()))?;
-    let plan = plan::plan(args, &program)?;
+    for warning in &model.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let (program, plan) = prepare(args, model, |warning| eprintln!("warning: {warning}"))?;
     let outcome = dispatch::dispatch(program, &plan)?;
     let program = &outcome.program;
     let table = output::table(program, &plan.record, &outcome.points)?;
@@ -49,4 +53,60 @@ pub fn run(args: &RunArgs) -> Result<String, CliError> {
         stopped_by.as_deref(),
         &outcome.statistics,
     ))
+}
+
+/// Everything before the first step: the program (see [`program`]) and the checked plan.
+/// Every mistake in the arguments is found here, before any work, as a
+/// [`CliError::Input`].
+pub fn prepare(
+    args: &RunArgs,
+    model: LoadedModel,
+    warn: impl FnMut(&str),
+) -> Result<(Program, plan::Plan), CliError> {
+    let prepared = program(args, model, warn)?;
+    let mut plan = plan::plan(args, &prepared.program, &prepared.selected)?;
+    plan.flows = prepared.flows;
+    Ok((prepared.program, plan))
+}
+
+/// A model's program with the run's parameter values, and what the plan needs of its
+/// statements.
+pub struct Prepared {
+    /// The program.
+    pub program: Program,
+    /// The flows' names, in the derivation's order.
+    pub flows: Vec<String>,
+    /// The statements selected by the tags.
+    pub selected: SystemAst,
+}
+
+/// The program of `model` with the `--set` values of `args` (`warn` is told of those that
+/// enter nothing); a parameter of a tag not asked for names the tag.
+pub fn program(
+    args: &RunArgs,
+    model: LoadedModel,
+    mut warn: impl FnMut(&str),
+) -> Result<Prepared, CliError> {
+    let values = plan::parameters(args)?;
+    for warning in plan::unused_parameters(&model.derivation, &values) {
+        warn(&warning);
+    }
+    let (ast, with) = (&model.ast, &model.with);
+    let tag_hint = |e: ProgramError| match &e {
+        ProgramError::UnknownParameter { name, .. } => match tag_with_parameter(ast, with, name) {
+            Some(tag) => CliError::Input(format!(
+                "`{name}` is a parameter of the statements tagged `[{tag}]`, which this run \
+                 leaves out; add `--with {tag}` to include them"
+            )),
+            None => CliError::Input(e.to_string()),
+        },
+        _ => CliError::Input(e.to_string()),
+    };
+    let borrowed: Vec<(&str, f64)> = values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+    let program = Program::new(model.derivation, &borrowed).map_err(tag_hint)?;
+    Ok(Prepared {
+        program,
+        flows: model.flows,
+        selected: model.selected,
+    })
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 use varmass::core::Statistics;
 use varmass::interpret::Program;
 
-use super::names::{evaluate, Observable};
+use super::record::Recorded;
 use crate::error::CliError;
 
 /// The recorded quantities: names, and one row of values per output time.
@@ -20,7 +20,7 @@ pub struct Table {
 /// Evaluates `record` at every point; a quantity that cannot be had is an error with its time.
 pub fn table(
     program: &Program,
-    record: &[(String, Observable)],
+    record: &[(String, Recorded)],
     points: &[(f64, Vec<f64>)],
 ) -> Result<Table, CliError> {
     let mut rows = Vec::with_capacity(points.len());
@@ -28,8 +28,12 @@ pub fn table(
         let values = record
             .iter()
             .map(|(name, o)| {
-                evaluate(program, *o, *t, state)
-                    .map_err(|e| CliError::Run(format!("cannot record {name} at t = {t}: {e}")))
+                o.value(program, *t, state).map_err(|e| {
+                    CliError::Run(format!(
+                        "cannot record `{name}` at t = {t}: {e}; record other quantities, or \
+                         stop the run before this time"
+                    ))
+                })
             })
             .collect::<Result<Vec<f64>, CliError>>()?;
         rows.push((*t, values));
@@ -43,7 +47,8 @@ pub fn table(
 /// Writes `table` as CSV: a header `t,<names>` and one row per output time, each number
 /// in Rust's shortest round-trip form.
 pub fn write_csv(table: &Table, path: &Path) -> Result<(), CliError> {
-    let mut text = format!("t,{}\n", table.names.join(","));
+    let names: Vec<String> = table.names.iter().map(|n| csv_field(n)).collect();
+    let mut text = format!("t,{}\n", names.join(","));
     for (t, values) in &table.rows {
         let _ = write!(text, "{t}");
         for v in values {
@@ -55,6 +60,16 @@ pub fn write_csv(table: &Table, path: &Path) -> Result<(), CliError> {
         path: path.to_path_buf(),
         reason: e.to_string(),
     })
+}
+
+/// A header field as CSV (RFC 4180): quoted, its quotes doubled, when it holds a comma or a
+/// quote (a recorded expression such as `atan2(y, x)`).
+fn csv_field(name: &str) -> String {
+    if name.contains([',', '"', '\n']) {
+        format!("\"{}\"", name.replace('"', "\"\""))
+    } else {
+        name.to_string()
+    }
 }
 
 /// The state by name: coordinates, velocities (when they can be had), momenta and state

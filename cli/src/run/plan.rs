@@ -1,10 +1,14 @@
 //! From the command line to a run plan: parameter values, the initial state `[q, p, m_s]`,
 //! the stop conditions, the stepper and the output times, all checked against the model.
 
+use varmass::core::tolerance::Tolerance;
 use varmass::core::Direction;
 use varmass::interpret::{Program, Quantity};
+use varmass::symbolic::mechanics::Derivation;
+use varmass::symbolic::parse::ast::SystemAst;
 
 use super::names::{assignment, evaluate, named, observables, resolve, velocity_state, Observable};
+use super::record::{entries, recorded, Recorded, Scope};
 use crate::args::{Method, RunArgs};
 use crate::error::CliError;
 
@@ -45,25 +49,78 @@ pub struct Plan {
     pub stop_when: Vec<StopWhen>,
     /// Output spacing, if not every accepted step.
     pub every: Option<f64>,
-    /// What to record, with the names given.
-    pub record: Vec<(String, Observable)>,
+    /// What to record, with the names given (or the expressions' text).
+    pub record: Vec<(String, Recorded)>,
+    /// The most steps the run may take, accepted and rejected together.
+    pub max_steps: u64,
+    /// The wall-clock limit, if any.
+    pub max_seconds: Option<f64>,
+    /// The parameter values (`--set`).
+    pub parameters: Vec<(String, f64)>,
+    /// Each flow's name for messages, in the derivation's flow order (`flow 1`, … until
+    /// the caller, which has the model's statements, names them).
+    pub flows: Vec<String>,
 }
 
 /// The default tolerance of the adaptive methods when `--tol` is not given.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
-/// Parses `--set` into (name, value) pairs.
+/// The finest `--tol`: what f64 can honour (see [`Tolerance::MIN_RELATIVE`]).
+pub const MIN_TOLERANCE: f64 = Tolerance::MIN_RELATIVE;
+
+/// The loosest `--tol`. Above it the error control lets a step's error reach tens of per
+/// cent (`--tol 10` gave an answer 17 % wrong): not an answer worth computing.
+pub const MAX_TOLERANCE: f64 = 0.1;
+
+/// Parses `--set` into (name, value) pairs; a name given twice is an error (the second
+/// value would silently win).
 pub fn parameters(args: &RunArgs) -> Result<Vec<(String, f64)>, CliError> {
-    args.set.iter().map(|s| assignment(s, "--set")).collect()
+    let mut values: Vec<(String, f64)> = Vec::new();
+    for (index, text) in args.set.iter().enumerate() {
+        let (name, value) = assignment(text, "--set")?;
+        if values.iter().any(|(n, _)| *n == name) {
+            let first = args.set[..index]
+                .iter()
+                .find(|t| t.split_once('=').is_some_and(|(n, _)| n.trim() == name))
+                .map_or(String::new(), |t| format!(" (first as --set {t})"));
+            return Err(CliError::Input(format!(
+                "--set {text}: `{name}` is set twice{first}; give each parameter once"
+            )));
+        }
+        values.push((name, value));
+    }
+    Ok(values)
 }
 
-/// Builds and checks the plan for `program`.
-pub fn plan(args: &RunArgs, program: &Program) -> Result<Plan, CliError> {
+/// A warning for each parameter given a value that enters none of the quantities the run
+/// computes (declared or inferred, e.g. used only by a `check`, or multiplied by 0): its
+/// value changes nothing, which the user should know.
+pub fn unused_parameters(d: &Derivation, values: &[(String, f64)]) -> Vec<String> {
+    let used = d.used_parameters();
+    values
+        .iter()
+        .filter(|(name, _)| d.parameters.iter().any(|(n, _)| n == name))
+        .filter(|(name, _)| !used.contains(name))
+        .map(|(name, value)| {
+            format!(
+                "--set {name}={value}: `{name}` enters none of the quantities this run computes, \
+                 so its value changes nothing"
+            )
+        })
+        .collect()
+}
+
+/// Builds and checks the plan for `program`, whose model's statements (after tag
+/// selection) are `ast` (for the `let` names `--record` may use).
+pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, CliError> {
     let from = args.from;
     let until = args.until;
     if !from.is_finite() || !until.is_finite() || until < from {
         return Err(CliError::Input(format!(
-            "--until {until} must be finite and not before the start time {from}"
+            "--until {} must be finite and not before the start time {} (--from): a run goes \
+             forward in time",
+            shown(until),
+            shown(from)
         )));
     }
     let known = observables(program);
@@ -80,18 +137,30 @@ pub fn plan(args: &RunArgs, program: &Program) -> Result<Plan, CliError> {
         not_yet_true(program, &condition, text, from, &initial_state)?;
         stop_when.push(condition);
     }
+    let parameters = parameters(args)?;
     let record = match args.record.is_empty() {
-        true => default_record(&known, program),
-        false => args
-            .record
-            .iter()
-            .map(|name| {
-                let name = name.trim();
-                resolve(name, &known, "a quantity").map(|o| (name.to_string(), o))
-            })
-            .collect::<Result<_, _>>()?,
+        true => default_record(&known, program)
+            .into_iter()
+            .map(|(n, o)| (n, Recorded::Quantity(o)))
+            .collect(),
+        false => {
+            let scope = Scope::new(program, ast, &known, &parameters);
+            entries(&args.record)
+                .iter()
+                .map(|entry| recorded(entry, &scope))
+                .collect::<Result<_, _>>()?
+        }
     };
     let every = args.every.map(|dt| positive(dt, "--every")).transpose()?;
+    let max_seconds = args
+        .max_seconds
+        .map(|s| positive(s, "--max-seconds"))
+        .transpose()?;
+    if args.max_steps == 0 {
+        return Err(CliError::Input(
+            "--max-steps 0: a run needs at least one step".to_string(),
+        ));
+    }
     Ok(Plan {
         from,
         until,
@@ -101,6 +170,12 @@ pub fn plan(args: &RunArgs, program: &Program) -> Result<Plan, CliError> {
         stop_when,
         every,
         record,
+        max_steps: args.max_steps,
+        max_seconds,
+        parameters,
+        flows: (1..=program.derivation().flow_rates.len())
+            .map(|i| format!("flow {i}"))
+            .collect(),
     })
 }
 
@@ -152,19 +227,27 @@ fn positive(value: f64, flag: &str) -> Result<f64, CliError> {
         Ok(value)
     } else {
         Err(CliError::Input(format!(
-            "{flag} {value}: must be positive and finite"
+            "{flag} {}: must be positive and finite",
+            shown(value)
         )))
+    }
+}
+
+/// A number as a user would write it: `0.5`, `100`, `1e-30`, `1e12` (Rust's `{}` spells
+/// 1e-30 with thirty zeros).
+fn shown(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
     }
 }
 
 fn steps(args: &RunArgs) -> Result<Steps, CliError> {
     match (args.method, args.step, args.tol) {
-        (_, Some(h), _) => Ok(Steps::Fixed(positive(h, "--step")?)),
+        (_, Some(h), _) => fixed_step(h, args).map(Steps::Fixed),
         (Method::DormandPrince | Method::Dop853 | Method::Sdirk4 | Method::Esdirk43, None, tol) => {
-            Ok(Steps::Adaptive(positive(
-                tol.unwrap_or(DEFAULT_TOLERANCE),
-                "--tol",
-            )?))
+            tolerance(tol.unwrap_or(DEFAULT_TOLERANCE)).map(Steps::Adaptive)
         }
         (method, None, _) => Err(CliError::Input(format!(
             "--method {} takes a fixed step: give --step H",
@@ -173,6 +256,47 @@ fn steps(args: &RunArgs) -> Result<Steps, CliError> {
                 .unwrap_or_default()
         ))),
     }
+}
+
+/// A `--tol` within [`MIN_TOLERANCE`, `MAX_TOLERANCE`].
+fn tolerance(tol: f64) -> Result<f64, CliError> {
+    let range = format!("the usable range is {MIN_TOLERANCE:.1e} to {MAX_TOLERANCE}");
+    let why = if !(tol.is_finite() && tol > 0.0) {
+        "must be positive and finite"
+    } else if tol < MIN_TOLERANCE {
+        "is finer than f64 can honour (100 machine epsilons): the steps would shrink until \
+         the step limit"
+    } else if tol > MAX_TOLERANCE {
+        "is too loose: each step's error could reach tens of per cent of the state"
+    } else {
+        return Ok(tol);
+    };
+    Err(CliError::Input(format!(
+        "--tol {} {why}; {range}",
+        shown(tol)
+    )))
+}
+
+/// A `--step` that is positive and reaches `--until` within `--max-steps` steps: checked
+/// here, before the first step, instead of found out at the step limit.
+fn fixed_step(h: f64, args: &RunArgs) -> Result<f64, CliError> {
+    let h = positive(h, "--step")?;
+    let span = args.until - args.from;
+    let needed = (span / h).ceil();
+    // u64 → f64 is exact to 2⁵³, far above any step budget that finishes.
+    let limit = args.max_steps as f64;
+    if needed > limit {
+        return Err(CliError::Input(format!(
+            "--step {} needs {needed:.3e} steps from t = {} to --until {}, more than \
+             --max-steps {}; the usable steps are {:.3e} to {span} (or raise --max-steps)",
+            shown(h),
+            shown(args.from),
+            shown(args.until),
+            args.max_steps,
+            span / limit
+        )));
+    }
+    Ok(h)
 }
 
 /// Coordinates, velocities and state masses.
@@ -237,6 +361,7 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
         )));
     }
     let velocity_state: Vec<f64> = values.iter().map(|v| v.unwrap_or(0.0)).collect();
+    masses_positive(program, args.from, &velocity_state)?;
     let mut state = velocity_state.clone();
     program.evaluate(
         Quantity::Momenta,
@@ -249,8 +374,37 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
     Ok(state)
 }
 
+/// Every mass positive at the start: a zero or negative mass is named, with its law and
+/// value, before the mass matrix it makes singular is tried.
+fn masses_positive(program: &Program, t: f64, velocity_state: &[f64]) -> Result<(), CliError> {
+    let d = program.derivation();
+    let mut masses = vec![f64::NAN; d.masses.len()];
+    program.masses(t, velocity_state, &mut masses);
+    let names = program.mass_names();
+    for ((name, value), law) in names.zip(&masses).zip(&d.closed_laws) {
+        if *value > 0.0 {
+            continue;
+        }
+        let law = law.map_or(String::new(), |l| {
+            format!(" ({name} = {})", d.pool.display(l))
+        });
+        let value = match value.is_nan() {
+            true => "undefined".to_string(),
+            false => value.to_string(),
+        };
+        return Err(CliError::Input(format!(
+            "the mass `{name}` is {value} at the start t = {t}{law}: a mass must be positive; \
+             start from a state where it is (--init, --set)"
+        )));
+    }
+    Ok(())
+}
+
 fn velocity_state_check(program: &Program, t: f64, state: &[f64]) -> Result<(), CliError> {
-    velocity_state(program, t, state)
-        .map(|_| ())
-        .map_err(|e| CliError::Input(format!("the initial state is unusable: {e}")))
+    velocity_state(program, t, state).map(|_| ()).map_err(|e| {
+        CliError::Input(format!(
+            "the initial state is unusable: {e}; the kinetic energy must depend on every \
+                 velocity at the start (check --init and the masses)"
+        ))
+    })
 }

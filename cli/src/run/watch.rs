@@ -1,31 +1,42 @@
 //! A progress bar for long runs: a [`Stepper`] adapter that forwards every call to the
-//! wrapped stepper and moves an `indicatif` bar on stderr after each step. The bar appears
-//! only once the run has lasted about a second, and never when stderr is not a terminal.
+//! wrapped stepper and moves an `indicatif` bar on stderr after each step, with the steps
+//! taken per second. The bar appears only once the run has lasted about a second, and never
+//! when stderr is not a terminal.
+//!
+//! The same adapter enforces what the tool checks after every step and the core's steppers
+//! do not: the wall-clock limit (`--max-seconds`) and the run's [`Guard`] (the flows' rates
+//! must stay non-negative).
 
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use varmass::core::nalgebra::SVector;
 use varmass::core::stepper::{ProgressMut, Restarting};
-use varmass::core::{Progress, StepError, StepOutcome, Stepper};
+use varmass::core::{Progress, StepError, StepErrorKind, StepOutcome, Stepper};
 
 /// How long a run goes before its bar is shown.
 const QUIET_FOR: Duration = Duration::from_secs(1);
 /// The bar's resolution.
 const TICKS: u64 = 1000;
 
-/// A stepper with a progress bar over `[from, until]`.
-pub struct Watched<St> {
+/// A check of the state after each accepted step, on `(t, [q, p, m_s])`.
+pub type Guard<'a> = Box<dyn Fn(f64, &[f64]) -> Result<(), StepErrorKind> + 'a>;
+
+/// A stepper with a progress bar over `[from, until]`, a wall-clock limit and a guard.
+pub struct Watched<'a, St> {
     inner: St,
     bar: ProgressBar,
     started: Instant,
     shown: bool,
     from: f64,
     until: f64,
+    steps: u64,
+    max_seconds: Option<f64>,
+    guard: Option<Guard<'a>>,
 }
 
-impl<St> Watched<St> {
-    /// Wraps `inner` for a run from `from` to `until`.
+impl<'a, St> Watched<'a, St> {
+    /// Wraps `inner` for a run from `from` to `until`, with no limit and no guard.
     pub fn new(inner: St, from: f64, until: f64) -> Self {
         let bar = ProgressBar::with_draw_target(Some(TICKS), ProgressDrawTarget::hidden());
         if let Ok(style) = ProgressStyle::with_template("{bar:40} {msg} [{elapsed}, eta {eta}]") {
@@ -38,6 +49,35 @@ impl<St> Watched<St> {
             shown: false,
             from,
             until,
+            steps: 0,
+            max_seconds: None,
+            guard: None,
+        }
+    }
+
+    /// Fails the run with [`StepErrorKind::WallClockExceeded`] after `seconds`.
+    pub fn with_time_limit(mut self, seconds: Option<f64>) -> Self {
+        self.max_seconds = seconds;
+        self
+    }
+
+    /// Checks `guard` after every step.
+    pub fn with_guard(mut self, guard: Guard<'a>) -> Self {
+        self.guard = Some(guard);
+        self
+    }
+
+    /// What is wrong after a step at `(time, state)`, if anything: the guard's verdict,
+    /// then the time limit.
+    fn check(&self, time: f64, state: &[f64]) -> Result<(), StepErrorKind> {
+        if let Some(guard) = &self.guard {
+            guard(time, state)?;
+        }
+        match self.max_seconds {
+            Some(seconds) if self.started.elapsed().as_secs_f64() > seconds => {
+                Err(StepErrorKind::WallClockExceeded { seconds })
+            }
+            _ => Ok(()),
         }
     }
 
@@ -54,17 +94,25 @@ impl<St> Watched<St> {
             1.0
         };
         self.bar.set_position((fraction * TICKS as f64) as u64);
-        self.bar.set_message(format!("t = {time:.6e}"));
+        self.steps += 1;
+        // The message is only drawn once shown; formatting it costs more than a small step.
+        if self.shown {
+            let rate = self.steps as f64 / self.started.elapsed().as_secs_f64().max(1e-9);
+            self.bar.set_message(format!(
+                "t = {time:.6e}, {} steps, {rate:.0} steps/s",
+                self.steps
+            ));
+        }
     }
 }
 
-impl<St> Drop for Watched<St> {
+impl<St> Drop for Watched<'_, St> {
     fn drop(&mut self) {
         self.bar.finish_and_clear();
     }
 }
 
-impl<St, const N: usize, const S: usize> Stepper<N, S> for Watched<St>
+impl<St, const N: usize, const S: usize> Stepper<N, S> for Watched<'_, St>
 where
     St: Stepper<N, S>,
 {
@@ -84,7 +132,10 @@ where
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         let outcome = self.inner.step()?;
-        self.tick(self.inner.time());
+        let (time, state) = (self.inner.time(), *self.inner.state());
+        self.tick(time);
+        self.check(time, state.as_slice())
+            .map_err(|kind| StepError::new(time, state, kind))?;
         Ok(outcome)
     }
 
@@ -117,5 +168,64 @@ mod tests {
         let seen = run(&mut watched, &config, &[]).expect("runs");
         assert_eq!(bare, seen);
         assert_eq!(watched.bar.position(), TICKS);
+    }
+
+    fn falling_body() -> TapeSystem<1, 2> {
+        let source = "coordinates y; mass m = m0; body b: mass m, position [y]; potential m*g*y";
+        let derivation = derive_source(source, Parameters::Inferred).expect("derives");
+        let program = Program::new(derivation, &[("m0", 2.0), ("g", 9.81)]).expect("fits");
+        TapeSystem::<1, 2>::new(program).expect("sizes")
+    }
+
+    /// The guard is asked after every step and its refusal ends the run at that step's end,
+    /// with the state there: here y < −1 is refused, and the fall from rest, y = −g t²/2,
+    /// passes −1 at t = √(2/9.81) ≈ 0.4515.
+    #[test]
+    fn the_guard_ends_the_run_at_the_first_step_it_refuses() {
+        let system = falling_body();
+        let start = SVector::<f64, 2>::new(0.0, 0.0);
+        let stepper = DormandPrince::new(
+            &system,
+            0.0,
+            start,
+            StepControl::Fixed(varmass::core::steppers::FixedStep { step: 0.1 }),
+        )
+        .expect("starts");
+        let refuse = StepErrorKind::NegativeFlowRate {
+            index: 0,
+            rate: -1.0,
+        };
+        let guard: Guard<'_> = Box::new(move |_, state| match state[0] < -1.0 {
+            true => Err(refuse),
+            false => Ok(()),
+        });
+        let mut watched = Watched::new(stepper, 0.0, 3.0).with_guard(guard);
+        let error = run(&mut watched, &RunConfig::until(3.0), &[]).unwrap_err();
+        // The first step end past 0.4515 is t = 0.5, where y = −9.81/8 (exact for a
+        // quadratic under a fifth-order method, to rounding).
+        assert_eq!(error.kind, refuse);
+        assert!((error.time - 0.5).abs() <= 1e-15, "{}", error.time);
+        assert!(
+            (error.state[0] + 9.81 / 8.0).abs() <= 1e-14,
+            "{}",
+            error.state[0]
+        );
+    }
+
+    /// A wall-clock limit of 0 s is past after the first step, which it then ends.
+    #[test]
+    fn the_time_limit_ends_the_run_after_a_step() {
+        let system = falling_body();
+        let start = SVector::<f64, 2>::new(0.0, 0.0);
+        let stepper =
+            DormandPrince::new(&system, 0.0, start, StepControl::default()).expect("starts");
+        let mut watched = Watched::new(stepper, 0.0, 3.0).with_time_limit(Some(0.0));
+        let error = run(&mut watched, &RunConfig::until(3.0), &[]).unwrap_err();
+        assert_eq!(
+            error.kind,
+            StepErrorKind::WallClockExceeded { seconds: 0.0 }
+        );
+        assert_eq!(watched.steps, 1);
+        assert!(error.time > 0.0 && error.time < 3.0, "{}", error.time);
     }
 }

@@ -1,6 +1,8 @@
 //! `check` statements: identities stated in the DSL and verified against the derived
-//! equations before the derivation is assembled (see `docs/dsl.md`). Both sides are brought to velocity form with the mass laws substituted, then
-//! compared by canonical form and, failing that, at random points.
+//! equations before the derivation is assembled (see `docs/dsl.md`). Both sides are brought
+//! to velocity form with the mass laws substituted, then compared exactly — by canonical
+//! form, then as rational functions (over a common denominator, the numerator expanded) —
+//! and only failing that at random points.
 
 use rustc_hash::FxHashMap;
 use std::collections::HashMap;
@@ -9,7 +11,7 @@ use super::derivation::{CheckOutcome, Derivation};
 use super::equations::SYMBOLIC_INVERSE_MAX_DOF;
 use super::model::Check;
 use super::resolve::{lower_with, Binding, Context, Parameters};
-use crate::expr::{ExprPool, Id, Identity, Symbol};
+use crate::expr::{ExprPool, Id, Identity, Node, Symbol};
 use crate::parse::Diagnostic;
 use crate::quantity::Quantity;
 
@@ -137,7 +139,12 @@ fn decide(
     let rhs_physical = pool.substitute(rhs, laws);
     let verdict = verdicts
         .entry((lhs_physical, rhs_physical))
-        .or_insert_with(|| pool.identical(lhs_physical, rhs_physical))
+        .or_insert_with(
+            || match rational_identity(pool, lhs_physical, rhs_physical) {
+                true => Identity::Proven,
+                false => pool.identical(lhs_physical, rhs_physical),
+            },
+        )
         .clone();
     let text = format!("{} = {}", pool.display(lhs), pool.display(rhs));
     CheckOutcome {
@@ -145,6 +152,67 @@ fn decide(
         source: check.source.clone(),
         span: check.span,
         verdict,
+    }
+}
+
+/// Whether `lhs − rhs` is 0 as a rational function of its symbols (function calls and
+/// non-integer powers taken as opaque): the difference is brought over one denominator
+/// and its numerator expanded. `(g*m - k*x)/m = g - k*x/m` is decided here, exactly,
+/// where canonical forms alone (which do not combine fractions) leave it to random points.
+/// The identity then holds wherever both sides are defined; a numerator the expansion
+/// limits leave unexpanded just fails here and goes on to [`ExprPool::identical`].
+fn rational_identity(pool: &mut ExprPool, lhs: Id, rhs: Id) -> bool {
+    let difference = pool.sub(lhs, rhs);
+    if pool.is_zero(difference) {
+        return true;
+    }
+    let difference = pool.inline_definitions(difference);
+    let (numerator, _) = fraction(pool, difference);
+    let expanded = pool.expand(numerator);
+    pool.is_zero(expanded)
+}
+
+/// `e` as (numerator, denominator), both free of negative integer powers at the top: sums
+/// over a common denominator (the product of the distinct ones), products factor by
+/// factor, `b^-k` as `den(b)^k / num(b)^k`.
+fn fraction(pool: &mut ExprPool, e: Id) -> (Id, Id) {
+    let one = pool.int(1);
+    match pool.node(e).clone() {
+        Node::Add(terms) => {
+            let (mut numerator, mut denominator) = (pool.int(0), one);
+            for term in terms.iter() {
+                let (n, d) = fraction(pool, *term);
+                if d == denominator {
+                    numerator = pool.add(&[numerator, n]);
+                } else {
+                    let left = pool.mul(&[numerator, d]);
+                    let right = pool.mul(&[n, denominator]);
+                    numerator = pool.add(&[left, right]);
+                    denominator = pool.mul(&[denominator, d]);
+                }
+            }
+            (numerator, denominator)
+        }
+        Node::Mul(factors) => {
+            let parts: Vec<(Id, Id)> = factors.iter().map(|f| fraction(pool, *f)).collect();
+            let numerators: Vec<Id> = parts.iter().map(|p| p.0).collect();
+            let denominators: Vec<Id> = parts.iter().map(|p| p.1).collect();
+            (pool.mul(&numerators), pool.mul(&denominators))
+        }
+        Node::Pow(base, exponent) => match pool.node(exponent).clone() {
+            Node::Num(k) if k.denom() == 1 && k.numer() != 0 => {
+                let (n, d) = fraction(pool, base);
+                let power = pool.int(i64::try_from(k.numer().abs()).unwrap_or(i64::MAX));
+                let (n, d) = (pool.pow(n, power), pool.pow(d, power));
+                if k.numer() < 0 {
+                    (d, n)
+                } else {
+                    (n, d)
+                }
+            }
+            _ => (e, one),
+        },
+        _ => (e, one),
     }
 }
 
@@ -197,5 +265,65 @@ fn short(x: f64) -> String {
         format!("{x:.6}")
     } else {
         format!("{x:.4e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::expr::SymbolKind;
+
+    fn symbols<const K: usize>(pool: &mut ExprPool, names: [&str; K]) -> [Id; K] {
+        names.map(|name| {
+            let s = pool.symbols_mut().add(name, SymbolKind::Parameter);
+            pool.sym(s)
+        })
+    }
+
+    /// The issue's `(g*m − k*x)/m = g − k*x/m`: over the common denominator m the numerator
+    /// g*m − k*x − (g*m − k*x) expands to 0. One more term (`+ 1/m`) is not an identity: the
+    /// numerator is then −1.
+    #[test]
+    fn the_issues_rational_identity_is_proven_and_a_near_miss_is_not() {
+        let mut pool = ExprPool::new();
+        let [g, m, k, x] = symbols(&mut pool, ["g", "m", "k", "x"]);
+        let gm = pool.mul(&[g, m]);
+        let kx = pool.mul(&[k, x]);
+        let numerator = pool.sub(gm, kx);
+        let lhs = pool.div(numerator, m);
+        let kx_m = pool.div(kx, m);
+        let rhs = pool.sub(g, kx_m);
+        assert!(rational_identity(&mut pool, lhs, rhs));
+        let one = pool.int(1);
+        let one_m = pool.div(one, m);
+        let wrong = pool.add(&[rhs, one_m]);
+        assert!(!rational_identity(&mut pool, lhs, wrong));
+    }
+
+    /// Fractions whose sum needs a common denominator: 1/(x+1) − 1/(x−1) = −2/(x²−1) and
+    /// x/(x*g + x*k) = 1/(g+k). Canonical form and expansion alone (`identical`) leave both
+    /// to random points, as this test shows first; the rational decision proves them.
+    #[test]
+    fn sums_of_fractions_are_decided_exactly() {
+        let mut pool = ExprPool::new();
+        let [g, k, x] = symbols(&mut pool, ["g", "k", "x"]);
+        let (one, two, minus_two) = (pool.int(1), pool.int(2), pool.int(-2));
+        let (x1, x_1) = (pool.add(&[x, one]), pool.sub(x, one));
+        let a = pool.div(one, x1);
+        let b = pool.div(one, x_1);
+        let left = pool.sub(a, b);
+        let x2 = pool.pow(x, two);
+        let x2_1 = pool.sub(x2, one);
+        let right = pool.div(minus_two, x2_1);
+        let xg = pool.mul(&[x, g]);
+        let xk = pool.mul(&[x, k]);
+        let sum = pool.add(&[xg, xk]);
+        let left_2 = pool.div(x, sum);
+        let gk = pool.add(&[g, k]);
+        let right_2 = pool.div(one, gk);
+        for (l, r) in [(left, right), (left_2, right_2)] {
+            assert!(matches!(pool.identical(l, r), Identity::Numerical { .. }));
+            assert!(rational_identity(&mut pool, l, r));
+        }
     }
 }

@@ -1,0 +1,268 @@
+//! What `--record` takes: the model's quantities by name (as `--stop-when` does), and beyond
+//! them `mdot_<mass>`, the model's `let` names, and any expression of these, the parameters
+//! and `t`, named (`--record "E=1/2*m*x'^2"`) or not (`--record "x*sin(theta)"`, its
+//! column named by its text).
+//!
+//! An expression is parsed by the DSL's own expression grammar, every name resolved once
+//! when the run is planned (an unknown name is an error with the nearest one), and
+//! evaluated at each recorded point from the quantities it reads.
+
+use varmass::core::SystemError;
+use varmass::interpret::{Program, Quantity};
+use varmass::symbolic::expr::Func;
+use varmass::symbolic::parse::ast::{BinOp, Expr, ExprNode, StatementKind, SystemAst};
+use varmass::symbolic::parse::parse_expression;
+
+use super::names::{evaluate, resolve, velocity_state, Observable};
+use crate::error::CliError;
+
+/// One recorded column's value.
+#[derive(Clone, Debug)]
+pub enum Recorded {
+    /// A quantity of the model.
+    Quantity(Observable),
+    /// An expression of recordable names.
+    Expression(Term),
+}
+
+/// A resolved expression.
+#[derive(Clone, Debug)]
+pub enum Term {
+    /// A number or a parameter's value.
+    Constant(f64),
+    /// t.
+    Time,
+    /// A quantity of the model.
+    Quantity(Observable),
+    /// ṁ of mass `i`.
+    MassRate(usize),
+    /// −a.
+    Neg(Box<Term>),
+    /// a ∘ b.
+    Binary(BinOp, Box<Term>, Box<Term>),
+    /// f(a, …).
+    Call(Func, Vec<Term>),
+}
+
+/// What an expression's names can be, besides the model's quantities.
+pub struct Scope<'a> {
+    /// The quantities, as [`super::names::observables`] lists them.
+    pub quantities: &'a [(String, Observable)],
+    /// The parameter values.
+    pub parameters: &'a [(String, f64)],
+    /// The masses' names, in mass order (for `mdot_<mass>`).
+    pub masses: Vec<String>,
+    /// The model's `let` definitions, in order.
+    pub lets: Vec<(String, ExprNode)>,
+}
+
+impl<'a> Scope<'a> {
+    /// The scope of `program`'s run with `parameters`, the lets taken from `ast`.
+    pub fn new(
+        program: &Program,
+        ast: &SystemAst,
+        quantities: &'a [(String, Observable)],
+        parameters: &'a [(String, f64)],
+    ) -> Self {
+        let lets = ast
+            .statements
+            .iter()
+            .filter_map(|s| match &s.kind {
+                StatementKind::Let { name, value } => Some((name.node.clone(), value.clone())),
+                _ => None,
+            })
+            .collect();
+        Self {
+            quantities,
+            parameters,
+            masses: program.mass_names().map(str::to_string).collect(),
+            lets,
+        }
+    }
+
+    /// Every name an expression may use, for the "did you mean" of an unknown one.
+    fn names(&self) -> Vec<(String, ())> {
+        let mut names: Vec<String> = self.quantities.iter().map(|(n, _)| n.clone()).collect();
+        names.extend(self.masses.iter().map(|m| format!("mdot_{m}")));
+        names.extend(self.lets.iter().map(|(n, _)| n.clone()));
+        names.extend(self.parameters.iter().map(|(n, _)| n.clone()));
+        names.push("t".to_string());
+        names.into_iter().map(|n| (n, ())).collect()
+    }
+}
+
+/// Splits `--record` values at the commas outside parentheses (an expression may call
+/// `atan2(y, x)`), trimmed, empty entries dropped.
+pub fn entries(values: &[String]) -> Vec<String> {
+    let mut out = Vec::new();
+    for value in values {
+        let (mut depth, mut start) = (0_i32, 0);
+        for (i, c) in value.char_indices() {
+            match c {
+                '(' | '[' => depth += 1,
+                ')' | ']' => depth -= 1,
+                ',' if depth <= 0 => {
+                    out.push(value[start..i].trim().to_string());
+                    start = i + 1;
+                }
+                _ => {}
+            }
+        }
+        out.push(value[start..].trim().to_string());
+    }
+    out.retain(|e| !e.is_empty());
+    out
+}
+
+/// One `--record` entry: a quantity's name, `NAME=EXPRESSION`, or an expression.
+pub fn recorded(entry: &str, scope: &Scope<'_>) -> Result<(String, Recorded), CliError> {
+    if let Some((_, observable)) = scope.quantities.iter().find(|(n, _)| n == entry) {
+        return Ok((entry.to_string(), Recorded::Quantity(*observable)));
+    }
+    let (name, text) = match entry.split_once('=') {
+        Some((name, text)) if is_identifier(name.trim()) => (name.trim(), text.trim()),
+        _ => (entry, entry),
+    };
+    let node = parse_expression(text).map_err(|d| {
+        CliError::Input(format!(
+            "--record `{entry}`: {} (at `{}`)",
+            d.message,
+            text.get(d.span.start..d.span.end).unwrap_or(text)
+        ))
+    })?;
+    let term = resolve_term(&node, scope, 0).map_err(|e| match e {
+        CliError::Input(message) => CliError::Input(format!("--record `{entry}`: {message}")),
+        other => other,
+    })?;
+    Ok((name.to_string(), Recorded::Expression(term)))
+}
+
+fn is_identifier(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// How deep `let`s may refer to `let`s: far beyond any model, and a guard against a
+/// definition that names itself.
+const MAX_LET_DEPTH: usize = 64;
+
+fn resolve_term(node: &ExprNode, scope: &Scope<'_>, depth: usize) -> Result<Term, CliError> {
+    let resolve_box = |n: &ExprNode| resolve_term(n, scope, depth).map(Box::new);
+    Ok(match &*node.node {
+        Expr::Number(text) => Term::Constant(
+            text.parse::<f64>()
+                .map_err(|_| CliError::Input(format!("`{text}` is not a number")))?,
+        ),
+        Expr::Name(name) => name_term(name, scope, depth)?,
+        Expr::Derivative { name, order } => {
+            let written = format!("{name}{}", "'".repeat(usize::from(*order)));
+            Term::Quantity(resolve(&written, scope.quantities, "a quantity")?)
+        }
+        Expr::Neg(a) => Term::Neg(resolve_box(a)?),
+        Expr::Binary { op, lhs, rhs } => Term::Binary(*op, resolve_box(lhs)?, resolve_box(rhs)?),
+        Expr::Call { func, args } => {
+            let f = Func::from_name(&func.node)
+                .filter(|f| f.arity() == args.len())
+                .ok_or_else(|| {
+                    CliError::Input(format!(
+                        "`{}` with {} argument(s) is not a function of the DSL",
+                        func.node,
+                        args.len()
+                    ))
+                })?;
+            let args = args
+                .iter()
+                .map(|a| resolve_term(a, scope, depth))
+                .collect::<Result<_, _>>()?;
+            Term::Call(f, args)
+        }
+    })
+}
+
+/// A name: a quantity, `t`, `mdot_<mass>`, a parameter or a `let` (resolved in turn).
+fn name_term(name: &str, scope: &Scope<'_>, depth: usize) -> Result<Term, CliError> {
+    if let Some((_, o)) = scope.quantities.iter().find(|(n, _)| n == name) {
+        return Ok(Term::Quantity(*o));
+    }
+    if name == "t" {
+        return Ok(Term::Time);
+    }
+    if let Some(i) = name
+        .strip_prefix("mdot_")
+        .and_then(|m| scope.masses.iter().position(|n| n == m))
+    {
+        return Ok(Term::MassRate(i));
+    }
+    if let Some((_, value)) = scope.parameters.iter().find(|(n, _)| n == name) {
+        return Ok(Term::Constant(*value));
+    }
+    if let Some((_, value)) = scope.lets.iter().find(|(n, _)| n == name) {
+        if depth >= MAX_LET_DEPTH {
+            return Err(CliError::Input(format!(
+                "the definition of `{name}` refers to itself"
+            )));
+        }
+        return resolve_term(value, scope, depth + 1);
+    }
+    match resolve(name, &scope.names(), "a quantity") {
+        Err(unknown) => Err(unknown),
+        // Every name of the list was tried above; this is for completeness.
+        Ok(()) => Err(CliError::Input(format!("`{name}` cannot be recorded"))),
+    }
+}
+
+impl Recorded {
+    /// The value at `(t, state)`, `state` = `[q, p, m_s]`.
+    pub fn value(&self, program: &Program, t: f64, state: &[f64]) -> Result<f64, SystemError> {
+        match self {
+            Recorded::Quantity(o) => evaluate(program, *o, t, state),
+            Recorded::Expression(term) => term.value(program, t, state),
+        }
+    }
+}
+
+impl Term {
+    fn value(&self, program: &Program, t: f64, state: &[f64]) -> Result<f64, SystemError> {
+        let of = |term: &Term| term.value(program, t, state);
+        Ok(match self {
+            Term::Constant(c) => *c,
+            Term::Time => t,
+            Term::Quantity(o) => evaluate(program, *o, t, state)?,
+            Term::MassRate(i) => {
+                let velocity_state = velocity_state(program, t, state)?;
+                let mut rates = vec![f64::NAN; program.derivation().masses.len()];
+                program.evaluate(Quantity::MassRates, t, &velocity_state, &mut rates);
+                rates.get(*i).copied().unwrap_or(f64::NAN)
+            }
+            Term::Neg(a) => -of(a)?,
+            Term::Binary(op, a, b) => {
+                let (a, b) = (of(a)?, of(b)?);
+                match op {
+                    BinOp::Add => a + b,
+                    BinOp::Sub => a - b,
+                    BinOp::Mul => a * b,
+                    BinOp::Div => a / b,
+                    BinOp::Pow => a.powf(b),
+                }
+            }
+            Term::Call(f, args) => {
+                let args = args.iter().map(of).collect::<Result<Vec<f64>, _>>()?;
+                f.apply(&args)
+            }
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn entries_split_at_top_level_commas_only() {
+        let values = ["x, E=1/2*m*x'^2".to_string(), "atan2(y, x),H".to_string()];
+        assert_eq!(entries(&values), ["x", "E=1/2*m*x'^2", "atan2(y, x)", "H"]);
+    }
+}
