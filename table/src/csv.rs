@@ -43,7 +43,12 @@ impl CsvTable {
         let mut last_line = header_line;
         for (line, content) in lines {
             let [argument, value] = two_fields(line, content)?;
-            points.push(line, argument.0, number(line, argument)?, number(line, value)?)?;
+            points.push(
+                line,
+                argument.0,
+                number(line, argument)?,
+                number(line, value)?,
+            )?;
             last_line = line;
         }
         Ok(Self {

@@ -65,7 +65,11 @@ impl Motor {
             let time = number(line, fields[0])?;
             let force = number(line, fields[1])?;
             if time < 0.0 {
-                return Err(error_at(line, fields[0].0, ReadErrorKind::NegativeTime { time }));
+                return Err(error_at(
+                    line,
+                    fields[0].0,
+                    ReadErrorKind::NegativeTime { time },
+                ));
             }
             // The curve starts from ignition at zero thrust unless the file says otherwise.
             if thrust.len() == 0 && time > 0.0 {
@@ -114,8 +118,25 @@ struct Header {
 
 impl Header {
     fn with_thrust(self, thrust: Points) -> Motor {
-        let Header { name, diameter_mm, length_mm, delays, propellant_kg, total_kg, maker } = self;
-        Motor { name, diameter_mm, length_mm, delays, propellant_kg, total_kg, maker, thrust }
+        let Header {
+            name,
+            diameter_mm,
+            length_mm,
+            delays,
+            propellant_kg,
+            total_kg,
+            maker,
+        } = self;
+        Motor {
+            name,
+            diameter_mm,
+            length_mm,
+            delays,
+            propellant_kg,
+            total_kg,
+            maker,
+            thrust,
+        }
     }
 }
 
@@ -123,7 +144,8 @@ fn parse_header(line: usize, text: &str) -> Result<Header, ReadError> {
     let fields = whitespace_fields(text);
     if fields.len() < 7 {
         let kind = ReadErrorKind::FieldCount {
-            expected: "7 header fields (name diameter_mm length_mm delays propellant_kg total_kg maker)",
+            expected:
+                "7 header fields (name diameter_mm length_mm delays propellant_kg total_kg maker)",
             found: fields.len(),
         };
         return Err(error_at(line, 1, kind));

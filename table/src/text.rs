@@ -81,7 +81,13 @@ pub(crate) struct PointsBuilder {
 
 impl PointsBuilder {
     /// Appends (x, y), read at `line` with x at `column`.
-    pub(crate) fn push(&mut self, line: usize, column: usize, x: f64, y: f64) -> Result<(), ReadError> {
+    pub(crate) fn push(
+        &mut self,
+        line: usize,
+        column: usize,
+        x: f64,
+        y: f64,
+    ) -> Result<(), ReadError> {
         if let Some(&previous) = self.arguments.last() {
             if x <= previous {
                 let kind = ReadErrorKind::NotIncreasing { previous, knot: x };

@@ -29,7 +29,10 @@ fn reference(name: &str) -> Reference {
 }
 
 fn m1670() -> Points {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/motors/Cesaroni_M1670.eng");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../models/motors/Cesaroni_M1670.eng"
+    );
     Motor::parse(&std::fs::read_to_string(path).unwrap())
         .unwrap()
         .thrust
@@ -52,8 +55,16 @@ fn worst(points: &Points, interpolation: Interpolation, scipy: &Reference, floor
     };
     let mut cursor = Cursor::default();
     let ours = [
-        scipy.x.iter().map(|&x| table.value_at(x, &mut cursor).unwrap()).collect::<Vec<_>>(),
-        scipy.x.iter().map(|&x| table.slope_at(x, &mut cursor).unwrap()).collect(),
+        scipy
+            .x
+            .iter()
+            .map(|&x| table.value_at(x, &mut cursor).unwrap())
+            .collect::<Vec<_>>(),
+        scipy
+            .x
+            .iter()
+            .map(|&x| table.slope_at(x, &mut cursor).unwrap())
+            .collect(),
     ];
     [0, 1].map(|k| {
         let scale = floor * expected[k].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
@@ -83,7 +94,10 @@ fn pchip_equals_scipys_pchip_interpolator_pointwise() {
     // the thrust curve count too). The bound is the 1e-13.
     for (name, points) in [("m1670", m1670()), ("wiggle", wiggle())] {
         let [value, slope] = worst(&points, Interpolation::Pchip, &reference(name), 0.0);
-        assert!(value <= 1e-13 && slope <= 1e-13, "{name}: {value:e} {slope:e}");
+        assert!(
+            value <= 1e-13 && slope <= 1e-13,
+            "{name}: {value:e} {slope:e}"
+        );
     }
 }
 
@@ -97,6 +111,9 @@ fn spline_equals_scipys_natural_cubic_spline() {
     // larger and neither program's last bits mean anything. The bound is the 1e-13.
     for (name, points) in [("m1670", m1670()), ("wiggle", wiggle())] {
         let [value, slope] = worst(&points, Interpolation::Spline, &reference(name), 1e-3);
-        assert!(value <= 1e-13 && slope <= 1e-13, "{name}: {value:e} {slope:e}");
+        assert!(
+            value <= 1e-13 && slope <= 1e-13,
+            "{name}: {value:e} {slope:e}"
+        );
     }
 }
