@@ -164,6 +164,29 @@ impl Piecewise {
         Self::from_parts(self.knots.to_vec(), coefficients, degree)
     }
 
+    /// The antiderivative P with P(first knot) = 0, a piecewise polynomial on the same knots
+    /// one degree higher: on each piece cₖ/(k+1) shifted up a power, plus the integral of
+    /// the pieces before it. Of a linear thrust curve it is the impulse I(t) by exact
+    /// trapezoids, so the mass of a motor burning at ṁ = −F/u_e is m₀ − I(t)/u_e.
+    pub fn antiderivative(&self) -> Self {
+        let width = self.degree + 2;
+        let mut coefficients = Vec::with_capacity(self.intervals() * width);
+        let mut before = 0.0;
+        for interval in 0..self.intervals() {
+            let start = coefficients.len();
+            coefficients.push(before);
+            let piece = self.piece(interval);
+            coefficients.extend(piece.iter().enumerate().map(|(k, &c)| c / (k + 1) as f64));
+            // The piece's integral over its whole interval carries into the next.
+            let h = self.knots[interval + 1] - self.knots[interval];
+            before = coefficients[start..]
+                .iter()
+                .rev()
+                .fold(0.0, |sum, &c| sum * h + c);
+        }
+        Self::from_parts(self.knots.to_vec(), coefficients, self.degree + 1)
+    }
+
     /// The coefficients of interval `interval`.
     #[inline]
     fn piece(&self, interval: usize) -> &[f64] {

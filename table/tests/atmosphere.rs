@@ -5,14 +5,20 @@
 use varmass_table::{CsvTable, Interpolation, Outside, Table};
 
 fn density() -> CsvTable {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/atmosphere/density.csv");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../models/atmosphere/density.csv"
+    );
     CsvTable::parse(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 #[test]
 fn the_table_reproduces_the_standards_printed_density() {
     let table = density();
-    assert_eq!((table.argument.as_str(), table.value.as_str()), ("altitude_m", "density_kg_m3"));
+    assert_eq!(
+        (table.argument.as_str(), table.value.as_str()),
+        ("altitude_m", "density_kg_m3")
+    );
     let rho = Table::new(&table.points, Interpolation::Pchip, Outside::Error);
     // (geometric altitude m, density kg/m³) as printed in Table I.
     let printed = [
@@ -32,7 +38,10 @@ fn the_table_reproduces_the_standards_printed_density() {
         // ≤ 3.7e-5 (1 km: 1.111659 against the printed 1.1117, a correct rounding); a
         // density 1e-4 off (a wrong constant) fails.
         let relative = (value - expected).abs() / expected;
-        assert!(relative <= 5e-5, "at {altitude} m: {value} against {expected}");
+        assert!(
+            relative <= 5e-5,
+            "at {altitude} m: {value} against {expected}"
+        );
     }
 }
 
