@@ -119,13 +119,20 @@ impl Piecewise {
     #[inline]
     pub fn value_on(&self, interval: usize, x: f64) -> f64 {
         let s = x - self.knots[interval];
-        let mut z = 1.0;
-        let mut sum = 0.0;
-        for &c in self.piece(interval) {
-            sum += c * z;
-            z *= s;
+        match *self.piece(interval) {
+            // The table's own degrees written out (the same operations as the loop).
+            [c0, c1] => c0 + c1 * s,
+            [c0, c1, c2, c3] => c0 + c1 * s + c2 * (s * s) + c3 * (s * s * s),
+            ref piece => {
+                let mut z = 1.0;
+                let mut sum = 0.0;
+                for &c in piece {
+                    sum += c * z;
+                    z *= s;
+                }
+                sum
+            }
         }
-        sum
     }
 
     /// p′(x) on interval `interval`, Σ k·cₖ sᵏ⁻¹ summed as in [`Piecewise::value_on`] (no
