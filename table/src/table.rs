@@ -82,6 +82,11 @@ impl Table {
         self.outside
     }
 
+    /// The first and the last knot: where the data end.
+    pub fn domain(&self) -> (f64, f64) {
+        self.curve.domain()
+    }
+
     /// The knots: where the table may be non-smooth.
     pub fn knots(&self) -> &[f64] {
         self.curve.knots()
@@ -90,12 +95,11 @@ impl Table {
     /// The value at `x`, starting the search from the table's own hint.
     #[inline]
     pub fn value(&self, x: f64) -> Result<f64, LookupError> {
-        let mut cursor = Cursor {
-            interval: self.hint.load(Ordering::Relaxed),
-        };
+        let hint = self.hint.load(Ordering::Relaxed);
+        let mut cursor = Cursor { interval: hint };
         let value = self.value_at(x, &mut cursor);
         // Store only a change: a shared table's cache line stays clean while the interval does.
-        if cursor.interval != self.hint.load(Ordering::Relaxed) {
+        if cursor.interval != hint {
             self.hint.store(cursor.interval, Ordering::Relaxed);
         }
         value
