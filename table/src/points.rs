@@ -67,6 +67,21 @@ impl Points {
         Ok(Self { arguments, values })
     }
 
+    /// The same curve stretched: every argument times `argument_factor`, every value times
+    /// `value_factor` (an ensemble dispersing a thrust curve: a slower burn, a weaker motor).
+    /// Checked again, so a factor that is not positive and finite is an error, not a table.
+    pub fn stretched(
+        &self,
+        argument_factor: f64,
+        value_factor: f64,
+    ) -> Result<Self, InvalidPoints> {
+        let arguments = self.arguments.iter().map(|x| x * argument_factor).collect();
+        let values = self.values.iter().map(|y| y * value_factor).collect();
+        // A factor ≤ 0 reverses or collapses the knots, one not finite makes them so:
+        // `new` refuses both.
+        Self::new(arguments, values)
+    }
+
     /// The arguments (knots), strictly increasing.
     pub fn arguments(&self) -> &[f64] {
         &self.arguments

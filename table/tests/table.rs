@@ -291,3 +291,37 @@ fn differentiating_the_antiderivative_gives_the_curve_back() {
         assert!((a - b).abs() <= 2e-15, "{a} {b}");
     }
 }
+
+#[test]
+fn a_stretched_thrust_curve_scales_the_impulse_by_both_factors() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../models/motors/Cesaroni_M1670.eng"
+    );
+    let thrust = varmass_table::Motor::parse(&std::fs::read_to_string(path).unwrap())
+        .unwrap()
+        .thrust;
+    // 10 % slower, 10 % weaker: ∫ 0.9 F(t/1.1) dt = 0.99 I. Measured 0 against
+    // 0.99 · 6026.35; 1e-11 allows the rounding of 16 scaled products (≈ 1e-12).
+    let dispersed = thrust.stretched(1.1, 0.9).unwrap();
+    let impulse = dispersed.trapezoid_integral();
+    assert!((impulse - 0.99 * 6026.35).abs() <= 1e-11, "{impulse}");
+    assert_eq!(dispersed.arguments()[15], 1.1 * 3.9);
+    // A factor that is not positive and finite is refused by the same checks as any data.
+    assert_eq!(
+        thrust.stretched(0.0, 1.0),
+        Err(InvalidPoints::NotIncreasing { index: 1 })
+    );
+    assert_eq!(
+        thrust.stretched(-1.0, 1.0),
+        Err(InvalidPoints::NotIncreasing { index: 1 })
+    );
+    assert_eq!(
+        thrust.stretched(f64::NAN, 1.0),
+        Err(InvalidPoints::NotFinite { index: 0 })
+    );
+    assert_eq!(
+        thrust.stretched(1.0, f64::INFINITY),
+        Err(InvalidPoints::NotFinite { index: 0 })
+    );
+}
