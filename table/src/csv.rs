@@ -1,0 +1,75 @@
+//! A two-column CSV table with a header naming its columns: `argument, value`, then one
+//! point a line. Blank lines and lines starting with `#` are skipped, so a data file can say
+//! where it comes from.
+
+use alloc::string::{String, ToString};
+
+use crate::error::{ReadError, ReadErrorKind};
+use crate::points::Points;
+use crate::text::{comma_fields, error_at, number, PointsBuilder};
+
+/// A table read from CSV: the names its header gives the columns, and the points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CsvTable {
+    /// The header's name of the first column (the argument), e.g. `altitude_m`.
+    pub argument: String,
+    /// The header's name of the second column (the value), e.g. `density_kg_m3`.
+    pub value: String,
+    /// The points, arguments strictly increasing.
+    pub points: Points,
+}
+
+const HEADER: &str = "argument, value";
+const PAIR: &str = "2 fields (argument, value)";
+
+impl CsvTable {
+    /// Reads `text`.
+    pub fn parse(text: &str) -> Result<Self, ReadError> {
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .map(|(index, line)| (index + 1, line))
+            .filter(|(_, line)| !line.trim().is_empty() && !line.trim_start().starts_with('#'));
+        let (header_line, header) = lines.next().ok_or(error_at(
+            text.lines().count().max(1),
+            1,
+            ReadErrorKind::MissingHeader { expected: HEADER },
+        ))?;
+        let names = two_fields(header_line, header)?;
+        if names.iter().all(|(_, name)| name.parse::<f64>().is_ok()) {
+            return Err(error_at(header_line, 1, ReadErrorKind::HeaderIsData));
+        }
+        let mut points = PointsBuilder::default();
+        let mut last_line = header_line;
+        for (line, content) in lines {
+            let [argument, value] = two_fields(line, content)?;
+            points.push(
+                line,
+                argument.0,
+                number(line, argument)?,
+                number(line, value)?,
+            )?;
+            last_line = line;
+        }
+        Ok(Self {
+            argument: names[0].1.to_string(),
+            value: names[1].1.to_string(),
+            points: points.finish(last_line)?,
+        })
+    }
+}
+
+/// The line's two comma-separated fields.
+fn two_fields(line: usize, text: &str) -> Result<[(usize, &str); 2], ReadError> {
+    match comma_fields(text)[..] {
+        [first, second] => Ok([first, second]),
+        ref fields => Err(error_at(
+            line,
+            1,
+            ReadErrorKind::FieldCount {
+                expected: PAIR,
+                found: fields.len(),
+            },
+        )),
+    }
+}

@@ -1,0 +1,167 @@
+//! The RASP engine format (`.eng`), which every rocketry tool reads: a header line
+//! `name diameter_mm length_mm delays propellant_kg total_kg maker`, then `time thrust`
+//! pairs (s, N), `;` starting a comment. The file lists the points after ignition; the curve
+//! starts from (0 s, 0 N), as RockSim, OpenRocket and RocketPy read it.
+
+use alloc::string::{String, ToString};
+
+use crate::error::{ReadError, ReadErrorKind};
+use crate::points::Points;
+use crate::text::{error_at, number, whitespace_fields, PointsBuilder};
+
+/// One motor of a RASP `.eng` file: its header and its thrust curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Motor {
+    /// The motor's designation, e.g. `M1670-BS`.
+    pub name: String,
+    /// Case diameter, mm.
+    pub diameter_mm: f64,
+    /// Case length, mm.
+    pub length_mm: f64,
+    /// The ejection delays available, as written (`6-10-14-18`, `0`, `P` for plugged).
+    pub delays: String,
+    /// Propellant mass, kg.
+    pub propellant_kg: f64,
+    /// Loaded mass (case and propellant), kg.
+    pub total_kg: f64,
+    /// Maker's abbreviation, e.g. `CTI`.
+    pub maker: String,
+    /// Thrust (N) against time since ignition (s), from (0, 0) unless the file lists t = 0.
+    pub thrust: Points,
+}
+
+const HEADER: &str = "name diameter_mm length_mm delays propellant_kg total_kg maker";
+const PAIR: &str = "2 fields (time thrust)";
+
+impl Motor {
+    /// Reads the first (and only) motor of `text`.
+    pub fn parse(text: &str) -> Result<Self, ReadError> {
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .map(|(index, line)| (index + 1, without_comment(line)))
+            .filter(|(_, line)| !line.trim().is_empty());
+        let (header_line, header) = lines.next().ok_or(error_at(
+            text.lines().count().max(1),
+            1,
+            ReadErrorKind::MissingHeader { expected: HEADER },
+        ))?;
+        let header = parse_header(header_line, header)?;
+        let mut thrust = PointsBuilder::default();
+        let mut last_line = header_line;
+        for (line, content) in lines {
+            let fields = whitespace_fields(content);
+            if fields.len() != 2 {
+                let kind = if fields.len() >= 7 && fields[0].1.parse::<f64>().is_err() {
+                    ReadErrorKind::SecondMotor
+                } else {
+                    ReadErrorKind::FieldCount {
+                        expected: PAIR,
+                        found: fields.len(),
+                    }
+                };
+                return Err(error_at(line, 1, kind));
+            }
+            let time = number(line, fields[0])?;
+            let force = number(line, fields[1])?;
+            if time < 0.0 {
+                return Err(error_at(
+                    line,
+                    fields[0].0,
+                    ReadErrorKind::NegativeTime { time },
+                ));
+            }
+            // The curve starts from ignition at zero thrust unless the file says otherwise.
+            if thrust.len() == 0 && time > 0.0 {
+                thrust.push(line, fields[0].0, 0.0, 0.0)?;
+            }
+            thrust.push(line, fields[0].0, time, force)?;
+            last_line = line;
+        }
+        Ok(header.with_thrust(thrust.finish(last_line)?))
+    }
+
+    /// Total impulse, N·s: the integral of the thrust curve by exact trapezoids (the
+    /// piecewise-linear curve the file describes).
+    pub fn total_impulse(&self) -> f64 {
+        self.thrust.trapezoid_integral()
+    }
+
+    /// Burn time, s: the last time of the curve.
+    pub fn burn_time(&self) -> f64 {
+        let times = self.thrust.arguments();
+        times[times.len() - 1]
+    }
+
+    /// The effective exhaust speed u_e = total impulse / propellant mass, m/s, with which the
+    /// rocketry tools make the mass follow the thrust: ṁ = −F/u_e.
+    pub fn exhaust_speed(&self) -> f64 {
+        self.total_impulse() / self.propellant_kg
+    }
+}
+
+/// The line without its `;` comment.
+fn without_comment(line: &str) -> &str {
+    line.split(';').next().unwrap_or("")
+}
+
+/// A motor without its curve: what the header line says.
+struct Header {
+    name: String,
+    diameter_mm: f64,
+    length_mm: f64,
+    delays: String,
+    propellant_kg: f64,
+    total_kg: f64,
+    maker: String,
+}
+
+impl Header {
+    fn with_thrust(self, thrust: Points) -> Motor {
+        let Header {
+            name,
+            diameter_mm,
+            length_mm,
+            delays,
+            propellant_kg,
+            total_kg,
+            maker,
+        } = self;
+        Motor {
+            name,
+            diameter_mm,
+            length_mm,
+            delays,
+            propellant_kg,
+            total_kg,
+            maker,
+            thrust,
+        }
+    }
+}
+
+fn parse_header(line: usize, text: &str) -> Result<Header, ReadError> {
+    let fields = whitespace_fields(text);
+    if fields.len() < 7 {
+        let kind = ReadErrorKind::FieldCount {
+            expected:
+                "7 header fields (name diameter_mm length_mm delays propellant_kg total_kg maker)",
+            found: fields.len(),
+        };
+        return Err(error_at(line, 1, kind));
+    }
+    Ok(Header {
+        name: fields[0].1.to_string(),
+        diameter_mm: number(line, fields[1])?,
+        length_mm: number(line, fields[2])?,
+        delays: fields[3].1.to_string(),
+        propellant_kg: number(line, fields[4])?,
+        total_kg: number(line, fields[5])?,
+        // A maker written in several words keeps them.
+        maker: fields[6..]
+            .iter()
+            .map(|(_, word)| *word)
+            .collect::<alloc::vec::Vec<_>>()
+            .join(" "),
+    })
+}

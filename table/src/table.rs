@@ -1,0 +1,192 @@
+//! A table: an interpolant, what it does outside its data, and the interval it last used.
+
+use core::sync::atomic::{AtomicUsize, Ordering};
+
+use crate::error::LookupError;
+use crate::interpolant::Interpolation;
+use crate::piecewise::Piecewise;
+use crate::points::Points;
+
+/// What a table gives for an argument outside its data.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Outside {
+    /// A [`LookupError::Outside`] carrying the argument (the default: data end where they end).
+    #[default]
+    Error,
+    /// Zero (a thrust curve after burnout).
+    Zero,
+    /// The value at the nearer end, held.
+    Hold,
+}
+
+/// The interval a caller last looked up, kept by the caller: one per thread or per run, so
+/// that lookups need neither the table's own hint nor any sharing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Cursor {
+    interval: usize,
+}
+
+/// A function of one argument given by data: a [`Piecewise`] interpolant and an [`Outside`]
+/// rule.
+///
+/// Lookups remember the interval of the last call, so that an integration, whose arguments
+/// move a little from call to call, finds it in one or two comparisons instead of a binary
+/// search. The memory is either the caller's [`Cursor`] ([`Table::value_at`]) or the table's
+/// own hint ([`Table::value`]), an `AtomicUsize` read and written with `Relaxed` ordering:
+/// plain loads and stores on the targets we run on, and the table stays `Sync`, so one table
+/// can serve every member of a rayon ensemble. A hint another thread overwrote is only a
+/// worse first guess (every guess is checked against the knots), never a wrong value; threads
+/// that share a table and want no shared cache line use their own `Cursor`.
+#[derive(Debug)]
+pub struct Table {
+    curve: Piecewise,
+    outside: Outside,
+    hint: AtomicUsize,
+}
+
+impl Clone for Table {
+    fn clone(&self) -> Self {
+        Self::from_piecewise(self.curve.clone(), self.outside)
+    }
+}
+
+impl PartialEq for Table {
+    /// Tables are equal when they compute the same function (the hint is not compared).
+    fn eq(&self, other: &Self) -> bool {
+        self.curve == other.curve && self.outside == other.outside
+    }
+}
+
+impl Table {
+    /// The table interpolating `points`.
+    pub fn new(points: &Points, interpolation: Interpolation, outside: Outside) -> Self {
+        Self::from_piecewise(interpolation.interpolate(points), outside)
+    }
+
+    /// The table of an interpolant already built (e.g. over static arrays the macro emitted).
+    pub const fn from_piecewise(curve: Piecewise, outside: Outside) -> Self {
+        Self {
+            curve,
+            outside,
+            hint: AtomicUsize::new(0),
+        }
+    }
+
+    /// The interpolant.
+    pub fn curve(&self) -> &Piecewise {
+        &self.curve
+    }
+
+    /// The rule outside the data.
+    pub fn outside(&self) -> Outside {
+        self.outside
+    }
+
+    /// The first and the last knot: where the data end.
+    pub fn domain(&self) -> (f64, f64) {
+        self.curve.domain()
+    }
+
+    /// The knots: where the table may be non-smooth.
+    pub fn knots(&self) -> &[f64] {
+        self.curve.knots()
+    }
+
+    /// The value at `x`, starting the search from the table's own hint.
+    #[inline]
+    pub fn value(&self, x: f64) -> Result<f64, LookupError> {
+        let hint = self.hint.load(Ordering::Relaxed);
+        let mut cursor = Cursor { interval: hint };
+        let value = self.value_at(x, &mut cursor);
+        // Store only a change: a shared table's cache line stays clean while the interval does.
+        if cursor.interval != hint {
+            self.hint.store(cursor.interval, Ordering::Relaxed);
+        }
+        value
+    }
+
+    /// The value at `x`, starting the search from `cursor` and leaving it on x's interval.
+    #[inline]
+    pub fn value_at(&self, x: f64, cursor: &mut Cursor) -> Result<f64, LookupError> {
+        match self.place(x, cursor)? {
+            Place::Inside(interval) => Ok(self.curve.value_on(interval, x)),
+            Place::Outside(end) => self.beyond(x, end),
+        }
+    }
+
+    /// The first derivative at `x` (zero outside under `zero` and `hold`); at a knot where the
+    /// slope jumps, the slope on the right (see [`Piecewise`]).
+    pub fn slope_at(&self, x: f64, cursor: &mut Cursor) -> Result<f64, LookupError> {
+        match self.place(x, cursor)? {
+            Place::Inside(interval) => Ok(self.curve.slope_on(interval, x)),
+            // A held or zero value has zero slope; an error stays an error.
+            Place::Outside(end) => self.beyond(x, end).map(|_| 0.0),
+        }
+    }
+
+    /// The derivative table: the interpolant's derivative (a piecewise polynomial on the same
+    /// knots, one degree lower), zero outside the data unless this table errs there (a held
+    /// or zero value has zero slope). Differentiate again for higher derivatives.
+    pub fn derivative(&self) -> Self {
+        let outside = match self.outside {
+            Outside::Error => Outside::Error,
+            Outside::Zero | Outside::Hold => Outside::Zero,
+        };
+        Self::from_piecewise(self.curve.derivative(), outside)
+    }
+
+    /// The value at `x` beyond `end`, by the table's rule.
+    fn beyond(&self, x: f64, end: End) -> Result<f64, LookupError> {
+        match self.outside {
+            Outside::Zero => Ok(0.0),
+            // The end piece at its knot: the value the curve reaches there.
+            Outside::Hold => Ok(self.curve.value_on(end.interval, end.knot)),
+            Outside::Error => {
+                let (first, last) = self.curve.domain();
+                Err(LookupError::Outside {
+                    argument: x,
+                    first,
+                    last,
+                })
+            }
+        }
+    }
+
+    /// Where `x` lies: an interval (the cursor moved to it) or beyond an end.
+    #[inline]
+    fn place(&self, x: f64, cursor: &mut Cursor) -> Result<Place, LookupError> {
+        let (first, last) = self.curve.domain();
+        if first <= x && x <= last {
+            cursor.interval = self.curve.interval(x, cursor.interval);
+            return Ok(Place::Inside(cursor.interval));
+        }
+        if x.is_nan() {
+            return Err(LookupError::NotANumber);
+        }
+        Ok(Place::Outside(if x < first {
+            End {
+                interval: 0,
+                knot: first,
+            }
+        } else {
+            End {
+                interval: self.curve.intervals() - 1,
+                knot: last,
+            }
+        }))
+    }
+}
+
+/// Where an argument lies relative to the data.
+enum Place {
+    /// In this interval.
+    Inside(usize),
+    /// Beyond this end.
+    Outside(End),
+}
+
+/// An end of the data: its knot and the interval that ends there.
+struct End {
+    interval: usize,
+    knot: f64,
+}

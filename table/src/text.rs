@@ -1,0 +1,114 @@
+//! What the two readers share: fields with their columns, numbers with their positions, and
+//! the growing list of points that checks its knots increase as each line is read.
+
+use alloc::string::ToString;
+use alloc::vec::Vec;
+
+use crate::error::{ReadError, ReadErrorKind};
+use crate::points::Points;
+
+/// A field of a line: its 1-based column (in characters) and its text.
+pub(crate) type Field<'a> = (usize, &'a str);
+
+/// The fields of `line` split at whitespace, with their columns.
+pub(crate) fn whitespace_fields(line: &str) -> Vec<Field<'_>> {
+    let mut fields = Vec::new();
+    let mut start = None;
+    for (column, (offset, c)) in line.char_indices().enumerate() {
+        match (c.is_whitespace(), start) {
+            (false, None) => start = Some((column, offset)),
+            (true, Some((first, from))) => {
+                fields.push((first + 1, &line[from..offset]));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some((first, from)) = start {
+        fields.push((first + 1, &line[from..]));
+    }
+    fields
+}
+
+/// The fields of `line` split at commas and trimmed, with the columns where their text starts.
+pub(crate) fn comma_fields(line: &str) -> Vec<Field<'_>> {
+    let mut fields = Vec::new();
+    let mut column = 1;
+    for part in line.split(',') {
+        let leading = part.len() - part.trim_start().len();
+        fields.push((column + part[..leading].chars().count(), part.trim()));
+        column += part.chars().count() + 1;
+    }
+    fields
+}
+
+/// An error at `line`, `column`.
+pub(crate) fn error_at(line: usize, column: usize, kind: ReadErrorKind) -> ReadError {
+    ReadError { line, column, kind }
+}
+
+/// The field read as a finite number.
+pub(crate) fn number(line: usize, (column, text): Field<'_>) -> Result<f64, ReadError> {
+    let value: f64 = text.parse().map_err(|_| {
+        error_at(
+            line,
+            column,
+            ReadErrorKind::NotANumber {
+                field: text.to_string(),
+            },
+        )
+    })?;
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(error_at(
+            line,
+            column,
+            ReadErrorKind::NotFinite {
+                field: text.to_string(),
+            },
+        ))
+    }
+}
+
+/// Points read line by line: each knot is checked against the previous one where it is read,
+/// so the error names its line.
+#[derive(Default)]
+pub(crate) struct PointsBuilder {
+    arguments: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl PointsBuilder {
+    /// Appends (x, y), read at `line` with x at `column`.
+    pub(crate) fn push(
+        &mut self,
+        line: usize,
+        column: usize,
+        x: f64,
+        y: f64,
+    ) -> Result<(), ReadError> {
+        if let Some(&previous) = self.arguments.last() {
+            if x <= previous {
+                let kind = ReadErrorKind::NotIncreasing { previous, knot: x };
+                return Err(error_at(line, column, kind));
+            }
+        }
+        self.arguments.push(x);
+        self.values.push(y);
+        Ok(())
+    }
+
+    /// Number of points so far.
+    pub(crate) fn len(&self) -> usize {
+        self.arguments.len()
+    }
+
+    /// The points; `last_line` is where a too-short file is reported.
+    pub(crate) fn finish(self, last_line: usize) -> Result<Points, ReadError> {
+        let found = self.arguments.len();
+        // Every check of `Points::new` but the count was made as the lines were read.
+        Points::new(self.arguments, self.values)
+            .map_err(|_| error_at(last_line, 1, ReadErrorKind::TooFewPoints { found }))
+    }
+}
