@@ -6,7 +6,9 @@
 use super::linear::dot;
 use super::masses::relative_velocity;
 use super::model::{LoadKind, LoadTarget, Model};
-use super::rigid_forces::{flow_force, jacobian, point_position, torque_force, transport};
+use super::rigid_forces::{
+    flow_force, jacobian, point_position, torque_force, transport, PointFlow,
+};
 use crate::expr::{ExprPool, Id};
 
 /// Q*, R1 and R2, one entry per coordinate.
@@ -118,20 +120,28 @@ pub(crate) fn generalized_forces(
         .zip(mass_rates)
         .map(|(m, rate)| (m.symbol, *rate))
         .collect();
+    let pairs: Vec<_> = coordinates.iter().copied().zip(velocities).collect();
     for (index, body) in model.bodies.iter().enumerate() {
-        let flows: Vec<bool> = model
+        let flows: Vec<PointFlow<'_>> = model
             .flows
             .iter()
-            .filter(|f| f.body == index && f.point.is_some())
-            .map(|f| f.inflow)
+            .zip(flow_rates)
+            .filter(|(f, _)| f.body == index)
+            .filter_map(|(f, rate)| {
+                f.point.as_deref().map(|point| PointFlow {
+                    inflow: f.inflow,
+                    rate: *rate,
+                    point,
+                })
+            })
             .collect();
         if flows.is_empty() {
             continue;
         }
         let own = (model.masses[body.mass].symbol, mass_rates[body.mass]);
         let centre = &body_velocities[index];
-        let term = transport(pool, body, centre, &frozen, own, &velocities);
-        let outflow = flows.iter().any(|inflow| !inflow);
+        let term = transport(pool, body, centre, &frozen, own, &flows, &pairs);
+        let outflow = flows.iter().any(|f| !f.inflow);
         for (alpha, value) in term.into_iter().enumerate() {
             if outflow {
                 thrust[alpha].push(value);

@@ -97,20 +97,40 @@ pub(crate) fn flow_force(
         .collect()
 }
 
-/// The transport term of a rigid body with flows, K_α = Σ_φ φ̇ ∂*p_b,α/∂φ − ṁ_b ṙ_c · ∂r_c/∂q_α,
-/// with p_b = ∂T_b/∂q̇ its own momentum: how the rates of its frozen inertia and centre
-/// offset (and of its mass where the centre depends on it) change its momentum beyond
-/// what the mass carries at the centre. Zero for a particle.
+/// One flow of a rigid body as the transport term needs it.
+pub(crate) struct PointFlow<'a> {
+    /// Inflow (Q2) or outflow (Q1).
+    pub inflow: bool,
+    /// Q ≥ 0.
+    pub rate: Id,
+    /// The body-frame point a where it crosses.
+    pub point: &'a [Id],
+}
+
+/// The transport term of a rigid body with flows (docs/mechanics.md#flows-at-points):
+///
+/// ```text
+/// K_α = Σ_φ φ̇ ∂*p_b,α/∂φ − ṁ_b ṙ_c · ∂r_c/∂q_α − ṙ_c · (∂R/∂q_α) I,
+/// I = d(m c)/dt + Σ_out Q a − Σ_in Q a
+/// ```
+///
+/// with p_b = ∂T_b/∂q̇ the body's own momentum. The first two terms are how the rates of
+/// its frozen inertia and centre offset change its momentum beyond what the mass carries at
+/// the centre; I is the momentum (body axes) of the internal flow that moves the centre of
+/// mass in the body other than the flows do, and the last term its coupling to the motion
+/// of the centre, which makes the equations the same in every inertial frame. Zero for a
+/// particle; I = 0 when the laws of m and c are those of mass leaving at the flows' points.
 pub(crate) fn transport(
     pool: &mut ExprPool,
     body: &Body,
     centre_velocity: &[Id],
     frozen: &[(Symbol, Id)],
     body_mass: (Symbol, Id),
-    velocities: &[Symbol],
+    flows: &[PointFlow<'_>],
+    coordinates: &[(Symbol, Symbol)],
 ) -> Vec<Id> {
     let Some(rigid) = &body.rigid else {
-        return vec![pool.int(0); velocities.len()];
+        return vec![pool.int(0); coordinates.len()];
     };
     let half = pool.rational(Rational::HALF);
     let squared = dot(pool, centre_velocity, centre_velocity);
@@ -119,9 +139,10 @@ pub(crate) fn transport(
     let moving = pool.mul(&[mass, translational]);
     let rotating = rotational_kinetic(pool, rigid);
     let kinetic = pool.add(&[moving, rotating]);
-    velocities
+    let internal = internal_flow(pool, rigid, mass, frozen, flows);
+    coordinates
         .iter()
-        .map(|v| {
+        .map(|(q, v)| {
             let momentum = pool.diff(kinetic, *v);
             let mut terms: Vec<Id> = frozen
                 .iter()
@@ -133,6 +154,50 @@ pub(crate) fn transport(
             let centre = pool.diff(translational, *v);
             let minus_rate = pool.neg(body_mass.1);
             terms.push(pool.mul(&[minus_rate, centre]));
+            let turning: Matrix = rigid
+                .rotation
+                .iter()
+                .map(|row| row.iter().map(|r| pool.diff(*r, *q)).collect())
+                .collect();
+            let moved = mat_vec(pool, &turning, &internal);
+            let coupling = dot(pool, centre_velocity, &moved);
+            terms.push(pool.neg(coupling));
+            pool.add(&terms)
+        })
+        .collect()
+}
+
+/// I = d(m c)/dt + Σ_out Q a − Σ_in Q a in body axes: what the laws of m and c ask of the
+/// matter inside beyond what the flows take away at their points. m c depends only on
+/// frozen symbols and parameters, so its true rate is Σ_φ φ̇ ∂(m c)/∂φ.
+fn internal_flow(
+    pool: &mut ExprPool,
+    rigid: &Rigid,
+    mass: Id,
+    frozen: &[(Symbol, Id)],
+    flows: &[PointFlow<'_>],
+) -> Vec<Id> {
+    rigid
+        .centre
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let moment = pool.mul(&[mass, *c]);
+            let mut terms: Vec<Id> = frozen
+                .iter()
+                .map(|(phi, rate)| {
+                    let partial = pool.diff(moment, *phi);
+                    pool.mul(&[*rate, partial])
+                })
+                .collect();
+            for flow in flows {
+                let carried = pool.mul(&[flow.rate, flow.point[i]]);
+                terms.push(if flow.inflow {
+                    pool.neg(carried)
+                } else {
+                    carried
+                });
+            }
             pool.add(&terms)
         })
         .collect()
