@@ -190,7 +190,8 @@ impl Builder {
     fn require_symmetric(&mut self, tensor: &Matrix, span: Span, name: &str) -> bool {
         for i in 0..3 {
             for j in 0..i {
-                if tensor[i][j] != tensor[j][i] {
+                let verdict = self.model.pool.identical(tensor[i][j], tensor[j][i]);
+                if matches!(verdict, crate::expr::Identity::Refuted { .. }) {
                     let message = format!(
                         "the inertia tensor of `{name}` is not symmetric: entry ({}, {}) differs from ({}, {})",
                         i + 1,
