@@ -91,7 +91,11 @@ fn rigid() -> String {
         for j in 0..3 {
             let origin = sum(&|a| {
                 let square = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-                if i == j { square - a[i] * a[j] } else { -a[i] * a[j] }
+                if i == j {
+                    square - a[i] * a[j]
+                } else {
+                    -a[i] * a[j]
+                }
             });
             let centre = if i == j {
                 format!("m*(c0^2 + c1^2 + c2^2 - c{i}^2)")
