@@ -8,6 +8,7 @@ use assert_cmd::Command;
 use varmass::prelude::*;
 
 #[variable_mass_system(file = "../models/rocket_6dof.vms")]
+#[allow(non_snake_case)] // the model's names: A_d, C_d
 struct Rocket6 {
     mu: f64,
     m_d: f64,
