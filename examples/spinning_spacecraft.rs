@@ -55,8 +55,11 @@ fn main() -> ExitCode {
         energy_residual: true,
         ..Record::default()
     };
-    let outcome = DormandPrince::new(&craft, 0.0, start, control)
-        .and_then(|mut stepper| run(&mut stepper, &RunConfig::until(60.0).recording(record), &[]));
+    let config = RunConfig::until(60.0).recording(record);
+    let outcome = match DormandPrince::new(&craft, 0.0, start, control) {
+        Ok(mut stepper) => run(&mut stepper, &config, &[]),
+        Err(error) => Err(error),
+    };
     let solution = match outcome {
         Ok(solution) => solution,
         Err(error) => {

@@ -504,7 +504,7 @@ impl Builder {
                 if !self.check_dimension(body, value.len(), v.span) {
                     return;
                 }
-                let value = self.to_world(body, flow.frame, value);
+                let value = self.in_world_axes(body, flow.frame, value);
                 if matches!(flow.velocity, Some(FlowVelocity::Absolute(_))) {
                     FlowVelocityValue::Absolute(value)
                 } else {

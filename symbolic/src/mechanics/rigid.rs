@@ -188,23 +188,23 @@ impl Builder {
     }
 
     fn require_symmetric(&mut self, tensor: &Matrix, span: Span, name: &str) -> bool {
-        for i in 0..3 {
-            for j in 0..i {
-                let verdict = self.model.pool.identical(tensor[i][j], tensor[j][i]);
-                if matches!(verdict, crate::expr::Identity::Refuted { .. }) {
-                    let message = format!(
-                        "the inertia tensor of `{name}` is not symmetric: entry ({}, {}) differs from ({}, {})",
-                        i + 1,
-                        j + 1,
-                        j + 1,
-                        i + 1
-                    );
-                    self.errors.push(Diagnostic::new(span, message));
-                    return false;
-                }
-            }
-        }
-        true
+        let pairs = [(1, 0), (2, 0), (2, 1)];
+        let asymmetric = pairs.into_iter().find(|&(i, j)| {
+            let verdict = self.model.pool.identical(tensor[i][j], tensor[j][i]);
+            matches!(verdict, crate::expr::Identity::Refuted { .. })
+        });
+        let Some((i, j)) = asymmetric else {
+            return true;
+        };
+        let message = format!(
+            "the inertia tensor of `{name}` is not symmetric: entry ({}, {}) differs from ({}, {})",
+            i + 1,
+            j + 1,
+            j + 1,
+            i + 1
+        );
+        self.errors.push(Diagnostic::new(span, message));
+        false
     }
 
     /// A body-frame vector of `dimension` frozen components (an inertia or a centre).
@@ -261,7 +261,7 @@ impl Builder {
     }
 
     /// A vector in the frame it was written in, as world components.
-    pub(super) fn to_world(&mut self, body: usize, frame: Frame, vector: Vec<Id>) -> Vec<Id> {
+    pub(super) fn in_world_axes(&mut self, body: usize, frame: Frame, vector: Vec<Id>) -> Vec<Id> {
         match (frame, &self.model.bodies[body].rigid) {
             (Frame::Body, Some(rigid)) => {
                 let rotation = rigid.rotation.clone();
@@ -338,7 +338,7 @@ impl Builder {
         if !self.check_dimension(body, value.len(), v.span) {
             return;
         }
-        let vector = self.to_world(body, load.frame, value);
+        let vector = self.in_world_axes(body, load.frame, value);
         let Some(point) = self.body_point(body, load.at.as_ref()) else {
             return;
         };
