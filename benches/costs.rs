@@ -263,6 +263,9 @@ fn emission_subjects() -> Vec<(Subject, Parameters)> {
         ("leaking_spring_pendulum_cartesian.vms", &[]),
         ("double_pendulum.vms", &[]),
         ("swinging_tank.vms", &[]),
+        ("pitching_rocket.vms", &[]),
+        ("rocket_6dof.vms", &[]),
+        ("spinning_spacecraft.vms", &[]),
     ];
     let mut subjects: Vec<(Subject, Parameters)> = models
         .iter()

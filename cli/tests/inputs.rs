@@ -238,19 +238,21 @@ fn a_failed_run_reports_the_typed_error_with_its_time_and_state() {
 #[test]
 fn an_oversized_model_names_the_limit() {
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let file = dir.join("five.vms");
+    let file = dir.join("nine.vms");
     std::fs::write(
         &file,
-        "coordinates a, b, c, d, e\nmass m = 1\nbody p: mass m, position [a, b, c]\nbody q: mass m, position [d, e]\n",
+        "coordinates a, b, c, d, e, f, g, h, i\nmass m = 1\nbody p: mass m, position [a, b, c]\nbody q: mass m, position [d, e, f]\nbody r: mass m, position [g, h, i]\n",
     )
     .expect("written");
     let file = file.display().to_string();
     let mut args = vec!["run", file.as_str(), "--until", "1"];
-    for init in ["a=0", "b=0", "c=0", "d=0", "e=0"] {
+    for init in [
+        "a=0", "b=0", "c=0", "d=0", "e=0", "f=0", "g=0", "h=0", "i=0",
+    ] {
         args.extend(["--init", init]);
     }
     let stderr = fails(&args, 2);
-    assert!(stderr.contains("the model has 5 coordinates and 0 state masses; the tool runs models with 1 to 4 coordinates"), "{stderr}");
+    assert!(stderr.contains("the model has 9 coordinates and 0 state masses; the tool runs models with 1 to 8 coordinates"), "{stderr}");
 }
 
 #[test]

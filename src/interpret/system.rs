@@ -40,6 +40,25 @@ impl<const N: usize, const S: usize> TapeSystem<N, S> {
         Ok(Self { program })
     }
 
+    /// Like [`TapeSystem::new`], but `S` may exceed the program's state length: the extra
+    /// entries are state masses of no consequence, kept at their values (rate 0, never
+    /// read by the program), after the model's own. So one monomorphization of the steppers
+    /// for `(N, S)` runs every model with `N` coordinates and up to `S − 2N` state masses
+    /// (the command line tool's size table, `cli/src/run/dispatch.rs`). The error control
+    /// averages over all `S` components, so a caller who wants the step control of the
+    /// unpadded system scales its tolerances by √(len / S).
+    pub fn padded(program: Program) -> Result<Self, ProgramError> {
+        if program.coordinate_count() != N || program.state_len() > S {
+            return Err(ProgramError::WrongSize {
+                coordinates: program.coordinate_count(),
+                state_masses: program.state_mass_count(),
+                n: N,
+                s: S,
+            });
+        }
+        Ok(Self { program })
+    }
+
     /// The program evaluated.
     pub fn program(&self) -> &Program {
         &self.program
@@ -60,6 +79,18 @@ impl<const N: usize, const S: usize> TapeSystem<N, S> {
         self.program
             .evaluate(quantity, t, velocity_state.as_slice(), out.as_mut_slice());
         out
+    }
+
+    /// The model's index of mass `index` in the trait's order (the state masses, the
+    /// padding of [`TapeSystem::padded`], then the law masses); `None` for padding.
+    fn model_mass(&self, index: usize) -> Option<usize> {
+        let state_masses = self.program.state_mass_count();
+        let padding = S - self.program.state_len();
+        match index {
+            i if i < state_masses => Some(i),
+            i if i < state_masses + padding => None,
+            i => Some(i - padding),
+        }
     }
 
     fn scalar(&self, quantity: Quantity, t: f64, velocity_state: &SVector<f64, S>) -> f64 {
@@ -88,12 +119,18 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     const MASSES: &'static [&'static str] = &[];
 
     fn mass(&self, index: usize, t: f64, state: &SVector<f64, S>) -> f64 {
+        let Some(index) = self.model_mass(index) else {
+            return state[index];
+        };
         let mut masses = vec![f64::NAN; self.program.derivation().masses.len()];
         self.program.masses(t, state.as_slice(), &mut masses);
         masses.get(index).copied().unwrap_or(f64::NAN)
     }
 
     fn mass_rate(&self, index: usize, t: f64, velocity_state: &SVector<f64, S>) -> f64 {
+        let Some(index) = self.model_mass(index) else {
+            return 0.0;
+        };
         let mut rates = vec![f64::NAN; self.program.derivation().masses.len()];
         self.program.evaluate(
             Quantity::MassRates,
@@ -177,8 +214,11 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
 
     fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
         let mut out = SVector::<f64, S>::from_element(f64::NAN);
+        let len = self.program.state_len();
         self.program
-            .state_rate(t, state.as_slice(), out.as_mut_slice())?;
+            .state_rate(t, state.as_slice(), &mut out.as_mut_slice()[..len])?;
+        // The padding of `TapeSystem::padded` stays where it is.
+        out.as_mut_slice()[len..].fill(0.0);
         Ok(out)
     }
 

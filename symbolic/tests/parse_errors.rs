@@ -29,7 +29,7 @@ fn expect(source: &str, message: &str, line: u32, column: u32, under: &str) -> D
 }
 
 const ALL_STATEMENTS: &str = "coordinates, mass, inertia, let, body, kinetic, potential, \
-lagrangian, force, thrust, impact, outflow, inflow, check, units";
+lagrangian, force, thrust, impact, outflow, inflow, check, units, rigid, torque";
 
 #[test]
 fn missing_operand() {
@@ -187,7 +187,7 @@ fn unknown_duplicate_and_missing_options() {
     assert_eq!(d.help.as_deref(), Some("did you mean `position`?"));
     expect(
         "outflow r: speed 2",
-        "unknown option `speed` for outflow; expected `rate`, `velocity` or `relative_velocity`",
+        "unknown option `speed` for outflow; expected `rate`, `velocity`, `relative_velocity` or `at`",
         1,
         12,
         "speed",

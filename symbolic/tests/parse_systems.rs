@@ -4,7 +4,10 @@
 mod parse_support;
 
 use parse_support::*;
-use varmass_symbolic::parse::ast::{FlowVelocity, LoadValue, MassLaw, StatementKind, SystemAst};
+use varmass_symbolic::parse::ast::{
+    Attitude, FlowVelocity, Frame, InertiaValue, Load, LoadValue, MassLaw, StatementKind,
+    SystemAst, VectorNode,
+};
 use varmass_symbolic::parse::{parse_system, Span};
 
 fn parse(source: &str) -> SystemAst {
@@ -21,12 +24,26 @@ fn parse(source: &str) -> SystemAst {
     }
 }
 
+fn vector(v: &VectorNode) -> String {
+    let parts: Vec<String> = v.node.iter().map(show).collect();
+    format!("[{}]", parts.join(", "))
+}
+
+/// A load's value with its frame and point: `body [0, F] at [0, -l]`.
+fn load_value(l: &Load) -> String {
+    let value = match &l.value {
+        LoadValue::Scalar(e) => show(e),
+        LoadValue::Vector(v) if l.frame == Frame::Body => format!("body {}", vector(v)),
+        LoadValue::Vector(v) => vector(v),
+    };
+    match &l.at {
+        Some(at) => format!("{value} at {}", vector(at)),
+        None => value,
+    }
+}
+
 /// A span-free summary of a statement, one line, for comparing whole systems.
 fn summary(kind: &StatementKind) -> String {
-    let vector = |v: &varmass_symbolic::parse::ast::VectorNode| {
-        let parts: Vec<String> = v.node.iter().map(show).collect();
-        format!("[{}]", parts.join(", "))
-    };
     match kind {
         StatementKind::Coordinates(names) => {
             let names: Vec<&str> = names.iter().map(|n| n.node.as_str()).collect();
@@ -61,11 +78,35 @@ fn summary(kind: &StatementKind) -> String {
                 StatementKind::Thrust(_) => "thrust",
                 _ => "impact",
             };
-            let value = match &l.value {
-                LoadValue::Scalar(e) => show(e),
-                LoadValue::Vector(v) => vector(v),
+            format!("{head} {}: {}", l.target.node, load_value(l))
+        }
+        StatementKind::Torque(l) => format!("torque {}: {}", l.target.node, load_value(l)),
+        StatementKind::Rigid(r) => {
+            let inertia = match &r.inertia {
+                InertiaValue::Scalar(e) => show(e),
+                InertiaValue::Principal(v) => vector(v),
+                InertiaValue::Tensor(rows) => {
+                    let rows: Vec<String> = rows.node.iter().map(vector).collect();
+                    format!("[{}]", rows.join(", "))
+                }
             };
-            format!("{head} {}: {value}", l.target.node)
+            let attitude = match &r.attitude {
+                Attitude::Angle(e) => format!("angle {}", show(e)),
+                Attitude::Orientation { sequence, angles } => {
+                    let angles: Vec<String> = angles.iter().map(show).collect();
+                    format!("orientation {}({})", sequence.node, angles.join(", "))
+                }
+            };
+            let centre = r
+                .centre
+                .as_ref()
+                .map_or(String::new(), |c| format!(", centre {}", vector(c)));
+            format!(
+                "rigid {}: mass {}, inertia {inertia}, position {}, {attitude}{centre}",
+                r.name.node,
+                r.mass.node,
+                vector(&r.position)
+            )
         }
         StatementKind::Outflow(f) | StatementKind::Inflow(f) => {
             let head = if matches!(kind, StatementKind::Outflow(_)) {
@@ -77,12 +118,18 @@ fn summary(kind: &StatementKind) -> String {
             if let Some(rate) = &f.rate {
                 options.push(format!("rate {}", show(rate)));
             }
+            let frame = if f.frame == Frame::Body { "body " } else { "" };
             match &f.velocity {
-                Some(FlowVelocity::Absolute(v)) => options.push(format!("velocity {}", vector(v))),
+                Some(FlowVelocity::Absolute(v)) => {
+                    options.push(format!("velocity {frame}{}", vector(v)))
+                }
                 Some(FlowVelocity::Relative(v)) => {
-                    options.push(format!("relative_velocity {}", vector(v)))
+                    options.push(format!("relative_velocity {frame}{}", vector(v)))
                 }
                 None => {}
+            }
+            if let Some(at) = &f.at {
+                options.push(format!("at {}", vector(at)));
             }
             format!("{head} {}: {}", f.body.node, options.join(", "))
         }
@@ -338,4 +385,81 @@ fn body_options_come_in_any_order() {
         summaries("body b: position [x, y], mass m"),
         ["body b: mass m, position [x, y]"]
     );
+}
+
+/// The rigid-body forms of docs/dsl.md#rigid, each exactly as the design brief writes them,
+/// parse to what they say; `body` stays a name where no `[` follows it.
+#[test]
+fn rigid_forms_parse() {
+    let source = "coordinates x, y, th
+rigid rocket: mass m, inertia J, position [x, y], angle th
+rigid craft: mass m, inertia [A, B, C], position [x, y, z], orientation zyx(psi, th, phi)
+rigid rocket: mass m, inertia J, position [x, y], angle th, centre [0, c]
+force rocket: body [0, F] at [0, -l]
+torque rocket: tau
+outflow rocket: rate mu, at [0, -l], relative_velocity body [0, -u_e]
+rigid top: orientation zxz(a, b, g), inertia [[P, Q, 0], [Q, R, 0], [0, 0, S]], position [0, 0, 0], mass m
+force x: body*2
+torque craft: body [1, 0, 0]
+";
+    let expected = [
+        "coordinates x, y, th",
+        "rigid rocket: mass m, inertia J, position [x, y], angle th",
+        "rigid craft: mass m, inertia [A, B, C], position [x, y, z], orientation zyx(psi, th, phi)",
+        "rigid rocket: mass m, inertia J, position [x, y], angle th, centre [0, c]",
+        "force rocket: body [0, F] at [0, (-l)]",
+        "torque rocket: tau",
+        "outflow rocket: rate mu, relative_velocity body [0, (-u_e)], at [0, (-l)]",
+        "rigid top: mass m, inertia [[P, Q, 0], [Q, R, 0], [0, 0, S]], position [0, 0, 0], orientation zxz(a, b, g)",
+        "force x: (body * 2)",
+        "torque craft: body [1, 0, 0]",
+    ];
+    let system = parse(source);
+    let found: Vec<String> = system.statements.iter().map(|s| summary(&s.kind)).collect();
+    assert_eq!(found, expected);
+}
+
+/// Each malformed rigid form is one diagnostic naming what is wrong.
+#[test]
+fn rigid_form_errors() {
+    let cases = [
+        (
+            "rigid r: mass m, position [x, y], angle th",
+            "missing `inertia` for rigid body `r`",
+        ),
+        (
+            "rigid r: mass m, inertia J, position [x, y]",
+            "missing `angle` or `orientation`",
+        ),
+        (
+            "rigid r: mass m, inertia J, position [x, y], angle th, orientation zyx(a, b, c)",
+            "`orientation` and `angle` cannot both be given",
+        ),
+        (
+            "rigid r: mass m, inertia J, position [x, y, z], orientation zyy(a, b, c)",
+            "unknown Euler sequence `zyy`",
+        ),
+        (
+            "rigid r: mass m, inertia J, position [x, y, z], orientation zyx(a, b)",
+            "takes 3 angles, found 2",
+        ),
+        (
+            "rigid r: mass m, inertia J, position [x, y, z], orientation a",
+            "an orientation is an Euler sequence",
+        ),
+        (
+            "rigid r: mass m, inertai J, position [x, y], angle th",
+            "unknown option `inertai` for rigid",
+        ),
+        ("force r: body [1, 0] at", "expected a vector"),
+    ];
+    for (source, message) in cases {
+        let errors = parse_system(source).expect_err(source);
+        assert_eq!(errors.len(), 1, "{source}: {errors:?}");
+        assert!(
+            errors[0].message.contains(message),
+            "{source}: {}",
+            errors[0].message
+        );
+    }
 }

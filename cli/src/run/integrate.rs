@@ -36,7 +36,7 @@ pub fn integrate<const N: usize, const S: usize>(
     program: Program,
     plan: &Plan,
 ) -> Result<Outcome, CliError> {
-    let system = TapeSystem::<N, S>::new(program).map_err(|e| CliError::Input(e.to_string()))?;
+    let system = TapeSystem::<N, S>::padded(program).map_err(|e| CliError::Input(e.to_string()))?;
     let start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
     let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, plan, e));
     // Every stepper is built as `Type::new(&system, t0, start, settings)` and driven alike;

@@ -24,9 +24,9 @@ pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec
     builder.finish()
 }
 
-struct Builder {
-    model: Model,
-    errors: Vec<Diagnostic>,
+pub(super) struct Builder {
+    pub(super) model: Model,
+    pub(super) errors: Vec<Diagnostic>,
     declared_at: FxHashMap<String, Span>,
 }
 
@@ -116,6 +116,9 @@ impl Builder {
                 }
                 StatementKind::Body(body) => {
                     self.check_new_name(&body.name.node, body.name.span, "body");
+                }
+                StatementKind::Rigid(rigid) => {
+                    self.check_new_name(&rigid.name.node, rigid.name.span, "body");
                 }
                 _ => {}
             }
@@ -229,7 +232,7 @@ pub(crate) fn first_velocity(pool: &ExprPool, e: Id) -> Option<Symbol> {
 }
 
 impl Builder {
-    fn lower(&mut self, node: &ExprNode) -> Option<Id> {
+    pub(super) fn lower(&mut self, node: &ExprNode) -> Option<Id> {
         match lower_in(&mut self.model, node, Context::Ordinary, None) {
             Ok(id) => Some(id),
             Err(mut errors) => {
@@ -239,14 +242,14 @@ impl Builder {
         }
     }
 
-    fn lower_vector(&mut self, vector: &VectorNode) -> Option<Vec<Id>> {
+    pub(super) fn lower_vector(&mut self, vector: &VectorNode) -> Option<Vec<Id>> {
         let lowered: Vec<Option<Id>> = vector.node.iter().map(|e| self.lower(e)).collect();
         lowered.into_iter().collect()
     }
 
     /// A quantity of configuration (a mass law, a position) may not depend on velocities:
     /// the frozen-mass calculus needs m(q, t) and r(q, t).
-    fn require_configuration(&mut self, value: Id, span: Span, what: &str) -> bool {
+    pub(super) fn require_configuration(&mut self, value: Id, span: Span, what: &str) -> bool {
         match first_velocity(&self.model.pool, value) {
             Some(v) => {
                 let name = self.model.pool.symbols().name(v).to_string();
@@ -260,11 +263,11 @@ impl Builder {
         }
     }
 
-    fn mass_index(&self, name: &str) -> Option<usize> {
+    pub(super) fn mass_index(&self, name: &str) -> Option<usize> {
         self.model.masses.iter().position(|m| m.name == name)
     }
 
-    fn body_index(&self, name: &str) -> Option<usize> {
+    pub(super) fn body_index(&self, name: &str) -> Option<usize> {
         self.model.bodies.iter().position(|b| b.name == name)
     }
 
@@ -287,6 +290,7 @@ impl Builder {
                     self.lower_mass(decl, span);
                 }
                 StatementKind::Body(body) => self.lower_body(body, span),
+                StatementKind::Rigid(rigid) => self.lower_rigid(rigid, span),
                 StatementKind::Kinetic(e)
                 | StatementKind::Potential(e)
                 | StatementKind::Lagrangian(e) => {
@@ -315,6 +319,7 @@ impl Builder {
                     };
                     self.lower_load(kind, load, span);
                 }
+                StatementKind::Torque(load) => self.lower_torque(load, span),
                 StatementKind::Outflow(flow) | StatementKind::Inflow(flow) => {
                     let inflow = matches!(statement.kind, StatementKind::Inflow(_));
                     self.lower_flow(inflow, flow, span);
@@ -352,21 +357,26 @@ impl Builder {
         self.model.masses[index].kind = kind;
     }
 
+    /// The index of a body's declared mass, or a diagnostic.
+    pub(super) fn body_mass(&mut self, mass: &Spanned<String>) -> Option<usize> {
+        let index = self.mass_index(&mass.node);
+        if index.is_none() {
+            let d = Diagnostic::new(mass.span, format!("`{}` is not a declared mass", mass.node))
+                .with_help(format!(
+                    "declare it first, e.g. `{} {} = m0` or `{} {}: state, rate -mu`",
+                    keywords::MASS,
+                    mass.node,
+                    keywords::MASS,
+                    mass.node
+                ));
+            self.errors.push(d);
+        }
+        index
+    }
+
     /// A body on a declared mass, its position a function of configuration only.
     fn lower_body(&mut self, body: &BodyDecl, span: Span) {
-        let Some(mass) = self.mass_index(&body.mass.node) else {
-            let mut d = Diagnostic::new(
-                body.mass.span,
-                format!("`{}` is not a declared mass", body.mass.node),
-            );
-            d = d.with_help(format!(
-                "declare it first, e.g. `{} {} = m0` or `{} {}: state, rate -mu`",
-                keywords::MASS,
-                body.mass.node,
-                keywords::MASS,
-                body.mass.node
-            ));
-            self.errors.push(d);
+        let Some(mass) = self.body_mass(&body.mass) else {
             return;
         };
         let Some(position) = self.lower_vector(&body.position) else {
@@ -381,6 +391,7 @@ impl Builder {
                 name: body.name.node.clone(),
                 mass,
                 position,
+                rigid: None,
                 span,
             });
         }
@@ -410,6 +421,13 @@ impl Builder {
                 ),
             }
         } else if let Some(index) = self.body_index(&target.node) {
+            if self.model.bodies[index].rigid.is_some() {
+                self.lower_rigid_load(kind, index, load, span);
+                return;
+            }
+            if !self.particle_plain(index, load.frame, load.at.as_ref()) {
+                return;
+            }
             match &load.value {
                 LoadValue::Vector(v) => {
                     let Some(value) = self.lower_vector(v) else {
@@ -442,7 +460,7 @@ impl Builder {
     }
 
     /// Vectors on a body live in the space of its position (why: F·∂r/∂q needs both).
-    fn check_dimension(&mut self, body: usize, found: usize, span: Span) -> bool {
+    pub(super) fn check_dimension(&mut self, body: usize, found: usize, span: Span) -> bool {
         let expected = self.model.bodies[body].position.len();
         if expected == found {
             return true;
@@ -478,6 +496,10 @@ impl Builder {
             },
             None => None,
         };
+        let rigid = self.model.bodies[body].rigid.is_some();
+        if !rigid && !self.particle_plain(body, flow.frame, flow.at.as_ref()) {
+            return;
+        }
         let velocity = match &flow.velocity {
             Some(FlowVelocity::Absolute(v)) | Some(FlowVelocity::Relative(v)) => {
                 let Some(value) = self.lower_vector(v) else {
@@ -486,6 +508,7 @@ impl Builder {
                 if !self.check_dimension(body, value.len(), v.span) {
                     return;
                 }
+                let value = self.in_world_axes(body, flow.frame, value);
                 if matches!(flow.velocity, Some(FlowVelocity::Absolute(_))) {
                     FlowVelocityValue::Absolute(value)
                 } else {
@@ -494,11 +517,20 @@ impl Builder {
             }
             None => FlowVelocityValue::WithBody,
         };
+        let point = if rigid {
+            match self.body_point(body, flow.at.as_ref()) {
+                Some(point) => Some(point),
+                None => return,
+            }
+        } else {
+            None
+        };
         self.model.flows.push(Flow {
             inflow,
             body,
             rate,
             velocity,
+            point,
             span,
         });
     }

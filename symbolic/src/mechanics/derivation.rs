@@ -213,7 +213,7 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
     let mass_rates = mass_rates(model, &closed_laws)?;
     let flow_rates = flow_rates(model, &mass_rates)?;
     let energies = energies(model, &velocities)?;
-    let forces = generalized_forces(model, &flow_rates, &energies.body_velocities);
+    let forces = generalized_forces(model, &flow_rates, &energies.body_velocities, &mass_rates);
     let lagrangian = energies.lagrangian;
     let momenta = momenta(&mut model.pool, lagrangian, &velocities);
     require_regular(model, &momenta.mass_matrix)?;

@@ -60,7 +60,7 @@ pub(crate) fn energies(
     })
 }
 
-/// ½ m |ṙ|² and ṙ for every body; a position that cannot be differentiated is a diagnostic.
+/// ½ m |ṙ|² (and ½ ωᵀ I ω for a rigid body) and ṙ for every body; a position that cannot be differentiated is a diagnostic.
 fn body_kinetic_terms(model: &mut Model, errors: &mut Vec<Diagnostic>) -> (Vec<Id>, Vec<Vec<Id>>) {
     let pool = &mut model.pool;
     let half = pool.rational(Rational::HALF);
@@ -90,6 +90,9 @@ fn body_kinetic_terms(model: &mut Model, errors: &mut Vec<Diagnostic>) -> (Vec<I
             .collect();
         let speed_squared = pool.add(&squares);
         kinetic_terms.push(pool.mul(&[half, mass, speed_squared]));
+        if let Some(rigid) = &body.rigid {
+            kinetic_terms.push(super::rigid_forces::rotational_kinetic(pool, rigid));
+        }
         body_velocities.push(v);
     }
     (kinetic_terms, body_velocities)

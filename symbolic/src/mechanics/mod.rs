@@ -33,6 +33,9 @@ mod model;
 mod outputs;
 mod render;
 mod resolve;
+mod rigid;
+mod rigid_forces;
+mod rotation;
 
 pub use derivation::{
     CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,
@@ -40,7 +43,7 @@ pub use derivation::{
 pub use linear::Matrix;
 pub use model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
-    Model, Term, TermKind,
+    Model, Rigid, Term, TermKind,
 };
 pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;

@@ -3,6 +3,7 @@
 
 use rustc_hash::FxHashMap;
 
+use super::linear::Matrix;
 use super::resolve::{Binding, Parameters};
 use crate::expr::{ExprPool, Id, Symbol};
 use crate::parse::ast::ExprNode;
@@ -52,17 +53,36 @@ pub struct Mass {
     pub span: Span,
 }
 
-/// A particle: frozen mass and position r(q, t).
+/// A particle (frozen mass and position r(q, t)) or a rigid body, whose `position` is then
+/// its centre of mass.
 #[derive(Clone, Debug)]
 pub struct Body {
     /// Its name.
     pub name: String,
     /// Index into [`Model::masses`].
     pub mass: usize,
-    /// r(q, t), 1 to 3 components.
+    /// r(q, t), 1 to 3 components; for a rigid body the centre of mass r_O + R c.
     pub position: Vec<Id>,
+    /// The rotation and inertia of a rigid body (`None` for a particle).
+    pub rigid: Option<Rigid>,
     /// Where it was declared.
     pub span: Span,
+}
+
+/// What a `rigid` statement adds to a body (docs/mechanics.md#rigid-bodies). Body-frame
+/// vectors are turned into world components by `rotation`.
+#[derive(Clone, Debug)]
+pub struct Rigid {
+    /// r_O(q, t): the world position of the reference point `position` names.
+    pub origin: Vec<Id>,
+    /// R(q, t): body components → world components (2×2 or 3×3).
+    pub rotation: Matrix,
+    /// ω in body components as a function of q, q̇ (one component in the plane).
+    pub angular_velocity: Vec<Id>,
+    /// The inertia about the centre of mass in body components (1×1 in the plane), frozen.
+    pub inertia: Matrix,
+    /// c: the centre of mass from the reference point, body components, frozen.
+    pub centre: Vec<Id>,
 }
 
 /// Which generalized force a load adds to.
@@ -83,6 +103,17 @@ pub enum LoadTarget {
     Coordinate(usize, Id),
     /// A vector on body `index`.
     Body(usize, Vec<Id>),
+    /// A world-component vector on rigid body `body` at its body-frame point `point`.
+    Point {
+        /// Index into [`Model::bodies`].
+        body: usize,
+        /// The force, world components.
+        vector: Vec<Id>,
+        /// Where it acts: body components from the reference point.
+        point: Vec<Id>,
+    },
+    /// A torque on rigid body `body`, body components (one in the plane).
+    Torque(usize, Vec<Id>),
 }
 
 /// A `force`, `thrust` or `impact` statement.
@@ -116,8 +147,11 @@ pub struct Flow {
     pub body: usize,
     /// The declared rate (≥ 0), if any.
     pub rate: Option<Id>,
-    /// The velocity of the flowing mass.
+    /// The velocity of the flowing mass, world components.
     pub velocity: FlowVelocityValue,
+    /// On a rigid body, the body-frame point where the mass crosses (the reference point
+    /// when not given); `None` on a particle.
+    pub point: Option<Vec<Id>>,
     /// The statement.
     pub span: Span,
 }

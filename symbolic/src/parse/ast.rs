@@ -140,6 +140,63 @@ pub enum StatementKind {
     /// `units x: m, g: m/s^2`: the unit of each name; with it, every term is
     /// dimension-checked (see `docs/dsl.md#units`).
     Units(Vec<UnitDecl>),
+    /// `rigid rocket: mass m, inertia J, position [x, y], angle th`: a rigid body.
+    Rigid(RigidDecl),
+    /// `torque rocket: tau` (planar) or `torque craft: body [..]` (spatial).
+    Torque(Load),
+}
+
+/// The frame a vector is written in: `[..]` the world's, `body [..]` the rigid body's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Frame {
+    /// `[..]`: world (inertial) axes.
+    #[default]
+    World,
+    /// `body [..]`: the axes of the rigid body the statement acts on.
+    Body,
+}
+
+/// A `rigid` declaration (docs/dsl.md#rigid): a rigid body in the plane (`angle`) or in
+/// space (`orientation`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidDecl {
+    /// The body's name.
+    pub name: Spanned<String>,
+    /// The name of its mass (declared by `mass`).
+    pub mass: Spanned<String>,
+    /// Its inertia about the centre of mass, in the body frame.
+    pub inertia: InertiaValue,
+    /// The world position of its reference point, 2 (planar) or 3 (spatial) components.
+    pub position: VectorNode,
+    /// How it is turned.
+    pub attitude: Attitude,
+    /// `centre [..]`: the centre of mass in the body frame, from the reference point.
+    pub centre: Option<VectorNode>,
+}
+
+/// The inertia of a rigid body as written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InertiaValue {
+    /// `inertia J`: planar, about the centre of mass.
+    Scalar(ExprNode),
+    /// `inertia [A, B, C]`: principal moments along the body axes.
+    Principal(VectorNode),
+    /// `inertia [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]`: the full tensor.
+    Tensor(Spanned<Vec<VectorNode>>),
+}
+
+/// How a rigid body is turned.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Attitude {
+    /// `angle th`: planar, the angle from the world axes to the body axes.
+    Angle(ExprNode),
+    /// `orientation zyx(psi, th, phi)`: spatial, an intrinsic Euler sequence.
+    Orientation {
+        /// The sequence as written (`zyx`), with its span.
+        sequence: Spanned<String>,
+        /// Its three angles, in the order of the sequence.
+        angles: Vec<ExprNode>,
+    },
 }
 
 /// One `name: unit` of a `units` statement. The unit is kept as an expression (`kg*m^2`,
@@ -191,6 +248,10 @@ pub struct Load {
     pub target: Spanned<String>,
     /// The value as written.
     pub value: LoadValue,
+    /// The frame of a vector value (`body [..]` or `[..]`).
+    pub frame: Frame,
+    /// `at [..]`: the body-frame point of a rigid body the force acts at.
+    pub at: Option<VectorNode>,
 }
 
 /// A scalar (generalized) or vector (applied to a body) load.
@@ -211,6 +272,10 @@ pub struct Flow {
     pub rate: Option<ExprNode>,
     /// The velocity of the mass that arrives or leaves, if given.
     pub velocity: Option<FlowVelocity>,
+    /// The frame the velocity is written in (`body [..]` or `[..]`).
+    pub frame: Frame,
+    /// `at [..]`: the body-frame point of a rigid body where the mass crosses.
+    pub at: Option<VectorNode>,
 }
 
 /// How the velocity of flowing mass is given.

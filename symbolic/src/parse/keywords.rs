@@ -41,6 +41,18 @@ pub const POSITION: &str = "position";
 pub const VELOCITY: &str = "velocity";
 /// `relative_velocity [...]` option of a flow.
 pub const RELATIVE_VELOCITY: &str = "relative_velocity";
+/// `rigid b: mass m, inertia J, position [..], angle th`
+pub const RIGID: &str = "rigid";
+/// `torque b: tau`
+pub const TORQUE: &str = "torque";
+/// `angle th` option of a planar rigid body.
+pub const ANGLE: &str = "angle";
+/// `orientation zyx(psi, th, phi)` option of a spatial rigid body.
+pub const ORIENTATION: &str = "orientation";
+/// `centre [..]` option of a rigid body.
+pub const CENTRE: &str = "centre";
+/// `at [..]`: the body-frame point of a force or a flow on a rigid body.
+pub const AT: &str = "at";
 /// The time symbol.
 pub const TIME: &str = "t";
 
@@ -61,6 +73,16 @@ pub const STATEMENTS: &[&str] = &[
     INFLOW,
     CHECK,
     UNITS,
+    RIGID,
+    TORQUE,
+];
+
+/// The options of a `rigid` statement.
+pub const RIGID_OPTIONS: &[&str] = &[MASS, INERTIA, POSITION, ANGLE, ORIENTATION, CENTRE];
+
+/// The twelve intrinsic Euler sequences of `orientation` (docs/mechanics.md#rigid-bodies).
+pub const EULER_SEQUENCES: &[&str] = &[
+    "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
 ];
 
 /// The functions the DSL knows, with their arity.
@@ -88,7 +110,7 @@ pub const FUNCTIONS: &[(&str, usize)] = &[
 pub const BODY_OPTIONS: &[&str] = &[MASS, POSITION];
 
 /// The options of an `inflow` or `outflow` statement.
-pub const FLOW_OPTIONS: &[&str] = &[RATE, VELOCITY, RELATIVE_VELOCITY];
+pub const FLOW_OPTIONS: &[&str] = &[RATE, VELOCITY, RELATIVE_VELOCITY, AT];
 
 /// The candidate closest to `word` by edit distance (insertions, deletions, substitutions and
 /// swaps of neighbouring characters), if it is close enough to be a likely typo: at most 2

@@ -8,8 +8,8 @@ use super::text::text;
 use super::unit::unit_dimension;
 use crate::mechanics::is_reserved;
 use crate::parse::ast::{
-    BinOp, Expr, ExprNode, Flow, FlowVelocity, Load, LoadValue, MassDecl, MassLaw, Statement,
-    StatementKind, SystemAst, UnitDecl,
+    Attitude, BinOp, Expr, ExprNode, Flow, FlowVelocity, InertiaValue, Load, LoadValue, MassDecl,
+    MassLaw, RigidDecl, Statement, StatementKind, SystemAst, UnitDecl, VectorNode,
 };
 use crate::parse::keywords;
 use crate::parse::{Diagnostic, Span};
@@ -211,6 +211,8 @@ impl Checker {
             StatementKind::Outflow(flow) => self.flow(flow, "outflow from"),
             StatementKind::Inflow(flow) => self.flow(flow, "inflow into"),
             StatementKind::Check { lhs, rhs, .. } => self.check(lhs, rhs),
+            StatementKind::Rigid(rigid) => self.rigid(rigid),
+            StatementKind::Torque(load) => self.torque(load),
             StatementKind::Coordinates(_) | StatementKind::Units(_) => {}
         }
     }
@@ -298,6 +300,7 @@ impl Checker {
     /// A load on a coordinate q has dimension energy / dim(q); on a body, a force.
     fn load(&mut self, load: &Load, generalized: &str, on_body: &str) {
         let target = &load.target.node;
+        self.point(load.at.as_ref(), target);
         match &load.value {
             LoadValue::Scalar(value) => {
                 if !self.table.coordinates.contains(target) {
@@ -323,8 +326,67 @@ impl Checker {
         }
     }
 
+    /// A rigid body's position and centre are lengths, its inertia kg·m², its angles
+    /// dimensionless (docs/dsl.md#rigid).
+    fn rigid(&mut self, rigid: &RigidDecl) {
+        let body = &rigid.name.node;
+        let lengths = rigid
+            .position
+            .node
+            .iter()
+            .chain(rigid.centre.iter().flat_map(|c| &c.node));
+        for component in lengths {
+            self.expect(component, Dimension::LENGTH, None, &|t| {
+                format!("position or centre of rigid body `{body}`: {t}")
+            });
+        }
+        let inertia: Vec<&ExprNode> = match &rigid.inertia {
+            InertiaValue::Scalar(e) => vec![e],
+            InertiaValue::Principal(v) => v.node.iter().collect(),
+            InertiaValue::Tensor(rows) => rows.node.iter().flat_map(|r| &r.node).collect(),
+        };
+        for component in inertia {
+            self.expect(component, Dimension::INERTIA, None, &|t| {
+                format!("inertia of rigid body `{body}`: {t}")
+            });
+        }
+        let angles: Vec<&ExprNode> = match &rigid.attitude {
+            Attitude::Angle(e) => vec![e],
+            Attitude::Orientation { angles, .. } => angles.iter().collect(),
+        };
+        for angle in angles {
+            self.expect(angle, Dimension::NONE, None, &|t| {
+                format!("angle of rigid body `{body}`: {t}")
+            });
+        }
+    }
+
+    /// A torque on a rigid body is N·m, a scalar in the plane or a vector in space.
+    fn torque(&mut self, load: &Load) {
+        let target = &load.target.node;
+        let components: Vec<&ExprNode> = match &load.value {
+            LoadValue::Scalar(e) => vec![e],
+            LoadValue::Vector(v) => v.node.iter().collect(),
+        };
+        for component in components {
+            self.expect(component, Dimension::ENERGY, Some("a torque, N·m"), &|t| {
+                format!("torque on `{target}`: {t}")
+            });
+        }
+    }
+
+    /// The point `at [..]` of a load or a flow on a rigid body is a length.
+    fn point(&mut self, at: Option<&VectorNode>, target: &str) {
+        for component in at.iter().flat_map(|v| &v.node) {
+            self.expect(component, Dimension::LENGTH, None, &|t| {
+                format!("point `at` on `{target}`: {t}")
+            });
+        }
+    }
+
     fn flow(&mut self, flow: &Flow, direction: &str) {
         let body = &flow.body.node;
+        self.point(flow.at.as_ref(), body);
         if let Some(rate) = &flow.rate {
             let label = |t: &str| format!("rate of {direction} `{body}`: {t}");
             self.expect(rate, Dimension::MASS_FLOW, None, &label);

@@ -4,7 +4,8 @@
 #![allow(dead_code)]
 
 use varmass_symbolic::parse::ast::{
-    Expr, ExprNode, FlowVelocity, LoadValue, MassLaw, Statement, StatementKind,
+    Attitude, Expr, ExprNode, FlowVelocity, InertiaValue, LoadValue, MassLaw, Statement,
+    StatementKind,
 };
 use varmass_symbolic::parse::{Diagnostic, Span};
 
@@ -56,11 +57,32 @@ pub fn statement_expressions(statement: &Statement) -> Vec<&ExprNode> {
         StatementKind::Kinetic(e) | StatementKind::Potential(e) | StatementKind::Lagrangian(e) => {
             vec![e]
         }
-        StatementKind::Force(load) | StatementKind::Thrust(load) | StatementKind::Impact(load) => {
-            match &load.value {
+        StatementKind::Force(load)
+        | StatementKind::Thrust(load)
+        | StatementKind::Impact(load)
+        | StatementKind::Torque(load) => {
+            let mut all: Vec<&ExprNode> = match &load.value {
                 LoadValue::Scalar(e) => vec![e],
                 LoadValue::Vector(v) => v.node.iter().collect(),
+            };
+            all.extend(load.at.iter().flat_map(|v| v.node.iter()));
+            all
+        }
+        StatementKind::Rigid(rigid) => {
+            let mut all: Vec<&ExprNode> = match &rigid.inertia {
+                InertiaValue::Scalar(e) => vec![e],
+                InertiaValue::Principal(v) => v.node.iter().collect(),
+                InertiaValue::Tensor(rows) => {
+                    rows.node.iter().flat_map(|r| r.node.iter()).collect()
+                }
+            };
+            all.extend(rigid.position.node.iter());
+            match &rigid.attitude {
+                Attitude::Angle(e) => all.push(e),
+                Attitude::Orientation { angles, .. } => all.extend(angles.iter()),
             }
+            all.extend(rigid.centre.iter().flat_map(|v| v.node.iter()));
+            all
         }
         StatementKind::Outflow(flow) | StatementKind::Inflow(flow) => {
             let mut all: Vec<&ExprNode> = flow.rate.iter().collect();
@@ -70,6 +92,7 @@ pub fn statement_expressions(statement: &Statement) -> Vec<&ExprNode> {
                 }
                 None => {}
             }
+            all.extend(flow.at.iter().flat_map(|v| v.node.iter()));
             all
         }
         StatementKind::Check { lhs, rhs, .. } => vec![lhs, rhs],

@@ -55,6 +55,7 @@ mod expression;
 mod lexical;
 mod positions;
 mod recovery;
+mod rigid;
 mod statement;
 
 use super::ast::{ExprNode, SystemAst};

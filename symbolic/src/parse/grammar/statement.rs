@@ -2,8 +2,8 @@
 
 use super::{Grammar, PResult, STATEMENT_LEVEL};
 use crate::parse::ast::{
-    BodyDecl, Flow, FlowVelocity, Load, LoadValue, MassDecl, MassLaw, Statement, StatementKind,
-    UnitDecl, VectorNode,
+    BodyDecl, Flow, FlowVelocity, Frame, Load, LoadValue, MassDecl, MassLaw, Statement,
+    StatementKind, UnitDecl, VectorNode,
 };
 use crate::parse::keywords::{self, closest};
 use crate::parse::span::{Diagnostic, Span, Spanned};
@@ -76,6 +76,8 @@ impl<'a> Grammar<'a> {
             keywords::INFLOW => self.flow(after, keywords::INFLOW, StatementKind::Inflow)?,
             keywords::CHECK => self.check(after)?,
             keywords::UNITS => self.units(after)?,
+            keywords::RIGID => self.rigid(after)?,
+            keywords::TORQUE => self.load(after, keywords::TORQUE, StatementKind::Torque)?,
             _ => return Err(self.unknown_statement(head, after)),
         };
         let span = self.span(head.span.start, self.offset(rest));
@@ -224,10 +226,17 @@ impl<'a> Grammar<'a> {
         let (after, _) = self.required(rest, false, "`:`", &target.node, |i| {
             self.punct_after_blanks(i, ':')
         })?;
-        match self.vector(after, STATEMENT_LEVEL) {
-            Ok((rest, vector)) => {
+        match self.framed_vector(after) {
+            Ok((rest, (frame, vector))) => {
                 let value = LoadValue::Vector(vector);
-                return Ok((rest, (kind(Load { target, value }), AFTER_VECTOR)));
+                let (rest, at) = self.at_point(rest)?;
+                let load = Load {
+                    target,
+                    value,
+                    frame,
+                    at,
+                };
+                return Ok((rest, (kind(load), AFTER_VECTOR)));
             }
             // No `[` here: a scalar.
             Err(nom::Err::Error(_)) => {}
@@ -238,7 +247,13 @@ impl<'a> Grammar<'a> {
             self.expression(i, STATEMENT_LEVEL)
         })?;
         let value = LoadValue::Scalar(value);
-        Ok((rest, (kind(Load { target, value }), AFTER_EXPRESSION)))
+        let load = Load {
+            target,
+            value,
+            frame: Frame::World,
+            at: None,
+        };
+        Ok((rest, (kind(load), AFTER_EXPRESSION)))
     }
 
     /// `check lhs = rhs`
@@ -356,10 +371,14 @@ impl<'a> Grammar<'a> {
                 body,
                 rate: None,
                 velocity: None,
+                frame: Frame::World,
+                at: None,
             };
             return Ok((rest, (kind(flow), AFTER_FLOW_NAME)));
         };
         let mut rate = None;
+        let mut at_point = None;
+        let mut frame = Frame::World;
         let mut velocity: Option<(FlowVelocity, Span)> = None;
         let (rest, ()) = self.options(
             after,
@@ -371,6 +390,11 @@ impl<'a> Grammar<'a> {
                     let (rest, (value, _)) =
                         self.required_expression(at, STATEMENT_LEVEL, keywords::RATE)?;
                     rate = Some(value);
+                    return Ok((rest, ()));
+                }
+                if option.node == keywords::AT {
+                    let (rest, value) = self.required_vector(at, keywords::AT)?;
+                    at_point = Some(value);
                     return Ok((rest, ()));
                 }
                 if let Some((previous, first)) = &velocity {
@@ -395,7 +419,14 @@ impl<'a> Grammar<'a> {
                     ));
                     return Err(self.fail(at, diagnostic));
                 }
-                let (rest, vector) = self.required_vector(at, &option.node)?;
+                let (rest, (written_in, vector)) = self.required(
+                    at,
+                    false,
+                    "a vector `[…]` or `body […]`",
+                    &option.node,
+                    |i| self.framed_vector(i),
+                )?;
+                frame = written_in;
                 let value = if option.node == keywords::VELOCITY {
                     FlowVelocity::Absolute(vector)
                 } else {
@@ -409,6 +440,8 @@ impl<'a> Grammar<'a> {
             body,
             rate,
             velocity: velocity.map(|(value, _)| value),
+            frame,
+            at: at_point,
         };
         Ok((rest, (kind(flow), AFTER_LIST)))
     }
@@ -423,7 +456,7 @@ impl<'a> Grammar<'a> {
     /// `option value { , option value }` after the `:` of `statement` `owner`: checks that
     /// each option is one of `valid` and appears once; `value` reads the value of an option
     /// (given the option and the input after it).
-    fn options(
+    pub(super) fn options(
         &self,
         input: &'a str,
         statement: &str,
