@@ -33,6 +33,7 @@ mod model;
 mod outputs;
 mod render;
 mod resolve;
+mod switches;
 
 pub use derivation::{
     CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,

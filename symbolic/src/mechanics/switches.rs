@@ -1,0 +1,63 @@
+//! Non-smooth points: a mass law that can jump is refused (a jump in a mass is a phase
+//! change, docs/mechanics.md#jumps-and-phases), and the switching functions of what a
+//! derivation emits are collected so that a run can land on each crossing.
+//!
+//! A switching function g(t, q, q̇, m_s) is an expression whose sign change is a jump or a
+//! kink of the state rate: the argument of `sign` (a jump) and of `abs` (a kink), and the
+//! gap a − b between the two sides of `min(a, b)` and `max(a, b)` (a kink).
+
+use crate::expr::{ExprPool, Func, Id, Node};
+use crate::parse::ast::{Expr, ExprNode};
+use crate::parse::{Diagnostic, Span};
+
+/// The functions whose value jumps where their argument changes sign: a law containing one
+/// makes its mass jump. `abs`, `min` and `max` only kink, which a law may do.
+const JUMPING: [Func; 1] = [Func::Sign];
+
+/// A diagnostic if the lowered law `law` of mass `name` can jump: at the `sign` written in
+/// `written` when there is one, else (a jump reached through a `let`) at `span`, the law.
+pub(crate) fn jump_in_law(
+    pool: &ExprPool,
+    law: Id,
+    written: &ExprNode,
+    span: Span,
+    name: &str,
+) -> Option<Diagnostic> {
+    let jumps = pool
+        .reachable(&[law], true)
+        .into_iter()
+        .find_map(|id| match pool.node(id) {
+            Node::Call(f, _) if JUMPING.contains(f) => Some(*f),
+            _ => None,
+        })?;
+    let at = written_call(written, jumps).unwrap_or(span);
+    let message = format!(
+        "the law of `{name}` can jump (it contains `{}`): a mass that changes at an instant is a change of phase, not a term of its law",
+        jumps.name()
+    );
+    let help = "run the scene in phases (docs/scenes.md): at the event, set the new mass; the velocity carries over (the separated mass leaves with the body), the momentum does not; a kink (`abs`, `min`, `max`) is allowed";
+    Some(Diagnostic::new(at, message).with_help(help))
+}
+
+/// The span of the first call of `func` written in `node` (the name only), searched
+/// without recursion.
+fn written_call(node: &ExprNode, func: Func) -> Option<Span> {
+    let mut stack: Vec<&ExprNode> = vec![node];
+    while let Some(node) = stack.pop() {
+        match &*node.node {
+            Expr::Call { func: name, args } => {
+                if name.node == func.name() {
+                    return Some(name.span);
+                }
+                stack.extend(args.iter().rev());
+            }
+            Expr::Neg(inner) => stack.push(inner),
+            Expr::Binary { lhs, rhs, .. } => {
+                stack.push(rhs);
+                stack.push(lhs);
+            }
+            Expr::Number(_) | Expr::Name(_) | Expr::Derivative { .. } => {}
+        }
+    }
+    None
+}
