@@ -28,6 +28,8 @@ pub struct Outcome {
     pub statistics: Statistics,
     /// The program, given back for recording.
     pub program: Program,
+    /// Why the run failed, if it did: `points` then end at the last accepted point.
+    pub failure: Option<CliError>,
 }
 
 /// Integrates `program` (with `N` coordinates and state length `S`) as `plan` says.
@@ -49,7 +51,7 @@ pub fn integrate<const N: usize, const S: usize>(
             )
         };
     }
-    let (points, stopped_by, statistics) = match (plan.method, plan.steps) {
+    let driven = match (plan.method, plan.steps) {
         (Method::DormandPrince, steps) => {
             drive_with!(DormandPrince, control(steps, AdaptiveControl::default()))
         }
@@ -74,13 +76,17 @@ pub fn integrate<const N: usize, const S: usize>(
                 ..VariationalConfig::default()
             }
         ),
-    }
-    .map_err(fail)?;
+    };
+    let (points, stopped_by, statistics, failure) = match driven {
+        Ok((points, stopped_by, statistics)) => (points, stopped_by, statistics, None),
+        Err((points, statistics, error)) => (points, None, statistics, Some(fail(error))),
+    };
     Ok(Outcome {
         points,
         stopped_by,
         statistics,
         program: system.into_program(),
+        failure,
     })
 }
 
@@ -111,12 +117,13 @@ type Points = Vec<(f64, Vec<f64>)>;
 type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
 
 /// Runs `stepper` to the end or a stopping event: one run over every accepted step, or
-/// with `--every` one run to each output time in turn (the stepper lands on each).
+/// with `--every` one run to each output time in turn (the stepper lands on each). A
+/// failed run gives back the points up to the failure with the error.
 fn drive<St, const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
     stepper: St,
     plan: &Plan,
-) -> Result<(Points, Option<usize>, Statistics), StepError<S>>
+) -> Result<(Points, Option<usize>, Statistics), (Points, Statistics, StepError<S>)>
 where
     St: Stepper<N, S, System = TapeSystem<N, S>>,
 {
@@ -139,11 +146,17 @@ where
     let mut points = vec![(plan.from, stepper.state().as_slice().to_vec())];
     let targets = output_times(plan);
     for target in targets {
-        let solution = run(&mut stepper, &RunConfig::until(target), &events)?;
+        let (solution, failure) = match run(&mut stepper, &RunConfig::until(target), &events) {
+            Ok(solution) => (solution, None),
+            Err(failure) => (*failure.partial, Some(failure.error)),
+        };
         let fresh = solution.times.iter().zip(&solution.states).skip(1);
         match plan.every {
             None => points.extend(fresh.map(|(t, s)| (*t, s.as_slice().to_vec()))),
             Some(_) => points.extend(fresh.last().map(|(t, s)| (*t, s.as_slice().to_vec()))),
+        }
+        if let Some(error) = failure {
+            return Err((points, *stepper.statistics(), error));
         }
         if let StopReason::EventFound { index } = solution.stop {
             return Ok((points, Some(index), *stepper.statistics()));
