@@ -228,10 +228,8 @@ pub(crate) fn locate_bracket(
             0.5 * (a + b)
         };
         let g_c = g(c);
-        if g_c == 0.0 {
-            return (a, c);
-        }
-        if (g_c > 0.0) == (g_b > 0.0) {
+        // A zero counts as the far side (g has reached it), so the near end keeps closing in.
+        if g_c == 0.0 || (g_c > 0.0) == (g_b > 0.0) {
             b = c;
             g_b = g_c;
             if kept == -1 {

@@ -15,7 +15,11 @@ outflow rocket: velocity [-u_e]";
     let errors = derive_source(source, Parameters::Inferred).expect_err("the jump is refused");
     assert_eq!(errors.len(), 1, "{errors:?}");
     let error = &errors[0];
-    assert!(error.message.contains("the law of `m` can jump"), "{}", error.message);
+    assert!(
+        error.message.contains("the law of `m` can jump"),
+        "{}",
+        error.message
+    );
     assert!(error.message.contains("`sign`"), "{}", error.message);
     assert_eq!((error.span.line, error.span.column), (2, 25));
     assert_eq!(&source[error.span.start..error.span.end], "sign");

@@ -228,12 +228,19 @@ where
             _ if time >= config.end_time => return Ok(StopReason::ReachedEnd),
             _ => Crossing::None,
         };
-        if let Crossing::Cross { time, state } = crossing {
-            previous = restart_past(stepper, recorder, config, (time, state), needs)?;
-        } else {
+        match crossing {
+            Crossing::Cross { time, state } => {
+                previous = restart_past(stepper, recorder, config, (time, state), needs)?;
+            }
+            Crossing::Redo { near } => {
+                // The crossing is still ahead: land nearer.
+                stepper.restart(time, previous.state)?;
+                stepper.set_stop_time(near)?;
+                continue;
+            }
             // A stop time of the system, or a crossing not there after all: restart here
             // (the rate may have a kink in t) and aim at the next.
-            stepper.restart(time, previous.state)?;
+            Crossing::None => stepper.restart(time, previous.state)?,
         }
         target = next_target(stepper.system(), stepper.time(), config.end_time);
         stepper.set_stop_time(target)?;

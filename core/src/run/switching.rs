@@ -222,8 +222,10 @@ impl SwitchWatch {
 
     /// Crosses the pending bracket from `point` (its near end, or within it of a step's
     /// start): one Euler step with the rate before the switch to the far end, counted
-    /// against the chatter limit. If no switch changed sign across it after all, the run
-    /// goes on from `point` ([`Crossing::None`]).
+    /// against the chatter limit. When the interpolant across the jump put the bracket too
+    /// early (a switch on the state), the crossing is still ahead: the root of g along the
+    /// tangent of the motion gives it, crossed the same way when it is within a million
+    /// roundings, else landed on again by a redo to 0.9 of the way there.
     pub(crate) fn cross_from<Sys, const N: usize, const S: usize>(
         &mut self,
         system: &Sys,
@@ -235,34 +237,94 @@ impl SwitchWatch {
         let Some((_, far)) = self.pending.take() else {
             return Ok(Crossing::None);
         };
-        let to_step_error = |error| StepError::from_system(system, error, point.time, &point.state);
-        let mut values = core::mem::take(&mut self.scratch);
-        self.evaluate(system, point.time, &point.state, &mut values)?;
-        self.keep(&values);
+        let mut before = vec![0.0; self.values.len()];
+        self.evaluate(system, point.time, &point.state, &mut before)?;
+        self.keep(&before);
         let rate = match point.rate {
             Some(rate) => rate,
             None => system
                 .state_rate(point.time, &point.state)
-                .map_err(to_step_error)?,
+                .map_err(|error| StepError::from_system(system, error, point.time, &point.state))?,
         };
-        let state = point.state + rate * (far - point.time);
-        self.evaluate(system, far, &state, &mut values)?;
-        let mut crossed = false;
-        for index in 0..values.len() {
-            if changed_sign(self.values[index], values[index]) {
-                crossed = true;
-                self.count(index, far, &state)?;
+        // An Euler step is only taken over what rounding (and a million of it) is: its
+        // error, the jump times the step, then stays at the level of the bracket itself.
+        let rounding = 4.0 * f64::EPSILON * point.time.abs().max(1.0);
+        let small = 1e6 * rounding;
+        let step = far - point.time;
+        if step <= small {
+            if let Some(crossing) = self.across(system, point, &rate, step)? {
+                return Ok(crossing);
             }
         }
-        if crossed {
-            self.keep(&values);
+        let Some(ahead) = self.tangent_root(system, point, &rate, &before)? else {
+            return Ok(Crossing::None);
+        };
+        if ahead <= small {
+            return Ok(self
+                .across(system, point, &rate, ahead + rounding)?
+                .unwrap_or(Crossing::None));
         }
-        self.scratch = values;
-        Ok(if crossed {
-            Crossing::Cross { time: far, state }
-        } else {
-            Crossing::None
-        })
+        let near = point.time + 0.9 * ahead;
+        self.pending = Some((near, near));
+        Ok(Crossing::Redo { near })
+    }
+
+    /// The Euler step of `step` from `point` along `rate`, if some switch changes sign over
+    /// it (each such crossing counted).
+    fn across<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        point: &Point<S>,
+        rate: &SVector<f64, S>,
+        step: f64,
+    ) -> Result<Option<Crossing<S>>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let (time, state) = (point.time + step, point.state + rate * step);
+        let mut after = vec![0.0; self.values.len()];
+        self.evaluate(system, time, &state, &mut after)?;
+        let mut crossed = false;
+        for index in 0..after.len() {
+            if changed_sign(self.values[index], after[index]) {
+                crossed = true;
+                self.count(index, time, &state)?;
+            }
+        }
+        if !crossed {
+            return Ok(None);
+        }
+        self.keep(&after);
+        Ok(Some(Crossing::Cross { time, state }))
+    }
+
+    /// The first positive root of any g along the tangent t ↦ (t, y + (t − t₀) f) from
+    /// `point`, by one secant over a short difference (g values `before` there).
+    fn tangent_root<Sys, const N: usize, const S: usize>(
+        &self,
+        system: &Sys,
+        point: &Point<S>,
+        rate: &SVector<f64, S>,
+        before: &[f64],
+    ) -> Result<Option<f64>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let h = 1e-8 * point.time.abs().max(1.0);
+        let mut probe = vec![0.0; before.len()];
+        self.evaluate(
+            system,
+            point.time + h,
+            &(point.state + rate * h),
+            &mut probe,
+        )?;
+        let roots = before
+            .iter()
+            .zip(&probe)
+            .map(|(&g0, &g1)| -g0 * h / (g1 - g0));
+        Ok(roots
+            .filter(|root| root.is_finite() && *root > 0.0)
+            .min_by(f64::total_cmp))
     }
 
     /// Counts a crossing of switch `index` at `time`, failing once it chatters.

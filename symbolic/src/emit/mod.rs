@@ -53,6 +53,7 @@ pub fn emit_system_for(
             for_code.insert(e, expanded);
         }
     }
+    let switches = crate::mechanics::switching_functions(d);
     let shown = doc_roots(d);
     let shown_texts = shown
         .iter()
@@ -125,6 +126,7 @@ pub fn emit_system_for(
         emitter.state_rate(),
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
+        emitter.switching_functions(&switches),
     ];
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");

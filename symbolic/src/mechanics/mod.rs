@@ -45,6 +45,7 @@ pub use model::{
 };
 pub use outputs::{Outputs, UnknownOutput};
 pub use resolve::{is_reserved, Parameters};
+pub use switches::switching_functions;
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
 

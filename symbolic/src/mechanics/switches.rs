@@ -6,7 +6,8 @@
 //! kink of the state rate: the argument of `sign` (a jump) and of `abs` (a kink), and the
 //! gap a − b between the two sides of `min(a, b)` and `max(a, b)` (a kink).
 
-use crate::expr::{ExprPool, Func, Id, Node};
+use super::derivation::Derivation;
+use crate::expr::{ExprPool, Func, Id, Node, SymbolKind};
 use crate::parse::ast::{Expr, ExprNode};
 use crate::parse::{Diagnostic, Span};
 
@@ -60,4 +61,46 @@ fn written_call(node: &ExprNode, func: Func) -> Option<Span> {
         }
     }
     None
+}
+
+/// The switching functions of what a derivation emits, each once (g and −g are one
+/// switch): every non-smooth call reachable from the state rate — ṗ, M and the momentum
+/// offset b (which give q̇), the mass rates and the closed mass laws — in velocity form with
+/// frozen mass symbols, as the emitted methods are. A switch on parameters alone never
+/// crosses and is left out.
+pub fn switching_functions(d: &mut Derivation) -> Vec<Id> {
+    let mut roots: Vec<Id> = d.momentum_rate.clone();
+    roots.extend(d.mass_matrix.iter().flatten());
+    roots.extend(&d.momentum_offset);
+    roots.extend(&d.mass_rates);
+    roots.extend(d.closed_laws.iter().flatten());
+    let calls: Vec<(Func, Vec<Id>)> = d
+        .pool
+        .reachable(&roots, true)
+        .into_iter()
+        .filter_map(|id| match d.pool.node(id) {
+            Node::Call(f @ (Func::Sign | Func::Abs | Func::Min | Func::Max), args) => {
+                Some((*f, args.to_vec()))
+            }
+            _ => None,
+        })
+        .collect();
+    let mut switches: Vec<Id> = Vec::new();
+    for (f, args) in calls {
+        let g = match (f, args.as_slice()) {
+            (Func::Min | Func::Max, [a, b]) => d.pool.sub(*a, *b),
+            (_, [u]) => *u,
+            _ => continue,
+        };
+        let negated = d.pool.neg(g);
+        let moves = d
+            .pool
+            .free_symbols(g)
+            .into_iter()
+            .any(|s| d.pool.symbols().kind(s) != SymbolKind::Parameter);
+        if moves && !switches.contains(&g) && !switches.contains(&negated) {
+            switches.push(g);
+        }
+    }
+    switches
 }
