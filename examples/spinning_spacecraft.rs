@@ -57,7 +57,7 @@ fn main() -> ExitCode {
     };
     let config = RunConfig::until(60.0).recording(record);
     let outcome = match DormandPrince::new(&craft, 0.0, start, control) {
-        Ok(mut stepper) => run(&mut stepper, &config, &[]),
+        Ok(mut stepper) => run(&mut stepper, &config, &[]).map_err(|e| e.into_step_error()),
         Err(error) => Err(error),
     };
     let solution = match outcome {

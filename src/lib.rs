@@ -69,7 +69,7 @@ pub mod prelude {
         ImplicitMidpoint, Sdirk4, StepControl, Variational,
     };
     pub use varmass_core::{
-        run, Direction, Event, RunConfig, Solution, StepError, StepErrorKind, Stepper, StopReason,
-        SystemError, VariableMassSystem,
+        run, Direction, Event, RunConfig, RunError, Solution, StepError, StepErrorKind, Stepper,
+        StopReason, Switching, SystemError, VariableMassSystem,
     };
 }

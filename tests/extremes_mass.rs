@@ -155,7 +155,7 @@ fn no_mass_at_all_is_a_typed_error() {
 
 /// Whether a run's result is a typed failure with a finite time, or a success whose every
 /// point is finite: what "never NaN" means.
-fn never_nan<const N: usize, const S: usize>(result: &Result<Solution<N, S>, StepError<S>>) {
+fn never_nan<const N: usize, const S: usize>(result: &Result<Solution<N, S>, RunError<N, S>>) {
     match result {
         Ok(solution) => {
             for state in &solution.states {

@@ -92,7 +92,7 @@ fn oscillate<St>(mut stepper: St, end: f64) -> Result<Solution<1, 2>, StepError<
 where
     St: Stepper<1, 2, System = Oscillator>,
 {
-    run(&mut stepper, &RunConfig::until(end), &[])
+    Ok(run(&mut stepper, &RunConfig::until(end), &[])?)
 }
 
 /// |R(z)| for the stability polynomial R(z) = Σₖ coefficients[k] zᵏ.
@@ -255,7 +255,8 @@ fn the_energy_guard_turns_that_silent_instability_into_a_typed_error() {
         &RunConfig::until(25.0).guarding_energy(0.1),
         &[],
     )
-    .unwrap_err();
+    .unwrap_err()
+    .error;
     let StepError {
         time,
         kind: StepErrorKind::EnergyBudgetExceeded { residual, scale },

@@ -109,6 +109,20 @@ pub enum StepErrorKind {
         /// The limit, in seconds.
         seconds: f64,
     },
+    /// A switching function ([`VariableMassSystem::switching_functions`]) changed sign
+    /// `crossings` times within a vanishing interval (Coulomb friction at rest, a Zeno
+    /// bounce): the motion sticks or chatters on the switch, which the equations as written
+    /// cannot continue. The error's time and state are those of the last crossing; the
+    /// switch's text is [`VariableMassSystem::switch_name`].
+    #[error("switching function {switch} chatters: {crossings} sign changes within {within:e}")]
+    Chattering {
+        /// Index of the switching function.
+        switch: usize,
+        /// Sign changes counted.
+        crossings: usize,
+        /// The time they fell within.
+        within: f64,
+    },
 }
 
 impl<const S: usize> StepError<S> {

@@ -191,13 +191,26 @@ pub struct EventHit<const S: usize> {
 /// or `g_end == 0`) to within `tolerance` in t by the Illinois method, falling back to
 /// bisection if the bracket does not shrink in 100 iterations.
 pub(crate) fn locate_root(
+    g: impl FnMut(f64) -> f64,
+    start: (f64, f64),
+    end: (f64, f64),
+    tolerance: f64,
+) -> f64 {
+    locate_bracket(g, start, end, tolerance).1
+}
+
+/// [`locate_root`]'s final bracket `(near, far)`: g at `near` has the sign of `g_start`, g
+/// at `far` has changed sign (or is zero), and they are within `tolerance` (or rounding)
+/// of each other; both are `end` when g is zero there. Switches land on the near end and
+/// restart at the far one.
+pub(crate) fn locate_bracket(
     mut g: impl FnMut(f64) -> f64,
     (start, g_start): (f64, f64),
     (end, g_end): (f64, f64),
     tolerance: f64,
-) -> f64 {
+) -> (f64, f64) {
     if g_end == 0.0 {
-        return end;
+        return (end, end);
     }
     let (mut a, mut g_a, mut b, mut g_b) = (start, g_start, end, g_end);
     // Which end was kept by the last iteration: −1 for a, +1 for b, 0 for none yet.
@@ -215,10 +228,8 @@ pub(crate) fn locate_root(
             0.5 * (a + b)
         };
         let g_c = g(c);
-        if g_c == 0.0 {
-            return c;
-        }
-        if (g_c > 0.0) == (g_b > 0.0) {
+        // A zero counts as the far side (g has reached it), so the near end keeps closing in.
+        if g_c == 0.0 || (g_c > 0.0) == (g_b > 0.0) {
             b = c;
             g_b = g_c;
             if kept == -1 {
@@ -235,5 +246,5 @@ pub(crate) fn locate_root(
             kept = 1;
         }
     }
-    b
+    (a, b)
 }

@@ -126,6 +126,6 @@ pub use events::{Direction, Event, EventAction, EventCondition, EventHit};
 #[cfg(feature = "run")]
 pub use observe::{observe, Observable, Quantity, Recording};
 #[cfg(feature = "run")]
-pub use run::{run, RunConfig};
+pub use run::{run, RunConfig, RunError, Switching};
 #[cfg(feature = "run")]
 pub use solution::{GeneralizedForces, Record, Solution, StopReason};

@@ -48,6 +48,8 @@ pub enum StopReason {
         /// Index of the event in the run's list.
         index: usize,
     },
+    /// The run failed (the solution is the part of a [`RunError`](crate::RunError)).
+    Failed,
 }
 
 /// The result of a run. `times` and `states` hold every accepted step (and the event point

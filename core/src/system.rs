@@ -94,6 +94,31 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
 
     // ---------------------------------------------------------------- provided methods
 
+    /// The number of switching functions: the non-smooth points of the state rate
+    /// (docs/mechanics.md#switches). None by default; generated systems count the arguments
+    /// of `sign` and `abs` and the sides of `min` and `max` in their equations.
+    fn switch_count(&self) -> usize {
+        0
+    }
+
+    /// The text of switching function `index` (its DSL expression), for messages.
+    fn switch_name(&self, _index: usize) -> Option<&str> {
+        None
+    }
+
+    /// Writes the switching functions g(t, q, q̇, m_s) at a velocity state into `values`
+    /// (of length [`Self::switch_count`]). A run lands on every sign change and restarts
+    /// the stepper there, so that no step straddles a jump or a kink.
+    fn switching_functions(&self, _t: f64, _velocity_state: &SVector<f64, S>, _values: &mut [f64]) {
+    }
+
+    /// The first time after `after` at which the state rate is not smooth in t (a knot of a
+    /// table of t, a sample of a held input), which runs land on exactly and restart at.
+    /// None by default.
+    fn next_stop_time(&self, _after: f64) -> Option<f64> {
+        None
+    }
+
     /// Q* − R1 + R2: the generalized forces of the paper's eq. 6 and 14 (what drives d*p/dt
     /// besides ∂*L/∂q).
     fn frozen_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {

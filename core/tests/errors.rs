@@ -220,7 +220,7 @@ fn too_many_steps_is_reported_with_the_time_reached() {
         max_steps: 5,
         ..RunConfig::until(10.0)
     };
-    let error = run(&mut stepper, &config, &[]).unwrap_err();
+    let error = run(&mut stepper, &config, &[]).unwrap_err().error;
     let StepError {
         time,
         kind: StepErrorKind::TooManySteps { max_steps },

@@ -56,6 +56,9 @@ pub struct Program {
     rates: Stage,
     /// One stage per [`Quantity::ALL`] entry.
     quantities: Vec<Stage>,
+    /// The switching functions (`mechanics::switching_functions`) and their text.
+    switches: Stage,
+    switch_names: Vec<String>,
     scratch: RefCell<Scratch>,
 }
 
@@ -69,7 +72,7 @@ impl Program {
 
     /// [`Program::new`] with a choice of [`Evaluation`].
     pub fn with_evaluation(
-        d: Derivation,
+        mut d: Derivation,
         parameters: &[(&str, f64)],
         evaluation: Evaluation,
     ) -> Result<Self, ProgramError> {
@@ -90,6 +93,11 @@ impl Program {
                 (roots, true)
             }
         };
+        let switch_roots = varmass_symbolic::mechanics::switching_functions(&mut d);
+        let switch_names = switch_roots
+            .iter()
+            .map(|g| d.pool.display(*g).to_string())
+            .collect();
         let mut rate_roots = d.momentum_rate.clone();
         rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
         let stage = |roots: Vec<Id>| Stage {
@@ -105,6 +113,8 @@ impl Program {
             numeric,
             rates: stage(rate_roots),
             quantities,
+            switches: stage(switch_roots),
+            switch_names,
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),
@@ -247,6 +257,24 @@ impl Program {
         }
         copy(&rhs, out);
         Ok(())
+    }
+
+    /// The number of switching functions (docs/mechanics.md#switches).
+    pub fn switch_count(&self) -> usize {
+        self.switch_names.len()
+    }
+
+    /// The DSL text of switching function `index`.
+    pub fn switch_name(&self, index: usize) -> Option<&str> {
+        self.switch_names.get(index).map(String::as_str)
+    }
+
+    /// The switching functions at a velocity state `[q, q̇, m_s]` into `out`.
+    pub fn switching_functions(&self, t: f64, velocity_state: &[f64], out: &mut [f64]) {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_velocity_state(scratch, t, velocity_state);
+        self.run(&self.switches, scratch);
+        copy(&scratch.values, out);
     }
 
     fn stage(&self, quantity: Quantity) -> &Stage {

@@ -192,6 +192,19 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         Ok(out)
     }
 
+    fn switch_count(&self) -> usize {
+        self.program.switch_count()
+    }
+
+    fn switch_name(&self, index: usize) -> Option<&str> {
+        self.program.switch_name(index)
+    }
+
+    fn switching_functions(&self, t: f64, velocity_state: &SVector<f64, S>, values: &mut [f64]) {
+        self.program
+            .switching_functions(t, velocity_state.as_slice(), values);
+    }
+
     fn check_masses(&self, t: f64, state: &SVector<f64, S>) -> Result<(), SystemError> {
         let mut masses = vec![f64::NAN; self.program.derivation().masses.len()];
         self.program.masses(t, state.as_slice(), &mut masses);

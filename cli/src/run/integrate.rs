@@ -29,6 +29,8 @@ pub struct Outcome {
     pub statistics: Statistics,
     /// The program, given back for recording.
     pub program: Program,
+    /// Why the run failed, if it did: `points` then end at the last accepted point.
+    pub failure: Option<CliError>,
 }
 
 /// Integrates `program` (with `N` coordinates and state length `S`) as `plan` says.
@@ -50,7 +52,7 @@ pub fn integrate<const N: usize, const S: usize>(
             )
         };
     }
-    let (points, stopped_by, statistics) = match (plan.method, plan.steps) {
+    let driven = match (plan.method, plan.steps) {
         (Method::DormandPrince, steps) => {
             drive_with!(DormandPrince, control(steps, AdaptiveControl::default()))
         }
@@ -75,13 +77,17 @@ pub fn integrate<const N: usize, const S: usize>(
                 ..VariationalConfig::default()
             }
         ),
-    }
-    .map_err(fail)?;
+    };
+    let (points, stopped_by, statistics, failure) = match driven {
+        Ok((points, stopped_by, statistics)) => (points, stopped_by, statistics, None),
+        Err((points, statistics, error)) => (points, None, statistics, Some(fail(error))),
+    };
     Ok(Outcome {
         points,
         stopped_by,
         statistics,
         program: system.into_program(),
+        failure,
     })
 }
 
@@ -112,12 +118,13 @@ type Points = Vec<(f64, Vec<f64>)>;
 type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
 
 /// Runs `stepper` to the end or a stopping event: one run over every accepted step, or
-/// with `--every` one run to each output time in turn (the stepper lands on each).
+/// with `--every` one run to each output time in turn (the stepper lands on each). A
+/// failed run gives back the points up to the failure with the error.
 fn drive<St, const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
     stepper: St,
     plan: &Plan,
-) -> Result<(Points, Option<usize>, Statistics), StepError<S>>
+) -> Result<(Points, Option<usize>, Statistics), (Points, Statistics, StepError<S>)>
 where
     St: Stepper<N, S, System = TapeSystem<N, S>>,
 {
@@ -139,9 +146,11 @@ where
     let flows = FlowRates::new(program, &plan.parameters);
     let start = *stepper.state();
     if !flows.is_empty() {
-        flows
-            .check(plan.from, start.as_slice())
-            .map_err(|kind| StepError::new(plan.from, start, kind))?;
+        if let Err(kind) = flows.check(plan.from, start.as_slice()) {
+            let first = vec![(plan.from, start.as_slice().to_vec())];
+            let error = StepError::new(plan.from, start, kind);
+            return Err((first, *stepper.statistics(), error));
+        }
     }
     let mut stepper =
         Watched::new(stepper, plan.from, plan.until).with_time_limit(plan.max_seconds);
@@ -158,11 +167,17 @@ where
             max_steps,
             ..RunConfig::until(target)
         };
-        let solution = run(&mut stepper, &config, &events)?;
+        let (solution, failure) = match run(&mut stepper, &config, &events) {
+            Ok(solution) => (solution, None),
+            Err(failure) => (*failure.partial, Some(failure.error)),
+        };
         let fresh = solution.times.iter().zip(&solution.states).skip(1);
         match plan.every {
             None => points.extend(fresh.map(|(t, s)| (*t, s.as_slice().to_vec()))),
             Some(_) => points.extend(fresh.last().map(|(t, s)| (*t, s.as_slice().to_vec()))),
+        }
+        if let Some(error) = failure {
+            return Err((points, *stepper.statistics(), error));
         }
         if let StopReason::EventFound { index } = solution.stop {
             return Ok((points, Some(index), *stepper.statistics()));
@@ -272,6 +287,15 @@ fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, Stri
              this state (--stop-when), or check the masses and positions"
                 .to_string(),
         ),
+        StepErrorKind::Chattering { switch, .. } => {
+            let name = program.switch_name(switch).unwrap_or("?");
+            (
+                format!("{what}: the motion sticks on the switch `{name}`"),
+                "the equations as written cannot continue on the switch: model the stuck \
+                 motion as its own phase (a scene file), or stop before it (--stop-when)"
+                    .to_string(),
+            )
+        }
         StepErrorKind::NonFiniteTime { .. } | StepErrorKind::InvalidConfiguration { .. } => {
             (what, "check --from, --until, --step and --tol".to_string())
         }

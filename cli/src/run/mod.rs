@@ -34,6 +34,10 @@ pub fn run(args: &RunArgs) -> Result<String, CliError> {
     if let Some(path) = &args.csv {
         output::write_csv(&table, path)?;
     }
+    if let Some(failure) = outcome.failure {
+        // The CSV holds the points up to the failure; the error is what the run reports.
+        return Err(failure);
+    }
     if let Some(path) = &args.plot {
         let title = args.model.file.display().to_string();
         plot::plot(&table, &title, path)?;

@@ -7,19 +7,30 @@
 //! guard) and `record.rs` (the solution being filled). [`run`] only sequences them.
 
 mod energy;
+mod failure;
 pub(crate) mod interpolation;
 pub(crate) mod point;
 mod record;
+mod switching;
 mod watch;
+
+pub use failure::RunError;
+pub use switching::Switching;
 
 use crate::error::{StepError, StepErrorKind};
 use crate::events::Event;
 use crate::solution::{Record, Solution, StopReason};
 use crate::stepper::{StepOutcome, Stepper};
+use crate::system::VariableMassSystem;
+
+use alloc::boxed::Box;
+
+use nalgebra::SVector;
 
 use interpolation::over_last_step;
 use point::{Needs, Point};
 use record::Recorder;
+use switching::{Crossing, SwitchWatch};
 use watch::EventWatch;
 
 /// How to run: the end time, the step limit, what to record and how finely to locate
@@ -39,6 +50,9 @@ pub struct RunConfig {
     /// garbage of a fixed step past the stability limit. Costs H and the power at every
     /// point (and a midpoint), as recording the residual does.
     pub energy_tolerance: Option<f64>,
+    /// How the system's switching functions are treated: located and restarted at, with a
+    /// chattering guard, by default (docs/mechanics.md#switches).
+    pub switching: Switching,
 }
 
 impl RunConfig {
@@ -51,6 +65,19 @@ impl RunConfig {
             record: Record::default(),
             event_tolerance: 1e-12,
             energy_tolerance: None,
+            switching: Switching::default(),
+        }
+    }
+
+    /// The same run, stepping across the system's switches instead of landing on them (the
+    /// steppers then lose their order at every jump or kink).
+    pub fn without_switching(self) -> Self {
+        Self {
+            switching: Switching {
+                locate: false,
+                ..self.switching
+            },
+            ..self
         }
     }
 
@@ -85,6 +112,10 @@ impl RunConfig {
         if self.event_tolerance.is_nan() || self.event_tolerance < 0.0 {
             return Err("the event tolerance must be non-negative");
         }
+        let chatter = self.switching.chatter_window;
+        if self.switching.chatter_crossings < 2 || chatter.is_nan() || chatter < 0.0 {
+            return Err("chattering needs at least 2 crossings in a non-negative window");
+        }
         Ok(())
     }
 }
@@ -93,47 +124,163 @@ impl RunConfig {
 ///
 /// On a stopping event the solution ends at the located event time; the stepper itself is
 /// left at the end of the step that contained it ([`Stepper::restart`] it at the event to
-/// continue). On error, the error carries the time and state; the points so far are lost.
+/// continue). The system's switches are located and the stepper restarted at each
+/// ([`RunConfig::switching`]), and it lands on and restarts at each of the system's stop
+/// times ([`VariableMassSystem::next_stop_time`](crate::VariableMassSystem::next_stop_time)).
+/// On error, the [`RunError`] carries the time, the state and the kind, and the solution up
+/// to the last accepted point.
 pub fn run<St, const N: usize, const S: usize>(
     stepper: &mut St,
     config: &RunConfig,
     events: &[Event<'_, S>],
-) -> Result<Solution<N, S>, StepError<S>>
+) -> Result<Solution<N, S>, RunError<N, S>>
+where
+    St: Stepper<N, S>,
+{
+    let mut recorder = None;
+    match drive(stepper, config, events, &mut recorder) {
+        Ok(stop) => match recorder {
+            Some(recorder) => Ok(recorder.finish(stepper, stop)),
+            None => Ok(Solution::new()),
+        },
+        Err(error) => {
+            let partial = match recorder {
+                Some(recorder) => recorder.finish(stepper, StopReason::Failed),
+                None => Solution {
+                    stop: StopReason::Failed,
+                    ..Solution::new()
+                },
+            };
+            Err(RunError {
+                error,
+                partial: Box::new(partial),
+            })
+        }
+    }
+}
+
+/// [`run`], filling `recorder` (created at the first point) and returning why it stopped.
+fn drive<St, const N: usize, const S: usize>(
+    stepper: &mut St,
+    config: &RunConfig,
+    events: &[Event<'_, S>],
+    recorder: &mut Option<Recorder<N, S>>,
+) -> Result<StopReason, StepError<S>>
 where
     St: Stepper<N, S>,
 {
     check(stepper, config, events)?;
-    stepper.set_stop_time(config.end_time)?;
     let start_time = stepper.time();
+    let mut target = next_target(stepper.system(), start_time, config.end_time);
+    stepper.set_stop_time(target)?;
+    let switches = stepper.system().switch_count() > 0 && config.switching.locate;
     let needs = Needs {
-        rate: (config.needs_energy() || !events.is_empty())
+        rate: (config.needs_energy() || !events.is_empty() || switches)
             && stepper.dense_output(start_time).is_none(),
         energy: config.needs_energy(),
     };
     let start = Point::at(stepper.system(), start_time, *stepper.state(), needs)?;
-    let mut recorder = Recorder::start(stepper.system(), config, &start)?;
+    let recorder = recorder.insert(Recorder::start(stepper.system(), config, &start)?);
     // A run to where the stepper already is takes no step (a zero-length step would divide
     // by zero in some steppers and count work in others).
     if config.end_time == start_time {
-        return Ok(recorder.finish(stepper, StopReason::ReachedEnd));
+        return Ok(StopReason::ReachedEnd);
     }
     let mut watch = EventWatch::start(events, stepper.system(), &start);
+    let mut switch_watch =
+        SwitchWatch::start(stepper.system(), config.switching, &start, config.end_time)?;
     let mut previous = start;
     for _ in 0..config.max_steps {
         let outcome = stepper.step()?;
         let current = Point::at(stepper.system(), stepper.time(), *stepper.state(), needs)?;
+        if let Some(switch_watch) = &mut switch_watch {
+            let interpolate = |time| over_last_step(&*stepper, &previous, &current, time);
+            let crossing =
+                switch_watch.check_step(stepper.system(), (&previous, &current), &interpolate)?;
+            match crossing {
+                Crossing::None => {}
+                Crossing::Redo { near } => {
+                    stepper.restart(previous.time, previous.state)?;
+                    stepper.set_stop_time(near)?;
+                    continue;
+                }
+                Crossing::Cross { time, state } => {
+                    previous = restart_past(stepper, recorder, config, (time, state), needs)?;
+                    target = next_target(stepper.system(), time, config.end_time);
+                    stepper.set_stop_time(target)?;
+                    continue;
+                }
+            }
+        }
         let step = (&previous, &current);
-        let event_stop = record_step(&*stepper, &mut recorder, &mut watch, config, step)?;
-        let end_stop = (outcome == StepOutcome::ReachedStopTime).then_some(StopReason::ReachedEnd);
-        if let Some(stop) = event_stop.or(end_stop) {
-            return Ok(recorder.finish(stepper, stop));
+        if let Some(stop) = record_step(&*stepper, recorder, &mut watch, config, step)? {
+            return Ok(stop);
         }
         previous = current;
+        if outcome != StepOutcome::ReachedStopTime {
+            continue;
+        }
+        let time = stepper.time();
+        let crossing = match &mut switch_watch {
+            Some(switch_watch) if switch_watch.landed(time) => {
+                switch_watch.cross_from(stepper.system(), &previous)?
+            }
+            _ if time >= config.end_time => return Ok(StopReason::ReachedEnd),
+            _ => Crossing::None,
+        };
+        match crossing {
+            Crossing::Cross { time, state } => {
+                previous = restart_past(stepper, recorder, config, (time, state), needs)?;
+            }
+            Crossing::Redo { near } => {
+                // The crossing is still ahead: land nearer.
+                stepper.restart(time, previous.state)?;
+                stepper.set_stop_time(near)?;
+                continue;
+            }
+            // A stop time of the system, or a crossing not there after all: restart here
+            // (the rate may have a kink in t) and aim at the next.
+            Crossing::None => stepper.restart(time, previous.state)?,
+        }
+        target = next_target(stepper.system(), stepper.time(), config.end_time);
+        stepper.set_stop_time(target)?;
     }
     let kind = StepErrorKind::TooManySteps {
         max_steps: config.max_steps,
     };
     Err(StepError::new(stepper.time(), *stepper.state(), kind))
+}
+
+/// Restarts the stepper past a switch at `(time, state)` and records that point (the
+/// bracket crossed is a few roundings of t wide: its energy is not integrated).
+fn restart_past<St, const N: usize, const S: usize>(
+    stepper: &mut St,
+    recorder: &mut Recorder<N, S>,
+    config: &RunConfig,
+    (time, state): (f64, SVector<f64, S>),
+    needs: Needs,
+) -> Result<Point<S>, StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    stepper.restart(time, state)?;
+    let point = Point::at(stepper.system(), time, state, needs)?;
+    recorder.guard(stepper.system(), &point)?;
+    recorder.push(stepper.system(), &point)?;
+    let _ = config;
+    Ok(point)
+}
+
+/// The next time the stepper must land on: the system's next stop time after `time` if it
+/// comes before `end_time`, else `end_time`.
+fn next_target<Sys, const N: usize, const S: usize>(system: &Sys, time: f64, end_time: f64) -> f64
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    system
+        .next_stop_time(time)
+        .filter(|&stop| stop > time && stop < end_time)
+        .unwrap_or(end_time)
 }
 
 /// Records the step from `previous` to `current` the stepper just took: the events in it

@@ -54,6 +54,7 @@ pub fn emit_system_for(
             for_code.insert(e, expanded);
         }
     }
+    let switches = crate::mechanics::switching_functions(d);
     let shown = documented_roots(d);
     let shown_texts = shown
         .iter()
@@ -96,6 +97,7 @@ pub fn emit_system_for(
         emitter.state_rate(),
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
+        emitter.switching_functions(&switches),
     ];
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");

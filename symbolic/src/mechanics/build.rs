@@ -9,6 +9,7 @@ use super::model::{
     Model, Term, TermKind,
 };
 use super::resolve::{is_reserved, lower_with, Binding, Context, Parameters};
+use super::switches::jump_in_law;
 use crate::expr::{ExprPool, Id, Symbol, SymbolKind};
 use crate::parse::ast::{
     BodyDecl, ExprNode, FlowVelocity, LoadValue, MassDecl, MassLaw, StatementKind, SystemAst,
@@ -341,10 +342,17 @@ impl Builder {
             return;
         };
         let kind = match &decl.law {
-            MassLaw::Law(law) => {
-                let Some(law) = self.lower(law) else { return };
+            MassLaw::Law(written) => {
+                let Some(law) = self.lower(written) else {
+                    return;
+                };
                 let what = format!("the law of `{}`", decl.name.node);
                 if !self.require_configuration(law, span, &what) {
+                    return;
+                }
+                let name = &decl.name.node;
+                if let Some(jump) = jump_in_law(&self.model.pool, law, written, span, name) {
+                    self.errors.push(jump);
                     return;
                 }
                 MassKind::Law(law)

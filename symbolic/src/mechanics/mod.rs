@@ -36,6 +36,7 @@ mod resolve;
 mod rigid;
 mod rigid_forces;
 mod rotation;
+mod switches;
 
 pub use derivation::{
     CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,
@@ -48,6 +49,7 @@ pub use model::{
 pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
+pub use switches::switching_functions;
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
 

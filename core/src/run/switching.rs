@@ -1,0 +1,361 @@
+//! Switches: the sign changes of the system's switching functions
+//! ([`VariableMassSystem::switching_functions`], docs/mechanics.md#switches), located so
+//! that no step straddles a jump or a kink of the state rate.
+//!
+//! A step whose end has a switching function on the other side is discarded: its
+//! interpolant locates the crossing's bracket `(near, far)` to rounding, and the run repeats
+//! the integration from the step's start to `near`, where the state rate is still smooth
+//! (a *redo*). Landed there, it crosses the bracket (at most a few roundings of t wide) by
+//! one Euler step with the rate before the switch and restarts the stepper at `far`,
+//! forgetting the FSAL rate and the controller's memory. A crossing located within the
+//! bracket of the step's start is crossed at once. When the interpolant across the jump put
+//! `near` too early (a state-dependent switch), the landing finds no change of sign across
+//! the bracket and the run simply goes on from `near`: the next crossing step is shorter.
+//!
+//! A switch crossed [`Switching::chatter_crossings`] times within
+//! [`Switching::chatter_window`] of the run's span chatters: the run ends with
+//! [`StepErrorKind::Chattering`].
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use nalgebra::SVector;
+
+use super::point::Point;
+use crate::error::{StepError, StepErrorKind};
+use crate::events::locate_bracket;
+use crate::system::VariableMassSystem;
+
+/// How a run treats the system's switching functions. On by default.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Switching {
+    /// Whether crossings are located and the stepper restarted there. Off, the steppers
+    /// step across jumps and kinks as they would across any rate (losing their order).
+    pub locate: bool,
+    /// How many crossings of one switch within the window make it chatter.
+    pub chatter_crossings: usize,
+    /// The window, as a fraction of the run's span `end_time − start time`.
+    pub chatter_window: f64,
+}
+
+impl Default for Switching {
+    /// Located; 16 crossings within 10⁻⁹ of the run's span chatter.
+    fn default() -> Self {
+        Self {
+            locate: true,
+            chatter_crossings: 16,
+            chatter_window: 1e-9,
+        }
+    }
+}
+
+/// What the last step showed.
+pub(crate) enum Crossing<const S: usize> {
+    /// No switch changed sign: the step stands.
+    None,
+    /// A switch changed sign inside the step: discard it and integrate from its start to
+    /// `near` (the stepper must be restarted at the step's start with `near` its stop time).
+    Redo {
+        /// Where to land, just before the crossing.
+        near: f64,
+    },
+    /// A switch changed sign within rounding of the step's start (or the run landed on a
+    /// redo's `near`): restart the stepper at `(time, state)`, past the crossing.
+    Cross {
+        /// The far end of the crossing's bracket.
+        time: f64,
+        /// The state there.
+        state: SVector<f64, S>,
+    },
+}
+
+/// The switching functions at the last point, the crossing being approached, and the
+/// recent crossings of each switch.
+pub(crate) struct SwitchWatch {
+    settings: Switching,
+    /// g at the last accepted point.
+    values: Vec<f64>,
+    scratch: Vec<f64>,
+    /// The bracket of the crossing a redo is landing on.
+    pending: Option<(f64, f64)>,
+    /// Per switch: the time of the first crossing of the current burst and how many.
+    bursts: Vec<(f64, usize)>,
+    /// The chatter window in t.
+    window: f64,
+}
+
+impl SwitchWatch {
+    /// Watches the switches of `system` from `start`, or `None` when it has none or the run
+    /// does not locate them (so a system without switches costs nothing).
+    pub(crate) fn start<Sys, const N: usize, const S: usize>(
+        system: &Sys,
+        settings: Switching,
+        start: &Point<S>,
+        end_time: f64,
+    ) -> Result<Option<Self>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let count = system.switch_count();
+        if count == 0 || !settings.locate {
+            return Ok(None);
+        }
+        let mut watch = Self {
+            settings,
+            values: vec![0.0; count],
+            scratch: vec![0.0; count],
+            pending: None,
+            bursts: vec![(f64::NEG_INFINITY, 0); count],
+            window: settings.chatter_window * (end_time - start.time).abs(),
+        };
+        let mut values = core::mem::take(&mut watch.values);
+        watch.evaluate(system, start.time, &start.state, &mut values)?;
+        watch.values = values;
+        Ok(Some(watch))
+    }
+
+    /// g at `(time, state)` into `values`.
+    fn evaluate<Sys, const N: usize, const S: usize>(
+        &self,
+        system: &Sys,
+        time: f64,
+        state: &SVector<f64, S>,
+        values: &mut [f64],
+    ) -> Result<(), StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let velocity_state = system
+            .velocity_state(time, state)
+            .map_err(|error| StepError::from_system(system, error, time, state))?;
+        system.switching_functions(time, &velocity_state, values);
+        Ok(())
+    }
+
+    /// Checks the step from `start` to `end`, the states within it from `interpolate`.
+    pub(crate) fn check_step<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        (start, end): (&Point<S>, &Point<S>),
+        interpolate: &impl Fn(f64) -> SVector<f64, S>,
+    ) -> Result<Crossing<S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let mut after = core::mem::take(&mut self.scratch);
+        let evaluated = self.evaluate(system, end.time, &end.state, &mut after);
+        let crossing = evaluated.map(|()| self.earliest(system, (start, end), interpolate, &after));
+        let result = match crossing {
+            Ok(Some((near, far))) if near - start.time > far - near => {
+                self.pending = Some((near, far));
+                Ok(Crossing::Redo { near })
+            }
+            Ok(Some((near, far))) => {
+                self.pending = Some((near, far));
+                match self.cross_from(system, start) {
+                    Ok(Crossing::None) => {
+                        // The interpolant across the jump misplaced the crossing: let the
+                        // step stand (rare; the next crossing step is shorter).
+                        self.keep(&after);
+                        Ok(Crossing::None)
+                    }
+                    other => other,
+                }
+            }
+            Ok(None) => {
+                self.keep(&after);
+                Ok(Crossing::None)
+            }
+            Err(error) => Err(error),
+        };
+        self.scratch = after;
+        result
+    }
+
+    /// Takes `after` as g at the last point, except where it is exactly zero: there the
+    /// side g came from is kept, so that leaving zero on the other side is a crossing.
+    fn keep(&mut self, after: &[f64]) {
+        for (value, &after) in self.values.iter_mut().zip(after) {
+            if after != 0.0 {
+                *value = after;
+            }
+        }
+    }
+
+    /// The bracket of the earliest crossing in the step, given g at its end.
+    fn earliest<Sys, const N: usize, const S: usize>(
+        &self,
+        system: &Sys,
+        (start, end): (&Point<S>, &Point<S>),
+        interpolate: &impl Fn(f64) -> SVector<f64, S>,
+        after: &[f64],
+    ) -> Option<(f64, f64)>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let mut values = vec![0.0; after.len()];
+        let mut earliest: Option<(f64, f64)> = None;
+        for (index, (&before, &after)) in self.values.iter().zip(after).enumerate() {
+            if !changed_sign(before, after) {
+                continue;
+            }
+            let g = |time: f64| {
+                let state = interpolate(time);
+                match self.evaluate(system, time, &state, &mut values) {
+                    Ok(()) => values[index],
+                    Err(_) => f64::NAN,
+                }
+            };
+            // Located to rounding: the bracket is the width of the step that crosses it.
+            let bracket = locate_bracket(g, (start.time, before), (end.time, after), 0.0);
+            if earliest.is_none_or(|(near, _)| bracket.0 < near) {
+                earliest = Some(bracket);
+            }
+        }
+        earliest
+    }
+
+    /// The pending crossing's bracket if the run just landed on its near end at `time`.
+    pub(crate) fn landed(&self, time: f64) -> bool {
+        self.pending.is_some_and(|(near, _)| near == time)
+    }
+
+    /// Crosses the pending bracket from `point` (its near end, or within it of a step's
+    /// start): one Euler step with the rate before the switch to the far end, counted
+    /// against the chatter limit. When the interpolant across the jump put the bracket too
+    /// early (a switch on the state), the crossing is still ahead: the root of g along the
+    /// tangent of the motion gives it, crossed the same way when it is within a million
+    /// roundings, else landed on again by a redo to 0.9 of the way there.
+    pub(crate) fn cross_from<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        point: &Point<S>,
+    ) -> Result<Crossing<S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let Some((_, far)) = self.pending.take() else {
+            return Ok(Crossing::None);
+        };
+        let mut before = vec![0.0; self.values.len()];
+        self.evaluate(system, point.time, &point.state, &mut before)?;
+        self.keep(&before);
+        let rate = match point.rate {
+            Some(rate) => rate,
+            None => system
+                .state_rate(point.time, &point.state)
+                .map_err(|error| StepError::from_system(system, error, point.time, &point.state))?,
+        };
+        // An Euler step is only taken over what rounding (and a million of it) is: its
+        // error, the jump times the step, then stays at the level of the bracket itself.
+        let rounding = 4.0 * f64::EPSILON * point.time.abs().max(1.0);
+        let small = 1e6 * rounding;
+        let step = far - point.time;
+        if step <= small {
+            if let Some(crossing) = self.across(system, point, &rate, step)? {
+                return Ok(crossing);
+            }
+        }
+        let Some(ahead) = self.tangent_root(system, point, &rate, &before)? else {
+            return Ok(Crossing::None);
+        };
+        if ahead <= small {
+            return Ok(self
+                .across(system, point, &rate, ahead + rounding)?
+                .unwrap_or(Crossing::None));
+        }
+        let near = point.time + 0.9 * ahead;
+        self.pending = Some((near, near));
+        Ok(Crossing::Redo { near })
+    }
+
+    /// The Euler step of `step` from `point` along `rate`, if some switch changes sign over
+    /// it (each such crossing counted).
+    fn across<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        point: &Point<S>,
+        rate: &SVector<f64, S>,
+        step: f64,
+    ) -> Result<Option<Crossing<S>>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let (time, state) = (point.time + step, point.state + rate * step);
+        let mut after = vec![0.0; self.values.len()];
+        self.evaluate(system, time, &state, &mut after)?;
+        let mut crossed = false;
+        for index in 0..after.len() {
+            if changed_sign(self.values[index], after[index]) {
+                crossed = true;
+                self.count(index, time, &state)?;
+            }
+        }
+        if !crossed {
+            return Ok(None);
+        }
+        self.keep(&after);
+        Ok(Some(Crossing::Cross { time, state }))
+    }
+
+    /// The first positive root of any g along the tangent t ↦ (t, y + (t − t₀) f) from
+    /// `point`, by one secant over a short difference (g values `before` there).
+    fn tangent_root<Sys, const N: usize, const S: usize>(
+        &self,
+        system: &Sys,
+        point: &Point<S>,
+        rate: &SVector<f64, S>,
+        before: &[f64],
+    ) -> Result<Option<f64>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let h = 1e-8 * point.time.abs().max(1.0);
+        let mut probe = vec![0.0; before.len()];
+        self.evaluate(
+            system,
+            point.time + h,
+            &(point.state + rate * h),
+            &mut probe,
+        )?;
+        let roots = before
+            .iter()
+            .zip(&probe)
+            .map(|(&g0, &g1)| -g0 * h / (g1 - g0));
+        Ok(roots
+            .filter(|root| root.is_finite() && *root > 0.0)
+            .min_by(f64::total_cmp))
+    }
+
+    /// Counts a crossing of switch `index` at `time`, failing once it chatters.
+    fn count<const S: usize>(
+        &mut self,
+        index: usize,
+        time: f64,
+        state: &SVector<f64, S>,
+    ) -> Result<(), StepError<S>> {
+        let Some((first, crossings)) = self.bursts.get_mut(index) else {
+            return Ok(());
+        };
+        if time - *first <= self.window {
+            *crossings += 1;
+        } else {
+            (*first, *crossings) = (time, 1);
+        }
+        if *crossings >= self.settings.chatter_crossings {
+            let kind = StepErrorKind::Chattering {
+                switch: index,
+                crossings: *crossings,
+                within: time - *first,
+            };
+            return Err(StepError::new(time, *state, kind));
+        }
+        Ok(())
+    }
+}
+
+/// Whether g went from `before` strictly to the other side of zero at `after` (a zero is
+/// not yet a crossing: the state rate there is still the one before, or the kink's).
+fn changed_sign(before: f64, after: f64) -> bool {
+    (before < 0.0 && after > 0.0) || (before > 0.0 && after < 0.0)
+}
