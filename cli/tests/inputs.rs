@@ -114,7 +114,9 @@ fn an_unknown_parameter_suggests_the_nearest_and_lists_them() {
 fn a_missing_parameter_lists_the_parameters() {
     let stderr = run_sled("g", &[], 2);
     assert!(
-        stderr.contains("missing value for g; the model's parameters are: m0, c, g, theta, f_d"),
+        stderr.contains(
+            "missing value for g; the model's parameters are: m0, c, g, theta, f_d; give --set g=VALUE"
+        ),
         "{stderr}"
     );
 }

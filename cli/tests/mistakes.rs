@@ -70,6 +70,13 @@ fn tolerances_and_steps_beyond_what_f64_or_the_step_limit_allow_are_refused_firs
         ),
         "{stderr}"
     );
+    // --every needs a step per output time: 1e12 of them is refused the same way.
+    let stderr = rocket_until("1", &["--every", "1e-12"], 2);
+    assert!(
+        stderr.contains("--every 1e-12 asks for 1.000e12 output times")
+            && stderr.contains("the usable spacings are 1.000e-7 to 1"),
+        "{stderr}"
+    );
     // The limit is the user's: a step within a raised --max-steps runs.
     rocket(
         &["--step", "1e-3", "--max-steps", "600", "--method", "rk4"],

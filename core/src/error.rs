@@ -209,6 +209,11 @@ impl ConfigError {
     }
 }
 
+/// Whether every component of a vector is finite.
+pub(crate) fn is_finite<const D: usize>(vector: &SVector<f64, D>) -> bool {
+    vector.iter().all(|x| x.is_finite())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -236,9 +241,4 @@ mod tests {
             "at t = 0.5: the rate of flow 1 is negative (-5e0)"
         );
     }
-}
-
-/// Whether every component of a vector is finite.
-pub(crate) fn is_finite<const D: usize>(vector: &SVector<f64, D>) -> bool {
-    vector.iter().all(|x| x.is_finite())
 }

@@ -104,6 +104,10 @@ pub fn program(
             )),
             None => CliError::Input(e.to_string()),
         },
+        ProgramError::MissingParameters { missing, .. } => {
+            let give: Vec<String> = missing.iter().map(|m| format!("--set {m}=VALUE")).collect();
+            CliError::Input(format!("{e}; give {}", give.join(" ")))
+        }
         _ => CliError::Input(e.to_string()),
     };
     let borrowed: Vec<(&str, f64)> = values.iter().map(|(n, v)| (n.as_str(), *v)).collect();

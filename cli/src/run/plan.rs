@@ -151,7 +151,7 @@ pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, 
                 .collect::<Result<_, _>>()?
         }
     };
-    let every = args.every.map(|dt| positive(dt, "--every")).transpose()?;
+    let every = args.every.map(|dt| every(dt, args)).transpose()?;
     let max_seconds = args
         .max_seconds
         .map(|s| positive(s, "--max-seconds"))
@@ -256,6 +256,28 @@ fn steps(args: &RunArgs) -> Result<Steps, CliError> {
                 .unwrap_or_default()
         ))),
     }
+}
+
+/// An `--every` that is positive and asks for no more output times than `--max-steps`
+/// allows steps (each output time ends a step): `--every 1e-12 --until 1` is refused here,
+/// not after building 10¹² output times.
+fn every(dt: f64, args: &RunArgs) -> Result<f64, CliError> {
+    let dt = positive(dt, "--every")?;
+    let span = args.until - args.from;
+    let times = (span / dt).ceil();
+    if times > args.max_steps as f64 {
+        return Err(CliError::Input(format!(
+            "--every {} asks for {times:.3e} output times from t = {} to --until {}, more \
+             than --max-steps {}; the usable spacings are {:.3e} to {span} (or raise \
+             --max-steps)",
+            shown(dt),
+            shown(args.from),
+            shown(args.until),
+            args.max_steps,
+            span / args.max_steps as f64
+        )));
+    }
+    Ok(dt)
 }
 
 /// A `--tol` within [`MIN_TOLERANCE`, `MAX_TOLERANCE`].
