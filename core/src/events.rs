@@ -229,7 +229,8 @@ pub(crate) fn locate_bracket(
         };
         let g_c = g(c);
         // A zero counts as the far side (g has reached it), so the near end keeps closing in.
-        if g_c == 0.0 || (g_c > 0.0) == (g_b > 0.0) {
+        let near_side = g_c != 0.0 && (g_c > 0.0) == (g_a > 0.0);
+        if !near_side {
             b = c;
             g_b = g_c;
             if kept == -1 {

@@ -110,6 +110,8 @@ pub mod fidelity;
 #[cfg(feature = "run")]
 pub mod observe;
 #[cfg(feature = "run")]
+pub mod phases;
+#[cfg(feature = "run")]
 pub mod run;
 #[cfg(feature = "run")]
 pub mod solution;
@@ -125,6 +127,8 @@ pub use system::{SystemError, VariableMassSystem};
 pub use events::{Direction, Event, EventAction, EventCondition, EventHit};
 #[cfg(feature = "run")]
 pub use observe::{observe, Observable, Quantity, Recording};
+#[cfg(feature = "run")]
+pub use phases::{run_phases, Carry, Phase, PhaseChange, PhasedSolution};
 #[cfg(feature = "run")]
 pub use run::{run, RunConfig, RunError, Switching};
 #[cfg(feature = "run")]

@@ -114,6 +114,9 @@ fn step(steps: Steps) -> f64 {
 
 type Points = Vec<(f64, Vec<f64>)>;
 
+/// A failed run: the points up to the failure, the work done and the error.
+type Failed<const S: usize> = (Points, Statistics, StepError<S>);
+
 /// An event function g(t, state) borrowing the program.
 type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
 
@@ -124,7 +127,7 @@ fn drive<St, const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
     stepper: St,
     plan: &Plan,
-) -> Result<(Points, Option<usize>, Statistics), (Points, Statistics, StepError<S>)>
+) -> Result<(Points, Option<usize>, Statistics), Failed<S>>
 where
     St: Stepper<N, S, System = TapeSystem<N, S>>,
 {

@@ -284,13 +284,14 @@ impl SwitchWatch {
         let (time, state) = (point.time + step, point.state + rate * step);
         let mut after = vec![0.0; self.values.len()];
         self.evaluate(system, time, &state, &mut after)?;
-        let mut crossed = false;
-        for index in 0..after.len() {
-            if changed_sign(self.values[index], after[index]) {
-                crossed = true;
-                self.count(index, time, &state)?;
-            }
+        let crossings: Vec<usize> = (self.values.iter().zip(&after).enumerate())
+            .filter(|(_, (&before, &after))| changed_sign(before, after))
+            .map(|(index, _)| index)
+            .collect();
+        for &index in &crossings {
+            self.count(index, time, &state)?;
         }
+        let crossed = !crossings.is_empty();
         if !crossed {
             return Ok(None);
         }

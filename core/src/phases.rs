@@ -1,0 +1,210 @@
+//! Phases: a scene that changes at events (docs/mechanics.md#jumps-and-phases). Each phase
+//! is a system of the same model (other parameters: a stage dropped, a burn rate set to 0)
+//! run until its event; the state is carried into the next phase by a declared rule, and
+//! the runs are recorded into one solution with the phase of every point.
+//!
+//! *Separation* (the default) is a mass leaving with the body's velocity: q and q̇ are
+//! continuous and p is recomputed through the new momentum map (eq. 8), so the kinetic
+//! energy ½ q̇ᵀ(M_before − M_after) q̇ leaves with the separated mass. *Capture* is a
+//! plastic impact of arriving mass: the momentum p of the whole continues, and q̇ drops.
+
+use alloc::vec::Vec;
+
+use nalgebra::SVector;
+
+use crate::error::StepError;
+use crate::events::Event;
+use crate::run::{run, RunConfig, RunError};
+use crate::solution::{Solution, StopReason};
+use crate::stepper::Stepper;
+use crate::system::VariableMassSystem;
+
+/// How the state enters a phase from the one before.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Carry {
+    /// A mass separates with the body's velocity: q, q̇ continuous, p recomputed.
+    #[default]
+    Separation,
+    /// Arriving mass is captured in a plastic impact: q and p continuous.
+    Capture,
+}
+
+/// One phase: the system to run, how the state enters it, the state masses it sets, and
+/// the event that ends it (`None`: it runs to the end time).
+#[derive(Clone, Copy, Debug)]
+pub struct Phase<'a, Sys, const S: usize> {
+    /// The system of this phase (same coordinates and state masses as the others).
+    pub system: Sys,
+    /// How the state enters this phase (ignored for the first).
+    pub carry: Carry,
+    /// State masses set on entry: (index into the state masses, value).
+    pub state_masses: &'a [(usize, f64)],
+    /// The event that ends the phase.
+    pub until: Option<Event<'a, S>>,
+}
+
+/// A change of phase: when, into which phase, and the kinetic energy the separated mass
+/// took away (negative when a capture's mass brings none; zero for a capture).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhaseChange {
+    /// The phase entered.
+    pub phase: usize,
+    /// The time of the change.
+    pub time: f64,
+    /// ½ q̇ᵀ (M_before − M_after) q̇ at separation; for a capture, the kinetic energy lost
+    /// in the plastic impact, T_before − T_after at the same p.
+    pub kinetic_energy_removed: f64,
+}
+
+/// The runs of every phase as one solution, with the phase of each point and the changes.
+/// The energy residual (when recorded) continues across a change: the jump of H there is
+/// what the change removed, not an integration error.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhasedSolution<const N: usize, const S: usize> {
+    /// Every point of every phase (a change appears twice: the state before and after).
+    pub solution: Solution<N, S>,
+    /// The phase of each point.
+    pub phase: Vec<usize>,
+    /// The changes, in order.
+    pub changes: Vec<PhaseChange>,
+}
+
+/// Runs `phases` in turn from `(time, state)` to `config.end_time`, each with the stepper
+/// `stepper_for` builds for its system, until its event (or the end). On a failure the
+/// [`RunError`] carries the solution of every phase so far.
+pub fn run_phases<'p, Sys, St, const N: usize, const S: usize>(
+    phases: &'p [Phase<'p, Sys, S>],
+    (mut time, mut state): (f64, SVector<f64, S>),
+    mut stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    config: &RunConfig,
+) -> Result<PhasedSolution<N, S>, RunError<N, S>>
+where
+    Sys: VariableMassSystem<N, S>,
+    St: Stepper<N, S>,
+{
+    let mut phased = PhasedSolution {
+        solution: Solution::new(),
+        phase: Vec::new(),
+        changes: Vec::new(),
+    };
+    let mut previous: Option<&Sys> = None;
+    for (index, phase) in phases.iter().enumerate() {
+        let fail = |error, phased: &PhasedSolution<N, S>| RunError {
+            error,
+            partial: alloc::boxed::Box::new(Solution {
+                stop: StopReason::Failed,
+                ..phased.solution.clone()
+            }),
+        };
+        if let Some(before) = previous {
+            let (entered, removed) =
+                carry(before, phase, time, &state).map_err(|error| fail(error, &phased))?;
+            state = entered;
+            phased.changes.push(PhaseChange {
+                phase: index,
+                time,
+                kinetic_energy_removed: removed,
+            });
+        }
+        let mut stepper = stepper_for(&phase.system, time, state).map_err(|e| fail(e, &phased))?;
+        let events: Vec<Event<'_, S>> = phase.until.into_iter().collect();
+        let result = run(&mut stepper, config, &events);
+        let (solution, failure) = match result {
+            Ok(solution) => (solution, None),
+            Err(failure) => (*failure.partial, Some(failure.error)),
+        };
+        append(&mut phased, solution, index);
+        if let Some(error) = failure {
+            return Err(fail(error, &phased));
+        }
+        let Some((end, last)) = phased.solution.last() else {
+            break;
+        };
+        (time, state) = (end, *last);
+        if phased.solution.stop != (StopReason::EventFound { index: 0 }) {
+            break;
+        }
+        previous = Some(&phase.system);
+    }
+    Ok(phased)
+}
+
+/// The state entering `phase` from `before`'s `state` at `time`, and the kinetic energy
+/// the change removed.
+fn carry<Sys, const N: usize, const S: usize>(
+    before: &Sys,
+    phase: &Phase<'_, Sys, S>,
+    time: f64,
+    state: &SVector<f64, S>,
+) -> Result<(SVector<f64, S>, f64), StepError<S>>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let to_step_error = |error| StepError::from_system(before, error, time, state);
+    let velocity_state = before.velocity_state(time, state).map_err(to_step_error)?;
+    let kinetic = |system: &Sys, velocity_state: &SVector<f64, S>| {
+        let q_dot = velocity_state.fixed_rows::<N>(N);
+        0.5 * q_dot.dot(&(system.mass_matrix(time, velocity_state) * q_dot))
+    };
+    let mut entered = *state;
+    let mut moving = velocity_state;
+    for &(k, value) in phase.state_masses {
+        if let (Some(a), Some(b)) = (entered.get_mut(2 * N + k), moving.get_mut(2 * N + k)) {
+            (*a, *b) = (value, value);
+        }
+    }
+    let system = &phase.system;
+    let before_energy = kinetic(before, &velocity_state);
+    match phase.carry {
+        Carry::Separation => {
+            let after = system.momentum_state(time, &moving);
+            Ok((after, before_energy - kinetic(system, &moving)))
+        }
+        Carry::Capture => {
+            let after_velocity = system
+                .velocity_state(time, &entered)
+                .map_err(|error| StepError::from_system(system, error, time, &entered))?;
+            Ok((entered, before_energy - kinetic(system, &after_velocity)))
+        }
+    }
+}
+
+/// Appends a phase's solution, the energy residual continued from the last one.
+fn append<const N: usize, const S: usize>(
+    phased: &mut PhasedSolution<N, S>,
+    solution: Solution<N, S>,
+    index: usize,
+) {
+    let offset = phased
+        .solution
+        .energy_residual
+        .last()
+        .copied()
+        .unwrap_or(0.0);
+    let all = &mut phased.solution;
+    phased
+        .phase
+        .extend(core::iter::repeat_n(index, solution.times.len()));
+    all.times.extend(solution.times);
+    all.states.extend(solution.states);
+    all.hamiltonian.extend(solution.hamiltonian);
+    all.forces.extend(solution.forces);
+    all.power.extend(solution.power);
+    all.energy_residual
+        .extend(solution.energy_residual.into_iter().map(|r| r + offset));
+    all.events.extend(solution.events);
+    all.stop = solution.stop;
+    all.statistics = add(all.statistics, solution.statistics);
+}
+
+/// The work of two runs together.
+fn add(a: crate::stepper::Statistics, b: crate::stepper::Statistics) -> crate::stepper::Statistics {
+    crate::stepper::Statistics {
+        accepted_steps: a.accepted_steps + b.accepted_steps,
+        rejected_steps: a.rejected_steps + b.rejected_steps,
+        rate_evaluations: a.rate_evaluations + b.rate_evaluations,
+        jacobian_evaluations: a.jacobian_evaluations + b.jacobian_evaluations,
+        newton_iterations: a.newton_iterations + b.newton_iterations,
+        stiffness_detected: a.stiffness_detected || b.stiffness_detected,
+    }
+}
