@@ -178,4 +178,21 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
             .evaluate_at_state(Quantity::Power, t, state.as_slice(), &mut out)?;
         Ok(out[0])
     }
+
+    fn taylor_coefficients(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+        coefficients: &mut [SVector<f64, S>],
+    ) -> Option<Result<(), SystemError>> {
+        let order = coefficients.len().checked_sub(1)?;
+        Some(
+            self.program
+                .taylor_each(t, state.as_slice(), order, |k, i, value| {
+                    if let Some(c) = coefficients.get_mut(k) {
+                        c[i] = value;
+                    }
+                }),
+        )
+    }
 }

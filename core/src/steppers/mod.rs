@@ -14,6 +14,7 @@ mod order_conditions;
 pub mod rk4;
 pub mod sdirk4;
 mod stiffness;
+pub mod taylor;
 pub mod variational;
 
 pub use dirk::{Dirk, DirkMethod, DirkNewton, DirkTableau};
@@ -25,6 +26,7 @@ pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig};
 pub use newton::NewtonConfig;
 pub use rk4::ClassicalRk4;
 pub use sdirk4::{Sdirk4, Sdirk4Method, Sdirk4Newton};
+pub use taylor::{Taylor, TaylorControl};
 pub use variational::{Principle, Variational, VariationalConfig};
 
 use crate::error::ConfigError;
