@@ -154,7 +154,9 @@ where
 
     /// The series of the last step at `time` (the current state before the first step).
     pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
-        if self.last_step <= 0.0 {
+        // The end of the step is the accepted state exactly (t₁ − t₀ may differ from h in
+        // the last bit).
+        if self.last_step <= 0.0 || time == self.progress.time() {
             return *self.progress.state();
         }
         horner(
