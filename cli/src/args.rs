@@ -70,7 +70,7 @@ pub struct RunArgs {
     /// The stepper.
     #[arg(long, value_enum, default_value_t = Method::DormandPrince)]
     pub method: Method,
-    /// Relative and absolute tolerance of the adaptive steppers (dormand-prince, dop853, sdirk4, esdirk43).
+    /// Relative and absolute tolerance of the adaptive steppers (dormand-prince, dop853, sdirk4, esdirk43, taylor).
     #[arg(long, value_name = "TOL", conflicts_with = "step")]
     pub tol: Option<f64>,
     /// The fixed step size (required by the fixed-step methods; makes an adaptive one fixed).
@@ -111,4 +111,8 @@ pub enum Method {
     ImplicitMidpoint,
     /// Midpoint discretisation of the corrected Hamilton principle, fixed step.
     Variational,
+    /// Taylor's method on the model's Taylor recurrences, order and step from the tolerance
+    /// (`--tol`, Jorba & Zou), or order 20 with a fixed `--step`: for the tightest
+    /// tolerances.
+    Taylor,
 }

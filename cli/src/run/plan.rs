@@ -160,12 +160,18 @@ fn positive(value: f64, flag: &str) -> Result<f64, CliError> {
 fn steps(args: &RunArgs) -> Result<Steps, CliError> {
     match (args.method, args.step, args.tol) {
         (_, Some(h), _) => Ok(Steps::Fixed(positive(h, "--step")?)),
-        (Method::DormandPrince | Method::Dop853 | Method::Sdirk4 | Method::Esdirk43, None, tol) => {
-            Ok(Steps::Adaptive(positive(
-                tol.unwrap_or(DEFAULT_TOLERANCE),
-                "--tol",
-            )?))
-        }
+        (
+            Method::DormandPrince
+            | Method::Dop853
+            | Method::Sdirk4
+            | Method::Esdirk43
+            | Method::Taylor,
+            None,
+            tol,
+        ) => Ok(Steps::Adaptive(positive(
+            tol.unwrap_or(DEFAULT_TOLERANCE),
+            "--tol",
+        )?)),
         (method, None, _) => Err(CliError::Input(format!(
             "--method {} takes a fixed step: give --step H",
             clap::ValueEnum::to_possible_value(&method)

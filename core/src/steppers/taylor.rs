@@ -18,6 +18,9 @@
 //! series itself, exact to the method's order over the whole step, so events are located on
 //! it. A fixed order and step ([`TaylorControl::Fixed`]) serve convergence studies.
 
+#[path = "taylor/series.rs"]
+pub mod series;
+
 use nalgebra::SVector;
 
 use crate::error::{ConfigError, StepError, StepErrorKind};

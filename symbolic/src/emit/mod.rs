@@ -11,6 +11,7 @@ mod factor;
 mod methods;
 mod signature;
 mod system;
+mod taylor;
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -125,6 +126,7 @@ pub fn emit_system_for(
         emitter.state_rate(),
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
+        optional(outputs.taylor, || taylor::taylor_method(d, runtime)),
     ];
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");

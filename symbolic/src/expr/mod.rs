@@ -66,4 +66,5 @@ pub use print::DisplayExpr;
 pub use rational::Rational;
 pub use symbol::{Symbol, SymbolKind, SymbolTable};
 pub use tape::Tape;
+pub(crate) use taylor::{Instr, Op};
 pub use taylor::{TaylorJet, TaylorTape};

@@ -473,6 +473,36 @@ fn constant_call(f: Func, a: usize) -> Op {
 }
 
 impl TaylorTape {
+    /// The slot of each input.
+    pub(crate) fn input_slots(&self) -> &[usize] {
+        &self.inputs
+    }
+
+    /// The slot of each output.
+    pub(crate) fn output_slots(&self) -> &[usize] {
+        &self.outputs
+    }
+
+    /// Number of slots (inputs included).
+    pub(crate) fn slot_count(&self) -> usize {
+        self.slots
+    }
+
+    /// The instructions run once at order 0.
+    pub(crate) fn fixed_instructions(&self) -> &[Instr] {
+        &self.fixed
+    }
+
+    /// The instructions run at every order.
+    pub(crate) fn series_instructions(&self) -> &[Instr] {
+        &self.series
+    }
+
+    /// The slots an `Add` sums.
+    pub(crate) fn operand_slots(&self, start: usize, len: usize) -> &[usize] {
+        self.operands.get(start..start + len).unwrap_or(&[])
+    }
+
     /// Number of instructions (order-0 ones and recurrences).
     pub fn len(&self) -> usize {
         self.fixed.len() + self.series.len()
