@@ -31,10 +31,14 @@ import sys
 import time
 from pathlib import Path
 
-import heyoka as hy
-import numpy as np
+# This file is named heyoka.py: keep its own directory off the path, or it imports itself.
+sys.path = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+
+import heyoka as hy  # noqa: E402
+import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
+
 TARGETS = [1e-9, 1e-12, 1e-14]
 HEYOKA_TOLERANCES = [10.0**-k for k in range(6, 17)]
 
