@@ -87,7 +87,7 @@ fn ln(a: &[f64]) -> Series {
 fn sin_cos(a: &[f64], hyperbolic: bool) -> (Series, Series) {
     let d = increment(a);
     let sign = |n: usize| {
-        if hyperbolic || (n / 2) % 2 == 0 {
+        if hyperbolic || (n / 2).is_multiple_of(2) {
             1.0
         } else {
             -1.0
@@ -101,7 +101,7 @@ fn sin_cos(a: &[f64], hyperbolic: bool) -> (Series, Series) {
         }
     });
     let even = compose(&d, |n| {
-        if n % 2 == 0 {
+        if n.is_multiple_of(2) {
             sign(n) / factorial(n)
         } else {
             0.0
@@ -258,6 +258,7 @@ fn exp_of_product(e: &[f64], b: &[f64]) -> Series {
 
 /// Solves M v = r for series by Gaussian elimination without pivoting (M symmetric positive
 /// definite at order 0), with series quotients.
+#[allow(clippy::needless_range_loop)] // row i is written while row j is read
 pub fn solve(mut m: Vec<Vec<Series>>, mut r: Vec<Series>) -> Vec<Series> {
     let n = r.len();
     for j in 0..n {

@@ -13,6 +13,9 @@ use crate::math::{powf, sqrt};
 /// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
 pub const LEN: usize = super::MAX_ORDER + 1;
 
+/// Coefficient arrays of several subexpressions (rows of M, offsets, momenta).
+pub type Arrays<'a> = &'a [&'a [f64; LEN]];
+
 /// w = a b.
 #[inline]
 pub fn mul(a: &[f64; LEN], b: &[f64; LEN], k: usize) -> f64 {
@@ -30,7 +33,11 @@ pub fn square(a: &[f64; LEN], k: usize) -> f64 {
     for j in 0..k.div_ceil(2) {
         cross += a[j] * a[k - j];
     }
-    let middle = if k % 2 == 0 { a[k / 2] * a[k / 2] } else { 0.0 };
+    let middle = if k.is_multiple_of(2) {
+        a[k / 2] * a[k / 2]
+    } else {
+        0.0
+    };
     2.0 * cross + middle
 }
 
@@ -219,7 +226,7 @@ pub fn min_max(a: &[f64; LEN], b: &[f64; LEN], k: usize, larger: bool) -> f64 {
 /// `false` when M\[0\] is not positive definite or a result is not finite.
 pub fn solve_velocities(
     n: usize,
-    (matrix, offset, momenta): (&[&[f64; LEN]], &[&[f64; LEN]], &[&[f64; LEN]]),
+    (matrix, offset, momenta): (Arrays<'_>, Arrays<'_>, Arrays<'_>),
     velocities: &mut [&mut [f64; LEN]],
     factor: &mut [f64],
     k: usize,

@@ -68,7 +68,7 @@ fn coefficient(op: Op, operands: &[usize], jet: &TaylorJet, out: usize, k: usize
         // w = a²: the Cauchy product, each cross term once and doubled.
         Op::Square(a) => {
             let cross: f64 = (0..k.div_ceil(2)).map(|j| at(a, j) * at(a, k - j)).sum();
-            let middle = if k % 2 == 0 {
+            let middle = if k.is_multiple_of(2) {
                 at(a, k / 2).powi(2)
             } else {
                 0.0

@@ -84,7 +84,7 @@ fn ln(a: &[f64]) -> Series {
 fn sin_cos(a: &[f64], hyperbolic: bool) -> (Series, Series) {
     let d = increment(a);
     let alternate = |n: usize| {
-        if hyperbolic || (n / 2) % 2 == 0 {
+        if hyperbolic || (n / 2).is_multiple_of(2) {
             1.0
         } else {
             -1.0
@@ -98,7 +98,7 @@ fn sin_cos(a: &[f64], hyperbolic: bool) -> (Series, Series) {
         }
     });
     let even = compose(&d, |n| {
-        if n % 2 == 0 {
+        if n.is_multiple_of(2) {
             alternate(n) / factorial(n)
         } else {
             0.0
