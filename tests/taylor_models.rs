@@ -210,7 +210,6 @@ fn rate(d: &Derivation, env: &[f64], t0: f64, y: &[Series], (n, k): (usize, usiz
 
 #[test]
 fn coefficients_to_order_20_equal_the_derivatives_over_k_factorial() {
-    let mut worst: f64 = 0.0;
     for case in cases() {
         let d = derivation(&case);
         let reference = picard(&d, &case);
@@ -228,7 +227,6 @@ fn coefficients_to_order_20_equal_the_derivatives_over_k_factorial() {
                 let got = out[k * s + i];
                 let expected = reference[i][k];
                 let error = (got - expected).abs() / size.max(1e-300);
-                worst = worst.max(error);
                 // Measured ≤ 2.3e-14 over these models; bound 1e-12.
                 assert!(
                     error < 1e-12,
@@ -238,7 +236,6 @@ fn coefficients_to_order_20_equal_the_derivatives_over_k_factorial() {
             }
         }
     }
-    eprintln!("worst relative difference: {worst:e}");
 }
 
 #[test]
@@ -255,9 +252,8 @@ fn order_zero_is_the_state_and_order_one_the_state_rate() {
         assert_eq!(&out[..s], case.state, "{}", case.name);
         for i in 0..s {
             // Order 1 is the state rate through the same formulas evaluated by other code
-            // (the value tape): equal to rounding.
+            // (the value tape): equal to rounding, measured ≤ 1.8e-16.
             let gap = (out[s + i] - rate[i]).abs() / rate[i].abs().max(1.0);
-            eprintln!("order one gap {gap:e}");
             assert!(gap < 1e-14, "{}: component {i}: {gap:e}", case.name);
         }
     }
