@@ -285,17 +285,20 @@ fn emission_subjects() -> Vec<(Subject, Parameters)> {
 /// Expansion time and generated code size, `emit = []` against every output.
 fn emission_costs() {
     say!(
-        "\n== minimal (emit = []) vs full emission: expansion (parse, tags, derive, emit) and code"
+        "\n== minimal (emit = []) vs full emission (and full with the Taylor recurrences): \
+         expansion (parse, tags, derive, emit) and code"
     );
     say!(
-        "{:<40} {:>9} {:>9} {:>6} {:>10} {:>10} {:>6}",
+        "{:<40} {:>9} {:>9} {:>6} {:>10} {:>10} {:>6} {:>10} {:>10}",
         "system",
         "full ms",
         "min ms",
         "ratio",
         "full B",
         "min B",
-        "ratio"
+        "ratio",
+        "+taylor ms",
+        "+taylor B"
     );
     let budget = Duration::from_secs(2);
     for (subject, parameters) in emission_subjects() {
@@ -305,14 +308,24 @@ fn emission_costs() {
         let (min_time, minimal) = fastest_of(3, 10, budget, || {
             expand_for(&subject, &parameters, Outputs::MINIMAL)
         });
+        // Every output and the opt-in Taylor recurrences (`emit = [..., "taylor"]`).
+        let with_taylor = Outputs {
+            taylor: true,
+            ..Outputs::FULL
+        };
+        let (taylor_time, taylor) = fastest_of(3, 10, budget, || {
+            expand_for(&subject, &parameters, with_taylor)
+        });
         let (full_size, min_size) = (formatted_size(full), formatted_size(minimal));
         say!(
-            "{:<40} {:>9.2} {:>9.2} {:>6.2} {full_size:>10} {min_size:>10} {:>6.2}",
+            "{:<40} {:>9.2} {:>9.2} {:>6.2} {full_size:>10} {min_size:>10} {:>6.2} {:>10.2} {:>10}",
             subject.name,
             full_time.as_secs_f64() * 1e3,
             min_time.as_secs_f64() * 1e3,
             min_time.as_secs_f64() / full_time.as_secs_f64(),
             min_size as f64 / full_size.max(1) as f64,
+            taylor_time.as_secs_f64() * 1e3,
+            formatted_size(taylor),
         );
     }
 }

@@ -21,6 +21,9 @@ const RUNS_PER_ROUND: usize = 10;
 /// The methods compared and the one each ratio is taken against.
 const OURS: Method = Method::Dop853;
 const AGAINST: [Method; 2] = [Method::DormandPrinceAdaptive, Method::PeerDop853];
+/// Taylor's method, read off its curve as the others and compared with DOP853 (its
+/// "evaluations" are expansions, one per step, so only its time is compared).
+const TAYLOR: Method = Method::Taylor;
 
 /// One method's cost at the target error.
 #[derive(Clone, Copy, Debug)]
@@ -95,7 +98,7 @@ pub fn costs<P, const N: usize, const S: usize>(
 where
     P: Problem<N, S>,
 {
-    let methods = [OURS, AGAINST[0], AGAINST[1]];
+    let methods = [OURS, AGAINST[0], AGAINST[1], TAYLOR];
     let brackets: Vec<_> = methods
         .iter()
         .map(|&m| bracket(points, P::NAME, m, target))
@@ -185,6 +188,15 @@ pub fn rows(
         }
         _ => "",
     };
+    let taylor = cost(TAYLOR)
+        .zip(cost(OURS))
+        .map(|(t, d)| format!("{:.3}", t.seconds / d.seconds));
+    rows.push(format!(
+        "{problem:<24} {target:>7.0e} {:>20} {:>9} {:>9.2}",
+        "Taylor time/DOP853",
+        "",
+        taylor.unwrap_or("–".into())
+    ));
     rows.push(format!(
         "{problem:<24} {target:>7.0e} {:>20} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10}  {met}",
         "DOP853 ratios",

@@ -9,7 +9,7 @@ use crate::{Method, Point};
 
 /// Colours that stay apart in print and for common colour-vision deficiencies (Okabe–Ito).
 /// Three more (Tol's muted scheme) for the high-order and stiff methods.
-const PALETTE: [RGBColor; 10] = [
+const PALETTE: [RGBColor; 11] = [
     RGBColor(0, 0, 0),
     RGBColor(230, 159, 0),
     RGBColor(86, 180, 233),
@@ -20,6 +20,7 @@ const PALETTE: [RGBColor; 10] = [
     RGBColor(136, 34, 85),
     RGBColor(153, 153, 51),
     RGBColor(136, 136, 136),
+    RGBColor(0, 0, 0),
 ];
 
 /// Errors above this are off the chart (the method has not converged at that setting).

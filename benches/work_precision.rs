@@ -33,7 +33,8 @@ use std::path::PathBuf;
 use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{
     AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, ExplicitEuler, FixedStep,
-    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
+    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Taylor, TaylorControl,
+    Variational, VariationalConfig,
 };
 use varmass::core::{Statistics, StepOutcome, Stepper, VariableMassSystem};
 
@@ -71,10 +72,12 @@ pub enum Method {
     PeerDiffsolBdf,
     /// diffsol's ESDIRK34 on the same state rate and Jacobian (stiff scene only).
     PeerDiffsolEsdirk34,
+    /// Taylor's method on the emitted recurrences, order and step from the tolerance.
+    Taylor,
 }
 
 impl Method {
-    const ALL: [Method; 10] = [
+    const ALL: [Method; 11] = [
         Method::Euler,
         Method::Rk4,
         Method::DormandPrinceFixed,
@@ -85,6 +88,7 @@ impl Method {
         Method::Dop853,
         Method::PeerDop853,
         Method::Sdirk4,
+        Method::Taylor,
     ];
 
     /// The methods run on the stiff scene only (after [`Method::ALL`] in the plots).
@@ -110,6 +114,7 @@ impl Method {
             Method::Esdirk43 => "ESDIRK4(3)",
             Method::PeerDiffsolBdf => "diffsol BDF",
             Method::PeerDiffsolEsdirk34 => "diffsol ESDIRK34",
+            Method::Taylor => "Taylor",
         }
     }
 
@@ -124,6 +129,7 @@ impl Method {
                 | Method::Esdirk43
                 | Method::PeerDiffsolBdf
                 | Method::PeerDiffsolEsdirk34
+                | Method::Taylor
         )
     }
 
@@ -139,6 +145,7 @@ impl Method {
             | Method::PeerDopri5
             | Method::Dop853
             | Method::PeerDop853 => (3..=13).map(|k| 10f64.powi(-k)).collect(),
+            Method::Taylor => (3..=16).map(|k| 10f64.powi(-k)).collect(),
             Method::Sdirk4
             | Method::Esdirk43
             | Method::PeerDiffsolBdf
@@ -353,6 +360,11 @@ where
                 end,
             )
         }
+        Method::Taylor => integrate(
+            Taylor::new(system, 0.0, y0, TaylorControl::adaptive(setting, setting))
+                .map_err(started)?,
+            end,
+        ),
         Method::PeerDopri5 => run_peer_dopri5(system, y0, end, setting),
         Method::PeerDop853 => run_peer_dop853(system, y0, end, setting),
         Method::Dop853 => {

@@ -66,7 +66,7 @@ pub mod prelude {
     pub use varmass_core::nalgebra::{SMatrix, SVector};
     pub use varmass_core::steppers::{
         AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
-        ImplicitMidpoint, Sdirk4, StepControl, Variational,
+        ImplicitMidpoint, Sdirk4, StepControl, Taylor, TaylorControl, Variational,
     };
     pub use varmass_core::{
         run, Direction, Event, RunConfig, RunError, Solution, StepError, StepErrorKind, Stepper,

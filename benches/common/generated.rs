@@ -1,5 +1,6 @@
 //! The benchmark systems as users write them: DSL in the `#[variable_mass_system]` macro.
 //! Each has a twin written by hand in `hand.rs` and a reference solution in `problems.rs`.
+//! The sled, the rocket and Kepler also emit the Taylor recurrences, for the Taylor stepper.
 
 use varmass::prelude::*;
 
@@ -12,7 +13,8 @@ use varmass::prelude::*;
     potential -m*g*x*sin(theta)
     force sled: [-f_d*m*g*cos(theta)]
     inflow sled: velocity [0]
-"
+",
+    emit = ["hamiltonian", "power", "jacobian", "derivation", "taylor"]
 )]
 #[derive(Clone, Copy, Debug)]
 pub struct Sled {
@@ -31,7 +33,8 @@ pub struct Sled {
     body rocket: mass m, position [y]
     potential m*g*y
     outflow rocket: rate mu, relative_velocity [-u_e]
-"
+",
+    emit = ["hamiltonian", "power", "jacobian", "derivation", "taylor"]
 )]
 #[derive(Clone, Copy, Debug)]
 pub struct Rocket {
@@ -47,7 +50,8 @@ pub struct Rocket {
     mass m = m1
     body planet: mass m, position [r*cos(th), r*sin(th)]
     potential -k*m/r
-"
+",
+    emit = ["hamiltonian", "power", "jacobian", "derivation", "taylor"]
 )]
 #[derive(Clone, Copy, Debug)]
 pub struct Kepler {

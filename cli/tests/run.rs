@@ -163,8 +163,8 @@ fn every_method_runs_the_sled() {
     // Relative error of v at t = 1 s, measured: RK4 0 (rounding), Euler 3.0e-5, implicit
     // midpoint and variational 7.2e-9, fixed-step Dormand–Prince 4e-16, DOP853 4e-16 fixed
     // and 3.8e-14 at tol 1e-12, SDIRK4 3.6e-11 fixed and 2.6e-9 at tol 1e-8 (finite-difference
-    // Jacobian of the tapes), ESDIRK4(3) 1.1e-11 fixed and 1.3e-10 at tol 1e-10; bounds with
-    // margin.
+    // Jacobian of the tapes), ESDIRK4(3) 1.1e-11 fixed and 1.3e-10 at tol 1e-10, Taylor
+    // 1.3e-16 at order 20 and step 0.1 and 1.1e-14 at tol 1e-12; bounds with margin.
     for (method, setting, bound) in [
         ("rk4", "--step=1e-3", 1e-12),
         ("euler", "--step=1e-4", 1e-4),
@@ -177,6 +177,8 @@ fn every_method_runs_the_sled() {
         ("sdirk4", "--tol=1e-8", 3e-8),
         ("esdirk43", "--step=1e-2", 1e-10),
         ("esdirk43", "--tol=1e-10", 1.5e-9),
+        ("taylor", "--step=1e-1", 1e-14),
+        ("taylor", "--tol=1e-12", 1e-13),
     ] {
         let csv = scratch(&format!("sled_{method}{setting}.csv"));
         sled_run("1", &["--method", method, setting, "--record", "x,x'"])

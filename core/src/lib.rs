@@ -16,7 +16,10 @@
 //!   4(3), explicit first stage, the same stepper as SDIRK4 with another tableau;
 //! * [`steppers::ImplicitMidpoint`], symplectic for constant masses, Newton on the Jacobian;
 //! * [`steppers::Variational`], the midpoint discretisation of the corrected Hamilton
-//!   principle.
+//!   principle;
+//! * [`steppers::Taylor`], Taylor's method of any order with the order and step from the
+//!   tolerance (Jorba & Zou), on coefficients the system provides: for the tightest
+//!   tolerances.
 //!
 //! With the `run` feature (default), [`run::run`] drives any of them to an end time or an
 //! [`events::Event`] and returns a [`solution::Solution`] with the extras asked for.

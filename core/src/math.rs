@@ -26,3 +26,18 @@ pub fn sign(x: f64) -> f64 {
         x * 0.0
     }
 }
+
+/// ln x.
+pub(crate) fn ln(x: f64) -> f64 {
+    <f64 as ComplexField>::ln(x)
+}
+
+/// eˣ.
+pub(crate) fn exp(x: f64) -> f64 {
+    <f64 as ComplexField>::exp(x)
+}
+
+/// The least integer ≥ x.
+pub(crate) fn ceil(x: f64) -> f64 {
+    <f64 as ComplexField>::ceil(x)
+}

@@ -244,4 +244,19 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         }
         Ok(jacobian)
     }
+
+    /// The Taylor coefficients y\[k\] = y⁽ᵏ⁾(t)/k! of the solution through `(t, state)`,
+    /// k = 0 … `coefficients.len() − 1`, into `coefficients`: what the
+    /// [`Taylor`](crate::steppers::Taylor) stepper integrates with. `None` when the system
+    /// does not provide them, the default (generated code provides them with
+    /// `emit = [..., "taylor"]`; a run-time model always does), and the stepper then refuses
+    /// the system at construction.
+    fn taylor_coefficients(
+        &self,
+        _t: f64,
+        _state: &SVector<f64, S>,
+        _coefficients: &mut [SVector<f64, S>],
+    ) -> Option<Result<(), SystemError>> {
+        None
+    }
 }

@@ -11,7 +11,8 @@ use support::Problem;
 use varmass_core::nalgebra::SVector;
 use varmass_core::steppers::{
     AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
-    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
+    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Taylor, TaylorControl,
+    Variational, VariationalConfig,
 };
 use varmass_core::{observe, Observable, Stepper};
 
@@ -98,6 +99,13 @@ fn steppers_do_not_allocate_per_step() {
                     StepControl::Adaptive(AdaptiveControl::sdirk4()),
                 )
                 .unwrap(),
+                steps,
+            ),
+        ),
+        (
+            "Taylor",
+            allocations_while_stepping(
+                Taylor::new(system, 0.0, y0, TaylorControl::adaptive(1e-12, 1e-12)).unwrap(),
                 steps,
             ),
         ),

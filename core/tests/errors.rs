@@ -290,3 +290,71 @@ fn a_step_past_the_largest_time_is_a_typed_error_at_the_start() {
         assert_eq!(error.state, y0, "method {method}");
     }
 }
+
+/// The Taylor stepper refuses a system without Taylor coefficients and bad settings at
+/// construction, and reports a failure of the expansion with the time and state.
+#[test]
+fn taylor_configuration_and_expansion_errors_are_typed() {
+    use varmass_core::steppers::{Taylor, TaylorControl};
+    let is_invalid =
+        |error: &StepError<3>| matches!(error.kind, StepErrorKind::InvalidConfiguration { .. });
+    // The hand-written rocket provides no Taylor coefficients.
+    let rocket = RocketProblem::standard();
+    let y0 = rocket.initial_state();
+    let error = Taylor::new(&rocket.system, 1.5, y0, TaylorControl::default()).unwrap_err();
+    assert!(is_invalid(&error), "{error}");
+    assert_eq!((error.time, error.state), (1.5, y0));
+    assert!(
+        error.to_string().contains("emit = [..., \"taylor\"]"),
+        "{error}"
+    );
+    let oscillator = OscillatorProblem::standard();
+    let y0 = oscillator.exact(0.0);
+    for control in [
+        TaylorControl::Fixed {
+            order: 0,
+            step: 0.1,
+        },
+        TaylorControl::Fixed {
+            order: 33,
+            step: 0.1,
+        },
+        TaylorControl::Fixed {
+            order: 4,
+            step: -0.1,
+        },
+        TaylorControl::Fixed {
+            order: 4,
+            step: f64::NAN,
+        },
+        TaylorControl::adaptive(-1.0, 1e-9),
+        TaylorControl::adaptive(0.0, 0.0),
+        TaylorControl::adaptive(f64::NAN, 1e-9),
+    ] {
+        let error = Taylor::new(&oscillator.system, 0.5, y0, control).unwrap_err();
+        assert!(
+            matches!(error.kind, StepErrorKind::InvalidConfiguration { .. }),
+            "{control:?}: {error}"
+        );
+        assert_eq!((error.time, error.state), (0.5, y0), "{control:?}");
+    }
+    // Kepler at r = 0: the expansion fails (1/r), reported at the start of the step.
+    let kepler = KeplerProblem::standard();
+    let mut singular = kepler.initial_state();
+    let control = TaylorControl::adaptive(1e-9, 1e-9);
+    singular[0] = 0.0;
+    let error = Taylor::new(&kepler.system, 0.25, singular, control).unwrap_err();
+    assert_eq!(error.kind, StepErrorKind::SingularMassMatrix);
+    assert_eq!(error.time, 0.25);
+    // A fixed step far past the series' radius: h²⁰ = 1e400 overflows the sum to a
+    // non-finite state, a typed error at the end of the step, never a silent NaN.
+    let control = TaylorControl::Fixed {
+        order: 20,
+        step: 1e20,
+    };
+    let mut stepper = Taylor::new(&kepler.system, 0.0, kepler.initial_state(), control).unwrap();
+    let error = stepper.step().unwrap_err();
+    assert_eq!(error.kind, StepErrorKind::NonFiniteState, "{error}");
+    assert_eq!(error.time, 1e20);
+    assert_eq!(stepper.time(), 0.0);
+}

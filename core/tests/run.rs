@@ -229,3 +229,28 @@ fn the_energy_guard_does_not_trip_where_h_vanishes() {
     .unwrap();
     assert_eq!(solution.stop, StopReason::ReachedEnd);
 }
+
+/// A run with the Taylor stepper locates an event on the series (its dense output): the
+/// oscillator x = cos ωt (ω = 2) falls through 0 at π/4, found to the event tolerance.
+#[test]
+fn a_taylor_run_locates_its_event_on_the_series() {
+    use std::f64::consts::PI;
+    use support::problems::OscillatorProblem;
+    use varmass_core::steppers::{Taylor, TaylorControl};
+    use varmass_core::{Direction, Event};
+
+    let problem = OscillatorProblem::standard();
+    let control = TaylorControl::adaptive(1e-14, 1e-14);
+    let mut stepper = Taylor::new(&problem.system, 0.0, problem.exact(0.0), control).unwrap();
+    let events = [Event::state_reaches(0, 0.0, Direction::Falling)];
+    let solution = run(&mut stepper, &RunConfig::until(3.0), &events).unwrap();
+    let (time, state) = solution.last().unwrap();
+    eprintln!(
+        "event at {time}, {} steps",
+        solution.statistics.accepted_steps
+    );
+    // The steps (≈ 0.4 here) are far longer than the distance to π/4 from the last step
+    // start, so the crossing is found inside a step. Measured |t − π/4| = 1e-16.
+    assert!((time - PI / 4.0).abs() < 1e-12, "{time}");
+    assert!((state - problem.exact(time)).norm() < 1e-12, "{state}");
+}

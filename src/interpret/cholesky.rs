@@ -5,7 +5,13 @@
 /// size n × n, overwriting `m` with its Cholesky factor. Returns `false` (and leaves
 /// garbage in `b`) when M is not positive definite or a value is not finite.
 pub(super) fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) -> bool {
-    if m.len() < n * n || b.len() < n {
+    cholesky_factor(m, n) && cholesky_substitute(m, b, n)
+}
+
+/// Overwrites the lower triangle of the row-major `m` (n × n) with its Cholesky factor L
+/// (M = L Lᵀ); `false` when M is not positive definite or a value is not finite.
+pub(super) fn cholesky_factor(m: &mut [f64], n: usize) -> bool {
+    if m.len() < n * n {
         return false;
     }
     for j in 0..n {
@@ -26,19 +32,28 @@ pub(super) fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) -> bool {
             m[i * n + j] = entry / diagonal;
         }
     }
+    true
+}
+
+/// Solves L Lᵀ x = b in place with the factor of [`cholesky_factor`]; `false` when a
+/// result is not finite.
+pub(super) fn cholesky_substitute(l: &[f64], b: &mut [f64], n: usize) -> bool {
+    if l.len() < n * n || b.len() < n {
+        return false;
+    }
     for i in 0..n {
         let mut value = b[i];
         for k in 0..i {
-            value -= m[i * n + k] * b[k];
+            value -= l[i * n + k] * b[k];
         }
-        b[i] = value / m[i * n + i];
+        b[i] = value / l[i * n + i];
     }
     for i in (0..n).rev() {
         let mut value = b[i];
         for k in i + 1..n {
-            value -= m[k * n + i] * b[k];
+            value -= l[k * n + i] * b[k];
         }
-        b[i] = value / m[i * n + i];
+        b[i] = value / l[i * n + i];
     }
     b.iter().take(n).all(|x| x.is_finite())
 }

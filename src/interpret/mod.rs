@@ -44,6 +44,7 @@ mod cholesky;
 mod error;
 mod program;
 mod system;
+mod taylor;
 
 pub use error::ProgramError;
 pub use program::{Evaluation, Program, Quantity};

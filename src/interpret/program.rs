@@ -12,6 +12,7 @@ pub use varmass_symbolic::quantity::Quantity;
 
 use super::cholesky::cholesky_solve;
 use super::error::ProgramError;
+use super::taylor::TaylorProgram;
 
 /// How each group of quantities is evaluated.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -59,6 +60,8 @@ pub struct Program {
     /// The switching functions (`mechanics::switching_functions`) and their text.
     switches: Stage,
     switch_names: Vec<String>,
+    /// The Taylor recurrences of the state rate.
+    taylor: TaylorProgram,
     scratch: RefCell<Scratch>,
 }
 
@@ -106,6 +109,7 @@ impl Program {
         };
         let quantities = Quantity::ALL.iter().map(|q| stage(q.read(&d))).collect();
         Ok(Self {
+            taylor: TaylorProgram::new(&d, &env),
             evaluation,
             law_slots,
             laws: stage(law_roots),
@@ -162,6 +166,40 @@ impl Program {
     /// Instructions of the q̇ stage alone.
     pub fn velocity_tape_length(&self) -> usize {
         self.velocities.tape.len()
+    }
+
+    /// Instructions of the Taylor tapes of the state rate.
+    pub fn taylor_tape_length(&self) -> usize {
+        self.taylor.len()
+    }
+
+    /// The Taylor coefficients y\[k\] = y⁽ᵏ⁾(t)/k!, k = 0 … `order`, of the solution through
+    /// `(t, state)`, into `out`: coefficient k of state component i at `out[k * S + i]`
+    /// (S = 2N + K; as many as fit). Allocation-free once the buffers have grown to `order`.
+    pub fn taylor(
+        &self,
+        t: f64,
+        state: &[f64],
+        order: usize,
+        out: &mut [f64],
+    ) -> Result<(), SystemError> {
+        let s = self.state_len();
+        self.taylor.expand(t, state, order, |k, i, value| {
+            if let Some(o) = out.get_mut(k * s + i) {
+                *o = value;
+            }
+        })
+    }
+
+    /// [`Program::taylor`] giving each coefficient to `write(k, i, y[k]ᵢ)`.
+    pub fn taylor_each(
+        &self,
+        t: f64,
+        state: &[f64],
+        order: usize,
+        write: impl FnMut(usize, usize, f64),
+    ) -> Result<(), SystemError> {
+        self.taylor.expand(t, state, order, write)
     }
 
     /// Every mass at `(t, state)` into `out` (in [`Program::mass_names`] order). Only q and

@@ -238,4 +238,21 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     fn power(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
         self.scalar_at_state(Quantity::Power, t, state)
     }
+
+    fn taylor_coefficients(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+        coefficients: &mut [SVector<f64, S>],
+    ) -> Option<Result<(), SystemError>> {
+        let order = coefficients.len().checked_sub(1)?;
+        Some(
+            self.program
+                .taylor_each(t, state.as_slice(), order, |k, i, value| {
+                    if let Some(c) = coefficients.get_mut(k) {
+                        c[i] = value;
+                    }
+                }),
+        )
+    }
 }

@@ -5,7 +5,8 @@
 use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{
     AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
-    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Variational, VariationalConfig,
+    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Taylor, TaylorControl,
+    Variational, VariationalConfig,
 };
 use varmass::core::{
     run, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper, StopReason,
@@ -70,6 +71,12 @@ pub fn integrate<const N: usize, const S: usize>(
                 ..ImplicitMidpointConfig::default()
             }
         ),
+        (Method::Taylor, Steps::Adaptive(tol)) => {
+            drive_with!(Taylor, TaylorControl::adaptive(tol, tol))
+        }
+        (Method::Taylor, Steps::Fixed(step)) => {
+            drive_with!(Taylor, TaylorControl::Fixed { order: 20, step })
+        }
         (Method::Variational, steps) => drive_with!(
             Variational,
             VariationalConfig {

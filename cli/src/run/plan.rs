@@ -246,9 +246,15 @@ fn shown(x: f64) -> String {
 fn steps(args: &RunArgs) -> Result<Steps, CliError> {
     match (args.method, args.step, args.tol) {
         (_, Some(h), _) => fixed_step(h, args).map(Steps::Fixed),
-        (Method::DormandPrince | Method::Dop853 | Method::Sdirk4 | Method::Esdirk43, None, tol) => {
-            tolerance(tol.unwrap_or(DEFAULT_TOLERANCE)).map(Steps::Adaptive)
-        }
+        (
+            Method::DormandPrince
+            | Method::Dop853
+            | Method::Sdirk4
+            | Method::Esdirk43
+            | Method::Taylor,
+            None,
+            tol,
+        ) => tolerance(tol.unwrap_or(DEFAULT_TOLERANCE)).map(Steps::Adaptive),
         (method, None, _) => Err(CliError::Input(format!(
             "--method {} takes a fixed step: give --step H",
             clap::ValueEnum::to_possible_value(&method)

@@ -15,6 +15,7 @@ mod order_conditions;
 pub mod rk4;
 pub mod sdirk4;
 mod stiffness;
+pub mod taylor;
 pub mod variational;
 
 pub use control::{AdaptiveControl, StepControl};
@@ -28,6 +29,7 @@ pub use implicit_midpoint::{ImplicitMidpoint, ImplicitMidpointConfig, ImplicitMi
 pub use newton::NewtonConfig;
 pub use rk4::{ClassicalRk4, Rk4Method};
 pub use sdirk4::{Sdirk4, Sdirk4Method, Sdirk4Newton};
+pub use taylor::{Taylor, TaylorControl};
 pub use variational::{Principle, Variational, VariationalConfig, VariationalMethod};
 
 use crate::error::ConfigError;

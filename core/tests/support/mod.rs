@@ -5,11 +5,13 @@
 pub mod closed_forms;
 pub mod problems;
 pub mod systems;
+pub mod taylor;
 
 use nalgebra::SVector;
 use varmass_core::steppers::{
     ClassicalRk4, DormandPrince, ExplicitEuler, FixedStep, ImplicitMidpoint,
-    ImplicitMidpointConfig, Principle, StepControl, Variational, VariationalConfig,
+    ImplicitMidpointConfig, Principle, StepControl, Taylor, TaylorControl, Variational,
+    VariationalConfig,
 };
 use varmass_core::{StepError, StepOutcome, Stepper, VariableMassSystem};
 
@@ -36,6 +38,8 @@ pub enum Method {
     ImplicitMidpoint,
     Variational,
     VariationalLiteralEq19,
+    /// Taylor's method of this fixed order (systems that provide Taylor coefficients).
+    Taylor(usize),
 }
 
 impl Method {
@@ -93,6 +97,10 @@ where
                     ..Default::default()
                 },
             )?,
+            end,
+        ),
+        Method::Taylor(order) => integrate(
+            Taylor::new(system, 0.0, y0, TaylorControl::Fixed { order, step })?,
             end,
         ),
         Method::Variational | Method::VariationalLiteralEq19 => integrate(

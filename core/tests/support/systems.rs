@@ -47,6 +47,15 @@ impl VariableMassSystem<1, 2> for Oscillator {
     fn accelerations(&self, _: f64, vs: &SVector<f64, 2>) -> Result<SVector<f64, 1>, SystemError> {
         Ok(Vector1::new(-self.stiffness * vs[0] / self.mass))
     }
+    fn taylor_coefficients(
+        &self,
+        _: f64,
+        state: &SVector<f64, 2>,
+        c: &mut [SVector<f64, 2>],
+    ) -> Option<Result<(), SystemError>> {
+        super::taylor::oscillator(self.mass, self.stiffness, state, c);
+        Some(Ok(()))
+    }
 }
 
 /// Kepler problem in polar coordinates (r, θ), constant mass, gravitational parameter k:
@@ -105,6 +114,18 @@ impl VariableMassSystem<2, 4> for Kepler {
             r * dtheta * dtheta - self.gravity / (r * r),
             -2.0 * dr * dtheta / r,
         ))
+    }
+    fn taylor_coefficients(
+        &self,
+        _: f64,
+        state: &SVector<f64, 4>,
+        c: &mut [SVector<f64, 4>],
+    ) -> Option<Result<(), SystemError>> {
+        if state[0] == 0.0 {
+            return Some(Err(SystemError::SingularMassMatrix));
+        }
+        super::taylor::kepler(self.mass, self.gravity, state, c);
+        Some(Ok(()))
     }
 }
 
@@ -171,6 +192,16 @@ impl VariableMassSystem<1, 2> for Sled {
         Ok(Vector1::new(
             self.drive() - self.accretion * vs[1] * vs[1] / m,
         ))
+    }
+    fn taylor_coefficients(
+        &self,
+        _: f64,
+        state: &SVector<f64, 2>,
+        c: &mut [SVector<f64, 2>],
+    ) -> Option<Result<(), SystemError>> {
+        let parameters = (self.initial_mass, self.accretion, self.drive());
+        super::taylor::sled(parameters, state, c);
+        Some(Ok(()))
     }
 }
 

@@ -11,6 +11,7 @@ mod factor;
 mod methods;
 mod signature;
 mod system;
+mod taylor;
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -98,6 +99,7 @@ pub fn emit_system_for(
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
         emitter.switching_functions(&switches),
+        optional(outputs.taylor, || taylor::taylor_method(d, runtime)),
     ];
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");

@@ -51,6 +51,7 @@ mod subst;
 mod sum;
 mod symbol;
 mod tape;
+mod taylor;
 mod trig;
 pub(crate) mod walk;
 
@@ -65,3 +66,5 @@ pub use print::DisplayExpr;
 pub use rational::Rational;
 pub use symbol::{Symbol, SymbolKind, SymbolTable};
 pub use tape::Tape;
+pub(crate) use taylor::{Instr, Op};
+pub use taylor::{TaylorJet, TaylorTape};

@@ -12,7 +12,7 @@ use std::cell::RefCell;
 
 /// `b^e`, by `powi` for integer exponents (it keeps `(-2)^3 = -8` and is more accurate),
 /// `powf` otherwise: a power whose exponent is not a constant.
-fn power(b: f64, e: f64) -> f64 {
+pub(crate) fn power(b: f64, e: f64) -> f64 {
     if e.fract() == 0.0 && e.abs() <= f64::from(i32::MAX) {
         b.powi(e as i32)
     } else {

@@ -18,6 +18,9 @@ pub struct Outputs {
     pub jacobian: bool,
     /// The `DERIVATION` and `DERIVATION_LATEX` texts.
     pub derivation: bool,
+    /// The Taylor recurrences (`taylor_coefficients`, for the Taylor stepper). Opt-in: not
+    /// in [`Outputs::FULL`], since they add to expansion time and code size.
+    pub taylor: bool,
 }
 
 /// The name of an output that does not exist.
@@ -31,12 +34,13 @@ pub struct UnknownOutput {
 }
 
 impl Outputs {
-    /// Everything.
+    /// Every output but the opt-in Taylor recurrences.
     pub const FULL: Outputs = Outputs {
         hamiltonian: true,
         power: true,
         jacobian: true,
         derivation: true,
+        taylor: false,
     };
 
     /// Only what the steppers need.
@@ -45,10 +49,12 @@ impl Outputs {
         power: false,
         jacobian: false,
         derivation: false,
+        taylor: false,
     };
 
     /// The names of the optional outputs, as [`Outputs::from_names`] reads them.
-    pub const NAMES: [&'static str; 4] = ["hamiltonian", "power", "jacobian", "derivation"];
+    pub const NAMES: [&'static str; 5] =
+        ["hamiltonian", "power", "jacobian", "derivation", "taylor"];
 
     /// The outputs named (the others left out): `[]` is [`Outputs::MINIMAL`].
     ///
@@ -67,6 +73,7 @@ impl Outputs {
                 "power" => outputs.power = true,
                 "jacobian" => outputs.jacobian = true,
                 "derivation" => outputs.derivation = true,
+                "taylor" => outputs.taylor = true,
                 other => unknown.push(UnknownOutput {
                     name: other.to_string(),
                     index,

@@ -1,0 +1,304 @@
+//! Taylor's method: each step expands the solution through the current state into its
+//! Taylor series, y(t₀ + h) = Σₖ y\[k\] hᵏ, from the coefficients y\[k\] = y⁽ᵏ⁾(t₀)/k! the
+//! system gives ([`VariableMassSystem::taylor_coefficients`]: emitted by the macro with
+//! `emit = [..., "taylor"]`, or the run-time tapes of a model file), computed by automatic
+//! differentiation (Jorba & Zou 2005; Biscani & Izzo 2021).
+//!
+//! Order and step come from the tolerance as in Jorba & Zou (2005, §3.2, eqs. 3.9–3.12):
+//! with ε = atol when rtol‖y‖∞ ≤ atol (absolute) and ε = rtol otherwise (relative),
+//!
+//! * the order p = ⌈−½ ln ε + 1⌉, so that the step below makes the truncation error
+//!   about ε;
+//! * the step h = min(ρₚ₋₁, ρₚ) e⁻² e^(−0.7/(p−1)) with ρⱼ = (1/‖y\[j\]‖∞)^(1/j)
+//!   (absolute) or (‖y‖∞/‖y\[j\]‖∞)^(1/j) (relative): the radius of convergence estimated
+//!   from the last two coefficients, times J&Z's safety factor.
+//!
+//! There is no error estimate to reject a step against: the step is chosen before it is
+//! taken, so steps are rejected only when their result is unusable. The dense output is the
+//! series itself, exact to the method's order over the whole step, so events are located on
+//! it. A fixed order and step ([`TaylorControl::Fixed`]) serve convergence studies.
+//!
+//! The statistics count one rate evaluation per expansion (the work of an expansion to
+//! order p is about p²/2 products per subexpression, against one evaluation's one).
+//! Piecewise functions (abs, sign, min, max) are expanded on the branch of the step's start:
+//! their switches must be located by events, so that no step straddles one.
+
+#[path = "taylor/series.rs"]
+pub mod series;
+
+use nalgebra::SVector;
+
+use crate::error::{ConfigError, StepError, StepErrorKind};
+use crate::math::{ceil, exp, ln, powf};
+use crate::stepper::{Progress, ProgressMut, Restarting, StepOutcome, Stepper};
+use crate::system::VariableMassSystem;
+
+/// The highest order the stepper expands to (a tolerance of 1e-16 asks for 20).
+pub const MAX_ORDER: usize = 32;
+
+/// How the Taylor stepper chooses its order and steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TaylorControl {
+    /// Order and step from the tolerances (Jorba & Zou 2005, §3.2).
+    Adaptive {
+        /// Relative tolerance rtol.
+        relative_tolerance: f64,
+        /// Absolute tolerance atol.
+        absolute_tolerance: f64,
+        /// The largest step allowed.
+        max_step: f64,
+    },
+    /// A fixed order p (1 ≤ p ≤ [`MAX_ORDER`]) and step h, for convergence studies.
+    Fixed {
+        /// The order p.
+        order: usize,
+        /// The step h > 0.
+        step: f64,
+    },
+}
+
+impl TaylorControl {
+    /// Adaptive control with these tolerances and no step limit.
+    pub fn adaptive(relative_tolerance: f64, absolute_tolerance: f64) -> Self {
+        Self::Adaptive {
+            relative_tolerance,
+            absolute_tolerance,
+            max_step: f64::INFINITY,
+        }
+    }
+
+    /// Checks the settings.
+    fn validated(self) -> Result<Self, ConfigError> {
+        let ok = match self {
+            Self::Adaptive {
+                relative_tolerance: r,
+                absolute_tolerance: a,
+                max_step,
+            } => {
+                r.is_finite()
+                    && a.is_finite()
+                    && r >= 0.0
+                    && a >= 0.0
+                    && r + a > 0.0
+                    && max_step > 0.0
+            }
+            Self::Fixed { order, step } => {
+                (1..=MAX_ORDER).contains(&order) && step.is_finite() && step > 0.0
+            }
+        };
+        if ok {
+            Ok(self)
+        } else {
+            Err(ConfigError {
+                reason: "Taylor control: tolerances finite, non-negative and not both zero, \
+                         max_step positive; a fixed order in 1..=32 and a positive finite step",
+            })
+        }
+    }
+}
+
+impl Default for TaylorControl {
+    /// The tolerances of the other adaptive steppers' defaults: 1e-6 relative, 1e-9 absolute.
+    fn default() -> Self {
+        Self::adaptive(1e-6, 1e-9)
+    }
+}
+
+/// The Taylor stepper on the state `[q, p, m_s]`.
+#[derive(Clone, Debug)]
+pub struct Taylor<'a, Sys, const N: usize, const S: usize> {
+    system: &'a Sys,
+    progress: Progress<S>,
+    control: TaylorControl,
+    /// The series of the last step (about its start), y\[0\] … y\[order\].
+    coefficients: [SVector<f64, S>; MAX_ORDER + 1],
+    order: usize,
+    last_step: f64,
+}
+
+impl<'a, Sys, const N: usize, const S: usize> Taylor<'a, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    /// Starts at `(time, state)`; the state and the control are checked, and the system must
+    /// provide Taylor coefficients (otherwise an
+    /// [`InvalidConfiguration`](StepErrorKind::InvalidConfiguration) error says how to get
+    /// them).
+    pub fn new(
+        system: &'a Sys,
+        time: f64,
+        state: SVector<f64, S>,
+        control: TaylorControl,
+    ) -> Result<Self, StepError<S>> {
+        let control = control.validated().map_err(|e| e.at(time, &state))?;
+        let progress = Progress::new(system, time, state)?;
+        let mut coefficients = [SVector::zeros(); MAX_ORDER + 1];
+        match system.taylor_coefficients(time, &state, &mut coefficients[..2]) {
+            None => {
+                return Err(StepError::invalid_configuration(
+                    time,
+                    state,
+                    "the system provides no Taylor coefficients (generate them with \
+                     emit = [..., \"taylor\"])",
+                ))
+            }
+            Some(Err(error)) => return Err(StepError::from_system(system, error, time, &state)),
+            Some(Ok(())) => {}
+        }
+        Ok(Self {
+            system,
+            progress,
+            control,
+            coefficients,
+            order: 0,
+            last_step: 0.0,
+        })
+    }
+
+    /// The order of the last step (0 before the first).
+    pub fn order(&self) -> usize {
+        self.order
+    }
+
+    /// The series of the last step at `time` (the current state before the first step).
+    pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
+        // The end of the step is the accepted state exactly (t₁ − t₀ may differ from h in
+        // the last bit).
+        if self.last_step <= 0.0 || time == self.progress.time() {
+            return *self.progress.state();
+        }
+        horner(
+            &self.coefficients[..=self.order],
+            time - self.progress.previous_time(),
+        )
+    }
+
+    /// The order for the tolerance at state `y` and whether the control is relative.
+    fn adaptive_order(relative: f64, absolute: f64, y: &SVector<f64, S>) -> (usize, bool) {
+        let relative_mode = relative * y.amax() > absolute;
+        let epsilon = if relative_mode { relative } else { absolute };
+        let order = ceil(-0.5 * ln(epsilon) + 1.0);
+        let order = if order.is_finite() { order as usize } else { 2 };
+        (order.clamp(2, MAX_ORDER), relative_mode)
+    }
+
+    /// Jorba & Zou's step from the last two coefficients of an expansion to `order`.
+    fn adaptive_step(&self, order: usize, relative_mode: bool, max_step: f64) -> f64 {
+        let scale = if relative_mode {
+            self.progress.state().amax()
+        } else {
+            1.0
+        };
+        let radius = |j: usize| powf(scale / self.coefficients[j].amax(), 1.0 / j as f64);
+        let mut rho = radius(order - 1).min(radius(order));
+        if rho.is_infinite() {
+            // The last two coefficients vanish: the lower ones bound the radius.
+            rho = (1..order - 1).map(radius).fold(f64::INFINITY, f64::min);
+        }
+        let safety = exp(-2.0 - 0.7 / (order - 1) as f64);
+        let step = rho * safety;
+        if step.is_finite() {
+            step.min(max_step)
+        } else if max_step.is_finite() {
+            // A constant solution: any step is exact.
+            max_step
+        } else {
+            1.0 + self.progress.time().abs()
+        }
+    }
+
+    /// Expands the solution at the current point to `order`.
+    fn expand(&mut self, order: usize) -> Result<(), StepError<S>> {
+        let (t0, y0) = (self.progress.time(), *self.progress.state());
+        self.progress.statistics.rate_evaluations += 1;
+        let result = self
+            .system
+            .taylor_coefficients(t0, &y0, &mut self.coefficients[..=order]);
+        match result {
+            Some(Ok(())) => {}
+            Some(Err(error)) => return Err(StepError::from_system(self.system, error, t0, &y0)),
+            None => {
+                return Err(StepError::invalid_configuration(
+                    t0,
+                    y0,
+                    "the system stopped providing Taylor coefficients",
+                ))
+            }
+        }
+        let finite = self.coefficients[..=order]
+            .iter()
+            .all(|c| c.iter().all(|x| x.is_finite()));
+        if finite {
+            Ok(())
+        } else {
+            Err(StepError::new(t0, y0, StepErrorKind::NonFiniteState))
+        }
+    }
+}
+
+/// Σₖ cₖ hᵏ by Horner's rule.
+fn horner<const S: usize>(coefficients: &[SVector<f64, S>], h: f64) -> SVector<f64, S> {
+    let mut value = SVector::zeros();
+    for c in coefficients.iter().rev() {
+        value = value * h + c;
+    }
+    value
+}
+
+impl<Sys, const N: usize, const S: usize> Stepper<N, S> for Taylor<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    type System = Sys;
+
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        (self.system, &self.progress)
+    }
+
+    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
+        ProgressMut::new(self.system, &mut self.progress)
+    }
+
+    fn forget_history(&mut self, _: Restarting) {
+        self.last_step = 0.0;
+    }
+
+    fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
+        Some(self.interpolate(time))
+    }
+
+    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
+        let t0 = self.progress.time();
+        let (order, nominal) = match self.control {
+            TaylorControl::Fixed { order, step } => {
+                self.expand(order)?;
+                (order, step)
+            }
+            TaylorControl::Adaptive {
+                relative_tolerance,
+                absolute_tolerance,
+                max_step,
+            } => {
+                let y0 = self.progress.state();
+                let (order, relative_mode) =
+                    Self::adaptive_order(relative_tolerance, absolute_tolerance, y0);
+                self.expand(order)?;
+                (order, self.adaptive_step(order, relative_mode, max_step))
+            }
+        };
+        let (h, reaches_stop) = self.progress.next_step(nominal)?;
+        if !(h > 0.0 && t0 + h != t0) {
+            let state = *self.progress.state();
+            return Err(StepError::new(
+                t0,
+                state,
+                StepErrorKind::StepSizeUnderflow { step: h },
+            ));
+        }
+        let state = horner(&self.coefficients[..=order], h);
+        let outcome = self.progress.accept(self.system, h, reaches_stop, state)?;
+        self.order = order;
+        self.last_step = h;
+        Ok(outcome)
+    }
+}

@@ -1,0 +1,298 @@
+//! The Taylor recurrences generated code calls (`emit = [..., "taylor"]`): coefficient `k`
+//! of one operation from the coefficients 0..=k of its operands and 0..k of its result,
+//! each array holding the normalized coefficients u\[j\] = u⁽ʲ⁾/j!. At k = 0 each returns the
+//! function's value. The formulas are those of the run-time tapes
+//! (`varmass_symbolic::expr::TaylorTape`, Jorba & Zou 2005 §2, Biscani & Izzo 2021
+//! appendix A), each named beside the identity it comes from; `tests/taylor_emitted.rs`
+//! holds the two to the same coefficients.
+
+use nalgebra::{ComplexField, RealField};
+
+use crate::math::{powf, sqrt};
+
+/// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
+pub const LEN: usize = super::MAX_ORDER + 1;
+
+/// Coefficient arrays of several subexpressions (rows of M, offsets, momenta).
+pub type Arrays<'a> = &'a [&'a [f64; LEN]];
+
+/// w = a b.
+#[inline]
+pub fn mul(a: &[f64; LEN], b: &[f64; LEN], k: usize) -> f64 {
+    let mut sum = 0.0;
+    for j in 0..=k {
+        sum += a[j] * b[k - j];
+    }
+    sum
+}
+
+/// w = a².
+#[inline]
+pub fn square(a: &[f64; LEN], k: usize) -> f64 {
+    let mut cross = 0.0;
+    for j in 0..k.div_ceil(2) {
+        cross += a[j] * a[k - j];
+    }
+    let middle = if k.is_multiple_of(2) {
+        a[k / 2] * a[k / 2]
+    } else {
+        0.0
+    };
+    2.0 * cross + middle
+}
+
+/// w a = 1.
+#[inline]
+pub fn recip(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+    if k == 0 {
+        return 1.0 / a[0];
+    }
+    let mut sum = 0.0;
+    for j in 1..=k {
+        sum += a[j] * w[k - j];
+    }
+    -sum / a[0]
+}
+
+/// w² = a.
+#[inline]
+pub fn sqrt_of(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+    if k == 0 {
+        return sqrt(a[0]);
+    }
+    let mut cross = 0.0;
+    for j in 1..k {
+        cross += w[j] * w[k - j];
+    }
+    (a[k] - cross) / (2.0 * w[0])
+}
+
+/// a w′ = α a′ w, w = a^α for the constant α = e\[0\].
+#[inline]
+pub fn pow(a: &[f64; LEN], e: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+    let alpha = e[0];
+    if k == 0 {
+        return power(a[0], alpha);
+    }
+    let mut sum = 0.0;
+    for j in 0..k {
+        sum += (alpha * (k - j) as f64 - j as f64) * a[k - j] * w[j];
+    }
+    sum / (k as f64 * a[0])
+}
+
+/// bᵉ as the value tape computes it: `powi` for integer exponents, √ for ½.
+fn power(b: f64, e: f64) -> f64 {
+    if e == 0.5 {
+        sqrt(b)
+    } else if e == (e as i32) as f64 {
+        ComplexField::powi(b, e as i32)
+    } else {
+        powf(b, e)
+    }
+}
+
+/// w′ = a′ w.
+#[inline]
+pub fn exp(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+    if k == 0 {
+        return crate::math::exp(a[0]);
+    }
+    let mut sum = 0.0;
+    for j in 1..=k {
+        sum += j as f64 * a[j] * w[k - j];
+    }
+    sum / k as f64
+}
+
+/// (sin a, cos a): s′ = a′ c, c′ = −a′ s; for `hyperbolic`, (sinh, cosh) with both +.
+#[inline]
+pub fn sin_cos(a: &[f64; LEN], s: &mut [f64; LEN], c: &mut [f64; LEN], k: usize, hyperbolic: bool) {
+    if k == 0 {
+        (s[0], c[0]) = if hyperbolic {
+            (ComplexField::sinh(a[0]), ComplexField::cosh(a[0]))
+        } else {
+            ComplexField::sin_cos(a[0])
+        };
+        return;
+    }
+    let (mut first, mut second) = (0.0, 0.0);
+    for j in 1..=k {
+        let ja = j as f64 * a[j];
+        first += ja * c[k - j];
+        second += ja * s[k - j];
+    }
+    let sign = if hyperbolic { 1.0 } else { -1.0 };
+    s[k] = first / k as f64;
+    c[k] = sign * second / k as f64;
+}
+
+/// tan (or tanh for `hyperbolic`): w′ = v a′ with v = 1 ± w².
+#[inline]
+pub fn tan(a: &[f64; LEN], w: &mut [f64; LEN], v: &mut [f64; LEN], k: usize, hyperbolic: bool) {
+    w[k] = if k == 0 {
+        if hyperbolic {
+            ComplexField::tanh(a[0])
+        } else {
+            ComplexField::tan(a[0])
+        }
+    } else {
+        let mut sum = 0.0;
+        for j in 1..=k {
+            sum += j as f64 * a[j] * v[k - j];
+        }
+        sum / k as f64
+    };
+    let sign = if hyperbolic { -1.0 } else { 1.0 };
+    let one = if k == 0 { 1.0 } else { 0.0 };
+    v[k] = one + sign * mul(w, w, k);
+}
+
+/// w′ d = sign·a′ for k ≥ 1 (ln: d = a; asin, acos: d = √(1 − a²); atan: d = 1 + a²);
+/// `value` = f(a\[0\]) at k = 0.
+#[inline]
+pub fn quotient(
+    a: &[f64; LEN],
+    d: &[f64; LEN],
+    w: &[f64; LEN],
+    k: usize,
+    (sign, value): (f64, f64),
+) -> f64 {
+    if k == 0 {
+        return value;
+    }
+    let mut sum = 0.0;
+    for j in 1..k {
+        sum += j as f64 * w[j] * d[k - j];
+    }
+    (sign * a[k] - sum / k as f64) / d[0]
+}
+
+/// w′ d = x y′ − y x′ with d = x² + y², w = atan2(y, x).
+#[inline]
+pub fn atan2(y: &[f64; LEN], x: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+    if k == 0 {
+        return RealField::atan2(y[0], x[0]);
+    }
+    let mut cross = 0.0;
+    for j in 0..k {
+        cross += (k - j) as f64 * (x[j] * y[k - j] - y[j] * x[k - j]);
+    }
+    let mut sum = 0.0;
+    for j in 1..k {
+        sum += j as f64 * w[j] * d[k - j];
+    }
+    (cross - sum) / (k as f64 * d[0])
+}
+
+/// |a| on the branch of a\[0\]'s sign.
+#[inline]
+pub fn abs(a: &[f64; LEN], k: usize) -> f64 {
+    if k == 0 {
+        ComplexField::abs(a[0])
+    } else if a[0] < 0.0 {
+        -a[k]
+    } else {
+        a[k]
+    }
+}
+
+/// sign a\[0\], constant over the step.
+#[inline]
+pub fn sign(a: &[f64; LEN], k: usize) -> f64 {
+    if k == 0 {
+        crate::math::sign(a[0])
+    } else {
+        0.0
+    }
+}
+
+/// The smaller (`larger` false) or larger argument at order 0, NaN-propagating there.
+#[inline]
+pub fn min_max(a: &[f64; LEN], b: &[f64; LEN], k: usize, larger: bool) -> f64 {
+    if a[0].is_nan() || b[0].is_nan() {
+        return f64::NAN;
+    }
+    let first = if larger { a[0] >= b[0] } else { a[0] <= b[0] };
+    if first {
+        a[k]
+    } else {
+        b[k]
+    }
+}
+
+/// Coefficient k of q̇ from M q̇ = p − b, n coordinates: M\[0\] q̇\[k\] = p\[k\] − b\[k\] −
+/// Σⱼ₌₁ᵏ M\[j\] q̇\[k−j\], with M\[0\] factored (Cholesky, row-major in `factor`) at k = 0.
+/// `false` when M\[0\] is not positive definite or a result is not finite.
+pub fn solve_velocities(
+    n: usize,
+    (matrix, offset, momenta): (Arrays<'_>, Arrays<'_>, Arrays<'_>),
+    velocities: &mut [&mut [f64; LEN]],
+    factor: &mut [f64],
+    k: usize,
+) -> bool {
+    if k == 0 {
+        for (e, f) in factor.iter_mut().enumerate().take(n * n) {
+            *f = matrix[e][0];
+        }
+        if !cholesky(factor, n) {
+            return false;
+        }
+    }
+    let mut rhs = [0.0; 16];
+    for a in 0..n.min(16) {
+        let mut r = momenta[a][k] - offset[a][k];
+        for j in 1..=k {
+            for (b, v) in velocities.iter().enumerate().take(n) {
+                r -= matrix[a * n + b][j] * v[k - j];
+            }
+        }
+        rhs[a] = r;
+    }
+    substitute(factor, &mut rhs, n);
+    for (a, v) in velocities.iter_mut().enumerate().take(n) {
+        v[k] = rhs[a];
+    }
+    rhs.iter().take(n).all(|x| x.is_finite())
+}
+
+/// L with M = L Lᵀ into the lower triangle of the row-major `m`.
+fn cholesky(m: &mut [f64], n: usize) -> bool {
+    for j in 0..n {
+        let mut diagonal = m[j * n + j];
+        for k in 0..j {
+            diagonal -= m[j * n + k] * m[j * n + k];
+        }
+        if diagonal.is_nan() || diagonal <= 0.0 || diagonal.is_infinite() {
+            return false;
+        }
+        let diagonal = sqrt(diagonal);
+        m[j * n + j] = diagonal;
+        for i in j + 1..n {
+            let mut entry = m[i * n + j];
+            for k in 0..j {
+                entry -= m[i * n + k] * m[j * n + k];
+            }
+            m[i * n + j] = entry / diagonal;
+        }
+    }
+    true
+}
+
+/// Solves L Lᵀ x = b in place.
+fn substitute(l: &[f64], b: &mut [f64], n: usize) {
+    for i in 0..n {
+        let mut value = b[i];
+        for k in 0..i {
+            value -= l[i * n + k] * b[k];
+        }
+        b[i] = value / l[i * n + i];
+    }
+    for i in (0..n).rev() {
+        let mut value = b[i];
+        for k in i + 1..n {
+            value -= l[k * n + i] * b[k];
+        }
+        b[i] = value / l[i * n + i];
+    }
+}

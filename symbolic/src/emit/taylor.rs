@@ -1,0 +1,383 @@
+//! `taylor_coefficients(t, state, coefficients)` (`emit = [..., "taylor"]`): the Taylor
+//! recurrences of the state rate as straight-line Rust, one statement per instruction of the
+//! [`TaylorTape`]s of the three stages (the law masses; q̇, in closed form or solved order by
+//! order; ṗ and ṁ of the state masses), inside one loop over the order k. Every
+//! subexpression is a stack array of its coefficients, shared subexpressions computed once;
+//! each statement calls the runtime's recurrence for its operation
+//! (`steppers::taylor::series`), so the formulas live in one place at run time and generated
+//! code stays small. The stages and the loop are those of `varmass::interpret`'s Taylor
+//! program (Jorba & Zou 2005, §2: y\[k+1\] = f\[k\]/(k+1)).
+
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+
+use crate::expr::{Func, Id, Instr, Op, Symbol, TaylorTape};
+use crate::mechanics::{Derivation, MassKind, VelocitySolve};
+
+/// The three stages compiled over one list of inputs: t, q, p, q̇, every mass.
+struct Stages {
+    inputs: usize,
+    laws: TaylorTape,
+    /// Mass index of each law output.
+    law_masses: Vec<usize>,
+    velocities: TaylorTape,
+    numeric: bool,
+    rates: TaylorTape,
+}
+
+fn stages(d: &Derivation) -> Stages {
+    let mut inputs: Vec<Symbol> = vec![d.time];
+    inputs.extend(d.coordinates.iter().map(|c| c.q));
+    inputs.extend(d.coordinates.iter().map(|c| c.momentum));
+    inputs.extend(d.coordinates.iter().map(|c| c.velocity));
+    inputs.extend(d.masses.iter().map(|m| m.symbol));
+    let mut law_masses = Vec::new();
+    let mut law_roots = Vec::new();
+    for (index, (mass, law)) in d.masses.iter().zip(&d.closed_laws).enumerate() {
+        if let (MassKind::Law(_), Some(law)) = (&mass.kind, law) {
+            law_masses.push(index);
+            law_roots.push(*law);
+        }
+    }
+    let (velocity_roots, numeric) = match &d.velocities {
+        VelocitySolve::Symbolic(v) => (v.clone(), false),
+        VelocitySolve::Numeric => {
+            let mut roots: Vec<Id> = d.mass_matrix.iter().flatten().copied().collect();
+            roots.extend(&d.momentum_offset);
+            (roots, true)
+        }
+    };
+    let mut rate_roots = d.momentum_rate.clone();
+    rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
+    Stages {
+        inputs: inputs.len(),
+        laws: d.pool.compile_taylor(&law_roots, &inputs),
+        law_masses,
+        velocities: d.pool.compile_taylor(&velocity_roots, &inputs),
+        numeric,
+        rates: d.pool.compile_taylor(&rate_roots, &inputs),
+    }
+}
+
+/// Names the arrays of one tape: its input slots are the shared `i<n>`, the rest
+/// `<prefix><slot>`.
+struct Names<'a> {
+    tape: &'a TaylorTape,
+    prefix: &'static str,
+}
+
+impl Names<'_> {
+    fn of(&self, slot: usize) -> Ident {
+        match self.tape.input_slots().iter().position(|s| *s == slot) {
+            Some(i) => format_ident!("i{}", i),
+            None => format_ident!("{}{}", self.prefix, slot),
+        }
+    }
+
+    fn output(&self, i: usize) -> Ident {
+        self.of(self
+            .tape
+            .output_slots()
+            .get(i)
+            .copied()
+            .unwrap_or(usize::MAX))
+    }
+
+    /// `let mut` arrays for every slot that is not an input.
+    fn declarations(&self, len: &TokenStream) -> TokenStream {
+        let inputs = self.tape.input_slots();
+        let names = (0..self.tape.slot_count())
+            .filter(|s| !inputs.contains(s))
+            .map(|s| self.of(s));
+        quote!(#(let mut #names = [0.0f64; #len];)*)
+    }
+}
+
+/// The `taylor_coefficients` method of `d`'s system, with the runtime at `runtime`.
+pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStream {
+    let st = stages(d);
+    let n = d.coordinates.len();
+    let s = 2 * n + d.state_mass_count();
+    let s_lit = Literal::usize_unsuffixed(s);
+    let ts = quote!(#runtime::steppers::taylor::series);
+    let len = quote!(#ts::LEN);
+    let laws = Names {
+        tape: &st.laws,
+        prefix: "l",
+    };
+    let velocities = Names {
+        tape: &st.velocities,
+        prefix: "v",
+    };
+    let rates = Names {
+        tape: &st.rates,
+        prefix: "r",
+    };
+    let input = |i: usize| format_ident!("i{}", i);
+    let state_input = |j: usize| {
+        input(if j < 2 * n {
+            1 + j
+        } else {
+            1 + 3 * n + (j - 2 * n)
+        })
+    };
+    let inputs = (0..st.inputs).map(input);
+    let declarations = [&laws, &velocities, &rates].map(|names| names.declarations(&len));
+    let k = quote!(k);
+    let zero = quote!(0);
+    let fixed = [&laws, &velocities, &rates].map(|names| ops(d, names, true, &zero, runtime));
+    let series = [&laws, &velocities, &rates].map(|names| ops(d, names, false, &k, runtime));
+    let [law_series, velocity_series, rate_series] = series;
+    let start = (0..s).map(|j| {
+        let name = state_input(j);
+        quote!(#name[0] = state[#j];)
+    });
+    let law_copies = st.law_masses.iter().enumerate().map(|(i, mass)| {
+        let (to, from) = (input(1 + 3 * n + mass), laws.output(i));
+        quote!(#to[k] = #from[k];)
+    });
+    let (factor, solve) = velocity_solve(&st, &velocities, n, runtime);
+    let next = (0..s).map(|j| {
+        let to = state_input(j);
+        let from = if j < n {
+            input(1 + 2 * n + j)
+        } else {
+            rates.output(j - n)
+        };
+        quote!(#to[k + 1] = #from[k] * next;)
+    });
+    let out = (0..s).map(|j| {
+        let from = state_input(j);
+        quote!(c[#j] = #from[k];)
+    });
+    quote! {
+        /// The Taylor coefficients y[k] = y⁽ᵏ⁾(t)/k! of the solution through `(t, state)`
+        /// (k ≤ `steppers::taylor::MAX_ORDER`), by the recurrences of automatic
+        /// differentiation over the state rate (Jorba & Zou 2005).
+        #[allow(unused_mut, unused_assignments, clippy::all)]
+        fn taylor_coefficients(
+            &self,
+            t: f64,
+            state: &#runtime::nalgebra::SVector<f64, #s_lit>,
+            coefficients: &mut [#runtime::nalgebra::SVector<f64, #s_lit>],
+        ) -> ::core::option::Option<::core::result::Result<(), #runtime::SystemError>> {
+            let order = coefficients.len().checked_sub(1)?.min(#len - 1);
+            #(let mut #inputs = [0.0f64; #len];)*
+            #(#declarations)*
+            #factor
+            i0[0] = t;
+            i0[1] = 1.0;
+            #(#start)*
+            #(#fixed)*
+            for k in 0..=order {
+                #law_series
+                #(#law_copies)*
+                #velocity_series
+                #solve
+                if k == order {
+                    break;
+                }
+                #rate_series
+                let next = 1.0 / (k + 1) as f64;
+                #(#next)*
+            }
+            for (k, c) in coefficients.iter_mut().enumerate().take(order + 1) {
+                #(#out)*
+            }
+            Some(Ok(()))
+        }
+    }
+}
+
+/// Coefficient k of q̇ into its inputs: copied from the closed form (a non-finite value at
+/// order 0 is a singular M), or solved with M\[0\]'s factor, declared before the loop.
+fn velocity_solve(
+    st: &Stages,
+    names: &Names,
+    n: usize,
+    runtime: &TokenStream,
+) -> (TokenStream, TokenStream) {
+    let velocity = |a: usize| format_ident!("i{}", 1 + 2 * n + a);
+    let singular = quote!(return Some(Err(#runtime::SystemError::SingularMassMatrix)););
+    if !st.numeric {
+        let copies = (0..n).map(|a| {
+            let (to, from) = (velocity(a), names.output(a));
+            quote! {
+                #to[k] = #from[k];
+                if k == 0 && !#to[0].is_finite() && state.iter().all(|x| x.is_finite()) {
+                    #singular
+                }
+            }
+        });
+        return (TokenStream::new(), quote!(#(#copies)*));
+    }
+    let matrix = (0..n * n).map(|e| names.output(e));
+    let offset = (0..n).map(|a| names.output(n * n + a));
+    let momenta = (0..n).map(|a| format_ident!("i{}", 1 + n + a));
+    let velocities = (0..n).map(velocity);
+    let size = Literal::usize_unsuffixed(n * n);
+    let solve = quote! {
+        if !#runtime::steppers::taylor::series::solve_velocities(
+            #n,
+            (&[#(&#matrix),*], &[#(&#offset),*], &[#(&#momenta),*]),
+            &mut [#(&mut #velocities),*],
+            &mut factor,
+            k,
+        ) {
+            #singular
+        }
+    };
+    (quote!(let mut factor = [0.0f64; #size];), solve)
+}
+
+/// The statements of one tape's fixed (order-0) or series instructions at order `k`.
+fn ops(
+    d: &Derivation,
+    names: &Names,
+    fixed: bool,
+    k: &TokenStream,
+    runtime: &TokenStream,
+) -> TokenStream {
+    let list = if fixed {
+        names.tape.fixed_instructions()
+    } else {
+        names.tape.series_instructions()
+    };
+    let statements = list.iter().map(|i| op(d, names, i, k, runtime));
+    quote!(#(#statements)*)
+}
+
+fn number(x: f64) -> TokenStream {
+    if x.is_nan() {
+        quote!(f64::NAN)
+    } else if x.is_infinite() {
+        if x > 0.0 {
+            quote!(f64::INFINITY)
+        } else {
+            quote!(f64::NEG_INFINITY)
+        }
+    } else {
+        let lit = Literal::f64_unsuffixed(x.abs());
+        if x.is_sign_negative() {
+            quote!((-#lit))
+        } else {
+            quote!(#lit)
+        }
+    }
+}
+
+/// The value f(x) of a one-argument function as generated code writes it.
+fn value(f: Func, x: TokenStream, runtime: &TokenStream) -> TokenStream {
+    match f {
+        Func::Sign => quote!(#runtime::math::sign(#x)),
+        Func::Atan2 | Func::Min | Func::Max => quote!(f64::NAN),
+        f => {
+            let method = Ident::new(f.name(), Span::call_site());
+            quote!(#x.#method())
+        }
+    }
+}
+
+fn op(
+    d: &Derivation,
+    names: &Names,
+    instr: &Instr,
+    k: &TokenStream,
+    rt: &TokenStream,
+) -> TokenStream {
+    let ts = quote!(#rt::steppers::taylor::series);
+    let w = names.of(instr.out);
+    let n = |s: usize| names.of(s);
+    match instr.op {
+        Op::Const(c) => {
+            let c = number(c);
+            quote!(#w[0] = #c;)
+        }
+        Op::Param(index) => {
+            let field = d
+                .parameters
+                .iter()
+                .find(|(_, s)| s.index() == index)
+                .map(|(name, _)| Ident::new(name, Span::call_site()));
+            match field {
+                Some(field) => quote!(#w[0] = self.#field;),
+                None => quote!(#w[0] = f64::NAN;),
+            }
+        }
+        Op::Add { start, len } => {
+            let terms = names.tape.operand_slots(start, len).iter().map(|s| n(*s));
+            quote!(#w[#k] = 0.0 #(+ #terms[#k])*;)
+        }
+        Op::Scale(c, a) => {
+            let (c, a) = (n(c), n(a));
+            quote!(#w[#k] = #c[0] * #a[#k];)
+        }
+        Op::Affine { a, scale, offset } => {
+            let (a, scale, offset) = (n(a), number(scale), number(offset));
+            quote!(#w[#k] = if #k == 0 { #offset + #scale * #a[0] } else { #scale * #a[#k] };)
+        }
+        Op::Mul(a, b) => {
+            let (a, b) = (n(a), n(b));
+            quote!(#w[#k] = #ts::mul(&#a, &#b, #k);)
+        }
+        Op::Square(a) => {
+            let a = n(a);
+            quote!(#w[#k] = #ts::square(&#a, #k);)
+        }
+        Op::Recip(a) => {
+            let a = n(a);
+            quote!(#w[#k] = #ts::recip(&#a, &#w, #k);)
+        }
+        Op::Sqrt(a) => {
+            let a = n(a);
+            quote!(#w[#k] = #ts::sqrt_of(&#a, &#w, #k);)
+        }
+        Op::Pow(a, e) => {
+            let (a, e) = (n(a), n(e));
+            quote!(#w[#k] = #ts::pow(&#a, &#e, &#w, #k);)
+        }
+        Op::Exp(a) => {
+            let a = n(a);
+            quote!(#w[#k] = #ts::exp(&#a, &#w, #k);)
+        }
+        Op::SinCos { a, cos } => {
+            let (a, c) = (n(a), n(cos));
+            quote!(#ts::sin_cos(&#a, &mut #w, &mut #c, #k, false);)
+        }
+        Op::SinhCosh { a, cosh } => {
+            let (a, c) = (n(a), n(cosh));
+            quote!(#ts::sin_cos(&#a, &mut #w, &mut #c, #k, true);)
+        }
+        Op::Tan { a, v, f, .. } => {
+            let (a, v, hyperbolic) = (n(a), n(v), f == Func::Tanh);
+            quote!(#ts::tan(&#a, &mut #w, &mut #v, #k, #hyperbolic);)
+        }
+        Op::Quotient { a, d: den, sign, f } => {
+            let (a, den, sign) = (n(a), n(den), number(sign));
+            let at_zero = value(f, quote!(#a[0]), rt);
+            quote! {
+                #w[#k] = #ts::quotient(&#a, &#den, &#w, #k, (#sign, if #k == 0 { #at_zero } else { 0.0 }));
+            }
+        }
+        Op::Atan2 { y, x, d: den } if den == usize::MAX => {
+            let (y, x) = (n(y), n(x));
+            quote!(#w[0] = #y[0].atan2(#x[0]);)
+        }
+        Op::Atan2 { y, x, d: den } => {
+            let (y, x, den) = (n(y), n(x), n(den));
+            quote!(#w[#k] = #ts::atan2(&#y, &#x, &#den, &#w, #k);)
+        }
+        Op::Abs(a) => {
+            let a = n(a);
+            quote!(#w[#k] = #ts::abs(&#a, #k);)
+        }
+        Op::Sign(a) => {
+            let a = n(a);
+            quote!(#w[#k] = #ts::sign(&#a, #k);)
+        }
+        Op::Min(a, b) | Op::Max(a, b) => {
+            let (a, b, larger) = (n(a), n(b), matches!(instr.op, Op::Max(..)));
+            quote!(#w[#k] = #ts::min_max(&#a, &#b, #k, #larger);)
+        }
+    }
+}

@@ -1,0 +1,567 @@
+//! Taylor coefficients by automatic differentiation: the DAG of some roots compiled into a
+//! straight-line [`TaylorTape`] whose instructions are the classical recurrences for the
+//! normalized derivatives u\[k\] = u⁽ᵏ⁾(t₀)/k! of every subexpression (Jorba & Zou 2005, *A
+//! software package for the numerical integration of ODEs by means of high-order Taylor
+//! methods*, Exp. Math. 14, §2; Biscani & Izzo 2021, MNRAS 504, §2 and appendix A).
+//!
+//! The caller owns the order loop. Some symbols are *inputs* whose coefficients the caller
+//! supplies (for an ODE y′ = f(y, t): the state and the time); every other symbol is a
+//! constant read from the environment (a parameter). Coefficient k of every instruction needs
+//! only coefficients 0..=k of its operands, so the caller sets the inputs' coefficient k,
+//! calls [`TaylorTape::advance`] for k, reads the outputs' coefficient k and derives the
+//! inputs' coefficient k + 1 from them (y\[k+1\] = f\[k\]/(k+1)).
+//!
+//! Subexpressions that depend on no input are computed once, at order 0
+//! ([`TaylorTape::begin`]); their higher coefficients stay zero.
+//!
+//! The piecewise functions (abs, sign, min, max) are differentiated on the smooth branch
+//! chosen by the order-0 values: a step must not straddle their switch, which is located
+//! elsewhere (events on the dense output), as for every other stepper.
+
+#[path = "taylor/recurrence.rs"]
+mod recurrence;
+
+use super::func::Func;
+use super::node::{Id, Node};
+use super::pool::ExprPool;
+use super::rational::Rational;
+use super::symbol::Symbol;
+use rustc_hash::FxHashMap;
+
+/// One recurrence; its result goes to slot `out` of the [`Instr`] holding it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Op {
+    /// A number.
+    Const(f64),
+    /// A parameter: `env[index]`, NaN if missing.
+    Param(usize),
+    /// Sum of the slots `operands[start..start + len]`.
+    Add {
+        start: usize,
+        len: usize,
+    },
+    /// A constant slot times a series: w\[k\] = c\[0\] a\[k\].
+    Scale(usize, usize),
+    /// `offset + scale·a`.
+    Affine {
+        a: usize,
+        scale: f64,
+        offset: f64,
+    },
+    /// The Cauchy product w\[k\] = Σⱼ a\[j\] b\[k−j\].
+    Mul(usize, usize),
+    /// a², the Cauchy product halved by symmetry.
+    Square(usize),
+    /// 1/a: w\[k\] = −Σⱼ₌₁ᵏ a\[j\] w\[k−j\] / a\[0\].
+    Recip(usize),
+    /// √a: w\[k\] = (a\[k\] − Σⱼ₌₁ᵏ⁻¹ w\[j\] w\[k−j\]) / (2 w\[0\]).
+    Sqrt(usize),
+    /// a^α for the constant α in the second slot (J&Z eq. 2.6):
+    /// w\[k\] = Σⱼ₌₀ᵏ⁻¹ (α(k−j) − j) a\[k−j\] w\[j\] / (k a\[0\]).
+    Pow(usize, usize),
+    /// eᵃ: w\[k\] = Σⱼ₌₁ᵏ j a\[j\] w\[k−j\] / k.
+    Exp(usize),
+    /// sin a into `out`, cos a into `cos` (the pair of J&Z eq. 2.9).
+    SinCos {
+        a: usize,
+        cos: usize,
+    },
+    /// sinh a into `out`, cosh a into `cosh`.
+    SinhCosh {
+        a: usize,
+        cosh: usize,
+    },
+    /// tan (`sign` +1) or tanh (−1) of a into `out`, v = 1 + sign·w² into `v`:
+    /// w′ = v a′.
+    Tan {
+        a: usize,
+        v: usize,
+        sign: f64,
+        f: Func,
+    },
+    /// w = f(a) with w′ d = sign·a′ for the slot d: ln (d = a), asin (d = √(1 − a²), +1),
+    /// acos (the same, −1), atan (d = 1 + a², +1):
+    /// w\[k\] = (sign·a\[k\] − Σⱼ₌₁ᵏ⁻¹ j w\[j\] d\[k−j\] / k) / d\[0\].
+    Quotient {
+        a: usize,
+        d: usize,
+        sign: f64,
+        f: Func,
+    },
+    /// atan2(y, x) with d = x² + y²: w′ d = x y′ − y x′.
+    Atan2 {
+        y: usize,
+        x: usize,
+        d: usize,
+    },
+    /// |a| on the branch of a\[0\]'s sign (+ at 0).
+    Abs(usize),
+    /// sign a\[0\], constant over the step.
+    Sign(usize),
+    /// The series of the argument smaller (larger) at order 0; the first at a tie.
+    Min(usize, usize),
+    Max(usize, usize),
+}
+
+/// An operation and the slot it writes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Instr {
+    pub(crate) op: Op,
+    pub(crate) out: usize,
+}
+
+/// Straight-line Taylor recurrences over some roots (see [`ExprPool::compile_taylor`]).
+#[derive(Clone, Debug)]
+pub struct TaylorTape {
+    /// Run once per expansion point, at order 0: everything that depends on no input.
+    fixed: Vec<Instr>,
+    /// Run at every order.
+    series: Vec<Instr>,
+    operands: Vec<usize>,
+    inputs: Vec<usize>,
+    outputs: Vec<usize>,
+    slots: usize,
+}
+
+/// The coefficients of every slot of a [`TaylorTape`] up to some order: the caller-owned
+/// buffer of an expansion (one per thread; reused without allocation once large enough).
+#[derive(Clone, Debug, Default)]
+pub struct TaylorJet {
+    coefficients: Vec<f64>,
+    stride: usize,
+}
+
+impl TaylorJet {
+    /// An empty jet; [`TaylorTape::begin`] sizes it.
+    pub fn new() -> TaylorJet {
+        TaylorJet::default()
+    }
+
+    /// The highest order this jet holds.
+    pub fn order(&self) -> usize {
+        self.stride.saturating_sub(1)
+    }
+
+    fn get(&self, slot: usize, k: usize) -> f64 {
+        match self.coefficients.get(slot * self.stride + k) {
+            Some(x) if k < self.stride => *x,
+            _ => f64::NAN,
+        }
+    }
+
+    fn set(&mut self, slot: usize, k: usize, value: f64) {
+        if k < self.stride {
+            if let Some(x) = self.coefficients.get_mut(slot * self.stride + k) {
+                *x = value;
+            }
+        }
+    }
+}
+
+/// What the compiler knows of a slot: whether it depends on an input.
+struct Compiler<'p> {
+    pool: &'p ExprPool,
+    fixed: Vec<Instr>,
+    series: Vec<Instr>,
+    operands: Vec<usize>,
+    is_series: Vec<bool>,
+    /// The slot of each node compiled.
+    slot: FxHashMap<Id, usize>,
+    /// Pair slots already made for an argument slot: (sin, cos) and (sinh, cosh).
+    sin_cos: FxHashMap<usize, (usize, usize)>,
+    sinh_cosh: FxHashMap<usize, (usize, usize)>,
+}
+
+impl ExprPool {
+    /// Compiles the Taylor recurrences of `roots`, with `inputs[i]` the symbol whose
+    /// coefficients the caller sets as input `i`. Defined symbols are compiled through their
+    /// values; any other symbol is a constant read from the environment.
+    pub fn compile_taylor(&self, roots: &[Id], inputs: &[Symbol]) -> TaylorTape {
+        let mut c = Compiler {
+            pool: self,
+            fixed: Vec::new(),
+            series: Vec::new(),
+            operands: Vec::new(),
+            is_series: Vec::new(),
+            slot: FxHashMap::default(),
+            sin_cos: FxHashMap::default(),
+            sinh_cosh: FxHashMap::default(),
+        };
+        let input_slots: Vec<usize> = inputs.iter().map(|_| c.new_slot(true)).collect();
+        for id in self.reachable(roots, true) {
+            let slot = c.node(id, inputs, &input_slots);
+            c.slot.insert(id, slot);
+        }
+        let outputs = roots.iter().map(|r| c.of(*r)).collect();
+        TaylorTape {
+            slots: c.is_series.len(),
+            fixed: c.fixed,
+            series: c.series,
+            operands: c.operands,
+            inputs: input_slots,
+            outputs,
+        }
+    }
+}
+
+impl Compiler<'_> {
+    fn new_slot(&mut self, series: bool) -> usize {
+        self.is_series.push(series);
+        self.is_series.len() - 1
+    }
+
+    /// The slot of a compiled node; a constant NaN for a node not compiled (never happens
+    /// for children, which come first).
+    fn of(&mut self, id: Id) -> usize {
+        match self.slot.get(&id) {
+            Some(s) => *s,
+            None => self.emit(Op::Const(f64::NAN), &[]),
+        }
+    }
+
+    fn series(&self, slot: usize) -> bool {
+        self.is_series.get(slot).copied().unwrap_or(false)
+    }
+
+    /// Appends `op` writing a new slot, a series slot when any of `reads` is one.
+    fn emit(&mut self, op: Op, reads: &[usize]) -> usize {
+        let series = reads.iter().any(|s| self.series(*s));
+        let out = self.new_slot(series);
+        let list = if series {
+            &mut self.series
+        } else {
+            &mut self.fixed
+        };
+        list.push(Instr { op, out });
+        out
+    }
+
+    fn node(&mut self, id: Id, inputs: &[Symbol], input_slots: &[usize]) -> usize {
+        let pool = self.pool;
+        match pool.node(id) {
+            Node::Num(r) => self.emit(Op::Const(r.to_f64()), &[]),
+            Node::Float(bits) => self.emit(Op::Const(f64::from_bits(*bits)), &[]),
+            Node::Sym(sym) => match pool.definition(*sym) {
+                Some(value) => self.of(value),
+                None => match inputs.iter().position(|s| s == sym) {
+                    Some(i) => input_slots[i],
+                    None => self.emit(Op::Param(sym.index()), &[]),
+                },
+            },
+            Node::Add(terms) => {
+                let slots: Vec<usize> = terms.iter().map(|t| self.of(*t)).collect();
+                let start = self.operands.len();
+                self.operands.extend(&slots);
+                let len = slots.len();
+                self.emit(Op::Add { start, len }, &slots)
+            }
+            Node::Mul(factors) => {
+                let slots: Vec<usize> = factors.iter().map(|f| self.of(*f)).collect();
+                self.product(&slots)
+            }
+            Node::Pow(b, e) => {
+                let (b, exponent) = (self.of(*b), pool.as_rational(*e));
+                let e = self.of(*e);
+                self.power(b, e, exponent)
+            }
+            Node::Call(f, args) => {
+                let slots: Vec<usize> = args.iter().map(|a| self.of(*a)).collect();
+                match slots.as_slice() {
+                    [a] => self.call1(*f, *a),
+                    [a, b] => self.call2(*f, *a, *b),
+                    _ => self.emit(Op::Const(f64::NAN), &[]),
+                }
+            }
+        }
+    }
+
+    /// A product: the constant factors multiplied once, the series factors chained by
+    /// Cauchy products, then scaled.
+    fn product(&mut self, factors: &[usize]) -> usize {
+        let (series, constant): (Vec<usize>, Vec<usize>) =
+            factors.iter().partition(|s| self.series(**s));
+        let constant = constant
+            .into_iter()
+            .reduce(|a, b| self.emit(Op::Mul(a, b), &[a, b]));
+        let series = series
+            .into_iter()
+            .reduce(|a, b| self.emit(Op::Mul(a, b), &[a, b]));
+        match (constant, series) {
+            (Some(c), Some(s)) => self.emit(Op::Scale(c, s), &[s]),
+            (Some(c), None) => c,
+            (None, Some(s)) => s,
+            (None, None) => self.emit(Op::Const(1.0), &[]),
+        }
+    }
+
+    /// `b^e`: positive integer powers by squaring (exact, and defined where b\[0\] = 0),
+    /// negative ones as their reciprocal, ½ as √, another constant exponent by the general
+    /// power recurrence, a varying exponent as exp(e ln b).
+    fn power(&mut self, b: usize, e: usize, exponent: Option<Rational>) -> usize {
+        if !self.series(b) && !self.series(e) {
+            return self.emit(Op::Pow(b, e), &[]);
+        }
+        if self.series(e) {
+            let ln = self.call1(Func::Ln, b);
+            let product = self.product(&[e, ln]);
+            return self.call1(Func::Exp, product);
+        }
+        let integer = exponent
+            .and_then(|r| r.as_integer())
+            .filter(|n| (1..=64).contains(&n.unsigned_abs()));
+        match (integer, exponent) {
+            (Some(n), _) if n > 0 => self.integer_power(b, n.unsigned_abs()),
+            (Some(n), _) => {
+                let positive = self.integer_power(b, n.unsigned_abs());
+                self.emit(Op::Recip(positive), &[positive])
+            }
+            (None, Some(Rational::HALF)) => self.emit(Op::Sqrt(b), &[b]),
+            _ => self.emit(Op::Pow(b, e), &[b]),
+        }
+    }
+
+    /// bⁿ for 1 ≤ n ≤ 64 by binary powering.
+    fn integer_power(&mut self, b: usize, n: u128) -> usize {
+        let mut result: Option<usize> = None;
+        let mut square = b;
+        let mut n = n;
+        loop {
+            if n & 1 == 1 {
+                result = Some(match result {
+                    Some(r) => self.emit(Op::Mul(r, square), &[r, square]),
+                    None => square,
+                });
+            }
+            n >>= 1;
+            if n == 0 {
+                return result.unwrap_or(b);
+            }
+            square = self.emit(Op::Square(square), &[square]);
+        }
+    }
+
+    fn call1(&mut self, f: Func, a: usize) -> usize {
+        if !self.series(a) {
+            // Constant: the pair and companion slots are not needed.
+            return self.emit(constant_call(f, a), &[]);
+        }
+        match f {
+            Func::Sin | Func::Cos => {
+                let (sin, cos) = self.pair(a, false);
+                if f == Func::Sin {
+                    sin
+                } else {
+                    cos
+                }
+            }
+            Func::Sinh | Func::Cosh => {
+                let (sinh, cosh) = self.pair(a, true);
+                if f == Func::Sinh {
+                    sinh
+                } else {
+                    cosh
+                }
+            }
+            Func::Tan | Func::Tanh => {
+                let v = self.new_slot(true);
+                let sign = if f == Func::Tan { 1.0 } else { -1.0 };
+                self.emit(Op::Tan { a, v, sign, f }, &[a])
+            }
+            Func::Exp => self.emit(Op::Exp(a), &[a]),
+            Func::Ln => self.emit(
+                Op::Quotient {
+                    a,
+                    d: a,
+                    sign: 1.0,
+                    f,
+                },
+                &[a],
+            ),
+            Func::Asin | Func::Acos => {
+                let square = self.emit(Op::Square(a), &[a]);
+                let affine = Op::Affine {
+                    a: square,
+                    scale: -1.0,
+                    offset: 1.0,
+                };
+                let one_minus = self.emit(affine, &[square]);
+                let d = self.emit(Op::Sqrt(one_minus), &[one_minus]);
+                let sign = if f == Func::Asin { 1.0 } else { -1.0 };
+                self.emit(Op::Quotient { a, d, sign, f }, &[a])
+            }
+            Func::Atan => {
+                let square = self.emit(Op::Square(a), &[a]);
+                let affine = Op::Affine {
+                    a: square,
+                    scale: 1.0,
+                    offset: 1.0,
+                };
+                let d = self.emit(affine, &[square]);
+                self.emit(Op::Quotient { a, d, sign: 1.0, f }, &[a])
+            }
+            Func::Abs => self.emit(Op::Abs(a), &[a]),
+            Func::Sign => self.emit(Op::Sign(a), &[a]),
+            Func::Atan2 | Func::Min | Func::Max => self.emit(Op::Const(f64::NAN), &[]),
+        }
+    }
+
+    /// The slots of (sin a, cos a), or (sinh a, cosh a), made once per argument.
+    fn pair(&mut self, a: usize, hyperbolic: bool) -> (usize, usize) {
+        let known = if hyperbolic {
+            self.sinh_cosh.get(&a)
+        } else {
+            self.sin_cos.get(&a)
+        };
+        if let Some(pair) = known {
+            return *pair;
+        }
+        let second = self.new_slot(true);
+        let op = if hyperbolic {
+            Op::SinhCosh { a, cosh: second }
+        } else {
+            Op::SinCos { a, cos: second }
+        };
+        let first = self.emit(op, &[a]);
+        let map = if hyperbolic {
+            &mut self.sinh_cosh
+        } else {
+            &mut self.sin_cos
+        };
+        map.insert(a, (first, second));
+        (first, second)
+    }
+
+    fn call2(&mut self, f: Func, a: usize, b: usize) -> usize {
+        match f {
+            Func::Atan2 if self.series(a) || self.series(b) => {
+                let ya = self.emit(Op::Square(a), &[a]);
+                let xb = self.emit(Op::Square(b), &[b]);
+                let start = self.operands.len();
+                self.operands.extend([ya, xb]);
+                let d = self.emit(Op::Add { start, len: 2 }, &[ya, xb]);
+                self.emit(Op::Atan2 { y: a, x: b, d }, &[a, b])
+            }
+            Func::Atan2 => self.emit(
+                Op::Atan2 {
+                    y: a,
+                    x: b,
+                    d: usize::MAX,
+                },
+                &[],
+            ),
+            Func::Min => self.emit(Op::Min(a, b), &[a, b]),
+            Func::Max => self.emit(Op::Max(a, b), &[a, b]),
+            _ => self.emit(Op::Const(f64::NAN), &[]),
+        }
+    }
+}
+
+/// A one-argument call of a constant: only its value at order 0 is needed, which every
+/// recurrence gives from `f` itself (the companion slots are not read at order 0).
+fn constant_call(f: Func, a: usize) -> Op {
+    match f {
+        Func::Exp => Op::Exp(a),
+        Func::Abs => Op::Abs(a),
+        Func::Sign => Op::Sign(a),
+        _ => Op::Quotient {
+            a,
+            d: a,
+            sign: 1.0,
+            f,
+        },
+    }
+}
+
+impl TaylorTape {
+    /// The slot of each input.
+    pub(crate) fn input_slots(&self) -> &[usize] {
+        &self.inputs
+    }
+
+    /// The slot of each output.
+    pub(crate) fn output_slots(&self) -> &[usize] {
+        &self.outputs
+    }
+
+    /// Number of slots (inputs included).
+    pub(crate) fn slot_count(&self) -> usize {
+        self.slots
+    }
+
+    /// The instructions run once at order 0.
+    pub(crate) fn fixed_instructions(&self) -> &[Instr] {
+        &self.fixed
+    }
+
+    /// The instructions run at every order.
+    pub(crate) fn series_instructions(&self) -> &[Instr] {
+        &self.series
+    }
+
+    /// The slots an `Add` sums.
+    pub(crate) fn operand_slots(&self, start: usize, len: usize) -> &[usize] {
+        self.operands.get(start..start + len).unwrap_or(&[])
+    }
+
+    /// Number of instructions (order-0 ones and recurrences).
+    pub fn len(&self) -> usize {
+        self.fixed.len() + self.series.len()
+    }
+
+    /// Whether the tape computes nothing.
+    pub fn is_empty(&self) -> bool {
+        self.fixed.is_empty() && self.series.is_empty()
+    }
+
+    /// Number of inputs.
+    pub fn inputs(&self) -> usize {
+        self.inputs.len()
+    }
+
+    /// Number of outputs (the roots it was compiled from).
+    pub fn outputs(&self) -> usize {
+        self.outputs.len()
+    }
+
+    /// Starts an expansion to `order`: sizes `jet` (allocating only when it grows), zeroes
+    /// it and computes every subexpression that depends on no input, with symbol `s` worth
+    /// `env[s.index()]`.
+    pub fn begin(&self, jet: &mut TaylorJet, order: usize, env: &[f64]) {
+        jet.stride = order + 1;
+        jet.coefficients.clear();
+        jet.coefficients.resize(self.slots * jet.stride, 0.0);
+        for instr in &self.fixed {
+            recurrence::run(instr, &self.operands, env, jet, 0);
+        }
+    }
+
+    /// Sets coefficient `k` of input `i` (to be done before [`advance`](Self::advance)`(k)`).
+    pub fn set_input(&self, jet: &mut TaylorJet, i: usize, k: usize, value: f64) {
+        if let Some(slot) = self.inputs.get(i) {
+            jet.set(*slot, k, value);
+        }
+    }
+
+    /// Computes coefficient `k` of every subexpression, from coefficients 0..=k of the
+    /// inputs and 0..k of the rest.
+    pub fn advance(&self, jet: &mut TaylorJet, k: usize) {
+        if k >= jet.stride {
+            return;
+        }
+        for instr in &self.series {
+            recurrence::run(instr, &self.operands, &[], jet, k);
+        }
+    }
+
+    /// Coefficient `k` of output `i` (NaN if not computed).
+    pub fn output(&self, jet: &TaylorJet, i: usize, k: usize) -> f64 {
+        match self.outputs.get(i) {
+            Some(slot) => jet.get(*slot, k),
+            None => f64::NAN,
+        }
+    }
+}
+
+#[cfg(test)]
+#[path = "taylor/tests.rs"]
+mod tests;
