@@ -50,3 +50,60 @@ pub fn run(args: &RunArgs) -> Result<String, CliError> {
         &outcome.statistics,
     ))
 }
+
+pub use output::Table;
+pub use plan::DEFAULT_TOLERANCE;
+
+/// What a run computed, for a library caller (the Python package): what [`run`] prints and
+/// writes, as values.
+pub struct Completed {
+    /// The recorded quantities at every output time (the start included).
+    pub table: Table,
+    /// The time and state `[q, p, m_s]` where the run ended.
+    pub end: (f64, Vec<f64>),
+    /// The index of the `stop_when` condition that ended the run, if one did.
+    pub stopped_by: Option<usize>,
+    /// The stepper's work.
+    pub statistics: varmass::core::Statistics,
+    /// The summary the tool prints.
+    pub summary: String,
+}
+
+/// [`run`] on a model already derived, with the parameter values given as numbers
+/// (`args.set` is not read) and nothing written to files: the same plan, stepper and
+/// recording, so a library caller gets exactly the tool's run and messages.
+pub fn run_derived(
+    derivation: varmass::symbolic::mechanics::Derivation,
+    parameters: &[(&str, f64)],
+    args: &RunArgs,
+) -> Result<Completed, CliError> {
+    let program =
+        Program::new(derivation, parameters).map_err(|e| CliError::Input(e.to_string()))?;
+    let plan = plan::plan(args, &program)?;
+    let outcome = dispatch::dispatch(program, &plan)?;
+    let program = &outcome.program;
+    let table = output::table(program, &plan.record, &outcome.points)?;
+    let end = outcome
+        .points
+        .last()
+        .cloned()
+        .ok_or_else(|| CliError::Run("the run returned no point".to_string()))?;
+    let stopped_by = outcome
+        .stopped_by
+        .and_then(|index| args.stop_when.get(index))
+        .map(|c| format!("'{c}'"));
+    let summary = output::summary(
+        program,
+        end.0,
+        &end.1,
+        stopped_by.as_deref(),
+        &outcome.statistics,
+    );
+    Ok(Completed {
+        table,
+        end,
+        stopped_by: outcome.stopped_by,
+        statistics: outcome.statistics,
+        summary,
+    })
+}
