@@ -11,7 +11,7 @@ use std::sync::Mutex;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use varmass::core::ensemble::rayon::ThreadPoolBuilder;
-use varmass::core::ensemble::{Ensemble, Partial, Shard, SummaryConfig};
+use varmass::core::ensemble::{member_rng, Ensemble, Partial, Shard, SummaryConfig};
 use varmass_cli::args::RunArgs;
 use varmass_cli::error::CliError;
 
@@ -208,7 +208,7 @@ impl NativeEnsemble {
             names: observables.iter().map(|o| intern(o)).collect(),
             sources,
         };
-        let drawn = spec.sample(&mut varmass::core::ensemble::member_rng(seed, 0));
+        let drawn = spec.sample(&mut member_rng(seed, 0));
         match py.detach(|| spec.fly(&drawn)) {
             Err(e @ (CliError::Input(_) | CliError::Model { .. } | CliError::Read { .. })) => {
                 Err(to_py(py, e))
@@ -238,6 +238,16 @@ impl NativeEnsemble {
             .detach(|| self.spec.run(start..end, threads))
             .map_err(value_error)?;
         Ok(NativePartial { partial })
+    }
+
+    /// Member `index` alone: its sampled parameters and its observables (a failed run is
+    /// its exception).
+    fn member(&self, py: Python<'_>, index: u64) -> PyResult<(Vec<f64>, Vec<f64>)> {
+        let drawn = self.spec.sample(&mut member_rng(self.spec.seed, index));
+        let values = py
+            .detach(|| self.spec.fly(&drawn))
+            .map_err(|e| to_py(py, e))?;
+        Ok((drawn, values))
     }
 
     /// The members of shard `index` of `count` in an ensemble of `total`.

@@ -164,6 +164,12 @@ class Ensemble:
         )
         return self._result(self._native.run(start, end, _threads(threads)))
 
+    def member(self, index):
+        """Member ``index`` alone: its sampled parameters (dict) and its observables (dict),
+        as in any run of the ensemble; a member that fails raises its RunError."""
+        params, values = self._native.member(_count("index", index))
+        return dict(zip(self.sample, params)), dict(zip(self.observables, values))
+
     def _result(self, native) -> "EnsembleResult":
         return EnsembleResult(native, list(self.sample))
 

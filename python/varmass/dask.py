@@ -37,7 +37,9 @@ def run(client, ensemble: Ensemble, total, shards=None, threads: int = 1) -> Ens
         slots = sum(w.get("nthreads", 1) for w in workers.values()) or 1
         shards = 4 * slots
     shards = _count("shards", shards, minimum=1)
-    [remote] = client.scatter([ensemble], broadcast=True)
+    # A fresh key each call (hash=False): a content-hashed key reused by the next call can
+    # be released on the workers while that call still needs it.
+    [remote] = client.scatter([ensemble], broadcast=True, hash=False)
     futures = [
         client.submit(_shard, remote, i, shards, total, threads, pure=False)
         for i in range(shards)
