@@ -46,7 +46,26 @@ pub fn execute(
     run_derived(loaded.derivation, &values, args)
 }
 
-/// Runs the model `source` with the parameter values `set` and the tool's `flags`; returns
+/// A run's flags, parsed once by the tool's parser (a `Model` keeps the last one, so a
+/// sweep over parameter values with the same flags parses them once).
+#[pyclass(module = "varmass._native", frozen)]
+pub struct RunFlags {
+    args: RunArgs,
+}
+
+/// Parses `flags` for a run of the model `file` with the tags `with`.
+#[pyfunction]
+pub fn parse(
+    py: Python<'_>,
+    file: &str,
+    with: Vec<String>,
+    flags: Vec<String>,
+) -> PyResult<RunFlags> {
+    let args = parse_args(file, &with, &flags).map_err(|e| to_py(py, e))?;
+    Ok(RunFlags { args })
+}
+
+/// Runs the model `source` with the parameter values `set` and the parsed `flags`; returns
 /// the recorded columns, the end, the statistics and the summary the tool prints.
 #[pyfunction]
 pub fn run<'py>(
@@ -55,16 +74,16 @@ pub fn run<'py>(
     file: &str,
     with: Vec<String>,
     set: Vec<(String, f64)>,
-    flags: Vec<String>,
+    flags: &RunFlags,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let args = parse_args(file, &with, &flags).map_err(|e| to_py(py, e))?;
+    let args = &flags.args;
     if let Some((name, value)) = set.iter().find(|(_, v)| !v.is_finite()) {
         return Err(value_error(format!(
             "set: `{name}` = {value} is not finite"
         )));
     }
     let done = py
-        .detach(|| execute(source, file, &with, &set, &args))
+        .detach(|| execute(source, file, &with, &set, args))
         .map_err(|e| to_py(py, e))?;
     result(py, &done)
 }

@@ -37,6 +37,9 @@ class Model:
         self._facts = facts
         self._text: Optional[str] = None
         self._latex: Optional[str] = None
+        # The last run's flags as the tool parsed them (parsing costs about as much as a
+        # short run's integration; a sweep over `set` reuses them).
+        self._parsed = None
 
     @classmethod
     def from_file(cls, path, with_=()) -> "Model":
@@ -109,6 +112,11 @@ class Model:
                 parts.append(line)
         return "\n".join(parts)
 
+    def __getstate__(self):
+        state = dict(self.__dict__)
+        state["_parsed"] = None
+        return state
+
     def __repr__(self) -> str:
         tags = f" with {self._with}" if self._with else ""
         return (
@@ -153,7 +161,10 @@ class Model:
             record=record,
             every=every,
         )
-        raw = _native.run(self._source, self._file, self._with, parameters, flags)
+        key = tuple(flags)
+        if self._parsed is None or self._parsed[0] != key:
+            self._parsed = (key, _native.parse(self._file, self._with, flags))
+        raw = _native.run(self._source, self._file, self._with, parameters, self._parsed[1])
         return Solution(raw, _checks.names("stop_when", stop_when))
 
     def ensemble(
