@@ -127,24 +127,28 @@ def test_the_latex_renders_in_katex(file, tags):
 
 
 def test_the_gil_is_released_while_a_run_computes(sled):
-    """Two runs on two threads: while one computes, the other thread gets the GIL and runs
-    Python (a counter advances). With the GIL held for the whole run it could not."""
+    """While a run computes, another thread runs Python: a counter thread stamps the time
+    whenever it holds the GIL, and some stamp falls in the middle half of the run. (With the
+    GIL held through the run, no Python could run between its start and its end.)"""
     import threading
+    import time
 
-    ticks = []
+    stamps = []
     done = threading.Event()
 
     def count():
         while not done.is_set():
-            ticks.append(1)
+            stamps.append(time.perf_counter())
 
     counter = threading.Thread(target=count)
     counter.start()
     try:
-        before = len(ticks)
-        sled.run(set=SLED, init={"x": 0}, until=100.0, method="rk4", step=1e-3)
-        during = len(ticks) - before
+        start = time.perf_counter()
+        sled.run(set=SLED, init={"x": 0}, until=100.0, method="rk4", step=1e-3, every=1.0)
+        end = time.perf_counter()
     finally:
         done.set()
         counter.join()
-    assert during > 0
+    quarter = (end - start) / 4
+    assert end - start > 0.02, "the run is too short to tell"
+    assert any(start + quarter < s < end - quarter for s in stamps)

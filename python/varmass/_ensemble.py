@@ -260,7 +260,7 @@ class EnsembleResult:
     def __eq__(self, other) -> bool:
         return isinstance(other, EnsembleResult) and self._native == other._native
 
-    __hash__ = None  # mutable-looking value type; compared by content
+    __hash__ = None  # compared by content (==), so not hashable
 
     def to_pandas(self):
         """A DataFrame indexed by member, one column per observable (needs pandas)."""
