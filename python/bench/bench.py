@@ -91,7 +91,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--members", type=int, default=5000)
-    parser.add_argument("--dask-members", type=int, default=100_000)
+    parser.add_argument("--dask-members", type=int, default=100_000, help="0: skip Dask")
     args = parser.parse_args()
     build_reference()
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
@@ -117,6 +117,8 @@ def main() -> None:
         f"members/s: {100 * python_rate / rust_rate:.0f} % (target ≥ 90 %)"
     )
 
+    if args.dask_members == 0:
+        return
     one = dask_seconds(ensemble, args.dask_members, 1)
     two = dask_seconds(ensemble, args.dask_members, 2)
     print(
