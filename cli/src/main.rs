@@ -15,15 +15,9 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-mod args;
-mod commands;
-mod error;
-mod lint;
-mod model;
-mod run;
-
-use args::{Cli, Command};
-use error::CliError;
+use varmass_cli::args::{Cli, Command};
+use varmass_cli::error::CliError;
+use varmass_cli::{commands, run};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

@@ -59,12 +59,19 @@ pub fn load(args: &ModelArgs) -> Result<LoadedModel, CliError> {
         path: path.to_path_buf(),
         source,
     })?;
+    load_source(&source, path, &args.with)
+}
+
+/// Derives the model text `source` (diagnostics name it `path`, which need not exist) with
+/// the statements `with` selects: [`load`] without reading a file, for callers that hold the
+/// text (the Python package's `Model(text)`).
+pub fn load_source(source: &str, path: &Path, with: &[String]) -> Result<LoadedModel, CliError> {
     let failed = |diagnostics: Vec<Diagnostic>| CliError::Model {
-        rendered: render(&diagnostics, &source, path),
+        rendered: render(&diagnostics, source, path),
         count: diagnostics.len(),
     };
-    let full = parse_system(&source).map_err(failed)?;
-    let ast = select_tags(&full, &args.with).map_err(|unknown| {
+    let full = parse_system(source).map_err(failed)?;
+    let ast = select_tags(&full, with).map_err(|unknown| {
         let messages: Vec<String> = unknown.iter().map(|u| format!("--with: {u}")).collect();
         CliError::Input(messages.join("\n"))
     })?;
@@ -83,7 +90,7 @@ pub fn load(args: &ModelArgs) -> Result<LoadedModel, CliError> {
         derivation,
         flows,
         ast: full,
-        with: args.with.clone(),
+        with: with.to_vec(),
         selected: ast,
         warnings,
     })

@@ -118,3 +118,85 @@ pub fn program(
         selected: model.selected,
     })
 }
+
+pub use output::Table;
+pub use plan::DEFAULT_TOLERANCE;
+
+/// What a run computed, for a library caller (the Python package): what [`run`] prints and
+/// writes, as values.
+pub struct Completed {
+    /// The recorded quantities at every output time (the start included).
+    pub table: Table,
+    /// The time and state `[q, p, m_s]` where the run ended.
+    pub end: (f64, Vec<f64>),
+    /// The index of the `stop_when` condition that ended the run, if one did.
+    pub stopped_by: Option<usize>,
+    /// The stepper's work.
+    pub statistics: varmass::core::Statistics,
+    /// The summary the tool prints.
+    pub summary: String,
+}
+
+/// [`run`] on a model already loaded, with the parameter values given as numbers (they
+/// replace `args.set`, written back exactly with `{:?}`) and nothing written to files: the
+/// same checks, plan, stepper and recording, so a library caller gets exactly the tool's run
+/// and messages. A run that fails returns its error; the points up to it are in
+/// [`Failed::table`].
+pub fn run_derived(
+    model: LoadedModel,
+    parameters: &[(&str, f64)],
+    args: &RunArgs,
+) -> Result<Completed, Failed> {
+    let mut args = args.clone();
+    args.set = parameters
+        .iter()
+        .map(|(name, value)| format!("{name}={value:?}"))
+        .collect();
+    let (program, plan) = prepare(&args, model, |_| {}).map_err(Failed::before)?;
+    let outcome = dispatch::dispatch(program, &plan).map_err(Failed::before)?;
+    let program = &outcome.program;
+    let table = output::table(program, &plan.record, &outcome.points).map_err(Failed::before)?;
+    if let Some(error) = outcome.failure {
+        let table = Some(table);
+        return Err(Failed { error, table });
+    }
+    let end =
+        outcome.points.last().cloned().ok_or_else(|| {
+            Failed::before(CliError::Run("the run returned no point".to_string()))
+        })?;
+    let stopped_by = outcome
+        .stopped_by
+        .and_then(|index| args.stop_when.get(index))
+        .map(|c| format!("'{c}'"));
+    let summary = output::summary(
+        program,
+        end.0,
+        &end.1,
+        stopped_by.as_deref(),
+        &outcome.statistics,
+    );
+    Ok(Completed {
+        table,
+        end,
+        stopped_by: outcome.stopped_by,
+        statistics: outcome.statistics,
+        summary,
+    })
+}
+
+/// A run of [`run_derived`] that failed: the error, and the points recorded up to the
+/// failure when the run got as far as stepping.
+pub struct Failed {
+    /// What went wrong, with the tool's message.
+    pub error: CliError,
+    /// The recorded quantities up to the failure (`None` when it failed before the first
+    /// step).
+    pub table: Option<Table>,
+}
+
+impl Failed {
+    /// A failure before any point was computed.
+    fn before(error: CliError) -> Self {
+        Self { error, table: None }
+    }
+}

@@ -1,0 +1,131 @@
+"""What the Python boundary costs, and what Dask's workers give.
+
+1. The paper's sled from rest to x = 50 m (DOP853, tolerance 1e-12) through
+   ``Model.run`` against the same run written in Rust on the run-time interpreter
+   (``bench/reference``): target ≤ 1.2×.
+2. Rocket ensemble members per second on one thread, ``Ensemble.run(n, threads=1)``
+   against the Rust interpreter ensemble (the core's serial ``Ensemble``): target ≥ 90 %.
+3. ``varmass.dask.run`` on 10⁵ members: a LocalCluster of two worker processes against
+   one: target ≥ 1.6×.
+
+Each figure is the fastest of interleaved repeats (robust on a shared machine). Run from
+the repository root, with the package installed (``pip install ./python[dask]``):
+
+    python python/bench/bench.py [--repeats 5] [--members 5000] [--dask-members 100000]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import pathlib
+import subprocess
+import time
+
+import varmass
+import varmass.dask
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+PYTHON = ROOT / "python"
+REFERENCE = PYTHON / "target" / "release" / "varmass-python-bench-reference"
+SLED = {"m0": 10.0, "c": 2.0, "g": 9.81, "theta": math.radians(30.0), "f_d": 0.1}
+
+
+def build_reference() -> None:
+    env = dict(os.environ, CARGO_TARGET_DIR=str(PYTHON / "target"))
+    manifest = PYTHON / "bench" / "reference" / "Cargo.toml"
+    subprocess.run(
+        ["cargo", "build", "--release", "--quiet", "--manifest-path", str(manifest)],
+        check=True,
+        env=env,
+    )
+
+
+def reference(what: str, count: int) -> float:
+    out = subprocess.run([str(REFERENCE), what, str(count)], check=True, capture_output=True, text=True)
+    return float(out.stdout.strip())
+
+
+def fastest(f, repeats: int) -> float:
+    best = math.inf
+    for _ in range(repeats):
+        start = time.perf_counter()
+        f()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def sled_run(sled) -> None:
+    sled.run(set=SLED, init={"x": 0}, until=100, stop_when="x = 50", method="dop853",
+             tol=1e-12, record=["x", "x'"])
+
+
+def rocket_ensemble(rocket):
+    return rocket.ensemble(
+        2015,
+        sample={"mu": varmass.uniform(9.5, 10.5), "u_e": varmass.normal(2500, 50)},
+        set={"g": 9.81},
+        init={"y": 0, "m": 1000.0},
+        until=1e4,
+        stop_when="m = 400",
+        observables=["y"],
+    )
+
+
+def dask_seconds(ensemble, members: int, workers: int) -> float:
+    from dask.distributed import Client, LocalCluster
+
+    with LocalCluster(
+        n_workers=workers, threads_per_worker=1, dashboard_address=None, silence_logs=40
+    ) as cluster, Client(cluster) as client:
+        varmass.dask.run(client, ensemble, 200)  # warm the workers (imports, first derive)
+        start = time.perf_counter()
+        result = varmass.dask.run(client, ensemble, members)
+        seconds = time.perf_counter() - start
+    assert result.member_count == members and not result.failures
+    return seconds
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--members", type=int, default=5000)
+    parser.add_argument("--dask-members", type=int, default=100_000, help="0: skip Dask")
+    args = parser.parse_args()
+    build_reference()
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+
+    sled = varmass.Model.from_file(ROOT / "models" / "sled.vms", with_=["impact"])
+    python_sled, rust_sled = math.inf, math.inf
+    for _ in range(args.repeats):
+        python_sled = min(python_sled, fastest(lambda: sled_run(sled), 40))
+        rust_sled = min(rust_sled, reference("sled", 40))
+    print(
+        f"sled to 50 m, DOP853 tol 1e-12 (derive, compile, run): Python {python_sled * 1e6:.0f} µs, "
+        f"Rust {rust_sled * 1e6:.0f} µs: {python_sled / rust_sled:.2f}× (target ≤ 1.2×)"
+    )
+
+    ensemble = rocket_ensemble(varmass.Model.from_file(ROOT / "models" / "rocket.vms"))
+    python_rate, rust_rate = 0.0, 0.0
+    for _ in range(max(1, args.repeats // 2)):
+        seconds = fastest(lambda: ensemble.run(args.members, threads=1), 1)
+        python_rate = max(python_rate, args.members / seconds)
+        rust_rate = max(rust_rate, reference("ensemble", args.members))
+    print(
+        f"rocket ensemble, 1 thread: Python {python_rate:.0f} members/s, Rust {rust_rate:.0f} "
+        f"members/s: {100 * python_rate / rust_rate:.0f} % (target ≥ 90 %)"
+    )
+
+    if args.dask_members == 0:
+        return
+    one = dask_seconds(ensemble, args.dask_members, 1)
+    two = dask_seconds(ensemble, args.dask_members, 2)
+    print(
+        f"Dask, {args.dask_members} members: 1 worker {one:.1f} s, 2 workers {two:.1f} s: "
+        f"{one / two:.2f}× (target ≥ 1.6×)"
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,30 @@
+//! `varmass._native`: the extension module under the `varmass` Python package.
+//!
+//! It is deliberately thin: a model is loaded and run by the command line tool's own code
+//! (`varmass_cli`), so a run from Python has the tool's semantics and messages, and an
+//! ensemble is the core's (`varmass::core::ensemble`). Argument checking that is about
+//! Python types, and the user-facing classes (`Model`, `Solution`, `Ensemble`, …), live in
+//! the pure-Python package beside it (`python/varmass/`).
+//!
+//! Every function that computes releases the GIL (`Python::detach`); every failure is a
+//! Python exception (`errors.rs`), never a panic across the boundary.
+
+mod ensemble;
+mod errors;
+mod model;
+mod run;
+mod sample;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(model::load, m)?)?;
+    m.add_function(wrap_pyfunction!(model::derivation, m)?)?;
+    m.add_function(wrap_pyfunction!(run::parse, m)?)?;
+    m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_class::<run::RunFlags>()?;
+    m.add_class::<ensemble::NativeEnsemble>()?;
+    m.add_class::<ensemble::NativePartial>()?;
+    Ok(())
+}

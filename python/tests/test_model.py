@@ -1,0 +1,154 @@
+"""A model from Python: its facts, its derivation (text and LaTeX that KaTeX parses), and a
+run against the sled's closed form."""
+
+import math
+import shutil
+
+import numpy as np
+import pytest
+
+import varmass
+from conftest import MODELS, SLED
+
+
+def sled_speed(x, m0, c, g, theta, f_d):
+    """Eq. 24 in its stable form (docs/mechanics.md#sled-stable-form): with ε = c x / m0,
+    v²(x) = (2/3) a x (3 + 3ε + ε²)/(1 + ε)², a = g (sin θ − f_d cos θ). (The paper's
+    [m0 + c x − m0³/(m0 + c x)²]/(3c) cancels catastrophically for small c x / m0.)"""
+    a = g * (math.sin(theta) - f_d * math.cos(theta))
+    eps = c * x / m0
+    return math.sqrt(2.0 / 3.0 * a * x * (3.0 + 3.0 * eps + eps * eps) / (1.0 + eps) ** 2)
+
+
+def test_the_sled_flies_to_50_m_as_eq_24_says(sled):
+    sol = sled.run(
+        set=SLED,
+        init={"x": 0},
+        until=100,
+        stop_when="x = 50",
+        method="dop853",
+        tol=1e-12,
+        record=["x", "x'"],
+    )
+    assert sol.stopped_by == "x = 50"
+    x, v = sol["x"][-1], sol["x'"][-1]
+    assert abs(x - 50.0) < 1e-9, x
+    error = abs(v - sled_speed(x, **SLED)) / sled_speed(x, **SLED)
+    # Measured 2.4e-14 (DOP853 at 1e-12 on the tool's run-time tapes, 32 steps).
+    assert error <= 1e-12, error
+    # Every recorded point from 1 m on (v ∝ √x below that turns rounding in x into
+    # relative error in v); measured 2.4e-13.
+    far = sol["x"] >= 1.0
+    exact = np.array([sled_speed(xi, **SLED) for xi in sol["x"][far]])
+    worst = np.max(np.abs(sol["x'"][far] - exact) / exact)
+    assert worst <= 1e-12, worst
+
+
+def test_a_solution_has_the_tools_run_in_numpy_columns(sled):
+    sol = sled.run(set=SLED, init={"x": 0}, until=2.0, every=0.5)
+    # --every 0.5 from 0 to 2: the start and four output times.
+    np.testing.assert_array_equal(sol.t, [0.0, 0.5, 1.0, 1.5, 2.0])
+    assert sol.names == ["x", "x'"]
+    assert sol["t"] is sol.t and isinstance(sol["x"], np.ndarray) and sol["x"].dtype == np.float64
+    assert sol.stopped_by is None and sol.end_time == 2.0
+    assert sol.statistics["accepted_steps"] > 0
+    assert sol.summary.startswith("stopped at t = 2 (reached --until)")
+    with pytest.raises(KeyError, match="'p_x' was not recorded"):
+        sol["p_x"]
+    frame = sol.to_pandas()
+    assert list(frame.columns) == ["t", "x", "x'"]
+    np.testing.assert_array_equal(frame["x"].to_numpy(), sol["x"])
+
+
+def test_plot_draws_each_column(sled):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    sol = sled.run(set=SLED, init={"x": 0}, until=1.0)
+    ax = sol.plot()
+    assert [line.get_label() for line in ax.get_lines()] == ["x", "x'"]
+    np.testing.assert_array_equal(ax.get_lines()[0].get_xdata(), sol.t)
+
+
+def test_the_facts_of_a_model(sled, rocket):
+    assert sled.coordinates == ["x"]
+    assert sled.parameters == ["m0", "c", "g", "theta", "f_d"]
+    assert sled.tags == ["impact"] and sled.with_ == ["impact"]
+    assert sled.state_masses == [] and sled.masses == ["m"]
+    assert rocket.state_masses == ["m"] and rocket.tags == ["drag"]
+    checks = sled.check()
+    # models/sled.vms has seven checks, eq. 24's among them (the impact one selected).
+    assert len(checks) == 7
+    assert ("check R2_x = -c*x'^2", "proven") in [tuple(c) for c in checks]
+
+
+def test_a_model_from_text_is_the_file_model():
+    text = (MODELS / "sled.vms").read_text()
+    from_text = varmass.Model(text, with_=["impact"])
+    from_file = varmass.Model.from_file(MODELS / "sled.vms", with_=["impact"])
+    assert from_text.derivation == from_file.derivation
+    assert from_text.name == "<model>" and from_file.name.endswith("sled.vms")
+
+
+def test_the_derivation_is_the_tools(sled):
+    text = sled.derivation
+    assert "R2" in text and "x" in text
+    latex = sled.latex
+    assert latex.count(r"\begin{align*}") == latex.count(r"\end{align*}") >= 5
+    assert "%" not in sled._repr_latex_()
+
+
+def katex_blocks(latex):
+    """Each align* block of the derivation as KaTeX's `aligned` (KaTeX renders align* only in
+    display mode; `aligned` is the same alignment inside one formula)."""
+    blocks, current = [], None
+    for line in latex.splitlines():
+        if line.strip() == r"\begin{align*}":
+            current = []
+        elif line.strip() == r"\end{align*}":
+            blocks.append("\\begin{aligned}\n" + "\n".join(current) + "\n\\end{aligned}")
+            current = None
+        elif current is not None:
+            current.append(line)
+    return blocks
+
+
+@pytest.mark.parametrize("file, tags", [("sled.vms", ["impact"]), ("rocket.vms", ["drag"]),
+                                        ("swinging_tank.vms", [])])
+def test_the_latex_renders_in_katex(file, tags):
+    """KaTeX itself (the binary shipped in the markdown-katex wheel) parses every block,
+    with errors thrown: an unknown command or an unbalanced brace fails the test."""
+    wrapper = pytest.importorskip("markdown_katex.wrapper")
+    model = varmass.Model.from_file(MODELS / file, with_=tags)
+    blocks = katex_blocks(model.latex)
+    assert len(blocks) >= 5
+    html = wrapper.tex2html("\n\\\\[1em]\n".join(blocks), {"display-mode": True})
+    assert "katex-error" not in html and 'class="katex' in html
+
+
+def test_the_gil_is_released_while_a_run_computes(sled):
+    """While a run computes, another thread runs Python: a counter thread stamps the time
+    whenever it holds the GIL, and some stamp falls in the middle half of the run. (With the
+    GIL held through the run, no Python could run between its start and its end.)"""
+    import threading
+    import time
+
+    stamps = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            stamps.append(time.perf_counter())
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    try:
+        start = time.perf_counter()
+        sled.run(set=SLED, init={"x": 0}, until=100.0, method="rk4", step=1e-3, every=1.0)
+        end = time.perf_counter()
+    finally:
+        done.set()
+        counter.join()
+    quarter = (end - start) / 4
+    assert end - start > 0.02, "the run is too short to tell"
+    assert any(start + quarter < s < end - quarter for s in stamps)

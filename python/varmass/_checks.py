@@ -1,0 +1,129 @@
+"""Arguments from Python, checked and turned into the command line tool's flags.
+
+A wrong type is a ``TypeError`` and an unusable value a ``ValueError``, each naming the
+argument; what the model decides (an unknown name, a missing initial value) is checked by
+the tool itself, with its message.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Iterable, List, Mapping, Optional, Sequence, Tuple
+
+METHODS = (
+    "dormand-prince",
+    "dop853",
+    "sdirk4",
+    "esdirk43",
+    "rk4",
+    "euler",
+    "implicit-midpoint",
+    "variational",
+)
+
+
+def number(name: str, value, *, positive: bool = False) -> float:
+    """``value`` as a finite float (positive if asked)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a number, not {type(value).__name__}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, not {value}")
+    if positive and value <= 0.0:
+        raise ValueError(f"{name} must be positive, not {value}")
+    return value
+
+
+def optional_number(name: str, value, *, positive: bool = False) -> Optional[float]:
+    return None if value is None else number(name, value, positive=positive)
+
+
+def name(argument: str, value) -> str:
+    if not isinstance(value, str):
+        raise TypeError(f"{argument} names must be strings, not {type(value).__name__}")
+    if not value.strip():
+        raise ValueError(f"{argument}: a name is empty")
+    return value.strip()
+
+
+def values(argument: str, mapping) -> List[Tuple[str, float]]:
+    """A mapping of names to numbers, checked."""
+    if mapping is None:
+        return []
+    if not isinstance(mapping, Mapping):
+        raise TypeError(
+            f"{argument} must be a mapping of names to numbers, not {type(mapping).__name__}"
+        )
+    return [
+        (name(argument, key), number(f"{argument}[{key!r}]", value))
+        for key, value in mapping.items()
+    ]
+
+
+def names(argument: str, given) -> List[str]:
+    """One name or a sequence of names."""
+    if given is None:
+        return []
+    if isinstance(given, str):
+        return [name(argument, given)]
+    if not isinstance(given, Iterable):
+        raise TypeError(
+            f"{argument} must be a string or a list of strings, not {type(given).__name__}"
+        )
+    return [name(argument, item) for item in given]
+
+
+def method(value) -> str:
+    if not isinstance(value, str):
+        raise TypeError(f"method must be a string, not {type(value).__name__}")
+    normal = value.strip().lower().replace("_", "-")
+    if normal not in METHODS:
+        raise ValueError(f"method {value!r} is not one of: {', '.join(METHODS)}")
+    return normal
+
+
+def tags(value) -> List[str]:
+    return names("with_", value)
+
+
+def run_flags(
+    *,
+    init: Optional[Mapping] = None,
+    until=None,
+    from_=0.0,
+    stop_when=None,
+    method_name="dormand-prince",
+    tol=None,
+    step=None,
+    record=None,
+    every=None,
+) -> List[str]:
+    """The tool's ``run`` flags for these arguments (numbers in Python's round-trip form)."""
+    if until is None:
+        raise TypeError("until is required: the end time of the run")
+    flags = [f"--from={number('from_', from_)!r}", f"--until={number('until', until)!r}"]
+    flags += [f"--init={key}={value!r}" for key, value in values("init", init)]
+    flags += [f"--stop-when={condition}" for condition in names("stop_when", stop_when)]
+    flags.append(f"--method={method(method_name)}")
+    tol = optional_number("tol", tol, positive=True)
+    step = optional_number("step", step, positive=True)
+    if tol is not None and step is not None:
+        raise ValueError("tol and step exclude each other: give one")
+    if tol is not None:
+        flags.append(f"--tol={tol!r}")
+    if step is not None:
+        flags.append(f"--step={step!r}")
+    flags += [f"--record={quantity}" for quantity in names("record", record)]
+    every = optional_number("every", every, positive=True)
+    if every is not None:
+        flags.append(f"--every={every!r}")
+    return flags
+
+
+def no_duplicates(argument: str, pairs: Sequence[Tuple[str, object]]) -> None:
+    seen = set()
+    for key, _ in pairs:
+        if key in seen:
+            raise ValueError(f"{argument}: `{key}` is given twice")
+        seen.add(key)

@@ -1,0 +1,219 @@
+"""``varmass.Model``: a model file derived, checked, shown and run from Python."""
+
+from __future__ import annotations
+
+import os
+from typing import List, Mapping, NamedTuple, Optional, Tuple
+
+from . import _checks, _native
+from ._errors import RunError
+from ._solution import Solution, column
+
+
+class Check(NamedTuple):
+    """A ``check`` statement of the model and how it was decided."""
+
+    statement: str
+    verdict: str
+
+
+class Model:
+    """A variable-mass model in the varmass DSL, derived when made.
+
+    ``Model(text)`` derives DSL text; ``Model.from_file(path, with_=[...])`` a model file
+    with the statements tagged ``[tag]`` that ``with_`` selects. A model that does not
+    derive (or fails one of its ``check``\\ s) raises :class:`varmass.ModelError` with the
+    file, line and column.
+    """
+
+    def __init__(self, text: str, with_=(), *, name: str = "<model>"):
+        if not isinstance(text, str):
+            raise TypeError(f"text must be a string of DSL, not {type(text).__name__}")
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a string, not {type(name).__name__}")
+        self._source = text
+        self._file = name
+        self._with = _checks.tags(with_)
+        facts = _native.load(self._source, self._file, self._with)
+        self._facts = facts
+        self._text: Optional[str] = None
+        self._latex: Optional[str] = None
+        # The last run's flags as the tool parsed them (parsing costs about as much as a
+        # short run's integration; a sweep over `set` reuses them).
+        self._parsed = None
+
+    @classmethod
+    def from_file(cls, path, with_=()) -> "Model":
+        """Reads and derives the model file ``path`` (diagnostics name it)."""
+        if not isinstance(path, (str, os.PathLike)):
+            raise TypeError(f"path must be a str or os.PathLike, not {type(path).__name__}")
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        return cls(text, with_, name=os.fspath(path))
+
+    @property
+    def name(self) -> str:
+        """The file name, or ``<model>`` for text."""
+        return self._file
+
+    @property
+    def with_(self) -> List[str]:
+        return list(self._with)
+
+    @property
+    def coordinates(self) -> List[str]:
+        return list(self._facts["coordinates"])
+
+    @property
+    def parameters(self) -> List[str]:
+        """The parameters the equations read: each needs a value in ``run(set=...)``."""
+        return list(self._facts["parameters"])
+
+    @property
+    def state_masses(self) -> List[str]:
+        """Masses integrated as state: each needs a value in ``run(init=...)``."""
+        return list(self._facts["state_masses"])
+
+    @property
+    def masses(self) -> List[str]:
+        return list(self._facts["state_masses"]) + list(self._facts["mass_laws"])
+
+    @property
+    def tags(self) -> List[str]:
+        """Every tag of the model file, selected or not."""
+        return list(self._facts["tags"])
+
+    def check(self) -> List[Check]:
+        """Each ``check`` of the model with how it was decided (the model derived, so all
+        hold; one that did not would have raised ModelError)."""
+        return [Check(s, v) for s, v in self._facts["checks"]]
+
+    @property
+    def derivation(self) -> str:
+        """The whole derivation as text, as ``varmass derive`` prints it."""
+        if self._text is None:
+            self._text = _native.derivation(self._source, self._file, self._with, False)
+        return self._text
+
+    @property
+    def latex(self) -> str:
+        """The derivation as LaTeX (``align*`` environments, ``%`` headings), as
+        ``varmass derive --latex`` prints it."""
+        if self._latex is None:
+            self._latex = _native.derivation(self._source, self._file, self._with, True)
+        return self._latex
+
+    def _repr_latex_(self) -> str:
+        """Jupyter shows the derivation: each heading as text, each block as display math."""
+        parts = []
+        for line in self.latex.splitlines():
+            if line.startswith("%"):
+                parts.append(line.lstrip("% ").strip())
+            else:
+                parts.append(line)
+        return "\n".join(parts)
+
+    def __getstate__(self):
+        state = dict(self.__dict__)
+        state["_parsed"] = None
+        return state
+
+    def __repr__(self) -> str:
+        tags = f" with {self._with}" if self._with else ""
+        return (
+            f"<varmass.Model {self._file}{tags}: coordinates {self.coordinates}, "
+            f"parameters {self.parameters}>"
+        )
+
+    def run(
+        self,
+        *,
+        set: Optional[Mapping] = None,
+        init: Optional[Mapping] = None,
+        until=None,
+        from_=0.0,
+        stop_when=None,
+        method: str = "dormand-prince",
+        tol=None,
+        step=None,
+        record=None,
+        every=None,
+    ) -> Solution:
+        """Integrates the model as ``varmass run`` does, with its defaults and messages.
+
+        ``set``: parameter values; ``init``: coordinates and state masses (velocities
+        ``x'`` default to 0); ``until``: the end time (``from_`` the start);
+        ``stop_when``: ``"x = 50"``, ``"y' < 0"`` (falling through), ``"m > 3"``
+        (rising), or a list; ``method``: one of ``varmass.METHODS``; ``tol`` (adaptive
+        methods, default 1e-9) or ``step`` (fixed step); ``record``: the quantities to
+        record (default coordinates, velocities and state masses); ``every``: output
+        spacing instead of every accepted step. The GIL is released while it runs.
+        """
+        parameters = _checks.values("set", set)
+        _checks.no_duplicates("set", parameters)
+        flags = _checks.run_flags(
+            init=init,
+            until=until,
+            from_=from_,
+            stop_when=stop_when,
+            method_name=method,
+            tol=tol,
+            step=step,
+            record=record,
+            every=every,
+        )
+        key = tuple(flags)
+        if self._parsed is None or self._parsed[0] != key:
+            self._parsed = (key, _native.parse(self._file, self._with, flags))
+        try:
+            raw = _native.run(
+                self._source, self._file, self._with, parameters, self._parsed[1]
+            )
+        except RunError as error:
+            error.points = _partial_points(error)
+            raise
+        return Solution(raw, _checks.names("stop_when", stop_when))
+
+    def ensemble(
+        self,
+        seed: int,
+        *,
+        sample: Mapping,
+        observables,
+        until=None,
+        set: Optional[Mapping] = None,
+        init: Optional[Mapping] = None,
+        from_=0.0,
+        stop_when=None,
+        method: str = "dormand-prince",
+        tol=None,
+        step=None,
+    ):
+        """An ensemble of runs of this model (see :class:`varmass.Ensemble`)."""
+        from ._ensemble import Ensemble
+
+        return Ensemble(
+            self,
+            seed,
+            sample=sample,
+            observables=observables,
+            until=until,
+            set=set,
+            init=init,
+            from_=from_,
+            stop_when=stop_when,
+            method=method,
+            tol=tol,
+            step=step,
+        )
+
+
+def _partial_points(error):
+    """The points a failed run recorded before its failure, by name (``t`` first), or
+    ``None`` when it failed before its first step."""
+    partial = getattr(error, "_partial", None)
+    if partial is None:
+        return None
+    points = {"t": column(partial["t"])}
+    points.update((n, column(c)) for n, c in zip(partial["names"], partial["columns"]))
+    return points
