@@ -98,6 +98,7 @@ pub fn emit_system_for(
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
         emitter.switching_functions(&switches),
+        emitter.flow_rates(),
     ];
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");
