@@ -307,6 +307,29 @@ fn mass_runs_out_at(sled: &Sled) -> f64 {
     (integrand(0.0) + inner + integrand(end)) * width / 3.0
 }
 
+/// The paper's sled shedding its mass (c < 0) where it stands: an `outflow` at rest, of
+/// rate −ṁ = −c ẋ ≥ 0. (The paper's `inflow` with c < 0 has the same equation, since
+/// −R1 = −Q1 (0 − ẋ) with Q1 = −c ẋ equals R2 = Q2 (0 − ẋ) with Q2 = c ẋ, but its rate
+/// c ẋ is negative, which every run refuses: see the next test.)
+#[variable_mass_system(
+    "
+    coordinates x
+    mass m = m0 + c*x
+    body sled: mass m, position [x]
+    potential -m*g*x*sin(theta)
+    force sled: [-f_d*m*g*cos(theta)]
+    outflow sled: velocity [0]
+    check x'' = g*sin(theta) - f_d*g*cos(theta) - c*x'^2/m
+"
+)]
+struct SheddingSled {
+    m0: f64,
+    c: f64,
+    g: f64,
+    theta: f64,
+    f_d: f64,
+}
+
 #[test]
 fn a_sled_shedding_its_mass_stops_with_a_typed_error() {
     // c < 0: m = m0 + c x reaches 0 at x = 5 m, a mass law (not a state) running out, at
@@ -314,11 +337,25 @@ fn a_sled_shedding_its_mass_stops_with_a_typed_error() {
     // then diverges. Expectation: NonPositiveMass at t*, never NaN. Measured: DP at
     // t* + 3.5e-10 (x = 5 + 6.5e-8; 3.5e-9 asserted), RK4 (h = 0.01) at the end of the
     // step containing t*, 1.18, having jumped to x = 7.07.
-    let sled = Sled {
+    let closed_form = Sled {
         c: -2.0,
         ..Sled::paper()
     };
-    let t_star = mass_runs_out_at(&sled);
+    let t_star = mass_runs_out_at(&closed_form);
+    let Sled {
+        m0,
+        c,
+        g,
+        theta,
+        f_d,
+    } = closed_form;
+    let sled = SheddingSled {
+        m0,
+        c,
+        g,
+        theta,
+        f_d,
+    };
     let start = SVector::<f64, 2>::new(0.0, 0.0);
     let result = run(
         &mut DormandPrince::new(&sled, 0.0, start, tight(1e-10)).unwrap(),
@@ -346,4 +383,34 @@ fn a_sled_shedding_its_mass_stops_with_a_typed_error() {
         (error.time - step_end).abs() < 1e-12,
         "{error:?}, t* = {t_star}"
     );
+}
+
+/// The same shedding written as the paper's `inflow` (c < 0 makes its rate c ẋ negative):
+/// from rest the rate is 0 at t = 0 (allowed), and below 0 at the end of the first step,
+/// where the run ends with `NegativeFlowRate` (rate c ẋ there, ẋ ≈ a h = 0.0405 for RK4 at
+/// h = 0.01, so ≈ −0.081), long before the mass runs out.
+#[test]
+fn a_sled_shedding_through_an_inflow_is_refused_at_its_first_step() {
+    let sled = Sled {
+        c: -2.0,
+        ..Sled::paper()
+    };
+    let start = SVector::<f64, 2>::new(0.0, 0.0);
+    let step = 1e-2;
+    let mut stepper = ClassicalRk4::new(&sled, 0.0, start, FixedStep { step }).unwrap();
+    let error = run(&mut stepper, &RunConfig::until(100.0), &[]).unwrap_err();
+    let StepErrorKind::NegativeFlowRate { index: 0, rate } = error.kind else {
+        panic!("{error:?}");
+    };
+    assert_eq!(error.time, step);
+    let speed = error.state[1] / sled.mass(0, step, &error.state);
+    assert!(
+        (rate - sled.c * speed).abs() <= 1e-14 * rate.abs(),
+        "{rate} vs {speed}"
+    );
+    assert!(
+        (speed - sled.acceleration() * step).abs() < 1e-3 * speed,
+        "{speed}"
+    );
+    assert_eq!(sled.flow_name(0), Some("inflow `sled`"));
 }

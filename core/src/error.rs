@@ -92,9 +92,10 @@ pub enum StepErrorKind {
     },
     /// A flow's rate came out negative (Q1 of an outflow or Q2 of an inflow below 0): the
     /// statement declares mass leaving (or arriving) and the rate says the opposite, so the
-    /// reactive forces (eqs. 15–16) would act with the wrong sign. Found by
-    /// [`StepError::check_flow_rates`] at the start and after each step, at the error's
-    /// time and state.
+    /// reactive forces (eqs. 15–16) would act with the wrong sign. A run checks
+    /// [`VariableMassSystem::flow_rate`] at the start and after each step (through
+    /// [`StepError::check_flow_rates`]), at the error's time and state; the flow's text is
+    /// [`VariableMassSystem::flow_name`].
     #[error("the rate of flow {index} is negative ({rate:e})")]
     NegativeFlowRate {
         /// The flow's index, in the order the model declares its flows.

@@ -119,6 +119,26 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         None
     }
 
+    /// The number of flows (`outflow` and `inflow` statements) whose rates a run checks.
+    /// None by default; generated systems count their flows.
+    fn flow_count(&self) -> usize {
+        0
+    }
+
+    /// Flow `index` as the model declares it (e.g. ``inflow `cart` ``), for messages.
+    fn flow_name(&self, _index: usize) -> Option<&str> {
+        None
+    }
+
+    /// The rate of flow `index` (Q1 of an outflow, Q2 of an inflow, eqs. 15–16) at a
+    /// velocity state, NaN past the last. It is ≥ 0 by definition (the statement says which
+    /// way the mass goes), so a run ends with
+    /// [`StepErrorKind::NegativeFlowRate`](crate::StepErrorKind::NegativeFlowRate) at the
+    /// first point where one is negative, instead of turning the reactive forces round.
+    fn flow_rate(&self, _index: usize, _t: f64, _velocity_state: &SVector<f64, S>) -> f64 {
+        f64::NAN
+    }
+
     /// Q* − R1 + R2: the generalized forces of the paper's eq. 6 and 14 (what drives d*p/dt
     /// besides ∂*L/∂q).
     fn frozen_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {

@@ -69,7 +69,8 @@ impl Spec {
             &self.with,
             &parameters,
             &self.args,
-        )?;
+        )
+        .map_err(|failed| failed.error)?;
         let (time, row) = done
             .table
             .rows

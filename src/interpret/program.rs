@@ -62,6 +62,8 @@ pub struct Program {
     switch_names: Vec<String>,
     /// The Taylor recurrences of the state rate.
     taylor: TaylorProgram,
+    /// The flows' rates (Q1 of an outflow, Q2 of an inflow), in the model's order.
+    flows: Stage,
     scratch: RefCell<Scratch>,
 }
 
@@ -119,6 +121,7 @@ impl Program {
             quantities,
             switches: stage(switch_roots),
             switch_names,
+            flows: stage(d.flow_rates.clone()),
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),
@@ -313,6 +316,27 @@ impl Program {
         self.load_velocity_state(scratch, t, velocity_state);
         self.run(&self.switches, scratch);
         copy(&scratch.values, out);
+    }
+
+    /// The number of flows (`outflow` and `inflow` statements).
+    pub fn flow_count(&self) -> usize {
+        self.d.flow_rates.len()
+    }
+
+    /// Flow `index` as the model declares it (``inflow `cart` ``).
+    pub fn flow_name(&self, index: usize) -> Option<&str> {
+        self.d.flow_names.get(index).map(String::as_str)
+    }
+
+    /// The rate of flow `index` at a velocity state `[q, q̇, m_s]` (NaN past the last).
+    pub fn flow_rate(&self, index: usize, t: f64, velocity_state: &[f64]) -> f64 {
+        if index >= self.flow_count() {
+            return f64::NAN;
+        }
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_velocity_state(scratch, t, velocity_state);
+        self.run(&self.flows, scratch);
+        scratch.values.get(index).copied().unwrap_or(f64::NAN)
     }
 
     fn stage(&self, quantity: Quantity) -> &Stage {

@@ -200,6 +200,18 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         self.program.switch_name(index)
     }
 
+    fn flow_count(&self) -> usize {
+        self.program.flow_count()
+    }
+
+    fn flow_name(&self, index: usize) -> Option<&str> {
+        self.program.flow_name(index)
+    }
+
+    fn flow_rate(&self, index: usize, t: f64, velocity_state: &SVector<f64, S>) -> f64 {
+        self.program.flow_rate(index, t, velocity_state.as_slice())
+    }
+
     fn switching_functions(&self, t: f64, velocity_state: &SVector<f64, S>, values: &mut [f64]) {
         self.program
             .switching_functions(t, velocity_state.as_slice(), values);

@@ -13,7 +13,6 @@ use varmass::core::{
 };
 use varmass::interpret::{Program, TapeSystem};
 
-use super::flows::FlowRates;
 use super::names::{evaluate, Observable};
 use super::plan::{Plan, Steps};
 use super::watch::Watched;
@@ -153,20 +152,11 @@ where
             _ => Event::function(w.as_ref(), c.direction, EventAction::Stop),
         })
         .collect();
-    let flows = FlowRates::new(program, &plan.parameters);
+    // The flows' rates are checked by the core's run at the start and after every step
+    // (`TapeSystem::flow_rate`): a negative one fails it with the start point kept below.
     let start = *stepper.state();
-    if !flows.is_empty() {
-        if let Err(kind) = flows.check(plan.from, start.as_slice()) {
-            let first = vec![(plan.from, start.as_slice().to_vec())];
-            let error = StepError::new(plan.from, start, kind);
-            return Err((first, *stepper.statistics(), error));
-        }
-    }
     let mut stepper =
         Watched::new(stepper, plan.from, plan.until).with_time_limit(plan.max_seconds);
-    if !flows.is_empty() {
-        stepper = stepper.with_guard(Box::new(|t, state| flows.check(t, state)));
-    }
     let mut points = vec![(plan.from, start.as_slice().to_vec())];
     let targets = output_times(plan);
     for target in targets {

@@ -3,7 +3,6 @@
 //! quantities asked for.
 
 mod dispatch;
-mod flows;
 #[cfg(test)]
 mod fuzz;
 mod integrate;

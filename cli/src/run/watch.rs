@@ -3,9 +3,9 @@
 //! taken per second. The bar appears only once the run has lasted about a second, and never
 //! when stderr is not a terminal.
 //!
-//! The same adapter enforces what the tool checks after every step and the core's steppers
-//! do not: the wall-clock limit (`--max-seconds`) and the run's [`Guard`] (the flows' rates
-//! must stay non-negative).
+//! The same adapter enforces what the tool checks after every step and the core's run does
+//! not: the wall-clock limit (`--max-seconds`). (The flows' rates, which must stay
+//! non-negative, are the core's check: `VariableMassSystem::flow_rate`.)
 
 use std::time::{Duration, Instant};
 
@@ -19,11 +19,8 @@ const QUIET_FOR: Duration = Duration::from_secs(1);
 /// The bar's resolution.
 const TICKS: u64 = 1000;
 
-/// A check of the state after each accepted step, on `(t, [q, p, m_s])`.
-pub type Guard<'a> = Box<dyn Fn(f64, &[f64]) -> Result<(), StepErrorKind> + 'a>;
-
-/// A stepper with a progress bar over `[from, until]`, a wall-clock limit and a guard.
-pub struct Watched<'a, St> {
+/// A stepper with a progress bar over `[from, until]` and a wall-clock limit.
+pub struct Watched<St> {
     inner: St,
     bar: ProgressBar,
     started: Instant,
@@ -32,11 +29,10 @@ pub struct Watched<'a, St> {
     until: f64,
     steps: u64,
     max_seconds: Option<f64>,
-    guard: Option<Guard<'a>>,
 }
 
-impl<'a, St> Watched<'a, St> {
-    /// Wraps `inner` for a run from `from` to `until`, with no limit and no guard.
+impl<St> Watched<St> {
+    /// Wraps `inner` for a run from `from` to `until`, with no limit.
     pub fn new(inner: St, from: f64, until: f64) -> Self {
         let bar = ProgressBar::with_draw_target(Some(TICKS), ProgressDrawTarget::hidden());
         if let Ok(style) = ProgressStyle::with_template("{bar:40} {msg} [{elapsed}, eta {eta}]") {
@@ -51,7 +47,6 @@ impl<'a, St> Watched<'a, St> {
             until,
             steps: 0,
             max_seconds: None,
-            guard: None,
         }
     }
 
@@ -61,18 +56,8 @@ impl<'a, St> Watched<'a, St> {
         self
     }
 
-    /// Checks `guard` after every step.
-    pub fn with_guard(mut self, guard: Guard<'a>) -> Self {
-        self.guard = Some(guard);
-        self
-    }
-
-    /// What is wrong after a step at `(time, state)`, if anything: the guard's verdict,
-    /// then the time limit.
-    fn check(&self, time: f64, state: &[f64]) -> Result<(), StepErrorKind> {
-        if let Some(guard) = &self.guard {
-            guard(time, state)?;
-        }
+    /// What is wrong after a step, if anything: the time limit passed.
+    fn check(&self) -> Result<(), StepErrorKind> {
         match self.max_seconds {
             Some(seconds) if self.started.elapsed().as_secs_f64() > seconds => {
                 Err(StepErrorKind::WallClockExceeded { seconds })
@@ -106,13 +91,13 @@ impl<'a, St> Watched<'a, St> {
     }
 }
 
-impl<St> Drop for Watched<'_, St> {
+impl<St> Drop for Watched<St> {
     fn drop(&mut self) {
         self.bar.finish_and_clear();
     }
 }
 
-impl<St, const N: usize, const S: usize> Stepper<N, S> for Watched<'_, St>
+impl<St, const N: usize, const S: usize> Stepper<N, S> for Watched<St>
 where
     St: Stepper<N, S>,
 {
@@ -134,7 +119,7 @@ where
         let outcome = self.inner.step()?;
         let (time, state) = (self.inner.time(), *self.inner.state());
         self.tick(time);
-        self.check(time, state.as_slice())
+        self.check()
             .map_err(|kind| StepError::new(time, state, kind))?;
         Ok(outcome)
     }
@@ -175,41 +160,6 @@ mod tests {
         let derivation = derive_source(source, Parameters::Inferred).expect("derives");
         let program = Program::new(derivation, &[("m0", 2.0), ("g", 9.81)]).expect("fits");
         TapeSystem::<1, 2>::new(program).expect("sizes")
-    }
-
-    /// The guard is asked after every step and its refusal ends the run at that step's end,
-    /// with the state there: here y < −1 is refused, and the fall from rest, y = −g t²/2,
-    /// passes −1 at t = √(2/9.81) ≈ 0.4515.
-    #[test]
-    fn the_guard_ends_the_run_at_the_first_step_it_refuses() {
-        let system = falling_body();
-        let start = SVector::<f64, 2>::new(0.0, 0.0);
-        let stepper = DormandPrince::new(
-            &system,
-            0.0,
-            start,
-            StepControl::Fixed(varmass::core::steppers::FixedStep { step: 0.1 }),
-        )
-        .expect("starts");
-        let refuse = StepErrorKind::NegativeFlowRate {
-            index: 0,
-            rate: -1.0,
-        };
-        let guard: Guard<'_> = Box::new(move |_, state| match state[0] < -1.0 {
-            true => Err(refuse),
-            false => Ok(()),
-        });
-        let mut watched = Watched::new(stepper, 0.0, 3.0).with_guard(guard);
-        let error = run(&mut watched, &RunConfig::until(3.0), &[]).unwrap_err();
-        // The first step end past 0.4515 is t = 0.5, where y = −9.81/8 (exact for a
-        // quadratic under a fifth-order method, to rounding).
-        assert_eq!(error.kind, refuse);
-        assert!((error.time - 0.5).abs() <= 1e-15, "{}", error.time);
-        assert!(
-            (error.state[0] + 9.81 / 8.0).abs() <= 1e-14,
-            "{}",
-            error.state[0]
-        );
     }
 
     /// A wall-clock limit of 0 s is past after the first step, which it then ends.

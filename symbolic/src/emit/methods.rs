@@ -411,3 +411,61 @@ impl Emitter<'_> {
         }
     }
 }
+
+impl Emitter<'_> {
+    /// `flow_count`, `flow_name` and `flow_rate(index, t, velocity_state)`: each flow's rate
+    /// (Q1 of an outflow, Q2 of an inflow, eqs. 15–16), which a run checks is ≥ 0 at every
+    /// point. Nothing when there are no flows (the trait's defaults).
+    pub(crate) fn flow_rates(&self) -> TokenStream {
+        let d = self.d;
+        if d.flow_rates.is_empty() {
+            return TokenStream::new();
+        }
+        let runtime = &self.target.runtime;
+        let (_, s_lit, _, _) = self.sizes();
+        let count = Literal::usize_unsuffixed(d.flow_rates.len());
+        let docs = self.docs(
+            "The flows' rates, ≥ 0 by definition: a run ends where one is negative.",
+            d.flow_names
+                .iter()
+                .zip(&d.flow_rates)
+                .map(|(name, rate)| format!("{name}: {}", self.display(*rate))),
+        );
+        let arms = d.flow_rates.iter().enumerate().map(|(i, rate)| {
+            let index = Literal::usize_unsuffixed(i);
+            let body = self.body(Input::VelocityState, &[*rate], |mut outs| {
+                outs.pop().unwrap_or_default()
+            });
+            quote!(#index => { #body },)
+        });
+        let name_arms = d.flow_names.iter().enumerate().map(|(i, name)| {
+            let index = Literal::usize_unsuffixed(i);
+            quote!(#index => ::core::option::Option::Some(#name),)
+        });
+        quote! {
+            #[inline]
+            fn flow_count(&self) -> usize {
+                #count
+            }
+            fn flow_name(&self, index: usize) -> ::core::option::Option<&str> {
+                match index {
+                    #(#name_arms)*
+                    _ => ::core::option::Option::None,
+                }
+            }
+            #docs
+            #[inline]
+            fn flow_rate(
+                &self,
+                index: usize,
+                t: f64,
+                velocity_state: &#runtime::nalgebra::SVector<f64, #s_lit>,
+            ) -> f64 {
+                match index {
+                    #(#arms)*
+                    _ => f64::NAN,
+                }
+            }
+        }
+    }
+}

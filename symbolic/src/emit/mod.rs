@@ -100,6 +100,7 @@ pub fn emit_system_for(
         optional(outputs.jacobian, || emitter.jacobian()),
         emitter.switching_functions(&switches),
         optional(outputs.taylor, || taylor::taylor_method(d, runtime)),
+        emitter.flow_rates(),
     ];
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");

@@ -115,6 +115,9 @@ pub struct Derivation {
     pub impact_force: Vec<Id>,
     /// The rate of each flow (Q1 outflow, Q2 inflow), defaults filled in.
     pub flow_rates: Vec<Id>,
+    /// Each flow as the model declares it, for messages: ``outflow `bucket` `` or
+    /// ``inflow `cart` ``, in the order of [`Self::flow_rates`].
+    pub flow_names: Vec<String>,
     /// d*p/dt = ∂*L/∂q + Q* − R1 + R2 (eq. 14).
     pub frozen_momentum_rate: Vec<Id>,
     /// Σᵢ ṁᵢ ∂*p/∂mᵢ.
@@ -255,6 +258,15 @@ fn assemble(model: Model, e: Equations) -> (Derivation, CheckScope) {
         parameter_mode: model.parameter_mode,
         checks: model.checks,
     };
+    let flow_names = model
+        .flows
+        .iter()
+        .map(|flow| {
+            let kind = if flow.inflow { "inflow" } else { "outflow" };
+            let body = model.bodies.get(flow.body).map_or("?", |b| b.name.as_str());
+            format!("{kind} `{body}`")
+        })
+        .collect();
     let derivation = Derivation {
         pool: model.pool,
         time: model.time,
@@ -277,6 +289,7 @@ fn assemble(model: Model, e: Equations) -> (Derivation, CheckScope) {
         reactive_thrust: e.forces.reactive_thrust,
         impact_force: e.forces.impact,
         flow_rates: e.flow_rates,
+        flow_names,
         frozen_momentum_rate: e.rates.frozen,
         mass_flux_force: e.rates.mass_flux,
         momentum_rate: e.rates.total,
