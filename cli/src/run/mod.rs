@@ -97,7 +97,7 @@ pub fn program(
     }
     let (ast, with) = (&model.ast, &model.with);
     let tag_hint = |e: ProgramError| match &e {
-        ProgramError::UnknownParameter { name, .. } => match tag_with_parameter(ast, with, name) {
+        ProgramError::UnknownParameter { name, .. } => match tag_with_parameter(ast, with, name, &model.base) {
             Some(tag) => CliError::Input(format!(
                 "`{name}` is a parameter of the statements tagged `[{tag}]`, which this run \
                  leaves out; add `--with {tag}` to include them"

@@ -36,6 +36,7 @@ mod resolve;
 mod rigid;
 mod rigid_forces;
 mod rotation;
+mod stops;
 mod switches;
 mod tables;
 
@@ -50,6 +51,7 @@ pub use model::{
 pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
+pub use stops::{time_tables, TimeTable};
 pub use switches::switching_functions;
 pub use tables::{read_points, ModelTable};
 
