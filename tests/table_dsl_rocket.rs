@@ -8,7 +8,7 @@
 
 use varmass::core::nalgebra::{SVector, Vector3};
 use varmass::core::steppers::{AdaptiveControl, Dop853, DormandPrince, StepControl};
-use varmass::core::{run, RunConfig, Stepper, StepErrorKind, VariableMassSystem};
+use varmass::core::{run, RunConfig, StepErrorKind, Stepper, VariableMassSystem};
 use varmass::prelude::variable_mass_system;
 use varmass_table::{Interpolation, Motor, Piecewise};
 
@@ -26,7 +26,10 @@ const M0: f64 = 20.0;
 const END: f64 = 6.0;
 
 fn motor() -> Motor {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/models/motors/Cesaroni_M1670.eng");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/models/motors/Cesaroni_M1670.eng"
+    );
     Motor::parse(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
@@ -55,7 +58,9 @@ fn control(tolerance: f64, base: AdaptiveControl) -> StepControl {
 /// The largest relative errors of m and v over every accepted step of one run to END, and
 /// the times the run passed through.
 fn worst<St: Stepper<1, 3, System = MotorRocket>>(mut stepper: St) -> ([f64; 2], Vec<f64>) {
-    let impulse = Interpolation::Linear.interpolate(&motor().thrust).antiderivative();
+    let impulse = Interpolation::Linear
+        .interpolate(&motor().thrust)
+        .antiderivative();
     let u_e = motor().exhaust_speed();
     let solution = run(&mut stepper, &RunConfig::until(END), &[]).unwrap();
     let mut worst = [0.0_f64; 2];
@@ -85,7 +90,13 @@ fn the_knots_are_stop_times() {
     }
     assert_eq!(system.next_stop_time(at), None);
     // And a run lands on each.
-    let stepper = DormandPrince::new(&system, 0.0, start(), control(1e-8, AdaptiveControl::default())).unwrap();
+    let stepper = DormandPrince::new(
+        &system,
+        0.0,
+        start(),
+        control(1e-8, AdaptiveControl::default()),
+    )
+    .unwrap();
     let (_, times) = worst(stepper);
     for knot in &knots[1..] {
         assert!(times.contains(knot), "no step ends at the knot {knot}");
@@ -101,7 +112,10 @@ fn dormand_prince_meets_the_closed_form() {
         let base = AdaptiveControl::default();
         let stepper = DormandPrince::new(&system, 0.0, start(), control(tolerance, base)).unwrap();
         let ([mass, speed], _) = worst(stepper);
-        assert!(mass <= bound && speed <= bound, "{tolerance:e}: {mass:e} {speed:e}");
+        assert!(
+            mass <= bound && speed <= bound,
+            "{tolerance:e}: {mass:e} {speed:e}"
+        );
     }
 }
 
@@ -113,7 +127,10 @@ fn dop853_meets_the_closed_form() {
         let base = AdaptiveControl::dop853();
         let stepper = Dop853::new(&system, 0.0, start(), control(tolerance, base)).unwrap();
         let ([mass, speed], _) = worst(stepper);
-        assert!(mass <= bound && speed <= bound, "{tolerance:e}: {mass:e} {speed:e}");
+        assert!(
+            mass <= bound && speed <= bound,
+            "{tolerance:e}: {mass:e} {speed:e}"
+        );
     }
 }
 
@@ -142,7 +159,9 @@ fn past_the_data_without_outside_the_run_ends_with_a_typed_error() {
     let burnout = *motor().thrust.arguments().last().unwrap();
     let base = AdaptiveControl::default();
     let mut stepper = DormandPrince::new(&system, 0.0, start(), control(1e-8, base)).unwrap();
-    let error = run(&mut stepper, &RunConfig::until(END), &[]).unwrap_err().error;
+    let error = run(&mut stepper, &RunConfig::until(END), &[])
+        .unwrap_err()
+        .error;
     // The run lands on burnout (the last knot, a stop time) and restarts there; the first
     // step past it asks F after the data.
     let StepErrorKind::TableOutside { table, argument } = error.kind else {

@@ -35,7 +35,10 @@ fn place_model_files() {
             let path = entry.expect("reads the model folder").path();
             // Models, and the table files they read.
             let copied = ["vms", "eng", "csv"];
-            if path.extension().is_some_and(|e| copied.iter().any(|c| e == *c)) {
+            if path
+                .extension()
+                .is_some_and(|e| copied.iter().any(|c| e == *c))
+            {
                 let name = path.file_name().expect("a file has a name");
                 fs::copy(&path, destination.join(name)).expect("copies a model file");
             }

@@ -77,8 +77,7 @@ pub fn load(args: &ModelArgs) -> Result<LoadedModel, CliError> {
     })?;
     // Table files are read relative to the model file.
     let base = path.parent().map(PathBuf::from).unwrap_or_default();
-    let derivation =
-        derive_in(&ast, Parameters::Inferred, Outputs::FULL, &base).map_err(failed)?;
+    let derivation = derive_in(&ast, Parameters::Inferred, Outputs::FULL, &base).map_err(failed)?;
     let flows = ast
         .statements
         .iter()

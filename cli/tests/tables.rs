@@ -34,7 +34,9 @@ fn motor() -> Motor {
 #[test]
 fn the_motor_rocket_runs_from_its_table_file() {
     let u_e = motor().exhaust_speed();
-    let impulse = Interpolation::Linear.interpolate(&motor().thrust).antiderivative();
+    let impulse = Interpolation::Linear
+        .interpolate(&motor().thrust)
+        .antiderivative();
     let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("motor_rocket.csv");
     run(
         &[
@@ -70,7 +72,7 @@ fn the_motor_rocket_runs_from_its_table_file() {
         rows += 1;
     }
     assert!(rows > 10, "{rows} rows");
-    // Measured: see the report; bound 1e-12 (the at tolerance 1e-12).
+    // Measured 5.3e-16 over 116 recorded rows; bound 1e-12 (the at tolerance 1e-12).
     assert!(worst <= 1e-12, "relative error in m {worst:e}");
 }
 
@@ -82,7 +84,10 @@ fn a_table_outside_its_data_fails_the_run_naming_it() {
     let (_, stderr) = run(
         &[
             "run",
-            &format!("{}/tests/data/tables/strict_rocket.vms", env!("CARGO_MANIFEST_DIR")),
+            &format!(
+                "{}/tests/data/tables/strict_rocket.vms",
+                env!("CARGO_MANIFEST_DIR")
+            ),
             "--set",
             &format!("u_e={u_e:?}"),
             "--set",
@@ -114,6 +119,9 @@ fn a_malformed_table_file_is_a_diagnostic_with_its_line() {
     )
     .unwrap();
     let (_, stderr) = run(&["check", model.to_str().unwrap()], 1);
-    assert!(stderr.contains("thrust.csv:3:5: `x` is not a number"), "{stderr}");
+    assert!(
+        stderr.contains("thrust.csv:3:5: `x` is not a number"),
+        "{stderr}"
+    );
     assert!(stderr.contains("model.vms:2:14"), "{stderr}");
 }

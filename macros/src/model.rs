@@ -68,7 +68,10 @@ impl ModelText {
     /// Makes cargo rebuild the crate when a table's data change: an `include_bytes!` of
     /// each table file.
     pub fn table_tracking(&self, d: &Derivation) -> TokenStream {
-        let paths = d.tables.iter().map(|t| t.path.to_string_lossy().into_owned());
+        let paths = d
+            .tables
+            .iter()
+            .map(|t| t.path.to_string_lossy().into_owned());
         quote!(#(const _: &[u8] = ::core::include_bytes!(#paths);)*)
     }
 

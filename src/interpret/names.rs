@@ -10,7 +10,9 @@ pub(crate) fn intern(name: &str) -> &'static str {
     static NAMES: OnceLock<Mutex<BTreeSet<&'static str>>> = OnceLock::new();
     let names = NAMES.get_or_init(|| Mutex::new(BTreeSet::new()));
     // A poisoned lock still holds a valid set: nothing can panic while it is held.
-    let mut names = names.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let mut names = names
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
     if let Some(known) = names.get(name) {
         return known;
     }

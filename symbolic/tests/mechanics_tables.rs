@@ -33,7 +33,10 @@ fn error(source: &str, message: &str, line: u32, column: u32) {
     let found = errors.iter().find(|e| e.message.contains(message));
     let Some(found) = found else {
         let all: Vec<String> = errors.iter().map(|e| e.render(source)).collect();
-        panic!("no diagnostic containing {message:?}; got:\n{}", all.join("\n"));
+        panic!(
+            "no diagnostic containing {message:?}; got:\n{}",
+            all.join("\n")
+        );
     };
     assert_eq!(
         (found.span.line, found.span.column),
@@ -61,7 +64,11 @@ fn options_come_in_any_order_with_defaults() {
             Interpolation::Spline,
             Outside::Hold,
         ),
-        (r#"table G(t) = "g.csv""#, Interpolation::Linear, Outside::Error),
+        (
+            r#"table G(t) = "g.csv""#,
+            Interpolation::Linear,
+            Outside::Error,
+        ),
     ];
     for (statement, interpolation, outside) in cases {
         let ast = parse_system(&format!("coordinates x\n{statement}")).unwrap();
@@ -70,7 +77,8 @@ fn options_come_in_any_order_with_defaults() {
         };
         assert_eq!((decl.interpolation, decl.outside), (interpolation, outside));
     }
-    let ast = parse_system("coordinates x\ntable rho(y) = \"atmosphere/density.csv\", pchip").unwrap();
+    let ast =
+        parse_system("coordinates x\ntable rho(y) = \"atmosphere/density.csv\", pchip").unwrap();
     let StatementKind::Table(decl) = &ast.statements[1].kind else {
         panic!()
     };
@@ -87,7 +95,10 @@ fn parse_error(source: &str, message: &str, line: u32, column: u32) -> Diagnosti
     let found = errors.iter().find(|e| e.message.contains(message));
     let Some(found) = found else {
         let all: Vec<String> = errors.iter().map(|e| e.render(source)).collect();
-        panic!("no diagnostic containing {message:?}; got:\n{}", all.join("\n"));
+        panic!(
+            "no diagnostic containing {message:?}; got:\n{}",
+            all.join("\n")
+        );
     };
     assert_eq!((found.span.line, found.span.column), (line, column));
     found.clone()
@@ -154,7 +165,10 @@ fn a_table_of_t_derives_and_its_checks_hold() {
     assert_eq!(d.tables[0].name, "F");
     assert_eq!(d.tables[0].path, data().join("ramp.csv"));
     assert_eq!(d.checks.len(), 1);
-    assert!(!matches!(d.checks[0].verdict, Identity::Refuted { .. } | Identity::Undecided));
+    assert!(!matches!(
+        d.checks[0].verdict,
+        Identity::Refuted { .. } | Identity::Undecided
+    ));
     // A check that is false at the random points (F is not F + 1) fails: the checks
     // evaluate table calls.
     let wrong = RAMP.replace("check y'' = F(t)/m - g", "check y'' = (F(t) + 1)/m - g");

@@ -70,7 +70,16 @@ pub(crate) fn block(
     runtime: &TokenStream,
     lookups: Lookups,
 ) -> Block {
-    staged_block(pool, &[], &[], |_| Vec::new(), roots, prefix, runtime, lookups)
+    staged_block(
+        pool,
+        &[],
+        &[],
+        |_| Vec::new(),
+        roots,
+        prefix,
+        runtime,
+        lookups,
+    )
 }
 
 /// Like [`block`], with a first stage that binds symbols the outputs use: `first` is

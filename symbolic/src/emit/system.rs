@@ -149,7 +149,13 @@ impl Emitter<'_> {
             .collect();
         if !laws.is_empty() {
             let roots: Vec<Id> = laws.iter().map(|(_, l)| self.code(*l)).collect();
-            let b = block(&self.d.pool, &roots, "law", &self.target.runtime, lookups(input));
+            let b = block(
+                &self.d.pool,
+                &roots,
+                "law",
+                &self.target.runtime,
+                lookups(input),
+            );
             out.extend(b.lets);
             for ((symbol, _), value) in laws.iter().zip(b.outputs) {
                 let local = symbol_ident(&self.d.pool, *symbol);
@@ -243,7 +249,16 @@ impl Emitter<'_> {
             used.extend(self.used(&first));
             used.extend(self.d.coordinates.iter().map(|c| c.momentum));
             let bound: Vec<Symbol> = self.d.coordinates.iter().map(|c| c.velocity).collect();
-            staged_block(&self.d.pool, &first, &bound, bridge, roots, "t", runtime, lookups(input))
+            staged_block(
+                &self.d.pool,
+                &first,
+                &bound,
+                bridge,
+                roots,
+                "t",
+                runtime,
+                lookups(input),
+            )
         } else {
             block(&self.d.pool, roots, "t", runtime, lookups(input))
         };

@@ -11,7 +11,9 @@ impl ExprPool {
     /// Tables extrapolate their end pieces: values at a point test algebra, not data.
     pub fn eval(&self, e: Id, env: &[f64]) -> f64 {
         let mut out = [f64::NAN];
-        self.compile(&[e]).extrapolating().eval_with(env, &mut Vec::new(), &mut out);
+        self.compile(&[e])
+            .extrapolating()
+            .eval_with(env, &mut Vec::new(), &mut out);
         out[0]
     }
 }

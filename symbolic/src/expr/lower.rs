@@ -188,7 +188,9 @@ fn lower_node(
             }
             let args: Vec<Id> = lowered.into_iter().collect::<Option<_>>()?;
             match (f, args.as_slice()) {
-                (Some(Func::Table { table, order }), [u]) => Some(pool.table_call(table, order, *u)),
+                (Some(Func::Table { table, order }), [u]) => {
+                    Some(pool.table_call(table, order, *u))
+                }
                 (Some(f), _) => Some(pool.call(f, &args)),
                 (None, [u]) if func.node == SQRT => Some(pool.sqrt(*u)),
                 // A name of FUNCTIONS without a `Func` (tested not to exist).

@@ -3,8 +3,8 @@
 //! is not smooth in t, at t = (knot − b)/a: the stop times the runs land on (generated
 //! code's `next_stop_time`, the interpreter's too).
 
-use crate::expr::{Func, Id, Node, SymbolKind};
 use super::Derivation;
+use crate::expr::{Func, Id, Node, SymbolKind};
 
 /// A table of t: the table and the slope a and offset b of its argument a·t + b.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -51,4 +51,3 @@ pub fn time_tables(d: &mut Derivation, roots: &[Id]) -> Vec<TimeTable> {
     }
     found
 }
-

@@ -36,26 +36,26 @@ pub fn read_points(decl: &TableDecl, base: &Path) -> Result<(Points, PathBuf), D
     let written = &decl.file.node;
     let path = base.join(written);
     let at = |message: String| Diagnostic::new(decl.file.span, message);
-    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or_default();
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or_default();
     if !matches!(extension, "eng" | "csv") {
         return Err(at(format!(
             "`{written}`: a table file is a RASP motor (`.eng`) or a CSV table (`.csv`)"
         )));
     }
     let text = std::fs::read_to_string(&path).map_err(|error| {
-        at(format!("cannot read the table file `{written}`: {error}"))
-            .with_help("table files are read relative to the model file (inline DSL: the crate's directory)")
+        at(format!("cannot read the table file `{written}`: {error}")).with_help(
+            "table files are read relative to the model file (inline DSL: the crate's directory)",
+        )
     })?;
     let points = match extension {
         "eng" => Motor::parse(&text).map(|m| m.thrust),
         _ => CsvTable::parse(&text).map(|c| c.points),
     };
-    let points = points.map_err(|e| {
-        at(format!(
-            "{written}:{}:{}: {}",
-            e.line, e.column, e.kind
-        ))
-    })?;
+    let points =
+        points.map_err(|e| at(format!("{written}:{}:{}: {}", e.line, e.column, e.kind)))?;
     Ok((points, path))
 }
 
@@ -74,7 +74,8 @@ impl Builder {
         };
         let table = Table::new(&points, decl.interpolation, decl.outside);
         let Some(index) = self.model.pool.add_table(&decl.name.node, table) else {
-            self.errors.push(Diagnostic::new(decl.name.span, "too many tables"));
+            self.errors
+                .push(Diagnostic::new(decl.name.span, "too many tables"));
             return;
         };
         self.model

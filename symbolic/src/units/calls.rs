@@ -6,8 +6,8 @@ use super::check::Checker;
 use super::infer::Dim;
 use super::text::text;
 use crate::parse::ast::ExprNode;
-use crate::parse::Span;
 use crate::parse::Diagnostic;
+use crate::parse::Span;
 
 impl Checker {
     /// The dimension of the call `name(args)` of a table: its declared unit.

@@ -26,9 +26,8 @@ impl<'a> Grammar<'a> {
         let (rest, _) = self.required(rest, false, "`)`", &parameter.node, |i| {
             self.punct_after_blanks(i, ')')
         })?;
-        let (rest, _) = self.required(rest, false, "`=`", ")", |i| {
-            self.punct_after_blanks(i, '=')
-        })?;
+        let (rest, _) =
+            self.required(rest, false, "`=`", ")", |i| self.punct_after_blanks(i, '='))?;
         let (mut rest, file) = self.file_name(rest)?;
         let mut decl = TableDecl {
             name,
@@ -92,7 +91,10 @@ impl<'a> Grammar<'a> {
             other => {
                 let mut diagnostic = Diagnostic::new(
                     option.span,
-                    format!("unknown option `{other}` for table `{}`; expected {expected}", decl.name.node),
+                    format!(
+                        "unknown option `{other}` for table `{}`; expected {expected}",
+                        decl.name.node
+                    ),
                 );
                 if let Some(word) = closest(other, keywords::TABLE_OPTIONS) {
                     diagnostic = diagnostic.with_help(format!("did you mean `{word}`?"));
@@ -113,7 +115,10 @@ impl<'a> Grammar<'a> {
                     option.node, first.node, decl.name.node
                 ),
             )
-            .with_help(format!("first given at {}:{}", first.span.line, first.span.column));
+            .with_help(format!(
+                "first given at {}:{}",
+                first.span.line, first.span.column
+            ));
             return Err(self.fail(rest, diagnostic));
         }
         seen.push(option);
