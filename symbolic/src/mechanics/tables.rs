@@ -69,6 +69,11 @@ impl Builder {
             Ok(read) => read,
             Err(diagnostic) => {
                 self.errors.push(diagnostic);
+                // Still a table, so that its calls are not "unknown function" as well
+                // (the index names no table: a call lowers to NaN, and the model fails).
+                self.model
+                    .names
+                    .insert(decl.name.node.clone(), Binding::Table(u16::MAX));
                 return;
             }
         };
