@@ -198,7 +198,7 @@ fn a_table_of_the_state_is_differentiated_through_its_derivative_table() {
 fn a_table_that_cannot_be_read_is_one_diagnostic() {
     // Not also "unknown function `F`" at its call.
     let source = "coordinates y\ntable F(t) = \"missing.csv\"\nkinetic y'^2\nforce y: F(t)";
-    let errors = derive(source).err().expect("a diagnostic");
+    let errors = derive(source).expect_err("a diagnostic");
     assert_eq!(errors.len(), 1, "{errors:?}");
 }
 

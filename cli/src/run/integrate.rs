@@ -117,6 +117,11 @@ type Points = Vec<(f64, Vec<f64>)>;
 /// An event function g(t, state) borrowing the program.
 type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
 
+/// What [`drive`] gives: the points, the stopping event and the statistics, or on failure
+/// the points so far, the statistics and the error.
+type Driven<const S: usize> =
+    Result<(Points, Option<usize>, Statistics), (Points, Statistics, StepError<S>)>;
+
 /// Runs `stepper` to the end or a stopping event: one run over every accepted step, or
 /// with `--every` one run to each output time in turn (the stepper lands on each). A
 /// failed run gives back the points up to the failure with the error.
@@ -124,7 +129,7 @@ fn drive<St, const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
     stepper: St,
     plan: &Plan,
-) -> Result<(Points, Option<usize>, Statistics), (Points, Statistics, StepError<S>)>
+) -> Driven<S>
 where
     St: Stepper<N, S, System = TapeSystem<N, S>>,
 {

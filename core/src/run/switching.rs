@@ -285,8 +285,8 @@ impl SwitchWatch {
         let mut after = vec![0.0; self.values.len()];
         self.evaluate(system, time, &state, &mut after)?;
         let mut crossed = false;
-        for index in 0..after.len() {
-            if changed_sign(self.values[index], after[index]) {
+        for (index, &value) in after.iter().enumerate() {
+            if changed_sign(self.values[index], value) {
                 crossed = true;
                 self.count(index, time, &state)?;
             }

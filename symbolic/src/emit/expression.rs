@@ -70,16 +70,20 @@ pub(crate) fn block(
     runtime: &TokenStream,
     lookups: Lookups,
 ) -> Block {
-    staged_block(
-        pool,
-        &[],
-        &[],
-        |_| Vec::new(),
-        roots,
-        prefix,
-        runtime,
-        lookups,
-    )
+    let stage = Stage {
+        first: &[],
+        bound: &[],
+        bridge: |_| Vec::new(),
+    };
+    staged_block(pool, stage, roots, prefix, runtime, lookups)
+}
+
+/// The first stage of a [`staged_block`]: `first` rendered, then `bridge` turns its values
+/// into the `let`s that bind `bound`.
+pub(crate) struct Stage<'a, F> {
+    pub first: &'a [Id],
+    pub bound: &'a [Symbol],
+    pub bridge: F,
 }
 
 /// Like [`block`], with a first stage that binds symbols the outputs use: `first` is
@@ -90,14 +94,17 @@ pub(crate) fn block(
 /// the bridge, then the temporaries that use them.
 pub(crate) fn staged_block(
     pool: &ExprPool,
-    first: &[Id],
-    bound: &[Symbol],
-    bridge: impl FnOnce(Vec<TokenStream>) -> Vec<TokenStream>,
+    stage: Stage<'_, impl FnOnce(Vec<TokenStream>) -> Vec<TokenStream>>,
     roots: &[Id],
     prefix: &str,
     runtime: &TokenStream,
     lookups: Lookups,
 ) -> Block {
+    let Stage {
+        first,
+        bound,
+        bridge,
+    } = stage;
     let mut all: Vec<Id> = first.to_vec();
     all.extend(roots);
     // One walk serves the CSE, the split into early and late, and the printing.

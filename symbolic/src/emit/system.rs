@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 
-use super::expression::{block, staged_block, symbol_ident, Lookups};
+use super::expression::{block, staged_block, symbol_ident, Lookups, Stage};
 use super::factor::ldlt_solve;
 use crate::expr::{Id, Symbol, SymbolKind};
 use crate::mechanics::{Derivation, Of, VelocitySolve};
@@ -249,16 +249,12 @@ impl Emitter<'_> {
             used.extend(self.used(&first));
             used.extend(self.d.coordinates.iter().map(|c| c.momentum));
             let bound: Vec<Symbol> = self.d.coordinates.iter().map(|c| c.velocity).collect();
-            staged_block(
-                &self.d.pool,
-                &first,
-                &bound,
+            let stage = Stage {
+                first: &first,
+                bound: &bound,
                 bridge,
-                roots,
-                "t",
-                runtime,
-                lookups(input),
-            )
+            };
+            staged_block(&self.d.pool, stage, roots, "t", runtime, lookups(input))
         } else {
             block(&self.d.pool, roots, "t", runtime, lookups(input))
         };
