@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use varmass::symbolic::mechanics::{derive, Parameters};
+use varmass::symbolic::mechanics::{derive_in, Outputs, Parameters};
 use varmass::symbolic::parse::{known_tags, parse_system, select_tags};
 
 fn models() -> Vec<(PathBuf, String)> {
@@ -42,7 +42,9 @@ fn every_model_derives_with_every_choice_of_tags() {
         let ast = parse_system(&text).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
         for with in subsets(&known_tags(&ast)) {
             let selected = select_tags(&ast, &with).expect("known tags");
-            if let Err(errors) = derive(&selected, Parameters::Inferred) {
+            // Table files are read next to the model file.
+            let base = path.parent().expect("a model file has a directory");
+            if let Err(errors) = derive_in(&selected, Parameters::Inferred, Outputs::FULL, base) {
                 let rendered: Vec<String> = errors
                     .iter()
                     .map(|e| e.render_in_file(&text, &path.display().to_string()))

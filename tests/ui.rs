@@ -28,12 +28,17 @@ fn place_model_files() {
         .expect("CARGO_TARGET_TMPDIR is inside the target directory");
     let project = target.join("tests/trybuild").join(env!("CARGO_PKG_NAME"));
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    for folder in ["models", "tests/ui/models"] {
+    for folder in ["models", "models/motors", "tests/ui/models"] {
         let destination = project.join(folder);
         fs::create_dir_all(&destination).expect("creates the model folder");
         for entry in fs::read_dir(root.join(folder)).expect("lists the model folder") {
             let path = entry.expect("reads the model folder").path();
-            if path.extension().is_some_and(|extension| extension == "vms") {
+            // Models, and the table files they read.
+            let copied = ["vms", "eng", "csv"];
+            if path
+                .extension()
+                .is_some_and(|e| copied.iter().any(|c| e == *c))
+            {
                 let name = path.file_name().expect("a file has a name");
                 fs::copy(&path, destination.join(name)).expect("copies a model file");
             }

@@ -2,9 +2,9 @@
 //! diagnostics rendered by the symbolic crate's own renderer (`error: …`,
 //! `--> FILE:line:column`, the line and a caret, as the macro shows them too).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use varmass::symbolic::mechanics::{derive, Derivation, Parameters};
+use varmass::symbolic::mechanics::{derive_in, Derivation, Outputs, Parameters};
 use varmass::symbolic::parse::ast::{StatementKind, SystemAst};
 use varmass::symbolic::parse::{parse_system, select_tags};
 use varmass::symbolic::Diagnostic;
@@ -14,6 +14,8 @@ use crate::error::CliError;
 
 /// A model file's derivation.
 pub struct LoadedModel {
+    /// The directory the model's table files are read from (the model file's).
+    pub base: PathBuf,
     /// The derivation (parameters inferred: every free name is one).
     pub derivation: Derivation,
     /// Each selected flow as the user knows it (`outflow `rocket``), in the derivation's
@@ -34,7 +36,12 @@ pub struct LoadedModel {
 /// of `ast`: for "`g` is a parameter of `[gravity]`; add `--with gravity`". Each tag is
 /// tried alone with the ones asked for; only called on the error path, so the extra
 /// derivations cost nothing in a good run.
-pub fn tag_with_parameter(ast: &SystemAst, with: &[String], name: &str) -> Option<String> {
+pub fn tag_with_parameter(
+    ast: &SystemAst,
+    with: &[String],
+    name: &str,
+    base: &Path,
+) -> Option<String> {
     {
         varmass::symbolic::parse::known_tags(ast)
             .into_iter()
@@ -44,7 +51,7 @@ pub fn tag_with_parameter(ast: &SystemAst, with: &[String], name: &str) -> Optio
                 with.push(tag.clone());
                 select_tags(ast, &with)
                     .ok()
-                    .and_then(|ast| derive(&ast, Parameters::Inferred).ok())
+                    .and_then(|ast| derive_in(&ast, Parameters::Inferred, Outputs::FULL, base).ok())
                     .is_some_and(|d| d.parameters.iter().any(|(n, _)| n == name))
             })
     }
@@ -75,7 +82,9 @@ pub fn load_source(source: &str, path: &Path, with: &[String]) -> Result<LoadedM
         let messages: Vec<String> = unknown.iter().map(|u| format!("--with: {u}")).collect();
         CliError::Input(messages.join("\n"))
     })?;
-    let derivation = derive(&ast, Parameters::Inferred).map_err(failed)?;
+    // Table files are read relative to the model file.
+    let base = path.parent().map(PathBuf::from).unwrap_or_default();
+    let derivation = derive_in(&ast, Parameters::Inferred, Outputs::FULL, &base).map_err(failed)?;
     let flows = ast
         .statements
         .iter()
@@ -87,6 +96,7 @@ pub fn load_source(source: &str, path: &Path, with: &[String]) -> Result<LoadedM
         .collect();
     let warnings = crate::lint::typo_warnings(&derivation, &ast);
     Ok(LoadedModel {
+        base,
         derivation,
         flows,
         ast: full,

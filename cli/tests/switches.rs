@@ -88,7 +88,10 @@ fn a_failed_run_writes_the_points_so_far_and_exits_1() {
     // The burn-out is at t = 100 s; the last point kept is the last one whose integrated m is
     // still positive, which rounding may put a few ulps either side of 100 (measured
     // 99.99999999999999 and 100.00000000000004 on two builds): 1e-12 is ~70 ulps of 100.
-    assert!(last[0] < 100.0 + 1e-12 && last[0] > 99.9, "last row {last:?}");
+    assert!(
+        last[0] < 100.0 + 1e-12 && last[0] > 99.9,
+        "last row {last:?}"
+    );
     for row in &rows {
         let (t, m) = (row[0], row[1]);
         assert!(m > 0.0, "{row:?}");

@@ -124,6 +124,16 @@ pub enum StepErrorKind {
         /// The time they fell within.
         within: f64,
     },
+    /// A table (`outside error`, the default) was asked for a value outside its data
+    /// (docs/tables.md#outside-the-data): a thrust curve past burnout without `outside
+    /// zero`, an atmosphere above its last altitude.
+    #[error("table `{table}` has no value at {argument} (outside its data)")]
+    TableOutside {
+        /// The table's name (`F`, or `F'` for its derivative).
+        table: &'static str,
+        /// The argument asked for.
+        argument: f64,
+    },
 }
 
 impl<const S: usize> StepError<S> {
@@ -163,11 +173,14 @@ impl<const S: usize> StepError<S> {
                 Err(mass_error) => mass_error,
                 Ok(()) => error,
             },
-            SystemError::NonPositiveMass { .. } => error,
+            SystemError::NonPositiveMass { .. } | SystemError::TableOutside { .. } => error,
         };
         let kind = match error {
             SystemError::SingularMassMatrix => StepErrorKind::SingularMassMatrix,
             SystemError::NonPositiveMass { index } => StepErrorKind::NonPositiveMass { index },
+            SystemError::TableOutside { table, argument } => {
+                StepErrorKind::TableOutside { table, argument }
+            }
         };
         Self::new(time, state, kind)
     }

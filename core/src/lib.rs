@@ -102,6 +102,7 @@ pub mod math;
 pub mod stepper;
 pub mod steppers;
 pub mod system;
+pub mod table;
 pub mod tolerance;
 
 #[cfg(feature = "ensemble")]

@@ -22,7 +22,7 @@ use nalgebra::{SMatrix, SVector};
 const CBRT_EPSILON: f64 = 6.055_454_452_393_343e-6;
 
 /// Why a system could not be evaluated at a state.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum SystemError {
     /// The mass matrix ∂²L/∂q̇² is singular (or not positive definite) here, so q̇ cannot be
     /// recovered from p.
@@ -34,6 +34,15 @@ pub enum SystemError {
     NonPositiveMass {
         /// Index into [`VariableMassSystem::MASSES`].
         index: usize,
+    },
+    /// A table (`outside error`, the default) was asked for a value outside its data, or
+    /// at a NaN argument (docs/tables.md#outside-the-data).
+    #[error("table `{table}` has no value at {argument} (outside its data)")]
+    TableOutside {
+        /// The table's name (`F`, or `F'` for its derivative).
+        table: &'static str,
+        /// The argument asked for.
+        argument: f64,
     },
 }
 

@@ -4,7 +4,7 @@
 use proc_macro2::TokenStream;
 use quote::{quote, ToTokens};
 use varmass_symbolic::emit::{emit_system_for, Target};
-use varmass_symbolic::mechanics::{derive_for, Outputs, Parameters};
+use varmass_symbolic::mechanics::{derive_in, Outputs, Parameters};
 use varmass_symbolic::parse::ast::{MassLaw, StatementKind, SystemAst};
 use varmass_symbolic::parse::{parse_system, select_tags};
 
@@ -85,7 +85,7 @@ fn generate(
     outputs: Outputs,
 ) -> Option<TokenStream> {
     let names = fields.iter().map(|f| f.to_string()).collect();
-    let mut derivation = derive_for(ast, Parameters::Declared(names), outputs)
+    let mut derivation = derive_in(ast, Parameters::Declared(names), outputs, &model.base())
         .map_err(|errors| model.report(cx, &errors))
         .ok()?;
     check_unused_fields(cx, fields, &derivation);
@@ -100,12 +100,9 @@ fn generate(
         name: item_struct.ident.clone(),
         runtime: quote!(::varmass::core),
     };
-    Some(emit_system_for(
-        &mut derivation,
-        &model.text,
-        &target,
-        outputs,
-    ))
+    let tables = model.table_tracking(&derivation);
+    let code = emit_system_for(&mut derivation, &model.text, &target, outputs);
+    Some(quote!(#tables #code))
 }
 
 /// The struct, then the generated items (and the model file's tracking), or every error

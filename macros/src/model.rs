@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::LitStr;
+use varmass_symbolic::mechanics::Derivation;
 use varmass_symbolic::parse::Origin;
 use varmass_symbolic::Diagnostic;
 
@@ -53,6 +54,25 @@ impl ModelText {
                 })
             }
         }
+    }
+
+    /// The directory `table` files are read from: the model file's, or for an inline
+    /// system the crate's (`CARGO_MANIFEST_DIR`).
+    pub fn base(&self) -> PathBuf {
+        match &self.file {
+            Some((_, resolved)) => resolved.parent().map(PathBuf::from).unwrap_or_default(),
+            None => PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").unwrap_or_default()),
+        }
+    }
+
+    /// Makes cargo rebuild the crate when a table's data change: an `include_bytes!` of
+    /// each table file.
+    pub fn table_tracking(&self, d: &Derivation) -> TokenStream {
+        let paths = d
+            .tables
+            .iter()
+            .map(|t| t.path.to_string_lossy().into_owned());
+        quote!(#(const _: &[u8] = ::core::include_bytes!(#paths);)*)
     }
 
     /// Makes cargo rebuild the crate when the model file changes: an `include_bytes!` of it

@@ -57,8 +57,15 @@ def test_a_failed_run_is_a_run_error_with_its_time_and_state(rocket):
     # Before the failure the rocket climbed: v = u_e ln(m0/m) − g t grows without bound as
     # m → 0, so y is well above 0 there.
     assert error.state["y"] > 1e4
-    # The core's run does not yet return the points it computed before a failure.
-    assert error.points is None
+    # The points recorded before the failure come with it: m = 100 − 10 t is integrated
+    # exactly up to rounding (a linear law), every kept m is positive, the last just before
+    # the burn-out at t = 10 (rounding may put it a few ulps past).
+    points = error.points
+    assert set(points) == {"t", "y", "y'", "m"}, set(points)
+    assert len(points["t"]) > 10
+    assert (points["m"] > 0).all()
+    assert abs(points["m"] - (100 - 10 * points["t"])).max() < 1e-10
+    assert 9.9 < points["t"][-1] < 10 + 1e-12
     assert str(error).startswith("the run failed at t = ")
 
 

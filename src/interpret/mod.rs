@@ -42,6 +42,7 @@
 
 mod cholesky;
 mod error;
+mod names;
 mod program;
 mod system;
 mod taylor;

@@ -2,10 +2,12 @@
 //! on run-time sized slices.
 
 use std::cell::RefCell;
+use std::sync::Arc;
 
+use varmass_core::table::{next_knot_time, Table};
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, Tape};
-use varmass_symbolic::mechanics::{Coordinate, Derivation, MassKind, VelocitySolve};
+use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation, MassKind, VelocitySolve};
 use varmass_symbolic::parse::keywords::closest;
 use varmass_symbolic::quantity::Evaluated;
 pub use varmass_symbolic::quantity::Quantity;
@@ -39,6 +41,8 @@ struct Stage {
 struct Scratch {
     env: Vec<f64>,
     values: Vec<f64>,
+    /// The first table lookup outside its data since the state was loaded.
+    outside: Option<SystemError>,
 }
 
 /// A derivation with its parameter values, ready to evaluate its state rate and any
@@ -64,6 +68,9 @@ pub struct Program {
     taylor: TaylorProgram,
     /// The flows' rates (Q1 of an outflow, Q2 of an inflow), in the model's order.
     flows: Stage,
+    /// The tables of t with the slope and offset of their argument: their knots are stop
+    /// times (docs/tables.md#knots-are-switches).
+    stops: Vec<(Arc<Table>, f64, f64)>,
     scratch: RefCell<Scratch>,
 }
 
@@ -105,6 +112,7 @@ impl Program {
             .collect();
         let mut rate_roots = d.momentum_rate.clone();
         rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
+        let stops = stop_tables(&mut d, &[&rate_roots, &velocity_roots, &law_roots], &env);
         let stage = |roots: Vec<Id>| Stage {
             tape: d.pool.compile(&roots),
             roots,
@@ -122,9 +130,11 @@ impl Program {
             switches: stage(switch_roots),
             switch_names,
             flows: stage(d.flow_rates.clone()),
+            stops,
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),
+                outside: None,
             }),
             d,
         })
@@ -234,6 +244,9 @@ impl Program {
         self.read_velocities(&scratch.env, out);
         let n = self.coordinate_count();
         self.run(&self.rates, scratch);
+        if let Some(error) = scratch.outside.take() {
+            return Err(error);
+        }
         for (o, v) in out.iter_mut().skip(n).zip(&scratch.values) {
             *o = *v;
         }
@@ -269,6 +282,9 @@ impl Program {
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_state(scratch, t, state)?;
         self.run(self.stage(quantity), scratch);
+        if let Some(error) = scratch.outside.take() {
+            return Err(error);
+        }
         copy(&scratch.values, out);
         Ok(())
     }
@@ -298,6 +314,16 @@ impl Program {
         }
         copy(&rhs, out);
         Ok(())
+    }
+
+    /// The first knot time of a table of t after `after` (docs/tables.md#knots-are-switches).
+    pub fn next_stop_time(&self, after: f64) -> Option<f64> {
+        let next = self
+            .stops
+            .iter()
+            .map(|(table, slope, offset)| next_knot_time(table, *slope, *offset, after))
+            .fold(f64::INFINITY, f64::min);
+        (next < f64::INFINITY).then_some(next)
     }
 
     /// The number of switching functions (docs/mechanics.md#switches).
@@ -343,16 +369,29 @@ impl Program {
         &self.quantities[quantity.index()]
     }
 
-    /// Evaluates `stage` on the loaded environment into `scratch.values`.
+    /// Evaluates `stage` on the loaded environment into `scratch.values`; a table lookup
+    /// outside its data (NaN values) is remembered in `scratch.outside` for the fallible
+    /// methods to report.
     fn run(&self, stage: &Stage, scratch: &mut Scratch) {
-        let Scratch { env, values } = scratch;
+        let Scratch {
+            env,
+            values,
+            outside,
+        } = scratch;
         values.clear();
         values.resize(stage.roots.len(), f64::NAN);
         match self.evaluation {
-            Evaluation::Tape => stage.tape.eval(env, values),
+            Evaluation::Tape => {
+                stage.tape.eval(env, values);
+                note_outside(&stage.tape, outside);
+            }
             Evaluation::Tree => {
+                // One-root tapes compiled at each call (not `ExprPool::eval`, whose tables
+                // extrapolate for the checks).
                 for (value, root) in values.iter_mut().zip(&stage.roots) {
-                    *value = self.d.pool.eval(*root, env);
+                    let tape = self.d.pool.compile(&[*root]);
+                    tape.eval(env, std::slice::from_mut(value));
+                    note_outside(&tape, outside);
                 }
             }
         }
@@ -360,6 +399,7 @@ impl Program {
 
     /// Sets t, q and the state masses, then the law masses.
     fn load_positions(&self, scratch: &mut Scratch, t: f64, state: &[f64]) {
+        scratch.outside = None;
         let n = self.coordinate_count();
         let env = &mut scratch.env;
         set(env, self.d.time.index(), t);
@@ -406,7 +446,11 @@ impl Program {
         self.load_with(scratch, t, state, |c| c.momentum);
         let n = self.coordinate_count();
         self.run(&self.velocities, scratch);
-        let Scratch { env, values } = scratch;
+        // A table without a value is the cause of the NaNs below, not a singular M.
+        if let Some(error) = scratch.outside.take() {
+            return Err(error);
+        }
+        let Scratch { env, values, .. } = scratch;
         if self.numeric {
             let split = (n * n).min(values.len());
             let (matrix, offset) = values.split_at_mut(split);
@@ -470,6 +514,36 @@ fn parameter_env(d: &Derivation, parameters: &[(&str, f64)]) -> Result<Vec<f64>,
             missing,
             parameters: names,
         })
+    }
+}
+
+/// The tables of t called by `roots`, with their argument's slope and offset at the
+/// parameter values of `env` (they are made of parameters only).
+fn stop_tables(d: &mut Derivation, roots: &[&[Id]], env: &[f64]) -> Vec<(Arc<Table>, f64, f64)> {
+    let all: Vec<Id> = roots.iter().flat_map(|r| r.iter().copied()).collect();
+    let found = time_tables(d, &all);
+    let mut stops = Vec::new();
+    for t in found {
+        let mut values = [f64::NAN; 2];
+        d.pool.compile(&[t.slope, t.offset]).eval(env, &mut values);
+        if let Some(table) = d.pool.table(t.table, 0) {
+            stops.push((Arc::clone(table), values[0], values[1]));
+        }
+    }
+    stops
+}
+
+/// Remembers the first table lookup of `tape`'s last evaluation that had no value, as the
+/// typed error generated code returns.
+fn note_outside(tape: &Tape, outside: &mut Option<SystemError>) {
+    if outside.is_some() {
+        return;
+    }
+    if let Some((name, argument)) = tape.outside() {
+        *outside = Some(SystemError::TableOutside {
+            table: super::names::intern(name),
+            argument,
+        });
     }
 }
 

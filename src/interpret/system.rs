@@ -118,6 +118,10 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     const COORDINATES: [&'static str; N] = [""; N];
     const MASSES: &'static [&'static str] = &[];
 
+    fn next_stop_time(&self, after: f64) -> Option<f64> {
+        self.program.next_stop_time(after)
+    }
+
     fn mass(&self, index: usize, t: f64, state: &SVector<f64, S>) -> f64 {
         let Some(index) = self.model_mass(index) else {
             return state[index];

@@ -141,6 +141,10 @@ fn summary(kind: &StatementKind) -> String {
                 .collect();
             format!("units {}", entries.join(", "))
         }
+        StatementKind::Table(t) => format!(
+            "table {}({}) = {:?}, {:?}, outside {:?}",
+            t.name.node, t.parameter.node, t.file.node, t.interpolation, t.outside
+        ),
     }
 }
 

@@ -299,6 +299,12 @@ fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, Stri
         StepErrorKind::NonFiniteTime { .. } | StepErrorKind::InvalidConfiguration { .. } => {
             (what, "check --from, --until, --step and --tol".to_string())
         }
+        StepErrorKind::TableOutside { .. } => (
+            what,
+            "the table has no data there: stop before it (--until, --stop-when), or give the \
+             table `outside zero` or `outside hold` in the model"
+                .to_string(),
+        ),
     }
 }
 

@@ -96,13 +96,15 @@ pub fn program(
     }
     let (ast, with) = (&model.ast, &model.with);
     let tag_hint = |e: ProgramError| match &e {
-        ProgramError::UnknownParameter { name, .. } => match tag_with_parameter(ast, with, name) {
-            Some(tag) => CliError::Input(format!(
-                "`{name}` is a parameter of the statements tagged `[{tag}]`, which this run \
+        ProgramError::UnknownParameter { name, .. } => {
+            match tag_with_parameter(ast, with, name, &model.base) {
+                Some(tag) => CliError::Input(format!(
+                    "`{name}` is a parameter of the statements tagged `[{tag}]`, which this run \
                  leaves out; add `--with {tag}` to include them"
-            )),
-            None => CliError::Input(e.to_string()),
-        },
+                )),
+                None => CliError::Input(e.to_string()),
+            }
+        }
         ProgramError::MissingParameters { missing, .. } => {
             let give: Vec<String> = missing.iter().map(|m| format!("--set {m}=VALUE")).collect();
             CliError::Input(format!("{e}; give {}", give.join(" ")))

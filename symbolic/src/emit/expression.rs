@@ -50,10 +50,40 @@ pub(crate) struct Block {
     pub outputs: Vec<TokenStream>,
 }
 
+/// How generated code calls a table (docs/tables.md#errors-at-run-time): with `?` in the
+/// methods that return a `Result` (a lookup outside the data is `SystemError::TableOutside`),
+/// NaN on failure in the others.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Lookups {
+    /// `varmass_core::table::lookup(..)?`
+    Fallible,
+    /// `varmass_core::table::lookup_or_nan(..)`
+    Nan,
+}
+
 /// Renders `roots` with their shared subexpressions hoisted into temporaries named
 /// `__{prefix}{n}`.
-pub(crate) fn block(pool: &ExprPool, roots: &[Id], prefix: &str, runtime: &TokenStream) -> Block {
-    staged_block(pool, &[], &[], |_| Vec::new(), roots, prefix, runtime)
+pub(crate) fn block(
+    pool: &ExprPool,
+    roots: &[Id],
+    prefix: &str,
+    runtime: &TokenStream,
+    lookups: Lookups,
+) -> Block {
+    let stage = Stage {
+        first: &[],
+        bound: &[],
+        bridge: |_| Vec::new(),
+    };
+    staged_block(pool, stage, roots, prefix, runtime, lookups)
+}
+
+/// The first stage of a [`staged_block`]: `first` rendered, then `bridge` turns its values
+/// into the `let`s that bind `bound`.
+pub(crate) struct Stage<'a, F> {
+    pub first: &'a [Id],
+    pub bound: &'a [Symbol],
+    pub bridge: F,
 }
 
 /// Like [`block`], with a first stage that binds symbols the outputs use: `first` is
@@ -64,13 +94,17 @@ pub(crate) fn block(pool: &ExprPool, roots: &[Id], prefix: &str, runtime: &Token
 /// the bridge, then the temporaries that use them.
 pub(crate) fn staged_block(
     pool: &ExprPool,
-    first: &[Id],
-    bound: &[Symbol],
-    bridge: impl FnOnce(Vec<TokenStream>) -> Vec<TokenStream>,
+    stage: Stage<'_, impl FnOnce(Vec<TokenStream>) -> Vec<TokenStream>>,
     roots: &[Id],
     prefix: &str,
     runtime: &TokenStream,
+    lookups: Lookups,
 ) -> Block {
+    let Stage {
+        first,
+        bound,
+        bridge,
+    } = stage;
     let mut all: Vec<Id> = first.to_vec();
     all.extend(roots);
     // One walk serves the CSE, the split into early and late, and the printing.
@@ -93,6 +127,7 @@ pub(crate) fn staged_block(
     let mut values: FxHashMap<Id, String> = FxHashMap::default();
     let syntax = RustSyntax {
         runtime: runtime.to_string(),
+        lookups,
     };
     let mut printed = print_in(pool, &syntax, &all, order, |id, value| {
         let name = names.get(&id)?;
@@ -149,6 +184,8 @@ fn using_any(pool: &ExprPool, order: &[Id], bound: &[Symbol]) -> FxHashSet<Id> {
 struct RustSyntax {
     /// The path to the runtime, as text.
     runtime: String,
+    /// How tables are called.
+    lookups: Lookups,
 }
 
 type Rendered = Printed<String>;
@@ -206,6 +243,18 @@ impl Syntax for RustSyntax {
         let Some(first) = args.first() else {
             return atom("f64::NAN".to_string());
         };
+        if let Func::Table { table, order } = func {
+            let a = &p.get(*first).text;
+            let table_static = super::tables::static_name(table, order);
+            let runtime = &self.runtime;
+            return atom(match self.lookups {
+                Lookups::Fallible => {
+                    let name = p.pool().table_call_name(table, order);
+                    format!("{runtime}::table::lookup(&{table_static}, {name:?}, {a})?")
+                }
+                Lookups::Nan => format!("{runtime}::table::lookup_or_nan(&{table_static}, {a})"),
+            });
+        }
         // `f64::signum(0.0)` is 1, but the derivative of |x| needs sign(0) = 0.
         if func == Func::Sign {
             let a = &p.get(*first).text;

@@ -10,7 +10,9 @@ mod expression;
 mod factor;
 mod methods;
 mod signature;
+mod stops;
 mod system;
+mod tables;
 mod taylor;
 
 use proc_macro2::{Literal, TokenStream};
@@ -56,6 +58,7 @@ pub fn emit_system_for(
         }
     }
     let switches = crate::mechanics::switching_functions(d);
+    let time_tables = crate::mechanics::time_tables(d, &code_roots(d, outputs));
     let shown = documented_roots(d);
     let shown_texts = shown
         .iter()
@@ -64,6 +67,7 @@ pub fn emit_system_for(
         .collect();
     let name = &target.name;
     let runtime = &target.runtime;
+    let statics = (d.pool.table_count() > 0).then(|| tables::statics(&d.pool, runtime));
     let emitter = Emitter {
         d,
         target,
@@ -101,11 +105,25 @@ pub fn emit_system_for(
         emitter.switching_functions(&switches),
         optional(outputs.taylor, || taylor::taylor_method(d, runtime)),
         emitter.flow_rates(),
+        emitter.stop_times(&time_tables),
     ];
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");
         quote!(#[doc = ""] #[doc = #line])
     });
+    let trait_impl = quote! {
+        #[allow(unused_variables, non_snake_case, clippy::all)]
+        impl #runtime::VariableMassSystem<#n_lit, #s_lit> for #name {
+            const COORDINATES: [&'static str; #n_lit] = [#(#coordinates),*];
+            const MASSES: &'static [&'static str] = &[#(#masses),*];
+            #(#methods)*
+        }
+    };
+    // Tables: their statics beside the impl that calls them, in a block of their own.
+    let trait_impl = match statics {
+        None => trait_impl,
+        Some(statics) => quote!(const _: () = { #statics #trait_impl };),
+    };
     quote! {
         impl #name {
             /// The system in the DSL, as written.
@@ -116,12 +134,7 @@ pub fn emit_system_for(
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
         }
 
-        #[allow(unused_variables, non_snake_case, clippy::all)]
-        impl #runtime::VariableMassSystem<#n_lit, #s_lit> for #name {
-            const COORDINATES: [&'static str; #n_lit] = [#(#coordinates),*];
-            const MASSES: &'static [&'static str] = &[#(#masses),*];
-            #(#methods)*
-        }
+        #trait_impl
     }
 }
 

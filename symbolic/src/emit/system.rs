@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 
-use super::expression::{block, staged_block, symbol_ident};
+use super::expression::{block, staged_block, symbol_ident, Lookups, Stage};
 use super::factor::ldlt_solve;
 use crate::expr::{Id, Symbol, SymbolKind};
 use crate::mechanics::{Derivation, Of, VelocitySolve};
@@ -19,6 +19,16 @@ pub struct Target {
     pub name: Ident,
     /// A path to `varmass_core` (e.g. `::varmass::core`).
     pub runtime: TokenStream,
+}
+
+/// How a method on `input` calls tables: the methods on the canonical state (velocities,
+/// H, the state rate, the power, the Jacobian) return a `Result`; the others cannot fail,
+/// and the run only calls them where the state rate succeeded.
+fn lookups(input: Input) -> Lookups {
+    match input {
+        Input::State => Lookups::Fallible,
+        Input::Configuration | Input::VelocityState => Lookups::Nan,
+    }
 }
 
 /// Turns the rendered first-stage values into the `let`s that bind q̇.
@@ -139,7 +149,13 @@ impl Emitter<'_> {
             .collect();
         if !laws.is_empty() {
             let roots: Vec<Id> = laws.iter().map(|(_, l)| self.code(*l)).collect();
-            let b = block(&self.d.pool, &roots, "law", &self.target.runtime);
+            let b = block(
+                &self.d.pool,
+                &roots,
+                "law",
+                &self.target.runtime,
+                lookups(input),
+            );
             out.extend(b.lets);
             for ((symbol, _), value) in laws.iter().zip(b.outputs) {
                 let local = symbol_ident(&self.d.pool, *symbol);
@@ -233,9 +249,14 @@ impl Emitter<'_> {
             used.extend(self.used(&first));
             used.extend(self.d.coordinates.iter().map(|c| c.momentum));
             let bound: Vec<Symbol> = self.d.coordinates.iter().map(|c| c.velocity).collect();
-            staged_block(&self.d.pool, &first, &bound, bridge, roots, "t", runtime)
+            let stage = Stage {
+                first: &first,
+                bound: &bound,
+                bridge,
+            };
+            staged_block(&self.d.pool, stage, roots, "t", runtime, lookups(input))
         } else {
-            block(&self.d.pool, roots, "t", runtime)
+            block(&self.d.pool, roots, "t", runtime, lookups(input))
         };
         // Moved, not interpolated: `quote!` would clone every token of each part.
         let mut code = self.prologue(&used, input);

@@ -209,6 +209,14 @@ impl ExprPool {
             (Some(u), Some(du)) => (*u, *du),
             _ => return zero,
         };
+        if let Func::Table { table, order } = f {
+            // The interpolant's own derivative, a table of the same kind.
+            let derivative = match order.checked_add(1) {
+                Some(next) => self.table_call(table, next, u),
+                None => self.float(f64::NAN),
+            };
+            return self.mul(&[derivative, du]);
+        }
         let one = self.int(1);
         let minus_one = self.int(-1);
         let two = self.int(2);
@@ -253,6 +261,8 @@ impl ExprPool {
             Func::Atan2 | Func::Min | Func::Max => {
                 return self.binary_chain_rule(f, args, da);
             }
+            // Differentiated above, before the constants.
+            Func::Table { .. } => return zero,
         };
         self.mul(&[outer, du])
     }

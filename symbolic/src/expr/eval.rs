@@ -8,9 +8,12 @@ use super::pool::ExprPool;
 impl ExprPool {
     /// The value of `e` with symbol `s` worth `env[s.index()]`; NaN where a value is
     /// missing (an index past the end of `env`). Defined symbols evaluate their value.
+    /// Tables extrapolate their end pieces: values at a point test algebra, not data.
     pub fn eval(&self, e: Id, env: &[f64]) -> f64 {
         let mut out = [f64::NAN];
-        self.compile(&[e]).eval_with(env, &mut Vec::new(), &mut out);
+        self.compile(&[e])
+            .extrapolating()
+            .eval_with(env, &mut Vec::new(), &mut out);
         out[0]
     }
 }

@@ -36,6 +36,16 @@ pub enum Func {
     Min,
     /// maximum of two
     Max,
+    /// A table of the model (docs/tables.md), or one of its derivatives: `table` indexes
+    /// the pool's tables ([`ExprPool::add_table`](super::ExprPool::add_table)), `order` is
+    /// the derivative order (0 for the table itself). Opaque: never folded, neither odd
+    /// nor even; its values live in the pool, not here.
+    Table {
+        /// Index into the pool's tables.
+        table: u16,
+        /// Derivative order.
+        order: u8,
+    },
 }
 
 impl Func {
@@ -59,7 +69,8 @@ impl Func {
         Func::Max,
     ];
 
-    /// The function called `name` in the DSL.
+    /// The function called `name` in the DSL (the elementary ones; a table's name is the
+    /// model's).
     pub fn from_name(name: &str) -> Option<Func> {
         Func::ALL.into_iter().find(|f| f.name() == name)
     }
@@ -83,6 +94,7 @@ impl Func {
             Func::Atan2 => "atan2",
             Func::Min => "min",
             Func::Max => "max",
+            Func::Table { .. } => "table",
         }
     }
 
@@ -94,7 +106,8 @@ impl Func {
         }
     }
 
-    /// The function's value; NaN if `args` has the wrong length.
+    /// The function's value; NaN if `args` has the wrong length, and for a table (its data
+    /// are in the pool: [`ExprPool::table`](super::ExprPool::table)).
     pub fn apply(self, args: &[f64]) -> f64 {
         match (self, args) {
             (Func::Sin, [u]) => u.sin(),

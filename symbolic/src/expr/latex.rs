@@ -218,6 +218,10 @@ impl Latex {
             Func::Asin => named("\\arcsin"),
             Func::Acos => named("\\arccos"),
             Func::Atan => named("\\arctan"),
+            Func::Table { table, order } => {
+                let name = p.pool().table_call_name(table, order);
+                named(&format!("\\operatorname{{{name}}}"))
+            }
             _ => named(&format!("\\{}", f.name())),
         };
         Printed::new(text, Prec::Atom)

@@ -34,6 +34,12 @@ impl Written<'_> {
 pub trait Resolver {
     /// The expression for `written`: a name, a velocity `x'` or an acceleration `x''`.
     fn resolve(&mut self, pool: &mut ExprPool, written: Written<'_>) -> Result<Id, Diagnostic>;
+
+    /// The pool's index of the table called `name` (a `table` statement), if it is one.
+    fn table(&self, name: &str) -> Option<u16> {
+        let _ = name;
+        None
+    }
 }
 
 /// Resolves names already in the pool's symbol table: `x` to its symbol, `x'` and `x''`
@@ -156,8 +162,11 @@ fn lower_node(
                 .collect();
             // The name and arity from the one list; `sqrt` is no [`Func`] but the power ½.
             let known = FUNCTIONS.iter().find(|(name, _)| *name == func.node);
+            let table = resolver.table(&func.node);
             let (expected, f) = if let Some(&(_, arity)) = known {
                 (arity, Func::from_name(&func.node))
+            } else if let Some(table) = table {
+                (1, Some(Func::Table { table, order: 0 }))
             } else {
                 errors.push(
                     Diagnostic::new(func.span, format!("unknown function `{}`", func.node))
@@ -179,6 +188,9 @@ fn lower_node(
             }
             let args: Vec<Id> = lowered.into_iter().collect::<Option<_>>()?;
             match (f, args.as_slice()) {
+                (Some(Func::Table { table, order }), [u]) => {
+                    Some(pool.table_call(table, order, *u))
+                }
                 (Some(f), _) => Some(pool.call(f, &args)),
                 (None, [u]) if func.node == SQRT => Some(pool.sqrt(*u)),
                 // A name of FUNCTIONS without a `Func` (tested not to exist).

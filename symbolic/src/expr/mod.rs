@@ -50,6 +50,7 @@ mod rational;
 mod subst;
 mod sum;
 mod symbol;
+mod table_call;
 mod tape;
 mod taylor;
 mod trig;

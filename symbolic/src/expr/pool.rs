@@ -43,6 +43,8 @@ pub struct ExprPool {
     /// them, and interning hashes the node each time); filled on first use, so the order
     /// in which nodes are created does not change.
     small_ints: [Option<Id>; 4],
+    /// The model's tables and their derivatives (`table_call.rs`).
+    pub(super) tables: Vec<super::table_call::PoolTable>,
 }
 
 /// Room reserved for nodes at the start: the example systems derive into 60 to 900 nodes
@@ -78,6 +80,7 @@ impl ExprPool {
             derivatives: FxHashMap::default(),
             trig_images: FxHashMap::default(),
             small_ints: [None; 4],
+            tables: Vec::new(),
         }
     }
 

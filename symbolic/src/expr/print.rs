@@ -160,7 +160,11 @@ impl Syntax for Dsl {
 
     fn call(&self, p: &Printer<'_>, f: Func, args: &[Id]) -> PrintedText {
         let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
-        Printed::new(format!("{}({})", f.name(), args.join(", ")), Prec::Atom)
+        let name = match f {
+            Func::Table { table, order } => p.pool().table_call_name(table, order),
+            _ => f.name().to_owned(),
+        };
+        Printed::new(format!("{name}({})", args.join(", ")), Prec::Atom)
     }
 
     fn product(&self, p: &Printer<'_>, factors: &[Id]) -> PrintedText {

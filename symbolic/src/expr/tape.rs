@@ -8,7 +8,9 @@ use super::node::{Id, Node};
 use super::pool::ExprPool;
 use super::rational::Rational;
 use rustc_hash::FxHashMap;
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
+use std::sync::Arc;
+use varmass_table::Table;
 
 /// `b^e`, by `powi` for integer exponents (it keeps `(-2)^3 = -8` and is more accurate),
 /// `powf` otherwise: a power whose exponent is not a constant.
@@ -52,6 +54,18 @@ enum Instr {
     Pow(usize, usize),
     Call1(Func, usize),
     Call2(Func, usize, usize),
+    /// `tables[table]` at the slot's value.
+    Table {
+        table: usize,
+        argument: usize,
+    },
+}
+
+/// A table a tape calls: the interpolant (or its derivative) and the model's name.
+#[derive(Clone, Debug)]
+struct TapeTable {
+    table: Arc<Table>,
+    name: String,
 }
 
 /// Straight-line code evaluating several expressions at once (see
@@ -62,6 +76,12 @@ pub struct Tape {
     operands: Vec<usize>,
     outputs: Vec<usize>,
     scratch: RefCell<Vec<f64>>,
+    tables: Vec<TapeTable>,
+    /// Whether tables extrapolate their end pieces (the derivation's numeric checks test
+    /// algebra at random points, not data) instead of applying their `Outside` rule.
+    extrapolate: bool,
+    /// The first lookup the last evaluation could not make: (table, argument).
+    outside: Cell<Option<(usize, f64)>>,
 }
 
 impl Clone for Tape {
@@ -71,6 +91,9 @@ impl Clone for Tape {
             operands: self.operands.clone(),
             outputs: self.outputs.clone(),
             scratch: RefCell::new(Vec::new()),
+            tables: self.tables.clone(),
+            extrapolate: self.extrapolate,
+            outside: Cell::new(None),
         }
     }
 }
@@ -79,6 +102,7 @@ impl ExprPool {
     /// Compiles `roots` into one [`Tape`]; `out[i]` of [`Tape::eval`] is the value of
     /// `roots[i]`.
     pub fn compile(&self, roots: &[Id]) -> Tape {
+        let mut tables: Vec<TapeTable> = Vec::new();
         let mut slot: FxHashMap<Id, usize> = FxHashMap::default();
         let mut code = Vec::new();
         let mut operands = Vec::new();
@@ -118,6 +142,21 @@ impl ExprPool {
                         None => Instr::Pow(s(b), s(x)),
                     }
                 }
+                Node::Call(Func::Table { table, order }, args) => {
+                    match (self.table(*table, *order), args.as_ref()) {
+                        (Some(t), [a]) => {
+                            tables.push(TapeTable {
+                                table: Arc::clone(t),
+                                name: self.table_call_name(*table, *order),
+                            });
+                            Instr::Table {
+                                table: tables.len() - 1,
+                                argument: s(a),
+                            }
+                        }
+                        _ => Instr::Const(f64::NAN),
+                    }
+                }
                 Node::Call(f, args) => match args.as_ref() {
                     [a] => Instr::Call1(*f, s(a)),
                     [a, b] => Instr::Call2(*f, s(a), s(b)),
@@ -136,6 +175,9 @@ impl ExprPool {
             operands,
             outputs,
             scratch: RefCell::new(Vec::new()),
+            tables,
+            extrapolate: false,
+            outside: Cell::new(None),
         }
     }
 }
@@ -170,6 +212,7 @@ impl Tape {
     /// [`eval`](Self::eval) with a caller-owned scratch buffer (for sharing a tape between
     /// threads: one buffer per thread).
     pub fn eval_with(&self, env: &[f64], scratch: &mut Vec<f64>, out: &mut [f64]) {
+        self.outside.set(None);
         scratch.clear();
         scratch.resize(self.code.len(), 0.0);
         for (i, instr) in self.code.iter().enumerate() {
@@ -196,7 +239,44 @@ impl Tape {
             Instr::Pow(a, b) => power(slot(slots, a), slot(slots, b)),
             Instr::Call1(f, a) => f.apply(&[slot(slots, a)]),
             Instr::Call2(f, a, b) => f.apply(&[slot(slots, a), slot(slots, b)]),
+            Instr::Table { table, argument } => self.lookup(table, slot(slots, argument)),
         }
+    }
+
+    /// A table's value at `x`: under the table's `Outside` rule, a failed lookup NaN and
+    /// remembered for [`outside`](Self::outside); extrapolated for the checks.
+    fn lookup(&self, table: usize, x: f64) -> f64 {
+        let Some(t) = self.tables.get(table) else {
+            return f64::NAN;
+        };
+        if self.extrapolate {
+            return t.table.curve().value(x);
+        }
+        match t.table.value(x) {
+            Ok(value) => value,
+            Err(_) => {
+                if self.outside.get().is_none() {
+                    self.outside.set(Some((table, x)));
+                }
+                f64::NAN
+            }
+        }
+    }
+
+    /// The first table lookup of the last evaluation that fell outside the table's data
+    /// under `outside error` (or had a NaN argument): the table's name (`F`, or `F'` for
+    /// its derivative) and the argument. Its outputs that depend on it are NaN.
+    pub fn outside(&self) -> Option<(&str, f64)> {
+        let (table, x) = self.outside.get()?;
+        self.tables.get(table).map(|t| (t.name.as_str(), x))
+    }
+
+    /// The same tape with tables extrapolating their end pieces instead of applying
+    /// their `Outside` rule: the derivation's numeric checks test algebra at random
+    /// points, not data (docs/tables.md).
+    pub fn extrapolating(mut self) -> Tape {
+        self.extrapolate = true;
+        self
     }
 
     /// The slots an `Add` or `Mul` reads.

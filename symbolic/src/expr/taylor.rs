@@ -341,6 +341,12 @@ impl Compiler<'_> {
     }
 
     fn call1(&mut self, f: Func, a: usize) -> usize {
+        if matches!(f, Func::Table { .. }) {
+            // No recurrence for a table yet (docs/tables.md: a polynomial per interval, valid
+            // while the argument stays in it): NaN coefficients, so a Taylor step ends in the
+            // typed NonFiniteState error instead of a silently wrong series.
+            return self.emit(Op::Const(f64::NAN), &[]);
+        }
         if !self.series(a) {
             // Constant: the pair and companion slots are not needed.
             return self.emit(constant_call(f, a), &[]);
@@ -401,7 +407,9 @@ impl Compiler<'_> {
             }
             Func::Abs => self.emit(Op::Abs(a), &[a]),
             Func::Sign => self.emit(Op::Sign(a), &[a]),
-            Func::Atan2 | Func::Min | Func::Max => self.emit(Op::Const(f64::NAN), &[]),
+            Func::Atan2 | Func::Min | Func::Max | Func::Table { .. } => {
+                self.emit(Op::Const(f64::NAN), &[])
+            }
         }
     }
 

@@ -3,6 +3,7 @@
 //! diagnostic at the statement it is about.
 
 use rustc_hash::FxHashMap;
+use std::path::{Path, PathBuf};
 
 use super::model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
@@ -17,9 +18,13 @@ use crate::parse::ast::{
 };
 use crate::parse::{keywords, Diagnostic, Span, Spanned};
 
-/// Builds the model, collecting every diagnostic.
-pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
-    let mut builder = Builder::new(parameters);
+/// Builds the model, collecting every diagnostic; table files are read relative to `base`.
+pub fn build_model(
+    ast: &SystemAst,
+    parameters: Parameters,
+    base: &Path,
+) -> Result<Model, Vec<Diagnostic>> {
+    let mut builder = Builder::new(parameters, base);
     builder.declare(ast);
     builder.lower_statements(ast);
     builder.finish()
@@ -29,10 +34,12 @@ pub(super) struct Builder {
     pub(super) model: Model,
     pub(super) errors: Vec<Diagnostic>,
     declared_at: FxHashMap<String, Span>,
+    /// The directory table files are read from.
+    pub(super) base: PathBuf,
 }
 
 impl Builder {
-    fn new(parameters: Parameters) -> Builder {
+    fn new(parameters: Parameters, base: &Path) -> Builder {
         let mut pool = ExprPool::new();
         let time = pool.symbols_mut().add(keywords::TIME, SymbolKind::Time);
         let mut names = FxHashMap::default();
@@ -61,17 +68,19 @@ impl Builder {
                 flows: Vec::new(),
                 terms: Vec::new(),
                 checks: Vec::new(),
+                tables: Vec::new(),
                 names,
                 parameter_mode: parameters,
             },
             errors: Vec::new(),
             declared_at: FxHashMap::default(),
+            base: base.to_path_buf(),
         }
     }
 
     /// Checks a new name against everything declared so far (why: one name, one meaning —
     /// a mass named like a coordinate would make every equation ambiguous).
-    fn check_new_name(&mut self, name: &str, span: Span, what: &str) -> bool {
+    pub(super) fn check_new_name(&mut self, name: &str, span: Span, what: &str) -> bool {
         if is_reserved(name) {
             self.errors.push(Diagnostic::new(
                 span,
@@ -121,6 +130,7 @@ impl Builder {
                 StatementKind::Rigid(rigid) => {
                     self.check_new_name(&rigid.name.node, rigid.name.span, "body");
                 }
+                StatementKind::Table(table) => self.declare_table(table),
                 _ => {}
             }
         }

@@ -137,6 +137,8 @@ pub struct Derivation {
     pub checks: Vec<CheckOutcome>,
     /// The units of the names and quantities, when the system declares `units`.
     pub units: Option<crate::units::UnitTable>,
+    /// The model's tables (their data are in the pool).
+    pub tables: Vec<super::tables::ModelTable>,
 }
 
 impl Derivation {
@@ -299,6 +301,7 @@ fn assemble(model: Model, e: Equations) -> (Derivation, CheckScope) {
         jacobian: e.jacobian,
         checks: Vec::new(),
         units: None,
+        tables: model.tables,
     };
     (derivation, scope)
 }

@@ -36,7 +36,9 @@ mod resolve;
 mod rigid;
 mod rigid_forces;
 mod rotation;
+mod stops;
 mod switches;
+mod tables;
 
 pub use derivation::{
     CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,
@@ -49,13 +51,17 @@ pub use model::{
 pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
+pub use stops::{time_tables, TimeTable};
 pub use switches::switching_functions;
+pub use tables::{read_points, ModelTable};
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
+use std::path::Path;
 
-/// Resolves and lowers a parsed system into a checked [`Model`].
+/// Resolves and lowers a parsed system into a checked [`Model`] (table files relative to
+/// the current directory).
 pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
-    build::build_model(ast, parameters)
+    build::build_model(ast, parameters, Path::new("."))
 }
 
 /// Derives a parsed system and verifies its `check`s. A system with a `units` statement
@@ -71,7 +77,18 @@ pub fn derive_for(
     parameters: Parameters,
     outputs: Outputs,
 ) -> Result<Derivation, Vec<Diagnostic>> {
-    let model = build::build_model(ast, parameters)?;
+    derive_in(ast, parameters, outputs, Path::new("."))
+}
+
+/// [`derive_for`] with `table` files read relative to `base` (the model file's directory;
+/// for an inline system the crate's, `CARGO_MANIFEST_DIR`).
+pub fn derive_in(
+    ast: &SystemAst,
+    parameters: Parameters,
+    outputs: Outputs,
+    base: &Path,
+) -> Result<Derivation, Vec<Diagnostic>> {
+    let model = build::build_model(ast, parameters, base)?;
     let units = crate::units::check_units(ast)?;
     let mut derivation = derivation::derive_model(model, outputs)?;
     derivation.units = units;

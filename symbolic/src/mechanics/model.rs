@@ -214,6 +214,8 @@ pub struct Model {
     pub terms: Vec<Term>,
     /// Checks, in source order.
     pub checks: Vec<Check>,
+    /// Tables, in source order (`tables.rs`).
+    pub tables: Vec<super::tables::ModelTable>,
     pub(crate) names: FxHashMap<String, Binding>,
     pub(crate) parameter_mode: Parameters,
 }

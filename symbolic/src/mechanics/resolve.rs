@@ -25,6 +25,8 @@ pub(crate) enum Binding {
     Let(Id),
     /// A parameter (a field of the struct).
     Parameter(Symbol),
+    /// A `table` (index into the pool's tables): a function, called `F(t)`.
+    Table(u16),
 }
 
 /// Where an expression stands, which decides what it may refer to.
@@ -94,7 +96,19 @@ impl Resolver for NameResolver<'_> {
             )),
             Some(Binding::Time(s) | Binding::Mass(s) | Binding::Parameter(s)) => Ok(pool.sym(s)),
             Some(Binding::Let(value)) => Ok(value),
+            Some(Binding::Table(_)) => Err(Diagnostic::new(
+                span,
+                format!("`{name}` is a table, a function of one argument"),
+            )
+            .with_help(format!("call it: `{name}(t)`, `{name}(x)`"))),
             None => self.unknown(pool, written),
+        }
+    }
+
+    fn table(&self, name: &str) -> Option<u16> {
+        match self.names.get(name) {
+            Some(Binding::Table(index)) => Some(*index),
+            _ => None,
         }
     }
 }
@@ -152,6 +166,7 @@ fn describe(binding: Binding) -> &'static str {
         Binding::Mass(_) => "a mass (its rate is derived)",
         Binding::Let(_) => "a definition",
         Binding::Parameter(_) => "a parameter",
+        Binding::Table(_) => "a table",
     }
 }
 

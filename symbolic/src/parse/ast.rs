@@ -144,6 +144,25 @@ pub enum StatementKind {
     Rigid(RigidDecl),
     /// `torque rocket: tau` (planar) or `torque craft: body [..]` (spatial).
     Torque(Load),
+    /// `table F(t) = "motors/M1670.eng", outside zero`: a function of one argument read
+    /// from a file (docs/tables.md).
+    Table(TableDecl),
+}
+
+/// A `table` statement: `table NAME(ARG) = "FILE" [, OPTION]*`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TableDecl {
+    /// The table's name, called as a function.
+    pub name: Spanned<String>,
+    /// The parameter's name inside the statement (at a call the argument is any expression).
+    pub parameter: Spanned<String>,
+    /// The file as written (without the quotes), relative to the model file; the span
+    /// covers the quotes.
+    pub file: Spanned<String>,
+    /// `linear` (default), `pchip` or `spline`.
+    pub interpolation: varmass_table::Interpolation,
+    /// `outside error` (default), `outside zero` or `outside hold`.
+    pub outside: varmass_table::Outside,
 }
 
 /// The frame a vector is written in: `[..]` the world's, `body [..]` the rigid body's.

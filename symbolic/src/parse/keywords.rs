@@ -55,6 +55,10 @@ pub const CENTRE: &str = "centre";
 pub const AT: &str = "at";
 /// The time symbol.
 pub const TIME: &str = "t";
+/// `table F(t) = "file", …` (docs/tables.md)
+pub const TABLE: &str = "table";
+/// The option of a table naming what it is worth outside its data.
+pub const OUTSIDE: &str = "outside";
 
 /// Every statement keyword, for "expected one of" messages.
 pub const STATEMENTS: &[&str] = &[
@@ -75,7 +79,14 @@ pub const STATEMENTS: &[&str] = &[
     UNITS,
     RIGID,
     TORQUE,
+    TABLE,
 ];
+
+/// The options of a `table` statement: an interpolation, or `outside` and a rule.
+pub const TABLE_OPTIONS: &[&str] = &["linear", "pchip", "spline", OUTSIDE];
+
+/// The rules after `outside` in a `table` statement.
+pub const OUTSIDE_RULES: &[&str] = &["error", "zero", "hold"];
 
 /// The options of a `rigid` statement.
 pub const RIGID_OPTIONS: &[&str] = &[MASS, INERTIA, POSITION, ANGLE, ORIENTATION, CENTRE];

@@ -31,6 +31,9 @@ pub(crate) struct Checker {
     /// Names without a unit, with their first use.
     missing: Vec<(String, Span)>,
     diagnostics: Vec<Diagnostic>,
+    /// Each table's name, with its argument's dimension and where it was first inferred
+    /// (`calls.rs`).
+    pub(crate) tables: FxHashMap<String, Option<(Dimension, Span)>>,
 }
 
 /// Checks the dimensions of every statement of `ast` when it has a `units` statement.
@@ -141,6 +144,9 @@ impl Checker {
                 StatementKind::Inertia(decl) => {
                     self.declare_mass(decl, Dimension::INERTIA, "an inertia")
                 }
+                StatementKind::Table(table) => {
+                    self.tables.insert(table.name.node.clone(), None);
+                }
                 _ => {}
             }
         }
@@ -213,7 +219,7 @@ impl Checker {
             StatementKind::Check { lhs, rhs, .. } => self.check(lhs, rhs),
             StatementKind::Rigid(rigid) => self.rigid(rigid),
             StatementKind::Torque(load) => self.torque(load),
-            StatementKind::Coordinates(_) | StatementKind::Units(_) => {}
+            StatementKind::Coordinates(_) | StatementKind::Units(_) | StatementKind::Table(_) => {}
         }
     }
 

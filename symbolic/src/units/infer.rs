@@ -162,6 +162,7 @@ impl Checker {
                     _ => Some(agreed),
                 }
             }
+            _ if self.tables.contains_key(func) => self.table_call(func, args, first, span),
             // Unknown functions were reported when the system was resolved.
             _ => None,
         }

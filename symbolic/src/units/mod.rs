@@ -7,6 +7,7 @@
 //! energy per unit of q, the operands of `+` agree, and so on, each failure a diagnostic
 //! at the offending term.
 
+mod calls;
 mod check;
 mod dimension;
 mod infer;

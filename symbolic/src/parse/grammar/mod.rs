@@ -57,6 +57,7 @@ mod positions;
 mod recovery;
 mod rigid;
 mod statement;
+mod table;
 
 use super::ast::{ExprNode, SystemAst};
 use super::span::{Diagnostic, Span};

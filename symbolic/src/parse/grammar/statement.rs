@@ -78,6 +78,7 @@ impl<'a> Grammar<'a> {
             keywords::UNITS => self.units(after)?,
             keywords::RIGID => self.rigid(after)?,
             keywords::TORQUE => self.load(after, keywords::TORQUE, StatementKind::Torque)?,
+            keywords::TABLE => self.table(after)?,
             _ => return Err(self.unknown_statement(head, after)),
         };
         let span = self.span(head.span.start, self.offset(rest));

@@ -1,0 +1,49 @@
+//! Tables of data in generated code (docs/tables.md): the macro embeds each table a system
+//! calls as a `static` [`Table`] over its coefficients, and calls it through [`lookup`] in
+//! the methods that return a `Result` (a lookup outside the data is
+//! [`SystemError::TableOutside`]) and [`lookup_or_nan`] in the others, which the run only
+//! calls where the state rate succeeded at the same state.
+
+pub use varmass_table::*;
+
+use crate::system::SystemError;
+
+/// The value of `table` (called `name` in the model) at `x`, or the typed error naming
+/// both when `x` is outside its data under `outside error` (or is NaN).
+#[inline]
+pub fn lookup(table: &Table, name: &'static str, x: f64) -> Result<f64, SystemError> {
+    table.value(x).map_err(|_| SystemError::TableOutside {
+        table: name,
+        argument: x,
+    })
+}
+
+/// [`lookup`] where no error can be returned: NaN on failure, which the steppers'
+/// non-finite check stops at.
+#[inline]
+pub fn lookup_or_nan(table: &Table, x: f64) -> f64 {
+    table.value(x).unwrap_or(f64::NAN)
+}
+
+/// The first time after `after` at which the argument `slope·t + offset` of `table` crosses
+/// one of its knots, t = (knot − offset)/slope; infinity if none does (or the slope is 0
+/// or not finite). What generated systems' `next_stop_time` asks of each table of t, by a
+/// binary search on the knots.
+pub fn next_knot_time(table: &Table, slope: f64, offset: f64, after: f64) -> f64 {
+    if !(slope.is_finite() && offset.is_finite()) || slope == 0.0 {
+        return f64::INFINITY;
+    }
+    let knots = table.knots();
+    let time = |x: f64| (x - offset) / slope;
+    let found = if slope > 0.0 {
+        // Times increase with the knot: the first knot whose time is past `after`.
+        knots.get(knots.partition_point(|&x| time(x) <= after))
+    } else {
+        // Times decrease with the knot: the last knot whose time is past `after`.
+        knots
+            .partition_point(|&x| time(x) > after)
+            .checked_sub(1)
+            .and_then(|k| knots.get(k))
+    };
+    found.map_or(f64::INFINITY, |&x| time(x))
+}

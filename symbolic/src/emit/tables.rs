@@ -1,0 +1,52 @@
+//! Tables in generated code (docs/tables.md#the-macro-data-embedded-at-compile-time): one
+//! `static` per table and derivative order the pool holds, over the interpolant's
+//! coefficients computed at compile time and printed with `{:?}` (which round-trips every
+//! `f64`), so the generated code parses nothing and allocates nothing.
+
+use proc_macro2::TokenStream;
+
+use super::expression::tokens;
+use crate::expr::ExprPool;
+use varmass_table::Outside;
+
+/// The static holding order `order` of table `table`.
+pub(crate) fn static_name(table: u16, order: u8) -> String {
+    format!("__VARMASS_TABLE_{table}_{order}")
+}
+
+/// Every table's statics (nothing for a system without tables).
+pub(crate) fn statics(pool: &ExprPool, runtime: &TokenStream) -> TokenStream {
+    let runtime = runtime.to_string();
+    let mut text = String::new();
+    for table in 0..pool.table_count() {
+        let Ok(table) = u16::try_from(table) else {
+            break;
+        };
+        for order in 0..=u8::MAX {
+            let Some(t) = pool.table(table, order) else {
+                break;
+            };
+            let curve = t.curve();
+            let outside = match t.outside() {
+                Outside::Error => "Error",
+                Outside::Zero => "Zero",
+                Outside::Hold => "Hold",
+            };
+            text.push_str(&format!(
+                "#[allow(dead_code)]\nstatic {}: {runtime}::table::Table = {runtime}::table::Table::from_piecewise(\
+                 {runtime}::table::Piecewise::from_static(&[{}], &[{}], {}), {runtime}::table::Outside::{outside});\n",
+                static_name(table, order),
+                literals(curve.knots()),
+                literals(curve.coefficients()),
+                curve.degree(),
+            ));
+        }
+    }
+    tokens(&text)
+}
+
+/// `1.5f64, -2f64, …`: `{:?}` round-trips every finite `f64` (the data are checked finite).
+fn literals(values: &[f64]) -> String {
+    let all: Vec<String> = values.iter().map(|v| format!("{v:?}f64")).collect();
+    all.join(", ")
+}

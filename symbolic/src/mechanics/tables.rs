@@ -1,0 +1,99 @@
+//! `table` statements (docs/tables.md#statements): each file read relative to the model's
+//! directory with `varmass-table` (`.eng` RASP, `.csv` CSV), the interpolant built, and the
+//! table registered in the pool under its name, so that calls lower to
+//! `Call(Func::Table { .. })`. A missing or malformed file is a diagnostic at the file's
+//! name, with the file's line and column.
+
+use std::path::{Path, PathBuf};
+
+use super::build::Builder;
+use super::resolve::Binding;
+use crate::parse::ast::TableDecl;
+use crate::parse::{Diagnostic, Span};
+use varmass_table::{CsvTable, Interpolation, Motor, Outside, Points, Table};
+
+/// A table of the model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelTable {
+    /// Its name, called as a function.
+    pub name: String,
+    /// The file as written in the statement.
+    pub file: String,
+    /// The file as read (the model's directory joined with `file`).
+    pub path: PathBuf,
+    /// The interpolation.
+    pub interpolation: Interpolation,
+    /// What it is worth outside its data.
+    pub outside: Outside,
+    /// Its index in the pool ([`crate::expr::ExprPool::table`]).
+    pub index: u16,
+    /// Where the statement names the file.
+    pub span: Span,
+}
+
+/// The points of `decl`'s file, read relative to `base`, and the path read.
+pub fn read_points(decl: &TableDecl, base: &Path) -> Result<(Points, PathBuf), Diagnostic> {
+    let written = &decl.file.node;
+    let path = base.join(written);
+    let at = |message: String| Diagnostic::new(decl.file.span, message);
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or_default();
+    if !matches!(extension, "eng" | "csv") {
+        return Err(at(format!(
+            "`{written}`: a table file is a RASP motor (`.eng`) or a CSV table (`.csv`)"
+        )));
+    }
+    let text = std::fs::read_to_string(&path).map_err(|error| {
+        at(format!("cannot read the table file `{written}`: {error}")).with_help(
+            "table files are read relative to the model file (inline DSL: the crate's directory)",
+        )
+    })?;
+    let points = match extension {
+        "eng" => Motor::parse(&text).map(|m| m.thrust),
+        _ => CsvTable::parse(&text).map(|c| c.points),
+    };
+    let points =
+        points.map_err(|e| at(format!("{written}:{}:{}: {}", e.line, e.column, e.kind)))?;
+    Ok((points, path))
+}
+
+impl Builder {
+    /// Reads the table of `decl` and binds its name.
+    pub(super) fn declare_table(&mut self, decl: &TableDecl) {
+        if !self.check_new_name(&decl.name.node, decl.name.span, "table") {
+            return;
+        }
+        let (points, path) = match read_points(decl, &self.base) {
+            Ok(read) => read,
+            Err(diagnostic) => {
+                self.errors.push(diagnostic);
+                // Still a table, so that its calls are not "unknown function" as well
+                // (the index names no table: a call lowers to NaN, and the model fails).
+                self.model
+                    .names
+                    .insert(decl.name.node.clone(), Binding::Table(u16::MAX));
+                return;
+            }
+        };
+        let table = Table::new(&points, decl.interpolation, decl.outside);
+        let Some(index) = self.model.pool.add_table(&decl.name.node, table) else {
+            self.errors
+                .push(Diagnostic::new(decl.name.span, "too many tables"));
+            return;
+        };
+        self.model
+            .names
+            .insert(decl.name.node.clone(), Binding::Table(index));
+        self.model.tables.push(ModelTable {
+            name: decl.name.node.clone(),
+            file: decl.file.node.clone(),
+            path,
+            interpolation: decl.interpolation,
+            outside: decl.outside,
+            index,
+            span: decl.file.span,
+        });
+    }
+}
