@@ -81,13 +81,8 @@ impl AdaptiveControl {
 
     /// Checks the settings and returns the tolerance they give.
     pub(crate) fn validated(&self) -> Result<Tolerance, ConfigError> {
-        let tolerance =
-            Tolerance::new(self.relative_tolerance, self.absolute_tolerance).map_err(|_| {
-                ConfigError {
-                    reason: "adaptive control: tolerances must be finite, non-negative and not \
-                         both zero",
-                }
-            })?;
+        // Tolerance::new's own reason: "not finite …" and "finer than f64 can honour" differ.
+        let tolerance = Tolerance::new(self.relative_tolerance, self.absolute_tolerance)?;
         let initial_ok = self.initial_step.is_none_or(|h| h.is_finite() && h > 0.0);
         let factors_ok = self.safety > 0.0
             && self.safety <= 1.0
