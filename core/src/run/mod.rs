@@ -126,7 +126,7 @@ impl RunConfig {
 /// left at the end of the step that contained it ([`Stepper::restart`] it at the event to
 /// continue). The system's switches are located and the stepper restarted at each
 /// ([`RunConfig::switching`]), and it lands on and restarts at each of the system's stop
-/// times ([`VariableMassSystem::next_stop_time`](crate::VariableMassSystem::next_stop_time)).
+/// times ([`VariableMassSystem::next_stop_time`]).
 /// On error, the [`RunError`] carries the time, the state and the kind, and the solution up
 /// to the last accepted point.
 pub fn run<St, const N: usize, const S: usize>(
