@@ -115,7 +115,7 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
     };
     let mut phases = vec![first];
     for (k, entry) in scene.phases.iter().enumerate() {
-        let where_ = |offset| format!("{} (phase {})", at(offset), k + 1);
+        let where_ = |offset| format!("{} (phase {})", at(offset), k + 2);
         let before = phases.len() - 1;
         let in_force = next_in_force(entry, phases[before].in_force.clone(), &model_file, &where_)?;
         let phase = phase(entry, in_force, &model_file, &record_entries, &phases[0], &where_)?;
@@ -402,6 +402,7 @@ fn program_from(model: LoadedModel, in_force: &InForce) -> Result<Program, CliEr
 fn located(error: CliError, place: &str) -> CliError {
     match error {
         CliError::Input(message) => CliError::Input(format!("{place}: {message}")),
+        read @ CliError::Read { .. } => CliError::Input(format!("{place}: {read}")),
         other => other,
     }
 }
