@@ -103,8 +103,15 @@ fn the_two_stage_rocket_scene_reaches_its_closed_form_speed() {
         .lines()
         .find(|l| l.contains("kinetic energy removed"))
         .expect("the change is summarised");
-    let removed: f64 = line.rsplit(' ').next().and_then(|v| v.parse().ok()).expect("a number");
-    assert!((removed - taken).abs() <= 1e-9 * taken, "{removed} vs {taken}");
+    let removed: f64 = line
+        .rsplit(' ')
+        .next()
+        .and_then(|v| v.parse().ok())
+        .expect("a number");
+    assert!(
+        (removed - taken).abs() <= 1e-9 * taken,
+        "{removed} vs {taken}"
+    );
     let scale = rows.iter().map(|r| r[h].abs()).fold(0.0, f64::max);
     let worst = rows.iter().map(|r| r[residual].abs()).fold(0.0, f64::max);
     eprintln!("energy residual {:e} of H", worst / scale);
@@ -264,7 +271,10 @@ fn a_phase_may_not_change_the_state() {
 fn one_phase_flags_do_not_go_with_a_scene() {
     let file = workspace("models/two_stage_rocket.toml");
     let (_, stderr) = run(&["run", &file, "--set", "mu=1"], 2);
-    assert!(stderr.contains("--set: ") && stderr.contains("scene file"), "{stderr}");
+    assert!(
+        stderr.contains("--set: ") && stderr.contains("scene file"),
+        "{stderr}"
+    );
     let model = workspace("models/two_stage_rocket.vms");
     let set = ["--set", "mu=1", "--set", "g=1", "--set", "u_e=1"];
     let args = [&["run", &model, "--init", "y=0", "--init", "m=1"][..], &set].concat();

@@ -118,7 +118,14 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
         let where_ = |offset| format!("{} (phase {})", at(offset), k + 2);
         let before = phases.len() - 1;
         let in_force = next_in_force(entry, phases[before].in_force.clone(), &model_file, &where_)?;
-        let phase = phase(entry, in_force, &model_file, &record_entries, &phases[0], &where_)?;
+        let phase = phase(
+            entry,
+            in_force,
+            &model_file,
+            &record_entries,
+            &phases[0],
+            &where_,
+        )?;
         let end = end(&entry.when, &phases[before])
             .map_err(|e| located(e, &where_(entry.when.span().start)))?;
         phases[before].end = Some(end);
@@ -126,8 +133,7 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
     }
     if let Some(stop) = &scene.stop_when {
         let last = phases.len() - 1;
-        let end = end(stop, &phases[last])
-            .map_err(|e| located(e, &at(stop.span().start)))?;
+        let end = end(stop, &phases[last]).map_err(|e| located(e, &at(stop.span().start)))?;
         phases[last].end = Some(end);
     }
     if let Some(first_end) = &phases[0].end {
@@ -149,7 +155,10 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
         }
     }
     for phase in &mut phases {
-        let needs_watch = phase.end.as_ref().is_some_and(|e| needs_program(e, &phase.program));
+        let needs_watch = phase
+            .end
+            .as_ref()
+            .is_some_and(|e| needs_program(e, &phase.program));
         if needs_watch {
             let watch = program_of(&model_file, &phase.in_force)?;
             if let Some(end) = &mut phase.end {
@@ -214,7 +223,10 @@ fn next_in_force(
         Some(tags) => tags.get_ref().iter().map(|t| t.get_ref().clone()).collect(),
         None => before.with,
     };
-    let tag_span = entry.with.as_ref().map_or(entry.when.span().start, |w| w.span().start);
+    let tag_span = entry
+        .with
+        .as_ref()
+        .map_or(entry.when.span().start, |w| w.span().start);
     let model = load(&ModelArgs {
         file: file.to_path_buf(),
         with: with.clone(),
@@ -265,7 +277,10 @@ fn phase(
     };
     if same(&program) != same(&first.program) {
         let (now, then) = (same(&program), same(&first.program));
-        let tag_span = entry.with.as_ref().map_or(entry.when.span().start, |w| w.span().start);
+        let tag_span = entry
+            .with
+            .as_ref()
+            .map_or(entry.when.span().start, |w| w.span().start);
         return Err(CliError::Input(format!(
             "{}: this phase's model has the coordinates [{}] and state masses [{}], the first \
              phase's [{}] and [{}]: phases switch parameters and tags of one scene, never its \
@@ -310,7 +325,8 @@ fn state_masses(
     let mut set = Vec::new();
     for (name, value) in &entry.masses {
         let here = where_(name.span().start);
-        let index = resolve(name.get_ref(), &known, "a state mass").map_err(|e| located(e, &here))?;
+        let index =
+            resolve(name.get_ref(), &known, "a state mass").map_err(|e| located(e, &here))?;
         if !(value.is_finite() && *value > 0.0) {
             return Err(CliError::Input(format!(
                 "{here}: the state mass `{}` is set to {value}: a mass must be positive",

@@ -89,7 +89,8 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
         ends.push(phase.end);
         masses.push(phase.state_masses);
     }
-    let watchers: Vec<Option<Watcher<'_, S>>> = ends.iter().map(|e| e.as_ref().and_then(watcher)).collect();
+    let watchers: Vec<Option<Watcher<'_, S>>> =
+        ends.iter().map(|e| e.as_ref().and_then(watcher)).collect();
     let events: Vec<Option<Event<'_, S>>> = ends
         .iter()
         .zip(&watchers)
@@ -108,7 +109,10 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
         .collect();
     let mut initial_state = plan.initial_state.clone();
     initial_state.resize(S, 0.0);
-    let start = (plan.from, SVector::<f64, S>::from_column_slice(&initial_state));
+    let start = (
+        plan.from,
+        SVector::<f64, S>::from_column_slice(&initial_state),
+    );
     let config = RunConfig {
         max_steps: usize::try_from(plan.max_steps).unwrap_or(usize::MAX),
         ..RunConfig::until(plan.until)
@@ -186,7 +190,10 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
         energy_residual: phased.solution.energy_residual,
         stopped,
         statistics: phased.solution.statistics,
-        programs: phases.into_iter().map(|p| p.system.into_program()).collect(),
+        programs: phases
+            .into_iter()
+            .map(|p| p.system.into_program())
+            .collect(),
         failure,
     })
 }
