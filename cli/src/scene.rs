@@ -2,9 +2,9 @@
 //! parameters, state masses and tags changed at events, the state carried by separation or
 //! capture — into one table with the phase of every point.
 //!
-//! The file is read with serde ([`file`]), every name checked against the model before the
-//! first step ([`build`]), and the phases run by the core's `run_phases_keeping` on the
-//! interpreter's systems ([`fly`]). The recording, CSV, plot and error messages are
+//! The file is read with serde (`file`), every name checked against the model before the
+//! first step (`build`), and the phases run by the core's `run_phases_keeping` on the
+//! interpreter's systems (`fly`). The recording, CSV, plot and error messages are
 //! `varmass run`'s own.
 
 mod build;

@@ -69,7 +69,9 @@ pub fn fly(scene: Scene) -> Result<Flown, CliError> {
 }
 
 /// An event function g(t, state).
-type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
+type EventFunction<'a, const S: usize> = dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a;
+/// One owned.
+type Watcher<'a, const S: usize> = Box<EventFunction<'a, S>>;
 
 fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliError> {
     let Scene {
@@ -216,7 +218,7 @@ fn watcher<const S: usize>(end: &End) -> Option<Watcher<'_, S>> {
 /// from the state, anything else through its `watcher`.
 fn event<'a, const N: usize, const S: usize>(
     end: &'a End,
-    watcher: Option<&'a (dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a)>,
+    watcher: Option<&'a EventFunction<'a, S>>,
 ) -> Event<'a, S> {
     match (end.observable, watcher) {
         (_, Some(w)) => Event::function(w, end.direction, EventAction::Stop),
