@@ -281,3 +281,67 @@ fn one_phase_flags_do_not_go_with_a_scene() {
     let (_, stderr) = run(&args, 2);
     assert!(stderr.contains("--until T is required"), "{stderr}");
 }
+
+/// Three phases and a `stop_when`: the two-stage flight, the engine off at `t = 150`
+/// (mu = 0), then a coast ended at the apex by `y' < 0`. By hand: y(50) = 2500 (50 − 50 ln 2)
+/// − g·50²/2, y(150) = y(50) + v(50)·100 + 3000 (100 − 50 ln 3) − g·100²/2 (Tsiolkovsky
+/// integrated), apex at t = 150 + v(150)/g = 512.610073129887 s, y = y(150) + v(150)²/(2g)
+/// = 881428.203758237 m. Measured 1.2e-13 (height) and 6.7e-14 (time) relative at
+/// tolerance 1e-12; bounds 1e-12.
+#[test]
+fn a_scene_ends_on_its_stop_when() {
+    let model = workspace("models/two_stage_rocket.vms");
+    let file = scene(
+        "apex.toml",
+        &format!(
+            r#"
+model = "{model}"
+until = 1000.0
+stop_when = "y' < 0"
+tol = 1e-12
+set = {{ mu = 10.0, u_e = 2500.0, g = 9.81 }}
+init = {{ y = 0.0, m = 1000.0 }}
+
+[[phase]]
+when = "m = 500"
+set = {{ mu = 2.0, u_e = 3000.0 }}
+masses = {{ m = 300.0 }}
+
+[[phase]]
+when = "t = 150"
+set = {{ mu = 0.0 }}
+"#
+        ),
+    );
+    let (stdout, _) = run(&["run", &file], 0);
+    assert!(
+        stdout.contains("in phase 3 of 3 (stop_when 'y' < 0')"),
+        "{stdout}"
+    );
+    let number = |prefix: &str| -> f64 {
+        let line = stdout
+            .lines()
+            .find_map(|l| l.trim().strip_prefix(prefix))
+            .unwrap_or_else(|| panic!("no `{prefix}` in {stdout}"));
+        line.split(' ')
+            .next()
+            .and_then(|v| v.parse().ok())
+            .expect("a number")
+    };
+    let (time, height) = (number("stopped at t = "), number("y = "));
+    let g = 9.81;
+    let v_50 = 2500.0 * 2f64.ln() - g * 50.0;
+    let y_50 = 2500.0 * (50.0 - 50.0 * 2f64.ln()) - g * 1250.0;
+    let y_150 = y_50 + v_50 * 100.0 + 3000.0 * (100.0 - 50.0 * 3f64.ln()) - g * 1e4 / 2.0;
+    let v_150 = v_50 + 3000.0 * 3f64.ln() - g * 100.0;
+    let (t_apex, y_apex) = (150.0 + v_150 / g, y_150 + v_150 * v_150 / (2.0 * g));
+    let (time_error, height_error) = (
+        (time - t_apex).abs() / t_apex,
+        (height - y_apex).abs() / y_apex,
+    );
+    eprintln!("apex: time {time_error:e}, height {height_error:e}");
+    assert!(
+        time_error <= 1e-12 && height_error <= 1e-12,
+        "{time} {height}"
+    );
+}
