@@ -20,7 +20,8 @@ pub enum Command {
     Check(ModelArgs),
     /// Print the whole derivation (masses, L, p, H, forces, canonical equations, power).
     Derive(DeriveArgs),
-    /// Integrate the model from an initial state with one of the core's steppers.
+    /// Integrate the model from an initial state with one of the core's steppers, or run a
+    /// scene file (`varmass run SCENE.toml`: phases, docs/scenes.md).
     Run(Box<RunArgs>),
 }
 
@@ -68,8 +69,14 @@ pub struct RunArgs {
         allow_hyphen_values = true
     )]
     pub from: f64,
-    /// The end time.
-    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    /// The end time (required, except with a scene file `SCENE.toml`, which gives its own).
+    #[arg(
+        long,
+        value_name = "T",
+        allow_hyphen_values = true,
+        default_value_t = f64::NAN,
+        hide_default_value = true
+    )]
     pub until: f64,
     /// Stop at the first crossing of a recorded quantity through a value: 'NAME = VALUE'
     /// (either way), 'NAME > VALUE' (rising through it), 'NAME < VALUE' (falling).

@@ -17,13 +17,14 @@ use clap::Parser;
 
 use varmass_cli::args::{Cli, Command};
 use varmass_cli::error::CliError;
-use varmass_cli::{commands, run};
+use varmass_cli::{commands, run, scene};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check(a) => commands::check::check(&a),
         Command::Derive(a) => commands::derive::derive(&a.model, a.latex),
+        Command::Run(a) if scene::is_scene(&a.model.file) => scene::run(&a),
         Command::Run(a) => run::run(&a),
     };
     match result {

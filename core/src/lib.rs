@@ -132,7 +132,7 @@ pub use events::{Direction, Event, EventAction, EventCondition, EventHit};
 #[cfg(feature = "run")]
 pub use observe::{observe, Observable, Quantity, Recording};
 #[cfg(feature = "run")]
-pub use phases::{run_phases, Carry, Phase, PhaseChange, PhasedSolution};
+pub use phases::{run_phases, run_phases_keeping, Carry, Phase, PhaseChange, PhasedSolution};
 #[cfg(feature = "run")]
 pub use run::{run, RunConfig, RunError, Switching};
 #[cfg(feature = "run")]

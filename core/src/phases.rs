@@ -71,13 +71,36 @@ pub struct PhasedSolution<const N: usize, const S: usize> {
 
 /// Runs `phases` in turn from `(time, state)` to `config.end_time`, each with the stepper
 /// `stepper_for` builds for its system, until its event (or the end). On a failure the
-/// [`RunError`] carries the solution of every phase so far.
+/// [`RunError`] carries the solution of every phase so far (see [`run_phases_keeping`] to
+/// keep the phase of each point too).
 pub fn run_phases<'p, Sys, St, const N: usize, const S: usize>(
+    phases: &'p [Phase<'p, Sys, S>],
+    start: (f64, SVector<f64, S>),
+    stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    config: &RunConfig,
+) -> Result<PhasedSolution<N, S>, RunError<N, S>>
+where
+    Sys: VariableMassSystem<N, S>,
+    St: Stepper<N, S>,
+{
+    match run_phases_keeping(phases, start, stepper_for, config) {
+        (phased, None) => Ok(phased),
+        (phased, Some(error)) => Err(RunError {
+            error,
+            partial: alloc::boxed::Box::new(phased.solution),
+        }),
+    }
+}
+
+/// [`run_phases`], a failure returned beside the phased solution so far (its `stop`
+/// [`StopReason::Failed`]) instead of in a [`RunError`]: the phase of every point and the
+/// changes are kept, as a caller recording the phase column needs.
+pub fn run_phases_keeping<'p, Sys, St, const N: usize, const S: usize>(
     phases: &'p [Phase<'p, Sys, S>],
     (mut time, mut state): (f64, SVector<f64, S>),
     mut stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
     config: &RunConfig,
-) -> Result<PhasedSolution<N, S>, RunError<N, S>>
+) -> (PhasedSolution<N, S>, Option<StepError<S>>)
 where
     Sys: VariableMassSystem<N, S>,
     St: Stepper<N, S>,
@@ -87,18 +110,17 @@ where
         phase: Vec::new(),
         changes: Vec::new(),
     };
+    let fail = |error, mut phased: PhasedSolution<N, S>| {
+        phased.solution.stop = StopReason::Failed;
+        (phased, Some(error))
+    };
     let mut previous: Option<&Sys> = None;
     for (index, phase) in phases.iter().enumerate() {
-        let fail = |error, phased: &PhasedSolution<N, S>| RunError {
-            error,
-            partial: alloc::boxed::Box::new(Solution {
-                stop: StopReason::Failed,
-                ..phased.solution.clone()
-            }),
-        };
         if let Some(before) = previous {
-            let (entered, removed) =
-                carry(before, phase, time, &state).map_err(|error| fail(error, &phased))?;
+            let (entered, removed) = match carry(before, phase, time, &state) {
+                Ok(carried) => carried,
+                Err(error) => return fail(error, phased),
+            };
             state = entered;
             phased.changes.push(PhaseChange {
                 phase: index,
@@ -106,16 +128,18 @@ where
                 kinetic_energy_removed: removed,
             });
         }
-        let mut stepper = stepper_for(&phase.system, time, state).map_err(|e| fail(e, &phased))?;
+        let mut stepper = match stepper_for(&phase.system, time, state) {
+            Ok(stepper) => stepper,
+            Err(error) => return fail(error, phased),
+        };
         let events: Vec<Event<'_, S>> = phase.until.into_iter().collect();
-        let result = run(&mut stepper, config, &events);
-        let (solution, failure) = match result {
+        let (solution, failure) = match run(&mut stepper, config, &events) {
             Ok(solution) => (solution, None),
             Err(failure) => (*failure.partial, Some(failure.error)),
         };
         append(&mut phased, solution, index);
         if let Some(error) = failure {
-            return Err(fail(error, &phased));
+            return fail(error, phased);
         }
         let Some((end, last)) = phased.solution.last() else {
             break;
@@ -126,7 +150,7 @@ where
         }
         previous = Some(&phase.system);
     }
-    Ok(phased)
+    (phased, None)
 }
 
 /// The state entering `phase` from `before`'s `state` at `time`, and the kinetic energy

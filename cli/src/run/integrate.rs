@@ -99,7 +99,7 @@ pub fn integrate<const N: usize, const S: usize>(
 
 /// The step control of an adaptive method: `defaults` (the method's own safety and step
 /// factors) at the tolerance asked for, or the fixed step.
-fn control(steps: Steps, defaults: AdaptiveControl) -> StepControl {
+pub(crate) fn control(steps: Steps, defaults: AdaptiveControl) -> StepControl {
     match steps {
         Steps::Adaptive(tol) => StepControl::Adaptive(AdaptiveControl {
             relative_tolerance: tol,
@@ -112,7 +112,7 @@ fn control(steps: Steps, defaults: AdaptiveControl) -> StepControl {
 
 /// The step of a fixed-step method (the plan guarantees one; the adaptive tolerance never
 /// reaches a fixed-step method).
-fn step(steps: Steps) -> f64 {
+pub(crate) fn step(steps: Steps) -> f64 {
     match steps {
         Steps::Fixed(step) | Steps::Adaptive(step) => step,
     }
@@ -218,7 +218,7 @@ fn watcher<const S: usize>(
 
 /// A failed run as a message with the error in the user's names, its time, the state by
 /// name and what to do about it.
-fn describe<const N: usize, const S: usize>(
+pub(crate) fn describe<const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
     plan: &Plan,
     error: StepError<S>,

@@ -2,16 +2,16 @@
 //! steppers, print the final state and the run's work, and record, write and plot the
 //! quantities asked for.
 
-mod dispatch;
+pub(crate) mod dispatch;
 #[cfg(test)]
 mod fuzz;
-mod integrate;
-mod names;
-mod output;
-mod plan;
-mod plot;
-mod record;
-mod watch;
+pub(crate) mod integrate;
+pub(crate) mod names;
+pub(crate) mod output;
+pub(crate) mod plan;
+pub(crate) mod plot;
+pub(crate) mod record;
+pub(crate) mod watch;
 
 use varmass::interpret::{Program, ProgramError};
 use varmass::symbolic::parse::ast::SystemAst;

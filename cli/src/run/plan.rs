@@ -115,6 +115,13 @@ pub fn unused_parameters(d: &Derivation, values: &[(String, f64)]) -> Vec<String
 pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, CliError> {
     let from = args.from;
     let until = args.until;
+    if until.is_nan() {
+        return Err(CliError::Input(
+            "--until T is required: the end time of the run (a scene file, SCENE.toml, gives \
+             its own)"
+                .to_string(),
+        ));
+    }
     if !from.is_finite() || !until.is_finite() || until < from {
         return Err(CliError::Input(format!(
             "--until {} must be finite and not before the start time {} (--from): a run goes \
@@ -181,7 +188,7 @@ pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, 
 
 /// Splits a `--stop-when` condition `NAME = VALUE`, `NAME > VALUE` or `NAME < VALUE`
 /// (`>=` and `<=` read as `>` and `<`: a crossing has no width).
-fn condition(text: &str) -> Result<(String, Direction, f64), CliError> {
+pub(crate) fn condition(text: &str) -> Result<(String, Direction, f64), CliError> {
     let Some(at) = text.find(['=', '<', '>']) else {
         return Err(CliError::Input(format!(
             "--stop-when `{text}`: expected NAME = VALUE, NAME > VALUE or NAME < VALUE"
@@ -199,7 +206,7 @@ fn condition(text: &str) -> Result<(String, Direction, f64), CliError> {
 
 /// A `>` or `<` condition that already holds at the start would wait for a crossing the
 /// user did not mean: refused, with the value there.
-fn not_yet_true(
+pub(crate) fn not_yet_true(
     program: &Program,
     condition: &StopWhen,
     text: &str,

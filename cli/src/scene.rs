@@ -1,0 +1,184 @@
+//! `varmass run SCENE.toml`: a scene file (docs/scenes.md) runs a model through phases —
+//! parameters, state masses and tags changed at events, the state carried by separation or
+//! capture — into one table with the phase of every point.
+//!
+//! The file is read with serde (`file`), every name checked against the model before the
+//! first step (`build`), and the phases run by the core's `run_phases_keeping` on the
+//! interpreter's systems (`fly`). The recording, CSV, plot and error messages are
+//! `varmass run`'s own.
+
+mod build;
+mod file;
+mod fly;
+
+use std::fmt::Write;
+use std::path::Path;
+
+use varmass::core::{Carry, Statistics};
+
+use crate::args::RunArgs;
+use crate::error::CliError;
+use crate::run::output::{self, Table};
+use crate::run::plot;
+
+pub use build::ENERGY_RESIDUAL;
+
+/// Whether `path` names a scene file (`.toml`) rather than a model.
+pub fn is_scene(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e == "toml")
+}
+
+/// A scene's run, for the tool and for a library caller.
+pub struct SceneRun {
+    /// `phase`, the recorded quantities (and `energy_residual` if asked) at every point.
+    pub table: Table,
+    /// The summary the tool prints.
+    pub summary: String,
+    /// Where the scene asks the CSV to be written.
+    pub csv: Option<std::path::PathBuf>,
+    /// Why the run failed, if it did: the table then ends at the last accepted point.
+    pub failure: Option<CliError>,
+}
+
+/// Reads, checks and runs the scene file at `path`. A mistake in the file is an `Err`
+/// before any step; a run that fails is an `Ok` whose `failure` is set, with the points so
+/// far in the table.
+pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
+    let read = file::read(path)?;
+    let scene = build::build(&read, path)?;
+    let csv = scene.csv.clone();
+    let phases: Vec<(Carry, Vec<(String, crate::run::record::Recorded)>)> = scene
+        .phases
+        .iter()
+        .map(|p| (p.carry, p.record.clone()))
+        .collect();
+    let ends: Vec<Option<String>> = scene
+        .phases
+        .iter()
+        .map(|p| p.end.as_ref().map(|e| e.text.clone()))
+        .collect();
+    let energy = scene.energy_residual;
+    let flown = fly::fly(scene)?;
+    let mut names = vec!["phase".to_string()];
+    names.extend(phases[0].1.iter().map(|(n, _)| n.clone()));
+    if energy {
+        names.push(ENERGY_RESIDUAL.to_string());
+    }
+    let mut rows = Vec::with_capacity(flown.points.len());
+    let mut start = 0;
+    while start < flown.points.len() {
+        let k = flown.phase[start];
+        let end = start + flown.phase[start..].iter().take_while(|p| **p == k).count();
+        let part = output::table(&flown.programs[k], &phases[k].1, &flown.points[start..end])?;
+        for (i, (t, values)) in part.rows.into_iter().enumerate() {
+            let mut row = vec![(k + 1) as f64];
+            row.extend(values);
+            if energy {
+                row.extend(flown.energy_residual.get(start + i));
+            }
+            rows.push((t, row));
+        }
+        start = end;
+    }
+    let summary = summary(&flown, &phases, &ends);
+    Ok(SceneRun {
+        table: Table { names, rows },
+        summary,
+        csv,
+        failure: flown.failure,
+    })
+}
+
+/// `varmass run SCENE.toml`: runs the scene, writes its CSV (`--csv` overrides the file's
+/// `csv`) and plot, and returns the summary; a failed run writes the points so far and
+/// returns its error.
+pub fn run(args: &RunArgs) -> Result<String, CliError> {
+    refuse_one_phase_flags(args)?;
+    let path = &args.model.file;
+    let done = run_file(path)?;
+    if let Some(csv) = args.csv.as_ref().or(done.csv.as_ref()) {
+        output::write_csv(&done.table, csv)?;
+    }
+    if let Some(failure) = done.failure {
+        return Err(failure);
+    }
+    if let Some(plot_path) = &args.plot {
+        plot::plot(&done.table, &path.display().to_string(), plot_path)?;
+    }
+    Ok(done.summary)
+}
+
+/// The flags of a one-phase run have no meaning beside a scene, which gives them itself.
+fn refuse_one_phase_flags(args: &RunArgs) -> Result<(), CliError> {
+    let given = [
+        ("--with", !args.model.with.is_empty()),
+        ("--set", !args.set.is_empty()),
+        ("--init", !args.init.is_empty()),
+        ("--until", !args.until.is_nan()),
+        ("--stop-when", !args.stop_when.is_empty()),
+        ("--tol", args.tol.is_some()),
+        ("--step", args.step.is_some()),
+        ("--record", !args.record.is_empty()),
+        ("--every", args.every.is_some()),
+        ("--max-seconds", args.max_seconds.is_some()),
+    ];
+    match given.iter().find(|(_, given)| *given) {
+        Some((flag, _)) => Err(CliError::Input(format!(
+            "{flag}: `{}` is a scene file, which gives its own settings (docs/scenes.md); \
+             write it there (only --csv and --plot go with a scene file)",
+            args.model.file.display()
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The summary: how the scene ended, each change with the kinetic energy it removed, the
+/// final state and the work.
+fn summary(
+    flown: &fly::Flown,
+    phases: &[(Carry, Vec<(String, crate::run::record::Recorded)>)],
+    ends: &[Option<String>],
+) -> String {
+    let Some(((time, state), last)) = flown.points.last().zip(flown.phase.last()) else {
+        return "the scene computed no point\n".to_string();
+    };
+    let why = match (flown.stopped, ends.get(*last).and_then(Option::as_ref)) {
+        (true, Some(condition)) => format!("stop_when '{condition}'"),
+        _ => "reached until".to_string(),
+    };
+    let mut out = format!(
+        "stopped at t = {time} in phase {} of {} ({why})\n",
+        last + 1,
+        phases.len()
+    );
+    for change in &flown.changes {
+        let rule = match phases.get(change.phase).map(|p| p.0) {
+            Some(Carry::Capture) => "capture",
+            _ => "separation",
+        };
+        let _ = writeln!(
+            out,
+            "phase {} began at t = {} ({rule}); kinetic energy removed: {}",
+            change.phase + 1,
+            change.time,
+            change.kinetic_energy_removed
+        );
+    }
+    out.push_str("state:");
+    out.push_str(&output::state_lines(&flown.programs[*last], *time, state));
+    out.push('\n');
+    out.push_str(&work(&flown.statistics));
+    out
+}
+
+fn work(s: &Statistics) -> String {
+    format!(
+        "steps: {} accepted, {} rejected; {} rate evaluations, {} Jacobians, {} Newton \
+         iterations\n",
+        s.accepted_steps,
+        s.rejected_steps,
+        s.rate_evaluations,
+        s.jacobian_evaluations,
+        s.newton_iterations
+    )
+}

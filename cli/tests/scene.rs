@@ -1,0 +1,347 @@
+//! Scene files (`varmass run SCENE.toml`, docs/scenes.md): the two-stage rocket of
+//! `models/two_stage_rocket.toml` against its closed form, a tag switched at a time, a
+//! failed phase keeping its points, and every bad scene file a message with its line and
+//! exit 2.
+
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+
+/// A file of the workspace.
+fn workspace(name: &str) -> String {
+    format!("{}/../{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs the tool, asserting the exit code; returns stdout and stderr.
+fn run(args: &[&str], code: i32) -> (String, String) {
+    let output = Command::cargo_bin("varmass")
+        .expect("the binary is built")
+        .args(args)
+        .output()
+        .expect("runs");
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert_eq!(output.status.code(), Some(code), "{stdout}\n{stderr}");
+    (stdout, stderr)
+}
+
+fn scratch(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name)
+}
+
+/// Writes a scene file `name` (its model named absolutely) and returns its path.
+fn scene(name: &str, text: &str) -> String {
+    let path = scratch(name);
+    std::fs::write(&path, text).expect("writable");
+    path.display().to_string()
+}
+
+/// A CSV as its header and rows.
+fn csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).expect("the CSV is written");
+    let mut lines = text.lines();
+    let header = lines.next().expect("a header");
+    let names = header.split(',').map(str::to_string).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect())
+        .collect();
+    (names, rows)
+}
+
+fn column(names: &[String], name: &str) -> usize {
+    names
+        .iter()
+        .position(|n| n == name)
+        .unwrap_or_else(|| panic!("no column {name} in {names:?}"))
+}
+
+/// The issue's acceptance case through the tool: v(150 s) = 2500 ln 2 − 9.81·50 +
+/// 3000 ln 3 − 9.81·100 = 3557.204817404192 m/s. Measured 6.3e-15 relative (tolerance
+/// 1e-13, as the Rust API's test); bound 1e-12. The separated 200 kg leaves with
+/// v(50 s) = 2500 ln 2 − 490.5, so the summary's kinetic energy removed is ½·200·v(50)²
+/// (measured 8.7e-15 relative; bound 1e-9), and the energy residual, continued across the
+/// change, stays below 1e-9 of H (measured 2.7e-11) where counting the jump would make it
+/// 0.18 of H.
+#[test]
+fn the_two_stage_rocket_scene_reaches_its_closed_form_speed() {
+    let out = scratch("two_stage.csv");
+    let file = workspace("models/two_stage_rocket.toml");
+    let out_text = out.display().to_string();
+    let (stdout, _) = run(&["run", &file, "--csv", &out_text], 0);
+    let (names, rows) = csv(&out);
+    let (phase, v, m, h, residual) = (
+        column(&names, "phase"),
+        column(&names, "y'"),
+        column(&names, "m"),
+        column(&names, "H"),
+        column(&names, "energy_residual"),
+    );
+    let last = rows.last().expect("rows");
+    assert_eq!(last[0], 150.0);
+    let exact = 2500.0 * 2f64.ln() - 9.81 * 50.0 + 3000.0 * 3f64.ln() - 9.81 * 100.0;
+    assert_eq!(exact, 3557.204817404192);
+    let error = (last[v] - exact).abs() / exact;
+    eprintln!("v(150) = {}, relative error {error:e}", last[v]);
+    assert!(error <= 1e-12, "{error:e}");
+    assert!((last[m] - 100.0).abs() <= 1e-9, "{}", last[m]);
+    // The phase column: 1 to the separation, then 2; the change appears twice at t = 50 s,
+    // m = 500 kg before and 300 kg after, with the same velocity.
+    assert_eq!(rows[0][phase], 1.0);
+    assert_eq!(last[phase], 2.0);
+    let change = rows
+        .iter()
+        .position(|r| r[phase] == 2.0)
+        .expect("a second phase");
+    let (before, after) = (&rows[change - 1], &rows[change]);
+    assert_eq!(before[0], after[0]);
+    assert!((after[0] - 50.0).abs() < 1e-9, "{}", after[0]);
+    assert!((before[m] - 500.0).abs() < 1e-9 && after[m] == 300.0);
+    assert!((before[v] - after[v]).abs() <= 1e-12 * after[v]);
+    let v_50 = 2500.0 * 2f64.ln() - 9.81 * 50.0;
+    let taken = 0.5 * 200.0 * v_50 * v_50;
+    let line = stdout
+        .lines()
+        .find(|l| l.contains("kinetic energy removed"))
+        .expect("the change is summarised");
+    let removed: f64 = line
+        .rsplit(' ')
+        .next()
+        .and_then(|v| v.parse().ok())
+        .expect("a number");
+    assert!(
+        (removed - taken).abs() <= 1e-9 * taken,
+        "{removed} vs {taken}"
+    );
+    let scale = rows.iter().map(|r| r[h].abs()).fold(0.0, f64::max);
+    let worst = rows.iter().map(|r| r[residual].abs()).fold(0.0, f64::max);
+    eprintln!("energy residual {:e} of H", worst / scale);
+    assert!(worst <= 1e-9 * scale, "{worst} of {scale}");
+    assert!(taken > 0.1 * scale);
+}
+
+/// A time condition and a tag switched on: `models/rocket.vms` without gravity burns for
+/// 10 s (v₁ = u_e ln(m₀/m₁), m₁ = 900 kg), then coasts with `[drag]` (mu = 0, k_d given in
+/// that phase only): m v' = −k_d v|v| gives v(t) = v₁ / (1 + k_d v₁ (t − 10)/m₁). Measured
+/// 1.4e-13 relative at tolerance 1e-12; bound 1e-11.
+#[test]
+fn a_phase_switches_tags_at_a_time() {
+    let model = workspace("models/rocket.vms");
+    let out = scratch("drag_phase.csv");
+    let file = scene(
+        "drag_phase.toml",
+        &format!(
+            r#"
+model = "{model}"
+until = 30.0
+tol = 1e-12
+csv = "{}"
+set = {{ mu = 10.0, u_e = 2500.0, g = 0.0 }}
+init = {{ y = 0.0, m = 1000.0 }}
+
+[[phase]]
+when = "t = 10"
+with = ["drag"]
+set = {{ mu = 0.0, k_d = 0.5 }}
+"#,
+            out.display()
+        ),
+    );
+    run(&["run", &file], 0);
+    let (names, rows) = csv(&out);
+    let (v, phase) = (column(&names, "y'"), column(&names, "phase"));
+    let last = rows.last().expect("rows");
+    assert_eq!((last[0], last[phase]), (30.0, 2.0));
+    let v1 = 2500.0 * (1000.0f64 / 900.0).ln();
+    let exact = v1 / (1.0 + 0.5 * v1 * 20.0 / 900.0);
+    let error = (last[v] - exact).abs() / exact;
+    eprintln!("v(30) = {}, relative error {error:e}", last[v]);
+    assert!(error <= 1e-11, "{error:e}");
+}
+
+/// A phase that fails (stage 2 runs out of mass at t = 200 s, before `until`) writes the
+/// points so far, phase 2 last, and exits 1 with the error's time.
+#[test]
+fn a_failed_phase_keeps_its_points() {
+    let model = workspace("models/two_stage_rocket.vms");
+    let out = scratch("runs_out.csv");
+    let file = scene(
+        "runs_out.toml",
+        &format!(
+            r#"
+model = "{model}"
+until = 250.0
+csv = "{}"
+set = {{ mu = 10.0, u_e = 2500.0, g = 9.81 }}
+init = {{ y = 0.0, m = 1000.0 }}
+
+[[phase]]
+when = "m = 500"
+set = {{ mu = 2.0, u_e = 3000.0 }}
+masses = {{ m = 300.0 }}
+"#,
+            out.display()
+        ),
+    );
+    let (_, stderr) = run(&["run", &file], 1);
+    assert!(stderr.contains("the mass `m` is not positive"), "{stderr}");
+    let (names, rows) = csv(&out);
+    let last = rows.last().expect("points before the failure");
+    assert_eq!(last[column(&names, "phase")], 2.0);
+    assert!(last[0] > 190.0 && last[0] <= 200.0, "{}", last[0]);
+}
+
+/// Every bad scene file is a message at its line and exit 2, before any step.
+#[test]
+fn bad_scene_files_are_refused_at_their_line() {
+    let model = workspace("models/two_stage_rocket.vms");
+    let good_start = format!(
+        "model = \"{model}\"\nuntil = 150.0\nset = {{ mu = 10.0, u_e = 2500.0, g = 9.81 }}\n\
+         init = {{ y = 0.0, m = 1000.0 }}\n"
+    );
+    let cases = [
+        // A misspelt key (deny_unknown_fields), with its line.
+        (
+            format!("{good_start}tol = 1e-9\nmetod = \"dop853\"\n"),
+            vec![":6:1", "unknown field `metod`"],
+        ),
+        (
+            format!("{good_start}method = \"dop8\"\n"),
+            vec![":5:10", "unknown method `dop8`"],
+        ),
+        (
+            format!("{good_start}\n[[phase]]\nwhen = \"m = 500\"\ncarry = \"seperation\"\n"),
+            vec![":8:9", "seperation"],
+        ),
+        (
+            format!("{good_start}\n[[phase]]\nwhen = \"mm = 500\"\n"),
+            vec![":7:8", "`mm` is not a quantity", "did you mean `m`?"],
+        ),
+        (
+            format!("{good_start}\n[[phase]]\nwhen = \"m at 500\"\n"),
+            vec![":7:8", "expected NAME = VALUE"],
+        ),
+        (
+            format!("{good_start}\n[[phase]]\nwhen = \"m = 500\"\nset = {{ muu = 2.0 }}\n"),
+            vec![":8:9", "`muu` is not a parameter", "did you mean `mu`?"],
+        ),
+        (
+            format!("{good_start}\n[[phase]]\nwhen = \"m = 500\"\nmasses = {{ y = 2.0 }}\n"),
+            vec![":8:12", "`y` is not a state mass"],
+        ),
+        (
+            format!("{good_start}\n[[phase]]\nwhen = \"m = 500\"\nwith = [\"drag\"]\n"),
+            vec![":8:8", "unknown tag `drag`"],
+        ),
+        (
+            "model = \"no_such_model.vms\"\nuntil = 1.0\n".to_string(),
+            vec![":1:9", "cannot read", "no_such_model.vms"],
+        ),
+        ("until = 1.0\n".to_string(), vec!["missing field `model`"]),
+    ];
+    for (k, (text, expected)) in cases.iter().enumerate() {
+        let file = scene(&format!("bad_{k}.toml"), text);
+        let (_, stderr) = run(&["run", &file], 2);
+        for part in expected {
+            assert!(stderr.contains(part), "case {k}: `{part}` not in\n{stderr}");
+        }
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
+
+/// Switching to tags that add a state mass changes the state: refused at the `with`.
+#[test]
+fn a_phase_may_not_change_the_state() {
+    let model = format!("{}/tests/data/tank_tag.vms", env!("CARGO_MANIFEST_DIR"));
+    let file = scene(
+        "tank.toml",
+        &format!(
+            "model = \"{model}\"\nuntil = 1.0\nset = {{ mu = 1.0, g = 9.81 }}\n\
+             init = {{ y = 0.0, m = 10.0 }}\n\n[[phase]]\nwhen = \"t = 0.5\"\n\
+             with = [\"tank\"]\nset = {{ q = 1.0 }}\n"
+        ),
+    );
+    let (_, stderr) = run(&["run", &file], 2);
+    assert!(stderr.contains(":8:8 (phase 2)"), "{stderr}");
+    assert!(stderr.contains("never its coordinates"), "{stderr}");
+}
+
+/// A one-phase flag beside a scene file is refused (the scene gives its settings); a model
+/// run without --until still says what is missing.
+#[test]
+fn one_phase_flags_do_not_go_with_a_scene() {
+    let file = workspace("models/two_stage_rocket.toml");
+    let (_, stderr) = run(&["run", &file, "--set", "mu=1"], 2);
+    assert!(
+        stderr.contains("--set: ") && stderr.contains("scene file"),
+        "{stderr}"
+    );
+    let model = workspace("models/two_stage_rocket.vms");
+    let set = ["--set", "mu=1", "--set", "g=1", "--set", "u_e=1"];
+    let args = [&["run", &model, "--init", "y=0", "--init", "m=1"][..], &set].concat();
+    let (_, stderr) = run(&args, 2);
+    assert!(stderr.contains("--until T is required"), "{stderr}");
+}
+
+/// Three phases and a `stop_when`: the two-stage flight, the engine off at `t = 150`
+/// (mu = 0), then a coast ended at the apex by `y' < 0`. By hand: y(50) = 2500 (50 − 50 ln 2)
+/// − g·50²/2, y(150) = y(50) + v(50)·100 + 3000 (100 − 50 ln 3) − g·100²/2 (Tsiolkovsky
+/// integrated), apex at t = 150 + v(150)/g = 512.610073129887 s, y = y(150) + v(150)²/(2g)
+/// = 881428.203758237 m. Measured 1.2e-13 (height) and 6.7e-14 (time) relative at
+/// tolerance 1e-12; bounds 1e-12.
+#[test]
+fn a_scene_ends_on_its_stop_when() {
+    let model = workspace("models/two_stage_rocket.vms");
+    let file = scene(
+        "apex.toml",
+        &format!(
+            r#"
+model = "{model}"
+until = 1000.0
+stop_when = "y' < 0"
+tol = 1e-12
+set = {{ mu = 10.0, u_e = 2500.0, g = 9.81 }}
+init = {{ y = 0.0, m = 1000.0 }}
+
+[[phase]]
+when = "m = 500"
+set = {{ mu = 2.0, u_e = 3000.0 }}
+masses = {{ m = 300.0 }}
+
+[[phase]]
+when = "t = 150"
+set = {{ mu = 0.0 }}
+"#
+        ),
+    );
+    let (stdout, _) = run(&["run", &file], 0);
+    assert!(
+        stdout.contains("in phase 3 of 3 (stop_when 'y' < 0')"),
+        "{stdout}"
+    );
+    let number = |prefix: &str| -> f64 {
+        let line = stdout
+            .lines()
+            .find_map(|l| l.trim().strip_prefix(prefix))
+            .unwrap_or_else(|| panic!("no `{prefix}` in {stdout}"));
+        line.split(' ')
+            .next()
+            .and_then(|v| v.parse().ok())
+            .expect("a number")
+    };
+    let (time, height) = (number("stopped at t = "), number("y = "));
+    let g = 9.81;
+    let v_50 = 2500.0 * 2f64.ln() - g * 50.0;
+    let y_50 = 2500.0 * (50.0 - 50.0 * 2f64.ln()) - g * 1250.0;
+    let y_150 = y_50 + v_50 * 100.0 + 3000.0 * (100.0 - 50.0 * 3f64.ln()) - g * 1e4 / 2.0;
+    let v_150 = v_50 + 3000.0 * 3f64.ln() - g * 100.0;
+    let (t_apex, y_apex) = (150.0 + v_150 / g, y_150 + v_150 * v_150 / (2.0 * g));
+    let (time_error, height_error) = (
+        (time - t_apex).abs() / t_apex,
+        (height - y_apex).abs() / y_apex,
+    );
+    eprintln!("apex: time {time_error:e}, height {height_error:e}");
+    assert!(
+        time_error <= 1e-12 && height_error <= 1e-12,
+        "{time} {height}"
+    );
+}
