@@ -39,6 +39,7 @@ mod rotation;
 mod stops;
 mod switches;
 mod tables;
+mod inputs;
 
 pub use derivation::{
     CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,
@@ -54,6 +55,7 @@ pub use resolve::{is_reserved, Parameters};
 pub use stops::{time_tables, TimeTable};
 pub use switches::switching_functions;
 pub use tables::{read_points, ModelTable};
+pub use inputs::ModelInput;
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
 use std::path::Path;
@@ -91,6 +93,10 @@ pub fn derive_in(
     let model = build::build_model(ast, parameters, base)?;
     let units = crate::units::check_units(ast)?;
     let mut derivation = derivation::derive_model(model, outputs)?;
+    let differentiated = inputs::check_not_differentiated(&derivation);
+    if !differentiated.is_empty() {
+        return Err(differentiated);
+    }
     derivation.units = units;
     Ok(derivation)
 }
