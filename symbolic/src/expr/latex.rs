@@ -225,7 +225,10 @@ impl Latex {
             Func::Input { input, partial } => {
                 let name = p.pool().input_name(input);
                 let arguments = p.pool().input_arguments(input);
-                match partial.checked_sub(1).and_then(|j| arguments.get(usize::from(j))) {
+                match partial
+                    .checked_sub(1)
+                    .and_then(|j| arguments.get(usize::from(j)))
+                {
                     Some(a) => named(&format!(
                         "\\partial_{{{}}}\\operatorname{{{name}}}",
                         a.replace('\'', "^{\\prime}")

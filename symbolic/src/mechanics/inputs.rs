@@ -55,21 +55,30 @@ impl Builder {
             .iter()
             .map(|(name, primes)| format!("{}{}", name.node, "'".repeat(usize::from(*primes))))
             .collect();
-        let every = decl.every.as_ref().and_then(|period| {
-            match period.node.parse::<f64>() {
+        let every = decl
+            .every
+            .as_ref()
+            .and_then(|period| match period.node.parse::<f64>() {
                 Ok(h) if h.is_finite() && h > 0.0 => Some(h),
                 _ => {
                     self.errors.push(Diagnostic::new(
                         period.span,
-                        format!("the sample period `{}` is not a positive number of seconds", period.node),
+                        format!(
+                            "the sample period `{}` is not a positive number of seconds",
+                            period.node
+                        ),
                     ));
                     None
                 }
-            }
-        });
+            });
         let arity = arguments.len();
-        let Some(index) = self.model.pool.add_input(&decl.name.node, arguments.clone()) else {
-            self.errors.push(Diagnostic::new(decl.name.span, "too many inputs"));
+        let Some(index) = self
+            .model
+            .pool
+            .add_input(&decl.name.node, arguments.clone())
+        else {
+            self.errors
+                .push(Diagnostic::new(decl.name.span, "too many inputs"));
             return;
         };
         self.model
@@ -99,7 +108,10 @@ impl Builder {
                 self.errors.push(
                     Diagnostic::new(
                         name.span,
-                        format!("`{written}` cannot be an argument of input `{}`", decl.name.node),
+                        format!(
+                            "`{written}` cannot be an argument of input `{}`",
+                            decl.name.node
+                        ),
                     )
                     .with_help(format!(
                         "an input's arguments are `{}`, coordinates and their velocities (`y'`)",

@@ -25,6 +25,7 @@ mod checks;
 mod derivation;
 mod equations;
 mod forces;
+mod inputs;
 mod jacobian;
 mod lagrangian;
 mod linear;
@@ -39,11 +40,11 @@ mod rotation;
 mod stops;
 mod switches;
 mod tables;
-mod inputs;
 
 pub use derivation::{
     CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,
 };
+pub use inputs::ModelInput;
 pub use linear::Matrix;
 pub use model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
@@ -55,7 +56,6 @@ pub use resolve::{is_reserved, Parameters};
 pub use stops::{time_tables, TimeTable};
 pub use switches::switching_functions;
 pub use tables::{read_points, ModelTable};
-pub use inputs::ModelInput;
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
 use std::path::Path;

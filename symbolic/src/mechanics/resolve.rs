@@ -106,9 +106,14 @@ impl Resolver for NameResolver<'_> {
             .with_help(format!("call it: `{name}(t)`, `{name}(x)`"))),
             Some(Binding::Input(_, arity)) => Err(Diagnostic::new(
                 span,
-                format!("`{name}` is an input, a function of {arity} argument{}", if arity == 1 { "" } else { "s" }),
+                format!(
+                    "`{name}` is an input, a function of {arity} argument{}",
+                    if arity == 1 { "" } else { "s" }
+                ),
             )
-            .with_help(format!("call it with its arguments, as declared: `{name}(…)`"))),
+            .with_help(format!(
+                "call it with its arguments, as declared: `{name}(…)`"
+            ))),
             None => self.unknown(pool, written),
         }
     }

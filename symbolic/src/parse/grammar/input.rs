@@ -23,10 +23,13 @@ impl<'a> Grammar<'a> {
         let mut arguments = Vec::new();
         let mut after = "(".to_string();
         loop {
-            let (next, argument) =
-                self.required(rest, false, "an argument: `t`, a coordinate or its velocity", &after, |i| {
-                    self.input_argument(i)
-                })?;
+            let (next, argument) = self.required(
+                rest,
+                false,
+                "an argument: `t`, a coordinate or its velocity",
+                &after,
+                |i| self.input_argument(i),
+            )?;
             after = argument.0.node.clone();
             arguments.push(argument);
             match self.punct_after_blanks(next, ',') {
@@ -73,7 +76,11 @@ impl<'a> Grammar<'a> {
             let span = self.span(name.span.start, self.offset(after));
             let diagnostic = Diagnostic::new(
                 span,
-                format!("`{}`: an input's argument is a coordinate or its velocity, with at most one prime", name.node),
+                format!(
+                    "`{}{}`: an input's argument is `t`, a coordinate or its velocity, with one prime",
+                    name.node,
+                    "'".repeat(primes)
+                ),
             );
             return Err(self.fail(after, diagnostic));
         }
