@@ -159,3 +159,45 @@ fn the_generated_rate_calls_the_input() {
     let u = G + 29.5;
     assert!((rate[2] + M0 * u / U_E).abs() <= 1e-12, "{}", rate[2]);
 }
+
+#[test]
+fn the_taylor_stepper_refuses_an_input_with_a_typed_error() {
+    // No recurrence exists for the user's function: the Taylor tape gives NaN coefficients
+    // for an input, so the stepper stops with NonFiniteState instead of a wrong series.
+    use varmass::core::steppers::{Taylor, TaylorControl};
+    use varmass::core::StepErrorKind;
+    #[variable_mass_system(
+        r#"
+        coordinates y
+        input u(t, y, y')
+        mass m: state, rate -m*u(t, y, y')/u_e
+        body rocket: mass m, position [y]
+        potential m*g*y
+        outflow rocket: rate m*u(t, y, y')/u_e, relative_velocity [-u_e]
+    "#,
+        emit = ["taylor"]
+    )]
+    struct HoverTaylor {
+        u_e: f64,
+        g: f64,
+    }
+    impl HoverTaylorInputs for HoverTaylor {
+        fn u(&self, _t: f64, y: f64, y_dot: f64) -> f64 {
+            self.g + KP * (Y_REF - y) - KD * y_dot
+        }
+    }
+    let hover = HoverTaylor { u_e: U_E, g: G };
+    let error = match Taylor::new(&hover, 0.0, start(), TaylorControl::default()) {
+        Err(error) => error,
+        Ok(mut stepper) => {
+            run(&mut stepper, &RunConfig::until(END), &[])
+                .unwrap_err()
+                .error
+        }
+    };
+    assert!(
+        matches!(error.kind, StepErrorKind::NonFiniteState { .. }),
+        "{error}"
+    );
+    assert_eq!(error.time, 0.0);
+}
