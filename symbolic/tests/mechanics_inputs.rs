@@ -21,7 +21,10 @@ fn error(source: &str, message: &str, line: u32, column: u32) {
     let found = errors.iter().find(|e| e.message.contains(message));
     let Some(found) = found else {
         let all: Vec<String> = errors.iter().map(|e| e.render(source)).collect();
-        panic!("no diagnostic containing {message:?}; got:\n{}", all.join("\n"));
+        panic!(
+            "no diagnostic containing {message:?}; got:\n{}",
+            all.join("\n")
+        );
     };
     assert_eq!(
         (found.span.line, found.span.column),
@@ -57,19 +60,58 @@ fn the_statement_parses_with_and_without_a_period() {
         .map(|(n, p)| (n.node.as_str(), *p))
         .collect();
     assert_eq!(arguments, [("t", 0), ("y", 0), ("y", 1)]);
-    assert_eq!(inputs[0].every.as_ref().map(|e| e.node.as_str()), Some("0.01"));
+    assert_eq!(
+        inputs[0].every.as_ref().map(|e| e.node.as_str()),
+        Some("0.01")
+    );
     assert_eq!(inputs[1].every, None);
 }
 
 #[test]
 fn misuses_are_diagnostics_at_their_text() {
-    error("coordinates y\ninput u(t, y'')", "`y''`: an input's argument", 2, 12);
-    error("coordinates y\ninput u(t, z)\nforce y: u(t, y)", "`z` cannot be an argument", 2, 12);
+    error(
+        "coordinates y\ninput u(t, y'')",
+        "`y''`: an input's argument",
+        2,
+        12,
+    );
+    error(
+        "coordinates y\ninput u(t, z)\nforce y: u(t, y)",
+        "`z` cannot be an argument",
+        2,
+        12,
+    );
     error("coordinates y\ninput u(t, y'')", "`y''`", 2, 12);
-    error("coordinates y\ninput u(t, y)\nforce y: u(t)", "`u` takes 2 arguments, found 1", 3, 10);
-    error("coordinates y\ninput u(t)\nforce y: u", "`u` is an input", 3, 10);
-    error("coordinates y\ninput u(t) every 0\nforce y: u(t)", "not a positive number", 2, 18);
-    error("coordinates y\ninput u(t, t)\nforce y: u(t, t)", "names `t` twice", 2, 12);
+    error(
+        "coordinates y\ninput u(t, y)\nforce y: u(t)",
+        "`u` takes 2 arguments, found 1",
+        3,
+        10,
+    );
+    error(
+        "coordinates y\ninput u(t)\nforce y: u",
+        "`u` is an input",
+        3,
+        10,
+    );
+    error(
+        "coordinates y\ninput u(t) every 0\nforce y: u(t)",
+        "not a positive number",
+        2,
+        18,
+    );
+    error(
+        "coordinates y\ninput u(t) every 0.01\nforce y: u(t)",
+        "sampled inputs (`every`) are not supported yet",
+        2,
+        18,
+    );
+    error(
+        "coordinates y\ninput u(t, t)\nforce y: u(t, t)",
+        "names `t` twice",
+        2,
+        12,
+    );
     error("coordinates y\ninput y(t)", "`y` is declared twice", 2, 7);
     error("coordinates y\ninput u(t\n", "expected `,` or `)`", 2, 10);
 }

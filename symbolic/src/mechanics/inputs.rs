@@ -59,7 +59,23 @@ impl Builder {
             .every
             .as_ref()
             .and_then(|period| match period.node.parse::<f64>() {
-                Ok(h) if h.is_finite() && h > 0.0 => Some(h),
+                Ok(h) if h.is_finite() && h > 0.0 => {
+                    // Parsed and checked, but not run: a continuous call in its place would
+                    // be a different controller, so a sampled input is refused until the
+                    // hold exists (docs/inputs.md#sampled-inputs).
+                    self.errors.push(
+                        Diagnostic::new(
+                            period.span,
+                            format!(
+                                "sampled inputs (`every`) are not supported yet: input `{}` \
+                                 would be called continuously, not held between samples",
+                                decl.name.node
+                            ),
+                        )
+                        .with_help("drop `every` for a continuous input"),
+                    );
+                    Some(h)
+                }
                 _ => {
                     self.errors.push(Diagnostic::new(
                         period.span,
