@@ -114,11 +114,10 @@ impl Builder {
     pub(super) fn check_input_arguments(&mut self, decl: &InputDecl) {
         for (k, (name, primes)) in decl.arguments.iter().enumerate() {
             let binding = self.model.names.get(&name.node);
-            let fits = match (binding, primes) {
-                (Some(Binding::Time(_)), 0) => true,
-                (Some(Binding::Coordinate { .. }), 0 | 1) => true,
-                _ => false,
-            };
+            let fits = matches!(
+                (binding, primes),
+                (Some(Binding::Time(_)), 0) | (Some(Binding::Coordinate { .. }), 0 | 1)
+            );
             if !fits {
                 let written = format!("{}{}", name.node, "'".repeat(usize::from(*primes)));
                 self.errors.push(
