@@ -291,3 +291,23 @@ fn a_tag_brings_its_parameters() {
     );
     assert!(stderr.contains("missing value for k_d"), "{stderr}");
 }
+
+#[test]
+fn a_model_with_an_input_from_rust_is_refused_naming_it() {
+    let stderr = fails(
+        &[
+            "run",
+            &data("hover_input.vms"),
+            "--set",
+            "u_e=2000",
+            "--set",
+            "g=9.8",
+            "--init",
+            "m=50",
+            "--until",
+            "1",
+        ],
+        2,
+    );
+    assert!(stderr.contains("`input u(t, y, y')`"), "{stderr}");
+}

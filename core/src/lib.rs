@@ -98,6 +98,7 @@
 extern crate alloc;
 
 pub mod error;
+pub mod input;
 pub mod math;
 pub mod stepper;
 pub mod steppers;

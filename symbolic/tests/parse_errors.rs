@@ -29,7 +29,7 @@ fn expect(source: &str, message: &str, line: u32, column: u32, under: &str) -> D
 }
 
 const ALL_STATEMENTS: &str = "coordinates, mass, inertia, let, body, kinetic, potential, \
-lagrangian, force, thrust, impact, outflow, inflow, check, units, rigid, torque, table";
+lagrangian, force, thrust, impact, outflow, inflow, check, units, rigid, torque, table, input";
 
 #[test]
 fn missing_operand() {

@@ -145,6 +145,20 @@ fn summary(kind: &StatementKind) -> String {
             "table {}({}) = {:?}, {:?}, outside {:?}",
             t.name.node, t.parameter.node, t.file.node, t.interpolation, t.outside
         ),
+        StatementKind::Input(i) => {
+            let arguments: Vec<String> = i
+                .arguments
+                .iter()
+                .map(|(n, p)| format!("{}{}", n.node, "'".repeat(usize::from(*p))))
+                .collect();
+            let every = i.every.as_ref().map(|e| format!(" every {}", e.node));
+            format!(
+                "input {}({}){}",
+                i.name.node,
+                arguments.join(", "),
+                every.unwrap_or_default()
+            )
+        }
     }
 }
 

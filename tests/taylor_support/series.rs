@@ -176,7 +176,7 @@ pub fn call(f: Func, args: &[Series]) -> Series {
         Func::Min => args[if a[0] <= args[1][0] { 0 } else { 1 }].clone(),
         Func::Max => args[if a[0] >= args[1][0] { 0 } else { 1 }].clone(),
         // No model these tests expand has a table (the tapes give NaN coefficients for one).
-        Func::Table { .. } => vec![f64::NAN; a.len()],
+        Func::Table { .. } | Func::Input { .. } => vec![f64::NAN; a.len()],
     }
 }
 

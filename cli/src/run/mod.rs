@@ -90,6 +90,16 @@ pub fn program(
     model: LoadedModel,
     mut warn: impl FnMut(&str),
 ) -> Result<Prepared, CliError> {
+    if let Some(input) = model.derivation.inputs.first() {
+        // The interpreter has no Rust function to call (docs/inputs.md#the-command-line-tool).
+        return Err(CliError::Input(format!(
+            "the model declares `input {}({})`, a function written in Rust: the command line \
+             tool cannot run it yet; run it from Rust with the macro, or write the law in the \
+             model (a `let` or a `table`)",
+            input.name,
+            input.arguments.join(", ")
+        )));
+    }
     let values = plan::parameters(args)?;
     for warning in plan::unused_parameters(&model.derivation, &values) {
         warn(&warning);

@@ -255,6 +255,16 @@ impl Syntax for RustSyntax {
                 Lookups::Nan => format!("{runtime}::table::lookup_or_nan(&{table_static}, {a})"),
             });
         }
+        if let Func::Input { input, partial } = func {
+            let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
+            let args = args.join(", ");
+            let name = p.pool().input_name(input);
+            let alias = super::inputs::ALIAS;
+            return atom(match partial.checked_sub(1) {
+                None => format!("{alias}::{name}(self, {args})"),
+                Some(j) => format!("{alias}::{name}_partials(self, {args})[{j}]"),
+            });
+        }
         // `f64::signum(0.0)` is 1, but the derivative of |x| needs sign(0) = 0.
         if func == Func::Sign {
             let a = &p.get(*first).text;

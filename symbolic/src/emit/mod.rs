@@ -8,6 +8,7 @@
 
 mod expression;
 mod factor;
+mod inputs;
 mod methods;
 mod signature;
 mod stops;
@@ -119,11 +120,14 @@ pub fn emit_system_for(
             #(#methods)*
         }
     };
-    // Tables: their statics beside the impl that calls them, in a block of their own.
-    let trait_impl = match statics {
-        None => trait_impl,
-        Some(statics) => quote!(const _: () = { #statics #trait_impl };),
+    // Tables: their statics beside the impl that calls them, in a block of their own;
+    // inputs: the alias of their trait there too.
+    let alias = (!d.inputs.is_empty()).then(|| inputs::alias(name));
+    let trait_impl = match (statics, alias) {
+        (None, None) => trait_impl,
+        (statics, alias) => quote!(const _: () = { #alias #statics #trait_impl };),
     };
+    let inputs_trait = inputs::inputs_trait(name, &d.inputs, runtime);
     quote! {
         impl #name {
             /// The system in the DSL, as written.
@@ -134,6 +138,7 @@ pub fn emit_system_for(
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
         }
 
+        #inputs_trait
         #trait_impl
     }
 }

@@ -31,6 +31,10 @@ impl ExprPool {
     /// The canonical call `f(args)`. The caller guarantees `args.len() == f.arity()`
     /// (lowering checks it); a wrong count is stored as given and evaluates to NaN.
     pub fn call(&mut self, f: Func, args: &[Id]) -> Id {
+        if let Func::Input { .. } = f {
+            // The user's function: nothing is known of it here.
+            return self.intern(Node::Call(f, args.into()));
+        }
         let numbers: Option<Vec<Number>> = args.iter().map(|a| self.node(*a).number()).collect();
         if let Some(numbers) = numbers.filter(|n| n.len() == f.arity()) {
             let exact: Option<Vec<Rational>> = numbers

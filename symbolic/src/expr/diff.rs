@@ -205,6 +205,9 @@ impl ExprPool {
         if da.iter().all(|d| self.is_zero(*d)) {
             return zero;
         }
+        if let Func::Input { input, partial } = f {
+            return self.input_chain_rule(input, partial, args, da);
+        }
         let (u, du) = match (args.first(), da.first()) {
             (Some(u), Some(du)) => (*u, *du),
             _ => return zero,
@@ -262,9 +265,29 @@ impl ExprPool {
                 return self.binary_chain_rule(f, args, da);
             }
             // Differentiated above, before the constants.
-            Func::Table { .. } => return zero,
+            Func::Table { .. } | Func::Input { .. } => return zero,
         };
         self.mul(&[outer, du])
+    }
+
+    /// u(a)' = Σⱼ ∂ⱼu(a) aⱼ' for an input (`input_call.rs`); a partial of an input has no
+    /// known derivative: NaN, which `mechanics/inputs.rs` turns into a diagnostic.
+    fn input_chain_rule(&mut self, input: u16, partial: u8, args: &[Id], da: &[Id]) -> Id {
+        if partial > 0 {
+            return self.float(f64::NAN);
+        }
+        let mut terms = Vec::new();
+        for (j, d) in da.iter().enumerate() {
+            if self.is_zero(*d) {
+                continue;
+            }
+            let Some(j) = u8::try_from(j + 1).ok() else {
+                return self.float(f64::NAN);
+            };
+            let partial = self.input_call(input, j, args);
+            terms.push(self.mul(&[partial, *d]));
+        }
+        self.add(&terms)
     }
 
     /// atan2(y, x)' = (x y' − y x')/(x² + y²);

@@ -46,6 +46,16 @@ pub enum Func {
         /// Derivative order.
         order: u8,
     },
+    /// An `input` of the model (docs/inputs.md), a function the user writes in Rust, or one
+    /// of its first partials: `input` indexes the model's inputs, `partial` is 0 for the
+    /// value and `j` for ∂/∂(argument j), 1-based. Any number of arguments; opaque: never
+    /// folded, and its value is not known to the expression engine (NaN in [`Func::apply`]).
+    Input {
+        /// Index into the model's inputs.
+        input: u16,
+        /// 0: the value; j ≥ 1: the partial with respect to argument j.
+        partial: u8,
+    },
 }
 
 impl Func {
@@ -95,10 +105,12 @@ impl Func {
             Func::Min => "min",
             Func::Max => "max",
             Func::Table { .. } => "table",
+            Func::Input { .. } => "input",
         }
     }
 
-    /// Number of arguments.
+    /// Number of arguments (an input's is its declaration's, not known here: 1 is returned,
+    /// and its calls are never folded).
     pub fn arity(self) -> usize {
         match self {
             Func::Atan2 | Func::Min | Func::Max => 2,

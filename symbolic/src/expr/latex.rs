@@ -222,6 +222,20 @@ impl Latex {
                 let name = p.pool().table_call_name(table, order);
                 named(&format!("\\operatorname{{{name}}}"))
             }
+            Func::Input { input, partial } => {
+                let name = p.pool().input_name(input);
+                let arguments = p.pool().input_arguments(input);
+                match partial
+                    .checked_sub(1)
+                    .and_then(|j| arguments.get(usize::from(j)))
+                {
+                    Some(a) => named(&format!(
+                        "\\partial_{{{}}}\\operatorname{{{name}}}",
+                        a.replace('\'', "^{\\prime}")
+                    )),
+                    None => named(&format!("\\operatorname{{{name}}}")),
+                }
+            }
             _ => named(&format!("\\{}", f.name())),
         };
         Printed::new(text, Prec::Atom)

@@ -40,6 +40,13 @@ pub trait Resolver {
         let _ = name;
         None
     }
+
+    /// The pool's index of the input called `name` (an `input` statement) and its number
+    /// of arguments, if it is one.
+    fn input(&self, name: &str) -> Option<(u16, usize)> {
+        let _ = name;
+        None
+    }
 }
 
 /// Resolves names already in the pool's symbol table: `x` to its symbol, `x'` and `x''`
@@ -163,10 +170,13 @@ fn lower_node(
             // The name and arity from the one list; `sqrt` is no [`Func`] but the power ½.
             let known = FUNCTIONS.iter().find(|(name, _)| *name == func.node);
             let table = resolver.table(&func.node);
+            let input = resolver.input(&func.node);
             let (expected, f) = if let Some(&(_, arity)) = known {
                 (arity, Func::from_name(&func.node))
             } else if let Some(table) = table {
                 (1, Some(Func::Table { table, order: 0 }))
+            } else if let Some((input, arity)) = input {
+                (arity, Some(Func::Input { input, partial: 0 }))
             } else {
                 errors.push(
                     Diagnostic::new(func.span, format!("unknown function `{}`", func.node))

@@ -38,6 +38,7 @@ mod eval;
 mod expand;
 mod func;
 mod identity;
+mod input_call;
 mod latex;
 mod lower;
 mod node;

@@ -45,6 +45,8 @@ pub struct ExprPool {
     small_ints: [Option<Id>; 4],
     /// The model's tables and their derivatives (`table_call.rs`).
     pub(super) tables: Vec<super::table_call::PoolTable>,
+    /// The model's inputs: each one's name and argument names (`input_call.rs`).
+    pub(super) inputs: Vec<super::input_call::PoolInput>,
 }
 
 /// Room reserved for nodes at the start: the example systems derive into 60 to 900 nodes
@@ -81,6 +83,7 @@ impl ExprPool {
             trig_images: FxHashMap::default(),
             small_ints: [None; 4],
             tables: Vec::new(),
+            inputs: Vec::new(),
         }
     }
 

@@ -162,6 +162,7 @@ impl Syntax for Dsl {
         let args: Vec<&str> = args.iter().map(|a| p.get(*a).text.as_str()).collect();
         let name = match f {
             Func::Table { table, order } => p.pool().table_call_name(table, order),
+            Func::Input { input, partial } => p.pool().input_call_name(input, partial),
             _ => f.name().to_owned(),
         };
         Printed::new(format!("{name}({})", args.join(", ")), Prec::Atom)

@@ -157,6 +157,9 @@ impl ExprPool {
                         _ => Instr::Const(f64::NAN),
                     }
                 }
+                // The user's function is not known to the tape (the `check`s see NaN, the
+                // interpreter substitutes an expression for each input before deriving).
+                Node::Call(Func::Input { .. }, _) => Instr::Const(f64::NAN),
                 Node::Call(f, args) => match args.as_ref() {
                     [a] => Instr::Call1(*f, s(a)),
                     [a, b] => Instr::Call2(*f, s(a), s(b)),

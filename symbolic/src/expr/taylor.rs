@@ -264,6 +264,10 @@ impl Compiler<'_> {
                 let e = self.of(*e);
                 self.power(b, e, exponent)
             }
+            // An input is the user's function: no recurrence exists for it, so NaN
+            // coefficients end a Taylor step in the typed NonFiniteState error
+            // (docs/inputs.md#steppers), never a silently wrong series.
+            Node::Call(Func::Input { .. }, _) => self.emit(Op::Const(f64::NAN), &[]),
             Node::Call(f, args) => {
                 let slots: Vec<usize> = args.iter().map(|a| self.of(*a)).collect();
                 match slots.as_slice() {
@@ -407,7 +411,7 @@ impl Compiler<'_> {
             }
             Func::Abs => self.emit(Op::Abs(a), &[a]),
             Func::Sign => self.emit(Op::Sign(a), &[a]),
-            Func::Atan2 | Func::Min | Func::Max | Func::Table { .. } => {
+            Func::Atan2 | Func::Min | Func::Max | Func::Table { .. } | Func::Input { .. } => {
                 self.emit(Op::Const(f64::NAN), &[])
             }
         }

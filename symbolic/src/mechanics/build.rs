@@ -69,6 +69,7 @@ impl Builder {
                 terms: Vec::new(),
                 checks: Vec::new(),
                 tables: Vec::new(),
+                inputs: Vec::new(),
                 names,
                 parameter_mode: parameters,
             },
@@ -131,7 +132,13 @@ impl Builder {
                     self.check_new_name(&rigid.name.node, rigid.name.span, "body");
                 }
                 StatementKind::Table(table) => self.declare_table(table),
+                StatementKind::Input(input) => self.declare_input(input),
                 _ => {}
+            }
+        }
+        for statement in &ast.statements {
+            if let StatementKind::Input(input) = &statement.kind {
+                self.check_input_arguments(input);
             }
         }
         if self.model.coordinates.is_empty() && self.errors.is_empty() {

@@ -139,6 +139,8 @@ pub struct Derivation {
     pub units: Option<crate::units::UnitTable>,
     /// The model's tables (their data are in the pool).
     pub tables: Vec<super::tables::ModelTable>,
+    /// The model's inputs (functions the user writes in Rust).
+    pub inputs: Vec<super::inputs::ModelInput>,
 }
 
 impl Derivation {
@@ -302,6 +304,7 @@ fn assemble(model: Model, e: Equations) -> (Derivation, CheckScope) {
         checks: Vec::new(),
         units: None,
         tables: model.tables,
+        inputs: model.inputs,
     };
     (derivation, scope)
 }

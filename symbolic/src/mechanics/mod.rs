@@ -25,6 +25,7 @@ mod checks;
 mod derivation;
 mod equations;
 mod forces;
+mod inputs;
 mod jacobian;
 mod lagrangian;
 mod linear;
@@ -43,6 +44,7 @@ mod tables;
 pub use derivation::{
     CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,
 };
+pub use inputs::ModelInput;
 pub use linear::Matrix;
 pub use model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
@@ -91,6 +93,10 @@ pub fn derive_in(
     let model = build::build_model(ast, parameters, base)?;
     let units = crate::units::check_units(ast)?;
     let mut derivation = derivation::derive_model(model, outputs)?;
+    let differentiated = inputs::check_not_differentiated(&derivation);
+    if !differentiated.is_empty() {
+        return Err(differentiated);
+    }
     derivation.units = units;
     Ok(derivation)
 }

@@ -216,6 +216,8 @@ pub struct Model {
     pub checks: Vec<Check>,
     /// Tables, in source order (`tables.rs`).
     pub tables: Vec<super::tables::ModelTable>,
+    /// Inputs, in source order (`inputs.rs`).
+    pub inputs: Vec<super::inputs::ModelInput>,
     pub(crate) names: FxHashMap<String, Binding>,
     pub(crate) parameter_mode: Parameters,
 }

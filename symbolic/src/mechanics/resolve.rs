@@ -27,6 +27,9 @@ pub(crate) enum Binding {
     Parameter(Symbol),
     /// A `table` (index into the pool's tables): a function, called `F(t)`.
     Table(u16),
+    /// An `input` (index into the pool's inputs, number of arguments): a function the user
+    /// writes in Rust, called `u(t, y, y')`.
+    Input(u16, usize),
 }
 
 /// Where an expression stands, which decides what it may refer to.
@@ -101,6 +104,16 @@ impl Resolver for NameResolver<'_> {
                 format!("`{name}` is a table, a function of one argument"),
             )
             .with_help(format!("call it: `{name}(t)`, `{name}(x)`"))),
+            Some(Binding::Input(_, arity)) => Err(Diagnostic::new(
+                span,
+                format!(
+                    "`{name}` is an input, a function of {arity} argument{}",
+                    if arity == 1 { "" } else { "s" }
+                ),
+            )
+            .with_help(format!(
+                "call it with its arguments, as declared: `{name}(…)`"
+            ))),
             None => self.unknown(pool, written),
         }
     }
@@ -108,6 +121,13 @@ impl Resolver for NameResolver<'_> {
     fn table(&self, name: &str) -> Option<u16> {
         match self.names.get(name) {
             Some(Binding::Table(index)) => Some(*index),
+            _ => None,
+        }
+    }
+
+    fn input(&self, name: &str) -> Option<(u16, usize)> {
+        match self.names.get(name) {
+            Some(Binding::Input(index, arity)) => Some((*index, *arity)),
             _ => None,
         }
     }
@@ -167,6 +187,7 @@ fn describe(binding: Binding) -> &'static str {
         Binding::Let(_) => "a definition",
         Binding::Parameter(_) => "a parameter",
         Binding::Table(_) => "a table",
+        Binding::Input(..) => "an input",
     }
 }
 

@@ -147,6 +147,21 @@ pub enum StatementKind {
     /// `table F(t) = "motors/M1670.eng", outside zero`: a function of one argument read
     /// from a file (docs/tables.md).
     Table(TableDecl),
+    /// `input u(t, y, y') [every 0.01]`: a function the user writes in Rust
+    /// (docs/inputs.md).
+    Input(InputDecl),
+}
+
+/// An `input` statement: `input NAME(ARG, …) [every PERIOD]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InputDecl {
+    /// The input's name, called as a function.
+    pub name: Spanned<String>,
+    /// Its arguments as declared: `t`, a coordinate `y` or its velocity `y'`, each with its
+    /// number of primes (0 or 1).
+    pub arguments: Vec<(Spanned<String>, u8)>,
+    /// `every h`: sampled every `h` seconds and held between samples (zero-order hold).
+    pub every: Option<Spanned<String>>,
 }
 
 /// A `table` statement: `table NAME(ARG) = "FILE" [, OPTION]*`.

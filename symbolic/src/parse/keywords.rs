@@ -57,6 +57,10 @@ pub const AT: &str = "at";
 pub const TIME: &str = "t";
 /// `table F(t) = "file", …` (docs/tables.md)
 pub const TABLE: &str = "table";
+/// `input u(t, y, y') [every 0.01]` (docs/inputs.md)
+pub const INPUT: &str = "input";
+/// The option of an input naming its sample period.
+pub const EVERY: &str = "every";
 /// The option of a table naming what it is worth outside its data.
 pub const OUTSIDE: &str = "outside";
 
@@ -80,6 +84,7 @@ pub const STATEMENTS: &[&str] = &[
     RIGID,
     TORQUE,
     TABLE,
+    INPUT,
 ];
 
 /// The options of a `table` statement: an interpolation, or `outside` and a rule.

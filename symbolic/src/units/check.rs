@@ -147,6 +147,11 @@ impl Checker {
                 StatementKind::Table(table) => {
                     self.tables.insert(table.name.node.clone(), None);
                 }
+                // An input's value has its declared unit; its arguments are the declared
+                // ones (the first is checked for one unit at every call, as a table's).
+                StatementKind::Input(input) => {
+                    self.tables.insert(input.name.node.clone(), None);
+                }
                 _ => {}
             }
         }
@@ -219,7 +224,10 @@ impl Checker {
             StatementKind::Check { lhs, rhs, .. } => self.check(lhs, rhs),
             StatementKind::Rigid(rigid) => self.rigid(rigid),
             StatementKind::Torque(load) => self.torque(load),
-            StatementKind::Coordinates(_) | StatementKind::Units(_) | StatementKind::Table(_) => {}
+            StatementKind::Coordinates(_)
+            | StatementKind::Units(_)
+            | StatementKind::Table(_)
+            | StatementKind::Input(_) => {}
         }
     }
 

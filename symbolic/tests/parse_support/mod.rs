@@ -97,7 +97,7 @@ pub fn statement_expressions(statement: &Statement) -> Vec<&ExprNode> {
         }
         StatementKind::Check { lhs, rhs, .. } => vec![lhs, rhs],
         StatementKind::Units(entries) => entries.iter().map(|e| &e.unit).collect(),
-        StatementKind::Table(_) => vec![],
+        StatementKind::Table(_) | StatementKind::Input(_) => vec![],
     }
 }
 

@@ -177,7 +177,7 @@ fn reference(f: Func, args: &[Series]) -> Series {
         Func::Sign => constant(a[0].signum()),
         Func::Min => args[if a[0] <= args[1][0] { 0 } else { 1 }].clone(),
         Func::Max => args[if a[0] >= args[1][0] { 0 } else { 1 }].clone(),
-        Func::Table { .. } => vec![f64::NAN; a.len()],
+        Func::Table { .. } | Func::Input { .. } => vec![f64::NAN; a.len()],
     }
 }
 

@@ -52,6 +52,7 @@
 
 mod building;
 mod expression;
+mod input;
 mod lexical;
 mod positions;
 mod recovery;

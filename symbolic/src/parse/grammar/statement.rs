@@ -79,6 +79,7 @@ impl<'a> Grammar<'a> {
             keywords::RIGID => self.rigid(after)?,
             keywords::TORQUE => self.load(after, keywords::TORQUE, StatementKind::Torque)?,
             keywords::TABLE => self.table(after)?,
+            keywords::INPUT => self.input(after)?,
             _ => return Err(self.unknown_statement(head, after)),
         };
         let span = self.span(head.span.start, self.offset(rest));

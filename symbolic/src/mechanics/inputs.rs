@@ -1,0 +1,216 @@
+//! `input` statements (docs/inputs.md): each input is registered in the pool under its name
+//! with its declared arguments, so that calls lower to `Call(Func::Input { .. })`. Its
+//! arguments must be `t`, coordinates or their velocities (a diagnostic at the argument
+//! otherwise), and the period of a sampled input a positive number of seconds.
+//!
+//! The equations never differentiate an input: an input inside a position, a mass law or
+//! the Lagrangian would make the derivation differentiate the user's function, and its
+//! derivative would only be a finite difference in equations that must be exact. That is a
+//! diagnostic at the input's declaration ([`check_not_differentiated`]). Only the Jacobian
+//! (which steers the Newton iterations of the implicit steppers, not the solution) uses the
+//! partials `u_partials` of the generated trait.
+
+use super::build::Builder;
+use super::derivation::Derivation;
+use super::resolve::Binding;
+use crate::expr::{Func, Id, Node};
+use crate::parse::ast::InputDecl;
+use crate::parse::{keywords, Diagnostic, Span};
+
+/// An input of the model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelInput {
+    /// Its name, called as a function.
+    pub name: String,
+    /// Its arguments as declared (`t`, `y`, `y'`).
+    pub arguments: Vec<String>,
+    /// `every h`: the sample period in seconds of a sampled (zero-order-hold) input.
+    pub every: Option<f64>,
+    /// Its index in the pool ([`crate::expr::ExprPool::input_name`]).
+    pub index: u16,
+    /// Where the statement names it.
+    pub span: Span,
+}
+
+impl ModelInput {
+    /// The Rust name of argument `j` in the generated trait: `y_dot` for `y'`.
+    pub fn rust_argument(&self, j: usize) -> String {
+        let argument = self.arguments.get(j).map_or("", String::as_str);
+        match argument.strip_suffix('\'') {
+            Some(name) => format!("{name}_dot"),
+            None => argument.to_owned(),
+        }
+    }
+}
+
+impl Builder {
+    /// Binds the name of `decl` (first pass; the arguments are checked by
+    /// [`check_input_arguments`](Self::check_input_arguments) once every coordinate is known).
+    pub(super) fn declare_input(&mut self, decl: &InputDecl) {
+        if !self.check_new_name(&decl.name.node, decl.name.span, "input") {
+            return;
+        }
+        let arguments: Vec<String> = decl
+            .arguments
+            .iter()
+            .map(|(name, primes)| format!("{}{}", name.node, "'".repeat(usize::from(*primes))))
+            .collect();
+        let every = decl
+            .every
+            .as_ref()
+            .and_then(|period| match period.node.parse::<f64>() {
+                Ok(h) if h.is_finite() && h > 0.0 => {
+                    // Parsed and checked, but not run: a continuous call in its place would
+                    // be a different controller, so a sampled input is refused until the
+                    // hold exists (docs/inputs.md#sampled-inputs).
+                    self.errors.push(
+                        Diagnostic::new(
+                            period.span,
+                            format!(
+                                "sampled inputs (`every`) are not supported yet: input `{}` \
+                                 would be called continuously, not held between samples",
+                                decl.name.node
+                            ),
+                        )
+                        .with_help("drop `every` for a continuous input"),
+                    );
+                    Some(h)
+                }
+                _ => {
+                    self.errors.push(Diagnostic::new(
+                        period.span,
+                        format!(
+                            "the sample period `{}` is not a positive number of seconds",
+                            period.node
+                        ),
+                    ));
+                    None
+                }
+            });
+        let arity = arguments.len();
+        let Some(index) = self
+            .model
+            .pool
+            .add_input(&decl.name.node, arguments.clone())
+        else {
+            self.errors
+                .push(Diagnostic::new(decl.name.span, "too many inputs"));
+            return;
+        };
+        self.model
+            .names
+            .insert(decl.name.node.clone(), Binding::Input(index, arity));
+        self.model.inputs.push(ModelInput {
+            name: decl.name.node.clone(),
+            arguments,
+            every,
+            index,
+            span: decl.name.span,
+        });
+    }
+
+    /// Every argument of `decl` is `t`, a coordinate or a coordinate's velocity, and
+    /// appears once.
+    pub(super) fn check_input_arguments(&mut self, decl: &InputDecl) {
+        for (k, (name, primes)) in decl.arguments.iter().enumerate() {
+            let binding = self.model.names.get(&name.node);
+            let fits = matches!(
+                (binding, primes),
+                (Some(Binding::Time(_)), 0) | (Some(Binding::Coordinate { .. }), 0 | 1)
+            );
+            if !fits {
+                let written = format!("{}{}", name.node, "'".repeat(usize::from(*primes)));
+                self.errors.push(
+                    Diagnostic::new(
+                        name.span,
+                        format!(
+                            "`{written}` cannot be an argument of input `{}`",
+                            decl.name.node
+                        ),
+                    )
+                    .with_help(format!(
+                        "an input's arguments are `{}`, coordinates and their velocities (`y'`)",
+                        keywords::TIME
+                    )),
+                );
+                continue;
+            }
+            let repeated = decl.arguments[..k]
+                .iter()
+                .any(|(other, p)| other.node == name.node && p == primes);
+            if repeated {
+                self.errors.push(Diagnostic::new(
+                    name.span,
+                    format!("input `{}` names `{}` twice", decl.name.node, name.node),
+                ));
+            }
+        }
+    }
+}
+
+/// Every equation of `d` but the Jacobian.
+fn equation_roots(d: &Derivation) -> Vec<Id> {
+    let mut roots = vec![d.lagrangian, d.energy, d.power];
+    roots.extend(d.hamiltonian);
+    roots.extend(d.closed_laws.iter().flatten());
+    for list in [
+        &d.mass_rates,
+        &d.flow_rates,
+        &d.momenta,
+        &d.momentum_offset,
+        &d.lagrangian_gradient,
+        &d.active_force,
+        &d.reactive_thrust,
+        &d.impact_force,
+        &d.frozen_momentum_rate,
+        &d.mass_flux_force,
+        &d.momentum_rate,
+        &d.acceleration_rhs,
+    ] {
+        roots.extend(list);
+    }
+    roots.extend(d.accelerations.iter().flatten());
+    if let super::VelocitySolve::Symbolic(v) = &d.velocities {
+        roots.extend(v);
+    }
+    roots.extend(d.mass_matrix.iter().flatten());
+    roots
+}
+
+/// A diagnostic at the declaration of each input whose partial the equations (not the
+/// Jacobian) would need: the derivation differentiated it.
+pub(crate) fn check_not_differentiated(d: &Derivation) -> Vec<Diagnostic> {
+    if d.inputs.is_empty() {
+        return Vec::new();
+    }
+    let roots = equation_roots(d);
+    let roots = roots.as_slice();
+    let mut differentiated: Vec<u16> = Vec::new();
+    for id in d.pool.reachable(roots, false) {
+        if let Node::Call(Func::Input { input, partial }, _) = d.pool.node(id) {
+            if *partial > 0 && !differentiated.contains(input) {
+                differentiated.push(*input);
+            }
+        }
+    }
+    let mut diagnostics = Vec::new();
+    for input in &d.inputs {
+        if differentiated.contains(&input.index) {
+            diagnostics.push(
+                Diagnostic::new(
+                    input.span,
+                    format!(
+                        "the derivation would differentiate input `{}`: it is inside a position, a \
+                         mass law or an energy",
+                        input.name
+                    ),
+                )
+                .with_help(
+                    "an input may appear in forces, thrusts, impacts, torques, flows and mass \
+                     rates; write a function the equations differentiate as a DSL expression or a table",
+                ),
+            );
+        }
+    }
+    diagnostics
+}

@@ -1,0 +1,91 @@
+//! `input NAME(ARG, …) [every PERIOD]` (docs/inputs.md): a function of the time, the
+//! coordinates and their velocities that the user writes in Rust. The arguments are names
+//! with at most one prime (`t`, `y`, `y'`); what they name is checked when the system is
+//! resolved. The period is a number literal in seconds.
+
+use super::{Grammar, PResult};
+use crate::parse::ast::{Expr, InputDecl, StatementKind};
+use crate::parse::keywords;
+use crate::parse::span::{Diagnostic, Spanned};
+
+/// What may follow an input's declaration.
+const AFTER_INPUT: &str = "`every`, `;` or a newline";
+
+impl<'a> Grammar<'a> {
+    /// `input u(t, y, y') every 0.01`
+    pub(super) fn input(&self, input: &'a str) -> PResult<'a, (StatementKind, &'static str)> {
+        let (rest, name) = self.required(input, false, "an input name", keywords::INPUT, |i| {
+            self.name(i)
+        })?;
+        let (mut rest, _) = self.required(rest, false, "`(`", &name.node, |i| {
+            self.punct_after_blanks(i, '(')
+        })?;
+        let mut arguments = Vec::new();
+        let mut after = "(".to_string();
+        loop {
+            let (next, argument) = self.required(
+                rest,
+                false,
+                "an argument: `t`, a coordinate or its velocity",
+                &after,
+                |i| self.input_argument(i),
+            )?;
+            after = argument.0.node.clone();
+            arguments.push(argument);
+            match self.punct_after_blanks(next, ',') {
+                Ok((next, _)) => (rest, after) = (next, ",".to_string()),
+                Err(_) => {
+                    rest = next;
+                    break;
+                }
+            }
+        }
+        let (rest, _) = self.required(rest, false, "`,` or `)`", &after, |i| {
+            self.punct_after_blanks(i, ')')
+        })?;
+        let (rest, every) = match self.keyword(rest, keywords::EVERY) {
+            Ok((after_every, _)) => {
+                let (rest, period) = self.required(
+                    after_every,
+                    false,
+                    "the sample period in seconds (a number)",
+                    keywords::EVERY,
+                    |i| self.number(self.skip_blanks(i, false)),
+                )?;
+                let Expr::Number(text) = period.node.as_ref() else {
+                    return Err(self.unexpected(after_every, "a number"));
+                };
+                (rest, Some(Spanned::new(text.clone(), period.span)))
+            }
+            Err(_) => (rest, None),
+        };
+        let decl = InputDecl {
+            name,
+            arguments,
+            every,
+        };
+        Ok((rest, (StatementKind::Input(decl), AFTER_INPUT)))
+    }
+
+    /// One argument: a name and at most one prime.
+    fn input_argument(&self, input: &'a str) -> PResult<'a, (Spanned<String>, u8)> {
+        let (rest, name) = self.name(input)?;
+        let primes = rest.len() - rest.trim_start_matches('\'').len();
+        let after = &rest[primes..];
+        if primes > 1 {
+            let span = self.span(name.span.start, self.offset(after));
+            let diagnostic = Diagnostic::new(
+                span,
+                format!(
+                    "`{}{}`: an input's argument is `t`, a coordinate or its velocity, with one prime",
+                    name.node,
+                    "'".repeat(primes)
+                ),
+            );
+            return Err(self.fail(after, diagnostic));
+        }
+        let mut name = name;
+        name.span = self.span(name.span.start, self.offset(after));
+        Ok((after, (name, u8::from(primes == 1))))
+    }
+}

@@ -1,0 +1,153 @@
+//! `input` statements in the symbolic engine (docs/inputs.md): parsing, every misuse a
+//! diagnostic at its text, calls lowered to the opaque input, its partials only in the
+//! Jacobian, and the equations never differentiating it.
+
+use varmass_symbolic::mechanics::{derive_for, Derivation, Outputs, Parameters};
+use varmass_symbolic::parse::ast::StatementKind;
+use varmass_symbolic::parse::parse_system;
+use varmass_symbolic::Diagnostic;
+
+fn derive(source: &str) -> Result<Derivation, Vec<Diagnostic>> {
+    let ast = parse_system(source)?;
+    derive_for(&ast, Parameters::Inferred, Outputs::FULL)
+}
+
+#[track_caller]
+fn error(source: &str, message: &str, line: u32, column: u32) {
+    let errors = match derive(source) {
+        Ok(_) => panic!("expected a diagnostic for:\n{source}"),
+        Err(e) => e,
+    };
+    let found = errors.iter().find(|e| e.message.contains(message));
+    let Some(found) = found else {
+        let all: Vec<String> = errors.iter().map(|e| e.render(source)).collect();
+        panic!(
+            "no diagnostic containing {message:?}; got:\n{}",
+            all.join("\n")
+        );
+    };
+    assert_eq!(
+        (found.span.line, found.span.column),
+        (line, column),
+        "{}",
+        found.render(source)
+    );
+}
+
+/// The hovering rocket of tests/inputs_hover.rs: thrust m·u, u the commanded acceleration.
+const HOVER: &str = "coordinates y
+input u(t, y, y')
+mass m: state, rate -m*u(t, y, y')/u_e
+body rocket: mass m, position [y]
+potential m*g*y
+outflow rocket: rate m*u(t, y, y')/u_e, relative_velocity [-u_e]";
+
+#[test]
+fn the_statement_parses_with_and_without_a_period() {
+    let ast = parse_system("coordinates y\ninput u(t, y, y') every 0.01\ninput w(y)").unwrap();
+    let inputs: Vec<_> = ast
+        .statements
+        .iter()
+        .filter_map(|s| match &s.kind {
+            StatementKind::Input(i) => Some(i),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(inputs.len(), 2);
+    let arguments: Vec<(&str, u8)> = inputs[0]
+        .arguments
+        .iter()
+        .map(|(n, p)| (n.node.as_str(), *p))
+        .collect();
+    assert_eq!(arguments, [("t", 0), ("y", 0), ("y", 1)]);
+    assert_eq!(
+        inputs[0].every.as_ref().map(|e| e.node.as_str()),
+        Some("0.01")
+    );
+    assert_eq!(inputs[1].every, None);
+}
+
+#[test]
+fn misuses_are_diagnostics_at_their_text() {
+    error(
+        "coordinates y\ninput u(t, y'')",
+        "`y''`: an input's argument",
+        2,
+        12,
+    );
+    error(
+        "coordinates y\ninput u(t, z)\nforce y: u(t, y)",
+        "`z` cannot be an argument",
+        2,
+        12,
+    );
+    error("coordinates y\ninput u(t, y'')", "`y''`", 2, 12);
+    error(
+        "coordinates y\ninput u(t, y)\nforce y: u(t)",
+        "`u` takes 2 arguments, found 1",
+        3,
+        10,
+    );
+    error(
+        "coordinates y\ninput u(t)\nforce y: u",
+        "`u` is an input",
+        3,
+        10,
+    );
+    error(
+        "coordinates y\ninput u(t) every 0\nforce y: u(t)",
+        "not a positive number",
+        2,
+        18,
+    );
+    error(
+        "coordinates y\ninput u(t) every 0.01\nforce y: u(t)",
+        "sampled inputs (`every`) are not supported yet",
+        2,
+        18,
+    );
+    error(
+        "coordinates y\ninput u(t, t)\nforce y: u(t, t)",
+        "names `t` twice",
+        2,
+        12,
+    );
+    error("coordinates y\ninput y(t)", "`y` is declared twice", 2, 7);
+    error("coordinates y\ninput u(t\n", "expected `,` or `)`", 2, 10);
+}
+
+#[test]
+fn an_input_the_equations_would_differentiate_is_refused() {
+    // In a position: the velocity of the body needs ∂u/∂t.
+    let moved = "coordinates x\ninput u(t)\nmass m = m0\nbody b: mass m, position [x + u(t)]";
+    error(moved, "would differentiate input `u`", 2, 7);
+    // In the potential: the generalized force −∂V/∂x needs ∂u/∂x.
+    let energy = "coordinates x\ninput u(x)\nkinetic 1/2*m0*x'^2\npotential u(x)";
+    error(energy, "would differentiate input `u`", 2, 7);
+}
+
+#[test]
+fn the_equations_call_the_input_and_the_jacobian_its_partials() {
+    let d = derive(HOVER).unwrap();
+    assert_eq!(d.inputs.len(), 1);
+    assert_eq!(d.inputs[0].rust_argument(2), "y_dot");
+    // ṁ = −m u/u_e, with the call as written.
+    let rate = d.pool.display(d.mass_rates[0]).to_string();
+    assert!(rate.contains("u(t, y, y')"), "{rate}");
+    // ∂ṁ/∂ẏ = −m ∂_y'u / u_e: the partial with respect to the third argument.
+    let j = d.jacobian.as_ref().unwrap();
+    let entry = d.pool.display(j.rate_wrt_velocity[1][0]).to_string();
+    assert!(entry.contains("∂_y' u(t, y, y')"), "{entry}");
+    let entry = d.pool.display(j.rate_wrt_q[1][0]).to_string();
+    assert!(entry.contains("∂_y u(t, y, y')"), "{entry}");
+}
+
+#[test]
+fn units_of_an_input_are_declared() {
+    // u is an acceleration: m u is a thrust and m u/u_e a mass rate.
+    let with_units = format!("{HOVER}\nunits y: m, u: m/s^2, u_e: m/s, g: m/s^2");
+    derive(&with_units).unwrap();
+    let wrong = format!("{HOVER}\nunits y: m, u: m/s, u_e: m/s, g: m/s^2");
+    let errors = derive(&wrong).unwrap_err();
+    assert!(!errors.is_empty());
+}
