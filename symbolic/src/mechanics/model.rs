@@ -217,5 +217,8 @@ pub struct Model {
     /// Tables, in source order (`tables.rs`).
     pub tables: Vec<super::tables::ModelTable>,
     pub(crate) names: FxHashMap<String, Binding>,
+    /// Where each declared name (coordinate, mass, inertia, definition, body, table) is
+    /// written in its declaration.
+    pub(crate) declared_at: FxHashMap<String, Span>,
     pub(crate) parameter_mode: Parameters,
 }
