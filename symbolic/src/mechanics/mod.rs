@@ -37,6 +37,7 @@ mod resolve;
 mod rigid;
 mod rigid_forces;
 mod rotation;
+mod stages;
 mod stops;
 mod switches;
 mod tables;
@@ -53,6 +54,7 @@ pub use model::{
 pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
+pub use stages::RateStages;
 pub use stops::{time_tables, TimeTable};
 pub use switches::switching_functions;
 pub use tables::{read_points, ModelTable};
