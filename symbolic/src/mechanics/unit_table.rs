@@ -41,7 +41,7 @@ impl UnitTable {
     /// ```
     /// use varmass_symbolic::mechanics::{derive_source, Parameters};
     /// use varmass_symbolic::quantity::Quantity;
-    /// let source = "coordinates th; units th: rad, k: J; potential k*th^2";
+    /// let source = "coordinates th; units th: rad, k: J, J0: kg*m^2; kinetic J0*th'^2/2; potential k*th^2";
     /// let table = derive_source(source, Parameters::Inferred).unwrap().units.unwrap();
     /// let unit = |q, of| table.quantity_unit(q, of);
     /// assert_eq!(unit(Quantity::ActiveForce, Some("th")).as_deref(), Some("N·m"));
@@ -62,7 +62,7 @@ impl UnitTable {
     /// ```
     /// use varmass_symbolic::mechanics::{derive_source, Parameters};
     /// use varmass_symbolic::units::Dimension;
-    /// let source = "coordinates th; units th: rad, k: N*m; potential k*th^2";
+    /// let source = "coordinates th; units th: rad, k: N*m, J0: kg*m^2; kinetic J0*th'^2/2; potential k*th^2";
     /// let table = derive_source(source, Parameters::Inferred).unwrap().units.unwrap();
     /// assert_eq!(table.quantity("p_th").unwrap().to_string(), "kg·m²/s");
     /// assert_eq!(table.quantity("Q_th"), Some(Dimension::ENERGY));
