@@ -96,7 +96,7 @@ pub enum StepErrorKind {
     /// [`VariableMassSystem::flow_rate`] at the start and after each step (through
     /// [`StepError::check_flow_rates`]), at the error's time and state; the flow's text is
     /// [`VariableMassSystem::flow_name`].
-    #[error("the rate of flow {index} is negative ({rate:e})")]
+    #[error("the rate of flow {index} is negative ({rate})")]
     NegativeFlowRate {
         /// The flow's index, in the order the model declares its flows.
         index: usize,
@@ -252,7 +252,7 @@ mod tests {
         );
         assert_eq!(
             error.to_string(),
-            "at t = 0.5: the rate of flow 1 is negative (-5e0)"
+            "at t = 0.5: the rate of flow 1 is negative (-5)"
         );
     }
 }

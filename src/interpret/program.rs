@@ -7,7 +7,7 @@ use std::sync::Arc;
 use varmass_core::table::{next_knot_time, Table};
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, Tape};
-use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation, MassKind, VelocitySolve};
+use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation};
 use varmass_symbolic::parse::keywords::closest;
 use varmass_symbolic::quantity::Evaluated;
 pub use varmass_symbolic::quantity::Quantity;
@@ -89,30 +89,23 @@ impl Program {
         evaluation: Evaluation,
     ) -> Result<Self, ProgramError> {
         let env = parameter_env(&d, parameters)?;
-        let mut law_slots = Vec::new();
-        let mut law_roots = Vec::new();
-        for (mass, law) in d.masses.iter().zip(&d.closed_laws) {
-            if let (MassKind::Law(_), Some(law)) = (&mass.kind, law) {
-                law_slots.push(mass.symbol.index());
-                law_roots.push(*law);
-            }
-        }
-        let (velocity_roots, numeric) = match &d.velocities {
-            VelocitySolve::Symbolic(v) => (v.clone(), false),
-            VelocitySolve::Numeric => {
-                let mut roots: Vec<Id> = d.mass_matrix.iter().flatten().copied().collect();
-                roots.extend(&d.momentum_offset);
-                (roots, true)
-            }
-        };
+        // Law masses → q̇ → ṗ and ṁ, as every evaluator of the state rate stages them.
+        let stages = d.rate_stages();
+        let law_slots = stages
+            .law_masses
+            .iter()
+            .map(|&i| d.masses[i].symbol.index());
+        let law_slots = law_slots.collect();
         let switch_roots = varmass_symbolic::mechanics::switching_functions(&mut d);
         let switch_names = switch_roots
             .iter()
             .map(|g| d.pool.display(*g).to_string())
             .collect();
-        let mut rate_roots = d.momentum_rate.clone();
-        rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
-        let stops = stop_tables(&mut d, &[&rate_roots, &velocity_roots, &law_roots], &env);
+        let stops = stop_tables(
+            &mut d,
+            &[&stages.rates, &stages.velocities, &stages.laws],
+            &env,
+        );
         let stage = |roots: Vec<Id>| Stage {
             tape: d.pool.compile(&roots),
             roots,
@@ -122,10 +115,10 @@ impl Program {
             taylor: TaylorProgram::new(&d, &env),
             evaluation,
             law_slots,
-            laws: stage(law_roots),
-            velocities: stage(velocity_roots),
-            numeric,
-            rates: stage(rate_roots),
+            laws: stage(stages.laws),
+            velocities: stage(stages.velocities),
+            numeric: stages.numeric,
+            rates: stage(stages.rates),
             quantities,
             switches: stage(switch_roots),
             switch_names,

@@ -13,8 +13,8 @@
 use std::cell::RefCell;
 
 use varmass_core::SystemError;
-use varmass_symbolic::expr::{Id, Symbol, TaylorJet, TaylorTape};
-use varmass_symbolic::mechanics::{Derivation, MassKind, VelocitySolve};
+use varmass_symbolic::expr::{TaylorJet, TaylorTape};
+use varmass_symbolic::mechanics::Derivation;
 
 use super::cholesky::{cholesky_factor, cholesky_substitute};
 
@@ -53,38 +53,16 @@ struct Scratch {
 impl TaylorProgram {
     /// Compiles the stages of `d` with the parameter environment `env`.
     pub(super) fn new(d: &Derivation, env: &[f64]) -> Self {
-        let mut inputs: Vec<Symbol> = vec![d.time];
-        inputs.extend(d.coordinates.iter().map(|c| c.q));
-        inputs.extend(d.coordinates.iter().map(|c| c.momentum));
-        inputs.extend(d.coordinates.iter().map(|c| c.velocity));
-        inputs.extend(d.masses.iter().map(|m| m.symbol));
-        let mut law_masses = Vec::new();
-        let mut law_roots = Vec::new();
-        for (index, (mass, law)) in d.masses.iter().zip(&d.closed_laws).enumerate() {
-            if let (MassKind::Law(_), Some(law)) = (&mass.kind, law) {
-                law_masses.push(index);
-                law_roots.push(*law);
-            }
-        }
-        let (velocity_roots, numeric) = match &d.velocities {
-            VelocitySolve::Symbolic(v) => (v.clone(), false),
-            VelocitySolve::Numeric => {
-                let mut roots: Vec<Id> = d.mass_matrix.iter().flatten().copied().collect();
-                roots.extend(&d.momentum_offset);
-                (roots, true)
-            }
-        };
-        let mut rate_roots = d.momentum_rate.clone();
-        rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
+        let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
         Self {
             n: d.coordinates.len(),
             masses: d.masses.len(),
             state_masses: d.state_mass_count(),
-            law_masses,
-            laws: d.pool.compile_taylor(&law_roots, &inputs),
-            velocities: d.pool.compile_taylor(&velocity_roots, &inputs),
-            numeric,
-            rates: d.pool.compile_taylor(&rate_roots, &inputs),
+            laws: d.pool.compile_taylor(&stages.laws, &inputs),
+            velocities: d.pool.compile_taylor(&stages.velocities, &inputs),
+            numeric: stages.numeric,
+            rates: d.pool.compile_taylor(&stages.rates, &inputs),
+            law_masses: stages.law_masses,
             env: env.to_vec(),
             scratch: RefCell::new(Scratch::default()),
         }

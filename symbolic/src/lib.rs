@@ -12,8 +12,10 @@
 //! 4. [`emit`] — the derivation as Rust: the `VariableMassSystem` impl that the
 //!    `#[variable_mass_system]` macro adds, straight-line code with shared subexpressions.
 //!
-//! Beside the stages, [`units`] checks the dimensions of a system that declares `units`,
-//! between name resolution and the derivation (see `docs/dsl.md#units`).
+//! Beside the stages, [`units`] checks the dimensions of a system that declares `units` on
+//! its resolved model, between name resolution and the derivation (see `docs/dsl.md#units`);
+//! [`pipeline`] is the driver that runs the three in turn, and [`dimension`] the algebra of
+//! dimensions that `units`, `mechanics` and the registry share.
 //!
 //! `ARCHITECTURE.md` at the repository root describes the stages and their invariants.
 //!
@@ -21,10 +23,12 @@
 //! position of the offending text.
 #![warn(missing_docs)]
 
+pub mod dimension;
 pub mod emit;
 pub mod expr;
 pub mod mechanics;
 pub mod parse;
+pub mod pipeline;
 pub mod quantity;
 pub mod units;
 

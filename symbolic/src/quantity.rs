@@ -18,10 +18,10 @@
 //! assert!(matches!(Quantity::Energy.spec().name, Named::Scalar("H")));
 //! ```
 
+use crate::dimension::Dimension;
 use crate::emit::Method;
 use crate::expr::Id;
 use crate::mechanics::{Derivation, VelocitySolve};
-use crate::units::Dimension;
 
 /// Declares `Quantity` and `Quantity::ALL` from one list, so that `ALL` cannot miss a
 /// variant (the order of the list is the order of `ALL`).

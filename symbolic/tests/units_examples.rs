@@ -182,8 +182,8 @@ fn the_comparison_sees_a_changed_derivation() {
 #[test]
 fn the_sled_table_has_the_units_of_its_quantities() {
     let source = format!("{SLED_UNITS}\n{SLED}");
-    let ast = varmass_symbolic::parse::parse_system(&source).unwrap();
-    let table = varmass_symbolic::units::check_units(&ast).unwrap().unwrap();
+    let derivation = varmass_symbolic::mechanics::derive_source(&source, Parameters::Inferred);
+    let table = derivation.unwrap().units.unwrap();
     let shown = |name: &str| table.quantity(name).unwrap().to_string();
     assert_eq!(shown("H"), "kg·m²/s²");
     assert_eq!(shown("p_x"), "kg·m/s");
@@ -206,9 +206,13 @@ fn every_model_file_states_its_units_and_passes_the_check() {
         let ast = varmass_symbolic::parse::parse_system(&text).expect("parses");
         let every_tag = varmass_symbolic::parse::known_tags(&ast);
         let all = varmass_symbolic::parse::select_tags(&ast, &every_tag).expect("known tags");
-        match varmass_symbolic::units::check_units(&all) {
-            Ok(Some(_)) => count += 1,
-            Ok(None) => panic!("{} has no `units` statement", path.display()),
+        let (inferred, minimal) = (
+            Parameters::Inferred,
+            varmass_symbolic::mechanics::Outputs::MINIMAL,
+        );
+        match varmass_symbolic::mechanics::derive_in(&all, inferred, minimal, &dir) {
+            Ok(d) if d.units.is_some() => count += 1,
+            Ok(_) => panic!("{} has no `units` statement", path.display()),
             Err(errors) => panic!("{}: {}", path.display(), errors[0].render(&text)),
         }
     }

@@ -355,6 +355,13 @@ fn unit_declarations_are_checked_themselves() {
         "`m` is a mass, in kg, but `units` gives it m",
         "m",
     );
+    // A rigid body is a body too (the check reads the resolved model's bodies).
+    single(
+        "coordinates x, th\nunits x: m, th: rad, M0: kg, J0: kg*m^2, b: kg\n\
+         mass m = M0\ninertia J = J0\nrigid b: mass m, inertia J, position [x, 0], angle th",
+        "`b` is a body: it has no unit; its mass and position do",
+        "b",
+    );
 }
 
 #[test]

@@ -8,8 +8,9 @@
 
 use nalgebra::SVector;
 
+use super::stiffness::StiffnessTest;
 use super::FixedStep;
-use crate::error::{ConfigError, StepError};
+use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::powf;
 use crate::stepper::{state_rate, Progress};
 use crate::system::VariableMassSystem;
@@ -349,3 +350,74 @@ where
 pub(crate) fn resolvable(t0: f64, h: f64) -> bool {
     h > 0.0 && t0 + h != t0
 }
+
+/// What an explicit adaptive pair (Dormand–Prince, DOP853) holds besides its stages: the
+/// system, the progress, the checked settings, the controller's memory and Hairer's
+/// stiffness test. One constructor, the start of a step and the step size to try, written
+/// once for both.
+#[derive(Clone, Debug)]
+pub(crate) struct Controlled<'a, Sys, const S: usize> {
+    pub(crate) system: &'a Sys,
+    pub(crate) progress: Progress<S>,
+    pub(crate) mode: Mode,
+    /// Next and last step, the controller's memory, the FSAL rate.
+    pub(crate) memory: ControlState<S>,
+    pub(crate) stiffness: StiffnessTest,
+}
+
+impl<'a, Sys, const S: usize> Controlled<'a, Sys, S> {
+    /// Starts at `(time, state)`; the state and the control are checked.
+    pub(crate) fn new<const N: usize>(
+        system: &'a Sys,
+        time: f64,
+        state: SVector<f64, S>,
+        control: StepControl,
+    ) -> Result<Self, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let mode = control.validated().map_err(|e| e.at(time, &state))?;
+        Ok(Self {
+            system,
+            progress: Progress::new(system, time, state)?,
+            mode,
+            memory: ControlState::new(),
+            stiffness: StiffnessTest::default(),
+        })
+    }
+
+    /// The start of a step of a method of `order`: its time, its state and the rate there
+    /// (FSAL), the first step chosen if none is yet.
+    pub(crate) fn begin<const N: usize>(&mut self, order: u32) -> Result<Start<S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let t0 = self.progress.time();
+        let y0 = *self.progress.state();
+        let k1 = self.memory.rate_at_start(self.system, &mut self.progress)?;
+        if self.memory.next_step <= 0.0 {
+            let first = self
+                .mode
+                .first_step(self.system, &mut self.progress, |_| Ok(k1), order);
+            self.memory.next_step = first?;
+        }
+        Ok((t0, y0, k1))
+    }
+
+    /// The size of the next attempt from `(t0, y0)` and whether it reaches the stop time; an
+    /// underflow error when it no longer moves t.
+    pub(crate) fn attempt_size(
+        &mut self,
+        (t0, y0): (f64, &SVector<f64, S>),
+    ) -> Result<(f64, bool), StepError<S>> {
+        let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
+        if !resolvable(t0, h) {
+            let kind = StepErrorKind::StepSizeUnderflow { step: h };
+            return Err(StepError::new(t0, *y0, kind));
+        }
+        Ok((h, reaches_stop))
+    }
+}
+
+/// The start of a step: t₀, y₀ and the rate there.
+pub(crate) type Start<const S: usize> = (f64, SVector<f64, S>, SVector<f64, S>);

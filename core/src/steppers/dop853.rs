@@ -18,8 +18,7 @@ mod coefficients;
 use nalgebra::SVector;
 
 use self::coefficients::*;
-use super::control::{resolvable, AdaptiveControl, ControlState, Mode, StepControl};
-use super::stiffness::StiffnessTest;
+use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl};
 use crate::error::{StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
 use crate::stepper::{
@@ -34,17 +33,13 @@ const STIFFNESS_BOUND: f64 = 6.1;
 /// The DOP853 stepper on the state `[q, p, m_s]`.
 #[derive(Clone, Debug)]
 pub struct Dop853<'a, Sys, const N: usize, const S: usize> {
-    system: &'a Sys,
-    progress: Progress<S>,
-    mode: Mode,
+    /// The system, the progress, the settings, the controller's memory, the stiffness test.
+    core: Controlled<'a, Sys, S>,
     /// Whether the three extra stages of the dense output are computed.
     dense: bool,
-    /// Next and last step, the controller's memory, the FSAL rate.
-    memory: ControlState<S>,
     /// The coefficients of the dense output over the last accepted step (`CONT` of
     /// `dop853.f`).
     continuous: [SVector<f64, S>; 8],
-    stiffness: StiffnessTest,
 }
 
 /// One attempted step: the new state, the twelve stages, the state of stage 12 (for the
@@ -68,15 +63,10 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let mode = control.validated().map_err(|e| e.at(time, &state))?;
         Ok(Self {
-            system,
-            progress: Progress::new(system, time, state)?,
-            mode,
+            core: Controlled::new::<N>(system, time, state, control)?,
             dense: true,
-            memory: ControlState::new(),
             continuous: [SVector::zeros(); 8],
-            stiffness: StiffnessTest::default(),
         })
     }
 
@@ -95,12 +85,12 @@ where
         if !self.dense {
             return None;
         }
-        let h = self.memory.last_step;
+        let h = self.core.memory.last_step;
         if h <= 0.0 {
-            return Some(*self.progress.state());
+            return Some(*self.core.progress.state());
         }
         let c = &self.continuous;
-        let s = (time - self.progress.previous_time()) / h;
+        let s = (time - self.core.progress.previous_time()) / h;
         let s1 = 1.0 - s;
         let inner = c[4] + (c[5] + (c[6] + c[7] * s) * s1) * s;
         Some(c[0] + (c[1] + (c[2] + (c[3] + inner * s1) * s) * s1) * s)
@@ -108,7 +98,7 @@ where
 
     /// The size of the step the stepper will try next (0 before the first step).
     pub fn proposed_step(&self) -> f64 {
-        self.memory.next_step
+        self.core.memory.next_step
     }
 }
 
@@ -296,12 +286,12 @@ where
         h: f64,
         attempt: &Attempt<S>,
     ) -> Result<Completion<S>, StepError<S>> {
-        let statistics = &mut self.progress.statistics;
-        let rate = state_rate(self.system, statistics, t0 + h, &attempt.state)?;
+        let statistics = &mut self.core.progress.statistics;
+        let rate = state_rate(self.core.system, statistics, t0 + h, &attempt.state)?;
         let continuous = if self.dense {
             let step = (t0, y0);
             Some(dense_coefficients(
-                self.system,
+                self.core.system,
                 statistics,
                 step,
                 h,
@@ -321,11 +311,12 @@ where
         attempt: &Attempt<S>,
         completion: Completion<S>,
     ) -> Result<StepOutcome, StepError<S>> {
-        let outcome = self
-            .progress
-            .accept(self.system, h, reaches_stop, attempt.state)?;
-        let statistics = &mut self.progress.statistics;
-        let stiff = self.stiffness.observe(
+        let outcome =
+            self.core
+                .progress
+                .accept(self.core.system, h, reaches_stop, attempt.state)?;
+        let statistics = &mut self.core.progress.statistics;
+        let stiff = self.core.stiffness.observe(
             statistics.accepted_steps,
             h,
             (&attempt.state, &completion.rate),
@@ -336,7 +327,7 @@ where
         if let Some(continuous) = completion.continuous {
             self.continuous = continuous;
         }
-        self.memory.accepted(h, completion.rate);
+        self.core.memory.accepted(h, completion.rate);
         Ok(outcome)
     }
 
@@ -347,8 +338,8 @@ where
         factor: f64,
         error: StepError<S>,
     ) -> Result<(), StepError<S>> {
-        self.memory.reject(h * factor, &mut self.progress);
-        if resolvable(self.progress.time(), self.memory.next_step) {
+        self.core.memory.reject(h * factor, &mut self.core.progress);
+        if resolvable(self.core.progress.time(), self.core.memory.next_step) {
             Ok(())
         } else {
             Err(error)
@@ -363,15 +354,15 @@ where
     type System = Sys;
 
     fn parts(&self) -> (&Sys, &Progress<S>) {
-        (self.system, &self.progress)
+        (self.core.system, &self.core.progress)
     }
 
     fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
-        ProgressMut::new(self.system, &mut self.progress)
+        ProgressMut::new(self.core.system, &mut self.core.progress)
     }
 
     fn forget_history(&mut self, _: Restarting) {
-        self.memory.restart();
+        self.core.memory.restart();
     }
 
     fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
@@ -379,31 +370,19 @@ where
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let t0 = self.progress.time();
-        let y0 = *self.progress.state();
-        let k1 = self.memory.rate_at_start(self.system, &mut self.progress)?;
-        if self.memory.next_step <= 0.0 {
-            let first = self
-                .mode
-                .first_step(self.system, &mut self.progress, |_| Ok(k1), 8);
-            self.memory.next_step = first?;
-        }
-        let Mode::Adaptive(control, tolerance) = self.mode else {
-            let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
-            let statistics = &mut self.progress.statistics;
-            let attempt = attempt(self.system, statistics, (t0, &y0), &k1, h, None)?;
+        let (t0, y0, k1) = self.core.begin::<N>(8)?;
+        let Mode::Adaptive(control, tolerance) = self.core.mode else {
+            let (h, reaches_stop) = self.core.progress.next_step(self.core.memory.next_step)?;
+            let statistics = &mut self.core.progress.statistics;
+            let attempt = attempt(self.core.system, statistics, (t0, &y0), &k1, h, None)?;
             let completion = self.complete((t0, &y0), h, &attempt)?;
             return self.accept(h, reaches_stop, &attempt, completion);
         };
         loop {
-            let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
-            if !resolvable(t0, h) {
-                let kind = StepErrorKind::StepSizeUnderflow { step: h };
-                return Err(StepError::new(t0, y0, kind));
-            }
-            let statistics = &mut self.progress.statistics;
+            let (h, reaches_stop) = self.core.attempt_size((t0, &y0))?;
+            let statistics = &mut self.core.progress.statistics;
             let tolerance = Some(&tolerance);
-            let trial = attempt(self.system, statistics, (t0, &y0), &k1, h, tolerance);
+            let trial = attempt(self.core.system, statistics, (t0, &y0), &k1, h, tolerance);
             let step = ((t0, &y0), h, reaches_stop);
             if let Some(outcome) = self.control(&control, step, trial)? {
                 return Ok(outcome);
@@ -458,9 +437,14 @@ where
                     .map(|()| None)
             }
         };
-        let next = self.memory.pi_after_acceptance(control, h, error, fac11);
+        let next = self
+            .core
+            .memory
+            .pi_after_acceptance(control, h, error, fac11);
         let outcome = self.accept(h, reaches_stop, attempt, completion)?;
-        self.memory.propose(next, reaches_stop, control.max_step);
+        self.core
+            .memory
+            .propose(next, reaches_stop, control.max_step);
         Ok(Some(outcome))
     }
 }

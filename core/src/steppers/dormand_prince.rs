@@ -27,9 +27,8 @@
 
 use nalgebra::SVector;
 
-use super::control::{resolvable, AdaptiveControl, ControlState, Mode, StepControl};
-use super::stiffness::StiffnessTest;
-use crate::error::{StepError, StepErrorKind};
+use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl};
+use crate::error::StepError;
 use crate::math::powf;
 use crate::stepper::{
     check_state, state_rate, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
@@ -82,15 +81,11 @@ const D7: f64 = 69997945.0 / 29380423.0;
 /// The Dormand–Prince 5(4) stepper on the state `[q, p, m_s]`.
 #[derive(Clone, Debug)]
 pub struct DormandPrince<'a, Sys, const N: usize, const S: usize> {
-    system: &'a Sys,
-    progress: Progress<S>,
-    mode: Mode,
-    /// Next and last step, the controller's memory, the FSAL rate.
-    memory: ControlState<S>,
+    /// The system, the progress, the settings, the controller's memory and Hairer's
+    /// stiffness test (on stages 6 and 7, both at t₀ + h).
+    core: Controlled<'a, Sys, S>,
     /// The stages k₁…k₇ of the last accepted step.
     stages: [SVector<f64, S>; 7],
-    /// Hairer's stiffness test on stages 6 and 7 (both at t₀ + h).
-    stiffness: StiffnessTest,
 }
 
 /// One attempted step: the new state, its stages, the state of stage 6 (for the stiffness
@@ -113,14 +108,9 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let mode = control.validated().map_err(|e| e.at(time, &state))?;
         Ok(Self {
-            system,
-            progress: Progress::new(system, time, state)?,
-            mode,
-            memory: ControlState::new(),
+            core: Controlled::new::<N>(system, time, state, control)?,
             stages: [SVector::zeros(); 7],
-            stiffness: StiffnessTest::default(),
         })
     }
 
@@ -128,14 +118,14 @@ where
     /// evaluated at `time` (meant for `time` within the step; outside it extrapolates).
     /// Before the first step it returns the current state.
     pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
-        let h = self.memory.last_step;
-        let y0 = self.progress.previous_state();
-        let y1 = self.progress.state();
+        let h = self.core.memory.last_step;
+        let y0 = self.core.progress.previous_state();
+        let y1 = self.core.progress.state();
         if h <= 0.0 {
             return *y1;
         }
         let k = &self.stages;
-        let theta = (time - self.progress.previous_time()) / h;
+        let theta = (time - self.core.progress.previous_time()) / h;
         let theta1 = 1.0 - theta;
         let difference = y1 - y0;
         let first = k[0] * h - difference;
@@ -146,7 +136,7 @@ where
 
     /// The size of the step the stepper will try next (0 before the first step).
     pub fn proposed_step(&self) -> f64 {
-        self.memory.next_step
+        self.core.memory.next_step
     }
 
     /// The six new stages and the new state of a step of size `h` from `(t0, y0)`.
@@ -196,15 +186,15 @@ where
     type System = Sys;
 
     fn parts(&self) -> (&Sys, &Progress<S>) {
-        (self.system, &self.progress)
+        (self.core.system, &self.core.progress)
     }
 
     fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
-        ProgressMut::new(self.system, &mut self.progress)
+        ProgressMut::new(self.core.system, &mut self.core.progress)
     }
 
     fn forget_history(&mut self, _: Restarting) {
-        self.memory.restart();
+        self.core.memory.restart();
     }
 
     fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
@@ -212,35 +202,23 @@ where
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let t0 = self.progress.time();
-        let y0 = *self.progress.state();
-        let k1 = self.memory.rate_at_start(self.system, &mut self.progress)?;
-        if self.memory.next_step <= 0.0 {
-            let first = self
-                .mode
-                .first_step(self.system, &mut self.progress, |_| Ok(k1), 5);
-            self.memory.next_step = first?;
-        }
+        let (t0, y0, k1) = self.core.begin::<N>(5)?;
         loop {
-            let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
-            if !resolvable(t0, h) {
-                let kind = StepErrorKind::StepSizeUnderflow { step: h };
-                return Err(StepError::new(t0, y0, kind));
-            }
-            let tolerance = match &self.mode {
+            let (h, reaches_stop) = self.core.attempt_size((t0, &y0))?;
+            let tolerance = match &self.core.mode {
                 Mode::Adaptive(_, tolerance) => Some(tolerance),
                 Mode::Fixed(_) => None,
             };
             let attempt = Self::attempt(
-                self.system,
-                &mut self.progress.statistics,
+                self.core.system,
+                &mut self.core.progress.statistics,
                 t0,
                 &y0,
                 &k1,
                 h,
                 tolerance,
             );
-            let Mode::Adaptive(control, _) = self.mode else {
+            let Mode::Adaptive(control, _) = self.core.mode else {
                 return self.accept(h, reaches_stop, attempt?);
             };
             if let Some(outcome) = self.control(&control, h, reaches_stop, attempt)? {
@@ -284,7 +262,7 @@ where
                 // matrix) is a step too long, not yet a failure: shrink and retry. If the
                 // step underflows, report the cause rather than the underflow.
                 self.reject(h * control.min_factor);
-                if resolvable(self.progress.time(), self.memory.next_step) {
+                if resolvable(self.core.progress.time(), self.core.memory.next_step) {
                     Ok(None)
                 } else {
                     Err(error)
@@ -305,16 +283,19 @@ where
     ) -> Result<StepOutcome, StepError<S>> {
         let error_power = powf(attempt.error, 0.2 - 0.75 * control.beta);
         let next = self
+            .core
             .memory
             .pi_after_acceptance(control, h, attempt.error, error_power);
         let outcome = self.accept(h, reaches_stop, attempt)?;
-        self.memory.propose(next, reaches_stop, control.max_step);
+        self.core
+            .memory
+            .propose(next, reaches_stop, control.max_step);
         Ok(outcome)
     }
 
     /// Rejects an attempt: the next attempt has size `next`.
     fn reject(&mut self, next: f64) {
-        self.memory.reject(next, &mut self.progress);
+        self.core.memory.reject(next, &mut self.core.progress);
     }
 
     fn accept(
@@ -323,11 +304,12 @@ where
         reaches_stop: bool,
         attempt: Attempt<S>,
     ) -> Result<StepOutcome, StepError<S>> {
-        let outcome = self
-            .progress
-            .accept(self.system, h, reaches_stop, attempt.state)?;
-        let statistics = &mut self.progress.statistics;
-        let stiff = self.stiffness.observe(
+        let outcome =
+            self.core
+                .progress
+                .accept(self.core.system, h, reaches_stop, attempt.state)?;
+        let statistics = &mut self.core.progress.statistics;
+        let stiff = self.core.stiffness.observe(
             statistics.accepted_steps,
             h,
             (&attempt.state, &attempt.stages[6]),
@@ -336,7 +318,7 @@ where
         );
         statistics.stiffness_detected |= stiff;
         self.stages = attempt.stages;
-        self.memory.accepted(h, attempt.stages[6]);
+        self.core.memory.accepted(h, attempt.stages[6]);
         Ok(outcome)
     }
 }

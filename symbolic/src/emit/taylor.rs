@@ -11,8 +11,8 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::expr::{Func, Id, Instr, Op, Symbol, TaylorTape};
-use crate::mechanics::{Derivation, MassKind, VelocitySolve};
+use crate::expr::{Func, Instr, Op, TaylorTape};
+use crate::mechanics::Derivation;
 
 /// The three stages compiled over one list of inputs: t, q, p, q̇, every mass.
 struct Stages {
@@ -26,36 +26,14 @@ struct Stages {
 }
 
 fn stages(d: &Derivation) -> Stages {
-    let mut inputs: Vec<Symbol> = vec![d.time];
-    inputs.extend(d.coordinates.iter().map(|c| c.q));
-    inputs.extend(d.coordinates.iter().map(|c| c.momentum));
-    inputs.extend(d.coordinates.iter().map(|c| c.velocity));
-    inputs.extend(d.masses.iter().map(|m| m.symbol));
-    let mut law_masses = Vec::new();
-    let mut law_roots = Vec::new();
-    for (index, (mass, law)) in d.masses.iter().zip(&d.closed_laws).enumerate() {
-        if let (MassKind::Law(_), Some(law)) = (&mass.kind, law) {
-            law_masses.push(index);
-            law_roots.push(*law);
-        }
-    }
-    let (velocity_roots, numeric) = match &d.velocities {
-        VelocitySolve::Symbolic(v) => (v.clone(), false),
-        VelocitySolve::Numeric => {
-            let mut roots: Vec<Id> = d.mass_matrix.iter().flatten().copied().collect();
-            roots.extend(&d.momentum_offset);
-            (roots, true)
-        }
-    };
-    let mut rate_roots = d.momentum_rate.clone();
-    rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
+    let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
     Stages {
         inputs: inputs.len(),
-        laws: d.pool.compile_taylor(&law_roots, &inputs),
-        law_masses,
-        velocities: d.pool.compile_taylor(&velocity_roots, &inputs),
-        numeric,
-        rates: d.pool.compile_taylor(&rate_roots, &inputs),
+        laws: d.pool.compile_taylor(&stages.laws, &inputs),
+        law_masses: stages.law_masses,
+        velocities: d.pool.compile_taylor(&stages.velocities, &inputs),
+        numeric: stages.numeric,
+        rates: d.pool.compile_taylor(&stages.rates, &inputs),
     }
 }
 

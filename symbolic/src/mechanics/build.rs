@@ -33,7 +33,6 @@ pub fn build_model(
 pub(super) struct Builder {
     pub(super) model: Model,
     pub(super) errors: Vec<Diagnostic>,
-    declared_at: FxHashMap<String, Span>,
     /// The directory table files are read from.
     pub(super) base: PathBuf,
 }
@@ -71,10 +70,10 @@ impl Builder {
                 tables: Vec::new(),
                 inputs: Vec::new(),
                 names,
+                declared_at: FxHashMap::default(),
                 parameter_mode: parameters,
             },
             errors: Vec::new(),
-            declared_at: FxHashMap::default(),
             base: base.to_path_buf(),
         }
     }
@@ -89,7 +88,7 @@ impl Builder {
             ));
             return false;
         }
-        if let Some(previous) = self.declared_at.get(name) {
+        if let Some(previous) = self.model.declared_at.get(name) {
             self.errors.push(
                 Diagnostic::new(span, format!("`{name}` is declared twice")).with_help(format!(
                     "first declared at {}:{}",
@@ -105,7 +104,7 @@ impl Builder {
             ));
             return false;
         }
-        self.declared_at.insert(name.to_string(), span);
+        self.model.declared_at.insert(name.to_string(), span);
         true
     }
 

@@ -4,7 +4,7 @@
 //! form, then as rational functions (over a common denominator, the numerator expanded) —
 //! and only failing that at random points.
 
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::HashMap;
 
 use super::derivation::{CheckOutcome, Derivation};
@@ -174,14 +174,50 @@ fn rational_identity(pool: &mut ExprPool, lhs: Id, rhs: Id) -> bool {
 
 /// `e` as (numerator, denominator), both free of negative integer powers at the top: sums
 /// over a common denominator (the product of the distinct ones), products factor by
-/// factor, `b^-k` as `den(b)^k / num(b)^k`.
-fn fraction(pool: &mut ExprPool, e: Id) -> (Id, Id) {
+/// factor, `b^-k` as `den(b)^k / num(b)^k`. A loop over the nodes it descends into,
+/// children (lower ids) before parents, as every pass over an expression is
+/// (ARCHITECTURE.md, invariants of `expr`): no recursion, whatever the depth.
+fn fraction(pool: &mut ExprPool, root: Id) -> (Id, Id) {
+    let mut nodes = Vec::new();
+    let mut pending = vec![root];
+    let mut seen = FxHashSet::default();
+    while let Some(e) = pending.pop() {
+        if seen.insert(e) {
+            nodes.push(e);
+            pending.extend(fraction_children(pool, e));
+        }
+    }
+    nodes.sort_unstable();
+    let mut parts: FxHashMap<Id, (Id, Id)> = FxHashMap::default();
+    for e in nodes {
+        let part = fraction_of(pool, e, &parts);
+        parts.insert(e, part);
+    }
+    parts[&root]
+}
+
+/// The operands `fraction` descends into: the terms of a sum, the factors of a product,
+/// the base of an integer power.
+fn fraction_children(pool: &ExprPool, e: Id) -> Vec<Id> {
+    match pool.node(e) {
+        Node::Add(terms) => terms.to_vec(),
+        Node::Mul(factors) => factors.to_vec(),
+        Node::Pow(base, exponent) => match pool.node(*exponent) {
+            Node::Num(k) if k.denom() == 1 && k.numer() != 0 => vec![*base],
+            _ => Vec::new(),
+        },
+        _ => Vec::new(),
+    }
+}
+
+/// One node of [`fraction`], its operands' parts already in `parts`.
+fn fraction_of(pool: &mut ExprPool, e: Id, parts: &FxHashMap<Id, (Id, Id)>) -> (Id, Id) {
     let one = pool.int(1);
     match pool.node(e).clone() {
         Node::Add(terms) => {
             let (mut numerator, mut denominator) = (pool.int(0), one);
             for term in terms.iter() {
-                let (n, d) = fraction(pool, *term);
+                let (n, d) = parts[term];
                 if d == denominator {
                     numerator = pool.add(&[numerator, n]);
                 } else {
@@ -194,14 +230,13 @@ fn fraction(pool: &mut ExprPool, e: Id) -> (Id, Id) {
             (numerator, denominator)
         }
         Node::Mul(factors) => {
-            let parts: Vec<(Id, Id)> = factors.iter().map(|f| fraction(pool, *f)).collect();
-            let numerators: Vec<Id> = parts.iter().map(|p| p.0).collect();
-            let denominators: Vec<Id> = parts.iter().map(|p| p.1).collect();
+            let numerators: Vec<Id> = factors.iter().map(|f| parts[f].0).collect();
+            let denominators: Vec<Id> = factors.iter().map(|f| parts[f].1).collect();
             (pool.mul(&numerators), pool.mul(&denominators))
         }
         Node::Pow(base, exponent) => match pool.node(exponent).clone() {
             Node::Num(k) if k.denom() == 1 && k.numer() != 0 => {
-                let (n, d) = fraction(pool, base);
+                let (n, d) = parts[&base];
                 let power = pool.int(i64::try_from(k.numer().abs()).unwrap_or(i64::MAX));
                 let (n, d) = (pool.pow(n, power), pool.pow(d, power));
                 if k.numer() < 0 {

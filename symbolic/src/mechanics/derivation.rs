@@ -136,7 +136,7 @@ pub struct Derivation {
     /// The `check`s and how each was decided.
     pub checks: Vec<CheckOutcome>,
     /// The units of the names and quantities, when the system declares `units`.
-    pub units: Option<crate::units::UnitTable>,
+    pub units: Option<super::UnitTable>,
     /// The model's tables (their data are in the pool).
     pub tables: Vec<super::tables::ModelTable>,
     /// The model's inputs (functions the user writes in Rust).

@@ -1,8 +1,9 @@
 //! Stage 3: from a parsed system to its derivation (docs/mechanics.md; ARCHITECTURE.md#stage-3-mechanics).
 //!
-//! [`derive()`](fn@derive) runs the whole stage: it resolves names and lowers every expression into a
-//! checked [`Model`], derives every quantity into a [`Derivation`], then verifies the
-//! system's `check`s against it. Every problem is a [`Diagnostic`] with the position of the
+//! [`derive()`](fn@derive) (the driver, `crate::pipeline`) runs the whole stage: it resolves
+//! names and lowers every expression into a checked [`Model`], has the units check read that
+//! model, derives every quantity into a [`Derivation`], then verifies the system's `check`s
+//! against it. Every problem is a [`Diagnostic`] with the position of the
 //! statement it is about.
 //!
 //! ```
@@ -37,13 +38,16 @@ mod resolve;
 mod rigid;
 mod rigid_forces;
 mod rotation;
+mod stages;
 mod stops;
 mod switches;
 mod tables;
+mod unit_table;
 
 pub use derivation::{
     CheckOutcome, Derivation, JacobianParts, VelocitySolve, SYMBOLIC_INVERSE_MAX_DOF,
 };
+pub(crate) use inputs::check_not_differentiated;
 pub use inputs::ModelInput;
 pub use linear::Matrix;
 pub use model::{
@@ -53,56 +57,25 @@ pub use model::{
 pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
+pub use stages::RateStages;
 pub use stops::{time_tables, TimeTable};
 pub use switches::switching_functions;
 pub use tables::{read_points, ModelTable};
+pub use unit_table::UnitTable;
 
-use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
+// The driver that runs resolution, the units check and the derivation in turn lives above
+// both stages (`crate::pipeline`): this module never calls the units check. Its functions
+// are named here too, where every caller has always found them.
+pub use crate::pipeline::{derive, derive_for, derive_in, derive_source};
+pub(crate) use build::build_model as build_model_in;
+pub(crate) use derivation::derive_model;
+pub(crate) use resolve::Binding;
+
+use crate::parse::{ast::SystemAst, Diagnostic};
 use std::path::Path;
 
 /// Resolves and lowers a parsed system into a checked [`Model`] (table files relative to
 /// the current directory).
 pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
     build::build_model(ast, parameters, Path::new("."))
-}
-
-/// Derives a parsed system and verifies its `check`s. A system with a `units` statement
-/// is first checked for dimensions ([`crate::units::check_units`]).
-pub fn derive(ast: &SystemAst, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
-    derive_for(ast, parameters, Outputs::FULL)
-}
-
-/// [`derive()`](fn@derive), deriving only the optional quantities `outputs` asks for (the Jacobian is
-/// `None` without [`Outputs::jacobian`]).
-pub fn derive_for(
-    ast: &SystemAst,
-    parameters: Parameters,
-    outputs: Outputs,
-) -> Result<Derivation, Vec<Diagnostic>> {
-    derive_in(ast, parameters, outputs, Path::new("."))
-}
-
-/// [`derive_for`] with `table` files read relative to `base` (the model file's directory;
-/// for an inline system the crate's, `CARGO_MANIFEST_DIR`).
-pub fn derive_in(
-    ast: &SystemAst,
-    parameters: Parameters,
-    outputs: Outputs,
-    base: &Path,
-) -> Result<Derivation, Vec<Diagnostic>> {
-    let model = build::build_model(ast, parameters, base)?;
-    let units = crate::units::check_units(ast)?;
-    let mut derivation = derivation::derive_model(model, outputs)?;
-    let differentiated = inputs::check_not_differentiated(&derivation);
-    if !differentiated.is_empty() {
-        return Err(differentiated);
-    }
-    derivation.units = units;
-    Ok(derivation)
-}
-
-/// Parses and derives DSL source text.
-pub fn derive_source(source: &str, parameters: Parameters) -> Result<Derivation, Vec<Diagnostic>> {
-    let ast = parse_system(source)?;
-    derive(&ast, parameters)
 }

@@ -219,5 +219,8 @@ pub struct Model {
     /// Inputs, in source order (`inputs.rs`).
     pub inputs: Vec<super::inputs::ModelInput>,
     pub(crate) names: FxHashMap<String, Binding>,
+    /// Where each declared name (coordinate, mass, inertia, definition, body, table) is
+    /// written in its declaration.
+    pub(crate) declared_at: FxHashMap<String, Span>,
     pub(crate) parameter_mode: Parameters,
 }

@@ -6,9 +6,9 @@ use std::fmt::Write;
 
 use super::derivation::{Derivation, VelocitySolve};
 use super::model::MassKind;
+use crate::dimension::Dimension;
 use crate::expr::{Id, Identity, Symbol};
 use crate::quantity::{Named, Quantity};
-use crate::units::Dimension;
 
 /// One line of the report: a label (text, LaTeX), an expression and what it is (for its
 /// unit).
@@ -263,7 +263,7 @@ impl Derivation {
             let _ = writeln!(out, "Checks");
             for c in &self.checks {
                 let how = match &c.verdict {
-                    Identity::Proven => "proven: same canonical form".to_string(),
+                    Identity::Proven => "proven: the difference reduces to 0".to_string(),
                     Identity::Numerical { points } => format!("holds at {points} random points"),
                     other => format!("{other:?}"),
                 };

@@ -9,7 +9,7 @@ use crate::parse::ast::ExprNode;
 use crate::parse::Diagnostic;
 use crate::parse::Span;
 
-impl Checker {
+impl Checker<'_> {
     /// The dimension of the call `name(args)` of a table: its declared unit.
     pub(crate) fn table_call(
         &mut self,

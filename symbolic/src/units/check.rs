@@ -1,23 +1,28 @@
-//! The dimension check of a system with a `units` statement: each statement's rule, on
-//! the spanned AST, with every problem reported together.
+//! The dimension check of a system with a `units` statement, on the resolved model: what
+//! each name is (coordinate, mass, inertia, definition, parameter, table, the time) comes
+//! from [`Model`] — this module resolves nothing itself — and each statement's rule is
+//! applied to the statement's spanned expressions, because a diagnostic quotes the written
+//! term and points at it (the model's arena has no positions). Every problem is reported
+//! together.
 
-use super::dimension::Dimension;
 use super::infer::Dim;
-use super::table::UnitTable;
 use super::text::text;
 use super::unit::unit_dimension;
-use crate::mechanics::is_reserved;
+use crate::dimension::Dimension;
+use crate::mechanics::{Binding, Model, UnitTable};
 use crate::parse::ast::{
     Attitude, BinOp, Expr, ExprNode, Flow, FlowVelocity, InertiaValue, Load, LoadValue, MassDecl,
     MassLaw, RigidDecl, Statement, StatementKind, SystemAst, UnitDecl, VectorNode,
 };
 use crate::parse::keywords;
 use crate::parse::{Diagnostic, Span};
+use crate::quantity::is_reserved;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// The state of one check.
-#[derive(Default)]
-pub(crate) struct Checker {
+pub(crate) struct Checker<'m> {
+    /// The resolved model: what each name is.
+    model: &'m Model,
     table: UnitTable,
     /// `let` definitions without a declared unit: their inferred dimension (`None` when it
     /// could not be inferred, so that their uses stay silent).
@@ -36,26 +41,28 @@ pub(crate) struct Checker {
     pub(crate) tables: FxHashMap<String, Option<(Dimension, Span)>>,
 }
 
-/// Checks the dimensions of every statement of `ast` when it has a `units` statement.
-/// Returns `Ok(None)` for a system without one (nothing is checked), the table of units
-/// when every rule holds, and otherwise every problem found.
+/// Checks the dimensions of every statement of `ast`, resolved into `model`, when it has a
+/// `units` statement. Returns `Ok(None)` for a system without one (nothing is checked),
+/// the table of units when every rule holds, and otherwise every problem found.
 ///
 /// ```
+/// use varmass_symbolic::mechanics::{build_model, Parameters};
 /// use varmass_symbolic::parse::parse_system;
 /// use varmass_symbolic::units::check_units;
 /// let ast = parse_system("coordinates x\nunits x: m, k: N/m\npotential k*x'^2").unwrap();
-/// let errors = check_units(&ast).unwrap_err();
+/// let model = build_model(&ast, Parameters::Inferred).unwrap();
+/// let errors = check_units(&ast, &model).unwrap_err();
 /// assert_eq!(
 ///     errors[0].message,
 ///     "potential term k*x'^2 has kg·m²/s⁴, expected an energy, kg·m²/s²"
 /// );
 /// ```
-pub fn check_units(ast: &SystemAst) -> Result<Option<UnitTable>, Vec<Diagnostic>> {
+pub fn check_units(ast: &SystemAst, model: &Model) -> Result<Option<UnitTable>, Vec<Diagnostic>> {
     let has_units = |s: &Statement| matches!(s.kind, StatementKind::Units(_));
     if !ast.statements.iter().any(has_units) {
         return Ok(None);
     }
-    let mut checker = Checker::default();
+    let mut checker = Checker::new(model);
     checker.declare(ast);
     for statement in &ast.statements {
         checker.statement(statement);
@@ -98,25 +105,40 @@ fn unit_entries(ast: &SystemAst) -> impl Iterator<Item = &UnitDecl> {
     })
 }
 
-impl Checker {
+impl<'m> Checker<'m> {
+    fn new(model: &'m Model) -> Checker<'m> {
+        Checker {
+            model,
+            table: UnitTable::default(),
+            lets: FxHashMap::default(),
+            unreadable: FxHashSet::default(),
+            in_check: false,
+            used: FxHashSet::default(),
+            missing: Vec::new(),
+            diagnostics: Vec::new(),
+            tables: FxHashMap::default(),
+        }
+    }
+
     pub(crate) fn report(&mut self, diagnostic: Diagnostic) {
         self.diagnostics.push(diagnostic);
     }
 
     /// What `name` is in an expression: its dimension, or `None` (and, the first time, a
-    /// note that it has no unit).
+    /// note that it has no unit). The model says what the name is; a name it does not bind
+    /// is, in a `check`, a derived quantity of the registry.
     pub(crate) fn name(&mut self, name: &str, span: Span) -> Option<Dim> {
         self.used.insert(name.to_string());
-        if let Some(dim) = self.lets.get(name) {
-            return *dim;
-        }
-        if let Some(dimension) = self.table.dimension(name) {
+        let found = match self.model.names.get(name) {
+            // A definition without a unit of its own: what its value was inferred to be
+            // (`None`, silently, when that could not be inferred).
+            Some(Binding::Let(_)) if self.lets.contains_key(name) => return self.lets[name],
+            Some(_) => self.table.dimension(name),
+            None if self.in_check => self.table.quantity(name),
+            None => None,
+        };
+        if let Some(dimension) = found {
             return Some(Dim::Of(dimension));
-        }
-        if self.in_check {
-            if let Some(dimension) = self.table.quantity(name) {
-                return Some(Dim::Of(dimension));
-            }
         }
         if !self.unreadable.contains(name) && !self.missing.iter().any(|(n, _)| n == name) {
             self.missing.push((name.to_string(), span));
@@ -124,36 +146,33 @@ impl Checker {
         None
     }
 
-    /// Reads the units, then the coordinates, masses and inertias, which every statement
-    /// may use.
+    /// Reads the units, then the model's coordinates, masses, inertias and tables, which
+    /// every statement may use.
     fn declare(&mut self, ast: &SystemAst) {
         for entry in unit_entries(ast) {
             self.declare_unit(entry);
         }
-        for statement in &ast.statements {
-            match &statement.kind {
-                StatementKind::Coordinates(names) => {
-                    for name in names {
-                        self.table.coordinates.push(name.node.clone());
-                        if self.table.dimension(&name.node).is_none() {
-                            self.name(&name.node, name.span);
-                        }
-                    }
-                }
-                StatementKind::Mass(decl) => self.declare_mass(decl, Dimension::MASS, "a mass"),
-                StatementKind::Inertia(decl) => {
-                    self.declare_mass(decl, Dimension::INERTIA, "an inertia")
-                }
-                StatementKind::Table(table) => {
-                    self.tables.insert(table.name.node.clone(), None);
-                }
-                // An input's value has its declared unit; its arguments are the declared
-                // ones (the first is checked for one unit at every call, as a table's).
-                StatementKind::Input(input) => {
-                    self.tables.insert(input.name.node.clone(), None);
-                }
-                _ => {}
+        let model = self.model;
+        for coordinate in &model.coordinates {
+            self.table.coordinates.push(coordinate.name.clone());
+            if self.table.dimension(&coordinate.name).is_none() {
+                self.name(&coordinate.name, coordinate.span);
             }
+        }
+        for mass in &model.masses {
+            let span = model.declared_at.get(&mass.name).copied();
+            match mass.inertia {
+                false => self.declare_mass(&mass.name, span, Dimension::MASS, "a mass"),
+                true => self.declare_mass(&mass.name, span, Dimension::INERTIA, "an inertia"),
+            }
+        }
+        for table in &model.tables {
+            self.tables.insert(table.name.clone(), None);
+        }
+        // An input's value has its declared unit; its arguments are the declared ones (the
+        // first is checked for one unit at every call, as a table's).
+        for input in &model.inputs {
+            self.tables.insert(input.name.clone(), None);
         }
     }
 
@@ -188,15 +207,14 @@ impl Checker {
     }
 
     /// A mass is in kg and an inertia in kg·m²: a unit given for one must say so.
-    fn declare_mass(&mut self, decl: &MassDecl, dimension: Dimension, what: &str) {
-        let name = &decl.name.node;
-        self.table.masses.push(name.clone());
+    fn declare_mass(&mut self, name: &str, at: Option<Span>, dimension: Dimension, what: &str) {
+        self.table.masses.push(name.to_string());
         // Whatever `units` says, the mass is checked as what it is.
-        if let Some(given) = self.table.dimensions.insert(name.clone(), dimension) {
+        if let Some(given) = self.table.dimensions.insert(name.to_string(), dimension) {
             if given != dimension {
                 let message =
                     format!("`{name}` is {what}, in {dimension}, but `units` gives it {given}");
-                self.report(Diagnostic::new(decl.name.span, message));
+                self.report(Diagnostic::new(at.unwrap_or_default(), message));
             }
         }
     }
@@ -431,11 +449,9 @@ impl Checker {
     /// `units` line serves every tag selection); [`Checker::missing_units`] points out a
     /// likely typo among them.
     fn bodies_with_units(&mut self, ast: &SystemAst) {
-        for statement in &ast.statements {
-            let StatementKind::Body(body) = &statement.kind else {
-                continue;
-            };
-            for entry in unit_entries(ast).filter(|e| e.name.node == body.name.node) {
+        let model = self.model;
+        for body in &model.bodies {
+            for entry in unit_entries(ast).filter(|e| e.name.node == body.name) {
                 let name = &entry.name.node;
                 let message =
                     format!("`{name}` is a body: it has no unit; its mass and position do");

@@ -4,9 +4,9 @@
 //! them; a dimensioned base with a non-constant exponent is an error.
 
 use super::check::{has, Checker};
-use super::dimension::Dimension;
 use super::text::text;
 use super::unit::constant;
+use crate::dimension::Dimension;
 use crate::expr::Rational;
 use crate::parse::ast::{BinOp, Expr, ExprNode};
 use crate::parse::{Diagnostic, Span};
@@ -26,7 +26,7 @@ const TRANSCENDENTAL: &[&str] = &[
     "sin", "cos", "tan", "exp", "ln", "sinh", "cosh", "tanh", "asin", "acos", "atan",
 ];
 
-impl Checker {
+impl Checker<'_> {
     /// The dimension of `node`, or `None` when it cannot be known: a symbol without a unit
     /// (collected for one diagnostic) or an error already reported inside.
     pub(crate) fn infer(&mut self, node: &ExprNode) -> Option<Dim> {

@@ -9,14 +9,12 @@
 
 mod calls;
 mod check;
-mod dimension;
 mod infer;
-mod table;
 mod text;
 mod unit;
 
+pub use crate::dimension::Dimension;
+pub use crate::mechanics::UnitTable;
 pub use check::check_units;
-pub use dimension::Dimension;
-pub use table::UnitTable;
 pub use text::text as expression_text;
 pub use unit::{unit_dimension, UNITS};

@@ -1,7 +1,7 @@
 //! Unit expressions of a `units` statement (`kg*m^2`, `m/s^2`, `N/m`, `1`) read into
 //! [`Dimension`]s.
 
-use super::dimension::Dimension;
+use crate::dimension::Dimension;
 use crate::expr::Rational;
 use crate::parse::ast::{BinOp, Expr, ExprNode};
 use crate::parse::keywords::closest;

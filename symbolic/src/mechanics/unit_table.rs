@@ -2,7 +2,7 @@
 //! quantities (`H`, `p_x`, `Q_th`, …) whose dimensions follow from the coordinates' by
 //! the rules of the registry ([`crate::quantity`]).
 
-use super::dimension::Dimension;
+use crate::dimension::Dimension;
 use crate::quantity::{Named, Quantity};
 use rustc_hash::FxHashMap;
 
@@ -39,11 +39,10 @@ impl UnitTable {
     /// force on a dimensionless coordinate is in N·m.
     ///
     /// ```
-    /// use varmass_symbolic::parse::parse_system;
+    /// use varmass_symbolic::mechanics::{derive_source, Parameters};
     /// use varmass_symbolic::quantity::Quantity;
-    /// use varmass_symbolic::units::check_units;
-    /// let ast = parse_system("coordinates th; units th: rad, k: J; potential k*th^2").unwrap();
-    /// let table = check_units(&ast).unwrap().unwrap();
+    /// let source = "coordinates th; units th: rad, k: J, J0: kg*m^2; kinetic J0*th'^2/2; potential k*th^2";
+    /// let table = derive_source(source, Parameters::Inferred).unwrap().units.unwrap();
     /// let unit = |q, of| table.quantity_unit(q, of);
     /// assert_eq!(unit(Quantity::ActiveForce, Some("th")).as_deref(), Some("N·m"));
     /// assert_eq!(unit(Quantity::Energy, None).as_deref(), Some("J"));
@@ -61,10 +60,10 @@ impl UnitTable {
     /// `pdot_q` are energy / dim(q) and `q''` is dim(q)/s²; `mdot_m` is dim(m)/s.
     ///
     /// ```
-    /// use varmass_symbolic::parse::parse_system;
-    /// use varmass_symbolic::units::{check_units, Dimension};
-    /// let ast = parse_system("coordinates th; units th: rad, k: N*m; potential k*th^2").unwrap();
-    /// let table = check_units(&ast).unwrap().unwrap();
+    /// use varmass_symbolic::mechanics::{derive_source, Parameters};
+    /// use varmass_symbolic::units::Dimension;
+    /// let source = "coordinates th; units th: rad, k: N*m, J0: kg*m^2; kinetic J0*th'^2/2; potential k*th^2";
+    /// let table = derive_source(source, Parameters::Inferred).unwrap().units.unwrap();
     /// assert_eq!(table.quantity("p_th").unwrap().to_string(), "kg·m²/s");
     /// assert_eq!(table.quantity("Q_th"), Some(Dimension::ENERGY));
     /// ```
