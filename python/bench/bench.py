@@ -28,12 +28,15 @@ import varmass.dask
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 PYTHON = ROOT / "python"
-REFERENCE = PYTHON / "target" / "release" / "varmass-python-bench-reference"
+# The reference's build directory: CARGO_TARGET_DIR when set (one target/ for everything),
+# else python/target.
+TARGET = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", PYTHON / "target"))
+REFERENCE = TARGET / "release" / "varmass-python-bench-reference"
 SLED = {"m0": 10.0, "c": 2.0, "g": 9.81, "theta": math.radians(30.0), "f_d": 0.1}
 
 
 def build_reference() -> None:
-    env = dict(os.environ, CARGO_TARGET_DIR=str(PYTHON / "target"))
+    env = dict(os.environ, CARGO_TARGET_DIR=str(TARGET))
     manifest = PYTHON / "bench" / "reference" / "Cargo.toml"
     subprocess.run(
         ["cargo", "build", "--release", "--quiet", "--manifest-path", str(manifest)],

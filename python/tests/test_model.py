@@ -44,6 +44,33 @@ def test_the_sled_flies_to_50_m_as_eq_24_says(sled):
     assert worst <= 1e-12, worst
 
 
+
+def test_taylors_method_flies_the_sled_as_eq_24_says(sled):
+    """``method="taylor"`` is the tool's ``--method taylor`` (order and step from the
+    tolerance, on the model's Taylor recurrences): the same closed form, in fewer steps."""
+    sol = sled.run(
+        set=SLED,
+        init={"x": 0},
+        until=100,
+        stop_when="x = 50",
+        method="taylor",
+        tol=1e-12,
+        record=["x", "x'"],
+    )
+    assert sol.stopped_by == "x = 50"
+    x, v = sol["x"][-1], sol["x'"][-1]
+    assert abs(x - 50.0) < 1e-9, x
+    # Measured 3.8e-15 at 50 m and 2.3e-14 over every point from 1 m on, in 14 steps
+    # (DOP853: 32): bound 1e-12 as for DOP853.
+    error = abs(v - sled_speed(x, **SLED)) / sled_speed(x, **SLED)
+    assert error <= 1e-12, error
+    far = sol["x"] >= 1.0
+    exact = np.array([sled_speed(xi, **SLED) for xi in sol["x"][far]])
+    worst = np.max(np.abs(sol["x'"][far] - exact) / exact)
+    assert worst <= 1e-12, worst
+    assert sol.statistics["accepted_steps"] < 32, sol.statistics
+    assert "taylor" in varmass.METHODS
+
 def test_a_solution_has_the_tools_run_in_numpy_columns(sled):
     sol = sled.run(set=SLED, init={"x": 0}, until=2.0, every=0.5)
     # --every 0.5 from 0 to 2: the start and four output times.
