@@ -79,11 +79,12 @@ impl Compiled {
     }
 
     /// The tool's `run` from the parameter values on: the program, the plan (every check
-    /// of the arguments), the integration; `finish` reads the outcome, then the program is
-    /// kept for the next run.
+    /// of the arguments), the integration (with a progress bar if `progress`); `finish`
+    /// reads the outcome, then the program is kept for the next run.
     pub(super) fn execute<T>(
         &mut self,
         args: &RunArgs,
+        progress: bool,
         values: Vec<(String, f64)>,
         warn: impl FnMut(&str),
         finish: impl FnOnce(&mut Outcome, &Plan) -> T,
@@ -98,6 +99,7 @@ impl Compiled {
             }
         };
         plan.flows = self.model.flows.clone();
+        plan.progress = progress;
         let mut outcome = dispatch(program, &plan)?;
         let result = finish(&mut outcome, &plan);
         self.program = Some(outcome.program);
@@ -112,6 +114,7 @@ impl Compiled {
         let values = typed(parameters).map_err(Failed::before)?;
         let done = self.execute(
             args,
+            false,
             values,
             |_| {},
             |outcome, plan| completed(outcome, plan, args),

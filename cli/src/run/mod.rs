@@ -33,7 +33,7 @@ pub fn run(args: &RunArgs) -> Result<String, CliError> {
     }
     let values = plan::parameters(args)?;
     let warn = |warning: &str| eprintln!("warning: {warning}");
-    Compiled::new(model).execute(args, values, warn, |outcome, plan| {
+    Compiled::new(model).execute(args, true, values, warn, |outcome, plan| {
         finish(args, outcome, plan)
     })?
 }

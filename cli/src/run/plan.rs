@@ -55,6 +55,9 @@ pub struct Plan {
     pub max_steps: u64,
     /// The wall-clock limit, if any.
     pub max_seconds: Option<f64>,
+    /// Whether the run shows a progress bar (on a terminal, after a quiet second): the
+    /// tool's runs do, a library caller's do not.
+    pub progress: bool,
     /// The parameter values (`--set`).
     pub parameters: Vec<(String, f64)>,
     /// Each flow's name for messages, in the derivation's flow order (`flow 1`, … until
@@ -187,6 +190,7 @@ pub fn plan_with(
         record,
         max_steps: args.max_steps,
         max_seconds,
+        progress: true,
         parameters,
         flows: (1..=program.derivation().flow_rates.len())
             .map(|i| format!("flow {i}"))
