@@ -149,6 +149,10 @@ where
         .zip(&watchers)
         .map(|(c, w)| match c.observable {
             Observable::Coordinate(a) => Event::state_reaches(a, c.value, c.direction),
+            // A state mass is a state entry, `[q, p, m_s]`: no program evaluation needed.
+            Observable::Mass(i) if i < program.state_mass_count() => {
+                Event::state_reaches(2 * N + i, c.value, c.direction)
+            }
             _ => Event::function(w.as_ref(), c.direction, EventAction::Stop),
         })
         .collect();
