@@ -165,7 +165,7 @@ fn completed(outcome: &mut Outcome, plan: &Plan, args: &RunArgs) -> Result<Compl
         table,
         end,
         stopped_by: outcome.stopped_by,
-        statistics: outcome.statistics.clone(),
+        statistics: outcome.statistics,
         summary,
     })
 }
