@@ -13,6 +13,7 @@ use crate::args::ModelArgs;
 use crate::error::CliError;
 
 /// A model file's derivation.
+#[derive(Clone)]
 pub struct LoadedModel {
     /// The directory the model's table files are read from (the model file's).
     pub base: PathBuf,

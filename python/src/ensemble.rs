@@ -14,9 +14,12 @@ use varmass::core::ensemble::rayon::ThreadPoolBuilder;
 use varmass::core::ensemble::{member_rng, Ensemble, Partial, Shard, SummaryConfig};
 use varmass_cli::args::RunArgs;
 use varmass_cli::error::CliError;
+use varmass_cli::model::LoadedModel;
+use varmass_cli::run::Compiled;
 
 use crate::errors::{to_py, value_error};
-use crate::run::{bytes, execute, parse_args};
+use crate::model::NativeModel;
+use crate::run::{bytes, parse_args};
 use crate::sample::Distribution;
 
 /// The most observables an ensemble reports (the core's ensemble has their count as a
@@ -38,9 +41,12 @@ enum Source {
 /// Everything a member needs, shared by the threads.
 struct Spec {
     seed: u64,
-    source: String,
-    file: String,
-    with: Vec<String>,
+    /// The derived model, copied into a new [`Compiled`] when every one is in use.
+    model: LoadedModel,
+    /// The compiled models not in use: a member takes one, runs, gives it back, so the
+    /// ensemble compiles the model once per thread, not once per member (a reused model
+    /// gives the bits of a fresh one: `cli/tests/compiled.rs`).
+    idle: Mutex<Vec<Compiled>>,
     fixed: Vec<(String, f64)>,
     sampled: Vec<(String, Distribution)>,
     args: RunArgs,
@@ -56,21 +62,14 @@ impl Spec {
 
     /// One member's run: its observables, or the tool's message.
     fn fly(&self, drawn: &[f64]) -> Result<Vec<f64>, CliError> {
-        let mut parameters = self.fixed.clone();
-        parameters.extend(
-            self.sampled
-                .iter()
-                .map(|(n, _)| n.clone())
-                .zip(drawn.iter().copied()),
-        );
-        let done = execute(
-            &self.source,
-            &self.file,
-            &self.with,
-            &parameters,
-            &self.args,
-        )
-        .map_err(|failed| failed.error)?;
+        let fixed = self.fixed.iter().map(|(n, v)| (n.as_str(), *v));
+        let sampled = self.sampled.iter().map(|(n, _)| n.as_str());
+        let parameters: Vec<(&str, f64)> =
+            fixed.chain(sampled.zip(drawn.iter().copied())).collect();
+        let mut compiled = self.take();
+        let done = compiled.run(&parameters, &self.args);
+        self.idle().push(compiled);
+        let done = done.map_err(|failed| failed.error)?;
         let (time, row) = done
             .table
             .rows
@@ -84,6 +83,17 @@ impl Spec {
                 Source::Column(k) => row[*k],
             })
             .collect())
+    }
+
+    /// An idle compiled model, or a new one.
+    fn take(&self) -> Compiled {
+        let idle = self.idle().pop();
+        idle.unwrap_or_else(|| Compiled::new(self.model.clone()))
+    }
+
+    /// The idle compiled models (a poisoned lock is only a panic's leftover).
+    fn idle(&self) -> std::sync::MutexGuard<'_, Vec<Compiled>> {
+        self.idle.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// Runs `members` on `threads` threads (all of rayon's global pool if `None`).
@@ -153,7 +163,7 @@ impl NativeEnsemble {
     fn new(
         py: Python<'_>,
         seed: u64,
-        source: String,
+        model: &NativeModel,
         file: String,
         with: Vec<String>,
         set: Vec<(String, f64)>,
@@ -200,9 +210,8 @@ impl NativeEnsemble {
             .collect();
         let spec = Spec {
             seed,
-            source,
-            file,
-            with,
+            model: model.loaded(),
+            idle: Mutex::new(Vec::new()),
             fixed: set,
             sampled,
             args,

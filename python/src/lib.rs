@@ -20,9 +20,9 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::load, m)?)?;
-    m.add_function(wrap_pyfunction!(model::derivation, m)?)?;
     m.add_function(wrap_pyfunction!(run::parse, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_class::<model::NativeModel>()?;
     m.add_class::<run::RunFlags>()?;
     m.add_class::<ensemble::NativeEnsemble>()?;
     m.add_class::<ensemble::NativePartial>()?;

@@ -1,7 +1,9 @@
-//! A model's facts for `varmass.Model`: derived by the tool's loader from its text, with the
-//! names a run understands, its tags and its checks; and the derivation as text or LaTeX.
+//! A model for `varmass.Model`: derived once by the tool's loader from its text and kept
+//! compiled ([`NativeModel`], the tool's [`Compiled`]), with the names a run understands,
+//! its tags and its checks, and the derivation as text or LaTeX.
 
 use std::path::Path;
+use std::sync::{Mutex, MutexGuard};
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -10,6 +12,7 @@ use varmass::symbolic::mechanics::MassKind;
 use varmass::symbolic::parse::{known_tags, parse_system};
 use varmass_cli::error::CliError;
 use varmass_cli::model::{load_source, LoadedModel};
+use varmass_cli::run::Compiled;
 
 use crate::errors::to_py;
 
@@ -19,15 +22,48 @@ pub fn derive(source: &str, file: &str, with: &[String]) -> Result<LoadedModel, 
     load_source(source, Path::new(file), with)
 }
 
+/// A derived model, compiled at its first run and reused by every later run (and by the
+/// ensembles made from it): a run costs its integration, not a derivation.
+#[pyclass(module = "varmass._native", frozen)]
+pub struct NativeModel {
+    compiled: Mutex<Compiled>,
+}
+
+impl NativeModel {
+    /// The compiled model, for one run at a time (a poisoned lock is only a panic's
+    /// leftover; the model itself is intact).
+    pub fn lock(&self) -> MutexGuard<'_, Compiled> {
+        self.compiled.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The derived model (to give an ensemble's threads their own compiled copies).
+    pub fn loaded(&self) -> LoadedModel {
+        self.lock().model().clone()
+    }
+}
+
+#[pymethods]
+impl NativeModel {
+    /// The whole derivation as text, or LaTeX (`align*` environments) with `latex`, exactly
+    /// as `varmass derive [--latex]` prints it.
+    fn derivation(&self, py: Python<'_>, latex: bool) -> String {
+        let mut derivation = self.lock().model().derivation.clone();
+        py.detach(|| match latex {
+            true => derivation.to_latex(),
+            false => derivation.to_text(),
+        })
+    }
+}
+
 /// The model's facts: coordinates, parameters, masses (state masses first), tags, the
-/// recordable quantities and each check with how it was decided.
+/// recordable quantities and each check with how it was decided; and the model itself.
 #[pyfunction]
 pub fn load<'py>(
     py: Python<'py>,
     source: &str,
     file: &str,
     with: Vec<String>,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<(Bound<'py, PyDict>, NativeModel)> {
     let (loaded, tags) = py
         .detach(|| {
             let tags = parse_system(source).map(|ast| known_tags(&ast));
@@ -55,7 +91,10 @@ pub fn load<'py>(
         .map(|c| (c.source.clone(), verdict(&c.verdict)))
         .collect();
     facts.set_item("checks", checks)?;
-    Ok(facts)
+    let model = NativeModel {
+        compiled: Mutex::new(Compiled::new(loaded)),
+    };
+    Ok((facts, model))
 }
 
 /// How a check was decided, as `varmass check` prints it.
@@ -65,24 +104,4 @@ fn verdict(identity: &Identity) -> String {
         Identity::Numerical { points } => format!("holds at {points} random points"),
         other => format!("{other:?}"),
     }
-}
-
-/// The whole derivation as text, or LaTeX (`align*` environments) with `latex`, exactly
-/// as `varmass derive [--latex]` prints it.
-#[pyfunction]
-pub fn derivation(
-    py: Python<'_>,
-    source: &str,
-    file: &str,
-    with: Vec<String>,
-    latex: bool,
-) -> PyResult<String> {
-    py.detach(|| {
-        let mut loaded = derive(source, file, &with)?;
-        Ok(match latex {
-            true => loaded.derivation.to_latex(),
-            false => loaded.derivation.to_text(),
-        })
-    })
-    .map_err(|e| to_py(py, e))
 }

@@ -7,10 +7,10 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use varmass_cli::args::{Cli, Command, RunArgs};
 use varmass_cli::error::CliError;
-use varmass_cli::run::{run_derived, Completed, Failed, Table};
+use varmass_cli::run::{Completed, Failed, Table};
 
 use crate::errors::{to_py, value_error};
-use crate::model::derive;
+use crate::model::NativeModel;
 
 /// `varmass run FILE <flags>` parsed by the tool's parser; a bad flag is the tool's message.
 pub fn parse_args(file: &str, with: &[String], flags: &[String]) -> Result<RunArgs, CliError> {
@@ -33,19 +33,6 @@ pub fn parse_args(file: &str, with: &[String], flags: &[String]) -> Result<RunAr
     }
 }
 
-/// Loads the model and runs it: the tool's `run` without its files.
-pub fn execute(
-    source: &str,
-    file: &str,
-    with: &[String],
-    parameters: &[(String, f64)],
-    args: &RunArgs,
-) -> Result<Completed, Failed> {
-    let loaded = derive(source, file, with).map_err(|error| Failed { error, table: None })?;
-    let values: Vec<(&str, f64)> = parameters.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-    run_derived(loaded, &values, args)
-}
-
 /// A run's flags, parsed once by the tool's parser (a `Model` keeps the last one, so a
 /// sweep over parameter values with the same flags parses them once).
 #[pyclass(module = "varmass._native", frozen)]
@@ -65,14 +52,13 @@ pub fn parse(
     Ok(RunFlags { args })
 }
 
-/// Runs the model `source` with the parameter values `set` and the parsed `flags`; returns
-/// the recorded columns, the end, the statistics and the summary the tool prints.
+/// Runs `model` with the parameter values `set` and the parsed `flags` (the tool's `run`
+/// without its files, on the model compiled once); returns the recorded columns, the end,
+/// the statistics and the summary the tool prints.
 #[pyfunction]
 pub fn run<'py>(
     py: Python<'py>,
-    source: &str,
-    file: &str,
-    with: Vec<String>,
+    model: &NativeModel,
     set: Vec<(String, f64)>,
     flags: &RunFlags,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -83,7 +69,10 @@ pub fn run<'py>(
         )));
     }
     let done = py
-        .detach(|| execute(source, file, &with, &set, args))
+        .detach(|| {
+            let values: Vec<(&str, f64)> = set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+            model.lock().run(&values, args)
+        })
         .map_err(|failed| failure(py, failed))?;
     result(py, &done)
 }

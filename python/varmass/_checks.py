@@ -20,6 +20,7 @@ METHODS = (
     "euler",
     "implicit-midpoint",
     "variational",
+    "taylor",
 )
 
 

@@ -132,7 +132,7 @@ class Ensemble:
     def _build(self):
         self._native = _native.NativeEnsemble(
             self.seed,
-            self.model._source,
+            self.model._native(),
             self.model._file,
             self.model._with,
             self._fixed,

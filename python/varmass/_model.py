@@ -34,7 +34,7 @@ class Model:
         self._source = text
         self._file = name
         self._with = _checks.tags(with_)
-        facts = _native.load(self._source, self._file, self._with)
+        facts, self._compiled = _native.load(self._source, self._file, self._with)
         self._facts = facts
         self._text: Optional[str] = None
         self._latex: Optional[str] = None
@@ -92,7 +92,7 @@ class Model:
     def derivation(self) -> str:
         """The whole derivation as text, as ``varmass derive`` prints it."""
         if self._text is None:
-            self._text = _native.derivation(self._source, self._file, self._with, False)
+            self._text = self._native().derivation(False)
         return self._text
 
     @property
@@ -100,7 +100,7 @@ class Model:
         """The derivation as LaTeX (``align*`` environments, ``%`` headings), as
         ``varmass derive --latex`` prints it."""
         if self._latex is None:
-            self._latex = _native.derivation(self._source, self._file, self._with, True)
+            self._latex = self._native().derivation(True)
         return self._latex
 
     def _repr_latex_(self) -> str:
@@ -113,9 +113,17 @@ class Model:
                 parts.append(line)
         return "\n".join(parts)
 
+    def _native(self):
+        """The model derived and compiled once (a run reuses it); derived again after
+        unpickling."""
+        if self._compiled is None:
+            _, self._compiled = _native.load(self._source, self._file, self._with)
+        return self._compiled
+
     def __getstate__(self):
         state = dict(self.__dict__)
         state["_parsed"] = None
+        state["_compiled"] = None
         return state
 
     def __repr__(self) -> str:
@@ -166,9 +174,7 @@ class Model:
         if self._parsed is None or self._parsed[0] != key:
             self._parsed = (key, _native.parse(self._file, self._with, flags))
         try:
-            raw = _native.run(
-                self._source, self._file, self._with, parameters, self._parsed[1]
-            )
+            raw = _native.run(self._native(), parameters, self._parsed[1])
         except RunError as error:
             error.points = _partial_points(error)
             raise

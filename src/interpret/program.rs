@@ -71,6 +71,12 @@ pub struct Program {
     /// The tables of t with the slope and offset of their argument: their knots are stop
     /// times (docs/tables.md#knots-are-switches).
     stops: Vec<(Arc<Table>, f64, f64)>,
+    /// Each stop table's slope and offset (made of parameters), to recompute [`Self::stops`]
+    /// when [`Program::set_parameters`] changes the values.
+    stop_arguments: Stage,
+    /// The parameters the equations read (`Derivation::used_parameters`, a walk of every
+    /// expression): found once, checked at every [`Program::set_parameters`].
+    used: Vec<String>,
     scratch: RefCell<Scratch>,
 }
 
@@ -88,7 +94,8 @@ impl Program {
         parameters: &[(&str, f64)],
         evaluation: Evaluation,
     ) -> Result<Self, ProgramError> {
-        let env = parameter_env(&d, parameters)?;
+        let used = d.used_parameters();
+        let env = parameter_env(&d, &used, parameters)?;
         // Law masses → q̇ → ṗ and ṁ, as every evaluator of the state rate stages them.
         let stages = d.rate_stages();
         let law_slots = stages
@@ -101,15 +108,14 @@ impl Program {
             .iter()
             .map(|g| d.pool.display(*g).to_string())
             .collect();
-        let stops = stop_tables(
-            &mut d,
-            &[&stages.rates, &stages.velocities, &stages.laws],
-            &env,
-        );
+        let (tables, stop_roots) =
+            stop_tables(&mut d, &[&stages.rates, &stages.velocities, &stages.laws]);
         let stage = |roots: Vec<Id>| Stage {
             tape: d.pool.compile(&roots),
             roots,
         };
+        let stop_arguments = stage(stop_roots);
+        let stops = stop_values(&tables, &stop_arguments, &env);
         let quantities = Quantity::ALL.iter().map(|q| stage(q.read(&d))).collect();
         Ok(Self {
             taylor: TaylorProgram::new(&d, &env),
@@ -124,6 +130,8 @@ impl Program {
             switch_names,
             flows: stage(d.flow_rates.clone()),
             stops,
+            stop_arguments,
+            used,
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),
@@ -131,6 +139,22 @@ impl Program {
             }),
             d,
         })
+    }
+
+    /// Gives the parameters new values, with [`Program::new`]'s checks and errors (on an
+    /// error the program keeps its former values). The tapes do not depend on the values,
+    /// so a sweep or an ensemble compiles the derivation once and only refills the
+    /// parameters' slots: evaluations after it are exactly those of a program made anew
+    /// with these values.
+    pub fn set_parameters(&mut self, parameters: &[(&str, f64)]) -> Result<(), ProgramError> {
+        let env = parameter_env(&self.d, &self.used, parameters)?;
+        let tables: Vec<Arc<Table>> = self.stops.iter().map(|(t, _, _)| Arc::clone(t)).collect();
+        self.stops = stop_values(&tables, &self.stop_arguments, &env);
+        self.taylor.set_env(&env);
+        let scratch = self.scratch.get_mut();
+        scratch.env = env;
+        scratch.outside = None;
+        Ok(())
     }
 
     /// The derivation this program evaluates.
@@ -475,7 +499,11 @@ impl Program {
 
 /// The environment with the parameter values in their slots (NaN elsewhere), after
 /// checking the parameters against the model.
-fn parameter_env(d: &Derivation, parameters: &[(&str, f64)]) -> Result<Vec<f64>, ProgramError> {
+fn parameter_env(
+    d: &Derivation,
+    used: &[String],
+    parameters: &[(&str, f64)],
+) -> Result<Vec<f64>, ProgramError> {
     let names: Vec<String> = d.parameters.iter().map(|(n, _)| n.clone()).collect();
     let mut env = vec![f64::NAN; d.pool.symbols().len()];
     for (name, value) in parameters {
@@ -495,10 +523,10 @@ fn parameter_env(d: &Derivation, parameters: &[(&str, f64)]) -> Result<Vec<f64>,
         }
         set(&mut env, symbol.index(), *value);
     }
-    let missing: Vec<String> = d
-        .used_parameters()
-        .into_iter()
-        .filter(|used| !parameters.iter().any(|(name, _)| name == used))
+    let missing: Vec<String> = used
+        .iter()
+        .filter(|used| !parameters.iter().any(|(name, _)| name == *used))
+        .cloned()
         .collect();
     if missing.is_empty() {
         Ok(env)
@@ -510,20 +538,34 @@ fn parameter_env(d: &Derivation, parameters: &[(&str, f64)]) -> Result<Vec<f64>,
     }
 }
 
-/// The tables of t called by `roots`, with their argument's slope and offset at the
-/// parameter values of `env` (they are made of parameters only).
-fn stop_tables(d: &mut Derivation, roots: &[&[Id]], env: &[f64]) -> Vec<(Arc<Table>, f64, f64)> {
+/// The tables of t called by `roots`, and the slope and offset of each one's argument
+/// (they are made of parameters only), slope then offset per table.
+fn stop_tables(d: &mut Derivation, roots: &[&[Id]]) -> (Vec<Arc<Table>>, Vec<Id>) {
     let all: Vec<Id> = roots.iter().flat_map(|r| r.iter().copied()).collect();
-    let found = time_tables(d, &all);
-    let mut stops = Vec::new();
-    for t in found {
-        let mut values = [f64::NAN; 2];
-        d.pool.compile(&[t.slope, t.offset]).eval(env, &mut values);
+    let mut tables = Vec::new();
+    let mut arguments = Vec::new();
+    for t in time_tables(d, &all) {
         if let Some(table) = d.pool.table(t.table, 0) {
-            stops.push((Arc::clone(table), values[0], values[1]));
+            tables.push(Arc::clone(table));
+            arguments.extend([t.slope, t.offset]);
         }
     }
-    stops
+    (tables, arguments)
+}
+
+/// Each table of t with its argument's slope and offset at the parameter values of `env`.
+fn stop_values(
+    tables: &[Arc<Table>],
+    arguments: &Stage,
+    env: &[f64],
+) -> Vec<(Arc<Table>, f64, f64)> {
+    let mut values = vec![f64::NAN; arguments.roots.len()];
+    arguments.tape.eval(env, &mut values);
+    tables
+        .iter()
+        .zip(values.chunks_exact(2))
+        .map(|(table, v)| (Arc::clone(table), v[0], v[1]))
+        .collect()
 }
 
 /// Remembers the first table lookup of `tape`'s last evaluation that had no value, as the

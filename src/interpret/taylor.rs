@@ -68,6 +68,12 @@ impl TaylorProgram {
         }
     }
 
+    /// New parameter values (`env` as [`TaylorProgram::new`] takes it).
+    pub(super) fn set_env(&mut self, env: &[f64]) {
+        self.env.clear();
+        self.env.extend_from_slice(env);
+    }
+
     /// Instructions of the three tapes together.
     pub(super) fn len(&self) -> usize {
         self.laws.len() + self.velocities.len() + self.rates.len()

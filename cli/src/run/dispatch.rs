@@ -79,6 +79,7 @@ fn padded_plan(plan: &Plan, len: usize, padded: usize) -> Plan {
         record: plan.record.clone(),
         max_steps: plan.max_steps,
         max_seconds: plan.max_seconds,
+        progress: plan.progress,
         parameters: plan.parameters.clone(),
         flows: plan.flows.clone(),
     }

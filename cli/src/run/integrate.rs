@@ -149,14 +149,21 @@ where
         .zip(&watchers)
         .map(|(c, w)| match c.observable {
             Observable::Coordinate(a) => Event::state_reaches(a, c.value, c.direction),
+            // A state mass is a state entry, `[q, p, m_s]`: no program evaluation needed.
+            Observable::Mass(i) if i < program.state_mass_count() => {
+                Event::state_reaches(2 * N + i, c.value, c.direction)
+            }
             _ => Event::function(w.as_ref(), c.direction, EventAction::Stop),
         })
         .collect();
     // The flows' rates are checked by the core's run at the start and after every step
     // (`TapeSystem::flow_rate`): a negative one fails it with the start point kept below.
     let start = *stepper.state();
-    let mut stepper =
-        Watched::new(stepper, plan.from, plan.until).with_time_limit(plan.max_seconds);
+    let watched = match plan.progress {
+        true => Watched::new(stepper, plan.from, plan.until),
+        false => Watched::quiet(stepper, plan.from, plan.until),
+    };
+    let mut stepper = watched.with_time_limit(plan.max_seconds);
     let mut points = vec![(plan.from, start.as_slice().to_vec())];
     let targets = output_times(plan);
     for target in targets {
@@ -324,6 +331,7 @@ mod tests {
             record: Vec::new(),
             max_steps: 10,
             max_seconds: None,
+            progress: false,
             parameters: Vec::new(),
             flows: Vec::new(),
         }

@@ -55,6 +55,9 @@ pub struct Plan {
     pub max_steps: u64,
     /// The wall-clock limit, if any.
     pub max_seconds: Option<f64>,
+    /// Whether the run shows a progress bar (on a terminal, after a quiet second): the
+    /// tool's runs do, a library caller's do not.
+    pub progress: bool,
     /// The parameter values (`--set`).
     pub parameters: Vec<(String, f64)>,
     /// Each flow's name for messages, in the derivation's flow order (`flow 1`, … until
@@ -96,7 +99,12 @@ pub fn parameters(args: &RunArgs) -> Result<Vec<(String, f64)>, CliError> {
 /// computes (declared or inferred, e.g. used only by a `check`, or multiplied by 0): its
 /// value changes nothing, which the user should know.
 pub fn unused_parameters(d: &Derivation, values: &[(String, f64)]) -> Vec<String> {
-    let used = d.used_parameters();
+    unused_among(d, &d.used_parameters(), values)
+}
+
+/// [`unused_parameters`] knowing the parameters the equations read (`used`, found once by
+/// `Derivation::used_parameters`, a walk of every expression).
+pub fn unused_among(d: &Derivation, used: &[String], values: &[(String, f64)]) -> Vec<String> {
     values
         .iter()
         .filter(|(name, _)| d.parameters.iter().any(|(n, _)| n == name))
@@ -113,6 +121,17 @@ pub fn unused_parameters(d: &Derivation, values: &[(String, f64)]) -> Vec<String
 /// Builds and checks the plan for `program`, whose model's statements (after tag
 /// selection) are `ast` (for the `let` names `--record` may use).
 pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, CliError> {
+    plan_with(args, parameters(args)?, program, ast)
+}
+
+/// [`plan`] with the parameter values given as numbers (`args.set` is not read): the entry
+/// of a caller that holds typed values (the Python package).
+pub fn plan_with(
+    args: &RunArgs,
+    parameters: Vec<(String, f64)>,
+    program: &Program,
+    ast: &SystemAst,
+) -> Result<Plan, CliError> {
     let from = args.from;
     let until = args.until;
     if until.is_nan() {
@@ -144,7 +163,6 @@ pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, 
         not_yet_true(program, &condition, text, from, &initial_state)?;
         stop_when.push(condition);
     }
-    let parameters = parameters(args)?;
     let record = match args.record.is_empty() {
         true => default_record(&known, program)
             .into_iter()
@@ -179,6 +197,7 @@ pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, 
         record,
         max_steps: args.max_steps,
         max_seconds,
+        progress: true,
         parameters,
         flows: (1..=program.derivation().flow_rates.len())
             .map(|i| format!("flow {i}"))

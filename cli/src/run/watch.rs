@@ -22,7 +22,8 @@ const TICKS: u64 = 1000;
 /// A stepper with a progress bar over `[from, until]` and a wall-clock limit.
 pub struct Watched<St> {
     inner: St,
-    bar: ProgressBar,
+    /// `None` for a library caller's run (see [`Watched::quiet`]).
+    bar: Option<ProgressBar>,
     started: Instant,
     shown: bool,
     from: f64,
@@ -40,7 +41,7 @@ impl<St> Watched<St> {
         }
         Self {
             inner,
-            bar,
+            bar: Some(bar),
             started: Instant::now(),
             shown: false,
             from,
@@ -48,6 +49,15 @@ impl<St> Watched<St> {
             steps: 0,
             max_seconds: None,
         }
+    }
+
+    /// [`Watched::new`] without a progress bar: for a library caller (the Python package,
+    /// an ensemble's members), where the bar's bookkeeping at every step (a clock read and
+    /// its atomics) is a cost with nothing to show.
+    pub fn quiet(inner: St, from: f64, until: f64) -> Self {
+        let mut watched = Self::new(inner, from, until);
+        watched.bar = None;
+        watched
     }
 
     /// Fails the run with [`StepErrorKind::WallClockExceeded`] after `seconds`.
@@ -67,9 +77,12 @@ impl<St> Watched<St> {
     }
 
     fn tick(&mut self, time: f64) {
+        let Some(bar) = &self.bar else {
+            return;
+        };
         if !self.shown && self.started.elapsed() >= QUIET_FOR {
             // Draws nothing when stderr is not a terminal.
-            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+            bar.set_draw_target(ProgressDrawTarget::stderr());
             self.shown = true;
         }
         let span = self.until - self.from;
@@ -78,12 +91,12 @@ impl<St> Watched<St> {
         } else {
             1.0
         };
-        self.bar.set_position((fraction * TICKS as f64) as u64);
+        bar.set_position((fraction * TICKS as f64) as u64);
         self.steps += 1;
         // The message is only drawn once shown; formatting it costs more than a small step.
         if self.shown {
             let rate = self.steps as f64 / self.started.elapsed().as_secs_f64().max(1e-9);
-            self.bar.set_message(format!(
+            bar.set_message(format!(
                 "t = {time:.6e}, {} steps, {rate:.0} steps/s",
                 self.steps
             ));
@@ -93,7 +106,9 @@ impl<St> Watched<St> {
 
 impl<St> Drop for Watched<St> {
     fn drop(&mut self) {
-        self.bar.finish_and_clear();
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
     }
 }
 
@@ -152,7 +167,11 @@ mod tests {
         let mut watched = Watched::new(stepper().expect("starts"), 0.0, 3.0);
         let seen = run(&mut watched, &config, &[]).expect("runs");
         assert_eq!(bare, seen);
-        assert_eq!(watched.bar.position(), TICKS);
+        assert_eq!(watched.bar.as_ref().map(ProgressBar::position), Some(TICKS));
+        // Without the bar the run is the same run.
+        let mut quiet = Watched::quiet(stepper().expect("starts"), 0.0, 3.0);
+        assert_eq!(run(&mut quiet, &config, &[]).expect("runs"), bare);
+        assert!(quiet.bar.is_none());
     }
 
     fn falling_body() -> TapeSystem<1, 2> {

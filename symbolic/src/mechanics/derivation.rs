@@ -71,7 +71,7 @@ pub struct CheckOutcome {
 }
 
 /// Everything derived from a system.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Derivation {
     /// The arena holding every expression below.
     pub pool: ExprPool,

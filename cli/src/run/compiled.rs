@@ -1,0 +1,203 @@
+//! A model compiled once and run many times: the entry point of a library caller (the
+//! Python package's `Model` and ensembles) and of the tool's own `run`, so both have one
+//! semantics and the same messages.
+//!
+//! Deriving a model costs more than integrating a short run (the sled: about 160 µs of a
+//! 260 µs run), and compiling its tapes costs as much again; neither depends on the
+//! parameter values. A [`Compiled`] keeps the derived model, compiles its program at the
+//! first run and, for every later run, only gives it the new values
+//! ([`Program::set_parameters`]), which evaluates exactly as a program made anew.
+
+use varmass::interpret::Program;
+
+use super::dispatch::dispatch;
+use super::integrate::Outcome;
+use super::output::{self, Table};
+use super::plan::{self, Plan};
+use crate::args::RunArgs;
+use crate::error::CliError;
+use crate::model::LoadedModel;
+
+/// A derived model and its program, compiled at the first run and reused by the next.
+pub struct Compiled {
+    model: LoadedModel,
+    /// The parameters the equations read, found once.
+    used: Vec<String>,
+    /// `None` before the first run, and after a run that failed before giving it back.
+    program: Option<Program>,
+}
+
+impl Compiled {
+    /// The model, not compiled yet (its program needs the first run's values).
+    pub fn new(model: LoadedModel) -> Self {
+        let used = model.derivation.used_parameters();
+        Self {
+            model,
+            used,
+            program: None,
+        }
+    }
+
+    /// The derived model.
+    pub fn model(&self) -> &LoadedModel {
+        &self.model
+    }
+
+    /// The program with the parameter values `values` (`warn` is told of those that enter
+    /// nothing): compiled the first time, given the new values after. A value list that
+    /// does not fit is the tool's [`CliError::Input`], naming a tag that would make an
+    /// unknown name a parameter.
+    fn program(
+        &mut self,
+        values: &[(String, f64)],
+        mut warn: impl FnMut(&str),
+    ) -> Result<Program, CliError> {
+        for warning in plan::unused_among(&self.model.derivation, &self.used, values) {
+            warn(&warning);
+        }
+        let borrowed: Vec<(&str, f64)> = values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+        let mut program = match self.program.take() {
+            Some(program) => program,
+            None => {
+                let derivation = self.model.derivation.clone();
+                Program::new(derivation, &borrowed).map_err(|e| self.refused(e))?
+            }
+        };
+        let refilled = program.set_parameters(&borrowed);
+        // Kept either way: a refused value list leaves the former values in place.
+        if let Err(e) = refilled {
+            self.program = Some(program);
+            return Err(self.refused(e));
+        }
+        Ok(program)
+    }
+
+    /// A refused value list in the tool's words.
+    fn refused(&self, e: varmass::interpret::ProgramError) -> CliError {
+        let m = &self.model;
+        super::program_error(&m.ast, &m.with, &m.base, e)
+    }
+
+    /// The tool's `run` from the parameter values on: the program, the plan (every check
+    /// of the arguments), the integration (with a progress bar if `progress`); `finish`
+    /// reads the outcome, then the program is kept for the next run.
+    pub(super) fn execute<T>(
+        &mut self,
+        args: &RunArgs,
+        progress: bool,
+        values: Vec<(String, f64)>,
+        warn: impl FnMut(&str),
+        finish: impl FnOnce(&mut Outcome, &Plan) -> T,
+    ) -> Result<T, CliError> {
+        let program = self.program(&values, warn)?;
+        let planned = plan::plan_with(args, values, &program, &self.model.selected);
+        let mut plan = match planned {
+            Ok(plan) => plan,
+            Err(e) => {
+                self.program = Some(program);
+                return Err(e);
+            }
+        };
+        plan.flows = self.model.flows.clone();
+        plan.progress = progress;
+        let mut outcome = dispatch(program, &plan)?;
+        let result = finish(&mut outcome, &plan);
+        self.program = Some(outcome.program);
+        Ok(result)
+    }
+
+    /// The tool's `run` of this model with the parameter values given as numbers (`args.set`
+    /// is not read) and nothing written to files: the same checks, plan, stepper, recording
+    /// and messages. A run that fails returns its error; the points up to it are in
+    /// [`Failed::table`].
+    pub fn run(&mut self, parameters: &[(&str, f64)], args: &RunArgs) -> Result<Completed, Failed> {
+        let values = typed(parameters).map_err(Failed::before)?;
+        let done = self.execute(
+            args,
+            false,
+            values,
+            |_| {},
+            |outcome, plan| completed(outcome, plan, args),
+        );
+        done.map_err(Failed::before)?
+    }
+}
+
+/// `parameters` as owned pairs; a name given twice is refused as the tool refuses
+/// `--set g=1 --set g=2` (the second value would silently win).
+fn typed(parameters: &[(&str, f64)]) -> Result<Vec<(String, f64)>, CliError> {
+    let mut values: Vec<(String, f64)> = Vec::with_capacity(parameters.len());
+    for (name, value) in parameters {
+        if values.iter().any(|(n, _)| n == name) {
+            return Err(CliError::Input(format!(
+                "`{name}` is set twice; give each parameter once"
+            )));
+        }
+        values.push((name.to_string(), *value));
+    }
+    Ok(values)
+}
+
+/// What a finished run gives a library caller.
+fn completed(outcome: &mut Outcome, plan: &Plan, args: &RunArgs) -> Result<Completed, Failed> {
+    let program = &outcome.program;
+    let table = output::table(program, &plan.record, &outcome.points).map_err(Failed::before)?;
+    if let Some(error) = outcome.failure.take() {
+        let table = Some(table);
+        return Err(Failed { error, table });
+    }
+    let end =
+        outcome.points.last().cloned().ok_or_else(|| {
+            Failed::before(CliError::Run("the run returned no point".to_string()))
+        })?;
+    let stopped_by = outcome
+        .stopped_by
+        .and_then(|index| args.stop_when.get(index))
+        .map(|c| format!("'{c}'"));
+    let summary = output::summary(
+        program,
+        end.0,
+        &end.1,
+        stopped_by.as_deref(),
+        &outcome.statistics,
+    );
+    Ok(Completed {
+        table,
+        end,
+        stopped_by: outcome.stopped_by,
+        statistics: outcome.statistics,
+        summary,
+    })
+}
+
+/// What a run computed, for a library caller (the Python package): what the tool's `run`
+/// prints and writes, as values.
+pub struct Completed {
+    /// The recorded quantities at every output time (the start included).
+    pub table: Table,
+    /// The time and state `[q, p, m_s]` where the run ended.
+    pub end: (f64, Vec<f64>),
+    /// The index of the `stop_when` condition that ended the run, if one did.
+    pub stopped_by: Option<usize>,
+    /// The stepper's work.
+    pub statistics: varmass::core::Statistics,
+    /// The summary the tool prints.
+    pub summary: String,
+}
+
+/// A run of [`Compiled::run`] that failed: the error, and the points recorded up to the
+/// failure when the run got as far as stepping.
+pub struct Failed {
+    /// What went wrong, with the tool's message.
+    pub error: CliError,
+    /// The recorded quantities up to the failure (`None` when it failed before the first
+    /// step).
+    pub table: Option<Table>,
+}
+
+impl Failed {
+    /// A failure before any point was computed.
+    fn before(error: CliError) -> Self {
+        Self { error, table: None }
+    }
+}
