@@ -37,6 +37,12 @@ const CBRT_EPSILON: f64 = 6.055_454_452_393_343e-6;
 /// coordinates cannot take up, e.g. 1 − m₂cos²/(m₁+m₂) of a double pendulum's second arm).
 pub const RELATIVE_PIVOT_FLOOR: f64 = 1.490_116_119_384_765_6e-8;
 
+/// Whether a pivot of M's factorisation is usable: above [`RELATIVE_PIVOT_FLOOR`] times its
+/// diagonal entry (false for a NaN, a pivot ≤ 0, or a diagonal entry ≤ 0).
+pub fn regular_pivot(pivot: f64, diagonal: f64) -> bool {
+    pivot > RELATIVE_PIVOT_FLOOR * diagonal && diagonal > 0.0
+}
+
 /// Why a system could not be evaluated at a state.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum SystemError {
@@ -201,7 +207,7 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
             .ok_or(SystemError::SingularMassMatrix)?;
         // l_jj² is the pivot d_j (see RELATIVE_PIVOT_FLOOR).
         let l = factor.l_dirty();
-        if (0..N).any(|j| !(l[(j, j)] * l[(j, j)] > RELATIVE_PIVOT_FLOOR * mass_matrix[(j, j)])) {
+        if (0..N).any(|j| !regular_pivot(l[(j, j)] * l[(j, j)], mass_matrix[(j, j)])) {
             return Err(SystemError::SingularMassMatrix);
         }
         Ok(factor.solve(&rhs))

@@ -1,7 +1,7 @@
 //! A small in-place Cholesky solve for the run-time sized mass matrix (allocation-free, so
 //! the state rate of a [`super::Program`] allocates nothing per evaluation).
 
-use varmass_core::system::RELATIVE_PIVOT_FLOOR;
+use varmass_core::system::regular_pivot;
 
 /// Solves M x = b in place (x into `b`) for a symmetric positive definite row-major `m` of
 /// size n × n, overwriting `m` with its Cholesky factor. Returns `false` (and leaves
@@ -23,7 +23,7 @@ pub(super) fn cholesky_factor(m: &mut [f64], n: usize) -> bool {
         }
         // A pivot below RELATIVE_PIVOT_FLOOR of its diagonal entry is singular: the rates
         // it divides have lost half their digits (gimbal lock, core::system).
-        if !(diagonal > RELATIVE_PIVOT_FLOOR * m[j * n + j]) || diagonal.is_infinite() {
+        if !regular_pivot(diagonal, m[j * n + j]) || diagonal.is_infinite() {
             return false;
         }
         let diagonal = diagonal.sqrt();

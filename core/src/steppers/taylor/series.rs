@@ -9,7 +9,7 @@
 use nalgebra::{ComplexField, RealField};
 
 use crate::math::{powf, sqrt};
-use crate::system::RELATIVE_PIVOT_FLOOR;
+use crate::system::regular_pivot;
 
 /// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
 pub const LEN: usize = super::MAX_ORDER + 1;
@@ -266,7 +266,7 @@ fn cholesky(m: &mut [f64], n: usize) -> bool {
         }
         // A pivot below RELATIVE_PIVOT_FLOOR of its diagonal entry is singular: the rates
         // it divides have lost half their digits (gimbal lock, core::system).
-        if !(diagonal > RELATIVE_PIVOT_FLOOR * m[j * n + j]) || diagonal.is_infinite() {
+        if !regular_pivot(diagonal, m[j * n + j]) || diagonal.is_infinite() {
             return false;
         }
         let diagonal = sqrt(diagonal);
