@@ -21,6 +21,28 @@ use nalgebra::{SMatrix, SVector};
 /// A literal because `f64::powf` is not available without `std`.
 const CBRT_EPSILON: f64 = 6.055_454_452_393_343e-6;
 
+/// The smallest pivot of a factorisation of M, relative to its diagonal entry, that is not
+/// reported as a singular mass matrix: √ε = 2⁻²⁶.
+///
+/// Rounding in the pivot d_j = m_jj − Σₖ l_jk² leaves an absolute error of about n ε m_jj
+/// (each term is at most m_jj when M is positive definite), so d_j, and every rate divided
+/// by it, carries a relative error of about n ε m_jj / d_j. Below √ε m_jj that error passes
+/// √ε ≈ 1.5e-8: half the digits are gone, more than the tolerance of any run can absorb, and
+/// an adaptive stepper would only shrink its steps towards the singularity. The typical
+/// case is a rigid body's attitude near the gimbal lock of its Euler sequence, where a pivot
+/// falls as cos²θ of the middle angle: the floor is met at |cos θ| ≈ ε^(1/4) ≈ 1.2e-4
+/// (0.007° from the lock), and the run ends there with [`SystemError::SingularMassMatrix`]
+/// at its time instead of stepping on with meaningless angle rates. Well-posed mass matrices
+/// stay far above it (a pivot is the part of a coordinate's inertia that the earlier
+/// coordinates cannot take up, e.g. 1 − m₂cos²/(m₁+m₂) of a double pendulum's second arm).
+pub const RELATIVE_PIVOT_FLOOR: f64 = 1.490_116_119_384_765_6e-8;
+
+/// Whether a pivot of M's factorisation is usable: above [`RELATIVE_PIVOT_FLOOR`] times its
+/// diagonal entry (false for a NaN, a pivot ≤ 0, or a diagonal entry ≤ 0).
+pub fn regular_pivot(pivot: f64, diagonal: f64) -> bool {
+    pivot > RELATIVE_PIVOT_FLOOR * diagonal && diagonal > 0.0
+}
+
 /// Why a system could not be evaluated at a state.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum SystemError {
@@ -180,10 +202,15 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         let offset = self.momenta(t, &at_rest);
         let rhs = state.fixed_rows::<N>(N) - offset;
         let mass_matrix = self.mass_matrix(t, state);
-        mass_matrix
+        let factor = mass_matrix
             .cholesky()
-            .map(|c| c.solve(&rhs))
-            .ok_or(SystemError::SingularMassMatrix)
+            .ok_or(SystemError::SingularMassMatrix)?;
+        // l_jj² is the pivot d_j (see RELATIVE_PIVOT_FLOOR).
+        let l = factor.l_dirty();
+        if (0..N).any(|j| !regular_pivot(l[(j, j)] * l[(j, j)], mass_matrix[(j, j)])) {
+            return Err(SystemError::SingularMassMatrix);
+        }
+        Ok(factor.solve(&rhs))
     }
 
     /// The velocity state `[q, q̇, m_s]` of a state `[q, p, m_s]`.

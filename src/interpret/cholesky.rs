@@ -1,6 +1,8 @@
 //! A small in-place Cholesky solve for the run-time sized mass matrix (allocation-free, so
 //! the state rate of a [`super::Program`] allocates nothing per evaluation).
 
+use varmass_core::system::regular_pivot;
+
 /// Solves M x = b in place (x into `b`) for a symmetric positive definite row-major `m` of
 /// size n × n, overwriting `m` with its Cholesky factor. Returns `false` (and leaves
 /// garbage in `b`) when M is not positive definite or a value is not finite.
@@ -19,7 +21,9 @@ pub(super) fn cholesky_factor(m: &mut [f64], n: usize) -> bool {
         for k in 0..j {
             diagonal -= m[j * n + k] * m[j * n + k];
         }
-        if diagonal.is_nan() || diagonal <= 0.0 || diagonal.is_infinite() {
+        // A pivot below RELATIVE_PIVOT_FLOOR of its diagonal entry is singular: the rates
+        // it divides have lost half their digits (gimbal lock, core::system).
+        if !regular_pivot(diagonal, m[j * n + j]) || diagonal.is_infinite() {
             return false;
         }
         let diagonal = diagonal.sqrt();
@@ -71,6 +75,26 @@ mod tests {
         assert!((b[0] - 1.0).abs() < 1e-15 && (b[1] + 2.0).abs() < 1e-15);
         let mut m = [1.0, 2.0, 2.0, 1.0];
         let mut b = [1.0, 1.0];
+        assert!(!cholesky_solve(&mut m, &mut b, 2));
+    }
+
+    #[test]
+    fn a_pivot_under_the_relative_floor_is_singular() {
+        // M = [[1, s], [s, 1]]: the second pivot is 1 − s², the floor √ε ≈ 1.49e-8 of
+        // m_11 = 1. s² = 1 − 1e-7 passes (x = [1, 1] solved from b = [1 + s, 1 + s]);
+        // s² = 1 − 1e-9 (positive definite, but half the digits gone) is singular.
+        let s = (1.0_f64 - 1e-7).sqrt();
+        let mut m = [1.0, s, s, 1.0];
+        let mut b = [1.0 + s, 1.0 + s];
+        assert!(cholesky_solve(&mut m, &mut b, 2));
+        // κ(M) ≈ 4e7, so x is good to about ε κ ≈ 1e-8; bound 1e-7.
+        assert!(
+            (b[0] - 1.0).abs() < 1e-7 && (b[1] - 1.0).abs() < 1e-7,
+            "{b:?}"
+        );
+        let s = (1.0_f64 - 1e-9).sqrt();
+        let mut m = [1.0, s, s, 1.0];
+        let mut b = [1.0 + s, 1.0 + s];
         assert!(!cholesky_solve(&mut m, &mut b, 2));
     }
 }

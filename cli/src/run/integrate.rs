@@ -291,7 +291,10 @@ fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, Stri
         StepErrorKind::SingularMassMatrix => (
             format!("{what} (the velocities cannot be recovered from the momenta)"),
             "the model's kinetic energy stops depending on a velocity here: stop before \
-             this state (--stop-when), or check the masses and positions"
+             this state (--stop-when), or check the masses and positions; a rigid body at \
+             the gimbal lock of its Euler sequence (middle angle ±90° for zyx-like, 0° or \
+             180° for zxz-like sequences) needs a sequence whose lock the motion avoids \
+             (docs/mechanics.md#rigid-bodies)"
                 .to_string(),
         ),
         StepErrorKind::Chattering { switch, .. } => {

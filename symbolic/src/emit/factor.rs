@@ -12,8 +12,11 @@
 //!
 //! u_ij = l_ij d_j is the entry of L before its division by the pivot, kept rather than
 //! recomputed as a product: each pivot costs one division, and no multiplication undoes it.
-//! A pivot d_j that is not positive (or NaN) means M is not positive definite there: the
-//! code returns the given error (the same test a Cholesky factorisation makes).
+//! A pivot d_j that is not positive (or NaN) means M is not positive definite there, and one
+//! at or below `RELATIVE_PIVOT_FLOOR` (√ε) of m_jj leaves the rates without half their digits
+//! (a rigid body at the gimbal lock of its Euler sequence; the reasoning is at the constant,
+//! in the core's `system.rs`): the code returns the given error, as the interpreter's and the
+//! core's Cholesky factorisations do.
 
 use proc_macro2::{Ident, TokenStream, TokenTree};
 use quote::{format_ident, quote};
@@ -36,18 +39,19 @@ fn z(i: usize) -> Ident {
 
 /// `let`s that bind `solution[i]` to x_i of M x = b, with M given row-major (`matrix`, only
 /// its lower triangle is read; `zero[i * n + j]` when that entry is identically zero) and b
-/// as `rhs`; `error` is returned (`return Err(error)`) when M is not positive definite.
+/// as `rhs`; `SystemError::SingularMassMatrix` of the `runtime` crate is returned when M is
+/// not positive definite or a pivot falls below the relative floor.
 /// Entries of L that are zero whatever the state (no fill-in reaches them) are left out.
 pub(crate) fn ldlt_solve(
     matrix: &[TokenStream],
     zero: &[bool],
     rhs: &[TokenStream],
     solution: &[Ident],
-    error: &TokenStream,
+    runtime: &TokenStream,
 ) -> TokenStream {
     let n = solution.len();
     let lower = structure(zero, n);
-    let mut out = factorisation(matrix, &lower, n, error);
+    let mut out = factorisation(matrix, &lower, n, runtime);
     out.extend(substitution(rhs, solution, &lower));
     out
 }
@@ -70,8 +74,9 @@ fn factorisation(
     matrix: &[TokenStream],
     nonzero: &[bool],
     n: usize,
-    error: &TokenStream,
+    runtime: &TokenStream,
 ) -> TokenStream {
+    let error = quote!(#runtime::SystemError::SingularMassMatrix);
     let entry = |i: usize, j: usize| matrix.get(i * n + j).cloned().unwrap_or_default();
     let used = |i: usize, j: usize| nonzero[i * n + j];
     // u_ij as the code names it: the entry itself when it is one token, else a local.
@@ -83,10 +88,22 @@ fn factorisation(
             let (ljk, ujk) = (l(j, k), &undivided[j * n + k]);
             quote!(- #ljk * #ujk)
         });
-        let pivot = minus_terms(m, minus);
+        let minus: Vec<TokenStream> = minus.collect();
+        // d_0 = m_00: positive is the whole test. Later pivots are compared with m_jj.
+        let floor = if minus.is_empty() {
+            quote!(0.0)
+        } else {
+            let diagonal = if is_single_token(&m) {
+                m.clone()
+            } else {
+                quote!((#m))
+            };
+            quote!(#runtime::system::RELATIVE_PIVOT_FLOOR * #diagonal)
+        };
+        let pivot = minus_terms(m, minus.into_iter());
         out.extend(quote! {
             let #d = #pivot;
-            if !(#d > 0.0) {
+            if !(#d > #floor) {
                 return Err(#error);
             }
             let #inv = 1.0 / #d;

@@ -159,11 +159,10 @@ impl Emitter<'_> {
                 let zero = self.zero_pattern();
                 let body = self.body(Input::VelocityState, &roots, |outs| {
                     let (matrix, rhs) = outs.split_at(m);
-                    let error = quote!(#runtime::SystemError::SingularMassMatrix);
                     let names: Vec<Ident> = (0..rhs.len())
                         .map(|i| format_ident!("__ldl_x{}", i))
                         .collect();
-                    let solve = ldlt_solve(matrix, &zero, rhs, &names, &error);
+                    let solve = ldlt_solve(matrix, &zero, rhs, &names, runtime);
                     quote! {
                         #solve
                         Ok(#runtime::nalgebra::SVector::<f64, #n_lit>::from([#(#names),*]))

@@ -197,7 +197,6 @@ impl Emitter<'_> {
                     .iter()
                     .map(|c| symbol_ident(&self.d.pool, c.momentum))
                     .collect();
-                let error = quote!(#runtime::SystemError::SingularMassMatrix);
                 let zero = self.zero_pattern();
                 let no_offset: Vec<bool> = self
                     .d
@@ -213,7 +212,7 @@ impl Emitter<'_> {
                         .zip(&no_offset)
                         .map(|((p, b), none)| if *none { quote!(#p) } else { quote!(#p - (#b)) })
                         .collect();
-                    vec![ldlt_solve(matrix, &zero, &excess, &names, &error)]
+                    vec![ldlt_solve(matrix, &zero, &excess, &names, runtime)]
                 };
                 (first, Box::new(bridge))
             }

@@ -2,7 +2,7 @@
 //! name any coordinate or mass), then every expression lowered in its scope, each rule a
 //! diagnostic at the statement it is about.
 
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::path::{Path, PathBuf};
 
 use super::model::{
@@ -33,6 +33,9 @@ pub fn build_model(
 pub(super) struct Builder {
     pub(super) model: Model,
     pub(super) errors: Vec<Diagnostic>,
+    /// Bodies whose `body` or `rigid` statement failed (and was reported): loads, torques
+    /// and flows on them are skipped silently rather than reported as naming no body.
+    pub(super) failed_bodies: FxHashSet<String>,
     /// The directory table files are read from.
     pub(super) base: PathBuf,
 }
@@ -74,6 +77,7 @@ impl Builder {
                 parameter_mode: parameters,
             },
             errors: Vec::new(),
+            failed_bodies: FxHashSet::default(),
             base: base.to_path_buf(),
         }
     }
@@ -288,6 +292,14 @@ impl Builder {
         self.model.bodies.iter().position(|b| b.name == name)
     }
 
+    /// After a `body` or `rigid` statement: when it added no body `name`, it failed with
+    /// its own diagnostics, and the loads and flows on `name` would only repeat them.
+    fn note_failed_body(&mut self, name: &str) {
+        if self.body_index(name).is_none() {
+            self.failed_bodies.insert(name.to_string());
+        }
+    }
+
     /// Second pass: lower every expression. Definitions, masses, bodies and terms go in
     /// source order (a `let` is visible after it); loads, flows and checks after them, so
     /// they may name any body.
@@ -306,8 +318,14 @@ impl Builder {
                 StatementKind::Mass(decl) | StatementKind::Inertia(decl) => {
                     self.lower_mass(decl, span);
                 }
-                StatementKind::Body(body) => self.lower_body(body, span),
-                StatementKind::Rigid(rigid) => self.lower_rigid(rigid, span),
+                StatementKind::Body(body) => {
+                    self.lower_body(body, span);
+                    self.note_failed_body(&body.name.node);
+                }
+                StatementKind::Rigid(rigid) => {
+                    self.lower_rigid(rigid, span);
+                    self.note_failed_body(&rigid.name.node);
+                }
                 StatementKind::Kinetic(e)
                 | StatementKind::Potential(e)
                 | StatementKind::Lagrangian(e) => {
@@ -473,7 +491,7 @@ impl Builder {
                     ),
                 )),
             }
-        } else {
+        } else if !self.failed_bodies.contains(&target.node) {
             let coordinates = self.model.coordinates.iter().map(|c| c.name.as_str());
             let bodies = self.model.bodies.iter().map(|b| b.name.as_str());
             let message = format!("`{}` is neither a coordinate nor a body", target.node);
@@ -503,6 +521,9 @@ impl Builder {
 
     fn lower_flow(&mut self, inflow: bool, flow: &crate::parse::ast::Flow, span: Span) {
         let Some(body) = self.body_index(&flow.body.node) else {
+            if self.failed_bodies.contains(&flow.body.node) {
+                return;
+            }
             let message = format!(
                 "`{}` is not a body; mass flows in and out of bodies",
                 flow.body.node

@@ -21,51 +21,25 @@ impl Builder {
     /// `rigid b: …`: checks the dimensions (2 with `angle`, 3 with `orientation`), lowers
     /// every part, and adds the body with its centre of mass r_c = r_O + R c as position.
     pub(super) fn lower_rigid(&mut self, decl: &RigidDecl, span: Span) {
-        let Some(mass) = self.body_mass(&decl.mass) else {
-            return;
-        };
+        // Every part is lowered (and reports its own mistakes) before any failure ends the
+        // statement, so one compile shows them all.
+        let mass = self.body_mass(&decl.mass);
         let dimension = match decl.attitude {
             Attitude::Angle(_) => 2,
             Attitude::Orientation { .. } => 3,
         };
-        if decl.position.node.len() != dimension {
-            let message = format!(
-                "rigid body `{}` is {}, so its position has {dimension} components, found {}",
-                decl.name.node,
-                if dimension == 2 {
-                    "planar (`angle`)"
-                } else {
-                    "spatial (`orientation`)"
-                },
-                decl.position.node.len()
-            );
-            self.errors
-                .push(Diagnostic::new(decl.position.span, message));
-            return;
-        }
         let name = &decl.name.node;
-        let Some(origin) = self.lower_vector(&decl.position) else {
-            return;
-        };
-        let what = format!("the position of rigid body `{name}`");
-        if !origin
-            .iter()
-            .all(|p| self.require_configuration(*p, decl.position.span, &what))
-        {
-            return;
-        }
-        let Some(turned) = self.lower_attitude(decl) else {
-            return;
-        };
-        let Some(inertia) = self.lower_inertia(decl, dimension) else {
-            return;
-        };
+        let origin = self.rigid_origin(decl, dimension);
+        let turned = self.lower_attitude(decl);
+        let inertia = self.lower_inertia(decl, dimension);
         let centre = match &decl.centre {
-            Some(centre) => match self.frozen_vector(centre, dimension, name, "centre") {
-                Some(c) => c,
-                None => return,
-            },
-            None => vec![self.model.pool.int(0); dimension],
+            Some(centre) => self.frozen_vector(centre, dimension, name, "centre"),
+            None => Some(vec![self.model.pool.int(0); dimension]),
+        };
+        let (Some(mass), Some(origin), Some(turned), Some(inertia), Some(centre)) =
+            (mass, origin, turned, inertia, centre)
+        else {
+            return;
         };
         let pool = &mut self.model.pool;
         let offset = mat_vec(pool, &turned.rotation, &centre);
@@ -87,6 +61,37 @@ impl Builder {
             }),
             span,
         });
+    }
+
+    /// r_O of `position [..]`: as many components as the attitude turns in (2 with
+    /// `angle`, 3 with `orientation`), each a function of q and t.
+    fn rigid_origin(&mut self, decl: &RigidDecl, dimension: usize) -> Option<Vec<Id>> {
+        let name = &decl.name.node;
+        if decl.position.node.len() != dimension {
+            let message = format!(
+                "rigid body `{name}` is {}, so its position has {dimension} components, found {}",
+                if dimension == 2 {
+                    "planar (`angle`)"
+                } else {
+                    "spatial (`orientation`)"
+                },
+                decl.position.node.len()
+            );
+            let help = if dimension == 2 {
+                "a body turning in space takes `orientation zyx(psi, th, phi)` and `inertia [A, B, C]`"
+            } else {
+                "a body turning in the plane takes `angle th` and one moment, `inertia J`"
+            };
+            self.errors
+                .push(Diagnostic::new(decl.position.span, message).with_help(help));
+            return None;
+        }
+        let origin = self.lower_vector(&decl.position)?;
+        let what = format!("the position of rigid body `{name}`");
+        origin
+            .iter()
+            .all(|p| self.require_configuration(*p, decl.position.span, &what))
+            .then_some(origin)
     }
 
     /// R and ω from `angle θ` (R(θ), ω = θ̇) or `orientation seq(φ1, φ2, φ3)`.
@@ -358,6 +363,9 @@ impl Builder {
             .body_index(&target.node)
             .filter(|b| self.model.bodies[*b].rigid.is_some())
         else {
+            if self.failed_bodies.contains(&target.node) {
+                return;
+            }
             let message = format!(
                 "`{}` is not a rigid body; a torque turns a rigid body",
                 target.node

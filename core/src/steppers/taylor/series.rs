@@ -9,6 +9,7 @@
 use nalgebra::{ComplexField, RealField};
 
 use crate::math::{powf, sqrt};
+use crate::system::regular_pivot;
 
 /// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
 pub const LEN: usize = super::MAX_ORDER + 1;
@@ -263,7 +264,9 @@ fn cholesky(m: &mut [f64], n: usize) -> bool {
         for k in 0..j {
             diagonal -= m[j * n + k] * m[j * n + k];
         }
-        if diagonal.is_nan() || diagonal <= 0.0 || diagonal.is_infinite() {
+        // A pivot below RELATIVE_PIVOT_FLOOR of its diagonal entry is singular: the rates
+        // it divides have lost half their digits (gimbal lock, core::system).
+        if !regular_pivot(diagonal, m[j * n + j]) || diagonal.is_infinite() {
             return false;
         }
         let diagonal = sqrt(diagonal);
