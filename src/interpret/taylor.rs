@@ -76,15 +76,23 @@ impl TaylorProgram {
         };
         let mut rate_roots = d.momentum_rate.clone();
         rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
+        let laws = d.pool.compile_taylor(&law_roots, &inputs);
+        // Masses whose law depends on no input are compiled as the constants they are in
+        // the later stages, as the emitted code does (`emit/taylor.rs`'s `constant_laws`).
+        let constants: Vec<(Symbol, Id)> = (0..law_masses.len())
+            .filter(|i| laws.output_is_constant(*i))
+            .map(|i| (d.masses[law_masses[i]].symbol, law_roots[i]))
+            .collect();
+        let pool = &d.pool;
         Self {
             n: d.coordinates.len(),
             masses: d.masses.len(),
             state_masses: d.state_mass_count(),
             law_masses,
-            laws: d.pool.compile_taylor(&law_roots, &inputs),
-            velocities: d.pool.compile_taylor(&velocity_roots, &inputs),
+            velocities: pool.compile_taylor_substituting(&velocity_roots, &inputs, &constants),
             numeric,
-            rates: d.pool.compile_taylor(&rate_roots, &inputs),
+            rates: pool.compile_taylor_substituting(&rate_roots, &inputs, &constants),
+            laws,
             env: env.to_vec(),
             scratch: RefCell::new(Scratch::default()),
         }

@@ -49,14 +49,35 @@ fn stages(d: &Derivation) -> Stages {
     };
     let mut rate_roots = d.momentum_rate.clone();
     rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
+    let laws = d.pool.compile_taylor(&law_roots, &inputs);
+    let constants = constant_laws(d, &laws, &law_masses, &law_roots);
     Stages {
         inputs: inputs.len(),
-        laws: d.pool.compile_taylor(&law_roots, &inputs),
         law_masses,
-        velocities: d.pool.compile_taylor(&velocity_roots, &inputs),
+        velocities: d
+            .pool
+            .compile_taylor_substituting(&velocity_roots, &inputs, &constants),
         numeric,
-        rates: d.pool.compile_taylor(&rate_roots, &inputs),
+        rates: d
+            .pool
+            .compile_taylor_substituting(&rate_roots, &inputs, &constants),
+        laws,
     }
+}
+
+/// The masses whose law depends on no input, each with its law: the later stages compile
+/// them as the constants they are (see `ExprPool::compile_taylor_substituting`). The
+/// interpreter's `TaylorProgram` makes the same choice, so the two stay bit-identical.
+fn constant_laws(
+    d: &Derivation,
+    laws: &TaylorTape,
+    law_masses: &[usize],
+    law_roots: &[Id],
+) -> Vec<(Symbol, Id)> {
+    (0..law_masses.len())
+        .filter(|i| laws.output_is_constant(*i))
+        .map(|i| (d.masses[law_masses[i]].symbol, law_roots[i]))
+        .collect()
 }
 
 /// Names the arrays of one tape: its input slots are the shared `i<n>`, the rest

@@ -120,6 +120,8 @@ pub struct TaylorTape {
     operands: Vec<usize>,
     inputs: Vec<usize>,
     outputs: Vec<usize>,
+    /// Whether each output depends on an input (is a series, not a constant).
+    series_outputs: Vec<bool>,
     slots: usize,
 }
 
@@ -170,6 +172,8 @@ struct Compiler<'p> {
     /// Pair slots already made for an argument slot: (sin, cos) and (sinh, cosh).
     sin_cos: FxHashMap<usize, (usize, usize)>,
     sinh_cosh: FxHashMap<usize, (usize, usize)>,
+    /// Symbols compiled through an expression in place of their input slot.
+    substitutions: &'p [(Symbol, Id)],
 }
 
 impl ExprPool {
@@ -177,6 +181,19 @@ impl ExprPool {
     /// coefficients the caller sets as input `i`. Defined symbols are compiled through their
     /// values; any other symbol is a constant read from the environment.
     pub fn compile_taylor(&self, roots: &[Id], inputs: &[Symbol]) -> TaylorTape {
+        self.compile_taylor_substituting(roots, inputs, &[])
+    }
+
+    /// [`compile_taylor`](Self::compile_taylor) with each symbol of `substitutions` compiled
+    /// through its expression instead of as an input: for an input known to be a constant
+    /// (a mass whose law depends on no input), so that the products with it are scalings
+    /// and its reciprocal is computed once, not as series of zeros at every order.
+    pub fn compile_taylor_substituting(
+        &self,
+        roots: &[Id],
+        inputs: &[Symbol],
+        substitutions: &[(Symbol, Id)],
+    ) -> TaylorTape {
         let mut c = Compiler {
             pool: self,
             fixed: Vec::new(),
@@ -186,14 +203,13 @@ impl ExprPool {
             slot: FxHashMap::default(),
             sin_cos: FxHashMap::default(),
             sinh_cosh: FxHashMap::default(),
+            substitutions,
         };
         let input_slots: Vec<usize> = inputs.iter().map(|_| c.new_slot(true)).collect();
-        for id in self.reachable(roots, true) {
-            let slot = c.node(id, inputs, &input_slots);
-            c.slot.insert(id, slot);
-        }
-        let outputs = roots.iter().map(|r| c.of(*r)).collect();
+        c.compile_all(roots, inputs, &input_slots);
+        let outputs: Vec<usize> = roots.iter().map(|r| c.of(*r)).collect();
         TaylorTape {
+            series_outputs: outputs.iter().map(|s| c.series(*s)).collect(),
             slots: c.is_series.len(),
             fixed: c.fixed,
             series: c.series,
@@ -205,6 +221,25 @@ impl ExprPool {
 }
 
 impl Compiler<'_> {
+    /// Compiles every node `roots` reach that is not compiled yet, children first.
+    fn compile_all(&mut self, roots: &[Id], inputs: &[Symbol], input_slots: &[usize]) {
+        for id in self.pool.reachable(roots, true) {
+            if !self.slot.contains_key(&id) {
+                let slot = self.node(id, inputs, input_slots);
+                self.slot.insert(id, slot);
+            }
+        }
+    }
+
+    /// The slot of a substituted symbol's expression, compiled without substitutions (an
+    /// expression naming its own symbol reads the input instead of recursing).
+    fn substitute(&mut self, value: Id, inputs: &[Symbol], input_slots: &[usize]) -> usize {
+        let substitutions = std::mem::take(&mut self.substitutions);
+        self.compile_all(&[value], inputs, input_slots);
+        self.substitutions = substitutions;
+        self.of(value)
+    }
+
     fn new_slot(&mut self, series: bool) -> usize {
         self.is_series.push(series);
         self.is_series.len() - 1
@@ -243,9 +278,12 @@ impl Compiler<'_> {
             Node::Float(bits) => self.emit(Op::Const(f64::from_bits(*bits)), &[]),
             Node::Sym(sym) => match pool.definition(*sym) {
                 Some(value) => self.of(value),
-                None => match inputs.iter().position(|s| s == sym) {
-                    Some(i) => input_slots[i],
-                    None => self.emit(Op::Param(sym.index()), &[]),
+                None => match self.substitutions.iter().find(|(s, _)| s == sym) {
+                    Some(&(_, value)) => self.substitute(value, inputs, input_slots),
+                    None => match inputs.iter().position(|s| s == sym) {
+                        Some(i) => input_slots[i],
+                        None => self.emit(Op::Param(sym.index()), &[]),
+                    },
                 },
             },
             Node::Add(terms) => {
@@ -489,6 +527,11 @@ impl TaylorTape {
     /// The slot of each output.
     pub(crate) fn output_slots(&self) -> &[usize] {
         &self.outputs
+    }
+
+    /// Whether output `i` depends on no input: a constant, its higher coefficients zero.
+    pub fn output_is_constant(&self, i: usize) -> bool {
+        !self.series_outputs.get(i).copied().unwrap_or(true)
     }
 
     /// Number of slots (inputs included).
