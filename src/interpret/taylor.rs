@@ -12,6 +12,7 @@
 
 use std::cell::RefCell;
 
+use varmass_core::steppers::taylor::series;
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, TaylorJet, TaylorTape};
 use varmass_symbolic::mechanics::{Derivation, MassKind, VelocitySolve};
@@ -205,14 +206,15 @@ impl TaylorProgram {
         }
         // M[0] q̇[k] = p[k] − b[k] − Σⱼ₌₁ᵏ M[j] q̇[k−j].
         scratch.rhs.clear();
+        // The sum over j in four chains, as the generated code's `series::solve_velocities`.
         for a in 0..n {
-            let mut r = get(scratch, 1 + n + a, k) - self.velocities.output(jet, n * n + a, k);
-            for j in 1..=k {
-                for b in 0..n {
-                    r -= entry(a, b, j) * get(scratch, first_velocity + b, k - j);
-                }
-            }
-            scratch.rhs.push(r);
+            let coupling = series::sum(1, k + 1, |j| {
+                (0..n).fold(0.0, |total, b| {
+                    total + entry(a, b, j) * get(scratch, first_velocity + b, k - j)
+                })
+            });
+            let r = get(scratch, 1 + n + a, k) - self.velocities.output(jet, n * n + a, k);
+            scratch.rhs.push(r - coupling);
         }
         if !cholesky_substitute(&scratch.factor, &mut scratch.rhs, n) {
             return Err(SystemError::SingularMassMatrix);

@@ -240,15 +240,16 @@ pub fn solve_velocities(
             return false;
         }
     }
+    let k = k.min(LEN - 1);
     let mut rhs = [0.0; 16];
     for a in 0..n.min(16) {
-        let mut r = momenta[a][k] - offset[a][k];
-        for j in 1..=k {
-            for (b, v) in velocities.iter().enumerate().take(n) {
-                r -= matrix[a * n + b][j] * v[k - j];
-            }
-        }
-        rhs[a] = r;
+        // Σⱼ₌₁ᵏ (Σ_b M[j]_ab q̇_b[k−j]): the sum over j in four chains, as the tapes add it.
+        let coupling = sum(1, k + 1, |j| {
+            (0..n).fold(0.0, |total, b| {
+                total + matrix[a * n + b][j] * velocities[b][k - j]
+            })
+        });
+        rhs[a] = (momenta[a][k] - offset[a][k]) - coupling;
     }
     substitute(factor, &mut rhs, n);
     for (a, v) in velocities.iter_mut().enumerate().take(n) {
