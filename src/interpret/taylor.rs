@@ -32,7 +32,7 @@ pub(super) struct TaylorProgram {
     /// q̇ in closed form, or M (row-major) then b.
     velocities: TaylorTape,
     numeric: bool,
-    /// ṗ then ṁ of the state masses.
+    /// ṗ then ṁ of the state masses, over the velocities' slots (and jet).
     rates: TaylorTape,
     env: Vec<f64>,
     scratch: RefCell<Scratch>,
@@ -41,8 +41,8 @@ pub(super) struct TaylorProgram {
 #[derive(Debug, Default)]
 struct Scratch {
     laws: TaylorJet,
+    /// The jet of q̇ and of the rates, which share their slots.
     velocities: TaylorJet,
-    rates: TaylorJet,
     /// Coefficients of every input, input-major: `inputs[i * stride + k]`.
     inputs: Vec<f64>,
     stride: usize,
@@ -84,15 +84,20 @@ impl TaylorProgram {
             .filter(|i| laws.output_is_constant(*i))
             .map(|i| (d.masses[law_masses[i]].symbol, law_roots[i]))
             .collect();
-        let pool = &d.pool;
+        // The rates over q̇'s slots: what q̇ computed is not computed again.
+        let stages: [&[Id]; 2] = [&velocity_roots, &rate_roots];
+        let mut later = d
+            .pool
+            .compile_taylor_stages(&stages, &inputs, &constants)
+            .into_iter();
         Self {
             n: d.coordinates.len(),
             masses: d.masses.len(),
             state_masses: d.state_mass_count(),
             law_masses,
-            velocities: pool.compile_taylor_substituting(&velocity_roots, &inputs, &constants),
+            velocities: later.next().unwrap_or_default(),
             numeric,
-            rates: pool.compile_taylor_substituting(&rate_roots, &inputs, &constants),
+            rates: later.next().unwrap_or_default(),
             laws,
             env: env.to_vec(),
             scratch: RefCell::new(Scratch::default()),
@@ -135,7 +140,7 @@ impl TaylorProgram {
                 set(scratch, 1 + a, k + 1, v * next);
             }
             for i in 0..self.n + self.state_masses {
-                let rate = self.rates.output(&scratch.rates, i, k);
+                let rate = self.rates.output(&scratch.velocities, i, k);
                 let input = self.state_input(self.n + i);
                 set(scratch, input, k + 1, rate * next);
             }
@@ -166,7 +171,7 @@ impl TaylorProgram {
         self.laws.begin(&mut scratch.laws, order, &self.env);
         self.velocities
             .begin(&mut scratch.velocities, order, &self.env);
-        self.rates.begin(&mut scratch.rates, order, &self.env);
+        self.rates.begin_more(&mut scratch.velocities, &self.env);
     }
 
     /// Coefficient k of the law masses, into the inputs.
@@ -239,15 +244,13 @@ fn advance(tape: &TaylorTape, scratch: &mut Scratch, stage: Stage, k: usize) {
     let Scratch {
         laws,
         velocities,
-        rates,
         inputs,
         stride,
         ..
     } = scratch;
     let jet = match stage {
         Stage::Laws => laws,
-        Stage::Velocities => velocities,
-        Stage::Rates => rates,
+        Stage::Velocities | Stage::Rates => velocities,
     };
     for i in 0..tape.inputs() {
         let value = inputs.get(i * *stride + k).copied().unwrap_or(f64::NAN);

@@ -1,7 +1,8 @@
 //! `taylor_coefficients(t, state, coefficients)` (`emit = [..., "taylor"]`): the Taylor
 //! recurrences of the state rate as straight-line Rust, one statement per instruction of the
 //! [`TaylorTape`]s of the three stages (the law masses; q̇, in closed form or solved order by
-//! order; ṗ and ṁ of the state masses), inside one loop over the order k. Every
+//! order; ṗ and ṁ of the state masses, over the slots of q̇'s stage), inside one loop over
+//! the order k. Every
 //! subexpression is a stack array of its coefficients, shared subexpressions computed once;
 //! each statement calls the runtime's recurrence for its operation
 //! (`steppers::taylor::series`), so the formulas live in one place at run time and generated
@@ -51,16 +52,17 @@ fn stages(d: &Derivation) -> Stages {
     rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
     let laws = d.pool.compile_taylor(&law_roots, &inputs);
     let constants = constant_laws(d, &laws, &law_masses, &law_roots);
+    let stages: [&[Id]; 2] = [&velocity_roots, &rate_roots];
+    let mut later = d
+        .pool
+        .compile_taylor_stages(&stages, &inputs, &constants)
+        .into_iter();
     Stages {
         inputs: inputs.len(),
         law_masses,
-        velocities: d
-            .pool
-            .compile_taylor_substituting(&velocity_roots, &inputs, &constants),
+        velocities: later.next().unwrap_or_default(),
         numeric,
-        rates: d
-            .pool
-            .compile_taylor_substituting(&rate_roots, &inputs, &constants),
+        rates: later.next().unwrap_or_default(),
         laws,
     }
 }
@@ -130,9 +132,11 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
         tape: &st.velocities,
         prefix: "v",
     };
+    // q̇ and the rates share their slots (`ExprPool::compile_taylor_stages`): one name
+    // each, declared once.
     let rates = Names {
         tape: &st.rates,
-        prefix: "r",
+        prefix: "v",
     };
     let input = |i: usize| format_ident!("i{}", i);
     let state_input = |j: usize| {
@@ -143,7 +147,7 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
         })
     };
     let inputs = (0..st.inputs).map(input);
-    let declarations = [&laws, &velocities, &rates].map(|names| names.declarations(&len));
+    let declarations = [&laws, &velocities].map(|names| names.declarations(&len));
     let k = quote!(k);
     let zero = quote!(0);
     let fixed = [&laws, &velocities, &rates].map(|names| ops(d, names, true, &zero, runtime));

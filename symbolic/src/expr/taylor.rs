@@ -111,7 +111,7 @@ pub(crate) struct Instr {
 }
 
 /// Straight-line Taylor recurrences over some roots (see [`ExprPool::compile_taylor`]).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct TaylorTape {
     /// Run once per expansion point, at order 0: everything that depends on no input.
     fixed: Vec<Instr>,
@@ -194,6 +194,24 @@ impl ExprPool {
         inputs: &[Symbol],
         substitutions: &[(Symbol, Id)],
     ) -> TaylorTape {
+        let tapes = self.compile_taylor_stages(&[roots], inputs, substitutions);
+        tapes.into_iter().next().unwrap_or_default()
+    }
+
+    /// The tapes of stages run one after the other over one set of slots (one
+    /// [`TaylorJet`] serves them all): a subexpression of a later stage's roots that an
+    /// earlier stage computed is read from its slot, not recomputed (q̇'s 1/r² or
+    /// cos(a₁ − a₂) again in ṗ). Each tape holds the instructions its stage added; every
+    /// tape has the slot count of all of them. Stage i's instructions at order k may read
+    /// what stages before i wrote at order k, so the caller runs the stages in order at
+    /// each k, starting them with [`begin`](TaylorTape::begin) for the first and
+    /// [`begin_more`](TaylorTape::begin_more) for the rest. Always at least one tape.
+    pub fn compile_taylor_stages(
+        &self,
+        stages: &[&[Id]],
+        inputs: &[Symbol],
+        substitutions: &[(Symbol, Id)],
+    ) -> Vec<TaylorTape> {
         let mut c = Compiler {
             pool: self,
             fixed: Vec::new(),
@@ -206,17 +224,24 @@ impl ExprPool {
             substitutions,
         };
         let input_slots: Vec<usize> = inputs.iter().map(|_| c.new_slot(true)).collect();
-        c.compile_all(roots, inputs, &input_slots);
-        let outputs: Vec<usize> = roots.iter().map(|r| c.of(*r)).collect();
-        TaylorTape {
-            series_outputs: outputs.iter().map(|s| c.series(*s)).collect(),
-            slots: c.is_series.len(),
-            fixed: c.fixed,
-            series: c.series,
-            operands: c.operands,
-            inputs: input_slots,
-            outputs,
+        let mut tapes = Vec::new();
+        for roots in stages.iter().copied().chain(stages.is_empty().then_some(&[][..])) {
+            c.compile_all(roots, inputs, &input_slots);
+            let outputs: Vec<usize> = roots.iter().map(|r| c.of(*r)).collect();
+            tapes.push(TaylorTape {
+                series_outputs: outputs.iter().map(|s| c.series(*s)).collect(),
+                slots: 0,
+                fixed: std::mem::take(&mut c.fixed),
+                series: std::mem::take(&mut c.series),
+                operands: c.operands.clone(),
+                inputs: input_slots.clone(),
+                outputs,
+            });
         }
+        for tape in &mut tapes {
+            tape.slots = c.is_series.len();
+        }
+        tapes
     }
 }
 
@@ -581,6 +606,15 @@ impl TaylorTape {
         jet.stride = order + 1;
         jet.coefficients.clear();
         jet.coefficients.resize(self.slots * jet.stride, 0.0);
+        for instr in &self.fixed {
+            recurrence::run(instr, &self.operands, env, jet, 0);
+        }
+    }
+
+    /// Continues an expansion that an earlier stage's tape (of the same
+    /// [`ExprPool::compile_taylor_stages`]) began in `jet`: computes this stage's
+    /// subexpressions that depend on no input, leaving the rest of the jet as it is.
+    pub fn begin_more(&self, jet: &mut TaylorJet, env: &[f64]) {
         for instr in &self.fixed {
             recurrence::run(instr, &self.operands, env, jet, 0);
         }
