@@ -85,5 +85,8 @@ fn kepler_over_three_orbits_in_400_steps_at_order_30_is_within_5e_15() {
     let position = (got[0] - expected[0]).hypot(got[1] - expected[1]);
     let velocity = (got[2] - expected[2]).hypot(got[3] - expected[3]);
     eprintln!("position {position:e}, velocity {velocity:e}");
-    assert!(position.max(velocity) <= 5e-15, "{position:e}, {velocity:e}");
+    assert!(
+        position.max(velocity) <= 5e-15,
+        "{position:e}, {velocity:e}"
+    );
 }

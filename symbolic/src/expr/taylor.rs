@@ -225,7 +225,11 @@ impl ExprPool {
         };
         let input_slots: Vec<usize> = inputs.iter().map(|_| c.new_slot(true)).collect();
         let mut tapes = Vec::new();
-        for roots in stages.iter().copied().chain(stages.is_empty().then_some(&[][..])) {
+        for roots in stages
+            .iter()
+            .copied()
+            .chain(stages.is_empty().then_some(&[][..]))
+        {
             c.compile_all(roots, inputs, &input_slots);
             let outputs: Vec<usize> = roots.iter().map(|r| c.of(*r)).collect();
             tapes.push(TaylorTape {

@@ -92,7 +92,9 @@ pub fn pow(a: &[f64; LEN], e: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
         return power(a[0], alpha);
     }
     let k = k.min(LEN - 1);
-    let total = sum(0, k, |j| (alpha * (k - j) as f64 - j as f64) * a[k - j] * w[j]);
+    let total = sum(0, k, |j| {
+        (alpha * (k - j) as f64 - j as f64) * a[k - j] * w[j]
+    });
     total / (k as f64 * a[0])
 }
 

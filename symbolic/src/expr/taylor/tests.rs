@@ -379,10 +379,15 @@ fn stages_share_their_slots_and_substitutions_make_constants() {
         staged.push(tapes[1].output(&jet, 0, k));
     }
     let own = b.taylor(second);
-    assert!(staged.iter().zip(&own).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(staged
+        .iter()
+        .zip(&own)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
 
     let c = b.pool.sym(b.c);
-    let substituted = b.pool.compile_taylor_substituting(&[second], &inputs, &[(b.y, c)]);
+    let substituted = b
+        .pool
+        .compile_taylor_substituting(&[second], &inputs, &[(b.y, c)]);
     // The reciprocal of the constant is computed once (fixed); the product is a scaling.
     assert_eq!(substituted.series_instructions().len(), 2);
     let c_inverse = b.pool.pow(c, minus_one);
