@@ -108,7 +108,8 @@ fn sweep<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
     start: (SVector<f64, S>, f64),
     error: impl Fn(&SVector<f64, S>) -> f64,
 ) {
-    for (method, tightest) in [("taylor", 16), ("dop853", 14)] {
+    // DOP853 refuses a relative tolerance below 100 machine epsilons (2.2e-14).
+    for (method, tightest) in [("taylor", 16), ("dop853", 13)] {
         for k in 6..=tightest {
             let tolerance = 10f64.powi(-k);
             let (elapsed, (state, statistics)) =

@@ -12,8 +12,9 @@
 
 use std::cell::RefCell;
 
+use varmass_core::steppers::taylor::series;
 use varmass_core::SystemError;
-use varmass_symbolic::expr::{TaylorJet, TaylorTape};
+use varmass_symbolic::expr::{Id, Symbol, TaylorJet, TaylorTape};
 use varmass_symbolic::mechanics::Derivation;
 
 use super::cholesky::{cholesky_factor, cholesky_substitute};
@@ -31,7 +32,7 @@ pub(super) struct TaylorProgram {
     /// q̇ in closed form, or M (row-major) then b.
     velocities: TaylorTape,
     numeric: bool,
-    /// ṗ then ṁ of the state masses.
+    /// ṗ then ṁ of the state masses, over the velocities' slots (and jet).
     rates: TaylorTape,
     env: Vec<f64>,
     scratch: RefCell<Scratch>,
@@ -40,8 +41,8 @@ pub(super) struct TaylorProgram {
 #[derive(Debug, Default)]
 struct Scratch {
     laws: TaylorJet,
+    /// The jet of q̇ and of the rates, which share their slots.
     velocities: TaylorJet,
-    rates: TaylorJet,
     /// Coefficients of every input, input-major: `inputs[i * stride + k]`.
     inputs: Vec<f64>,
     stride: usize,
@@ -54,15 +55,28 @@ impl TaylorProgram {
     /// Compiles the stages of `d` with the parameter environment `env`.
     pub(super) fn new(d: &Derivation, env: &[f64]) -> Self {
         let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
+        let laws = d.pool.compile_taylor(&stages.laws, &inputs);
+        // Masses whose law depends on no input are compiled as the constants they are in
+        // the later stages, as the emitted code does (`emit/taylor.rs`'s `constant_laws`).
+        let constants: Vec<(Symbol, Id)> = (0..stages.law_masses.len())
+            .filter(|i| laws.output_is_constant(*i))
+            .map(|i| (d.masses[stages.law_masses[i]].symbol, stages.laws[i]))
+            .collect();
+        // The rates over q̇'s slots: what q̇ computed is not computed again.
+        let roots: [&[Id]; 2] = [&stages.velocities, &stages.rates];
+        let mut later = d
+            .pool
+            .compile_taylor_stages(&roots, &inputs, &constants)
+            .into_iter();
         Self {
             n: d.coordinates.len(),
             masses: d.masses.len(),
             state_masses: d.state_mass_count(),
-            laws: d.pool.compile_taylor(&stages.laws, &inputs),
-            velocities: d.pool.compile_taylor(&stages.velocities, &inputs),
-            numeric: stages.numeric,
-            rates: d.pool.compile_taylor(&stages.rates, &inputs),
             law_masses: stages.law_masses,
+            velocities: later.next().unwrap_or_default(),
+            numeric: stages.numeric,
+            rates: later.next().unwrap_or_default(),
+            laws,
             env: env.to_vec(),
             scratch: RefCell::new(Scratch::default()),
         }
@@ -110,7 +124,7 @@ impl TaylorProgram {
                 set(scratch, 1 + a, k + 1, v * next);
             }
             for i in 0..self.n + self.state_masses {
-                let rate = self.rates.output(&scratch.rates, i, k);
+                let rate = self.rates.output(&scratch.velocities, i, k);
                 let input = self.state_input(self.n + i);
                 set(scratch, input, k + 1, rate * next);
             }
@@ -141,7 +155,7 @@ impl TaylorProgram {
         self.laws.begin(&mut scratch.laws, order, &self.env);
         self.velocities
             .begin(&mut scratch.velocities, order, &self.env);
-        self.rates.begin(&mut scratch.rates, order, &self.env);
+        self.rates.begin_more(&mut scratch.velocities, &self.env);
     }
 
     /// Coefficient k of the law masses, into the inputs.
@@ -181,14 +195,15 @@ impl TaylorProgram {
         }
         // M[0] q̇[k] = p[k] − b[k] − Σⱼ₌₁ᵏ M[j] q̇[k−j].
         scratch.rhs.clear();
+        // The sum over j in four chains, as the generated code's `series::solve_velocities`.
         for a in 0..n {
-            let mut r = get(scratch, 1 + n + a, k) - self.velocities.output(jet, n * n + a, k);
-            for j in 1..=k {
-                for b in 0..n {
-                    r -= entry(a, b, j) * get(scratch, first_velocity + b, k - j);
-                }
-            }
-            scratch.rhs.push(r);
+            let coupling = series::sum(1, k + 1, |j| {
+                (0..n).fold(0.0, |total, b| {
+                    total + entry(a, b, j) * get(scratch, first_velocity + b, k - j)
+                })
+            });
+            let r = get(scratch, 1 + n + a, k) - self.velocities.output(jet, n * n + a, k);
+            scratch.rhs.push(r - coupling);
         }
         if !cholesky_substitute(&scratch.factor, &mut scratch.rhs, n) {
             return Err(SystemError::SingularMassMatrix);
@@ -213,15 +228,13 @@ fn advance(tape: &TaylorTape, scratch: &mut Scratch, stage: Stage, k: usize) {
     let Scratch {
         laws,
         velocities,
-        rates,
         inputs,
         stride,
         ..
     } = scratch;
     let jet = match stage {
         Stage::Laws => laws,
-        Stage::Velocities => velocities,
-        Stage::Rates => rates,
+        Stage::Velocities | Stage::Rates => velocities,
     };
     for i in 0..tape.inputs() {
         let value = inputs.get(i * *stride + k).copied().unwrap_or(f64::NAN);

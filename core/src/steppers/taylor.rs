@@ -18,6 +18,15 @@
 //! series itself, exact to the method's order over the whole step, so events are located on
 //! it. A fixed order and step ([`TaylorControl::Fixed`]) serve convergence studies.
 //!
+//! Rounding is kept from accumulating over many steps in two ways. The state advances by
+//! compensated summation: the increment Σₖ₌₁ y\[k\] hᵏ is added to the state by Knuth's
+//! two-sum, and the part of it rounding drops is carried into the next step's increment
+//! (Kahan's compensated summation; dropped when the run restarts). And the step the series
+//! is evaluated at is the one the clock takes, h = (t₀ + h) − t₀ (exact when t₀ and
+//! t₀ + h are within a factor 2 of each other, Sterbenz), so the state belongs to the time
+//! stored beside it. Over 400 steps of Kepler at order 30 the two together cut the error
+//! 30-fold, to 2.4e-15 (`tests/taylor_rounding.rs`); either alone does not reach 5e-15.
+//!
 //! The statistics count one rate evaluation per expansion (the work of an expansion to
 //! order p is about p²/2 products per subexpression, against one evaluation's one).
 //! Piecewise functions (abs, sign, min, max) are expanded on the branch of the step's start:
@@ -114,6 +123,8 @@ pub struct Taylor<'a, Sys, const N: usize, const S: usize> {
     coefficients: [SVector<f64, S>; MAX_ORDER + 1],
     order: usize,
     last_step: f64,
+    /// What rounding dropped from the state in the last step's sum (compensated summation).
+    compensation: SVector<f64, S>,
 }
 
 impl<'a, Sys, const N: usize, const S: usize> Taylor<'a, Sys, N, S>
@@ -152,6 +163,7 @@ where
             coefficients,
             order: 0,
             last_step: 0.0,
+            compensation: SVector::zeros(),
         })
     }
 
@@ -236,6 +248,31 @@ where
     }
 }
 
+/// `y0 + Σₖ₌₁ cₖ hᵏ + carried`, the increment summed by Horner's rule and added to `y0` by
+/// Knuth's two-sum; the new state and what rounding dropped from it.
+fn compensated_sum<const S: usize>(
+    y0: &SVector<f64, S>,
+    coefficients: &[SVector<f64, S>],
+    h: f64,
+    carried: &SVector<f64, S>,
+) -> (SVector<f64, S>, SVector<f64, S>) {
+    let mut increment = SVector::<f64, S>::zeros();
+    for c in coefficients.iter().skip(1).rev() {
+        increment = (increment + c) * h;
+    }
+    let mut sum = SVector::zeros();
+    let mut dropped = SVector::zeros();
+    for i in 0..S {
+        let (a, b) = (y0[i], increment[i] + carried[i]);
+        let s = a + b;
+        let b_virtual = s - a;
+        let a_virtual = s - b_virtual;
+        sum[i] = s;
+        dropped[i] = (a - a_virtual) + (b - b_virtual);
+    }
+    (sum, dropped)
+}
+
 /// Σₖ cₖ hᵏ by Horner's rule.
 fn horner<const S: usize>(coefficients: &[SVector<f64, S>], h: f64) -> SVector<f64, S> {
     let mut value = SVector::zeros();
@@ -261,6 +298,7 @@ where
 
     fn forget_history(&mut self, _: Restarting) {
         self.last_step = 0.0;
+        self.compensation = SVector::zeros();
     }
 
     fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
@@ -295,8 +333,13 @@ where
                 StepErrorKind::StepSizeUnderflow { step: h },
             ));
         }
-        let state = horner(&self.coefficients[..=order], h);
+        // The step the clock takes: the series is summed at the time stored with the state.
+        let h = if reaches_stop { h } else { (t0 + h) - t0 };
+        let y0 = *self.progress.state();
+        let (state, dropped) =
+            compensated_sum(&y0, &self.coefficients[..=order], h, &self.compensation);
         let outcome = self.progress.accept(self.system, h, reaches_stop, state)?;
+        self.compensation = dropped;
         self.order = order;
         self.last_step = h;
         Ok(outcome)

@@ -1,7 +1,8 @@
 //! `taylor_coefficients(t, state, coefficients)` (`emit = [..., "taylor"]`): the Taylor
 //! recurrences of the state rate as straight-line Rust, one statement per instruction of the
 //! [`TaylorTape`]s of the three stages (the law masses; q̇, in closed form or solved order by
-//! order; ṗ and ṁ of the state masses), inside one loop over the order k. Every
+//! order; ṗ and ṁ of the state masses, over the slots of q̇'s stage), inside one loop over
+//! the order k. Every
 //! subexpression is a stack array of its coefficients, shared subexpressions computed once;
 //! each statement calls the runtime's recurrence for its operation
 //! (`steppers::taylor::series`), so the formulas live in one place at run time and generated
@@ -11,7 +12,7 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::expr::{Func, Instr, Op, TaylorTape};
+use crate::expr::{Func, Id, Instr, Op, Symbol, TaylorTape};
 use crate::mechanics::Derivation;
 
 /// The three stages compiled over one list of inputs: t, q, p, q̇, every mass.
@@ -27,14 +28,36 @@ struct Stages {
 
 fn stages(d: &Derivation) -> Stages {
     let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
+    let laws = d.pool.compile_taylor(&stages.laws, &inputs);
+    let constants = constant_laws(d, &laws, &stages.law_masses, &stages.laws);
+    let roots: [&[Id]; 2] = [&stages.velocities, &stages.rates];
+    let mut later = d
+        .pool
+        .compile_taylor_stages(&roots, &inputs, &constants)
+        .into_iter();
     Stages {
         inputs: inputs.len(),
-        laws: d.pool.compile_taylor(&stages.laws, &inputs),
         law_masses: stages.law_masses,
-        velocities: d.pool.compile_taylor(&stages.velocities, &inputs),
+        velocities: later.next().unwrap_or_default(),
         numeric: stages.numeric,
-        rates: d.pool.compile_taylor(&stages.rates, &inputs),
+        rates: later.next().unwrap_or_default(),
+        laws,
     }
+}
+
+/// The masses whose law depends on no input, each with its law: the later stages compile
+/// them as the constants they are (see `ExprPool::compile_taylor_substituting`). The
+/// interpreter's `TaylorProgram` makes the same choice, so the two stay bit-identical.
+fn constant_laws(
+    d: &Derivation,
+    laws: &TaylorTape,
+    law_masses: &[usize],
+    law_roots: &[Id],
+) -> Vec<(Symbol, Id)> {
+    (0..law_masses.len())
+        .filter(|i| laws.output_is_constant(*i))
+        .map(|i| (d.masses[law_masses[i]].symbol, law_roots[i]))
+        .collect()
 }
 
 /// Names the arrays of one tape: its input slots are the shared `i<n>`, the rest
@@ -87,9 +110,11 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
         tape: &st.velocities,
         prefix: "v",
     };
+    // q̇ and the rates share their slots (`ExprPool::compile_taylor_stages`): one name
+    // each, declared once.
     let rates = Names {
         tape: &st.rates,
-        prefix: "r",
+        prefix: "v",
     };
     let input = |i: usize| format_ident!("i{}", i);
     let state_input = |j: usize| {
@@ -100,7 +125,7 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
         })
     };
     let inputs = (0..st.inputs).map(input);
-    let declarations = [&laws, &velocities, &rates].map(|names| names.declarations(&len));
+    let declarations = [&laws, &velocities].map(|names| names.declarations(&len));
     let k = quote!(k);
     let zero = quote!(0);
     let fixed = [&laws, &velocities, &rates].map(|names| ops(d, names, true, &zero, runtime));

@@ -111,7 +111,7 @@ pub(crate) struct Instr {
 }
 
 /// Straight-line Taylor recurrences over some roots (see [`ExprPool::compile_taylor`]).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct TaylorTape {
     /// Run once per expansion point, at order 0: everything that depends on no input.
     fixed: Vec<Instr>,
@@ -120,6 +120,8 @@ pub struct TaylorTape {
     operands: Vec<usize>,
     inputs: Vec<usize>,
     outputs: Vec<usize>,
+    /// Whether each output depends on an input (is a series, not a constant).
+    series_outputs: Vec<bool>,
     slots: usize,
 }
 
@@ -170,6 +172,8 @@ struct Compiler<'p> {
     /// Pair slots already made for an argument slot: (sin, cos) and (sinh, cosh).
     sin_cos: FxHashMap<usize, (usize, usize)>,
     sinh_cosh: FxHashMap<usize, (usize, usize)>,
+    /// Symbols compiled through an expression in place of their input slot.
+    substitutions: &'p [(Symbol, Id)],
 }
 
 impl ExprPool {
@@ -177,6 +181,37 @@ impl ExprPool {
     /// coefficients the caller sets as input `i`. Defined symbols are compiled through their
     /// values; any other symbol is a constant read from the environment.
     pub fn compile_taylor(&self, roots: &[Id], inputs: &[Symbol]) -> TaylorTape {
+        self.compile_taylor_substituting(roots, inputs, &[])
+    }
+
+    /// [`compile_taylor`](Self::compile_taylor) with each symbol of `substitutions` compiled
+    /// through its expression instead of as an input: for an input known to be a constant
+    /// (a mass whose law depends on no input), so that the products with it are scalings
+    /// and its reciprocal is computed once, not as series of zeros at every order.
+    pub fn compile_taylor_substituting(
+        &self,
+        roots: &[Id],
+        inputs: &[Symbol],
+        substitutions: &[(Symbol, Id)],
+    ) -> TaylorTape {
+        let tapes = self.compile_taylor_stages(&[roots], inputs, substitutions);
+        tapes.into_iter().next().unwrap_or_default()
+    }
+
+    /// The tapes of stages run one after the other over one set of slots (one
+    /// [`TaylorJet`] serves them all): a subexpression of a later stage's roots that an
+    /// earlier stage computed is read from its slot, not recomputed (q̇'s 1/r² or
+    /// cos(a₁ − a₂) again in ṗ). Each tape holds the instructions its stage added; every
+    /// tape has the slot count of all of them. Stage i's instructions at order k may read
+    /// what stages before i wrote at order k, so the caller runs the stages in order at
+    /// each k, starting them with [`begin`](TaylorTape::begin) for the first and
+    /// [`begin_more`](TaylorTape::begin_more) for the rest. Always at least one tape.
+    pub fn compile_taylor_stages(
+        &self,
+        stages: &[&[Id]],
+        inputs: &[Symbol],
+        substitutions: &[(Symbol, Id)],
+    ) -> Vec<TaylorTape> {
         let mut c = Compiler {
             pool: self,
             fixed: Vec::new(),
@@ -186,25 +221,54 @@ impl ExprPool {
             slot: FxHashMap::default(),
             sin_cos: FxHashMap::default(),
             sinh_cosh: FxHashMap::default(),
+            substitutions,
         };
         let input_slots: Vec<usize> = inputs.iter().map(|_| c.new_slot(true)).collect();
-        for id in self.reachable(roots, true) {
-            let slot = c.node(id, inputs, &input_slots);
-            c.slot.insert(id, slot);
+        let mut tapes = Vec::new();
+        for roots in stages
+            .iter()
+            .copied()
+            .chain(stages.is_empty().then_some(&[][..]))
+        {
+            c.compile_all(roots, inputs, &input_slots);
+            let outputs: Vec<usize> = roots.iter().map(|r| c.of(*r)).collect();
+            tapes.push(TaylorTape {
+                series_outputs: outputs.iter().map(|s| c.series(*s)).collect(),
+                slots: 0,
+                fixed: std::mem::take(&mut c.fixed),
+                series: std::mem::take(&mut c.series),
+                operands: c.operands.clone(),
+                inputs: input_slots.clone(),
+                outputs,
+            });
         }
-        let outputs = roots.iter().map(|r| c.of(*r)).collect();
-        TaylorTape {
-            slots: c.is_series.len(),
-            fixed: c.fixed,
-            series: c.series,
-            operands: c.operands,
-            inputs: input_slots,
-            outputs,
+        for tape in &mut tapes {
+            tape.slots = c.is_series.len();
         }
+        tapes
     }
 }
 
 impl Compiler<'_> {
+    /// Compiles every node `roots` reach that is not compiled yet, children first.
+    fn compile_all(&mut self, roots: &[Id], inputs: &[Symbol], input_slots: &[usize]) {
+        for id in self.pool.reachable(roots, true) {
+            if !self.slot.contains_key(&id) {
+                let slot = self.node(id, inputs, input_slots);
+                self.slot.insert(id, slot);
+            }
+        }
+    }
+
+    /// The slot of a substituted symbol's expression, compiled without substitutions (an
+    /// expression naming its own symbol reads the input instead of recursing).
+    fn substitute(&mut self, value: Id, inputs: &[Symbol], input_slots: &[usize]) -> usize {
+        let substitutions = std::mem::take(&mut self.substitutions);
+        self.compile_all(&[value], inputs, input_slots);
+        self.substitutions = substitutions;
+        self.of(value)
+    }
+
     fn new_slot(&mut self, series: bool) -> usize {
         self.is_series.push(series);
         self.is_series.len() - 1
@@ -243,9 +307,12 @@ impl Compiler<'_> {
             Node::Float(bits) => self.emit(Op::Const(f64::from_bits(*bits)), &[]),
             Node::Sym(sym) => match pool.definition(*sym) {
                 Some(value) => self.of(value),
-                None => match inputs.iter().position(|s| s == sym) {
-                    Some(i) => input_slots[i],
-                    None => self.emit(Op::Param(sym.index()), &[]),
+                None => match self.substitutions.iter().find(|(s, _)| s == sym) {
+                    Some(&(_, value)) => self.substitute(value, inputs, input_slots),
+                    None => match inputs.iter().position(|s| s == sym) {
+                        Some(i) => input_slots[i],
+                        None => self.emit(Op::Param(sym.index()), &[]),
+                    },
                 },
             },
             Node::Add(terms) => {
@@ -495,6 +562,11 @@ impl TaylorTape {
         &self.outputs
     }
 
+    /// Whether output `i` depends on no input: a constant, its higher coefficients zero.
+    pub fn output_is_constant(&self, i: usize) -> bool {
+        !self.series_outputs.get(i).copied().unwrap_or(true)
+    }
+
     /// Number of slots (inputs included).
     pub(crate) fn slot_count(&self) -> usize {
         self.slots
@@ -542,6 +614,15 @@ impl TaylorTape {
         jet.stride = order + 1;
         jet.coefficients.clear();
         jet.coefficients.resize(self.slots * jet.stride, 0.0);
+        for instr in &self.fixed {
+            recurrence::run(instr, &self.operands, env, jet, 0);
+        }
+    }
+
+    /// Continues an expansion that an earlier stage's tape (of the same
+    /// [`ExprPool::compile_taylor_stages`]) began in `jet`: computes this stage's
+    /// subexpressions that depend on no input, leaving the rest of the jet as it is.
+    pub fn begin_more(&self, jet: &mut TaylorJet, env: &[f64]) {
         for instr in &self.fixed {
             recurrence::run(instr, &self.operands, env, jet, 0);
         }

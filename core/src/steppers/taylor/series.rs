@@ -17,23 +17,45 @@ pub const LEN: usize = super::MAX_ORDER + 1;
 /// Coefficient arrays of several subexpressions (rows of M, offsets, momenta).
 pub type Arrays<'a> = &'a [&'a [f64; LEN]];
 
+/// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the
+/// range into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)). The sums of
+/// the recurrences are chains of k dependent additions: four independent chains let the
+/// processor overlap them (heyoka sums its recurrences pairwise for the same reason), and
+/// the error bound shrinks with the depth. The tapes' copy
+/// (`varmass_symbolic::expr::taylor::recurrence::sum`) must add in this same order:
+/// `tests/taylor_emitted.rs` holds the two bit-identical.
+#[inline(always)]
+pub fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
+    let mut s = [0.0f64; 4];
+    let mut j = start;
+    while j + 4 <= end {
+        s[0] += term(j);
+        s[1] += term(j + 1);
+        s[2] += term(j + 2);
+        s[3] += term(j + 3);
+        j += 4;
+    }
+    let mut i = 0;
+    while j < end {
+        s[i] += term(j);
+        i += 1;
+        j += 1;
+    }
+    (s[0] + s[1]) + (s[2] + s[3])
+}
+
 /// w = a b.
 #[inline]
 pub fn mul(a: &[f64; LEN], b: &[f64; LEN], k: usize) -> f64 {
-    let mut sum = 0.0;
-    for j in 0..=k {
-        sum += a[j] * b[k - j];
-    }
-    sum
+    let k = k.min(LEN - 1);
+    sum(0, k + 1, |j| a[j] * b[k - j])
 }
 
 /// w = a².
 #[inline]
 pub fn square(a: &[f64; LEN], k: usize) -> f64 {
-    let mut cross = 0.0;
-    for j in 0..k.div_ceil(2) {
-        cross += a[j] * a[k - j];
-    }
+    let k = k.min(LEN - 1);
+    let cross = sum(0, k.div_ceil(2), |j| a[j] * a[k - j]);
     let middle = if k.is_multiple_of(2) {
         a[k / 2] * a[k / 2]
     } else {
@@ -48,11 +70,8 @@ pub fn recip(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return 1.0 / a[0];
     }
-    let mut sum = 0.0;
-    for j in 1..=k {
-        sum += a[j] * w[k - j];
-    }
-    -sum / a[0]
+    let k = k.min(LEN - 1);
+    -sum(1, k + 1, |j| a[j] * w[k - j]) / a[0]
 }
 
 /// w² = a.
@@ -61,10 +80,8 @@ pub fn sqrt_of(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return sqrt(a[0]);
     }
-    let mut cross = 0.0;
-    for j in 1..k {
-        cross += w[j] * w[k - j];
-    }
+    let k = k.min(LEN - 1);
+    let cross = sum(1, k, |j| w[j] * w[k - j]);
     (a[k] - cross) / (2.0 * w[0])
 }
 
@@ -75,11 +92,11 @@ pub fn pow(a: &[f64; LEN], e: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return power(a[0], alpha);
     }
-    let mut sum = 0.0;
-    for j in 0..k {
-        sum += (alpha * (k - j) as f64 - j as f64) * a[k - j] * w[j];
-    }
-    sum / (k as f64 * a[0])
+    let k = k.min(LEN - 1);
+    let total = sum(0, k, |j| {
+        (alpha * (k - j) as f64 - j as f64) * a[k - j] * w[j]
+    });
+    total / (k as f64 * a[0])
 }
 
 /// bᵉ as the value tape computes it: `powi` for integer exponents, √ for ½.
@@ -99,11 +116,8 @@ pub fn exp(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return crate::math::exp(a[0]);
     }
-    let mut sum = 0.0;
-    for j in 1..=k {
-        sum += j as f64 * a[j] * w[k - j];
-    }
-    sum / k as f64
+    let k = k.min(LEN - 1);
+    sum(1, k + 1, |j| j as f64 * a[j] * w[k - j]) / k as f64
 }
 
 /// (sin a, cos a): s′ = a′ c, c′ = −a′ s; for `hyperbolic`, (sinh, cosh) with both +.
@@ -117,12 +131,9 @@ pub fn sin_cos(a: &[f64; LEN], s: &mut [f64; LEN], c: &mut [f64; LEN], k: usize,
         };
         return;
     }
-    let (mut first, mut second) = (0.0, 0.0);
-    for j in 1..=k {
-        let ja = j as f64 * a[j];
-        first += ja * c[k - j];
-        second += ja * s[k - j];
-    }
+    let k = k.min(LEN - 1);
+    let first = sum(1, k + 1, |j| j as f64 * a[j] * c[k - j]);
+    let second = sum(1, k + 1, |j| j as f64 * a[j] * s[k - j]);
     let sign = if hyperbolic { 1.0 } else { -1.0 };
     s[k] = first / k as f64;
     c[k] = sign * second / k as f64;
@@ -138,11 +149,8 @@ pub fn tan(a: &[f64; LEN], w: &mut [f64; LEN], v: &mut [f64; LEN], k: usize, hyp
             ComplexField::tan(a[0])
         }
     } else {
-        let mut sum = 0.0;
-        for j in 1..=k {
-            sum += j as f64 * a[j] * v[k - j];
-        }
-        sum / k as f64
+        let k = k.min(LEN - 1);
+        sum(1, k + 1, |j| j as f64 * a[j] * v[k - j]) / k as f64
     };
     let sign = if hyperbolic { -1.0 } else { 1.0 };
     let one = if k == 0 { 1.0 } else { 0.0 };
@@ -162,11 +170,9 @@ pub fn quotient(
     if k == 0 {
         return value;
     }
-    let mut sum = 0.0;
-    for j in 1..k {
-        sum += j as f64 * w[j] * d[k - j];
-    }
-    (sign * a[k] - sum / k as f64) / d[0]
+    let k = k.min(LEN - 1);
+    let total = sum(1, k, |j| j as f64 * w[j] * d[k - j]);
+    (sign * a[k] - total / k as f64) / d[0]
 }
 
 /// w′ d = x y′ − y x′ with d = x² + y², w = atan2(y, x).
@@ -175,15 +181,12 @@ pub fn atan2(y: &[f64; LEN], x: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: 
     if k == 0 {
         return RealField::atan2(y[0], x[0]);
     }
-    let mut cross = 0.0;
-    for j in 0..k {
-        cross += (k - j) as f64 * (x[j] * y[k - j] - y[j] * x[k - j]);
-    }
-    let mut sum = 0.0;
-    for j in 1..k {
-        sum += j as f64 * w[j] * d[k - j];
-    }
-    (cross - sum) / (k as f64 * d[0])
+    let k = k.min(LEN - 1);
+    let cross = sum(0, k, |j| {
+        (k - j) as f64 * (x[j] * y[k - j] - y[j] * x[k - j])
+    });
+    let total = sum(1, k, |j| j as f64 * w[j] * d[k - j]);
+    (cross - total) / (k as f64 * d[0])
 }
 
 /// |a| on the branch of a\[0\]'s sign.
@@ -240,15 +243,16 @@ pub fn solve_velocities(
             return false;
         }
     }
+    let k = k.min(LEN - 1);
     let mut rhs = [0.0; 16];
     for a in 0..n.min(16) {
-        let mut r = momenta[a][k] - offset[a][k];
-        for j in 1..=k {
-            for (b, v) in velocities.iter().enumerate().take(n) {
-                r -= matrix[a * n + b][j] * v[k - j];
-            }
-        }
-        rhs[a] = r;
+        // Σⱼ₌₁ᵏ (Σ_b M[j]_ab q̇_b[k−j]): the sum over j in four chains, as the tapes add it.
+        let coupling = sum(1, k + 1, |j| {
+            (0..n).fold(0.0, |total, b| {
+                total + matrix[a * n + b][j] * velocities[b][k - j]
+            })
+        });
+        rhs[a] = (momenta[a][k] - offset[a][k]) - coupling;
     }
     substitute(factor, &mut rhs, n);
     for (a, v) in velocities.iter_mut().enumerate().take(n) {

@@ -9,6 +9,30 @@ use super::super::func::{max, min, sign};
 use super::super::tape::power;
 use super::{Instr, Op, TaylorJet};
 
+/// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the
+/// range into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)): four
+/// independent chains of additions instead of one (heyoka sums pairwise for the same
+/// reason). The generated code's copy (`varmass_core::steppers::taylor::series::sum`) adds
+/// in this same order: `tests/taylor_emitted.rs` holds the two bit-identical.
+pub(super) fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
+    let mut s = [0.0f64; 4];
+    let mut j = start;
+    while j + 4 <= end {
+        s[0] += term(j);
+        s[1] += term(j + 1);
+        s[2] += term(j + 2);
+        s[3] += term(j + 3);
+        j += 4;
+    }
+    let mut i = 0;
+    while j < end {
+        s[i] += term(j);
+        i += 1;
+        j += 1;
+    }
+    (s[0] + s[1]) + (s[2] + s[3])
+}
+
 /// Coefficient `k` of the slots `instr` writes (k = 0: the value).
 pub(super) fn run(instr: &Instr, operands: &[usize], env: &[f64], jet: &mut TaylorJet, k: usize) {
     let out = instr.out;
@@ -64,10 +88,10 @@ fn coefficient(op: Op, operands: &[usize], jet: &TaylorJet, out: usize, k: usize
         Op::Scale(c, a) => at(c, 0) * at(a, k),
         Op::Affine { a, scale, .. } => scale * at(a, k),
         // w = a b.
-        Op::Mul(a, b) => (0..=k).map(|j| at(a, j) * at(b, k - j)).sum(),
+        Op::Mul(a, b) => sum(0, k + 1, |j| at(a, j) * at(b, k - j)),
         // w = a²: the Cauchy product, each cross term once and doubled.
         Op::Square(a) => {
-            let cross: f64 = (0..k.div_ceil(2)).map(|j| at(a, j) * at(a, k - j)).sum();
+            let cross = sum(0, k.div_ceil(2), |j| at(a, j) * at(a, k - j));
             let middle = if k.is_multiple_of(2) {
                 at(a, k / 2).powi(2)
             } else {
@@ -76,39 +100,34 @@ fn coefficient(op: Op, operands: &[usize], jet: &TaylorJet, out: usize, k: usize
             2.0 * cross + middle
         }
         // w a = 1.
-        Op::Recip(a) => -(1..=k).map(|j| at(a, j) * at(out, k - j)).sum::<f64>() / at(a, 0),
+        Op::Recip(a) => -sum(1, k + 1, |j| at(a, j) * at(out, k - j)) / at(a, 0),
         // w² = a.
         Op::Sqrt(a) => {
-            let cross: f64 = (1..k).map(|j| at(out, j) * at(out, k - j)).sum();
+            let cross = sum(1, k, |j| at(out, j) * at(out, k - j));
             (at(a, k) - cross) / (2.0 * at(out, 0))
         }
         // a w′ = α a′ w.
         Op::Pow(a, e) => {
             let alpha = at(e, 0);
-            let sum: f64 = (0..k)
-                .map(|j| (alpha * (k - j) as f64 - j as f64) * at(a, k - j) * at(out, j))
-                .sum();
-            sum / (kf * at(a, 0))
+            let total = sum(0, k, |j| {
+                (alpha * (k - j) as f64 - j as f64) * at(a, k - j) * at(out, j)
+            });
+            total / (kf * at(a, 0))
         }
         // w′ = a′ w.
-        Op::Exp(a) => {
-            (1..=k)
-                .map(|j| j as f64 * at(a, j) * at(out, k - j))
-                .sum::<f64>()
-                / kf
-        }
+        Op::Exp(a) => sum(1, k + 1, |j| j as f64 * at(a, j) * at(out, k - j)) / kf,
         // w′ d = sign·a′.
         Op::Quotient { a, d, sign, .. } => {
-            let sum: f64 = (1..k).map(|j| j as f64 * at(out, j) * at(d, k - j)).sum();
-            (sign * at(a, k) - sum / kf) / at(d, 0)
+            let total = sum(1, k, |j| j as f64 * at(out, j) * at(d, k - j));
+            (sign * at(a, k) - total / kf) / at(d, 0)
         }
         // w′ d = x y′ − y x′ with d = x² + y².
         Op::Atan2 { y, x, d } => {
-            let cross: f64 = (0..k)
-                .map(|j| (k - j) as f64 * (at(x, j) * at(y, k - j) - at(y, j) * at(x, k - j)))
-                .sum();
-            let sum: f64 = (1..k).map(|j| j as f64 * at(out, j) * at(d, k - j)).sum();
-            (cross - sum) / (kf * at(d, 0))
+            let cross = sum(0, k, |j| {
+                (k - j) as f64 * (at(x, j) * at(y, k - j) - at(y, j) * at(x, k - j))
+            });
+            let total = sum(1, k, |j| j as f64 * at(out, j) * at(d, k - j));
+            (cross - total) / (kf * at(d, 0))
         }
         // The branch of a[0]'s sign (the kink itself is located by events).
         Op::Abs(a) => {
@@ -134,12 +153,8 @@ fn pair(jet: &mut TaylorJet, (s, c): (usize, usize), a: usize, k: usize, sign: f
             (a0.sinh(), a0.cosh())
         }
     } else {
-        let (mut first, mut second) = (0.0, 0.0);
-        for j in 1..=k {
-            let ja = j as f64 * jet.get(a, j);
-            first += ja * jet.get(c, k - j);
-            second += ja * jet.get(s, k - j);
-        }
+        let first = sum(1, k + 1, |j| j as f64 * jet.get(a, j) * jet.get(c, k - j));
+        let second = sum(1, k + 1, |j| j as f64 * jet.get(a, j) * jet.get(s, k - j));
         (first / k as f64, sign * second / k as f64)
     };
     jet.set(s, k, first);
@@ -157,13 +172,10 @@ fn tan(
     let wk = if k == 0 {
         f.apply(&[jet.get(a, 0)])
     } else {
-        let sum: f64 = (1..=k)
-            .map(|j| j as f64 * jet.get(a, j) * jet.get(v, k - j))
-            .sum();
-        sum / k as f64
+        sum(1, k + 1, |j| j as f64 * jet.get(a, j) * jet.get(v, k - j)) / k as f64
     };
     jet.set(w, k, wk);
-    let square: f64 = (0..=k).map(|j| jet.get(w, j) * jet.get(w, k - j)).sum();
+    let square = sum(0, k + 1, |j| jet.get(w, j) * jet.get(w, k - j));
     let one = if k == 0 { 1.0 } else { 0.0 };
     jet.set(v, k, one + sign * square);
 }

@@ -343,3 +343,70 @@ fn order_zero_is_the_value_tape_and_constants_have_no_higher_coefficients() {
     assert_eq!(constant_only[0], 1.7f64.sin());
     assert!(constant_only[1..].iter().all(|x| *x == 0.0));
 }
+
+/// Two stages over one set of slots: the second reads what the first computed (sin x and
+/// cos x, 1/y) instead of recomputing it, and gives the coefficients its own tape gives,
+/// bit for bit. A substituted input (y := c, a constant) turns its products into scalings:
+/// the coefficients are those of the expression with c written in y's place.
+#[test]
+fn stages_share_their_slots_and_substitutions_make_constants() {
+    let mut b = Bench::new(0.4, 0.7);
+    let (x, y) = (b.pool.sym(b.x), b.pool.sym(b.y));
+    let sin = b.pool.call(Func::Sin, &[x]);
+    let minus_one = b.pool.int(-1);
+    let inverse = b.pool.pow(y, minus_one);
+    let first = b.pool.mul(&[sin, inverse]);
+    let cos = b.pool.call(Func::Cos, &[x]);
+    let second = b.pool.mul(&[cos, inverse]);
+    let inputs = [b.x, b.y];
+    let stages: [&[Id]; 2] = [&[first], &[second]];
+    let tapes = b.pool.compile_taylor_stages(&stages, &inputs, &[]);
+    let alone = b.pool.compile_taylor(&[second], &inputs);
+    // Alone: the pair, the reciprocal and the product; after the first stage, the product.
+    assert_eq!(alone.series_instructions().len(), 3);
+    assert_eq!(tapes[1].series_instructions().len(), 1);
+    let mut jet = TaylorJet::new();
+    let env = vec![f64::NAN; b.pool.symbols().len()];
+    tapes[0].begin(&mut jet, ORDER, &env);
+    tapes[1].begin_more(&mut jet, &env);
+    let mut staged = Vec::new();
+    for k in 0..=ORDER {
+        for tape in &tapes {
+            tape.set_input(&mut jet, 0, k, b.xs[k]);
+            tape.set_input(&mut jet, 1, k, b.ys[k]);
+            tape.advance(&mut jet, k);
+        }
+        staged.push(tapes[1].output(&jet, 0, k));
+    }
+    let own = b.taylor(second);
+    assert!(staged
+        .iter()
+        .zip(&own)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+
+    let c = b.pool.sym(b.c);
+    let substituted = b
+        .pool
+        .compile_taylor_substituting(&[second], &inputs, &[(b.y, c)]);
+    // The reciprocal of the constant is computed once (fixed); the product is a scaling.
+    assert_eq!(substituted.series_instructions().len(), 2);
+    let c_inverse = b.pool.pow(c, minus_one);
+    let written = b.pool.mul(&[cos, c_inverse]);
+    let mut env = vec![f64::NAN; b.pool.symbols().len()];
+    env[b.c.index()] = 1.7;
+    let run = |tape: &TaylorTape| -> Series {
+        let mut jet = TaylorJet::new();
+        tape.begin(&mut jet, ORDER, &env);
+        (0..=ORDER)
+            .map(|k| {
+                tape.set_input(&mut jet, 0, k, b.xs[k]);
+                tape.set_input(&mut jet, 1, k, b.ys[k]);
+                tape.advance(&mut jet, k);
+                tape.output(&jet, 0, k)
+            })
+            .collect()
+    };
+    let expected = run(&b.pool.compile_taylor(&[written], &inputs));
+    assert_eq!(run(&substituted), expected);
+    assert!(!substituted.output_is_constant(0));
+}
