@@ -4,7 +4,7 @@
 use std::cell::RefCell;
 use std::sync::Arc;
 
-use varmass_core::table::{next_knot_time, Table};
+use varmass_core::table::{knot_bracket, knot_gap, next_knot_time, Table};
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, Tape};
 use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation, MassKind, VelocitySolve};
@@ -61,8 +61,12 @@ pub struct Program {
     rates: Stage,
     /// One stage per [`Quantity::ALL`] entry.
     quantities: Vec<Stage>,
-    /// The switching functions (`mechanics::switching_functions`) and their text.
+    /// The switching functions (`mechanics::switching_functions`), then the arguments of
+    /// the tables of the state whose knots are switches (`mechanics::table_switches`).
     switches: Stage,
+    /// Those tables, in order: switch `switches.roots.len() - switch_tables.len() + i` is
+    /// at the knots of `switch_tables[i]`.
+    switch_tables: Vec<Arc<Table>>,
     switch_names: Vec<String>,
     /// The Taylor recurrences of the state rate.
     taylor: TaylorProgram,
@@ -105,11 +109,24 @@ impl Program {
                 (roots, true)
             }
         };
-        let switch_roots = varmass_symbolic::mechanics::switching_functions(&mut d);
-        let switch_names = switch_roots
+        let mut switch_roots = varmass_symbolic::mechanics::switching_functions(&mut d);
+        let mut switch_names: Vec<String> = switch_roots
             .iter()
             .map(|g| d.pool.display(*g).to_string())
             .collect();
+        let mut switch_tables = Vec::new();
+        for s in varmass_symbolic::mechanics::table_switches(&mut d) {
+            let Some(table) = d.pool.table(s.table, 0) else {
+                continue;
+            };
+            switch_tables.push(Arc::clone(table));
+            let name = d.pool.table_name(s.table);
+            switch_names.push(format!(
+                "the knots of {name}({})",
+                d.pool.display(s.argument)
+            ));
+            switch_roots.push(s.argument);
+        }
         let mut rate_roots = d.momentum_rate.clone();
         rate_roots.extend(d.mass_rates.iter().take(d.state_mass_count()));
         let stops = stop_tables(&mut d, &[&rate_roots, &velocity_roots, &law_roots], &env);
@@ -128,6 +145,7 @@ impl Program {
             rates: stage(rate_roots),
             quantities,
             switches: stage(switch_roots),
+            switch_tables,
             switch_names,
             flows: stage(d.flow_rates.clone()),
             stops,
@@ -338,9 +356,54 @@ impl Program {
 
     /// The switching functions at a velocity state `[q, q̇, m_s]` into `out`.
     pub fn switching_functions(&self, t: f64, velocity_state: &[f64], out: &mut [f64]) {
+        self.switch_values(t, velocity_state, None, out);
+    }
+
+    /// The anchors of the switches at the knots of tables of the state (their arguments'
+    /// knot brackets, `varmass_core::table::knot_bracket`) into `anchors`; the other
+    /// switches' are left alone.
+    pub fn switch_anchors(&self, t: f64, velocity_state: &[f64], anchors: &mut [f64]) {
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_velocity_state(scratch, t, velocity_state);
         self.run(&self.switches, scratch);
+        let first = scratch.values.len() - self.switch_tables.len();
+        for (i, table) in self.switch_tables.iter().enumerate() {
+            if let Some(anchor) = anchors.get_mut(first + i) {
+                *anchor = knot_bracket(table, scratch.values[first + i]);
+            }
+        }
+    }
+
+    /// The switching functions with the anchors of [`Program::switch_anchors`].
+    pub fn anchored_switching_functions(
+        &self,
+        t: f64,
+        velocity_state: &[f64],
+        anchors: &[f64],
+        out: &mut [f64],
+    ) {
+        self.switch_values(t, velocity_state, Some(anchors), out);
+    }
+
+    /// The switching functions, a table's anchored at `anchors` or (`None`) at the point.
+    fn switch_values(
+        &self,
+        t: f64,
+        velocity_state: &[f64],
+        anchors: Option<&[f64]>,
+        out: &mut [f64],
+    ) {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_velocity_state(scratch, t, velocity_state);
+        self.run(&self.switches, scratch);
+        let first = scratch.values.len() - self.switch_tables.len();
+        for (i, table) in self.switch_tables.iter().enumerate() {
+            let x = scratch.values[first + i];
+            let anchor = anchors
+                .and_then(|a| a.get(first + i).copied())
+                .unwrap_or_else(|| knot_bracket(table, x));
+            scratch.values[first + i] = knot_gap(table, x, anchor);
+        }
         copy(&scratch.values, out);
     }
 

@@ -52,7 +52,7 @@ pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
 pub use stops::{time_tables, TimeTable};
-pub use switches::switching_functions;
+pub use switches::{switching_functions, table_switches, TableSwitch};
 pub use tables::{read_points, ModelTable};
 
 use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
