@@ -39,6 +39,9 @@ const PLOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/target/motor_rocket.svg
 /// A recorded point: t (s), altitude (m), speed (m/s).
 type Sample = (f64, f64, f64);
 
+/// A panel's label and what it plots of a sample.
+type Series = (&'static str, fn(&Sample) -> f64);
+
 /// The flight's figures.
 struct Summary {
     burnout: (f64, f64, f64),
@@ -103,8 +106,7 @@ fn plot(points: &[Sample]) -> Result<(), Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
     let panels = root.split_evenly((2, 1));
     let end = points.last().map_or(1.0, |p| p.0);
-    let series: [(&str, fn(&Sample) -> f64); 2] =
-        [("altitude (m)", |p| p.1), ("speed (m/s)", |p| p.2)];
+    let series: [Series; 2] = [("altitude (m)", |p| p.1), ("speed (m/s)", |p| p.2)];
     for (panel, (label, of)) in panels.iter().zip(series) {
         let (low, high) = points
             .iter()
