@@ -2,7 +2,9 @@
 //! thrust (a linear table, `outside zero`), the mass following the curve at the rocketry
 //! tools' constant exhaust speed (ṁ = −F/u_e, u_e = total impulse / propellant mass) and
 //! quadratic drag −k_d v|v|. The reference for "the generated state rate within 1.3× of a
-//! hand-written one with the same interpolation".
+//! hand-written one with the same interpolation", whose generated side is
+//! `models/motor_rocket_drag.vms` (`benches/tables.rs`; `tests/table_motor_drag.rs` holds
+//! the two to rounding).
 //!
 //! State [y, p, m]: ẏ = p/m, ṗ = F − m g − (F/u_e)·v − k_d v|v| (the momentum carried away
 //! by the exhaust, −ṁ v, is in ṗ = ṁ v + m v̇), ṁ = −F/u_e.
@@ -29,12 +31,10 @@ pub struct MotorRocket {
 impl MotorRocket {
     /// The rocket on `models/motors/Cesaroni_M1670.eng`.
     pub fn m1670() -> Self {
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../models/motors/Cesaroni_M1670.eng"
-        );
-        let text = std::fs::read_to_string(path).expect("the M1670's data");
-        let motor = Motor::parse(&text).expect("a well-formed RASP file");
+        // Relative to this file, so that the benches and the tests (which include it) read
+        // the same data.
+        let text = include_str!("../../models/motors/Cesaroni_M1670.eng");
+        let motor = Motor::parse(text).expect("a well-formed RASP file");
         let area = std::f64::consts::PI * 0.049 * 0.049;
         Self {
             thrust: Table::new(&motor.thrust, Interpolation::Linear, Outside::Zero),

@@ -143,6 +143,28 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     fn switching_functions(&self, _t: f64, _velocity_state: &SVector<f64, S>, _values: &mut [f64]) {
     }
 
+    /// Sets the anchors of the switches whose function depends on where the run is
+    /// (`anchors` of length [`Self::switch_count`]; the others are left alone): a switch at
+    /// the knots of a table of the state is anchored at the knot bracket of the table's
+    /// argument ([`crate::table::knot_bracket`]). A run sets them at its start and after
+    /// every crossing. None by default.
+    fn switch_anchors(&self, _t: f64, _velocity_state: &SVector<f64, S>, _anchors: &mut [f64]) {}
+
+    /// The switching functions with the anchors a run last set by [`Self::switch_anchors`]:
+    /// an anchored switch is ≥ 0 at the point it was anchored at and changes sign where
+    /// the run leaves its bracket ([`crate::table::knot_gap`]), so that a step across
+    /// several knots is a crossing too. [`Self::switching_functions`] by default, which
+    /// gives an anchored switch anchored at the point itself.
+    fn anchored_switching_functions(
+        &self,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+        _anchors: &[f64],
+        values: &mut [f64],
+    ) {
+        self.switching_functions(t, velocity_state, values);
+    }
+
     /// The first time after `after` at which the state rate is not smooth in t (a knot of a
     /// table of t, a sample of a held input), which runs land on exactly and restart at.
     /// None by default.

@@ -4,7 +4,7 @@
 use std::cell::RefCell;
 use std::sync::Arc;
 
-use varmass_core::table::{next_knot_time, Table};
+use varmass_core::table::{knot_bracket, knot_gap, next_knot_time, Table};
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, Tape};
 use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation};
@@ -61,8 +61,12 @@ pub struct Program {
     rates: Stage,
     /// One stage per [`Quantity::ALL`] entry.
     quantities: Vec<Stage>,
-    /// The switching functions (`mechanics::switching_functions`) and their text.
+    /// The switching functions (`mechanics::switching_functions`), then the arguments of
+    /// the tables of the state whose knots are switches (`mechanics::table_switches`).
     switches: Stage,
+    /// Those tables, in order: switch `switches.roots.len() - switch_tables.len() + i` is
+    /// at the knots of `switch_tables[i]`.
+    switch_tables: Vec<Arc<Table>>,
     switch_names: Vec<String>,
     /// The Taylor recurrences of the state rate.
     taylor: TaylorProgram,
@@ -103,11 +107,7 @@ impl Program {
             .iter()
             .map(|&i| d.masses[i].symbol.index());
         let law_slots = law_slots.collect();
-        let switch_roots = varmass_symbolic::mechanics::switching_functions(&mut d);
-        let switch_names = switch_roots
-            .iter()
-            .map(|g| d.pool.display(*g).to_string())
-            .collect();
+        let (switch_roots, switch_names, switch_tables) = switches(&mut d);
         let (tables, stop_roots) =
             stop_tables(&mut d, &[&stages.rates, &stages.velocities, &stages.laws]);
         let stage = |roots: Vec<Id>| Stage {
@@ -127,6 +127,7 @@ impl Program {
             rates: stage(stages.rates),
             quantities,
             switches: stage(switch_roots),
+            switch_tables,
             switch_names,
             flows: stage(d.flow_rates.clone()),
             stops,
@@ -355,9 +356,54 @@ impl Program {
 
     /// The switching functions at a velocity state `[q, q̇, m_s]` into `out`.
     pub fn switching_functions(&self, t: f64, velocity_state: &[f64], out: &mut [f64]) {
+        self.switch_values(t, velocity_state, None, out);
+    }
+
+    /// The anchors of the switches at the knots of tables of the state (their arguments'
+    /// knot brackets, `varmass_core::table::knot_bracket`) into `anchors`; the other
+    /// switches' are left alone.
+    pub fn switch_anchors(&self, t: f64, velocity_state: &[f64], anchors: &mut [f64]) {
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_velocity_state(scratch, t, velocity_state);
         self.run(&self.switches, scratch);
+        let first = scratch.values.len() - self.switch_tables.len();
+        for (i, table) in self.switch_tables.iter().enumerate() {
+            if let Some(anchor) = anchors.get_mut(first + i) {
+                *anchor = knot_bracket(table, scratch.values[first + i]);
+            }
+        }
+    }
+
+    /// The switching functions with the anchors of [`Program::switch_anchors`].
+    pub fn anchored_switching_functions(
+        &self,
+        t: f64,
+        velocity_state: &[f64],
+        anchors: &[f64],
+        out: &mut [f64],
+    ) {
+        self.switch_values(t, velocity_state, Some(anchors), out);
+    }
+
+    /// The switching functions, a table's anchored at `anchors` or (`None`) at the point.
+    fn switch_values(
+        &self,
+        t: f64,
+        velocity_state: &[f64],
+        anchors: Option<&[f64]>,
+        out: &mut [f64],
+    ) {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_velocity_state(scratch, t, velocity_state);
+        self.run(&self.switches, scratch);
+        let first = scratch.values.len() - self.switch_tables.len();
+        for (i, table) in self.switch_tables.iter().enumerate() {
+            let x = scratch.values[first + i];
+            let anchor = anchors
+                .and_then(|a| a.get(first + i).copied())
+                .unwrap_or_else(|| knot_bracket(table, x));
+            scratch.values[first + i] = knot_gap(table, x, anchor);
+        }
         copy(&scratch.values, out);
     }
 
@@ -536,6 +582,31 @@ fn parameter_env(
             parameters: names,
         })
     }
+}
+
+/// The switching functions of `d` with their names: the non-smooth points of its
+/// equations, then one anchored switch per call of a table of the state (its argument,
+/// watched against the knot bracket it is anchored in), with those tables in call order.
+fn switches(d: &mut Derivation) -> (Vec<Id>, Vec<String>, Vec<Arc<Table>>) {
+    let mut roots = varmass_symbolic::mechanics::switching_functions(d);
+    let mut names: Vec<String> = roots
+        .iter()
+        .map(|g| d.pool.display(*g).to_string())
+        .collect();
+    let mut tables = Vec::new();
+    for s in varmass_symbolic::mechanics::table_switches(d) {
+        let Some(table) = d.pool.table(s.table, 0) else {
+            continue;
+        };
+        tables.push(Arc::clone(table));
+        let name = d.pool.table_name(s.table);
+        names.push(format!(
+            "the knots of {name}({})",
+            d.pool.display(s.argument)
+        ));
+        roots.push(s.argument);
+    }
+    (roots, names, tables)
 }
 
 /// The tables of t called by `roots`, and the slope and offset of each one's argument

@@ -221,6 +221,22 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
             .switching_functions(t, velocity_state.as_slice(), values);
     }
 
+    fn switch_anchors(&self, t: f64, velocity_state: &SVector<f64, S>, anchors: &mut [f64]) {
+        self.program
+            .switch_anchors(t, velocity_state.as_slice(), anchors);
+    }
+
+    fn anchored_switching_functions(
+        &self,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+        anchors: &[f64],
+        values: &mut [f64],
+    ) {
+        self.program
+            .anchored_switching_functions(t, velocity_state.as_slice(), anchors, values);
+    }
+
     fn check_masses(&self, t: f64, state: &SVector<f64, S>) -> Result<(), SystemError> {
         let mut masses = vec![f64::NAN; self.program.derivation().masses.len()];
         self.program.masses(t, state.as_slice(), &mut masses);

@@ -108,6 +108,7 @@ impl Table {
     /// The value at `x`, starting the search from `cursor` and leaving it on x's interval.
     #[inline]
     pub fn value_at(&self, x: f64, cursor: &mut Cursor) -> Result<f64, LookupError> {
+        let x = self.snap(x);
         match self.place(x, cursor)? {
             Place::Inside(interval) => Ok(self.curve.value_on(interval, x)),
             Place::Outside(end) => self.beyond(x, end),
@@ -117,6 +118,7 @@ impl Table {
     /// The first derivative at `x` (zero outside under `zero` and `hold`); at a knot where the
     /// slope jumps, the slope on the right (see [`Piecewise`]).
     pub fn slope_at(&self, x: f64, cursor: &mut Cursor) -> Result<f64, LookupError> {
+        let x = self.snap(x);
         match self.place(x, cursor)? {
             Place::Inside(interval) => Ok(self.curve.slope_on(interval, x)),
             // A held or zero value has zero slope; an error stays an error.
@@ -152,6 +154,27 @@ impl Table {
         }
     }
 
+    /// `x`, or the end of the data it lies within rounding beyond: a step landed on a knot
+    /// by a stop time evaluates its last stage at t + h (or an argument a·t + b there), which
+    /// can round to an ulp past the knot, and must see the end's value there, not the rule
+    /// for outside the data (nor the end piece extrapolated, which past a thrust curve's
+    /// final zero is a negative thrust).
+    #[inline]
+    fn snap(&self, x: f64) -> f64 {
+        let (first, last) = self.curve.domain();
+        if first <= x && x <= last {
+            return x;
+        }
+        let rounding = ROUNDING_ULPS * f64::EPSILON * first.abs().max(last.abs());
+        if x > last && x <= last + rounding {
+            last
+        } else if x < first && x >= first - rounding {
+            first
+        } else {
+            x
+        }
+    }
+
     /// Where `x` lies: an interval (the cursor moved to it) or beyond an end.
     #[inline]
     fn place(&self, x: f64, cursor: &mut Cursor) -> Result<Place, LookupError> {
@@ -176,6 +199,11 @@ impl Table {
         }))
     }
 }
+
+/// How many roundings of the data's largest |knot| an argument may lie beyond an end and
+/// still be on the end piece: a stage time t + c·h of a step landed on a knot rounds to at
+/// most an ulp or two of t past it (docs/tables.md#outside-the-data).
+const ROUNDING_ULPS: f64 = 4.0;
 
 /// Where an argument lies relative to the data.
 enum Place {

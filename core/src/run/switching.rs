@@ -75,6 +75,9 @@ pub(crate) struct SwitchWatch {
     settings: Switching,
     /// g at the last accepted point.
     values: Vec<f64>,
+    /// The anchors of the anchored switches (the knots of a table of the state), set at
+    /// the start and after each crossing.
+    anchors: Vec<f64>,
     scratch: Vec<f64>,
     /// The bracket of the crossing a redo is landing on.
     pending: Option<(f64, f64)>,
@@ -103,15 +106,49 @@ impl SwitchWatch {
         let mut watch = Self {
             settings,
             values: vec![0.0; count],
+            anchors: vec![0.0; count],
             scratch: vec![0.0; count],
             pending: None,
             bursts: vec![(f64::NEG_INFINITY, 0); count],
             window: settings.chatter_window * (end_time - start.time).abs(),
         };
+        watch.anchor(system, start.time, &start.state)?;
         let mut values = core::mem::take(&mut watch.values);
         watch.evaluate(system, start.time, &start.state, &mut values)?;
         watch.values = values;
         Ok(Some(watch))
+    }
+
+    /// Anchors the anchored switches at `(time, state)`; after a crossing, the g of a
+    /// switch whose anchor moved is its value there, ≥ 0 by the anchor's definition (a
+    /// zero, on a knot, is stored as the smallest positive number, so that going back is
+    /// a crossing too).
+    fn anchor<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        time: f64,
+        state: &SVector<f64, S>,
+    ) -> Result<(), StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let velocity_state = system
+            .velocity_state(time, state)
+            .map_err(|error| StepError::from_system(system, error, time, state))?;
+        let before = self.anchors.clone();
+        system.switch_anchors(time, &velocity_state, &mut self.anchors);
+        if before == self.anchors {
+            return Ok(());
+        }
+        let mut now = vec![0.0; self.values.len()];
+        system.anchored_switching_functions(time, &velocity_state, &self.anchors, &mut now);
+        let moved = before.iter().zip(&self.anchors).map(|(a, b)| a != b);
+        for ((value, now), moved) in self.values.iter_mut().zip(now).zip(moved) {
+            if moved {
+                *value = now.max(f64::MIN_POSITIVE);
+            }
+        }
+        Ok(())
     }
 
     /// g at `(time, state)` into `values`.
@@ -128,7 +165,7 @@ impl SwitchWatch {
         let velocity_state = system
             .velocity_state(time, state)
             .map_err(|error| StepError::from_system(system, error, time, state))?;
-        system.switching_functions(time, &velocity_state, values);
+        system.anchored_switching_functions(time, &velocity_state, &self.anchors, values);
         Ok(())
     }
 
@@ -296,6 +333,7 @@ impl SwitchWatch {
             return Ok(None);
         }
         self.keep(&after);
+        self.anchor(system, time, &state)?;
         Ok(Some(Crossing::Cross { time, state }))
     }
 

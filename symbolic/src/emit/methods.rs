@@ -11,7 +11,7 @@ use crate::mechanics::{Of, VelocitySolve};
 use crate::quantity::Quantity;
 
 impl Emitter<'_> {
-    fn sizes(&self) -> (Literal, Literal, usize, usize) {
+    pub(crate) fn sizes(&self) -> (Literal, Literal, usize, usize) {
         let (n, k) = (self.d.coordinates.len(), self.d.state_mass_count());
         (
             Literal::usize_unsuffixed(n),
@@ -359,55 +359,6 @@ impl Emitter<'_> {
         });
         let signature = self.signature(Method::Jacobian);
         method_item(docs, signature, body)
-    }
-}
-
-impl Emitter<'_> {
-    /// `switch_count`, `switch_name` and `switching_functions(t, velocity_state, values)`:
-    /// the switching functions g of the state rate (docs/mechanics.md#switches), so that a
-    /// run lands on each crossing. Nothing when there are none (the trait's defaults).
-    pub(crate) fn switching_functions(&self, switches: &[Id]) -> TokenStream {
-        if switches.is_empty() {
-            return TokenStream::new();
-        }
-        let runtime = &self.target.runtime;
-        let (_, s_lit, _, _) = self.sizes();
-        let count = Literal::usize_unsuffixed(switches.len());
-        let names: Vec<String> = switches.iter().map(|g| self.display(*g)).collect();
-        let docs = self.docs(
-            "The switching functions g: the state rate jumps or kinks where one changes sign.",
-            names
-                .iter()
-                .enumerate()
-                .map(|(i, name)| format!("g_{i} = {name}")),
-        );
-        let body = self.body(Input::VelocityState, switches, |outs| {
-            let indices = (0..outs.len()).map(Literal::usize_unsuffixed);
-            quote!(#(values[#indices] = #outs;)*)
-        });
-        let indices = (0..names.len()).map(Literal::usize_unsuffixed);
-        quote! {
-            #[inline]
-            fn switch_count(&self) -> usize {
-                #count
-            }
-            fn switch_name(&self, index: usize) -> ::core::option::Option<&str> {
-                match index {
-                    #(#indices => ::core::option::Option::Some(#names),)*
-                    _ => ::core::option::Option::None,
-                }
-            }
-            #docs
-            #[inline]
-            fn switching_functions(
-                &self,
-                t: f64,
-                velocity_state: &#runtime::nalgebra::SVector<f64, #s_lit>,
-                values: &mut [f64],
-            ) {
-                #body
-            }
-        }
     }
 }
 

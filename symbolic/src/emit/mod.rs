@@ -12,6 +12,7 @@ mod inputs;
 mod methods;
 mod signature;
 mod stops;
+mod switches;
 mod system;
 mod tables;
 mod taylor;
@@ -59,6 +60,7 @@ pub fn emit_system_for(
         }
     }
     let switches = crate::mechanics::switching_functions(d);
+    let table_switches = crate::mechanics::table_switches(d);
     let time_tables = crate::mechanics::time_tables(d, &code_roots(d, outputs));
     let shown = documented_roots(d);
     let shown_texts = shown
@@ -103,7 +105,7 @@ pub fn emit_system_for(
         emitter.state_rate(),
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
-        emitter.switching_functions(&switches),
+        emitter.switching_functions(&switches, &table_switches),
         optional(outputs.taylor, || taylor::taylor_method(d, runtime)),
         emitter.flow_rates(),
         emitter.stop_times(&time_tables),

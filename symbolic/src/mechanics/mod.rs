@@ -59,7 +59,7 @@ pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
 pub use stages::RateStages;
 pub use stops::{time_tables, TimeTable};
-pub use switches::switching_functions;
+pub use switches::{switching_functions, table_switches, TableSwitch};
 pub use tables::{read_points, ModelTable};
 pub use unit_table::UnitTable;
 

@@ -19,6 +19,22 @@ pub struct TimeTable {
 
 /// The tables of t among the calls reachable from `roots`, each (table, argument) once.
 pub fn time_tables(d: &mut Derivation, roots: &[Id]) -> Vec<TimeTable> {
+    table_calls(d, roots)
+        .into_iter()
+        .filter_map(|(table, argument)| {
+            let (slope, offset) = affine_in_time(d, argument)?;
+            Some(TimeTable {
+                table,
+                slope,
+                offset,
+            })
+        })
+        .collect()
+}
+
+/// The table calls reachable from `roots`, each (table, argument) once whatever the
+/// derivative order (the derivatives have the table's knots).
+pub(crate) fn table_calls(d: &Derivation, roots: &[Id]) -> Vec<(u16, Id)> {
     let mut calls: Vec<(u16, Id)> = Vec::new();
     for id in d.pool.reachable(roots, true) {
         if let Node::Call(Func::Table { table, .. }, args) = d.pool.node(id) {
@@ -29,25 +45,22 @@ pub fn time_tables(d: &mut Derivation, roots: &[Id]) -> Vec<TimeTable> {
             }
         }
     }
+    calls
+}
+
+/// The slope a and offset b of `argument` = a·t + b when both are made of parameters and
+/// a ≠ 0 (a table of t), else `None`.
+pub(crate) fn affine_in_time(d: &mut Derivation, argument: Id) -> Option<(Id, Id)> {
     let t = d.pool.sym(d.time);
-    let mut found = Vec::new();
-    for (table, argument) in calls {
-        let slope = d.pool.diff(argument, d.time);
-        let moved = d.pool.mul(&[slope, t]);
-        let offset = d.pool.sub(argument, moved);
-        let only_parameters = |d: &Derivation, e: Id| {
-            d.pool
-                .free_symbols(e)
-                .into_iter()
-                .all(|s| d.pool.symbols().kind(s) == SymbolKind::Parameter)
-        };
-        if !d.pool.is_zero(slope) && only_parameters(d, slope) && only_parameters(d, offset) {
-            found.push(TimeTable {
-                table,
-                slope,
-                offset,
-            });
-        }
-    }
-    found
+    let slope = d.pool.diff(argument, d.time);
+    let moved = d.pool.mul(&[slope, t]);
+    let offset = d.pool.sub(argument, moved);
+    let only_parameters = |d: &Derivation, e: Id| {
+        d.pool
+            .free_symbols(e)
+            .into_iter()
+            .all(|s| d.pool.symbols().kind(s) == SymbolKind::Parameter)
+    };
+    (!d.pool.is_zero(slope) && only_parameters(d, slope) && only_parameters(d, offset))
+        .then_some((slope, offset))
 }

@@ -7,6 +7,7 @@
 //! gap a − b between the two sides of `min(a, b)` and `max(a, b)` (a kink).
 
 use super::derivation::Derivation;
+use super::stops::{affine_in_time, table_calls};
 use crate::expr::{ExprPool, Func, Id, Node, SymbolKind};
 use crate::parse::ast::{Expr, ExprNode};
 use crate::parse::{Diagnostic, Span};
@@ -69,11 +70,7 @@ fn written_call(node: &ExprNode, func: Func) -> Option<Span> {
 /// frozen mass symbols, as the emitted methods are. A switch on parameters alone never
 /// crosses and is left out.
 pub fn switching_functions(d: &mut Derivation) -> Vec<Id> {
-    let mut roots: Vec<Id> = d.momentum_rate.clone();
-    roots.extend(d.mass_matrix.iter().flatten());
-    roots.extend(&d.momentum_offset);
-    roots.extend(&d.mass_rates);
-    roots.extend(d.closed_laws.iter().flatten());
+    let roots = state_rate_roots(d);
     let calls: Vec<(Func, Vec<Id>)> = d
         .pool
         .reachable(&roots, true)
@@ -103,4 +100,45 @@ pub fn switching_functions(d: &mut Derivation) -> Vec<Id> {
         }
     }
     switches
+}
+
+/// What the state rate's switching functions are computed from: ṗ, M and the momentum
+/// offset b (which give q̇), the mass rates and the closed mass laws.
+fn state_rate_roots(d: &Derivation) -> Vec<Id> {
+    let mut roots: Vec<Id> = d.momentum_rate.clone();
+    roots.extend(d.mass_matrix.iter().flatten());
+    roots.extend(&d.momentum_offset);
+    roots.extend(&d.mass_rates);
+    roots.extend(d.closed_laws.iter().flatten());
+    roots
+}
+
+/// A switch at the knots of a table of the state (docs/tables.md#knots-are-switches):
+/// g = the distance from `argument` to the nearer end of the knot bracket the run was
+/// anchored in (`varmass_core::table::knot_gap`), one switch per call however many knots.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TableSwitch {
+    /// The table's index in the pool.
+    pub table: u16,
+    /// The call's argument, in velocity form.
+    pub argument: Id,
+}
+
+/// The table calls reachable from the state rate (as [`switching_functions`]) whose
+/// argument moves and is not a·t + b with parameters a and b (those are tables of t, whose
+/// knots are stop times): each (table, argument) once, whatever the derivative order.
+pub fn table_switches(d: &mut Derivation) -> Vec<TableSwitch> {
+    let roots = state_rate_roots(d);
+    let mut found = Vec::new();
+    for (table, argument) in table_calls(d, &roots) {
+        let moves = d
+            .pool
+            .free_symbols(argument)
+            .into_iter()
+            .any(|s| d.pool.symbols().kind(s) != SymbolKind::Parameter);
+        if moves && affine_in_time(d, argument).is_none() {
+            found.push(TableSwitch { table, argument });
+        }
+    }
+    found
 }
