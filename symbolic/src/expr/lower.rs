@@ -5,6 +5,7 @@
 //! collected, so the user sees them all at once.
 
 use super::func::Func;
+use super::input_call::substitute_arguments;
 use super::node::Id;
 use super::pool::ExprPool;
 use super::symbol::SymbolKind;
@@ -163,6 +164,15 @@ fn lower_node(
             })
         }
         Expr::Call { func, args } => {
+            if let Some(law) = input_law(pool, resolver, &func.node, args.len()) {
+                let law = substitute_arguments(
+                    &law,
+                    &law_parameters(pool, resolver, &func.node),
+                    args,
+                    func.span,
+                );
+                return lower_node(pool, &law, resolver, errors);
+            }
             let lowered: Vec<Option<Id>> = args
                 .iter()
                 .map(|a| lower_node(pool, a, resolver, errors))
@@ -208,6 +218,25 @@ fn lower_node(
             }
         }
     }
+}
+
+/// The law of input `name` when it is one, has a law and is called with its number of
+/// arguments (otherwise the call is lowered, or refused, as any other).
+fn input_law(
+    pool: &ExprPool,
+    resolver: &dyn Resolver,
+    name: &str,
+    count: usize,
+) -> Option<ExprNode> {
+    let (input, arity) = resolver.input(name)?;
+    (arity == count).then(|| pool.input_law(input).cloned())?
+}
+
+/// The declared arguments of input `name`.
+fn law_parameters(pool: &ExprPool, resolver: &dyn Resolver, name: &str) -> Vec<String> {
+    resolver
+        .input(name)
+        .map_or_else(Vec::new, |(input, _)| pool.input_arguments(input).to_vec())
 }
 
 fn record(result: Result<Id, Diagnostic>, errors: &mut Vec<Diagnostic>) -> Option<Id> {

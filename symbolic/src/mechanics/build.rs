@@ -23,8 +23,10 @@ pub fn build_model(
     ast: &SystemAst,
     parameters: Parameters,
     base: &Path,
+    laws: &[(String, ExprNode)],
 ) -> Result<Model, Vec<Diagnostic>> {
     let mut builder = Builder::new(parameters, base);
+    builder.laws = laws.to_vec();
     builder.declare(ast);
     builder.lower_statements(ast);
     builder.finish()
@@ -36,6 +38,8 @@ pub(super) struct Builder {
     declared_at: FxHashMap<String, Span>,
     /// The directory table files are read from.
     pub(super) base: PathBuf,
+    /// Laws given for inputs by name (`inputs.rs`, [`super::derive_with_laws`]).
+    pub(super) laws: Vec<(String, ExprNode)>,
 }
 
 impl Builder {
@@ -76,6 +80,7 @@ impl Builder {
             errors: Vec::new(),
             declared_at: FxHashMap::default(),
             base: base.to_path_buf(),
+            laws: Vec::new(),
         }
     }
 

@@ -57,13 +57,16 @@ pub use stops::{time_tables, TimeTable};
 pub use switches::switching_functions;
 pub use tables::{read_points, ModelTable};
 
-use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
+use crate::parse::{
+    ast::{ExprNode, SystemAst},
+    parse_system, Diagnostic,
+};
 use std::path::Path;
 
 /// Resolves and lowers a parsed system into a checked [`Model`] (table files relative to
 /// the current directory).
 pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
-    build::build_model(ast, parameters, Path::new("."))
+    build::build_model(ast, parameters, Path::new("."), &[])
 }
 
 /// Derives a parsed system and verifies its `check`s. A system with a `units` statement
@@ -90,7 +93,24 @@ pub fn derive_in(
     outputs: Outputs,
     base: &Path,
 ) -> Result<Derivation, Vec<Diagnostic>> {
-    let model = build::build_model(ast, parameters, base)?;
+    derive_with_laws(ast, parameters, outputs, base, &[])
+}
+
+/// [`derive_in`] with a law for some of the model's inputs: `laws` pairs an input's name
+/// with an expression of its declared arguments and the parameters (parsed with
+/// [`crate::parse::parse_expression`]), which replaces each call of that input before
+/// anything is differentiated (docs/inputs.md#the-command-line-tool). Such an input is no
+/// longer one of [`Derivation::inputs`]. A law that calls an input is a diagnostic at the
+/// input's declaration; a law for a name that is no input is ignored (the caller names
+/// it).
+pub fn derive_with_laws(
+    ast: &SystemAst,
+    parameters: Parameters,
+    outputs: Outputs,
+    base: &Path,
+    laws: &[(String, ExprNode)],
+) -> Result<Derivation, Vec<Diagnostic>> {
+    let model = build::build_model(ast, parameters, base, laws)?;
     let units = crate::units::check_units(ast)?;
     let mut derivation = derivation::derive_model(model, outputs)?;
     let differentiated = inputs::check_not_differentiated(&derivation);
