@@ -156,3 +156,20 @@ fn a_law_with_an_unknown_function_points_at_the_call_in_the_model() {
     // The first call of `u` is on line 5 of the model.
     assert!(stderr.contains(&format!("{model}:5:")), "{stderr}");
 }
+
+#[test]
+fn a_sampled_input_stays_refused_with_a_law() {
+    // `every` is not built: a law called continuously would be a different controller.
+    let file = format!("{}/sampled.vms", env!("CARGO_TARGET_TMPDIR"));
+    let text = std::fs::read_to_string(data("hover_input.vms"))
+        .expect("read")
+        .replace("input u(t, y, y')", "input u(t, y, y') every 0.01");
+    std::fs::write(&file, text).expect("written");
+    let mut args = vec!["run", file.as_str(), "--input", PD];
+    args.extend(FLIGHT);
+    let stderr = varmass(&args, 1);
+    assert!(
+        stderr.contains("sampled inputs (`every`) are not supported yet"),
+        "{stderr}"
+    );
+}
