@@ -152,3 +152,32 @@ def test_the_gil_is_released_while_a_run_computes(sled):
     quarter = (end - start) / 4
     assert end - start > 0.02, "the run is too short to tell"
     assert any(start + quarter < s < end - quarter for s in stamps)
+
+
+HOVER = """coordinates y
+input u(t, y, y')
+mass m: state, rate -m*u(t, y, y')/u_e
+body rocket: mass m, position [y]
+potential m*g*y
+outflow rocket: rate m*u(t, y, y')/u_e, relative_velocity [-u_e]
+"""
+PD = "g + kp*(y_ref - y) - kd*y'"
+HOVER_SET = {"u_e": 2000.0, "g": 9.80665, "kp": 4.0, "kd": 2.5, "y_ref": 10.0}
+
+
+def test_an_input_given_a_law_runs_as_the_law_written_in_the_model():
+    """``inputs=`` is ``varmass run --input`` (docs/inputs.md): the law replaces each call
+    before deriving, so the run equals the model with the law written in place."""
+    flight = dict(set=HOVER_SET, init={"y": 0, "m": 50}, until=15, tol=1e-10)
+    given = varmass.Model(HOVER).run(inputs={"u": PD}, **flight)
+    written = varmass.Model(HOVER.replace("u(t, y, y')", f"({PD})").replace(f"input ({PD})\n", ""))
+    written = written.run(**flight)
+    assert len(given["y"]) == len(written["y"])
+    # Measured 0 through the tool (cli/tests/input_laws.rs); 1e-13 allows for rounding.
+    assert np.max(np.abs(given["y"] - written["y"])) <= 1e-13
+    assert abs(given["y"][-1] - 10.0) < 0.01
+
+
+def test_an_input_without_a_law_is_named():
+    with pytest.raises(ValueError, match="no law for input `u`"):
+        varmass.Model(HOVER).run(set=HOVER_SET, init={"y": 0, "m": 50}, until=1)
