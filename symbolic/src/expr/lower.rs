@@ -164,13 +164,8 @@ fn lower_node(
             })
         }
         Expr::Call { func, args } => {
-            if let Some(law) = input_law(pool, resolver, &func.node, args.len()) {
-                let law = substitute_arguments(
-                    &law,
-                    &law_parameters(pool, resolver, &func.node),
-                    args,
-                    func.span,
-                );
+            if let Some((law, parameters)) = input_law(pool, resolver, &func.node, args.len()) {
+                let law = substitute_arguments(&law, &parameters, args, func.span);
                 return lower_node(pool, &law, resolver, errors);
             }
             let lowered: Vec<Option<Id>> = args
@@ -220,23 +215,21 @@ fn lower_node(
     }
 }
 
-/// The law of input `name` when it is one, has a law and is called with its number of
-/// arguments (otherwise the call is lowered, or refused, as any other).
+/// The law of input `name` and its declared arguments, when `name` is an input with a law
+/// called with its number of arguments (otherwise the call is lowered, or refused, as any
+/// other).
 fn input_law(
     pool: &ExprPool,
     resolver: &dyn Resolver,
     name: &str,
     count: usize,
-) -> Option<ExprNode> {
+) -> Option<(ExprNode, Vec<String>)> {
     let (input, arity) = resolver.input(name)?;
-    (arity == count).then(|| pool.input_law(input).cloned())?
-}
-
-/// The declared arguments of input `name`.
-fn law_parameters(pool: &ExprPool, resolver: &dyn Resolver, name: &str) -> Vec<String> {
-    resolver
-        .input(name)
-        .map_or_else(Vec::new, |(input, _)| pool.input_arguments(input).to_vec())
+    if arity != count {
+        return None;
+    }
+    let law = pool.input_law(input)?.clone();
+    Some((law, pool.input_arguments(input).to_vec()))
 }
 
 fn record(result: Result<Id, Diagnostic>, errors: &mut Vec<Diagnostic>) -> Option<Id> {
