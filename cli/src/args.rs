@@ -58,6 +58,11 @@ pub struct RunArgs {
     /// A parameter value, NAME=VALUE (repeat for each parameter).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
+    /// A law for an `input` of the model, NAME=EXPRESSION: a DSL expression of the input's
+    /// declared arguments and the parameters (`--input "u=kp*(10 - y) - kd*y'"`), put in
+    /// place of each call (repeat for each input).
+    #[arg(long = "input", value_name = "NAME=EXPRESSION")]
+    pub input: Vec<String>,
     /// An initial value: a coordinate `x`, a velocity `x'` (0 if unset) or a state mass `m`.
     #[arg(long = "init", value_name = "NAME=VALUE")]
     pub init: Vec<String>,

@@ -4,8 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
-use varmass::symbolic::mechanics::{derive_in, Derivation, Outputs, Parameters};
-use varmass::symbolic::parse::ast::{StatementKind, SystemAst};
+use varmass::symbolic::mechanics::{derive_in, derive_with_laws, Derivation, Outputs, Parameters};
+use varmass::symbolic::parse::ast::{ExprNode, StatementKind, SystemAst};
 use varmass::symbolic::parse::{parse_system, select_tags};
 use varmass::symbolic::Diagnostic;
 
@@ -31,6 +31,9 @@ pub struct LoadedModel {
     pub selected: SystemAst,
     /// Warnings to print before the command's output (see [`crate::lint`]).
     pub warnings: Vec<String>,
+    /// The model's text and the name diagnostics give it, to render those of a
+    /// re-derivation ([`LoadedModel::with_laws`]).
+    source: (String, PathBuf),
 }
 
 /// The tag, among those not asked for (`with`), whose statements make `name` a parameter
@@ -104,7 +107,28 @@ pub fn load_source(source: &str, path: &Path, with: &[String]) -> Result<LoadedM
         with: with.to_vec(),
         selected: ast,
         warnings,
+        source: (source.to_string(), path.to_path_buf()),
     })
+}
+
+impl LoadedModel {
+    /// The model derived again with a law in place of each of its inputs (`--input`,
+    /// [`derive_with_laws`]); a problem the laws bring is a [`CliError::Model`] at the
+    /// calls they replace.
+    pub fn with_laws(mut self, laws: &[(String, ExprNode)]) -> Result<LoadedModel, CliError> {
+        let derived = derive_with_laws(
+            &self.selected,
+            Parameters::Inferred,
+            Outputs::FULL,
+            &self.base,
+            laws,
+        );
+        self.derivation = derived.map_err(|diagnostics| CliError::Model {
+            rendered: render(&diagnostics, &self.source.0, &self.source.1),
+            count: diagnostics.len(),
+        })?;
+        Ok(self)
+    }
 }
 
 /// Every diagnostic, rustc-style, one after another.

@@ -212,3 +212,32 @@ def test_a_burn_then_an_integrated_coast_reach_the_ballistic_apex(rocket):
     assert abs(coast.t[-1] - (t_b + v_b / g)) <= 1e-12 * coast.t[-1], coast.t[-1]
     assert np.all(coast["m"] == m_b)  # no flow in the coast
     assert coast.t[0] == t_b and coast["y"][0] == y_b
+
+
+HOVER = """coordinates y
+input u(t, y, y')
+mass m: state, rate -m*u(t, y, y')/u_e
+body rocket: mass m, position [y]
+potential m*g*y
+outflow rocket: rate m*u(t, y, y')/u_e, relative_velocity [-u_e]
+"""
+PD = "g + kp*(y_ref - y) - kd*y'"
+HOVER_SET = {"u_e": 2000.0, "g": 9.80665, "kp": 4.0, "kd": 2.5, "y_ref": 10.0}
+
+
+def test_an_input_given_a_law_runs_as_the_law_written_in_the_model():
+    """``inputs=`` is ``varmass run --input`` (docs/inputs.md): the law replaces each call
+    before deriving, so the run equals the model with the law written in place."""
+    flight = dict(set=HOVER_SET, init={"y": 0, "m": 50}, until=15, tol=1e-10)
+    given = varmass.Model(HOVER).run(inputs={"u": PD}, **flight)
+    written = varmass.Model(HOVER.replace("u(t, y, y')", f"({PD})").replace(f"input ({PD})\n", ""))
+    written = written.run(**flight)
+    assert len(given["y"]) == len(written["y"])
+    # Measured 0 through the tool (cli/tests/input_laws.rs); 1e-13 allows for rounding.
+    assert np.max(np.abs(given["y"] - written["y"])) <= 1e-13
+    assert abs(given["y"][-1] - 10.0) < 0.01
+
+
+def test_an_input_without_a_law_is_named():
+    with pytest.raises(ValueError, match="no law for input `u`"):
+        varmass.Model(HOVER).run(set=HOVER_SET, init={"y": 0, "m": 50}, until=1)

@@ -99,6 +99,7 @@ def run_flags(
     step=None,
     record=None,
     every=None,
+    inputs: Optional[Mapping] = None,
 ) -> List[str]:
     """The tool's ``run`` flags for these arguments (numbers in Python's round-trip form)."""
     if until is None:
@@ -119,7 +120,22 @@ def run_flags(
     every = optional_number("every", every, positive=True)
     if every is not None:
         flags.append(f"--every={every!r}")
+    flags += [f"--input={name}={law}" for name, law in input_laws(inputs)]
     return flags
+
+
+def input_laws(inputs: Optional[Mapping]) -> List[Tuple[str, str]]:
+    """``inputs`` ({name: DSL expression}) as (name, law) pairs; the tool parses the laws."""
+    if inputs is None:
+        return []
+    if not isinstance(inputs, Mapping):
+        raise TypeError(f"inputs must be a mapping of names to expressions, not {type(inputs).__name__}")
+    pairs = []
+    for name, law in inputs.items():
+        if not isinstance(name, str) or not isinstance(law, str):
+            raise TypeError(f"inputs: {name!r}: names and laws must be strings")
+        pairs.append((name, law))
+    return pairs
 
 
 def no_duplicates(argument: str, pairs: Sequence[Tuple[str, object]]) -> None:

@@ -146,6 +146,7 @@ class Model:
         step=None,
         record=None,
         every=None,
+        inputs: Optional[Mapping] = None,
     ) -> Solution:
         """Integrates the model as ``varmass run`` does, with its defaults and messages.
 
@@ -155,7 +156,9 @@ class Model:
         (rising), or a list; ``method``: one of ``varmass.METHODS``; ``tol`` (adaptive
         methods, default 1e-9) or ``step`` (fixed step); ``record``: the quantities to
         record (default coordinates, velocities and state masses); ``every``: output
-        spacing instead of every accepted step. The GIL is released while it runs.
+        spacing instead of every accepted step; ``inputs``: a law for each ``input`` of
+        the model, ``{"u": "g + kp*(y_ref - y) - kd*y'"}``, as ``--input`` takes it
+        (docs/inputs.md). The GIL is released while it runs.
         """
         parameters = _checks.values("set", set)
         _checks.no_duplicates("set", parameters)
@@ -169,6 +172,7 @@ class Model:
             step=step,
             record=record,
             every=every,
+            inputs=inputs,
         )
         key = tuple(flags)
         if self._parsed is None or self._parsed[0] != key:

@@ -11,7 +11,10 @@
 //! ```
 
 use crate::mechanics::{build_model_in, derive_model, Derivation, Outputs, Parameters};
-use crate::parse::{ast::SystemAst, parse_system, Diagnostic};
+use crate::parse::{
+    ast::{ExprNode, SystemAst},
+    parse_system, Diagnostic,
+};
 use std::path::Path;
 
 /// Derives a parsed system and verifies its `check`s. A system with a `units` statement
@@ -38,7 +41,24 @@ pub fn derive_in(
     outputs: Outputs,
     base: &Path,
 ) -> Result<Derivation, Vec<Diagnostic>> {
-    let model = build_model_in(ast, parameters, base)?;
+    derive_with_laws(ast, parameters, outputs, base, &[])
+}
+
+/// [`derive_in`] with a law for some of the model's inputs: `laws` pairs an input's name
+/// with an expression of its declared arguments and the parameters (parsed with
+/// [`crate::parse::parse_expression`]), which replaces each call of that input before
+/// anything is differentiated (docs/inputs.md#the-command-line-tool). Such an input is no
+/// longer one of [`Derivation::inputs`]. A law that calls an input is a diagnostic at the
+/// input's declaration; a law for a name that is no input is ignored (the caller names
+/// it).
+pub fn derive_with_laws(
+    ast: &SystemAst,
+    parameters: Parameters,
+    outputs: Outputs,
+    base: &Path,
+    laws: &[(String, ExprNode)],
+) -> Result<Derivation, Vec<Diagnostic>> {
+    let model = build_model_in(ast, parameters, base, laws)?;
     let units = crate::units::check_units(ast, &model)?;
     let mut derivation = derive_model(model, outputs)?;
     let differentiated = crate::mechanics::check_not_differentiated(&derivation);

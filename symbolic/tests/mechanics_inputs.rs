@@ -151,3 +151,61 @@ fn units_of_an_input_are_declared() {
     let errors = derive(&wrong).unwrap_err();
     assert!(!errors.is_empty());
 }
+
+/// The derivation of `source` with `law` in place of input `u` ([`derive_with_laws`]).
+fn derive_with_law(source: &str, law: &str) -> Result<Derivation, Vec<Diagnostic>> {
+    let ast = parse_system(source)?;
+    let law = varmass_symbolic::parse::parse_expression(law).map_err(|d| vec![d])?;
+    varmass_symbolic::mechanics::derive_with_laws(
+        &ast,
+        Parameters::Inferred,
+        Outputs::FULL,
+        std::path::Path::new("."),
+        &[("u".to_string(), law)],
+    )
+}
+
+/// Each acceleration of `d`, printed.
+fn accelerations(d: &Derivation) -> Vec<String> {
+    let rows = d.accelerations.as_ref().expect("solved accelerations");
+    d.pool.display_all(rows)
+}
+
+#[test]
+fn a_law_replaces_each_call_with_the_arguments_bound_at_once() {
+    // `u(y, x')` is declared with y first; the call `u(x, y)` passes x for y and y for x'.
+    // The law y - 2·x' read at (y := x, x' := y) is x − 2y: bound at once, not in turn
+    // (in turn, x' := y and then y := x, it would be x − 2x).
+    let with_input =
+        "coordinates x, y\ninput u(y, x')\nmass m = m0\nbody a: mass m, position [x, y]\n\
+                      force x: u(x, y)\nforce y: k*u(2*t, x')";
+    let written = "coordinates x, y\nmass m = m0\nbody a: mass m, position [x, y]\n\
+                   force x: x - 2*y\nforce y: k*(2*t - 2*x')";
+    let given = derive_with_law(with_input, "y - 2*x'").expect("derives");
+    let expected = derive(written).expect("derives");
+    assert!(given.inputs.is_empty(), "a law leaves no input");
+    assert_eq!(accelerations(&given), accelerations(&expected));
+    // The Jacobian is the written model's too (no finite difference of an input).
+    let jacobian = |d: &Derivation| {
+        let parts = d.jacobian.as_ref().expect("derived");
+        let entries: Vec<_> = [&parts.rate_wrt_q, &parts.rate_wrt_velocity]
+            .into_iter()
+            .flatten()
+            .flatten()
+            .copied()
+            .collect();
+        d.pool.display_all(&entries)
+    };
+    assert_eq!(jacobian(&given), jacobian(&expected));
+}
+
+#[test]
+fn a_law_that_calls_the_input_is_a_diagnostic_at_its_declaration() {
+    let errors = derive_with_law(HOVER, "2*u(t, y, y')").expect_err("refused");
+    assert!(
+        errors.iter().any(
+            |e| e.message == "the law given for input `u` calls input `u`" && e.span.line == 2
+        ),
+        "{errors:?}"
+    );
+}

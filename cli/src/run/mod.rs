@@ -6,6 +6,7 @@ pub(crate) mod compiled;
 pub(crate) mod dispatch;
 #[cfg(test)]
 mod fuzz;
+pub(crate) mod inputs;
 pub(crate) mod integrate;
 pub(crate) mod names;
 pub(crate) mod output;
@@ -106,16 +107,13 @@ pub fn program(
     model: LoadedModel,
     mut warn: impl FnMut(&str),
 ) -> Result<Prepared, CliError> {
-    if let Some(input) = model.derivation.inputs.first() {
-        // The interpreter has no Rust function to call (docs/inputs.md#the-command-line-tool).
-        return Err(CliError::Input(format!(
-            "the model declares `input {}({})`, a function written in Rust: the command line \
-             tool cannot run it yet; run it from Rust with the macro, or write the law in the \
-             model (a `let` or a `table`)",
-            input.name,
-            input.arguments.join(", ")
-        )));
-    }
+    // Each input's law from `--input`, put in place of its calls (docs/inputs.md).
+    let model = if model.derivation.inputs.is_empty() && args.input.is_empty() {
+        model
+    } else {
+        let laws = inputs::laws(&args.input, &model.derivation.inputs)?;
+        model.with_laws(&laws)?
+    };
     let values = plan::parameters(args)?;
     for warning in plan::unused_parameters(&model.derivation, &values) {
         warn(&warning);

@@ -178,6 +178,7 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
 fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String>) -> RunArgs {
     let scene = &read.scene;
     RunArgs {
+        input: Vec::new(),
         model: ModelArgs {
             file,
             with: in_force.with.clone(),
@@ -392,6 +393,7 @@ fn program_of(file: &Path, in_force: &InForce) -> Result<Program, CliError> {
 /// The program of a loaded model with `in_force`'s values, as `varmass run` builds it.
 fn program_from(model: LoadedModel, in_force: &InForce) -> Result<Program, CliError> {
     let args = RunArgs {
+        input: Vec::new(),
         model: ModelArgs {
             file: PathBuf::new(),
             with: in_force.with.clone(),

@@ -5,6 +5,7 @@
 //! collected, so the user sees them all at once.
 
 use super::func::Func;
+use super::input_call::substitute_arguments;
 use super::node::Id;
 use super::pool::ExprPool;
 use super::symbol::SymbolKind;
@@ -163,6 +164,10 @@ fn lower_node(
             })
         }
         Expr::Call { func, args } => {
+            if let Some((law, parameters)) = input_law(pool, resolver, &func.node, args.len()) {
+                let law = substitute_arguments(&law, &parameters, args, func.span);
+                return lower_node(pool, &law, resolver, errors);
+            }
             let lowered: Vec<Option<Id>> = args
                 .iter()
                 .map(|a| lower_node(pool, a, resolver, errors))
@@ -208,6 +213,23 @@ fn lower_node(
             }
         }
     }
+}
+
+/// The law of input `name` and its declared arguments, when `name` is an input with a law
+/// called with its number of arguments (otherwise the call is lowered, or refused, as any
+/// other).
+fn input_law(
+    pool: &ExprPool,
+    resolver: &dyn Resolver,
+    name: &str,
+    count: usize,
+) -> Option<(ExprNode, Vec<String>)> {
+    let (input, arity) = resolver.input(name)?;
+    if arity != count {
+        return None;
+    }
+    let law = pool.input_law(input)?.clone();
+    Some((law, pool.input_arguments(input).to_vec()))
 }
 
 fn record(result: Result<Id, Diagnostic>, errors: &mut Vec<Diagnostic>) -> Option<Id> {

@@ -23,8 +23,10 @@ pub fn build_model(
     ast: &SystemAst,
     parameters: Parameters,
     base: &Path,
+    laws: &[(String, ExprNode)],
 ) -> Result<Model, Vec<Diagnostic>> {
     let mut builder = Builder::new(parameters, base);
+    builder.laws = laws.to_vec();
     builder.declare(ast);
     builder.lower_statements(ast);
     builder.finish()
@@ -38,6 +40,8 @@ pub(super) struct Builder {
     pub(super) failed_bodies: FxHashSet<String>,
     /// The directory table files are read from.
     pub(super) base: PathBuf,
+    /// Laws given for inputs by name (`inputs.rs`, [`super::derive_with_laws`]).
+    pub(super) laws: Vec<(String, ExprNode)>,
 }
 
 impl Builder {
@@ -79,6 +83,7 @@ impl Builder {
             errors: Vec::new(),
             failed_bodies: FxHashSet::default(),
             base: base.to_path_buf(),
+            laws: Vec::new(),
         }
     }
 

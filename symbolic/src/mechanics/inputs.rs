@@ -14,7 +14,7 @@ use super::build::Builder;
 use super::derivation::Derivation;
 use super::resolve::Binding;
 use crate::expr::{Func, Id, Node};
-use crate::parse::ast::InputDecl;
+use crate::parse::ast::{Expr, ExprNode, InputDecl};
 use crate::parse::{keywords, Diagnostic, Span};
 
 /// An input of the model.
@@ -100,6 +100,9 @@ impl Builder {
         self.model
             .names
             .insert(decl.name.node.clone(), Binding::Input(index, arity));
+        if self.attach_law(decl, index) {
+            return;
+        }
         self.model.inputs.push(ModelInput {
             name: decl.name.node.clone(),
             arguments,
@@ -107,6 +110,32 @@ impl Builder {
             index,
             span: decl.name.span,
         });
+    }
+
+    /// Gives input `decl` (pool index `index`) the law the caller gave for its name, if
+    /// any, and says whether it did: its calls are then replaced by the law when lowered,
+    /// so it is no input of the derivation. A law that calls an input (itself or another)
+    /// would never end: a diagnostic at the declaration.
+    fn attach_law(&mut self, decl: &InputDecl, index: u16) -> bool {
+        let Some((_, law)) = self.laws.iter().find(|(name, _)| *name == decl.name.node) else {
+            return false;
+        };
+        let law = law.clone();
+        if let Some(called) = first_input_called(&law, &self.laws) {
+            self.errors.push(
+                Diagnostic::new(
+                    decl.name.span,
+                    format!(
+                        "the law given for input `{}` calls input `{called}`",
+                        decl.name.node
+                    ),
+                )
+                .with_help("a law is an expression of the input's arguments and the parameters"),
+            );
+            return true;
+        }
+        self.model.pool.set_input_law(index, law);
+        true
     }
 
     /// Every argument of `decl` is `t`, a coordinate or a coordinate's velocity, and
@@ -144,6 +173,24 @@ impl Builder {
                     format!("input `{}` names `{}` twice", decl.name.node, name.node),
                 ));
             }
+        }
+    }
+}
+
+/// The first call in `law` of a name that has a law in `laws` (an input: only inputs
+/// have laws).
+fn first_input_called(law: &ExprNode, laws: &[(String, ExprNode)]) -> Option<String> {
+    match law.node.as_ref() {
+        Expr::Number(_) | Expr::Name(_) | Expr::Derivative { .. } => None,
+        Expr::Neg(inner) => first_input_called(inner, laws),
+        Expr::Binary { lhs, rhs, .. } => {
+            first_input_called(lhs, laws).or_else(|| first_input_called(rhs, laws))
+        }
+        Expr::Call { func, args } => {
+            if laws.iter().any(|(name, _)| *name == func.node) {
+                return Some(func.node.clone());
+            }
+            args.iter().find_map(|a| first_input_called(a, laws))
         }
     }
 }

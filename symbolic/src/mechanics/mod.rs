@@ -66,7 +66,7 @@ pub use unit_table::UnitTable;
 // The driver that runs resolution, the units check and the derivation in turn lives above
 // both stages (`crate::pipeline`): this module never calls the units check. Its functions
 // are named here too, where every caller has always found them.
-pub use crate::pipeline::{derive, derive_for, derive_in, derive_source};
+pub use crate::pipeline::{derive, derive_for, derive_in, derive_source, derive_with_laws};
 pub(crate) use build::build_model as build_model_in;
 pub(crate) use derivation::derive_model;
 pub(crate) use resolve::Binding;
@@ -77,5 +77,5 @@ use std::path::Path;
 /// Resolves and lowers a parsed system into a checked [`Model`] (table files relative to
 /// the current directory).
 pub fn build_model(ast: &SystemAst, parameters: Parameters) -> Result<Model, Vec<Diagnostic>> {
-    build::build_model(ast, parameters, Path::new("."))
+    build::build_model(ast, parameters, Path::new("."), &[])
 }
