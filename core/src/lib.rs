@@ -133,7 +133,10 @@ pub use events::{Direction, Event, EventAction, EventCondition, EventHit};
 #[cfg(feature = "run")]
 pub use observe::{observe, Observable, Quantity, Recording};
 #[cfg(feature = "run")]
-pub use phases::{run_phases, run_phases_keeping, Carry, Phase, PhaseChange, PhasedSolution};
+pub use phases::{
+    continue_phases, continue_phases_keeping, run_phases, run_phases_keeping, Carry, Phase,
+    PhaseChange, PhasedSolution,
+};
 #[cfg(feature = "run")]
 pub use run::{run, RunConfig, RunError, Switching};
 #[cfg(feature = "run")]

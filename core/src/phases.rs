@@ -83,13 +83,7 @@ where
     Sys: VariableMassSystem<N, S>,
     St: Stepper<N, S>,
 {
-    match run_phases_keeping(phases, start, stepper_for, config) {
-        (phased, None) => Ok(phased),
-        (phased, Some(error)) => Err(RunError {
-            error,
-            partial: alloc::boxed::Box::new(phased.solution),
-        }),
-    }
+    into_result(run_phases_keeping(phases, start, stepper_for, config))
 }
 
 /// [`run_phases`], a failure returned beside the phased solution so far (its `stop`
@@ -97,33 +91,115 @@ where
 /// changes are kept, as a caller recording the phase column needs.
 pub fn run_phases_keeping<'p, Sys, St, const N: usize, const S: usize>(
     phases: &'p [Phase<'p, Sys, S>],
-    (mut time, mut state): (f64, SVector<f64, S>),
-    mut stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    start: (f64, SVector<f64, S>),
+    stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
     config: &RunConfig,
 ) -> (PhasedSolution<N, S>, Option<StepError<S>>)
 where
     Sys: VariableMassSystem<N, S>,
     St: Stepper<N, S>,
 {
-    let mut phased = PhasedSolution {
+    let phased = PhasedSolution {
         solution: Solution::new(),
         phase: Vec::new(),
         changes: Vec::new(),
     };
+    extend(phased, None::<&Sys>, phases, start, stepper_for, config)
+}
+
+/// Continues `phased` (which ended at its last phase's event, run with the system
+/// `before`) with `phases` of another system type: another struct of the same model, with
+/// other tags but the same coordinates and state masses (N and S are checked by the types,
+/// the coordinates' names at run time). The first of `phases` is entered from `before` by
+/// its `carry` rule at the last point, and the phases are numbered on from `phased`'s. A
+/// `phased` that did not end at its event (it reached the end time, or failed) is returned
+/// as it is.
+pub fn continue_phases<'p, Before, Sys, St, const N: usize, const S: usize>(
+    phased: PhasedSolution<N, S>,
+    before: &Before,
+    phases: &'p [Phase<'p, Sys, S>],
+    stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    config: &RunConfig,
+) -> Result<PhasedSolution<N, S>, RunError<N, S>>
+where
+    Before: VariableMassSystem<N, S>,
+    Sys: VariableMassSystem<N, S>,
+    St: Stepper<N, S>,
+{
+    into_result(continue_phases_keeping(
+        phased,
+        before,
+        phases,
+        stepper_for,
+        config,
+    ))
+}
+
+/// [`continue_phases`], a failure returned beside the phased solution so far, as
+/// [`run_phases_keeping`] does.
+pub fn continue_phases_keeping<'p, Before, Sys, St, const N: usize, const S: usize>(
+    phased: PhasedSolution<N, S>,
+    before: &Before,
+    phases: &'p [Phase<'p, Sys, S>],
+    stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    config: &RunConfig,
+) -> (PhasedSolution<N, S>, Option<StepError<S>>)
+where
+    Before: VariableMassSystem<N, S>,
+    Sys: VariableMassSystem<N, S>,
+    St: Stepper<N, S>,
+{
+    let Some((time, state)) = phased.solution.last() else {
+        return (phased, None);
+    };
+    if phased.solution.stop != (StopReason::EventFound { index: 0 }) {
+        return (phased, None);
+    }
+    if Before::COORDINATES != Sys::COORDINATES {
+        let reason = "the next phase's system has other coordinates than the phase before";
+        let error = StepError::invalid_configuration(time, *state, reason);
+        let mut phased = phased;
+        phased.solution.stop = StopReason::Failed;
+        return (phased, Some(error));
+    }
+    let start = (time, *state);
+    extend(phased, Some(before), phases, start, stepper_for, config)
+}
+
+/// The loop of [`run_phases_keeping`] and [`continue_phases_keeping`]: runs `phases` from
+/// `(time, state)`, the first entered from `entry` when there is one, appending to `phased`.
+fn extend<'p, Before, Sys, St, const N: usize, const S: usize>(
+    mut phased: PhasedSolution<N, S>,
+    entry: Option<&Before>,
+    phases: &'p [Phase<'p, Sys, S>],
+    (mut time, mut state): (f64, SVector<f64, S>),
+    mut stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    config: &RunConfig,
+) -> (PhasedSolution<N, S>, Option<StepError<S>>)
+where
+    Before: VariableMassSystem<N, S>,
+    Sys: VariableMassSystem<N, S>,
+    St: Stepper<N, S>,
+{
     let fail = |error, mut phased: PhasedSolution<N, S>| {
         phased.solution.stop = StopReason::Failed;
         (phased, Some(error))
     };
-    let mut previous: Option<&Sys> = None;
+    let first = phased.phase.last().map_or(0, |last| last + 1);
     for (index, phase) in phases.iter().enumerate() {
-        if let Some(before) = previous {
-            let (entered, removed) = match carry(before, phase, time, &state) {
+        let carried = match (index.checked_sub(1), entry) {
+            (Some(previous), _) => Some(carry(&phases[previous].system, phase, time, &state)),
+            (None, Some(before)) => Some(carry(before, phase, time, &state)),
+            (None, None) => None,
+        };
+        if let Some(carried) = carried {
+            let (entered, removed) = match carried {
                 Ok(carried) => carried,
                 Err(error) => return fail(error, phased),
             };
             state = entered;
             phased.changes.push(PhaseChange {
-                phase: index,
+                phase: first + index,
                 time,
                 kinetic_energy_removed: removed,
             });
@@ -137,7 +213,7 @@ where
             Ok(solution) => (solution, None),
             Err(failure) => (*failure.partial, Some(failure.error)),
         };
-        append(&mut phased, solution, index);
+        append(&mut phased, solution, first + index);
         if let Some(error) = failure {
             return fail(error, phased);
         }
@@ -148,28 +224,37 @@ where
         if phased.solution.stop != (StopReason::EventFound { index: 0 }) {
             break;
         }
-        previous = Some(&phase.system);
     }
     (phased, None)
 }
 
+/// A kept failure as a [`RunError`] carrying the solution so far.
+fn into_result<const N: usize, const S: usize>(
+    kept: (PhasedSolution<N, S>, Option<StepError<S>>),
+) -> Result<PhasedSolution<N, S>, RunError<N, S>> {
+    match kept {
+        (phased, None) => Ok(phased),
+        (phased, Some(error)) => Err(RunError {
+            error,
+            partial: alloc::boxed::Box::new(phased.solution),
+        }),
+    }
+}
+
 /// The state entering `phase` from `before`'s `state` at `time`, and the kinetic energy
 /// the change removed.
-fn carry<Sys, const N: usize, const S: usize>(
-    before: &Sys,
+fn carry<Before, Sys, const N: usize, const S: usize>(
+    before: &Before,
     phase: &Phase<'_, Sys, S>,
     time: f64,
     state: &SVector<f64, S>,
 ) -> Result<(SVector<f64, S>, f64), StepError<S>>
 where
+    Before: VariableMassSystem<N, S>,
     Sys: VariableMassSystem<N, S>,
 {
     let to_step_error = |error| StepError::from_system(before, error, time, state);
     let velocity_state = before.velocity_state(time, state).map_err(to_step_error)?;
-    let kinetic = |system: &Sys, velocity_state: &SVector<f64, S>| {
-        let q_dot = velocity_state.fixed_rows::<N>(N);
-        0.5 * q_dot.dot(&(system.mass_matrix(time, velocity_state) * q_dot))
-    };
     let mut entered = *state;
     let mut moving = velocity_state;
     for &(k, value) in phase.state_masses {
@@ -178,19 +263,35 @@ where
         }
     }
     let system = &phase.system;
-    let before_energy = kinetic(before, &velocity_state);
+    let before_energy = kinetic(before, time, &velocity_state);
     match phase.carry {
         Carry::Separation => {
             let after = system.momentum_state(time, &moving);
-            Ok((after, before_energy - kinetic(system, &moving)))
+            Ok((after, before_energy - kinetic(system, time, &moving)))
         }
         Carry::Capture => {
             let after_velocity = system
                 .velocity_state(time, &entered)
                 .map_err(|error| StepError::from_system(system, error, time, &entered))?;
-            Ok((entered, before_energy - kinetic(system, &after_velocity)))
+            Ok((
+                entered,
+                before_energy - kinetic(system, time, &after_velocity),
+            ))
         }
     }
+}
+
+/// ½ q̇ᵀ M q̇ of `system` at a velocity state.
+fn kinetic<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    time: f64,
+    velocity_state: &SVector<f64, S>,
+) -> f64
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let q_dot = velocity_state.fixed_rows::<N>(N);
+    0.5 * q_dot.dot(&(system.mass_matrix(time, velocity_state) * q_dot))
 }
 
 /// Appends a phase's solution, the energy residual continued from the last one.
