@@ -7,6 +7,7 @@
 //! derivation, so their agreement checks both.
 
 #[path = "../benches/common/rocket_6dof.rs"]
+#[allow(dead_code)] // the bench's samples
 mod rocket_6dof;
 
 use rocket_6dof::HandRocket6;

@@ -119,8 +119,9 @@ impl HandRocket6 {
     ) -> Result<SVector<f64, 13>, SystemError> {
         let (m_p, g_c, l, mu) = (s[12], self.g_c, self.l, self.mu);
         let m = self.m_d + m_p;
-        let c_z = -g_c * m_p / m;
-        let a_in = self.A_d + m_p * self.k_a * self.k_a + self.m_d * m_p * g_c * g_c / m;
+        let inv_m = 1.0 / m;
+        let c_z = -g_c * m_p * inv_m;
+        let a_in = self.A_d + m_p * self.k_a * self.k_a + self.m_d * m_p * g_c * g_c * inv_m;
         let c_in = self.C_d + m_p * self.k_c * self.k_c;
 
         let (s_psi, c_psi) = s[3].sin_cos();
@@ -149,22 +150,24 @@ impl HandRocket6 {
         // Momenta → P (body), h, ω, w, V, q̇.
         let big_p = to_body([s[6], s[7], s[8]]);
         let (p_psi, p_th, p_phi) = (s[9], s[10], s[11]);
-        let sum = (p_psi + s_th * p_phi) / c_th;
+        let inv_c_th = 1.0 / c_th;
+        let sum = (p_psi + s_th * p_phi) * inv_c_th;
         let h = [
             p_phi,
             c_phi * p_th + s_phi * sum,
             c_phi * sum - s_phi * p_th,
         ];
         // c × P with c = c_z e3: c_z [−P2, P1, 0].
+        let inv_a = 1.0 / a_in;
         let omega = [
-            (h[0] + c_z * big_p[1]) / a_in,
-            (h[1] - c_z * big_p[0]) / a_in,
+            (h[0] + c_z * big_p[1]) * inv_a,
+            (h[1] - c_z * big_p[0]) * inv_a,
             h[2] / c_in,
         ];
-        let w = big_p.map(|x| x / m);
+        let w = big_p.map(|x| x * inv_m);
         // V = w − ω × c, ω × c = c_z [ω2, −ω1, 0].
         let vel = [w[0] - c_z * omega[1], w[1] + c_z * omega[0], w[2]];
-        let psi_dot = (s_phi * omega[1] + c_phi * omega[2]) / c_th;
+        let psi_dot = (s_phi * omega[1] + c_phi * omega[2]) * inv_c_th;
         let th_dot = c_phi * omega[1] - s_phi * omega[2];
         let phi_dot = omega[0] + s_th * psi_dot;
         let r_dot = [0, 1, 2].map(|i| r[i][0] * vel[0] + r[i][1] * vel[1] + r[i][2] * vel[2]);
@@ -215,4 +218,55 @@ impl HandRocket6 {
             -mu,
         ]))
     }
+}
+
+impl HandRocket6 {
+    /// The rocket `cli/tests/rigid.rs` flies: 60 kg dry, a 40 kg grain burning at 2 kg/s,
+    /// exhaust at 2 km/s through a nozzle 2 m below the dry centre, gimballed 2 mrad.
+    pub fn standard() -> Self {
+        Self {
+            mu: 2.0,
+            m_d: 60.0,
+            A_d: 30.0,
+            C_d: 2.0,
+            k_a: 0.8,
+            k_c: 0.2,
+            g_c: 1.0,
+            l: 2.0,
+            u_e: 2000.0,
+            delta: 0.002,
+            g: 9.81,
+        }
+    }
+}
+
+/// `n` states [q, p, m_p] of the standard rocket in flight, drawn by a fixed generator:
+/// attitude within 30° of vertical in pitch and roll, any heading, speeds to 300 m/s,
+/// angle rates to 1 rad/s (as momenta of their size), the grain anywhere in its burn.
+pub fn flight_states(n: usize) -> Vec<SVector<f64, 13>> {
+    let mut seed: u64 = 0x6d0f;
+    let mut uniform = |lo: f64, hi: f64| {
+        // Knuth's MMIX LCG, top 53 bits.
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        lo + (hi - lo) * (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let tilt = 30f64.to_radians();
+    (0..n)
+        .map(|_| {
+            let mut s = SVector::<f64, 13>::zeros();
+            for k in 0..3 {
+                s[k] = uniform(-2e3, 2e3);
+                s[6 + k] = uniform(-3e4, 3e4);
+                s[9 + k] = uniform(-40.0, 40.0);
+            }
+            s[2] = uniform(0.0, 1e4);
+            s[3] = uniform(-std::f64::consts::PI, std::f64::consts::PI);
+            s[4] = uniform(-tilt, tilt);
+            s[5] = uniform(-tilt, tilt);
+            s[12] = uniform(0.0, 40.0);
+            s
+        })
+        .collect()
 }
