@@ -74,3 +74,41 @@ pub struct KeplerPolar {
     pub m1: f64,
     pub k: f64,
 }
+
+/// The six-degree-of-freedom rocket of `models/rocket_6dof.vms`, emitted as users get it
+/// (default outputs); its twin by hand is `rocket_6dof.rs`.
+#[variable_mass_system(file = "../models/rocket_6dof.vms")]
+#[allow(non_snake_case)] // the model's names: A_d, C_d
+#[derive(Clone, Copy, Debug)]
+pub struct Rocket6 {
+    pub mu: f64,
+    pub m_d: f64,
+    pub A_d: f64,
+    pub C_d: f64,
+    pub k_a: f64,
+    pub k_c: f64,
+    pub g_c: f64,
+    pub l: f64,
+    pub u_e: f64,
+    pub delta: f64,
+    pub g: f64,
+}
+
+impl Rocket6 {
+    /// The rocket with the parameters of `hand`.
+    pub fn like(hand: &super::rocket_6dof::HandRocket6) -> Self {
+        Self {
+            mu: hand.mu,
+            m_d: hand.m_d,
+            A_d: hand.A_d,
+            C_d: hand.C_d,
+            k_a: hand.k_a,
+            k_c: hand.k_c,
+            g_c: hand.g_c,
+            l: hand.l,
+            u_e: hand.u_e,
+            delta: hand.delta,
+            g: hand.g,
+        }
+    }
+}

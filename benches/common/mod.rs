@@ -14,6 +14,7 @@ pub mod generated;
 pub mod hand;
 pub mod interpreted;
 pub mod problems;
+pub mod rocket_6dof;
 pub mod stiff;
 pub mod timing;
 pub mod workloads;
