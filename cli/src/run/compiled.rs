@@ -20,7 +20,11 @@ use crate::model::LoadedModel;
 
 /// A derived model and its program, compiled at the first run and reused by the next.
 pub struct Compiled {
+    /// The model run: as loaded, or with the laws of the last run's `--input`s.
     model: LoadedModel,
+    /// The model as loaded when it declares inputs (each run's laws are put in its calls),
+    /// and the `--input`s the current `model` was derived with.
+    declared: Option<(LoadedModel, Option<Vec<String>>)>,
     /// The parameters the equations read, found once.
     used: Vec<String>,
     /// `None` before the first run, and after a run that failed before giving it back.
@@ -31,11 +35,34 @@ impl Compiled {
     /// The model, not compiled yet (its program needs the first run's values).
     pub fn new(model: LoadedModel) -> Self {
         let used = model.derivation.used_parameters();
+        let declared = (!model.derivation.inputs.is_empty()).then(|| (model.clone(), None));
         Self {
             model,
+            declared,
             used,
             program: None,
         }
+    }
+
+    /// Puts the laws `input` (`--input NAME=EXPR`) in the calls of the model's inputs
+    /// (docs/inputs.md), deriving the model again when they differ from the last run's;
+    /// a missing law, or a law for a model without inputs, is the tool's input error.
+    fn apply_laws(&mut self, input: &[String]) -> Result<(), CliError> {
+        let Some((declared, current)) = &mut self.declared else {
+            return match input.is_empty() {
+                true => Ok(()),
+                false => super::inputs::laws(input, &[]).map(|_| ()),
+            };
+        };
+        if current.as_deref() == Some(input) {
+            return Ok(());
+        }
+        let laws = super::inputs::laws(input, &declared.derivation.inputs)?;
+        self.model = declared.clone().with_laws(&laws)?;
+        *current = Some(input.to_vec());
+        self.used = self.model.derivation.used_parameters();
+        self.program = None;
+        Ok(())
     }
 
     /// The derived model.
@@ -89,6 +116,7 @@ impl Compiled {
         warn: impl FnMut(&str),
         finish: impl FnOnce(&mut Outcome, &Plan) -> T,
     ) -> Result<T, CliError> {
+        self.apply_laws(&args.input)?;
         let program = self.program(&values, warn)?;
         let planned = plan::plan_with(args, values, &program, &self.model.selected);
         let mut plan = match planned {
