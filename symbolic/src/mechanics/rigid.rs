@@ -391,10 +391,14 @@ impl Builder {
                     LoadValue::Scalar(e) => e.span,
                     LoadValue::Vector(v) => v.span,
                 };
+                let name = &self.model.bodies[body].name;
                 let expected = if planar {
-                    "a planar body's torque is a scalar: `torque b: tau`"
+                    format!("a planar body's torque is a scalar: `torque {name}: tau`")
                 } else {
-                    "a spatial body's torque is a vector of 3: `torque b: [..]` or `body [..]`"
+                    format!(
+                        "a spatial body's torque is a vector of 3: `torque {name}: [..]` or \
+                         `body [..]`"
+                    )
                 };
                 self.errors.push(Diagnostic::new(span, expected));
                 return;
