@@ -49,6 +49,8 @@ impl Compiled {
     /// a missing law, or a law for a model without inputs, is the tool's input error.
     fn apply_laws(&mut self, input: &[String]) -> Result<(), CliError> {
         let Some((declared, current)) = &mut self.declared else {
+            // No inputs: nothing to do (no copy: an ensemble member passes here), and any
+            // `--input` is refused as `apply` would refuse it.
             return match input.is_empty() {
                 true => Ok(()),
                 false => super::inputs::laws(input, &[]).map(|_| ()),
@@ -57,8 +59,7 @@ impl Compiled {
         if current.as_deref() == Some(input) {
             return Ok(());
         }
-        let laws = super::inputs::laws(input, &declared.derivation.inputs)?;
-        self.model = declared.clone().with_laws(&laws)?;
+        self.model = super::inputs::apply(declared.clone(), input)?;
         *current = Some(input.to_vec());
         self.used = self.model.derivation.used_parameters();
         self.program = None;

@@ -11,6 +11,18 @@ use varmass::symbolic::parse::parse_expression;
 
 use super::names::resolve;
 use crate::error::CliError;
+use crate::model::LoadedModel;
+
+/// `model` with the laws `options` (the `--input` values) in the calls of its inputs,
+/// derived again; a model without inputs and no `--input` is returned as it is. The one
+/// place both the tool's runs ([`super::Compiled`]) and [`super::program`] apply laws.
+pub fn apply(model: LoadedModel, options: &[String]) -> Result<LoadedModel, CliError> {
+    if model.derivation.inputs.is_empty() && options.is_empty() {
+        return Ok(model);
+    }
+    let laws = laws(options, &model.derivation.inputs)?;
+    model.with_laws(&laws)
+}
 
 /// The laws `options` (the `--input` values) give, one for each of `declared`, in the
 /// order given.

@@ -108,12 +108,7 @@ pub fn program(
     mut warn: impl FnMut(&str),
 ) -> Result<Prepared, CliError> {
     // Each input's law from `--input`, put in place of its calls (docs/inputs.md).
-    let model = if model.derivation.inputs.is_empty() && args.input.is_empty() {
-        model
-    } else {
-        let laws = inputs::laws(&args.input, &model.derivation.inputs)?;
-        model.with_laws(&laws)?
-    };
+    let model = inputs::apply(model, &args.input)?;
     let values = plan::parameters(args)?;
     for warning in plan::unused_parameters(&model.derivation, &values) {
         warn(&warning);
