@@ -266,3 +266,50 @@ fn continuing_with_other_coordinates_is_refused() {
     assert!((failure.time - 10.0).abs() < 1e-9, "{}", failure.time);
     assert_eq!(failure.partial.times.len(), points);
 }
+
+/// A phase whose end condition already holds where it begins could never trigger: stage 2
+/// of the two-stage rocket told to end when y rises through 100 m, entered at y(50 s) ≈
+/// 44 km, would otherwise run silently to the end time and never hand over to stage 3.
+/// The run ends at the change (t = 50 s) with the typed configuration error, stage 1's
+/// points kept.
+#[test]
+fn a_phase_whose_end_already_holds_is_refused_at_its_start() {
+    let phases = [
+        Phase {
+            system: STAGE_1,
+            carry: Carry::Separation,
+            state_masses: &[],
+            until: Some(Event::mass_reaches(0, 500.0)),
+        },
+        Phase {
+            system: STAGE_2,
+            carry: Carry::Separation,
+            state_masses: &[(0, 300.0)],
+            until: Some(Event::state_reaches(0, 100.0, Direction::Rising)),
+        },
+        Phase {
+            system: STAGE_2,
+            carry: Carry::Separation,
+            state_masses: &[],
+            until: None,
+        },
+    ];
+    let failure = run_phases(
+        &phases,
+        (0.0, SVector::from([0.0, 0.0, 1000.0])),
+        |system, t, state| DormandPrince::new(system, t, state, control()),
+        &RunConfig::until(150.0),
+    )
+    .expect_err("stage 2's end already holds");
+    assert!(
+        matches!(
+            failure.kind,
+            StepErrorKind::InvalidConfiguration { reason } if reason == varmass::core::phases::ALREADY_PAST
+        ),
+        "{:?}",
+        failure.kind
+    );
+    assert!((failure.time - 50.0).abs() < 1e-9, "{}", failure.time);
+    assert!(failure.state[0] > 100.0, "{}", failure.state[0]);
+    assert_eq!(failure.partial.times.last().copied(), Some(failure.time));
+}

@@ -163,6 +163,16 @@ impl<'a, const S: usize> Event<'a, S> {
         }
     }
 
+    /// Whether g already stands where this event's crossing would take it (g > 0 for a
+    /// rising event, g < 0 for a falling one): started there, the event can never trigger.
+    pub(crate) fn already_past(&self, g: f64) -> bool {
+        match self.direction {
+            Direction::Rising => g > 0.0,
+            Direction::Falling => g < 0.0,
+            Direction::Either => false,
+        }
+    }
+
     /// Whether g going from `before` to `after` is a sign change this event counts. A start
     /// exactly at zero does not count, so a run restarted at an event does not re-trigger.
     pub(crate) fn triggered(&self, before: f64, after: f64) -> bool {

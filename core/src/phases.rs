@@ -19,6 +19,12 @@ use crate::solution::{Solution, StopReason};
 use crate::stepper::Stepper;
 use crate::system::VariableMassSystem;
 
+/// The error of a phase whose end condition already holds where it begins: its event
+/// could never trigger, and the phase would run silently to the end time instead of
+/// handing over to the next.
+pub const ALREADY_PAST: &str =
+    "a phase's end condition already holds where the phase begins, so it would never trigger";
+
 /// How the state enters a phase from the one before.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Carry {
@@ -203,6 +209,12 @@ where
                 time,
                 kinetic_energy_removed: removed,
             });
+        }
+        if let Some(until) = &phase.until {
+            if until.already_past(until.value(&phase.system, time, &state)) {
+                let error = StepError::invalid_configuration(time, state, ALREADY_PAST);
+                return fail(error, phased);
+            }
         }
         let mut stepper = match stepper_for(&phase.system, time, state) {
             Ok(stepper) => stepper,
