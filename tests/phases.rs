@@ -313,3 +313,100 @@ fn a_phase_whose_end_already_holds_is_refused_at_its_start() {
     assert!(failure.state[0] > 100.0, "{}", failure.state[0]);
     assert_eq!(failure.partial.times.last().copied(), Some(failure.time));
 }
+
+/// The two-stage rocket's stages with stage 2 entered by `state_masses` and ended by
+/// `until`, for the refusals below.
+fn two_stages<'a>(
+    state_masses: &'a [(usize, f64)],
+    until: Event<'a, 3>,
+) -> [Phase<'a, Stage, 3>; 2] {
+    [
+        Phase {
+            system: STAGE_1,
+            carry: Carry::Separation,
+            state_masses: &[],
+            until: Some(Event::mass_reaches(0, 500.0)),
+        },
+        Phase {
+            system: STAGE_2,
+            carry: Carry::Separation,
+            state_masses,
+            until: Some(until),
+        },
+    ]
+}
+
+/// Runs `phases` from rest at 1000 kg to t = 150 s, expecting the typed configuration error
+/// `reason` at the change (t = 50 s, where m reaches 500 kg: 1000 − 10·50).
+fn refused_at_the_change(phases: &[Phase<'_, Stage, 3>], reason: &str) {
+    let failure = run_phases(
+        phases,
+        (0.0, SVector::from([0.0, 0.0, 1000.0])),
+        |system, t, state| DormandPrince::new(system, t, state, control()),
+        &RunConfig::until(150.0),
+    )
+    .expect_err("refused at the change");
+    assert!(
+        matches!(failure.kind, StepErrorKind::InvalidConfiguration { reason: r } if r == reason),
+        "{:?}",
+        failure.kind
+    );
+    assert!((failure.time - 50.0).abs() < 1e-9, "{}", failure.time);
+}
+
+/// A phase entered exactly on its end condition's boundary (stage 2 set to m = 300 kg and
+/// told to end when m = 300 kg) could never trigger either: a run does not count a start at
+/// g = 0. Before, the phase ran silently to the end time.
+#[test]
+fn a_phase_entered_on_its_boundary_is_refused() {
+    let phases = two_stages(&[(0, 300.0)], Event::mass_reaches(0, 300.0));
+    refused_at_the_change(&phases, varmass::core::phases::ALREADY_PAST);
+}
+
+/// A phase that sets a state mass the system lacks (index 1 of one) or to a value that is
+/// not positive is refused at the change; before, the index was skipped silently.
+#[test]
+fn a_phase_setting_a_state_mass_wrongly_is_refused() {
+    let end = || Event::mass_reaches(0, 100.0);
+    for masses in [&[(1, 300.0)][..], &[(0, -1.0)], &[(0, f64::NAN)]] {
+        refused_at_the_change(
+            &two_stages(masses, end()),
+            varmass::core::phases::BAD_STATE_MASS,
+        );
+    }
+}
+
+/// Continuing phases that failed is an error, not the failure handed back as `Ok`.
+#[test]
+fn continuing_failed_phases_is_an_error() {
+    let phases = two_stages(&[(1, 300.0)], Event::mass_reaches(0, 100.0));
+    let (failed, error) = varmass::core::run_phases_keeping(
+        &phases,
+        (0.0, SVector::from([0.0, 0.0, 1000.0])),
+        |system, t, state| DormandPrince::new(system, t, state, control()),
+        &RunConfig::until(150.0),
+    );
+    assert!(error.is_some());
+    let more = [Phase {
+        system: STAGE_2,
+        carry: Carry::Separation,
+        state_masses: &[],
+        until: None,
+    }];
+    let failure = continue_phases(
+        failed,
+        &STAGE_1,
+        &more,
+        |system, t, state| DormandPrince::new(system, t, state, control()),
+        &RunConfig::until(150.0),
+    )
+    .expect_err("nothing to continue");
+    assert!(
+        matches!(
+            failure.kind,
+            StepErrorKind::InvalidConfiguration { reason } if reason == varmass::core::phases::NOTHING_TO_CONTINUE
+        ),
+        "{:?}",
+        failure.kind
+    );
+}

@@ -13,18 +13,20 @@
 use std::io::Write;
 use std::process::ExitCode;
 
-use clap::Parser;
+use clap::parser::ValueSource;
+use clap::{ArgMatches, CommandFactory, FromArgMatches};
 
 use varmass_cli::args::{Cli, Command};
 use varmass_cli::error::CliError;
 use varmass_cli::{commands, run, scene};
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let matches = Cli::command().get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let result = match cli.command {
         Command::Check(a) => commands::check::check(&a),
         Command::Derive(a) => commands::derive::derive(&a.model, a.latex),
-        Command::Run(a) if scene::is_scene(&a.model.file) => scene::run(&a),
+        Command::Run(a) if scene::is_scene(&a.model.file) => scene::run(&a, &given(&matches)),
         Command::Run(a) => run::run(&a),
     };
     match result {
@@ -35,6 +37,24 @@ fn main() -> ExitCode {
         }
         Err(error) => report(&error),
     }
+}
+
+/// The ids of the `run` flags given on the command line (not defaulted): a scene refuses
+/// each one but `--csv` and `--plot`, whatever its value.
+fn given(matches: &ArgMatches) -> Vec<String> {
+    let (Some(("run", run)), Some(command)) = (
+        matches.subcommand(),
+        Cli::command().find_subcommand("run").cloned(),
+    ) else {
+        return Vec::new();
+    };
+    // The arguments only: the ids also name the derive's argument groups (`RunArgs`).
+    command
+        .get_arguments()
+        .map(|arg| arg.get_id().as_str())
+        .filter(|id| run.value_source(id) == Some(ValueSource::CommandLine))
+        .map(str::to_owned)
+        .collect()
 }
 
 fn report(error: &CliError) -> ExitCode {

@@ -92,8 +92,8 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
 /// `varmass run SCENE.toml`: runs the scene, writes its CSV (`--csv` overrides the file's
 /// `csv`) and plot, and returns the summary; a failed run writes the points so far and
 /// returns its error.
-pub fn run(args: &RunArgs) -> Result<String, CliError> {
-    refuse_one_phase_flags(args)?;
+pub fn run(args: &RunArgs, given: &[String]) -> Result<String, CliError> {
+    refuse_one_phase_flags(args, given)?;
     let path = &args.model.file;
     let done = run_file(path)?;
     if let Some(csv) = args.csv.as_ref().or(done.csv.as_ref()) {
@@ -108,24 +108,18 @@ pub fn run(args: &RunArgs) -> Result<String, CliError> {
     Ok(done.summary)
 }
 
-/// The flags of a one-phase run have no meaning beside a scene, which gives them itself.
-fn refuse_one_phase_flags(args: &RunArgs) -> Result<(), CliError> {
-    let given = [
-        ("--with", !args.model.with.is_empty()),
-        ("--set", !args.set.is_empty()),
-        ("--init", !args.init.is_empty()),
-        ("--until", !args.until.is_nan()),
-        ("--stop-when", !args.stop_when.is_empty()),
-        ("--tol", args.tol.is_some()),
-        ("--step", args.step.is_some()),
-        ("--record", !args.record.is_empty()),
-        ("--every", args.every.is_some()),
-        ("--max-seconds", args.max_seconds.is_some()),
-    ];
-    match given.iter().find(|(_, given)| *given) {
-        Some((flag, _)) => Err(CliError::Input(format!(
-            "{flag}: `{}` is a scene file, which gives its own settings (docs/scenes.md); \
+/// The flags that go with a scene file: the file itself, and where its output goes.
+const SCENE_FLAGS: [&str; 3] = ["file", "csv", "plot"];
+
+/// The flags of a one-phase run have no meaning beside a scene, which gives them itself:
+/// `given` holds the ids of the flags on the command line (a flag given at its default
+/// value is refused too, so that `--method rk4` is never silently ignored).
+fn refuse_one_phase_flags(args: &RunArgs, given: &[String]) -> Result<(), CliError> {
+    match given.iter().find(|id| !SCENE_FLAGS.contains(&id.as_str())) {
+        Some(id) => Err(CliError::Input(format!(
+            "--{}: `{}` is a scene file, which gives its own settings (docs/scenes.md); \
              write it there (only --csv and --plot go with a scene file)",
+            id.replace('_', "-"),
             args.model.file.display()
         ))),
         None => Ok(()),
@@ -151,6 +145,14 @@ fn summary(
         last + 1,
         phases.len()
     );
+    if *last + 1 < phases.len() && flown.failure.is_none() {
+        let _ = writeln!(
+            out,
+            "note: phase {} was never entered: its condition `{}` did not occur before the end",
+            last + 2,
+            ends.get(*last).and_then(Option::as_deref).unwrap_or("?")
+        );
+    }
     for change in &flown.changes {
         let rule = match phases.get(change.phase).map(|p| p.0) {
             Some(Carry::Capture) => "capture",

@@ -126,7 +126,7 @@ fn negative_numbers_after_options_get_the_must_be_positive_message() {
     rocket_until("-0.5", &["--from", "-1"], 0);
 }
 
-/// `--set k=100 --set k=200` is an error; a parameter that enters nothing is a warning
+/// `--set k=100 --set k=200` (and an `--init` given twice) is an error; a parameter that enters nothing is a warning
 /// naming it; a parameter of a tag not asked for names the tag.
 #[test]
 fn parameters_given_twice_unused_or_of_a_tag_not_asked_for_are_named() {
@@ -135,6 +135,12 @@ fn parameters_given_twice_unused_or_of_a_tag_not_asked_for_are_named() {
         stderr.contains(
             "--set mu=2: `mu` is set twice (first as --set mu=1); give each parameter once"
         ),
+        "{stderr}"
+    );
+    // An initial value given twice is refused the same way (the second silently won).
+    let stderr = rocket(&["--init", "y=5"], 2);
+    assert!(
+        stderr.contains("--init y=5: `y` is given twice; give each initial value once"),
         "{stderr}"
     );
     let stderr = rocket(&["--set", "k_d=0.1"], 2);

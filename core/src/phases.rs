@@ -19,11 +19,21 @@ use crate::solution::{Solution, StopReason};
 use crate::stepper::Stepper;
 use crate::system::VariableMassSystem;
 
-/// The error of a phase whose end condition already holds where it begins: its event
-/// could never trigger, and the phase would run silently to the end time instead of
-/// handing over to the next.
-pub const ALREADY_PAST: &str =
-    "a phase's end condition already holds where the phase begins, so it would never trigger";
+/// The error of a phase whose end condition already holds where it begins, or stands
+/// exactly on its boundary there: its event could never trigger (a run does not count a
+/// start at zero, so that a restart does not re-trigger its own event), and the phase would
+/// run silently to the end time instead of handing over to the next.
+pub const ALREADY_PAST: &str = "a phase's end condition already holds (or stands exactly on its \
+     boundary) where the phase begins, so it would never trigger";
+
+/// The error of a phase that sets a state mass the system does not have, or to a value that
+/// is not a positive number.
+pub const BAD_STATE_MASS: &str =
+    "a phase sets a state mass the system does not have, or to a value that is not positive";
+
+/// The error of [`continue_phases`] given phases that failed: there is no event to go on from.
+pub const NOTHING_TO_CONTINUE: &str =
+    "the phases to continue failed: there is nothing to go on from";
 
 /// How the state enters a phase from the one before.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -49,8 +59,10 @@ pub struct Phase<'a, Sys, const S: usize> {
     pub until: Option<Event<'a, S>>,
 }
 
-/// A change of phase: when, into which phase, and the kinetic energy the separated mass
-/// took away (negative when a capture's mass brings none; zero for a capture).
+/// A change of phase: when, into which phase, and the kinetic energy the change removed
+/// (≥ 0 for a separation that drops mass and for a capture alike). It is the kinetic part
+/// only: with a potential that depends on the masses (m g y), H also loses the dropped
+/// mass's potential energy at the change.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhaseChange {
     /// The phase entered.
@@ -118,8 +130,8 @@ where
 /// other tags but the same coordinates and state masses (N and S are checked by the types,
 /// the coordinates' names at run time). The first of `phases` is entered from `before` by
 /// its `carry` rule at the last point, and the phases are numbered on from `phased`'s. A
-/// `phased` that did not end at its event (it reached the end time, or failed) is returned
-/// as it is.
+/// `phased` that reached the end time is returned as it is; one that failed is an
+/// [`StepErrorKind::InvalidConfiguration`](crate::StepErrorKind) error ([`NOTHING_TO_CONTINUE`]).
 pub fn continue_phases<'p, Before, Sys, St, const N: usize, const S: usize>(
     phased: PhasedSolution<N, S>,
     before: &Before,
@@ -158,6 +170,10 @@ where
     let Some((time, state)) = phased.solution.last() else {
         return (phased, None);
     };
+    if phased.solution.stop == StopReason::Failed {
+        let error = StepError::invalid_configuration(time, *state, NOTHING_TO_CONTINUE);
+        return (phased, Some(error));
+    }
     if phased.solution.stop != (StopReason::EventFound { index: 0 }) {
         return (phased, None);
     }
@@ -211,7 +227,8 @@ where
             });
         }
         if let Some(until) = &phase.until {
-            if until.already_past(until.value(&phase.system, time, &state)) {
+            let g = until.value(&phase.system, time, &state);
+            if g == 0.0 || until.already_past(g) {
                 let error = StepError::invalid_configuration(time, state, ALREADY_PAST);
                 return fail(error, phased);
             }
@@ -270,9 +287,15 @@ where
     let mut entered = *state;
     let mut moving = velocity_state;
     for &(k, value) in phase.state_masses {
-        if let (Some(a), Some(b)) = (entered.get_mut(2 * N + k), moving.get_mut(2 * N + k)) {
-            (*a, *b) = (value, value);
+        let index = 2 * N + k;
+        if index >= S || !(value.is_finite() && value > 0.0) {
+            return Err(StepError::invalid_configuration(
+                time,
+                *state,
+                BAD_STATE_MASS,
+            ));
         }
+        (entered[index], moving[index]) = (value, value);
     }
     let system = &phase.system;
     let before_energy = kinetic(before, time, &velocity_state);

@@ -10,7 +10,7 @@
 //!
 //! Cases: `VARMASS_FUZZ_CASES` (default 3000, about two seconds in the test profile);
 //! the seed is fixed, `VARMASS_FUZZ_SEED` moves it. The 10⁵ run:
-//! `VARMASS_FUZZ_CASES=100000 cargo test -p varmass-cli --bin varmass fuzz -- --nocapture`
+//! `VARMASS_FUZZ_CASES=100000 cargo test -p varmass-cli --lib fuzz -- --nocapture`
 //! (measured: no panic, 12586 cases planned, 87414 refused with exit 2, 11 s).
 
 use std::cell::RefCell;

@@ -271,6 +271,12 @@ fn shown(x: f64) -> String {
 
 fn steps(args: &RunArgs) -> Result<Steps, CliError> {
     match (args.method, args.step, args.tol) {
+        // clap refuses the pair on the command line; a scene file reaches here with both.
+        (_, Some(_), Some(_)) => Err(CliError::Input(
+            "a tolerance and a fixed step do not go together: a fixed step has no error \
+             control (give `tol` or `step`, not both)"
+                .into(),
+        )),
         (_, Some(h), _) => fixed_step(h, args).map(Steps::Fixed),
         (
             Method::DormandPrince
@@ -396,6 +402,11 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
             Initial::Velocity(a) => n + a,
             Initial::StateMass(i) => 2 * n + i,
         };
+        if values[slot].is_some() {
+            return Err(CliError::Input(format!(
+                "--init {text}: `{name}` is given twice; give each initial value once"
+            )));
+        }
         values[slot] = Some(value);
     }
     let missing: Vec<&str> = settable

@@ -3,6 +3,7 @@
 //! [`run_phases_keeping`] and the chosen stepper.
 
 use varmass::core::nalgebra::SVector;
+use varmass::core::phases::ALREADY_PAST;
 use varmass::core::steppers::{
     AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
     ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, Taylor, TaylorControl, Variational,
@@ -10,7 +11,7 @@ use varmass::core::steppers::{
 };
 use varmass::core::{
     run_phases_keeping, Event, EventAction, Phase, PhaseChange, Record, RunConfig, Statistics,
-    StopReason,
+    StepError, StepErrorKind, StopReason,
 };
 use varmass::interpret::{Program, TapeSystem};
 
@@ -66,6 +67,11 @@ pub fn fly(scene: Scene) -> Result<Flown, CliError> {
         )));
     }
     sizes!(scene; (1, 5), (2, 7), (3, 9), (4, 11), (5, 13), (6, 15), (7, 17), (8, 19))
+}
+
+/// Whether `error` is the core's refusal of a phase whose end condition holds at its start.
+fn never_triggers<const S: usize>(error: &StepError<S>) -> bool {
+    matches!(error.kind, StepErrorKind::InvalidConfiguration { reason } if reason == ALREADY_PAST)
 }
 
 /// An event function g(t, state).
@@ -174,7 +180,24 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
         ),
     };
     let last = phased.phase.last().copied().unwrap_or(0);
-    let failure = error.map(|e| describe(&phases[last.min(phases.len() - 1)].system, &plan, e));
+    let failure = error.map(|e| match never_triggers(&e) {
+        // The change into the phase is recorded; none of its points are.
+        true => {
+            let k = phased.changes.last().map_or(0, |c| c.phase);
+            let when = ends
+                .get(k)
+                .and_then(Option::as_ref)
+                .map_or("?", |e| &e.text);
+            CliError::Run(format!(
+                "phase {} ends when `{when}`, which already holds (or stands exactly on its \
+                 boundary) where the phase begins, at t = {}: it could never end the phase\n\
+                 help: give the phase a condition that its motion reaches later",
+                k + 1,
+                e.time
+            ))
+        }
+        false => describe(&phases[last.min(phases.len() - 1)].system, &plan, e),
+    });
     let stopped = phases.len() == last + 1
         && phases[last].until.is_some()
         && phased.solution.stop == (StopReason::EventFound { index: 0 });

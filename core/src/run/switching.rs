@@ -5,7 +5,8 @@
 //! A step whose end has a switching function on the other side is discarded: its
 //! interpolant locates the crossing's bracket `(near, far)` to rounding, and the run repeats
 //! the integration from the step's start to `near`, where the state rate is still smooth
-//! (a *redo*). Landed there, it crosses the bracket (at most a few roundings of t wide) by
+//! (a *redo*). Landed there, it crosses the bracket (usually a few roundings of t wide; an
+//! Euler step spans at most 10⁶ of them, about 9·10⁻¹⁰·max(|t|, 1)) by
 //! one Euler step with the rate before the switch and restarts the stepper at `far`,
 //! forgetting the FSAL rate and the controller's memory. A crossing located within the
 //! bracket of the step's start is crossed at once. When the interpolant across the jump put
