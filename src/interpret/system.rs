@@ -123,9 +123,11 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     }
 
     fn mass(&self, index: usize, t: f64, state: &SVector<f64, S>) -> f64 {
-        let Some(index) = self.model_mass(index) else {
-            return state[index];
+        let Some(model) = self.model_mass(index) else {
+            // A padding mass is its own state entry (state masses come first).
+            return state[2 * N + index];
         };
+        let index = model;
         let mut masses = vec![f64::NAN; self.program.derivation().masses.len()];
         self.program.masses(t, state.as_slice(), &mut masses);
         masses.get(index).copied().unwrap_or(f64::NAN)

@@ -49,4 +49,4 @@ pub use interpolant::Interpolation;
 pub use piecewise::Piecewise;
 pub use points::{InvalidPoints, Points};
 pub use rasp::Motor;
-pub use table::{Cursor, Outside, Table};
+pub use table::{Cursor, Outside, Table, END_SLACK};

@@ -156,16 +156,20 @@ impl Table {
 
     /// `x`, or the end of the data it lies within rounding beyond: a step landed on a knot
     /// by a stop time evaluates its last stage at t + h (or an argument a·t + b there), which
-    /// can round to an ulp past the knot, and must see the end's value there, not the rule
-    /// for outside the data (nor the end piece extrapolated, which past a thrust curve's
-    /// final zero is a negative thrust).
+    /// can round to an ulp or two *of t* past the knot, and must see the end's value there,
+    /// not the rule for outside the data (nor the end piece extrapolated, which past a thrust
+    /// curve's final zero is a negative thrust). The table does not know t: the slack is
+    /// [`END_SLACK`] of the data's span, which covers the roundings of any t up to about
+    /// 10⁵ spans (a motor of 3.9 s ignited up to ~10 days into a run), besides
+    /// [`ROUNDING_ULPS`] roundings of the largest knot.
     #[inline]
     fn snap(&self, x: f64) -> f64 {
         let (first, last) = self.curve.domain();
         if first <= x && x <= last {
             return x;
         }
-        let rounding = ROUNDING_ULPS * f64::EPSILON * first.abs().max(last.abs());
+        let rounding = (ROUNDING_ULPS * f64::EPSILON * first.abs().max(last.abs()))
+            .max(END_SLACK * (last - first));
         if x > last && x <= last + rounding {
             last
         } else if x < first && x >= first - rounding {
@@ -204,6 +208,13 @@ impl Table {
 /// still be on the end piece: a stage time t + c·h of a step landed on a knot rounds to at
 /// most an ulp or two of t past it (docs/tables.md#outside-the-data).
 const ROUNDING_ULPS: f64 = 4.0;
+
+/// The part of the data's span an argument may lie beyond an end and still be on the end
+/// piece: the roundings of a stage time t + c·h scale with t, not with the knots, so an
+/// ignition at t = 100 s puts the argument of a 3.9 s curve 5.8e-15 past its end, more
+/// than 4 ε·3.9 = 3.5e-15. 10⁻¹⁰ of the span is far below any measured data's resolution
+/// and covers t up to 10⁻¹⁰/(2 ε) ≈ 2·10⁵ spans.
+pub const END_SLACK: f64 = 1e-10;
 
 /// Where an argument lies relative to the data.
 enum Place {
