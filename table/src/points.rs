@@ -34,6 +34,13 @@ pub enum InvalidPoints {
         /// The point's index.
         index: usize,
     },
+    /// The slope from the previous point overflows (values near ±1.8e308, or knots a
+    /// subnormal apart): the interpolant there would be ±∞ or NaN.
+    #[error("the slope from point {} to point {index} is not finite", index - 1)]
+    SlopeNotFinite {
+        /// The point's index.
+        index: usize,
+    },
     /// An argument does not increase on the previous one.
     #[error("the argument of point {index} does not increase on the previous one")]
     NotIncreasing {
@@ -62,6 +69,9 @@ impl Points {
             }
             if index > 0 && arguments[index - 1] >= *x {
                 return Err(InvalidPoints::NotIncreasing { index });
+            }
+            if index > 0 && !((y - values[index - 1]) / (x - arguments[index - 1])).is_finite() {
+                return Err(InvalidPoints::SlopeNotFinite { index });
             }
         }
         Ok(Self { arguments, values })

@@ -233,6 +233,16 @@ fn points_are_checked() {
         new(&[0.0, 1.0], &[1.0, f64::INFINITY]),
         InvalidPoints::NotFinite { index: 1 }
     );
+    // Finite values whose chord overflows (−1e308 − 1e308 = −∞): the value at
+    // the knot would have been c₀ + ∞·0 = NaN, returned as Ok.
+    assert_eq!(
+        new(&[0.0, 1.0, 2.0], &[0.0, 1e308, -1e308]),
+        InvalidPoints::SlopeNotFinite { index: 2 }
+    );
+    assert_eq!(
+        new(&[0.0, 5e-324], &[0.0, 1.0]),
+        InvalidPoints::SlopeNotFinite { index: 1 }
+    );
 }
 
 /// A table built over static arrays at compile time, as the macro will embed one: the
