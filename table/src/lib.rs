@@ -12,6 +12,9 @@
 //! * [`Table`]: an interpolant with its [`Outside`] rule (`error`, `zero`, `hold`); lookups
 //!   remember their interval (a [`Cursor`] or the table's own hint) and fall back to a binary
 //!   search; the [`knots`](Table::knots) are where the table may be non-smooth.
+//! * [`Tabulated`]: a table with its derivative tables built once, the field of a generated
+//!   system for a `table F(t) = runtime` statement; [`Tabulated::transformed`] scales its
+//!   values and stretches its argument (an ensemble dispersing a thrust curve).
 //!
 //! The crate is `no_std` (with `alloc`) without its `std` feature, as `varmass-core`.
 //! The design, and how the DSL uses tables, is in `docs/tables.md`.
@@ -41,6 +44,7 @@ mod piecewise;
 mod points;
 mod rasp;
 mod table;
+mod tabulated;
 mod text;
 
 pub use csv::CsvTable;
@@ -50,3 +54,4 @@ pub use piecewise::Piecewise;
 pub use points::{InvalidPoints, Points};
 pub use rasp::Motor;
 pub use table::{Cursor, Outside, Table};
+pub use tabulated::Tabulated;

@@ -137,6 +137,14 @@ impl Table {
         Self::from_piecewise(self.curve.derivative(), outside)
     }
 
+    /// The table scaled by `value_scale` and stretched by `argument_scale`, k·F(x/s), with
+    /// the same rule outside (see [`Piecewise::transformed`]; `None` for a scale it
+    /// refuses).
+    pub fn transformed(&self, value_scale: f64, argument_scale: f64) -> Option<Self> {
+        let curve = self.curve.transformed(value_scale, argument_scale)?;
+        Some(Self::from_piecewise(curve, self.outside))
+    }
+
     /// The value at `x` beyond `end`, by the table's rule.
     fn beyond(&self, x: f64, end: End) -> Result<f64, LookupError> {
         match self.outside {
