@@ -149,7 +149,12 @@ impl LoadedModel {
                 }
             }
         }
-        let derived = derive_in(&self.selected, Parameters::Inferred, Outputs::FULL, &self.base);
+        let derived = derive_in(
+            &self.selected,
+            Parameters::Inferred,
+            Outputs::FULL,
+            &self.base,
+        );
         self.derivation = derived.map_err(|diagnostics| CliError::Model {
             rendered: render(&diagnostics, &self.source.0, &self.source.1),
             count: diagnostics.len(),

@@ -34,8 +34,23 @@ fn flight(model: &str, extra: &[&str], name: &str) -> String {
     let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     let u_e = format!("u_e={:?}", u_e());
     let mut args = vec![
-        "run", model, "--set", &u_e, "--set", "g=9.80665", "--init", "y=0", "--init",
-        "m=20", "--until", "6", "--tol", "1e-10", "--record", "y,y',m", "--csv",
+        "run",
+        model,
+        "--set",
+        &u_e,
+        "--set",
+        "g=9.80665",
+        "--init",
+        "y=0",
+        "--init",
+        "m=20",
+        "--until",
+        "6",
+        "--tol",
+        "1e-10",
+        "--record",
+        "y,y',m",
+        "--csv",
     ];
     args.push(csv.to_str().unwrap());
     args.extend_from_slice(extra);
@@ -106,14 +121,25 @@ fn table_mistakes_are_input_errors() {
     std::fs::write(&bad, "M1 75 757 0 3.0 5.0 X\n0.5 100\n1.O 50\n").unwrap();
     let model = root("models/motor_rocket_runtime.vms");
     let base = [
-        "run", &model, "--set", "u_e=1000", "--set", "g=9.8", "--init", "m=20", "--until",
-        "1",
+        "run", &model, "--set", "u_e=1000", "--set", "g=9.8", "--init", "m=20", "--until", "1",
     ];
     let cases: [(String, &str); 5] = [
-        (format!("F={}", bad.display()), "bad_motor.eng:3:1: `1.O` is not a number"),
-        ("F=missing.eng".to_string(), "--table F: cannot read the table file `missing.eng`"),
-        ("F=models/motor_rocket.vms".to_string(), "a RASP motor (`.eng`) or a CSV table"),
-        ("G=models/motors/AeroTech_K828FJ.eng".to_string(), "`G` is not a table of the model"),
+        (
+            format!("F={}", bad.display()),
+            "bad_motor.eng:3:1: `1.O` is not a number",
+        ),
+        (
+            "F=missing.eng".to_string(),
+            "--table F: cannot read the table file `missing.eng`",
+        ),
+        (
+            "F=models/motor_rocket.vms".to_string(),
+            "a RASP motor (`.eng`) or a CSV table",
+        ),
+        (
+            "G=models/motors/AeroTech_K828FJ.eng".to_string(),
+            "`G` is not a table of the model",
+        ),
         ("F".to_string(), "expected NAME=FILE"),
     ];
     for (option, expected) in cases {

@@ -11,7 +11,11 @@ use crate::ctxt::Ctxt;
 pub fn parameter_fields(cx: &Ctxt, item: &syn::ItemStruct, tables: &[String]) -> Vec<syn::Ident> {
     check_no_generics(cx, item);
     let fields = check_named_fields(cx, item);
-    let is_table = |f: &syn::Field| f.ident.as_ref().is_some_and(|i| tables.contains(&i.to_string()));
+    let is_table = |f: &syn::Field| {
+        f.ident
+            .as_ref()
+            .is_some_and(|i| tables.contains(&i.to_string()))
+    };
     check_table_fields(cx, item, &fields, tables);
     let parameters: Vec<&syn::Field> = fields.iter().filter(|f| !is_table(f)).collect();
     for field in &parameters {

@@ -57,7 +57,12 @@ fn orders_past_the_degree_are_the_zero_table_with_the_rule() {
 #[test]
 fn transformed_refuses_scales_that_break_the_data() {
     let table = Tabulated::new(&points(), Interpolation::Pchip, Outside::Zero);
-    for (k, s) in [(1.0, 0.0), (1.0, -1.0), (f64::NAN, 1.0), (1.0, f64::INFINITY)] {
+    for (k, s) in [
+        (1.0, 0.0),
+        (1.0, -1.0),
+        (f64::NAN, 1.0),
+        (1.0, f64::INFINITY),
+    ] {
         assert!(table.transformed(k, s).is_none(), "{k} {s}");
     }
     // s = 1e-320 makes the knots subnormal and equal: refused, not a division by zero.

@@ -40,7 +40,8 @@ impl Compiled {
     pub fn new(model: LoadedModel) -> Self {
         let used = model.derivation.used_parameters();
         let d = &model.derivation;
-        let declared = (!d.inputs.is_empty() || !d.tables.is_empty()).then(|| (model.clone(), None));
+        let declared =
+            (!d.inputs.is_empty() || !d.tables.is_empty()).then(|| (model.clone(), None));
         Self {
             model,
             declared,

@@ -6,6 +6,7 @@ pub(crate) mod compiled;
 pub(crate) mod dispatch;
 #[cfg(test)]
 mod fuzz;
+pub(crate) mod input_tables;
 pub(crate) mod inputs;
 pub(crate) mod integrate;
 pub(crate) mod names;

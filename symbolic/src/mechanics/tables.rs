@@ -41,7 +41,9 @@ pub fn runtime_placeholder(interpolation: Interpolation, outside: Outside) -> Ta
     match Points::new(vec![0.0, 1.0, 2.0, 3.0], vec![1.0, 2.0, 1.5, 3.0]) {
         Ok(points) => Table::new(&points, interpolation, outside),
         // Not reached (the points are valid); a line rather than a panic.
-        Err(_) => Table::from_piecewise(Piecewise::from_static(&[0.0, 1.0], &[1.0, 1.0], 1), outside),
+        Err(_) => {
+            Table::from_piecewise(Piecewise::from_static(&[0.0, 1.0], &[1.0, 1.0], 1), outside)
+        }
     }
 }
 

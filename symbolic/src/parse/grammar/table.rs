@@ -47,7 +47,10 @@ impl<'a> Grammar<'a> {
     /// The quoted file name, or the word `runtime` (true beside it).
     fn table_source(&self, input: &'a str) -> PResult<'a, (Spanned<String>, bool)> {
         if let Ok((rest, span)) = self.keyword(input, keywords::RUNTIME) {
-            return Ok((rest, (Spanned::new(keywords::RUNTIME.to_string(), span), true)));
+            return Ok((
+                rest,
+                (Spanned::new(keywords::RUNTIME.to_string(), span), true),
+            ));
         }
         let (rest, file) = self.file_name(input)?;
         Ok((rest, (file, false)))
@@ -55,13 +58,14 @@ impl<'a> Grammar<'a> {
 
     /// The quoted file name; the span covers the quotes.
     fn file_name(&self, input: &'a str) -> PResult<'a, Spanned<String>> {
-        let help = |d: Diagnostic| {
-            d.with_help(format!(
+        let help =
+            |d: Diagnostic| {
+                d.with_help(format!(
                 "a table is written `{} F(t) = \"motors/M1670.eng\"` (a path in double quotes, \
                  relative to the model file) or `{} F(t) = {}` (the data given at run time)",
                 keywords::TABLE, keywords::TABLE, keywords::RUNTIME
             ))
-        };
+            };
         let start = self.skip_blanks(input, false);
         let Ok((inside, _)) = self.punct(start, '"') else {
             let diagnostic = self.unexpected_diagnostic(start, "a file name in double quotes");
