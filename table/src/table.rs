@@ -183,6 +183,30 @@ impl Table {
         }
     }
 
+    /// A cursor on the table's own hint.
+    pub(crate) fn hint_cursor(&self) -> Cursor {
+        Cursor {
+            interval: self.hint.load(Ordering::Relaxed),
+        }
+    }
+
+    /// Stores `cursor` as the table's hint, if it moved.
+    pub(crate) fn store_hint(&self, cursor: Cursor) {
+        if cursor.interval != self.hint.load(Ordering::Relaxed) {
+            self.hint.store(cursor.interval, Ordering::Relaxed);
+        }
+    }
+
+    /// [`Table::snap`] for the Taylor series' piece (`series.rs`).
+    pub(crate) fn snapped(&self, x: f64) -> f64 {
+        self.snap(x)
+    }
+
+    /// The interval a cursor is on.
+    pub(crate) fn cursor_interval(&self, cursor: &Cursor) -> usize {
+        cursor.interval.min(self.curve.intervals() - 1)
+    }
+
     /// Where `x` lies: an interval (the cursor moved to it) or beyond an end.
     #[inline]
     fn place(&self, x: f64, cursor: &mut Cursor) -> Result<Place, LookupError> {
