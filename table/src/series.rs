@@ -12,7 +12,7 @@
 //! generated code, so the two are bit-identical.
 
 use crate::error::LookupError;
-use crate::table::{Cursor, Table};
+use crate::table::{Cursor, Outside, Table};
 
 /// The piece of a table holding an argument, as a cubic in s = x − `knot`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,17 +48,28 @@ impl Table {
 
     /// The piece holding `x` (within rounding of an end: the end's, as
     /// [`Table::value_at`]), starting the search from `cursor`; the outside rule as for a
-    /// value (an error under `outside error`).
+    /// value (an error under `outside error`). From the last knot on the piece is the
+    /// constant the table is worth after its data (zero, the held value, or NaN under
+    /// `outside error`), since a series looks forward; `value` stays the table's value at
+    /// `x` (the state rate's).
     pub fn local_at(&self, x: f64, cursor: &mut Cursor) -> Result<Local, LookupError> {
         let value = self.value_at(x, cursor)?;
         let curve = self.curve();
         let (first, last) = curve.domain();
         let inside = self.snapped(x);
-        if !(first <= inside && inside <= last) {
-            // Outside under `zero` or `hold`: a constant.
+        if !(first <= inside && inside < last) {
+            // Outside under `zero` or `hold`: a constant. From the last knot on, what the
+            // table is worth after it (the series looks forward: the last piece extended
+            // would be a thrust curve's negative tail); under `outside error` nothing.
+            let after = match self.outside() {
+                _ if inside != last => value,
+                Outside::Zero => 0.0,
+                Outside::Hold => value,
+                Outside::Error => f64::NAN,
+            };
             return Ok(Local {
                 knot: 0.0,
-                coefficients: [value, 0.0, 0.0, 0.0],
+                coefficients: [after, 0.0, 0.0, 0.0],
                 value,
             });
         }
