@@ -144,8 +144,8 @@ fn the_taylor_rocket_lands_on_the_knots_and_meets_the_closed_form() {
 /// With quadratic drag (no closed form), Taylor against DOP853, both at tolerance 1e-12.
 /// The rocket leaves its rail at 1 m/s: from rest it would first sink (the thrust starts
 /// from 0 N) and turn at 0.078 s, and a Taylor step starting at ẏ = 0 expands |ẏ| on the
-/// + branch (a tie at order 0) while ẏ goes negative — a limitation of `abs` at a zero
-/// start, not of tables (measured 2.4e-9 in p at 6 s from rest).
+/// positive branch (a tie at order 0) while ẏ goes negative: a limitation of `abs` at a
+/// zero start, not of tables (measured 2.4e-9 in p at 6 s from rest).
 #[test]
 fn the_taylor_drag_rocket_agrees_with_dop853() {
     let u_e = motor().exhaust_speed();
