@@ -121,6 +121,8 @@ fn refuse_one_phase_flags(args: &RunArgs) -> Result<(), CliError> {
         ("--record", !args.record.is_empty()),
         ("--every", args.every.is_some()),
         ("--max-seconds", args.max_seconds.is_some()),
+        ("--input", !args.input.is_empty()),
+        ("--table", !args.table.is_empty()),
     ];
     match given.iter().find(|(_, given)| *given) {
         Some((flag, _)) => Err(CliError::Input(format!(

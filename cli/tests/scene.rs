@@ -275,6 +275,8 @@ fn one_phase_flags_do_not_go_with_a_scene() {
         stderr.contains("--set: ") && stderr.contains("scene file"),
         "{stderr}"
     );
+    let (_, stderr) = run(&["run", &file, "--table", "F=x.eng"], 2);
+    assert!(stderr.contains("--table: "), "{stderr}");
     let model = workspace("models/two_stage_rocket.vms");
     let set = ["--set", "mu=1", "--set", "g=1", "--set", "u_e=1"];
     let args = [&["run", &model, "--init", "y=0", "--init", "m=1"][..], &set].concat();
