@@ -63,6 +63,11 @@ pub struct RunArgs {
     /// place of each call (repeat for each input).
     #[arg(long = "input", value_name = "NAME=EXPRESSION")]
     pub input: Vec<String>,
+    /// The data of a table of the model, NAME=FILE (`.eng` RASP or `.csv`, relative to the
+    /// current directory): required by a `table NAME(..) = runtime`, and replacing the file
+    /// of a file table; the statement's options hold (repeat for each table).
+    #[arg(long = "table", value_name = "NAME=FILE")]
+    pub table: Vec<String>,
     /// An initial value: a coordinate `x`, a velocity `x'` (0 if unset) or a state mass `m`.
     #[arg(long = "init", value_name = "NAME=VALUE")]
     pub init: Vec<String>,

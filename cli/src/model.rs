@@ -131,6 +131,38 @@ impl LoadedModel {
     }
 }
 
+impl LoadedModel {
+    /// The model derived again with each table of `files` (name, path) read from its path
+    /// (`--table`, docs/tables.md#runtime-tables): a `= runtime` table gets its data, a file
+    /// table other data, both with the statement's options. Every name must be a table of
+    /// the model and every path readable (`run::tables::apply` checks both first).
+    pub fn with_tables(mut self, files: &[(String, PathBuf)]) -> Result<LoadedModel, CliError> {
+        for ast in [&mut self.ast, &mut self.selected] {
+            for statement in &mut ast.statements {
+                let StatementKind::Table(decl) = &mut statement.kind else {
+                    continue;
+                };
+                if let Some((_, path)) = files.iter().find(|(name, _)| *name == decl.name.node) {
+                    // An absolute path: the derivation joins it to the model's directory.
+                    decl.file.node = path.to_string_lossy().into_owned();
+                    decl.runtime = false;
+                }
+            }
+        }
+        let derived = derive_in(
+            &self.selected,
+            Parameters::Inferred,
+            Outputs::FULL,
+            &self.base,
+        );
+        self.derivation = derived.map_err(|diagnostics| CliError::Model {
+            rendered: render(&diagnostics, &self.source.0, &self.source.1),
+            count: diagnostics.len(),
+        })?;
+        Ok(self)
+    }
+}
+
 /// Every diagnostic, rustc-style, one after another.
 fn render(diagnostics: &[Diagnostic], source: &str, path: &Path) -> String {
     let file = path.display().to_string();

@@ -283,6 +283,7 @@ fn one_phase_flags_do_not_go_with_a_scene() {
         &["--from", "5"],
         &["--max-steps", "10"],
         &["--input", "u=1"],
+        &["--table", "F=x.eng"],
     ] {
         let args = [&["run", &file][..], flags].concat();
         let (_, stderr) = run(&args, 2);

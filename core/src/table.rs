@@ -25,6 +25,14 @@ pub fn lookup_or_nan(table: &Table, x: f64) -> f64 {
     table.value(x).unwrap_or(f64::NAN)
 }
 
+/// The piece of `table` holding `x` for a Taylor series (`series_coefficient`), or
+/// [`Local::NAN`] where the lookup fails (outside the data under `outside error`, a NaN):
+/// the series is NaN and the Taylor step ends in a typed non-finite error.
+#[inline]
+pub fn local_or_nan(table: &Table, x: f64) -> Local {
+    table.local(x).unwrap_or(Local::NAN)
+}
+
 /// The first time after `after` at which the argument `slope·t + offset` of `table` crosses
 /// one of its knots, t = (knot − offset)/slope; infinity if none does (or the slope is 0
 /// or not finite). What generated systems' `next_stop_time` asks of each table of t, by a

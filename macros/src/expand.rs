@@ -26,19 +26,23 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
         }
     };
     let cx = Ctxt::new();
-    let fields = parameter_fields(&cx, &item_struct);
     let attribute = parse_attribute(attr).map_err(|e| cx.push(e)).ok();
     let model = attribute
         .as_ref()
         .and_then(|a| ModelText::load(&a.source).map_err(|e| cx.push(e)).ok());
     let mut dims = (1, 0);
     let mut generated = None;
-    if let (Some(attribute), Some(model)) = (&attribute, &model) {
-        if let Some(ast) = selected_system(&cx, attribute, model) {
-            dims = dimensions(&ast);
-            let outputs = outputs(&cx, attribute);
-            generated = generate(&cx, &item_struct, &fields, model, &ast, outputs);
-        }
+    let ast = match (&attribute, &model) {
+        (Some(attribute), Some(model)) => selected_system(&cx, attribute, model),
+        _ => None,
+    };
+    // The fields of `= runtime` tables hold their data; every other field is a parameter.
+    let tables = ast.as_ref().map(runtime_tables).unwrap_or_default();
+    let fields = parameter_fields(&cx, &item_struct, &tables);
+    if let (Some(attribute), Some(model), Some(ast)) = (&attribute, &model, &ast) {
+        dims = dimensions(ast);
+        let outputs = outputs(&cx, attribute);
+        generated = generate(&cx, &item_struct, &fields, model, ast, outputs);
     }
     let tracking = model.as_ref().map(ModelText::tracking);
     finish(cx, &item_struct, dims, generated, tracking)
@@ -124,6 +128,15 @@ fn finish(
         }
         (Ok(()), None) => quote!(#item_tokens #tracking),
     }
+}
+
+/// The names of the `table F(..) = runtime` statements: fields of the struct.
+fn runtime_tables(ast: &SystemAst) -> Vec<String> {
+    let names = ast.statements.iter().filter_map(|s| match &s.kind {
+        StatementKind::Table(t) if t.runtime => Some(t.name.node.clone()),
+        _ => None,
+    });
+    names.collect()
 }
 
 /// The number of coordinates and of state masses, for the stub.

@@ -71,6 +71,7 @@ impl ModelText {
         let paths = d
             .tables
             .iter()
+            .filter(|t| !t.runtime)
             .map(|t| t.path.to_string_lossy().into_owned());
         quote!(#(const _: &[u8] = ::core::include_bytes!(#paths);)*)
     }

@@ -6,14 +6,40 @@ use varmass_symbolic::Diagnostic;
 
 use crate::ctxt::Ctxt;
 
-/// The names of the struct's fields, after checking every rule below.
-pub fn parameter_fields(cx: &Ctxt, item: &syn::ItemStruct) -> Vec<syn::Ident> {
+/// The names of the struct's parameter fields (every field but those of the `= runtime`
+/// tables `tables`), after checking every rule below.
+pub fn parameter_fields(cx: &Ctxt, item: &syn::ItemStruct, tables: &[String]) -> Vec<syn::Ident> {
     check_no_generics(cx, item);
     let fields = check_named_fields(cx, item);
-    for field in &fields {
+    let is_table = |f: &syn::Field| {
+        f.ident
+            .as_ref()
+            .is_some_and(|i| tables.contains(&i.to_string()))
+    };
+    check_table_fields(cx, item, &fields, tables);
+    let parameters: Vec<&syn::Field> = fields.iter().filter(|f| !is_table(f)).collect();
+    for field in &parameters {
         check_f64(cx, field);
     }
-    fields.iter().filter_map(|f| f.ident.clone()).collect()
+    parameters.iter().filter_map(|f| f.ident.clone()).collect()
+}
+
+/// Each `table F(..) = runtime` reads its data from the field `F` (docs/tables.md#runtime-tables).
+fn check_table_fields(cx: &Ctxt, item: &syn::ItemStruct, fields: &[syn::Field], tables: &[String]) {
+    for table in tables {
+        let found = fields
+            .iter()
+            .any(|f| f.ident.as_ref().is_some_and(|i| i == table.as_str()));
+        if !found {
+            cx.error_spanned_by(
+                &item.ident,
+                format!(
+                    "table `{table}` is `= runtime`: its data are the struct's field \
+                     `{table}: varmass::core::table::Tabulated` (made by `Self::tabulate_{table}(&points)`)"
+                ),
+            );
+        }
+    }
 }
 
 /// Generated code reads each parameter as `self.name: f64`; a type parameter would leave

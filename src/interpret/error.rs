@@ -50,6 +50,16 @@ pub enum ProgramError {
         /// The S asked for.
         s: usize,
     },
+    /// A `table F(t) = runtime` was given no data (docs/tables.md#runtime-tables): the
+    /// derivation holds a placeholder for it, which a run must not use.
+    #[error(
+        "table `{name}` is `= runtime` and was given no data; give it as a table file \
+         (command line: --table {name}=FILE.eng or FILE.csv)"
+    )]
+    RuntimeTableWithoutData {
+        /// The table.
+        name: String,
+    },
 }
 
 fn list(names: &[String]) -> String {

@@ -98,6 +98,11 @@ impl Program {
         parameters: &[(&str, f64)],
         evaluation: Evaluation,
     ) -> Result<Self, ProgramError> {
+        if let Some(table) = d.tables.iter().find(|t| t.runtime) {
+            return Err(ProgramError::RuntimeTableWithoutData {
+                name: table.name.clone(),
+            });
+        }
         let used = d.used_parameters();
         let env = parameter_env(&d, &used, parameters)?;
         // Law masses → q̇ → ṗ and ṁ, as every evaluator of the state rate stages them.

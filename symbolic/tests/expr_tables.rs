@@ -145,3 +145,97 @@ fn calls_print_with_the_tables_name_and_primes() {
     assert_eq!(pool.table_call(f, 0, xs), call);
     assert_ne!(slope, call);
 }
+
+/// The Taylor series of F(t²) (docs/tables.md#taylor-series) against the chain rule through
+/// the derivative tables, by hand (Faà di Bruno with only a′ = 2t and a″ = 2 nonzero, and
+/// F⁗ = 0 inside a cubic piece: the terms n!/(m₁! m₂! 2^m₂) F^(m₁+m₂) a′^m₁ a″^m₂ with
+/// m₁ + 2m₂ = n):
+///   w₁ = F′ a′,  w₂ = (F″ a′² + F′ a″)/2,  w₃ = (F‴ a′³ + 3 F″ a′ a″)/6,
+///   w₄ = (6 F‴ a′² a″ + 3 F″ a″²)/24,  w₅ = 15 F‴ a′ a″²/120,  w₆ = 15 F‴ a″³/720,
+/// every derivative at a(t₀). The argument t² is not affine, so this is a true composition
+/// (F(t²) is a polynomial of degree 6 in t on the piece: w₇ = 0).
+#[test]
+fn the_taylor_series_of_a_table_call_is_the_chain_rule_through_its_derivative_tables() {
+    use varmass_symbolic::expr::TaylorJet;
+    for interpolation in [
+        Interpolation::Linear,
+        Interpolation::Pchip,
+        Interpolation::Spline,
+    ] {
+        let mut pool = ExprPool::new();
+        let t = pool.symbols_mut().add("t", SymbolKind::Time);
+        let f = pool
+            .add_table("F", table(interpolation, Outside::Error))
+            .unwrap();
+        let ts = pool.sym(t);
+        let square = pool.mul(&[ts, ts]);
+        let call = pool.table_call(f, 0, square);
+        // The derivative tables, built in the pool up to order 3.
+        pool.table_call(f, 3, square);
+        let tape = pool.compile_taylor(&[call], &[t]);
+        let env = vec![0.0; pool.symbols().len()];
+        for t0 in [0.3, 1.3, 1.9] {
+            let mut jet = TaylorJet::new();
+            tape.begin(&mut jet, 7, &env);
+            for k in 0..=7 {
+                let tk = match k {
+                    0 => t0,
+                    1 => 1.0,
+                    _ => 0.0,
+                };
+                tape.set_input(&mut jet, 0, k, tk);
+                tape.advance(&mut jet, k);
+            }
+            let a = t0 * t0;
+            let d = |order: u8| pool.table(f, order).unwrap().value(a).unwrap();
+            let (a1, a2) = (2.0 * t0, 2.0);
+            let expected = [
+                d(0),
+                d(1) * a1,
+                (d(2) * a1 * a1 + d(1) * a2) / 2.0,
+                (d(3) * a1.powi(3) + 3.0 * d(2) * a1 * a2) / 6.0,
+                (6.0 * d(3) * a1 * a1 * a2 + 3.0 * d(2) * a2 * a2) / 24.0,
+                15.0 * d(3) * a1 * a2 * a2 / 120.0,
+                15.0 * d(3) * a2.powi(3) / 720.0,
+                0.0,
+            ];
+            for (k, want) in expected.iter().enumerate() {
+                let got = tape.output(&jet, 0, k);
+                // Measured ≤ 4.4e-16 relative to max(|w_k|, 1); bound 1e-14.
+                let error = (got - want).abs() / want.abs().max(1.0);
+                assert!(
+                    error <= 1e-14,
+                    "{interpolation:?} t0 {t0} k {k}: {got} vs {want}"
+                );
+            }
+        }
+    }
+}
+
+/// Outside the data under `outside error` the series is NaN (a typed non-finite error in a
+/// Taylor run), under `outside zero` zero at every order.
+#[test]
+fn the_taylor_series_outside_the_data_follows_the_rule() {
+    use varmass_symbolic::expr::TaylorJet;
+    for (outside, nan) in [(Outside::Error, true), (Outside::Zero, false)] {
+        let mut pool = ExprPool::new();
+        let t = pool.symbols_mut().add("t", SymbolKind::Time);
+        let f = pool
+            .add_table("F", table(Interpolation::Spline, outside))
+            .unwrap();
+        let ts = pool.sym(t);
+        let call = pool.table_call(f, 0, ts);
+        let tape = pool.compile_taylor(&[call], &[t]);
+        let mut jet = TaylorJet::new();
+        tape.begin(&mut jet, 3, &[0.0]);
+        for (k, tk) in [5.0, 1.0, 0.0, 0.0].into_iter().enumerate() {
+            tape.set_input(&mut jet, 0, k, tk);
+            tape.advance(&mut jet, k);
+            let w = tape.output(&jet, 0, k);
+            assert_eq!(w.is_nan(), nan, "{outside:?} k {k}: {w}");
+            if !nan {
+                assert_eq!(w, 0.0);
+            }
+        }
+    }
+}

@@ -272,3 +272,42 @@ force y: F(t)
         19,
     );
 }
+
+#[test]
+fn a_runtime_table_derives_over_a_placeholder_and_its_checks_hold() {
+    // `= runtime` then options: no file read; the derivation's checks evaluate the
+    // placeholder (they test algebra), so a true check holds and a false one fails.
+    let source = RAMP.replace(r#""ramp.csv""#, "runtime, pchip, outside hold");
+    let ast = parse_system(&source).unwrap();
+    let decl = ast
+        .statements
+        .iter()
+        .find_map(|s| match &s.kind {
+            StatementKind::Table(t) => Some(t.clone()),
+            _ => None,
+        })
+        .unwrap();
+    assert!(decl.runtime);
+    assert_eq!(
+        (decl.interpolation, decl.outside),
+        (Interpolation::Pchip, Outside::Hold)
+    );
+    let d = derive(&source).unwrap();
+    assert!(d.tables[0].runtime);
+    assert_eq!(d.tables[0].path, PathBuf::new());
+    assert!(d.pool.is_runtime_table(d.tables[0].index));
+    assert!(!matches!(
+        d.checks[0].verdict,
+        Identity::Refuted { .. } | Identity::Undecided
+    ));
+    let wrong = source.replace("check y'' = F(t)/m - g", "check y'' = (F(t) + 1)/m - g");
+    error(&wrong, "check", 7, 1);
+    // A misspelt `runtime` is a file name expected, with `runtime` in the help.
+    let misspelt = RAMP.replace(r#""ramp.csv""#, "runtim");
+    let d = parse_error(&misspelt, "expected a file name in double quotes", 2, 14);
+    assert!(
+        d.help.iter().any(|h| h.contains("= runtime")),
+        "{:?}",
+        d.help
+    );
+}

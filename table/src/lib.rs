@@ -12,6 +12,9 @@
 //! * [`Table`]: an interpolant with its [`Outside`] rule (`error`, `zero`, `hold`); lookups
 //!   remember their interval (a [`Cursor`] or the table's own hint) and fall back to a binary
 //!   search; the [`knots`](Table::knots) are where the table may be non-smooth.
+//! * [`Tabulated`]: a table with its derivative tables built once, the field of a generated
+//!   system for a `table F(t) = runtime` statement; [`Tabulated::transformed`] scales its
+//!   values and stretches its argument (an ensemble dispersing a thrust curve).
 //!
 //! The crate is `no_std` (with `alloc`) without its `std` feature, as `varmass-core`.
 //! The design, and how the DSL uses tables, is in `docs/tables.md`.
@@ -40,7 +43,9 @@ mod interpolant;
 mod piecewise;
 mod points;
 mod rasp;
+mod series;
 mod table;
+mod tabulated;
 mod text;
 
 pub use csv::CsvTable;
@@ -49,4 +54,6 @@ pub use interpolant::Interpolation;
 pub use piecewise::Piecewise;
 pub use points::{InvalidPoints, Points};
 pub use rasp::Motor;
+pub use series::{series_coefficient, Local};
 pub use table::{Cursor, Outside, Table, END_SLACK};
+pub use tabulated::Tabulated;

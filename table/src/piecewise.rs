@@ -194,6 +194,35 @@ impl Piecewise {
         Self::from_parts(self.knots.to_vec(), coefficients, self.degree + 1)
     }
 
+    /// The curve scaled by `value_scale` and stretched by `argument_scale`:
+    /// q(x) = k·p(x/s) for k = `value_scale`, s = `argument_scale`, on the knots s·xᵢ. On
+    /// each piece q(x) = Σₖ (k·cᵢₖ/sᵏ)(x − s·xᵢ)ᵏ, since x/s − xᵢ = (x − s·xᵢ)/s. What an
+    /// ensemble disperses a thrust curve with: the total impulse scales by k·s and the burn
+    /// time by s. `None` unless k is finite and s finite and positive, or if the new knots
+    /// or coefficients are not finite and strictly increasing (an overflow or underflow).
+    pub fn transformed(&self, value_scale: f64, argument_scale: f64) -> Option<Self> {
+        let (k, s) = (value_scale, argument_scale);
+        if !(k.is_finite() && s.is_finite() && s > 0.0) {
+            return None;
+        }
+        let knots: Vec<f64> = self.knots.iter().map(|&x| s * x).collect();
+        let increasing = knots.windows(2).all(|w| w[0] < w[1]);
+        if !(increasing && knots.iter().all(|x| x.is_finite())) {
+            return None;
+        }
+        let width = self.degree + 1;
+        let coefficients: Vec<f64> = self
+            .coefficients
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| k * c / s.powi((i % width) as i32))
+            .collect();
+        if !coefficients.iter().all(|c| c.is_finite()) {
+            return None;
+        }
+        Some(Self::from_parts(knots, coefficients, self.degree))
+    }
+
     /// The coefficients of interval `interval`.
     #[inline]
     fn piece(&self, interval: usize) -> &[f64] {

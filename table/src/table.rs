@@ -137,6 +137,14 @@ impl Table {
         Self::from_piecewise(self.curve.derivative(), outside)
     }
 
+    /// The table scaled by `value_scale` and stretched by `argument_scale`, k·F(x/s), with
+    /// the same rule outside (see [`Piecewise::transformed`]; `None` for a scale it
+    /// refuses).
+    pub fn transformed(&self, value_scale: f64, argument_scale: f64) -> Option<Self> {
+        let curve = self.curve.transformed(value_scale, argument_scale)?;
+        Some(Self::from_piecewise(curve, self.outside))
+    }
+
     /// The value at `x` beyond `end`, by the table's rule.
     fn beyond(&self, x: f64, end: End) -> Result<f64, LookupError> {
         match self.outside {
@@ -177,6 +185,30 @@ impl Table {
         } else {
             x
         }
+    }
+
+    /// A cursor on the table's own hint.
+    pub(crate) fn hint_cursor(&self) -> Cursor {
+        Cursor {
+            interval: self.hint.load(Ordering::Relaxed),
+        }
+    }
+
+    /// Stores `cursor` as the table's hint, if it moved.
+    pub(crate) fn store_hint(&self, cursor: Cursor) {
+        if cursor.interval != self.hint.load(Ordering::Relaxed) {
+            self.hint.store(cursor.interval, Ordering::Relaxed);
+        }
+    }
+
+    /// [`Table::snap`] for the Taylor series' piece (`series.rs`).
+    pub(crate) fn snapped(&self, x: f64) -> f64 {
+        self.snap(x)
+    }
+
+    /// The interval a cursor is on.
+    pub(crate) fn cursor_interval(&self, cursor: &Cursor) -> usize {
+        cursor.interval.min(self.curve.intervals() - 1)
     }
 
     /// Where `x` lies: an interval (the cursor moved to it) or beyond an end.

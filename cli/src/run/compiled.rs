@@ -18,13 +18,17 @@ use crate::args::RunArgs;
 use crate::error::CliError;
 use crate::model::LoadedModel;
 
+/// A run's `--input` and `--table` values, which the model is derived again for.
+type RunOptions = (Vec<String>, Vec<String>);
+
 /// A derived model and its program, compiled at the first run and reused by the next.
 pub struct Compiled {
     /// The model run: as loaded, or with the laws of the last run's `--input`s.
     model: LoadedModel,
-    /// The model as loaded when it declares inputs (each run's laws are put in its calls),
-    /// and the `--input`s the current `model` was derived with.
-    declared: Option<(LoadedModel, Option<Vec<String>>)>,
+    /// The model as loaded when it declares inputs or tables (each run's laws are put in
+    /// its calls, each run's `--table` files in its tables), and the `--input`s and
+    /// `--table`s the current `model` was derived with.
+    declared: Option<(LoadedModel, Option<RunOptions>)>,
     /// The parameters the equations read, found once.
     used: Vec<String>,
     /// `None` before the first run, and after a run that failed before giving it back.
@@ -35,7 +39,9 @@ impl Compiled {
     /// The model, not compiled yet (its program needs the first run's values).
     pub fn new(model: LoadedModel) -> Self {
         let used = model.derivation.used_parameters();
-        let declared = (!model.derivation.inputs.is_empty()).then(|| (model.clone(), None));
+        let d = &model.derivation;
+        let declared =
+            (!d.inputs.is_empty() || !d.tables.is_empty()).then(|| (model.clone(), None));
         Self {
             model,
             declared,
@@ -44,23 +50,30 @@ impl Compiled {
         }
     }
 
-    /// Puts the laws `input` (`--input NAME=EXPR`) in the calls of the model's inputs
+    /// Reads the tables `table` (`--table NAME=FILE`, docs/tables.md#runtime-tables) and
+    /// puts the laws `input` (`--input NAME=EXPR`) in the calls of the model's inputs
     /// (docs/inputs.md), deriving the model again when they differ from the last run's;
-    /// a missing law, or a law for a model without inputs, is the tool's input error.
-    fn apply_laws(&mut self, input: &[String]) -> Result<(), CliError> {
+    /// a missing law, a law for a model without inputs, a bad table file or name is the
+    /// tool's input error.
+    fn apply_laws(&mut self, input: &[String], table: &[String]) -> Result<(), CliError> {
         let Some((declared, current)) = &mut self.declared else {
-            // No inputs: nothing to do (no copy: an ensemble member passes here), and any
-            // `--input` is refused as `apply` would refuse it.
+            // No inputs and no tables: nothing to do (no copy: an ensemble member passes
+            // here), and any `--input` or `--table` is refused as `apply` would refuse it.
+            if !table.is_empty() {
+                super::tables::apply(self.model.clone(), table)?;
+            }
             return match input.is_empty() {
                 true => Ok(()),
                 false => super::inputs::laws(input, &[]).map(|_| ()),
             };
         };
-        if current.as_deref() == Some(input) {
+        let options = (input.to_vec(), table.to_vec());
+        if current.as_ref() == Some(&options) {
             return Ok(());
         }
-        self.model = super::inputs::apply(declared.clone(), input)?;
-        *current = Some(input.to_vec());
+        let tabled = super::tables::apply(declared.clone(), table)?;
+        self.model = super::inputs::apply(tabled, input)?;
+        *current = Some(options);
         self.used = self.model.derivation.used_parameters();
         self.program = None;
         Ok(())
@@ -117,7 +130,7 @@ impl Compiled {
         warn: impl FnMut(&str),
         finish: impl FnOnce(&mut Outcome, &Plan) -> T,
     ) -> Result<T, CliError> {
-        self.apply_laws(&args.input)?;
+        self.apply_laws(&args.input, &args.table)?;
         let program = self.program(&values, warn)?;
         let planned = plan::plan_with(args, values, &program, &self.model.selected);
         let mut plan = match planned {

@@ -20,6 +20,9 @@ pub fn apply(model: LoadedModel, options: &[String]) -> Result<LoadedModel, CliE
     if model.derivation.inputs.is_empty() && options.is_empty() {
         return Ok(model);
     }
+    // `--input u=FILE.csv`: a table of u's first argument, and its law (docs/tables.md).
+    let (model, options) = super::input_tables::apply(model, options)?;
+    let options = options.as_slice();
     let laws = laws(options, &model.derivation.inputs)?;
     model.with_laws(&laws)
 }

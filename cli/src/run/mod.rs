@@ -6,6 +6,7 @@ pub(crate) mod compiled;
 pub(crate) mod dispatch;
 #[cfg(test)]
 mod fuzz;
+pub(crate) mod input_tables;
 pub(crate) mod inputs;
 pub(crate) mod integrate;
 pub(crate) mod names;
@@ -13,6 +14,7 @@ pub(crate) mod output;
 pub(crate) mod plan;
 pub(crate) mod plot;
 pub(crate) mod record;
+pub(crate) mod tables;
 pub(crate) mod watch;
 
 use std::path::Path;
@@ -107,7 +109,9 @@ pub fn program(
     model: LoadedModel,
     mut warn: impl FnMut(&str),
 ) -> Result<Prepared, CliError> {
-    // Each input's law from `--input`, put in place of its calls (docs/inputs.md).
+    // Each table's data from `--table` (docs/tables.md#runtime-tables), then each input's
+    // law from `--input`, put in place of its calls (docs/inputs.md).
+    let model = tables::apply(model, &args.table)?;
     let model = inputs::apply(model, &args.input)?;
     let values = plan::parameters(args)?;
     for warning in plan::unused_parameters(&model.derivation, &values) {

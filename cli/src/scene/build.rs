@@ -179,6 +179,7 @@ fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String
     let scene = &read.scene;
     RunArgs {
         input: Vec::new(),
+        table: Vec::new(),
         model: ModelArgs {
             file,
             with: in_force.with.clone(),
@@ -394,6 +395,7 @@ fn program_of(file: &Path, in_force: &InForce) -> Result<Program, CliError> {
 fn program_from(model: LoadedModel, in_force: &InForce) -> Result<Program, CliError> {
     let args = RunArgs {
         input: Vec::new(),
+        table: Vec::new(),
         model: ModelArgs {
             file: PathBuf::new(),
             with: in_force.with.clone(),

@@ -245,7 +245,7 @@ impl Syntax for RustSyntax {
         };
         if let Func::Table { table, order } = func {
             let a = &p.get(*first).text;
-            let table_static = super::tables::static_name(table, order);
+            let table_static = super::tables::reference(p.pool(), table, order);
             let runtime = &self.runtime;
             return atom(match self.lookups {
                 Lookups::Fallible => {

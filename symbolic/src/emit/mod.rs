@@ -71,6 +71,7 @@ pub fn emit_system_for(
     let name = &target.name;
     let runtime = &target.runtime;
     let statics = (d.pool.table_count() > 0).then(|| tables::statics(&d.pool, runtime));
+    let constructors = tables::constructors(d, runtime);
     let emitter = Emitter {
         d,
         target,
@@ -138,6 +139,7 @@ pub fn emit_system_for(
             /// The parameters (fields) the equations use, in order.
             #units_doc
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
+            #constructors
         }
 
         #inputs_trait

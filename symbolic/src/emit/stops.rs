@@ -7,7 +7,7 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use super::system::{Emitter, Input};
-use super::tables::static_name;
+use super::tables::reference;
 use crate::expr::Id;
 use crate::mechanics::TimeTable;
 
@@ -22,7 +22,7 @@ impl Emitter<'_> {
         let roots: Vec<Id> = tables.iter().flat_map(|t| [t.slope, t.offset]).collect();
         let statics: Vec<TokenStream> = tables
             .iter()
-            .map(|t| super::expression::tokens(&static_name(t.table, 0)))
+            .map(|t| super::expression::tokens(&reference(&self.d.pool, t.table, 0)))
             .collect();
         let body = self.body(Input::Configuration, &roots, |outs| {
             let slopes = outs.iter().step_by(2);

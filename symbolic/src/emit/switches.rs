@@ -3,11 +3,11 @@
 //! table of the state (docs/tables.md#knots-are-switches), whose anchor is the knot
 //! bracket of the call's argument and whose g is the distance to the bracket's nearer end.
 
-use proc_macro2::{Ident, Literal, Span, TokenStream};
+use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::system::{Emitter, Input};
-use super::tables::static_name;
+use super::tables::reference;
 use crate::expr::Id;
 use crate::mechanics::TableSwitch;
 
@@ -39,9 +39,9 @@ impl Emitter<'_> {
                 .map(|(i, name)| format!("g_{i} = {name}")),
         );
         let m = switches.len();
-        let statics: Vec<Ident> = tables
+        let statics: Vec<TokenStream> = tables
             .iter()
-            .map(|s| Ident::new(&static_name(s.table, 0), Span::call_site()))
+            .map(|s| super::expression::tokens(&reference(&self.d.pool, s.table, 0)))
             .collect();
         let table_slots: Vec<Literal> = (m..m + tables.len())
             .map(Literal::usize_unsuffixed)
@@ -93,7 +93,7 @@ impl Emitter<'_> {
         &self,
         switches: &[Id],
         tables: &[TableSwitch],
-        statics: &[Ident],
+        statics: &[TokenStream],
         slots: &[Literal],
     ) -> TokenStream {
         if tables.is_empty() {

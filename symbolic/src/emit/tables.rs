@@ -1,17 +1,52 @@
 //! Tables in generated code (docs/tables.md#the-macro-data-embedded-at-compile-time): one
 //! `static` per table and derivative order the pool holds, over the interpolant's
 //! coefficients computed at compile time and printed with `{:?}` (which round-trips every
-//! `f64`), so the generated code parses nothing and allocates nothing.
+//! `f64`), so the generated code parses nothing and allocates nothing. A `= runtime`
+//! table is the struct's field instead, with a constructor over the user's data.
 
 use proc_macro2::TokenStream;
 
 use super::expression::tokens;
 use crate::expr::ExprPool;
+use crate::mechanics::Derivation;
 use varmass_table::Outside;
 
 /// The static holding order `order` of table `table`.
 pub(crate) fn static_name(table: u16, order: u8) -> String {
     format!("__VARMASS_TABLE_{table}_{order}")
+}
+
+/// How generated code names order `order` of table `table` (a `&Table` place): its static,
+/// or for a `= runtime` table the struct's field, a `Tabulated` holding every order
+/// (docs/tables.md#runtime-tables).
+pub(crate) fn reference(pool: &ExprPool, table: u16, order: u8) -> String {
+    if pool.is_runtime_table(table) {
+        format!("(*self.{}.order({order}))", pool.table_name(table))
+    } else {
+        static_name(table, order)
+    }
+}
+
+/// For each `= runtime` table, `pub fn tabulate_F(points) -> Tabulated`: the field's value
+/// over the user's data, with the statement's interpolation and rule.
+pub(crate) fn constructors(d: &Derivation, runtime: &TokenStream) -> TokenStream {
+    let runtime = runtime.to_string();
+    let mut text = String::new();
+    for t in d.tables.iter().filter(|t| t.runtime) {
+        let interpolation = format!("{:?}", t.interpolation);
+        let outside = format!("{:?}", t.outside);
+        text.push_str(&format!(
+            "/// The value of the field `{name}` (`table {name}(..) = runtime`): the table \
+             interpolating `points` as the model says ({interpolation}, outside \
+             {outside}), with its derivative tables.\n\
+             #[allow(non_snake_case)]\n\
+             pub fn tabulate_{name}(points: &{runtime}::table::Points) -> {runtime}::table::Tabulated {{\n\
+             {runtime}::table::Tabulated::new(points, {runtime}::table::Interpolation::{interpolation}, \
+             {runtime}::table::Outside::{outside})\n}}\n",
+            name = t.name,
+        ));
+    }
+    tokens(&text)
 }
 
 /// Every table's statics (nothing for a system without tables).
@@ -22,6 +57,9 @@ pub(crate) fn statics(pool: &ExprPool, runtime: &TokenStream) -> TokenStream {
         let Ok(table) = u16::try_from(table) else {
             break;
         };
+        if pool.is_runtime_table(table) {
+            continue;
+        }
         for order in 0..=u8::MAX {
             let Some(t) = pool.table(table, order) else {
                 break;

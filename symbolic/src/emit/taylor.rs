@@ -382,5 +382,49 @@ fn op(
             let (a, b, larger) = (n(a), n(b), matches!(instr.op, Op::Max(..)));
             quote!(#w[#k] = #ts::min_max(&#a, &#b, #k, #larger);)
         }
+        Op::Table {
+            a,
+            table,
+            order,
+            h,
+            piece,
+            ..
+        } => table_op(d, (w, n(a), n(h)), (table, order), piece, names, k, rt),
     }
+}
+
+/// A table call (docs/tables.md#taylor-series): the piece holding a\[0\] looked up at
+/// order 0 into the `piece` slots, then the series by the same function the tapes call.
+fn table_op(
+    d: &Derivation,
+    (w, a, h): (Ident, Ident, Ident),
+    (table, order): (u16, u8),
+    piece: usize,
+    names: &Names,
+    k: &TokenStream,
+    rt: &TokenStream,
+) -> TokenStream {
+    let reference = super::tables::reference(&d.pool, table, order);
+    let reference = super::expression::tokens(&reference);
+    let [p0, p1, p2, p3, p4] = [0, 1, 2, 3, 4].map(|i| names.of(piece + i));
+    quote! {{
+        let __local = if #k == 0 {
+            let __l = #rt::table::local_or_nan(&#reference, #a[0]);
+            #p0[0] = __l.knot;
+            #p1[0] = __l.coefficients[0];
+            #p2[0] = __l.coefficients[1];
+            #p3[0] = __l.coefficients[2];
+            #p4[0] = __l.coefficients[3];
+            __l
+        } else {
+            #rt::table::Local {
+                knot: #p0[0],
+                coefficients: [#p1[0], #p2[0], #p3[0], #p4[0]],
+                value: f64::NAN,
+            }
+        };
+        let (__h, __w) = #rt::table::series_coefficient(&__local, |j| #a[j], |j| #h[j], #k);
+        #h[#k] = __h;
+        #w[#k] = __w;
+    }}
 }

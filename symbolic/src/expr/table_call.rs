@@ -15,6 +15,9 @@ use varmass_table::Table;
 pub(crate) struct PoolTable {
     pub(crate) name: String,
     pub(crate) orders: Vec<Arc<Table>>,
+    /// `= runtime`: generated code reads the struct's field, not a static of `orders`
+    /// (whose data are a placeholder the derivation's checks evaluate).
+    pub(crate) runtime: bool,
 }
 
 impl ExprPool {
@@ -25,8 +28,27 @@ impl ExprPool {
         self.tables.push(PoolTable {
             name: name.to_owned(),
             orders: vec![Arc::new(table)],
+            runtime: false,
         });
         Some(index)
+    }
+
+    /// Registers a `= runtime` table under `name`, `placeholder` standing in for its data
+    /// where the derivation evaluates it (the checks at random points test algebra, not
+    /// data); generated code reads the struct's field instead ([`is_runtime_table`]).
+    ///
+    /// [`is_runtime_table`]: Self::is_runtime_table
+    pub fn add_runtime_table(&mut self, name: &str, placeholder: Table) -> Option<u16> {
+        let index = self.add_table(name, placeholder)?;
+        self.tables[usize::from(index)].runtime = true;
+        Some(index)
+    }
+
+    /// Whether table `table` is `= runtime` (its data not known to the derivation).
+    pub fn is_runtime_table(&self, table: u16) -> bool {
+        self.tables
+            .get(usize::from(table))
+            .is_some_and(|t| t.runtime)
     }
 
     /// The call `Table{table, order}(argument)`, building the derivative tables up to

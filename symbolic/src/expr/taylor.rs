@@ -27,6 +27,8 @@ use super::pool::ExprPool;
 use super::rational::Rational;
 use super::symbol::Symbol;
 use rustc_hash::FxHashMap;
+use std::sync::Arc;
+use varmass_table::Table;
 
 /// One recurrence; its result goes to slot `out` of the [`Instr`] holding it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,6 +103,18 @@ pub(crate) enum Op {
     /// The series of the argument smaller (larger) at order 0; the first at a tie.
     Min(usize, usize),
     Max(usize, usize),
+    /// Order `order` of table `table` of a (`tables[index]` of the tape): the cubic of the
+    /// piece holding a\[0\] composed with a's series by Horner's rule
+    /// (`varmass_table::series_coefficient`), its stage h₁ in slot `h` and the piece (knot,
+    /// c₀ … c₃) in the slots `piece` … `piece + 4`, written at order 0.
+    Table {
+        a: usize,
+        table: u16,
+        order: u8,
+        index: usize,
+        h: usize,
+        piece: usize,
+    },
 }
 
 /// An operation and the slot it writes.
@@ -123,6 +137,8 @@ pub struct TaylorTape {
     /// Whether each output depends on an input (is a series, not a constant).
     series_outputs: Vec<bool>,
     slots: usize,
+    /// The tables the `Op::Table` instructions read, by their `index`.
+    tables: Vec<Arc<Table>>,
 }
 
 /// The coefficients of every slot of a [`TaylorTape`] up to some order: the caller-owned
@@ -174,6 +190,8 @@ struct Compiler<'p> {
     sinh_cosh: FxHashMap<usize, (usize, usize)>,
     /// Symbols compiled through an expression in place of their input slot.
     substitutions: &'p [(Symbol, Id)],
+    /// The tables `Op::Table` reads (every tape of the stages gets them all).
+    tables: Vec<Arc<Table>>,
 }
 
 impl ExprPool {
@@ -222,6 +240,7 @@ impl ExprPool {
             sin_cos: FxHashMap::default(),
             sinh_cosh: FxHashMap::default(),
             substitutions,
+            tables: Vec::new(),
         };
         let input_slots: Vec<usize> = inputs.iter().map(|_| c.new_slot(true)).collect();
         let mut tapes = Vec::new();
@@ -240,10 +259,12 @@ impl ExprPool {
                 operands: c.operands.clone(),
                 inputs: input_slots.clone(),
                 outputs,
+                tables: Vec::new(),
             });
         }
         for tape in &mut tapes {
             tape.slots = c.is_series.len();
+            tape.tables.clone_from(&c.tables);
         }
         tapes
     }
@@ -412,11 +433,8 @@ impl Compiler<'_> {
     }
 
     fn call1(&mut self, f: Func, a: usize) -> usize {
-        if matches!(f, Func::Table { .. }) {
-            // No recurrence for a table yet (docs/tables.md: a polynomial per interval, valid
-            // while the argument stays in it): NaN coefficients, so a Taylor step ends in the
-            // typed NonFiniteState error instead of a silently wrong series.
-            return self.emit(Op::Const(f64::NAN), &[]);
+        if let Func::Table { table, order } = f {
+            return self.table(a, table, order);
         }
         if !self.series(a) {
             // Constant: the pair and companion slots are not needed.
@@ -482,6 +500,32 @@ impl Compiler<'_> {
                 self.emit(Op::Const(f64::NAN), &[])
             }
         }
+    }
+
+    /// Order `order` of table `table` of the slot `a` (docs/tables.md#taylor-series): a
+    /// polynomial of the piece holding a\[0\], valid while the step stays in it (knots are
+    /// stop times or switching functions). An unknown table is NaN.
+    fn table(&mut self, a: usize, table: u16, order: u8) -> usize {
+        let Some(t) = self.pool.table(table, order) else {
+            return self.emit(Op::Const(f64::NAN), &[]);
+        };
+        let index = self.tables.len();
+        self.tables.push(Arc::clone(t));
+        let series = self.series(a);
+        let h = self.new_slot(series);
+        let piece = self.new_slot(series);
+        for _ in 1..5 {
+            self.new_slot(series);
+        }
+        let op = Op::Table {
+            a,
+            table,
+            order,
+            index,
+            h,
+            piece,
+        };
+        self.emit(op, &[a])
     }
 
     /// The slots of (sin a, cos a), or (sinh a, cosh a), made once per argument.
@@ -615,7 +659,7 @@ impl TaylorTape {
         jet.coefficients.clear();
         jet.coefficients.resize(self.slots * jet.stride, 0.0);
         for instr in &self.fixed {
-            recurrence::run(instr, &self.operands, env, jet, 0);
+            recurrence::run(instr, (&self.operands, &self.tables), env, jet, 0);
         }
     }
 
@@ -624,7 +668,7 @@ impl TaylorTape {
     /// subexpressions that depend on no input, leaving the rest of the jet as it is.
     pub fn begin_more(&self, jet: &mut TaylorJet, env: &[f64]) {
         for instr in &self.fixed {
-            recurrence::run(instr, &self.operands, env, jet, 0);
+            recurrence::run(instr, (&self.operands, &self.tables), env, jet, 0);
         }
     }
 
@@ -642,7 +686,7 @@ impl TaylorTape {
             return;
         }
         for instr in &self.series {
-            recurrence::run(instr, &self.operands, &[], jet, k);
+            recurrence::run(instr, (&self.operands, &self.tables), &[], jet, k);
         }
     }
 

@@ -60,7 +60,7 @@ pub use resolve::{is_reserved, Parameters};
 pub use stages::RateStages;
 pub use stops::{time_tables, TimeTable};
 pub use switches::{switching_functions, table_switches, TableSwitch};
-pub use tables::{read_points, ModelTable};
+pub use tables::{read_points, runtime_placeholder, ModelTable};
 pub use unit_table::UnitTable;
 
 // The driver that runs resolution, the units check and the derivation in turn lives above

@@ -10,7 +10,7 @@ use super::build::Builder;
 use super::resolve::Binding;
 use crate::parse::ast::TableDecl;
 use crate::parse::{Diagnostic, Span};
-use varmass_table::{CsvTable, Interpolation, Motor, Outside, Points, Table};
+use varmass_table::{CsvTable, Interpolation, Motor, Outside, Piecewise, Points, Table};
 
 /// A table of the model.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,8 +27,24 @@ pub struct ModelTable {
     pub outside: Outside,
     /// Its index in the pool ([`crate::expr::ExprPool::table`]).
     pub index: u16,
-    /// Where the statement names the file.
+    /// Where the statement names the file (or says `runtime`).
     pub span: Span,
+    /// `= runtime`: the data come from the struct's field or the tool's `--table`; the pool
+    /// holds a placeholder ([`runtime_placeholder`]) and `path` is empty.
+    pub runtime: bool,
+}
+
+/// The data a `= runtime` table's placeholder interpolates, where the derivation evaluates
+/// the table (its checks at random points, which extrapolate the pieces): any points do,
+/// since the checks test algebra; these have pieces of every slope sign.
+pub fn runtime_placeholder(interpolation: Interpolation, outside: Outside) -> Table {
+    match Points::new(vec![0.0, 1.0, 2.0, 3.0], vec![1.0, 2.0, 1.5, 3.0]) {
+        Ok(points) => Table::new(&points, interpolation, outside),
+        // Not reached (the points are valid); a line rather than a panic.
+        Err(_) => {
+            Table::from_piecewise(Piecewise::from_static(&[0.0, 1.0], &[1.0, 1.0], 1), outside)
+        }
+    }
 }
 
 /// The points of `decl`'s file, read relative to `base`, and the path read.
@@ -65,6 +81,10 @@ impl Builder {
         if !self.check_new_name(&decl.name.node, decl.name.span, "table") {
             return;
         }
+        if decl.runtime {
+            self.declare_runtime_table(decl);
+            return;
+        }
         let (points, path) = match read_points(decl, &self.base) {
             Ok(read) => read,
             Err(diagnostic) => {
@@ -94,6 +114,34 @@ impl Builder {
             outside: decl.outside,
             index,
             span: decl.file.span,
+            runtime: false,
+        });
+    }
+
+    /// Binds the name of a `= runtime` table over a placeholder.
+    fn declare_runtime_table(&mut self, decl: &TableDecl) {
+        let placeholder = runtime_placeholder(decl.interpolation, decl.outside);
+        let Some(index) = self
+            .model
+            .pool
+            .add_runtime_table(&decl.name.node, placeholder)
+        else {
+            self.errors
+                .push(Diagnostic::new(decl.name.span, "too many tables"));
+            return;
+        };
+        self.model
+            .names
+            .insert(decl.name.node.clone(), Binding::Table(index));
+        self.model.tables.push(ModelTable {
+            name: decl.name.node.clone(),
+            file: decl.file.node.clone(),
+            path: PathBuf::new(),
+            interpolation: decl.interpolation,
+            outside: decl.outside,
+            index,
+            span: decl.file.span,
+            runtime: true,
         });
     }
 }

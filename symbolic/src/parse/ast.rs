@@ -164,7 +164,8 @@ pub struct InputDecl {
     pub every: Option<Spanned<String>>,
 }
 
-/// A `table` statement: `table NAME(ARG) = "FILE" [, OPTION]*`.
+/// A `table` statement: `table NAME(ARG) = "FILE" [, OPTION]*` or
+/// `table NAME(ARG) = runtime [, OPTION]*`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TableDecl {
     /// The table's name, called as a function.
@@ -172,8 +173,11 @@ pub struct TableDecl {
     /// The parameter's name inside the statement (at a call the argument is any expression).
     pub parameter: Spanned<String>,
     /// The file as written (without the quotes), relative to the model file; the span
-    /// covers the quotes.
+    /// covers the quotes. For `= runtime`, the word `runtime` and its span.
     pub file: Spanned<String>,
+    /// `= runtime`: the data come from the struct's field (the macro) or `--table` (the
+    /// command line tool), not from a file (docs/tables.md#runtime-tables).
+    pub runtime: bool,
     /// `linear` (default), `pchip` or `spline`.
     pub interpolation: varmass_table::Interpolation,
     /// `outside error` (default), `outside zero` or `outside hold`.

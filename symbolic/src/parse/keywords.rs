@@ -63,6 +63,8 @@ pub const INPUT: &str = "input";
 pub const EVERY: &str = "every";
 /// The option of a table naming what it is worth outside its data.
 pub const OUTSIDE: &str = "outside";
+/// `table F(t) = runtime`: the table's data are given at run time (docs/tables.md).
+pub const RUNTIME: &str = "runtime";
 
 /// Every statement keyword, for "expected one of" messages.
 pub const STATEMENTS: &[&str] = &[

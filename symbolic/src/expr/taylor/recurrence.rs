@@ -8,6 +8,8 @@
 use super::super::func::{max, min, sign};
 use super::super::tape::power;
 use super::{Instr, Op, TaylorJet};
+use std::sync::Arc;
+use varmass_table::{series_coefficient, Local, Table};
 
 /// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the
 /// range into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)): four
@@ -34,9 +36,18 @@ pub(super) fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 
 }
 
 /// Coefficient `k` of the slots `instr` writes (k = 0: the value).
-pub(super) fn run(instr: &Instr, operands: &[usize], env: &[f64], jet: &mut TaylorJet, k: usize) {
+pub(super) fn run(
+    instr: &Instr,
+    (operands, tables): (&[usize], &[Arc<Table>]),
+    env: &[f64],
+    jet: &mut TaylorJet,
+    k: usize,
+) {
     let out = instr.out;
     let value = match instr.op {
+        Op::Table {
+            a, index, h, piece, ..
+        } => return table(jet, tables.get(index), (out, h, piece), a, k),
         Op::SinCos { a, cos } => return pair(jet, (out, cos), a, k, -1.0),
         Op::SinhCosh { a, cosh } => return pair(jet, (out, cosh), a, k, 1.0),
         Op::Tan { a, v, sign, f } => return tan(jet, (out, v), a, k, (sign, f)),
@@ -70,7 +81,7 @@ fn value(op: Op, operands: &[usize], env: &[f64], jet: &TaylorJet) -> f64 {
         Op::Sign(a) => sign(at(a)),
         Op::Min(a, b) => min(at(a), at(b)),
         Op::Max(a, b) => max(at(a), at(b)),
-        Op::SinCos { .. } | Op::SinhCosh { .. } | Op::Tan { .. } => f64::NAN,
+        Op::SinCos { .. } | Op::SinhCosh { .. } | Op::Tan { .. } | Op::Table { .. } => f64::NAN,
     }
 }
 
@@ -139,7 +150,7 @@ fn coefficient(op: Op, operands: &[usize], jet: &TaylorJet, out: usize, k: usize
         }
         Op::Min(a, b) => at(if at(a, 0) <= at(b, 0) { a } else { b }, k),
         Op::Max(a, b) => at(if at(a, 0) >= at(b, 0) { a } else { b }, k),
-        Op::SinCos { .. } | Op::SinhCosh { .. } | Op::Tan { .. } => f64::NAN,
+        Op::SinCos { .. } | Op::SinhCosh { .. } | Op::Tan { .. } | Op::Table { .. } => f64::NAN,
     }
 }
 
@@ -178,4 +189,35 @@ fn tan(
     let square = sum(0, k + 1, |j| jet.get(w, j) * jet.get(w, k - j));
     let one = if k == 0 { 1.0 } else { 0.0 };
     jet.set(v, k, one + sign * square);
+}
+
+/// w = F(a) for a table F: at order 0 the piece holding a\[0\] (NaN if the lookup fails)
+/// into the slots `piece` … `piece + 4`; then `varmass_table::series_coefficient`, which
+/// generated code calls too.
+fn table(
+    jet: &mut TaylorJet,
+    table: Option<&Arc<Table>>,
+    (w, h, piece): (usize, usize, usize),
+    a: usize,
+    k: usize,
+) {
+    let local = if k == 0 {
+        let x = jet.get(a, 0);
+        let local = table.map_or(Local::NAN, |t| t.local(x).unwrap_or(Local::NAN));
+        jet.set(piece, 0, local.knot);
+        for (j, c) in local.coefficients.iter().enumerate() {
+            jet.set(piece + 1 + j, 0, *c);
+        }
+        local
+    } else {
+        let c = |j: usize| jet.get(piece + 1 + j, 0);
+        Local {
+            knot: jet.get(piece, 0),
+            coefficients: [c(0), c(1), c(2), c(3)],
+            value: f64::NAN,
+        }
+    };
+    let (hk, wk) = series_coefficient(&local, |j| jet.get(a, j), |j| jet.get(h, j), k);
+    jet.set(h, k, hk);
+    jet.set(w, k, wk);
 }

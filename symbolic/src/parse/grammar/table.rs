@@ -1,5 +1,5 @@
-//! `table NAME(ARG) = "FILE" [, OPTION]*` (docs/tables.md#statements): options after the
-//! file in any order, `linear` (default) | `pchip` | `spline` and `outside error` (default)
+//! `table NAME(ARG) = "FILE" [, OPTION]*` or `table NAME(ARG) = runtime [, OPTION]*`
+//! (docs/tables.md#statements): options after the file in any order, `linear` (default) | `pchip` | `spline` and `outside error` (default)
 //! | `outside zero` | `outside hold`; a repeated or contradictory option is a diagnostic at
 //! the second one.
 
@@ -28,11 +28,12 @@ impl<'a> Grammar<'a> {
         })?;
         let (rest, _) =
             self.required(rest, false, "`=`", ")", |i| self.punct_after_blanks(i, '='))?;
-        let (mut rest, file) = self.file_name(rest)?;
+        let (mut rest, (file, runtime)) = self.table_source(rest)?;
         let mut decl = TableDecl {
             name,
             parameter,
             file,
+            runtime,
             interpolation: Interpolation::Linear,
             outside: Outside::Error,
         };
@@ -43,15 +44,28 @@ impl<'a> Grammar<'a> {
         Ok((rest, (StatementKind::Table(decl), AFTER_TABLE)))
     }
 
+    /// The quoted file name, or the word `runtime` (true beside it).
+    fn table_source(&self, input: &'a str) -> PResult<'a, (Spanned<String>, bool)> {
+        if let Ok((rest, span)) = self.keyword(input, keywords::RUNTIME) {
+            return Ok((
+                rest,
+                (Spanned::new(keywords::RUNTIME.to_string(), span), true),
+            ));
+        }
+        let (rest, file) = self.file_name(input)?;
+        Ok((rest, (file, false)))
+    }
+
     /// The quoted file name; the span covers the quotes.
     fn file_name(&self, input: &'a str) -> PResult<'a, Spanned<String>> {
-        let help = |d: Diagnostic| {
-            d.with_help(format!(
+        let help =
+            |d: Diagnostic| {
+                d.with_help(format!(
                 "a table is written `{} F(t) = \"motors/M1670.eng\"` (a path in double quotes, \
-                 relative to the model file)",
-                keywords::TABLE
+                 relative to the model file) or `{} F(t) = {}` (the data given at run time)",
+                keywords::TABLE, keywords::TABLE, keywords::RUNTIME
             ))
-        };
+            };
         let start = self.skip_blanks(input, false);
         let Ok((inside, _)) = self.punct(start, '"') else {
             let diagnostic = self.unexpected_diagnostic(start, "a file name in double quotes");

@@ -1,0 +1,104 @@
+//! `--input NAME=FILE.csv` (docs/tables.md#runtime-tables): an input given by a table of its
+//! first argument (here t) runs as the same model with the table written in it, to every
+//! printed digit; a bad file is exit 2 with its line.
+
+use assert_cmd::Command;
+
+fn data(name: &str) -> String {
+    format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs `varmass ARGS` in the tests' data directory, expects exit `code`, returns stderr.
+fn varmass(args: &[&str], code: i32) -> String {
+    let output = Command::cargo_bin("varmass")
+        .expect("the binary is built")
+        .current_dir(data(""))
+        .args(args)
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+    assert_eq!(output.status.code(), Some(code), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    stderr
+}
+
+/// The hover flight to 15 s: the CSV text of y, y', m at every step.
+fn flight(model: &str, extra: &[&str], name: &str) -> String {
+    let csv = format!("{}/{name}.csv", env!("CARGO_TARGET_TMPDIR"));
+    let model = data(model);
+    let mut args = vec!["run", model.as_str()];
+    args.extend([
+        "--set",
+        "u_e=2000",
+        "--set",
+        "g=9.80665",
+        "--init",
+        "y=0",
+        "--init",
+        "m=50",
+        "--until",
+        "15",
+        "--tol",
+        "1e-10",
+        "--record",
+        "y,y',m",
+    ]);
+    args.extend(extra);
+    args.extend(["--csv", csv.as_str()]);
+    varmass(&args, 0);
+    std::fs::read_to_string(&csv).expect("the CSV is written")
+}
+
+#[test]
+fn an_input_given_by_a_table_file_is_the_dsl_table() {
+    let dsl = flight("hover_table.vms", &[], "hover_dsl_table");
+    // Relative to the current directory (the data directory here).
+    let given = flight(
+        "hover_input.vms",
+        &["--input", "u=tables/hover_u.csv"],
+        "hover_input_table",
+    );
+    // The table's 7 knots inside (0, 15) are stop times either way: some 20 rows at least.
+    assert!(dsl.lines().count() > 20, "{dsl}");
+    assert_eq!(dsl, given);
+}
+
+#[test]
+fn a_bad_input_table_file_is_an_input_error_with_its_line() {
+    let bad = format!("{}/bad_input.csv", env!("CARGO_TARGET_TMPDIR"));
+    std::fs::write(&bad, "t,u\n0,1\n1,x\n").unwrap();
+    let model = data("hover_input.vms");
+    let option = format!("u={bad}");
+    let stderr = varmass(
+        &[
+            "run", &model, "--set", "u_e=2000", "--set", "g=9.8", "--init", "m=50", "--until", "1",
+            "--input", &option,
+        ],
+        2,
+    );
+    assert!(
+        stderr.contains("--input u: ") && stderr.contains("bad_input.csv:3:3"),
+        "{stderr}"
+    );
+    let stderr = varmass(
+        &[
+            "run",
+            &model,
+            "--set",
+            "u_e=2000",
+            "--set",
+            "g=9.8",
+            "--init",
+            "m=50",
+            "--until",
+            "1",
+            "--input",
+            "u=missing.csv",
+        ],
+        2,
+    );
+    assert!(
+        stderr.contains("cannot read the table file `missing.csv`"),
+        "{stderr}"
+    );
+}

@@ -1,0 +1,125 @@
+//! Taylor coefficients of a table call F(a(t)) (docs/tables.md#taylor-series): between two
+//! knots an interpolant is one polynomial of degree ≤ 3 in s = a − xᵢ, so the series of
+//! F(a) is that cubic composed with a's series, by Horner's rule over series:
+//!
+//! h₂ = c₃ s + c₂,  h₁ = h₂ s + c₁,  w = h₁ s + c₀,
+//!
+//! each product a Cauchy product, coefficient by coefficient (w\[k\] needs a\[0..=k\] and
+//! h₁\[0..k\]). The piece is the one holding a\[0\], chosen at order 0; the series is valid
+//! while the argument stays in it, so a step must not straddle a knot (the knots of a table
+//! of t are stop times, of a table of the state switching functions: every stepper, the
+//! Taylor stepper included, ends its step there). One function serves the run-time tapes and
+//! generated code, so the two are bit-identical.
+
+use crate::error::LookupError;
+use crate::table::{Cursor, Outside, Table};
+
+/// The piece of a table holding an argument, as a cubic in s = x − `knot`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Local {
+    /// The knot the piece starts at (the end of the data outside them).
+    pub knot: f64,
+    /// c₀ … c₃ of Σ cⱼ sʲ, zero past the piece's degree; outside the data under `zero` or
+    /// `hold`, the constant value and zeros. NaN for a piece of degree above 3 (not an
+    /// interpolant of this crate).
+    pub coefficients: [f64; 4],
+    /// The table's value at the argument ([`Table::value_at`], to the bit).
+    pub value: f64,
+}
+
+impl Local {
+    /// No piece: every coefficient NaN (a lookup that failed), so the series is NaN and a
+    /// Taylor step ends in a typed non-finite error, never a silently wrong series.
+    pub const NAN: Local = Local {
+        knot: f64::NAN,
+        coefficients: [f64::NAN; 4],
+        value: f64::NAN,
+    };
+}
+
+impl Table {
+    /// [`Table::local_at`] from the table's own hint (as [`Table::value`]).
+    pub fn local(&self, x: f64) -> Result<Local, LookupError> {
+        let mut cursor = self.hint_cursor();
+        let local = self.local_at(x, &mut cursor);
+        self.store_hint(cursor);
+        local
+    }
+
+    /// The piece holding `x` (within rounding of an end: the end's, as
+    /// [`Table::value_at`]), starting the search from `cursor`; the outside rule as for a
+    /// value (an error under `outside error`). From the last knot on the piece is the
+    /// constant the table is worth after its data (zero, the held value, or NaN under
+    /// `outside error`), since a series looks forward; `value` stays the table's value at
+    /// `x` (the state rate's).
+    pub fn local_at(&self, x: f64, cursor: &mut Cursor) -> Result<Local, LookupError> {
+        let value = self.value_at(x, cursor)?;
+        let curve = self.curve();
+        let (first, last) = curve.domain();
+        let inside = self.snapped(x);
+        if !(first <= inside && inside < last) {
+            // Outside under `zero` or `hold`: a constant. From the last knot on, what the
+            // table is worth after it (the series looks forward: the last piece extended
+            // would be a thrust curve's negative tail); under `outside error` nothing.
+            let after = match self.outside() {
+                _ if inside != last => value,
+                Outside::Zero => 0.0,
+                Outside::Hold => value,
+                Outside::Error => f64::NAN,
+            };
+            return Ok(Local {
+                knot: 0.0,
+                coefficients: [after, 0.0, 0.0, 0.0],
+                value,
+            });
+        }
+        let interval = self.cursor_interval(cursor);
+        let width = curve.degree() + 1;
+        let piece = &curve.coefficients()[interval * width..(interval + 1) * width];
+        let mut coefficients = [0.0; 4];
+        if width > 4 {
+            coefficients = [f64::NAN; 4];
+        } else {
+            coefficients[..width].copy_from_slice(piece);
+        }
+        Ok(Local {
+            knot: curve.knots()[interval],
+            coefficients,
+            value,
+        })
+    }
+}
+
+/// Coefficient `k` of w = F(a(t)) on the piece `local` (looked up at a\[0\] at order 0),
+/// with `a(j)` the argument's coefficient j ≤ k and `h(j)` the stored coefficients j < k of
+/// the Horner stage h₁; returns (h₁\[k\], w\[k\]), the caller storing h₁\[k\]. At order 0,
+/// w\[0\] is the table's own value (as the state rate's lookup gives it).
+#[inline]
+pub fn series_coefficient(
+    local: &Local,
+    a: impl Fn(usize) -> f64,
+    h: impl Fn(usize) -> f64,
+    k: usize,
+) -> (f64, f64) {
+    let [_, c1, c2, c3] = local.coefficients;
+    let s = |i: usize| if i == 0 { a(0) - local.knot } else { a(i) };
+    let h2 = |i: usize| {
+        if i == 0 {
+            c3 * s(0) + c2
+        } else {
+            c3 * s(i)
+        }
+    };
+    let mut h1 = if k == 0 { c1 } else { 0.0 };
+    for i in 0..=k {
+        h1 += h2(i) * s(k - i);
+    }
+    if k == 0 {
+        return (h1, local.value);
+    }
+    let mut w = h1 * s(0);
+    for i in 0..k {
+        w += h(i) * s(k - i);
+    }
+    (h1, w)
+}
