@@ -171,6 +171,9 @@ where
 {
     check(stepper, config, events)?;
     let start_time = stepper.time();
+    // The held inputs are sampled at the start, so the first held value is u(t₀, …).
+    let state = *stepper.state();
+    sample(stepper, start_time, state)?;
     let mut target = next_target(stepper.system(), start_time, config.end_time);
     stepper.set_stop_time(target)?;
     let switches = stepper.system().switch_count() > 0 && config.switching.locate;
@@ -239,8 +242,20 @@ where
                 continue;
             }
             // A stop time of the system, or a crossing not there after all: restart here
-            // (the rate may have a kink in t) and aim at the next.
-            Crossing::None => stepper.restart(time, previous.state)?,
+            // (the rate may have a kink in t), sample the held inputs if it is a sample
+            // time, and aim at the next.
+            Crossing::None => {
+                if let Some(sampled) = sample(stepper, time, previous.state)? {
+                    previous = Point::at(stepper.system(), time, sampled, needs)?;
+                    recorder.push(stepper.system(), &previous)?;
+                    watch = EventWatch::start(events, stepper.system(), &previous);
+                    if let Some(switch_watch) = &mut switch_watch {
+                        switch_watch.resume(stepper.system(), &previous)?;
+                    }
+                } else {
+                    stepper.restart(time, previous.state)?;
+                }
+            }
         }
         target = next_target(stepper.system(), stepper.time(), config.end_time);
         stepper.set_stop_time(target)?;
@@ -249,6 +264,32 @@ where
         max_steps: config.max_steps,
     };
     Err(StepError::new(stepper.time(), *stepper.state(), kind))
+}
+
+/// Samples the held inputs at `(time, state)` ([`VariableMassSystem::sample`],
+/// docs/inputs.md#sampled-inputs) and, if a held value changed, restarts the stepper there
+/// with the sampled state and returns it (nothing is done when none changed: a system
+/// without sampled inputs, or a time between samples, steps on as before).
+pub(crate) fn sample<St, const N: usize, const S: usize>(
+    stepper: &mut St,
+    time: f64,
+    state: SVector<f64, S>,
+) -> Result<Option<SVector<f64, S>>, StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    let mut sampled = state;
+    let system = stepper.system();
+    system
+        .sample(time, &mut sampled)
+        .map_err(|error| StepError::from_system(system, error, time, &state))?;
+    // Compared bit for bit, so that a NaN sampled is a change (the restart refuses it).
+    let same = (sampled.iter().zip(&state)).all(|(a, b)| a.to_bits() == b.to_bits());
+    if same {
+        return Ok(None);
+    }
+    stepper.restart(time, sampled)?;
+    Ok(Some(sampled))
 }
 
 /// Restarts the stepper past a switch at `(time, state)` and records that point (the
@@ -273,7 +314,7 @@ where
 
 /// The next time the stepper must land on: the system's next stop time after `time` if it
 /// comes before `end_time`, else `end_time`.
-fn next_target<Sys, const N: usize, const S: usize>(system: &Sys, time: f64, end_time: f64) -> f64
+pub(crate) fn next_target<Sys, const N: usize, const S: usize>(system: &Sys, time: f64, end_time: f64) -> f64
 where
     Sys: VariableMassSystem<N, S>,
 {

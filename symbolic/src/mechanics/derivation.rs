@@ -49,11 +49,11 @@ pub struct JacobianParts {
     pub rate_wrt_q: Matrix,
     /// ∂[ṗ; ṁ_s]/∂q̇, (N + K) × N.
     pub rate_wrt_velocity: Matrix,
-    /// ∂[ṗ; ṁ_s]/∂m_s at fixed q̇, (N + K) × K.
+    /// ∂[ṗ; ṁ_s]/∂[m_s, u_held] at fixed q̇, (N + K) × (K + HELD).
     pub rate_wrt_state_mass: Matrix,
     /// P_q = ∂p/∂q at fixed q̇, N × N.
     pub momentum_wrt_q: Matrix,
-    /// P_m = ∂p/∂m_s at fixed q̇, N × K.
+    /// P_m = ∂p/∂[m_s, u_held] at fixed q̇, N × (K + HELD).
     pub momentum_wrt_state_mass: Matrix,
 }
 
@@ -163,6 +163,17 @@ impl Derivation {
             .filter(|(_, s)| used.contains(s))
             .map(|(name, _)| name.clone())
             .collect()
+    }
+
+    /// The held values of the sampled inputs, in declaration order: the state's last
+    /// entries, after the state masses (docs/inputs.md#sampled-inputs).
+    pub fn held(&self) -> Vec<Symbol> {
+        self.inputs.iter().filter_map(|i| i.held).collect()
+    }
+
+    /// The length S of the state: `2N + K + HELD`.
+    pub fn state_len(&self) -> usize {
+        2 * self.coordinates.len() + self.state_mass_count() + self.held().len()
     }
 
     /// The number of state masses (the first masses).

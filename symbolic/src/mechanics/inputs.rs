@@ -13,7 +13,7 @@
 use super::build::Builder;
 use super::derivation::Derivation;
 use super::resolve::Binding;
-use crate::expr::{Func, Id, Node};
+use crate::expr::{Func, Id, Node, Symbol, SymbolKind};
 use crate::parse::ast::{Expr, ExprNode, InputDecl};
 use crate::parse::{keywords, Diagnostic, Span};
 
@@ -26,6 +26,9 @@ pub struct ModelInput {
     pub arguments: Vec<String>,
     /// `every h`: the sample period in seconds of a sampled (zero-order-hold) input.
     pub every: Option<f64>,
+    /// The symbol of a sampled input's held value, which its calls lower to: constant in
+    /// the calculus, read from the state's entry after the state masses.
+    pub held: Option<Symbol>,
     /// Its index in the pool ([`crate::expr::ExprPool::input_name`]).
     pub index: u16,
     /// Where the statement names it.
@@ -59,23 +62,7 @@ impl Builder {
             .every
             .as_ref()
             .and_then(|period| match period.node.parse::<f64>() {
-                Ok(h) if h.is_finite() && h > 0.0 => {
-                    // Parsed and checked, but not run: a continuous call in its place would
-                    // be a different controller, so a sampled input is refused until the
-                    // hold exists (docs/inputs.md#sampled-inputs).
-                    self.errors.push(
-                        Diagnostic::new(
-                            period.span,
-                            format!(
-                                "sampled inputs (`every`) are not supported yet: input `{}` \
-                                 would be called continuously, not held between samples",
-                                decl.name.node
-                            ),
-                        )
-                        .with_help("drop `every` for a continuous input"),
-                    );
-                    Some(h)
-                }
+                Ok(h) if h.is_finite() && h > 0.0 => Some(h),
                 _ => {
                     self.errors.push(Diagnostic::new(
                         period.span,
@@ -100,13 +87,37 @@ impl Builder {
         self.model
             .names
             .insert(decl.name.node.clone(), Binding::Input(index, arity));
+        if let (Some(period), true) = (&decl.every, self.laws.iter().any(|(n, _)| *n == decl.name.node)) {
+            // A law in place of a sampled input would be called continuously: a different
+            // controller. The run-time interpreter does not hold values yet.
+            self.errors.push(
+                Diagnostic::new(
+                    period.span,
+                    format!(
+                        "input `{}` is sampled (`every`): a law given for it would be called \
+                         continuously, not held between samples",
+                        decl.name.node
+                    ),
+                )
+                .with_help("the command line tool runs sampled inputs in a later version; drop `every` to run the law continuously"),
+            );
+            return;
+        }
         if self.attach_law(decl, index) {
             return;
         }
+        // The held value of a sampled input: a constant of the equations between samples,
+        // read from the state (docs/inputs.md#sampled-inputs).
+        let held = every.map(|_| {
+            let symbol = (self.model.pool.symbols_mut()).add(&decl.name.node, SymbolKind::Parameter);
+            self.model.pool.set_input_held(index, symbol);
+            symbol
+        });
         self.model.inputs.push(ModelInput {
             name: decl.name.node.clone(),
             arguments,
             every,
+            held,
             index,
             span: decl.name.span,
         });
@@ -195,6 +206,30 @@ fn first_input_called(law: &ExprNode, laws: &[(String, ExprNode)]) -> Option<Str
     }
 }
 
+/// A diagnostic at each sampled input whose held value is in the Lagrangian or a mass law:
+/// a sample would make a position, an energy or a mass jump, which the frozen-mass
+/// equations between samples do not describe.
+fn held_in_energies(d: &Derivation) -> Vec<Diagnostic> {
+    let mut roots = vec![d.lagrangian, d.energy];
+    roots.extend(d.closed_laws.iter().flatten());
+    let free: std::collections::BTreeSet<_> =
+        roots.iter().flat_map(|r| d.pool.free_symbols(*r)).collect();
+    let sampled = (d.inputs.iter()).filter(|i| i.held.is_some_and(|h| free.contains(&h)));
+    sampled
+        .map(|input| {
+            Diagnostic::new(
+                input.span,
+                format!(
+                    "sampled input `{}` is inside a position, a mass law or an energy: each \
+                     sample would make it jump",
+                    input.name
+                ),
+            )
+            .with_help("a sampled input may appear in forces, thrusts, impacts, torques, flows and mass rates")
+        })
+        .collect()
+}
+
 /// Every equation of `d` but the Jacobian.
 fn equation_roots(d: &Derivation) -> Vec<Id> {
     let mut roots = vec![d.lagrangian, d.energy, d.power];
@@ -240,7 +275,7 @@ pub(crate) fn check_not_differentiated(d: &Derivation) -> Vec<Diagnostic> {
             }
         }
     }
-    let mut diagnostics = Vec::new();
+    let mut diagnostics = held_in_energies(d);
     for input in &d.inputs {
         if differentiated.contains(&input.index) {
             diagnostics.push(
