@@ -70,7 +70,11 @@ mod tests {
         // On a sample, the next one; the times are k·T as a loop over k computes them.
         for k in 0..2000 {
             let t = f64::from(k) * 0.01;
-            assert_eq!(next_sample_time(0.01, t), f64::from(k + 1) * 0.01, "k = {k}");
+            assert_eq!(
+                next_sample_time(0.01, t),
+                f64::from(k + 1) * 0.01,
+                "k = {k}"
+            );
         }
         assert_eq!(next_sample_time(0.01, 0.005), 0.01);
         assert_eq!(next_sample_time(0.25, -0.3), -0.25);

@@ -314,7 +314,11 @@ where
 
 /// The next time the stepper must land on: the system's next stop time after `time` if it
 /// comes before `end_time`, else `end_time`.
-pub(crate) fn next_target<Sys, const N: usize, const S: usize>(system: &Sys, time: f64, end_time: f64) -> f64
+pub(crate) fn next_target<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    time: f64,
+    end_time: f64,
+) -> f64
 where
     Sys: VariableMassSystem<N, S>,
 {

@@ -83,7 +83,9 @@ impl Emitter<'_> {
             let slot = Literal::usize_unsuffixed(first + j);
             quote!(state[#slot] = #alias::#method(self, #(#arguments),*);)
         });
-        let needs_velocities = sampled.iter().any(|i| i.arguments.iter().any(|a| a.ends_with('\'')));
+        let needs_velocities = sampled
+            .iter()
+            .any(|i| i.arguments.iter().any(|a| a.ends_with('\'')));
         let velocity_state = if needs_velocities {
             quote!(let __velocity_state = #runtime::VariableMassSystem::velocity_state(self, t, state)?;)
         } else {

@@ -87,7 +87,10 @@ impl Builder {
         self.model
             .names
             .insert(decl.name.node.clone(), Binding::Input(index, arity));
-        if let (Some(period), true) = (&decl.every, self.laws.iter().any(|(n, _)| *n == decl.name.node)) {
+        if let (Some(period), true) = (
+            &decl.every,
+            self.laws.iter().any(|(n, _)| *n == decl.name.node),
+        ) {
             // A law in place of a sampled input would be called continuously: a different
             // controller. The run-time interpreter does not hold values yet.
             self.errors.push(
@@ -109,7 +112,8 @@ impl Builder {
         // The held value of a sampled input: a constant of the equations between samples,
         // read from the state (docs/inputs.md#sampled-inputs).
         let held = every.map(|_| {
-            let symbol = (self.model.pool.symbols_mut()).add(&decl.name.node, SymbolKind::Parameter);
+            let symbol =
+                (self.model.pool.symbols_mut()).add(&decl.name.node, SymbolKind::Parameter);
             self.model.pool.set_input_held(index, symbol);
             symbol
         });
