@@ -414,7 +414,9 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
             missing.join(", ")
         )));
     }
-    let velocity_state: Vec<f64> = values.iter().map(|v| v.unwrap_or(0.0)).collect();
+    let mut velocity_state: Vec<f64> = values.iter().map(|v| v.unwrap_or(0.0)).collect();
+    // The held values of sampled inputs: replaced by the run's first sample.
+    velocity_state.resize(program.state_len(), 0.0);
     masses_positive(program, args.from, &velocity_state)?;
     let mut state = velocity_state.clone();
     program.evaluate(

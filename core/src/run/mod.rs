@@ -53,6 +53,12 @@ pub struct RunConfig {
     /// How the system's switching functions are treated: located and restarted at, with a
     /// chattering guard, by default (docs/mechanics.md#switches).
     pub switching: Switching,
+    /// Whether the run samples the held inputs at its start ([`VariableMassSystem::sample`],
+    /// docs/inputs.md#sampled-inputs): yes by default, so a flight's first held value is
+    /// u(t₀, …); a run that continues an earlier one (the next phase, the next output
+    /// interval) sets it off with [`RunConfig::continuing`], so the held values keep their
+    /// grid k·T instead of being sampled again where the earlier run stopped.
+    pub sample_at_start: bool,
 }
 
 impl RunConfig {
@@ -66,6 +72,16 @@ impl RunConfig {
             event_tolerance: 1e-12,
             energy_tolerance: None,
             switching: Switching::default(),
+            sample_at_start: true,
+        }
+    }
+
+    /// The same run, continuing an earlier one: the held inputs are not sampled at the
+    /// start (see [`RunConfig::sample_at_start`]).
+    pub fn continuing(self) -> Self {
+        Self {
+            sample_at_start: false,
+            ..self
         }
     }
 
@@ -172,8 +188,10 @@ where
     check(stepper, config, events)?;
     let start_time = stepper.time();
     // The held inputs are sampled at the start, so the first held value is u(t₀, …).
-    let state = *stepper.state();
-    sample(stepper, start_time, state)?;
+    if config.sample_at_start {
+        let state = *stepper.state();
+        sample(stepper, start_time, state)?;
+    }
     let mut target = next_target(stepper.system(), start_time, config.end_time);
     stepper.set_stop_time(target)?;
     let switches = stepper.system().switch_count() > 0 && config.switching.locate;
@@ -219,6 +237,7 @@ where
         if let Some(stop) = record_step(&*stepper, recorder, &mut watch, config, step)? {
             return Ok(stop);
         }
+        let step_start = previous.time;
         previous = current;
         if outcome != StepOutcome::ReachedStopTime {
             continue;
@@ -228,7 +247,17 @@ where
             Some(switch_watch) if switch_watch.landed(time) => {
                 switch_watch.cross_from(stepper.system(), &previous)?
             }
-            _ if time >= config.end_time => return Ok(StopReason::ReachedEnd),
+            _ if time >= config.end_time => {
+                // An end on a sample time samples too, so that a run continuing this one
+                // (which does not sample at its start) starts from the value held there.
+                if stepper.system().next_stop_time(step_start) == Some(time) {
+                    if let Some(sampled) = sample(stepper, time, previous.state)? {
+                        let point = Point::at(stepper.system(), time, sampled, needs)?;
+                        recorder.push(stepper.system(), &point)?;
+                    }
+                }
+                return Ok(StopReason::ReachedEnd);
+            }
             _ => Crossing::None,
         };
         match crossing {

@@ -154,6 +154,8 @@ impl Derivation {
         roots.extend(&self.reactive_thrust);
         roots.extend(&self.impact_force);
         roots.extend(&self.momentum_rate);
+        // The laws the interpreter samples for held inputs.
+        roots.extend(self.inputs.iter().filter_map(|i| i.law));
         let mut used = std::collections::BTreeSet::new();
         for r in roots {
             used.extend(self.pool.free_symbols(r));

@@ -29,6 +29,10 @@ pub struct ModelInput {
     /// The symbol of a sampled input's held value, which its calls lower to: constant in
     /// the calculus, read from the state's entry after the state masses.
     pub held: Option<Symbol>,
+    /// The law given for a sampled input (`varmass run --input`), an expression of its
+    /// declared arguments (t, coordinates, velocities) and the parameters: what the
+    /// interpreter's sample evaluates. `None` under the macro (the trait's method serves).
+    pub law: Option<Id>,
     /// Its index in the pool ([`crate::expr::ExprPool::input_name`]).
     pub index: u16,
     /// Where the statement names it.
@@ -87,26 +91,9 @@ impl Builder {
         self.model
             .names
             .insert(decl.name.node.clone(), Binding::Input(index, arity));
-        if let (Some(period), true) = (
-            &decl.every,
-            self.laws.iter().any(|(n, _)| *n == decl.name.node),
-        ) {
-            // A law in place of a sampled input would be called continuously: a different
-            // controller. The run-time interpreter does not hold values yet.
-            self.errors.push(
-                Diagnostic::new(
-                    period.span,
-                    format!(
-                        "input `{}` is sampled (`every`): a law given for it would be called \
-                         continuously, not held between samples",
-                        decl.name.node
-                    ),
-                )
-                .with_help("the command line tool runs sampled inputs in a later version; drop `every` to run the law continuously"),
-            );
-            return;
-        }
-        if self.attach_law(decl, index) {
+        // A sampled input keeps its held value even with a law: the law is what the sample
+        // evaluates (the run-time interpreter's hook), lowered once the model is known.
+        if every.is_none() && self.attach_law(decl, index) {
             return;
         }
         // The held value of a sampled input: a constant of the equations between samples,
@@ -122,6 +109,7 @@ impl Builder {
             arguments,
             every,
             held,
+            law: None,
             index,
             span: decl.name.span,
         });
@@ -151,6 +139,31 @@ impl Builder {
         }
         self.model.pool.set_input_law(index, law);
         true
+    }
+
+    /// Lowers the law given for each sampled input (its declared arguments are the model's
+    /// own t, coordinates and velocities, so the law is lowered as written). A law that calls
+    /// an input is refused as for a continuous input.
+    pub(super) fn lower_sampled_laws(&mut self) {
+        for k in 0..self.model.inputs.len() {
+            let input = &self.model.inputs[k];
+            if input.every.is_none() {
+                continue;
+            }
+            let Some((_, law)) = self.laws.iter().find(|(name, _)| *name == input.name) else {
+                continue;
+            };
+            let (law, name, span) = (law.clone(), input.name.clone(), input.span);
+            if let Some(called) = first_input_called(&law, &self.laws) {
+                self.errors.push(Diagnostic::new(
+                    span,
+                    format!("the law given for input `{name}` calls input `{called}`"),
+                ));
+                continue;
+            }
+            let lowered = self.lower(&law);
+            self.model.inputs[k].law = lowered;
+        }
     }
 
     /// Every argument of `decl` is `t`, a coordinate or a coordinate's velocity, and
