@@ -343,3 +343,61 @@ fn the_taylor_stepper_runs_a_held_controller() {
     println!("taylor: largest relative difference {worst:e}");
     assert!(worst <= 1e-12, "{worst:e}");
 }
+
+#[test]
+fn a_phase_change_between_samples_keeps_the_held_value_and_the_grid() {
+    use varmass::core::{run_phases, Carry, Direction, Event, Phase};
+    // Phase 1 ends where y rises through 5 m, between two samples; phase 2 (the same
+    // rocket) goes on to 2 s. The controller's clock does not stop: the value held at the
+    // change is the one sampled last before it, and the next samples are on the grid.
+    let rising = Event::state_reaches(0, 5.0, Direction::Rising);
+    let phases = [
+        Phase {
+            system: held(),
+            carry: Carry::Capture,
+            state_masses: &[],
+            until: Some(rising),
+        },
+        Phase {
+            system: held(),
+            carry: Carry::Capture,
+            state_masses: &[],
+            until: None,
+        },
+    ];
+    let start = Vector4::new(0.0, 0.0, M0, 0.0);
+    let stepper = |system, t, state| DormandPrince::new(system, t, state, control());
+    let phased = run_phases(&phases, (0.0, start), stepper, &RunConfig::until(2.0)).unwrap();
+    let change = phased.changes[0].time;
+    assert!((change / PERIOD).fract() > 1e-6, "the change at {change} is off the grid");
+    let solution = &phased.solution;
+    let entered = solution.times.iter().position(|t| *t == change).unwrap();
+    let last_sample = ((change / PERIOD).floor() * PERIOD * 1e12).round() / 1e12;
+    let sampled = solution.times.iter().rposition(|t| (*t - last_sample).abs() < 1e-12);
+    let held_then = solution.states[sampled.unwrap()][3];
+    // Every point from that sample through the change and to the next sample holds it.
+    let next = solution.times.iter().position(|t| *t > change + PERIOD).unwrap();
+    for i in sampled.unwrap()..next {
+        let on_grid = (solution.times[i] / PERIOD).round() * PERIOD == solution.times[i];
+        if !on_grid || solution.times[i] <= change {
+            assert_eq!(solution.states[i][3], held_then, "at {}", solution.times[i]);
+        }
+    }
+    // Not a sample at the change: the law there gives another value.
+    let velocity = held().velocity_state(change, &solution.states[entered]).unwrap();
+    assert_ne!(law(velocity[0], velocity[1]), held_then);
+    // The single run takes the same samples: the end states agree (measured 0: between
+    // samples ÿ = u − g is constant and the mass an exponential resolved to rounding, so
+    // the restart at the change costs nothing; bound 1e-12).
+    let single = held_run_to(2.0);
+    let (a, b) = (solution.states.last().unwrap(), single.states.last().unwrap());
+    let worst = (0..4).map(|k| (a[k] - b[k]).abs() / b[k].abs().max(1.0)).fold(0.0, f64::max);
+    println!("phased vs single {worst:e}");
+    assert!(worst <= 1e-12, "{worst:e}");
+}
+
+/// The held run with Dormand–Prince to `end`.
+fn held_run_to(end: f64) -> Solution<1, 4> {
+    let start = Vector4::new(0.0, 0.0, M0, 0.0);
+    solve(Method::DormandPrince, &held(), (0.0, start), end)
+}
