@@ -369,14 +369,24 @@ fn a_phase_change_between_samples_keeps_the_held_value_and_the_grid() {
     let stepper = |system, t, state| DormandPrince::new(system, t, state, control());
     let phased = run_phases(&phases, (0.0, start), stepper, &RunConfig::until(2.0)).unwrap();
     let change = phased.changes[0].time;
-    assert!((change / PERIOD).fract() > 1e-6, "the change at {change} is off the grid");
+    assert!(
+        (change / PERIOD).fract() > 1e-6,
+        "the change at {change} is off the grid"
+    );
     let solution = &phased.solution;
     let entered = solution.times.iter().position(|t| *t == change).unwrap();
     let last_sample = ((change / PERIOD).floor() * PERIOD * 1e12).round() / 1e12;
-    let sampled = solution.times.iter().rposition(|t| (*t - last_sample).abs() < 1e-12);
+    let sampled = solution
+        .times
+        .iter()
+        .rposition(|t| (*t - last_sample).abs() < 1e-12);
     let held_then = solution.states[sampled.unwrap()][3];
     // Every point from that sample through the change and to the next sample holds it.
-    let next = solution.times.iter().position(|t| *t > change + PERIOD).unwrap();
+    let next = solution
+        .times
+        .iter()
+        .position(|t| *t > change + PERIOD)
+        .unwrap();
     for i in sampled.unwrap()..next {
         let on_grid = (solution.times[i] / PERIOD).round() * PERIOD == solution.times[i];
         if !on_grid || solution.times[i] <= change {
@@ -384,14 +394,21 @@ fn a_phase_change_between_samples_keeps_the_held_value_and_the_grid() {
         }
     }
     // Not a sample at the change: the law there gives another value.
-    let velocity = held().velocity_state(change, &solution.states[entered]).unwrap();
+    let velocity = held()
+        .velocity_state(change, &solution.states[entered])
+        .unwrap();
     assert_ne!(law(velocity[0], velocity[1]), held_then);
     // The single run takes the same samples: the end states agree (measured 0: between
     // samples ÿ = u − g is constant and the mass an exponential resolved to rounding, so
     // the restart at the change costs nothing; bound 1e-12).
     let single = held_run_to(2.0);
-    let (a, b) = (solution.states.last().unwrap(), single.states.last().unwrap());
-    let worst = (0..4).map(|k| (a[k] - b[k]).abs() / b[k].abs().max(1.0)).fold(0.0, f64::max);
+    let (a, b) = (
+        solution.states.last().unwrap(),
+        single.states.last().unwrap(),
+    );
+    let worst = (0..4)
+        .map(|k| (a[k] - b[k]).abs() / b[k].abs().max(1.0))
+        .fold(0.0, f64::max);
     println!("phased vs single {worst:e}");
     assert!(worst <= 1e-12, "{worst:e}");
 }

@@ -180,3 +180,20 @@ fn every_method_of_the_tool_holds_the_input() {
         assert!(worst <= 1e-12, "{method}: {worst:e}");
     }
 }
+
+#[test]
+fn a_stop_condition_on_the_held_value_stops_at_the_sample_that_crosses_it() {
+    // u only changes at samples: `--stop-when u<20` is met across the jump at a sample
+    // time, and the run stops there with the value after it.
+    let rows = tool(&["--stop-when", "u<20"], "sampled_stop");
+    let (before, last) = (&rows[rows.len() - 2], &rows[rows.len() - 1]);
+    assert_eq!(before[0], last[0], "the rows before and after the sample");
+    assert_eq!(
+        (last[0] / 0.01).round() * 0.01,
+        last[0],
+        "on the grid: {}",
+        last[0]
+    );
+    assert!(before[4] >= 20.0 && last[4] < 20.0, "{before:?} → {last:?}");
+    assert!(last[0] < END, "stopped at {}", last[0]);
+}

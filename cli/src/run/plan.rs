@@ -353,13 +353,13 @@ fn fixed_step(h: f64, args: &RunArgs) -> Result<f64, CliError> {
     Ok(h)
 }
 
-/// Coordinates, velocities and state masses.
+/// Coordinates, velocities, state masses and held inputs.
 fn default_record(known: &[(String, Observable)], program: &Program) -> Vec<(String, Observable)> {
     let state_masses = program.state_mass_count();
     known
         .iter()
         .filter(|(_, o)| match o {
-            Observable::Coordinate(_) | Observable::Velocity(_) => true,
+            Observable::Coordinate(_) | Observable::Velocity(_) | Observable::Held(_) => true,
             Observable::Mass(i) => *i < state_masses,
             _ => false,
         })
@@ -427,6 +427,11 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
     );
     // Round trip: the momenta must give back the velocities (M positive definite).
     velocity_state_check(program, args.from, &state)?;
+    // The held inputs sampled at the start (the run's own sample there changes nothing),
+    // so the first row and `--stop-when` see u(t₀, …).
+    program
+        .sample(args.from, &mut state)
+        .map_err(|e| CliError::Input(format!("the sampled inputs at the start: {e}")))?;
     Ok(state)
 }
 

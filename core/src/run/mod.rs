@@ -275,9 +275,18 @@ where
             // time, and aim at the next.
             Crossing::None => {
                 if let Some(sampled) = sample(stepper, time, previous.state)? {
-                    previous = Point::at(stepper.system(), time, sampled, needs)?;
+                    let after = Point::at(stepper.system(), time, sampled, needs)?;
+                    let before = core::mem::replace(&mut previous, after);
+                    // The jump of the held values may trigger an event (a condition on u):
+                    // it is checked across the jump, and hits at the sample time.
+                    let hits = recorder.hits();
+                    let step = (&before, &previous);
+                    let hold = |_| sampled;
+                    let hit = watch.check_step(stepper.system(), step, &hold, 0.0, hits);
                     recorder.push(stepper.system(), &previous)?;
-                    watch = EventWatch::start(events, stepper.system(), &previous);
+                    if let Some(hit) = hit {
+                        return Ok(StopReason::EventFound { index: hit.index });
+                    }
                     if let Some(switch_watch) = &mut switch_watch {
                         switch_watch.resume(stepper.system(), &previous)?;
                     }
