@@ -8,7 +8,8 @@ use super::error::ProgramError;
 use super::program::{Program, Quantity};
 
 /// A run-time model as a [`VariableMassSystem`] with `N` coordinates and state dimension
-/// `S = 2N + K`. Every required method evaluates the program's tapes; q̇(q, p), H, the
+/// `S = 2N + K` (`+ HELD` with sampled inputs, whose held values follow the state masses:
+/// [`Program::sample`] replaces them). Every required method evaluates the program's tapes; q̇(q, p), H, the
 /// state rate and the power are overridden with their tapes too, and the Jacobian is the
 /// trait's central-difference default.
 ///
