@@ -160,18 +160,20 @@ fn a_law_with_an_unknown_function_points_at_the_call_in_the_model() {
 }
 
 #[test]
-fn a_sampled_input_stays_refused_with_a_law() {
-    // `every` is not built: a law called continuously would be a different controller.
-    let file = format!("{}/sampled.vms", env!("CARGO_TARGET_TMPDIR"));
+fn a_sampled_input_with_a_bad_period_is_a_diagnostic_at_the_period() {
+    // `every 0.01` runs (cli/tests/input_sampled.rs); a period that is no positive number of
+    // seconds is the model's mistake, shown at the period (column 25 of line 4).
+    let file = format!("{}/bad_period.vms", env!("CARGO_TARGET_TMPDIR"));
     let text = std::fs::read_to_string(data("hover_input.vms"))
         .expect("read")
-        .replace("input u(t, y, y')", "input u(t, y, y') every 0.01");
+        .replace("input u(t, y, y')", "input u(t, y, y') every 0");
     std::fs::write(&file, text).expect("written");
     let mut args = vec!["run", file.as_str(), "--input", PD];
     args.extend(FLIGHT);
     let stderr = varmass(&args, 1);
     assert!(
-        stderr.contains("sampled inputs (`every`) are not supported yet"),
+        stderr.contains("the sample period `0` is not a positive number of seconds"),
         "{stderr}"
     );
+    assert!(stderr.contains(&format!("{file}:4:25")), "{stderr}");
 }

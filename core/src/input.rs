@@ -1,5 +1,5 @@
 //! Inputs written in Rust (docs/inputs.md): the default partials of the generated
-//! `…Inputs` trait, by central differences.
+//! `…Inputs` trait, by central differences, and the sample grid of a sampled input.
 
 /// The partials ∂f/∂xⱼ at `x` by central differences,
 /// (f(x + hⱼeⱼ) − f(x − hⱼeⱼ)) / (2hⱼ), with hⱼ = ε^(1/3) · max(|xⱼ|, 1).
@@ -23,9 +23,32 @@ pub fn central_partials<const K: usize>(f: impl Fn([f64; K]) -> f64, x: [f64; K]
     partials
 }
 
+/// The first sample time k·T of a sampled input of period `period` strictly after `after`
+/// (docs/inputs.md#sampled-inputs): the grid starts at t = 0, the usual zero-order-hold
+/// convention, so the samples are the same whatever time a run starts at. Each time is
+/// computed as `k as f64 * period` (not by adding T to the last), so a run lands on the
+/// same times as a loop over k, with no drift. Infinity for a period that is not positive
+/// and finite, or past the grid f64 can index.
+pub fn next_sample_time(period: f64, after: f64) -> f64 {
+    if !(period.is_finite() && period > 0.0) || after.is_nan() {
+        return f64::INFINITY;
+    }
+    let mut k = nalgebra::ComplexField::floor(after / period) + 1.0;
+    // Rounding in the quotient may give the sample at (or before) `after` itself.
+    while k * period <= after {
+        k += 1.0;
+    }
+    let time = k * period;
+    if time.is_finite() {
+        time
+    } else {
+        f64::INFINITY
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::central_partials;
+    use super::{central_partials, next_sample_time};
 
     /// f = sin(a) e^b + a b²: ∂f/∂a = cos(a) e^b + b², ∂f/∂b = sin(a) e^b + 2ab.
     /// Measured relative errors 6.6e-12 and 3.1e-12 at (0.7, 1.3); bound 1e-9 (the ε^(2/3)
@@ -39,5 +62,24 @@ mod tests {
         for (g, e) in got.iter().zip(exact) {
             assert!((g - e).abs() <= 1e-9 * e.abs(), "{g} vs {e}");
         }
+    }
+
+    #[test]
+    fn the_next_sample_is_the_next_multiple_of_the_period() {
+        assert_eq!(next_sample_time(0.01, 0.0), 0.01);
+        // On a sample, the next one; the times are k·T as a loop over k computes them.
+        for k in 0..2000 {
+            let t = f64::from(k) * 0.01;
+            assert_eq!(
+                next_sample_time(0.01, t),
+                f64::from(k + 1) * 0.01,
+                "k = {k}"
+            );
+        }
+        assert_eq!(next_sample_time(0.01, 0.005), 0.01);
+        assert_eq!(next_sample_time(0.25, -0.3), -0.25);
+        assert_eq!(next_sample_time(0.0, 1.0), f64::INFINITY);
+        assert_eq!(next_sample_time(-1.0, 1.0), f64::INFINITY);
+        assert_eq!(next_sample_time(0.01, f64::NAN), f64::INFINITY);
     }
 }

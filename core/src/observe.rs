@@ -13,6 +13,7 @@ use nalgebra::SVector;
 
 use crate::error::{StepError, StepErrorKind};
 use crate::run::interpolation::over_last_step;
+use crate::run::next_target;
 use crate::run::point::{Needs, Point};
 use crate::stepper::{Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
@@ -159,6 +160,9 @@ where
     };
     let mut pending = output_times;
     let start_time = stepper.time();
+    // The held inputs are sampled at the start, as a run does.
+    let state = *stepper.state();
+    crate::run::sample(stepper, start_time, state)?;
     while let Some((&time, rest)) = pending.split_first().filter(|(t, _)| **t <= start_time) {
         record(
             stepper.system(),
@@ -170,19 +174,21 @@ where
         pending = rest;
     }
     if !pending.is_empty() {
-        stepper.set_stop_time(end)?;
-        step_through(stepper, &mut recording, observables, pending)?;
+        stepper.set_stop_time(next_target(stepper.system(), start_time, end))?;
+        step_through(stepper, &mut recording, observables, (pending, end))?;
     }
     recording.statistics = work_since(&before, stepper.statistics());
     Ok(recording)
 }
 
-/// Steps until every time of `pending` (all after the stepper's time) is recorded.
+/// Steps until every time of `pending` (all after the stepper's time) is recorded, landing
+/// on the system's stop times before `end` and restarting there as a run does (sampling
+/// the held inputs: an output time on a sample shows the value sampled there).
 fn step_through<St, const N: usize, const S: usize>(
     stepper: &mut St,
     recording: &mut Recording,
     observables: &[Observable<'_, S>],
-    mut pending: &[f64],
+    (mut pending, end): (&[f64], f64),
 ) -> Result<(), StepError<S>>
 where
     St: Stepper<N, S>,
@@ -195,9 +201,10 @@ where
     for _ in 0..MAX_OBSERVED_STEPS {
         let outcome = stepper.step()?;
         let current = Point::at(stepper.system(), stepper.time(), *stepper.state(), needs)?;
-        let reached_end = outcome == StepOutcome::ReachedStopTime;
+        let landed = outcome == StepOutcome::ReachedStopTime;
+        let reached_end = landed && current.time >= end;
         while let Some((&time, rest)) = pending.split_first() {
-            if time > current.time && !reached_end {
+            if (time > current.time || (landed && time == current.time)) && !reached_end {
                 break;
             }
             let state = over_last_step(&*stepper, &previous, &current, time.min(current.time));
@@ -208,6 +215,15 @@ where
             return Ok(());
         }
         previous = current;
+        if landed {
+            // A stop time of the system: restart there (sampled if it is a sample time).
+            let (time, state) = (previous.time, previous.state);
+            match crate::run::sample(stepper, time, state)? {
+                Some(sampled) => previous = Point::at(stepper.system(), time, sampled, needs)?,
+                None => stepper.restart(time, state)?,
+            }
+            stepper.set_stop_time(next_target(stepper.system(), time, end))?;
+        }
     }
     let kind = StepErrorKind::TooManySteps {
         max_steps: MAX_OBSERVED_STEPS,

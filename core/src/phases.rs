@@ -214,6 +214,7 @@ where
             (None, Some(before)) => Some(carry(before, phase, time, &state)),
             (None, None) => None,
         };
+        let carried_in = carried.is_some();
         if let Some(carried) = carried {
             let (entered, removed) = match carried {
                 Ok(carried) => carried,
@@ -238,7 +239,12 @@ where
             Err(error) => return fail(error, phased),
         };
         let events: Vec<Event<'_, S>> = phase.until.into_iter().collect();
-        let (solution, failure) = match run(&mut stepper, config, &events) {
+        // A phase entered from another keeps the held inputs' values and grid.
+        let config = match carried_in {
+            true => config.continuing(),
+            false => *config,
+        };
+        let (solution, failure) = match run(&mut stepper, &config, &events) {
             Ok(solution) => (solution, None),
             Err(failure) => (*failure.partial, Some(failure.error)),
         };

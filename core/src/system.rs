@@ -8,7 +8,9 @@
 //! * the **velocity state** `[q, q̇, m_s]` — the same with velocities in place of momenta;
 //!   the Lagrange-side functions take it.
 //!
-//! A system with `N` coordinates and `K` state masses has `S = 2N + K`.
+//! A system with `N` coordinates and `K` state masses has `S = 2N + K`; a system with
+//! sampled inputs carries their held values after the masses, `S = 2N + K + HELD`
+//! ([`VariableMassSystem::HELD`]).
 //!
 //! The required methods are the Lagrange side, which a person can write by hand for a small
 //! system; everything else (q̇(q, p), H, the canonical equations, the true state rate, the
@@ -72,16 +74,23 @@ pub enum SystemError {
 /// coordinates q, frozen masses mᵢ(q, t) or state masses, a Lagrangian L = T − V, and
 /// generalized forces Q* (active, non-potential), R1 (reactive thrust) and R2 (impact).
 ///
-/// `N` is the number of coordinates, `S = 2N + K` the state dimension with `K` state masses.
+/// `N` is the number of coordinates, `S = 2N + K (+ HELD)` the state dimension with `K`
+/// state masses (and [`Self::HELD`] held inputs).
 pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// Names of the generalized coordinates, in state order.
     const COORDINATES: [&'static str; N];
-    /// Names of every frozen mass and inertia. The first `S - 2N` are the state masses, in
+    /// Names of every frozen mass and inertia. The first [`Self::STATE_MASSES`] are the state masses, in
     /// state order; the rest follow laws m(q, t).
     const MASSES: &'static [&'static str];
 
-    /// The number of state masses, `K = S − 2N`.
-    const STATE_MASSES: usize = S - 2 * N;
+    /// The number of held values of sampled inputs (`input u(…) every T`,
+    /// docs/inputs.md#sampled-inputs), the last entries of the state, after the state
+    /// masses: `S = 2N + K + HELD`. Their rate is 0; a run replaces them at each sample
+    /// time through [`Self::sample`]. None by default.
+    const HELD: usize = 0;
+
+    /// The number of state masses, `K = S − 2N − HELD`.
+    const STATE_MASSES: usize = S - 2 * N - Self::HELD;
 
     /// The value of mass `index` (into [`Self::MASSES`]) at time `t`. Only q and the state
     /// masses of `state` are read, so either a state or a velocity state may be passed.
@@ -170,6 +179,15 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// None by default.
     fn next_stop_time(&self, _after: f64) -> Option<f64> {
         None
+    }
+
+    /// Replaces the held values of the sampled inputs (the last [`Self::HELD`] entries of
+    /// `state`) by the inputs' values at `(t, state)`: a zero-order hold samples here
+    /// (docs/inputs.md#sampled-inputs). A run calls it at its start time and at every
+    /// sample time it lands on (the sample times are among [`Self::next_stop_time`]), never
+    /// inside a step. Nothing by default (no sampled inputs).
+    fn sample(&self, _t: f64, _state: &mut SVector<f64, S>) -> Result<(), SystemError> {
+        Ok(())
     }
 
     /// The number of flows (`outflow` and `inflow` statements) whose rates a run checks.

@@ -35,6 +35,13 @@ pub enum ProgramError {
         /// Its value.
         value: f64,
     },
+    /// A sampled input (`input u(…) every T`) has no law to sample: the interpreter
+    /// evaluates the law given for it (`varmass run --input`), not Rust code.
+    #[error("sampled input `{name}` has no law to sample (give one with --input {name}=EXPR)")]
+    MissingInputLaw {
+        /// The input's name.
+        name: String,
+    },
     /// The sizes of a [`super::TapeSystem`] do not match the model's.
     #[error(
         "the model has {coordinates} coordinates and {state_masses} state masses, \

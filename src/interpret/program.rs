@@ -16,6 +16,8 @@ use super::cholesky::cholesky_solve;
 use super::error::ProgramError;
 use super::taylor::TaylorProgram;
 
+mod held;
+
 /// How each group of quantities is evaluated.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Evaluation {
@@ -81,6 +83,10 @@ pub struct Program {
     /// The parameters the equations read (`Derivation::used_parameters`, a walk of every
     /// expression): found once, checked at every [`Program::set_parameters`].
     used: Vec<String>,
+    /// The held values of the sampled inputs (`held.rs`), their laws and periods.
+    held_symbols: Vec<Symbol>,
+    held_laws: Stage,
+    periods: Vec<f64>,
     scratch: RefCell<Scratch>,
 }
 
@@ -122,6 +128,14 @@ impl Program {
         let stop_arguments = stage(stop_roots);
         let stops = stop_values(&tables, &stop_arguments, &env);
         let quantities = Quantity::ALL.iter().map(|q| stage(q.read(&d))).collect();
+        let sampled: Vec<_> = d.inputs.iter().filter(|i| i.held.is_some()).collect();
+        if let Some(input) = sampled.iter().find(|i| i.law.is_none()) {
+            return Err(ProgramError::MissingInputLaw {
+                name: input.name.clone(),
+            });
+        }
+        let held_laws = stage(sampled.iter().filter_map(|i| i.law).collect());
+        let periods = sampled.iter().filter_map(|i| i.every).collect();
         Ok(Self {
             taylor: TaylorProgram::new(&d, &env),
             evaluation,
@@ -138,6 +152,9 @@ impl Program {
             stops,
             stop_arguments,
             used,
+            held_symbols: d.held(),
+            held_laws,
+            periods,
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),
@@ -178,9 +195,9 @@ impl Program {
         self.d.state_mass_count()
     }
 
-    /// S = 2N + K, the length of a state `[q, p, m_s]`.
+    /// S = 2N + K + HELD, the length of a state `[q, p, m_s, u_held]`.
     pub fn state_len(&self) -> usize {
-        2 * self.coordinate_count() + self.state_mass_count()
+        2 * self.coordinate_count() + self.state_mass_count() + self.held_count()
     }
 
     /// The coordinates' names, in state order.
@@ -273,6 +290,11 @@ impl Program {
         for (o, v) in out.iter_mut().skip(n).zip(&scratch.values) {
             *o = *v;
         }
+        // A held value is constant between samples.
+        let held = 2 * n + self.state_mass_count()..self.state_len();
+        if let Some(rates) = out.get_mut(held) {
+            rates.fill(0.0);
+        }
         Ok(())
     }
 
@@ -339,13 +361,14 @@ impl Program {
         Ok(())
     }
 
-    /// The first knot time of a table of t after `after` (docs/tables.md#knots-are-switches).
+    /// The first knot time of a table of t (docs/tables.md#knots-are-switches) or sample
+    /// time of a sampled input (docs/inputs.md#sampled-inputs) after `after`.
     pub fn next_stop_time(&self, after: f64) -> Option<f64> {
         let next = self
             .stops
             .iter()
             .map(|(table, slope, offset)| next_knot_time(table, *slope, *offset, after))
-            .fold(f64::INFINITY, f64::min);
+            .fold(self.next_sample_time(after), f64::min);
         (next < f64::INFINITY).then_some(next)
     }
 
@@ -478,6 +501,7 @@ impl Program {
         for (k, m) in state_masses.enumerate() {
             set(env, m.symbol.index(), component(state, 2 * n + k));
         }
+        self.load_held(scratch, state);
         self.run(&self.laws, scratch);
         for (slot, value) in self.law_slots.iter().zip(&scratch.values) {
             set(&mut scratch.env, *slot, *value);

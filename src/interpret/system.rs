@@ -8,7 +8,8 @@ use super::error::ProgramError;
 use super::program::{Program, Quantity};
 
 /// A run-time model as a [`VariableMassSystem`] with `N` coordinates and state dimension
-/// `S = 2N + K`. Every required method evaluates the program's tapes; q̇(q, p), H, the
+/// `S = 2N + K` (`+ HELD` with sampled inputs, whose held values follow the state masses:
+/// [`Program::sample`] replaces them). Every required method evaluates the program's tapes; q̇(q, p), H, the
 /// state rate and the power are overridden with their tapes too, and the Jacobian is the
 /// trait's central-difference default.
 ///
@@ -85,7 +86,8 @@ impl<const N: usize, const S: usize> TapeSystem<N, S> {
     /// padding of [`TapeSystem::padded`], then the law masses); `None` for padding.
     fn model_mass(&self, index: usize) -> Option<usize> {
         let state_masses = self.program.state_mass_count();
-        let padding = S - self.program.state_len();
+        // The held inputs and the padding: entries after the state masses that are no mass.
+        let padding = S - 2 * N - state_masses;
         match index {
             i if i < state_masses => Some(i),
             i if i < state_masses + padding => None,
@@ -120,6 +122,13 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
 
     fn next_stop_time(&self, after: f64) -> Option<f64> {
         self.program.next_stop_time(after)
+    }
+
+    /// The held values sit after the state masses, inside the padding of
+    /// [`TapeSystem::padded`] ([`VariableMassSystem::HELD`] stays 0: the count is known only
+    /// at run time, and a held entry, like the padding, has rate 0 and is no mass).
+    fn sample(&self, t: f64, state: &mut SVector<f64, S>) -> Result<(), SystemError> {
+        self.program.sample(t, state.as_mut_slice())
     }
 
     fn mass(&self, index: usize, t: f64, state: &SVector<f64, S>) -> f64 {

@@ -26,6 +26,8 @@ pub(super) struct TaylorProgram {
     n: usize,
     masses: usize,
     state_masses: usize,
+    /// Held values of sampled inputs: the state's last entries, constant series.
+    held: usize,
     /// Mass index of each law output.
     law_masses: Vec<usize>,
     laws: TaylorTape,
@@ -72,6 +74,7 @@ impl TaylorProgram {
             n: d.coordinates.len(),
             masses: d.masses.len(),
             state_masses: d.state_mass_count(),
+            held: d.held().len(),
             law_masses: stages.law_masses,
             velocities: later.next().unwrap_or_default(),
             numeric: stages.numeric,
@@ -103,7 +106,7 @@ impl TaylorProgram {
         mut write: impl FnMut(usize, usize, f64),
     ) -> Result<(), SystemError> {
         let scratch = &mut *self.scratch.borrow_mut();
-        let s = 2 * self.n + self.state_masses;
+        let s = 2 * self.n + self.state_masses + self.held;
         self.begin(scratch, order);
         for (i, x) in state.iter().take(s).enumerate() {
             let input = self.state_input(i);
@@ -137,18 +140,21 @@ impl TaylorProgram {
         Ok(())
     }
 
-    /// Input index of state component i: q, p, then the state masses.
+    /// Input index of state component i: q, p, then the state masses, then the held
+    /// inputs (after every mass among the inputs; their higher coefficients stay 0).
     fn state_input(&self, i: usize) -> usize {
         if i < 2 * self.n {
             1 + i
-        } else {
+        } else if i < 2 * self.n + self.state_masses {
             1 + 3 * self.n + (i - 2 * self.n)
+        } else {
+            1 + 3 * self.n + self.masses + (i - 2 * self.n - self.state_masses)
         }
     }
 
     fn begin(&self, scratch: &mut Scratch, order: usize) {
         let stride = order + 1;
-        let inputs = 1 + 3 * self.n + self.masses;
+        let inputs = 1 + 3 * self.n + self.masses + self.held;
         scratch.stride = stride;
         scratch.inputs.clear();
         scratch.inputs.resize(inputs * stride, 0.0);

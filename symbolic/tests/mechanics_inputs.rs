@@ -101,10 +101,29 @@ fn misuses_are_diagnostics_at_their_text() {
         18,
     );
     error(
-        "coordinates y\ninput u(t) every 0.01\nforce y: u(t)",
-        "sampled inputs (`every`) are not supported yet",
+        "coordinates y\ninput u(t) every -1\nforce y: u(t)",
+        "the sample period in seconds",
         2,
         18,
+    );
+    error(
+        "coordinates y\ninput u(t) every x\nforce y: u(t)",
+        "the sample period in seconds",
+        2,
+        18,
+    );
+    // A sampled input's value is held from the sample, taken at its declared arguments.
+    error(
+        "coordinates y\ninput u(t, y) every 0.01\nforce y: u(t, 2*y)",
+        "sampled input `u` is called with its declared arguments only: `u(t, y)`",
+        3,
+        10,
+    );
+    error(
+        "coordinates y\ninput u(t) every 0.01\nmass m = 1\nbody b: mass m, position [y]\npotential u(t)*y",
+        "sampled input `u` is inside a position, a mass law or an energy",
+        2,
+        7,
     );
     error(
         "coordinates y\ninput u(t, t)\nforce y: u(t, t)",

@@ -35,9 +35,15 @@ macro_rules! sizes {
 /// to `MAX_STATE_MASSES` state masses; the points come back unpadded.
 pub fn dispatch(program: Program, plan: &Plan) -> Result<Outcome, CliError> {
     let (n, k) = (program.coordinate_count(), program.state_mass_count());
-    if !(1..=MAX_COORDINATES).contains(&n) || k > MAX_STATE_MASSES {
+    // The held values of sampled inputs take places of the padding too.
+    let h = program.held_count();
+    if !(1..=MAX_COORDINATES).contains(&n) || k + h > MAX_STATE_MASSES {
+        let held = match h {
+            0 => String::new(),
+            h => format!(" and {h} sampled inputs (each held value takes a state mass's place)"),
+        };
         return Err(CliError::Input(format!(
-            "the model has {n} coordinates and {k} state masses; the tool runs models with \
+            "the model has {n} coordinates and {k} state masses{held}; the tool runs models with \
              1 to {MAX_COORDINATES} coordinates and at most {MAX_STATE_MASSES} state masses \
              (use the #[variable_mass_system] macro for larger ones)"
         )));

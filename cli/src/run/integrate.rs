@@ -10,6 +10,7 @@ use varmass::core::steppers::{
 };
 use varmass::core::{
     run, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper, StopReason,
+    VariableMassSystem,
 };
 use varmass::interpret::{Program, TapeSystem};
 
@@ -39,8 +40,14 @@ pub fn integrate<const N: usize, const S: usize>(
     plan: &Plan,
 ) -> Result<Outcome, CliError> {
     let system = TapeSystem::<N, S>::padded(program).map_err(|e| CliError::Input(e.to_string()))?;
-    let start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
+    let mut start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
     let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, plan, e));
+    // The held inputs sampled at t0 before the first point is recorded (the run's own
+    // sample there then changes nothing).
+    let before = start;
+    system
+        .sample(t0, &mut start)
+        .map_err(|e| fail(StepError::from_system(&system, e, t0, &before)))?;
     // Every stepper is built as `Type::new(&system, t0, start, settings)` and driven alike;
     // only the type and its settings differ.
     macro_rules! drive_with {
@@ -166,12 +173,14 @@ where
     let mut stepper = watched.with_time_limit(plan.max_seconds);
     let mut points = vec![(plan.from, start.as_slice().to_vec())];
     let targets = output_times(plan);
-    for target in targets {
+    for (interval, target) in targets.into_iter().enumerate() {
         // --max-steps bounds the whole run, over every output interval.
         let taken = stepper.statistics().accepted_steps as u64;
         let max_steps = usize::try_from(plan.max_steps.saturating_sub(taken)).unwrap_or(usize::MAX);
+        // Held inputs are sampled on their grid only, not at each output time.
         let config = RunConfig {
             max_steps,
+            sample_at_start: interval == 0,
             ..RunConfig::until(target)
         };
         let (solution, failure) = match run(&mut stepper, &config, &events) {

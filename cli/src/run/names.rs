@@ -20,6 +20,8 @@ pub enum Observable {
     Mass(usize),
     /// Entry `index` (a coordinate, a mass, or 0 for a scalar) of a registry quantity.
     Quantity(Quantity, usize),
+    /// The held value of sampled input `j` (recorded under the input's name).
+    Held(usize),
 }
 
 /// Every quantity of `program` with its name, in a stable order: coordinates and their
@@ -34,6 +36,9 @@ pub fn observables(program: &Program) -> Vec<(String, Observable)> {
     let masses: Vec<&str> = program.mass_names().collect();
     for (i, m) in masses.iter().enumerate() {
         all.push((m.to_string(), Observable::Mass(i)));
+    }
+    for (j, u) in program.held_names().enumerate() {
+        all.push((u.to_string(), Observable::Held(j)));
     }
     let named = Quantity::names(&coordinates, &masses).into_iter();
     all.extend(named.map(|(name, q, index)| (name, Observable::Quantity(q, index))));
@@ -105,6 +110,10 @@ pub fn evaluate(
             let mut m = vec![f64::NAN; program.derivation().masses.len()];
             program.masses(t, state, &mut m);
             pick(m, i)
+        }
+        Observable::Held(j) => {
+            let first = 2 * n + program.state_mass_count();
+            state.get(first + j).copied().unwrap_or(f64::NAN)
         }
         Observable::Quantity(quantity, index) => {
             let len = quantity.read(program.derivation()).len().max(n);

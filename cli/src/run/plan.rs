@@ -359,13 +359,13 @@ fn fixed_step(h: f64, args: &RunArgs) -> Result<f64, CliError> {
     Ok(h)
 }
 
-/// Coordinates, velocities and state masses.
+/// Coordinates, velocities, state masses and held inputs.
 fn default_record(known: &[(String, Observable)], program: &Program) -> Vec<(String, Observable)> {
     let state_masses = program.state_mass_count();
     known
         .iter()
         .filter(|(_, o)| match o {
-            Observable::Coordinate(_) | Observable::Velocity(_) => true,
+            Observable::Coordinate(_) | Observable::Velocity(_) | Observable::Held(_) => true,
             Observable::Mass(i) => *i < state_masses,
             _ => false,
         })
@@ -425,7 +425,9 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
             missing.join(", ")
         )));
     }
-    let velocity_state: Vec<f64> = values.iter().map(|v| v.unwrap_or(0.0)).collect();
+    let mut velocity_state: Vec<f64> = values.iter().map(|v| v.unwrap_or(0.0)).collect();
+    // The held values of sampled inputs: replaced by the run's first sample.
+    velocity_state.resize(program.state_len(), 0.0);
     masses_positive(program, args.from, &velocity_state)?;
     let mut state = velocity_state.clone();
     program.evaluate(
@@ -436,6 +438,11 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
     );
     // Round trip: the momenta must give back the velocities (M positive definite).
     velocity_state_check(program, args.from, &state)?;
+    // The held inputs sampled at the start (the run's own sample there changes nothing),
+    // so the first row and `--stop-when` see u(t₀, …).
+    program
+        .sample(args.from, &mut state)
+        .map_err(|e| CliError::Input(format!("the sampled inputs at the start: {e}")))?;
     Ok(state)
 }
 

@@ -53,6 +53,12 @@ pub struct RunConfig {
     /// How the system's switching functions are treated: located and restarted at, with a
     /// chattering guard, by default (docs/mechanics.md#switches).
     pub switching: Switching,
+    /// Whether the run samples the held inputs at its start ([`VariableMassSystem::sample`],
+    /// docs/inputs.md#sampled-inputs): yes by default, so a flight's first held value is
+    /// u(t₀, …); a run that continues an earlier one (the next phase, the next output
+    /// interval) sets it off with [`RunConfig::continuing`], so the held values keep their
+    /// grid k·T instead of being sampled again where the earlier run stopped.
+    pub sample_at_start: bool,
 }
 
 impl RunConfig {
@@ -66,6 +72,16 @@ impl RunConfig {
             event_tolerance: 1e-12,
             energy_tolerance: None,
             switching: Switching::default(),
+            sample_at_start: true,
+        }
+    }
+
+    /// The same run, continuing an earlier one: the held inputs are not sampled at the
+    /// start (see [`RunConfig::sample_at_start`]).
+    pub fn continuing(self) -> Self {
+        Self {
+            sample_at_start: false,
+            ..self
         }
     }
 
@@ -171,6 +187,11 @@ where
 {
     check(stepper, config, events)?;
     let start_time = stepper.time();
+    // The held inputs are sampled at the start, so the first held value is u(t₀, …).
+    if config.sample_at_start {
+        let state = *stepper.state();
+        sample(stepper, start_time, state)?;
+    }
     let mut target = next_target(stepper.system(), start_time, config.end_time);
     stepper.set_stop_time(target)?;
     let switches = stepper.system().switch_count() > 0 && config.switching.locate;
@@ -216,6 +237,7 @@ where
         if let Some(stop) = record_step(&*stepper, recorder, &mut watch, config, step)? {
             return Ok(stop);
         }
+        let step_start = previous.time;
         previous = current;
         if outcome != StepOutcome::ReachedStopTime {
             continue;
@@ -225,7 +247,17 @@ where
             Some(switch_watch) if switch_watch.landed(time) => {
                 switch_watch.cross_from(stepper.system(), &previous)?
             }
-            _ if time >= config.end_time => return Ok(StopReason::ReachedEnd),
+            _ if time >= config.end_time => {
+                // An end on a sample time samples too, so that a run continuing this one
+                // (which does not sample at its start) starts from the value held there.
+                if stepper.system().next_stop_time(step_start) == Some(time) {
+                    if let Some(sampled) = sample(stepper, time, previous.state)? {
+                        let point = Point::at(stepper.system(), time, sampled, needs)?;
+                        recorder.push(stepper.system(), &point)?;
+                    }
+                }
+                return Ok(StopReason::ReachedEnd);
+            }
             _ => Crossing::None,
         };
         match crossing {
@@ -239,8 +271,29 @@ where
                 continue;
             }
             // A stop time of the system, or a crossing not there after all: restart here
-            // (the rate may have a kink in t) and aim at the next.
-            Crossing::None => stepper.restart(time, previous.state)?,
+            // (the rate may have a kink in t), sample the held inputs if it is a sample
+            // time, and aim at the next.
+            Crossing::None => {
+                if let Some(sampled) = sample(stepper, time, previous.state)? {
+                    let after = Point::at(stepper.system(), time, sampled, needs)?;
+                    let before = core::mem::replace(&mut previous, after);
+                    // The jump of the held values may trigger an event (a condition on u):
+                    // it is checked across the jump, and hits at the sample time.
+                    let hits = recorder.hits();
+                    let step = (&before, &previous);
+                    let hold = |_| sampled;
+                    let hit = watch.check_step(stepper.system(), step, &hold, 0.0, hits);
+                    recorder.push(stepper.system(), &previous)?;
+                    if let Some(hit) = hit {
+                        return Ok(StopReason::EventFound { index: hit.index });
+                    }
+                    if let Some(switch_watch) = &mut switch_watch {
+                        switch_watch.resume(stepper.system(), &previous)?;
+                    }
+                } else {
+                    stepper.restart(time, previous.state)?;
+                }
+            }
         }
         target = next_target(stepper.system(), stepper.time(), config.end_time);
         stepper.set_stop_time(target)?;
@@ -249,6 +302,32 @@ where
         max_steps: config.max_steps,
     };
     Err(StepError::new(stepper.time(), *stepper.state(), kind))
+}
+
+/// Samples the held inputs at `(time, state)` ([`VariableMassSystem::sample`],
+/// docs/inputs.md#sampled-inputs) and, if a held value changed, restarts the stepper there
+/// with the sampled state and returns it (nothing is done when none changed: a system
+/// without sampled inputs, or a time between samples, steps on as before).
+pub(crate) fn sample<St, const N: usize, const S: usize>(
+    stepper: &mut St,
+    time: f64,
+    state: SVector<f64, S>,
+) -> Result<Option<SVector<f64, S>>, StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    let mut sampled = state;
+    let system = stepper.system();
+    system
+        .sample(time, &mut sampled)
+        .map_err(|error| StepError::from_system(system, error, time, &state))?;
+    // Compared bit for bit, so that a NaN sampled is a change (the restart refuses it).
+    let same = (sampled.iter().zip(&state)).all(|(a, b)| a.to_bits() == b.to_bits());
+    if same {
+        return Ok(None);
+    }
+    stepper.restart(time, sampled)?;
+    Ok(Some(sampled))
 }
 
 /// Restarts the stepper past a switch at `(time, state)` and records that point (the
@@ -273,7 +352,11 @@ where
 
 /// The next time the stepper must land on: the system's next stop time after `time` if it
 /// comes before `end_time`, else `end_time`.
-fn next_target<Sys, const N: usize, const S: usize>(system: &Sys, time: f64, end_time: f64) -> f64
+pub(crate) fn next_target<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    time: f64,
+    end_time: f64,
+) -> f64
 where
     Sys: VariableMassSystem<N, S>,
 {

@@ -120,6 +120,26 @@ impl SwitchWatch {
         Ok(Some(watch))
     }
 
+    /// Takes g afresh at `point`, where the run restarted with a state changed by a jump
+    /// that is no crossing (a sample of the held inputs, docs/inputs.md#sampled-inputs): a
+    /// switch on a held value changes there without the state crossing it. The chatter
+    /// counts are kept.
+    pub(crate) fn resume<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        point: &Point<S>,
+    ) -> Result<(), StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        self.pending = None;
+        self.anchor(system, point.time, &point.state)?;
+        let mut values = core::mem::take(&mut self.values);
+        let evaluated = self.evaluate(system, point.time, &point.state, &mut values);
+        self.values = values;
+        evaluated
+    }
+
     /// Anchors the anchored switches at `(time, state)`; after a crossing, the g of a
     /// switch whose anchor moved is its value there, ≥ 0 by the anchor's definition (a
     /// zero, on a knot, is stored as the smallest positive number, so that going back is

@@ -54,8 +54,8 @@ fn input_methods(input: &ModelInput, runtime: &TokenStream) -> TokenStream {
     let declared = format!("{}({})", input.name, input.arguments.join(", "));
     let sampled = input.every.map(|h| {
         format!(
-            "Sampled every {h} s: called at the sample times only, its value held between \
-             them (zero-order hold)."
+            "Sampled every {h} s: called at the sample times k·{h} s and a run's start only, its value held between \
+             them (zero-order hold; docs/inputs.md#sampled-inputs)."
         )
     });
     let value_doc = format!("`input {declared}`: the input's value.");
@@ -66,10 +66,17 @@ fn input_methods(input: &ModelInput, runtime: &TokenStream) -> TokenStream {
          about ε^(2/3) ≈ 4e-11); override it with exact partials when they are known.",
         input.name
     );
-    let sampled = sampled.map(|s| quote!(#[doc = ""] #[doc = #s]));
+    if let Some(sampled) = sampled {
+        // Held between samples: the equations see a constant, never its partials.
+        return quote! {
+            #[doc = #value_doc]
+            #[doc = ""]
+            #[doc = #sampled]
+            fn #name(&self, #(#arguments: f64),*) -> f64;
+        };
+    }
     quote! {
         #[doc = #value_doc]
-        #sampled
         fn #name(&self, #(#arguments: f64),*) -> f64;
         #[doc = #partials_doc]
         fn #partials(&self, #(#arguments: f64),*) -> [f64; #k] {

@@ -15,7 +15,7 @@ impl Emitter<'_> {
         let (n, k) = (self.d.coordinates.len(), self.d.state_mass_count());
         (
             Literal::usize_unsuffixed(n),
-            Literal::usize_unsuffixed(2 * n + k),
+            Literal::usize_unsuffixed(self.d.state_len()),
             n,
             k,
         )
@@ -24,7 +24,8 @@ impl Emitter<'_> {
     /// The signature of `method` for this system (see `signature.rs`).
     fn signature(&self, method: Method) -> TokenStream {
         let (_, _, n, k) = self.sizes();
-        method.signature(&self.target.runtime, n, 2 * n + k)
+        let _ = k;
+        method.signature(&self.target.runtime, n, self.d.state_len())
     }
 
     /// `mass(index, t, state)`: a state mass is read from the state, a law is evaluated.
@@ -267,7 +268,10 @@ impl Emitter<'_> {
             "The state rate [q̇, ṗ, ṁ_s] with the true ṗ = d*p/dt + Σ ṁᵢ ∂*p/∂mᵢ.",
             lines,
         );
-        let body = self.body(Input::State, &roots, |outs| {
+        let held = self.d.held().len();
+        let body = self.body(Input::State, &roots, |mut outs| {
+            // A held value is constant between samples: its rate is 0.
+            outs.extend((0..held).map(|_| quote!(0.0)));
             let v = self.vector(outs);
             quote!(Ok(#v))
         });
@@ -313,7 +317,9 @@ impl Emitter<'_> {
             roots.extend(entries);
         }
         let nk = Literal::usize_unsuffixed(n + k);
-        let k_lit = Literal::usize_unsuffixed(k);
+        // The state masses' columns, then the held inputs' (rate 0: no rows of their own).
+        let columns = k + self.d.held().len();
+        let k_lit = Literal::usize_unsuffixed(columns);
         let docs = self.docs(
             "The Jacobian ∂[q̇, ṗ, ṁ_s]/∂[q, p, m_s]: J_q = F_q − F_v M⁻¹ P_q, J_p = F_v M⁻¹, J_m = F_m − F_v M⁻¹ P_m.",
             Vec::<String>::new(),
@@ -327,7 +333,7 @@ impl Emitter<'_> {
             };
             let (fq, fv, fm, pq, pm, mm) = (take(sizes[0]), take(sizes[1]), take(sizes[2]), take(sizes[3]), take(sizes[4]), take(sizes[5]));
             let na = quote!(#runtime::nalgebra);
-            let state_mass_blocks = if k == 0 {
+            let state_mass_blocks = if columns == 0 {
                 TokenStream::new()
             } else {
                 quote! {

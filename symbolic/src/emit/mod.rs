@@ -83,8 +83,9 @@ pub fn emit_system_for(
     let k = d.state_mass_count();
     let (n_lit, s_lit) = (
         Literal::usize_unsuffixed(n),
-        Literal::usize_unsuffixed(2 * n + k),
+        Literal::usize_unsuffixed(d.state_len()),
     );
+    let _ = k;
     let coordinates = d.coordinates.iter().map(|c| c.name.as_str());
     let masses = d.masses.iter().map(|m| m.name.as_str());
     let parameters = d.parameters.iter().map(|(p, _)| p.as_str());
@@ -110,16 +111,26 @@ pub fn emit_system_for(
         optional(outputs.taylor, || taylor::taylor_method(d, runtime)),
         emitter.flow_rates(),
         emitter.stop_times(&time_tables),
+        emitter.sample(),
     ];
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");
         quote!(#[doc = ""] #[doc = #line])
     });
+    // The held values of the sampled inputs: the state's last entries.
+    let held = match d.held().len() {
+        0 => TokenStream::new(),
+        h => {
+            let h = Literal::usize_unsuffixed(h);
+            quote!(const HELD: usize = #h;)
+        }
+    };
     let trait_impl = quote! {
         #[allow(unused_variables, non_snake_case, clippy::all)]
         impl #runtime::VariableMassSystem<#n_lit, #s_lit> for #name {
             const COORDINATES: [&'static str; #n_lit] = [#(#coordinates),*];
             const MASSES: &'static [&'static str] = &[#(#masses),*];
+            #held
             #(#methods)*
         }
     };

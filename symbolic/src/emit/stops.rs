@@ -1,21 +1,25 @@
-//! Knots of tables of t as stop times (docs/tables.md#knots-are-switches): every table
+//! Stop times: the sample grids of the sampled inputs (and the `sample` method that
+//! replaces their held values there, docs/inputs.md#sampled-inputs) and the knots of tables
+//! of t as stop times (docs/tables.md#knots-are-switches): every table
 //! call whose argument is affine in t, a·t + b with a and b made of parameters only, gives
 //! `next_stop_time`, so the runs land on each knot and restart there instead of stepping
 //! across the kink.
 
-use proc_macro2::TokenStream;
+use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 use super::system::{Emitter, Input};
 use super::tables::reference;
 use crate::expr::Id;
-use crate::mechanics::TimeTable;
+use crate::mechanics::{ModelInput, TimeTable};
 
 impl Emitter<'_> {
-    /// `next_stop_time`: the earliest next knot time of every table of t (nothing without
-    /// one: the trait's default, no stop times).
+    /// `next_stop_time`: the earliest next knot time of every table of t and the next
+    /// sample time k·T of every sampled input (nothing without either: the trait's
+    /// default, no stop times).
     pub(crate) fn stop_times(&self, tables: &[TimeTable]) -> TokenStream {
-        if tables.is_empty() {
+        let periods: Vec<f64> = self.d.inputs.iter().filter_map(|i| i.every).collect();
+        if tables.is_empty() && periods.is_empty() {
             return TokenStream::new();
         }
         let runtime = &self.target.runtime;
@@ -30,6 +34,7 @@ impl Emitter<'_> {
             quote! {
                 let mut next = f64::INFINITY;
                 #(next = next.min(#runtime::table::next_knot_time(&#statics, #slopes, #offsets, after));)*
+                #(next = next.min(#runtime::input::next_sample_time(#periods, after));)*
                 if next < f64::INFINITY {
                     ::core::option::Option::Some(next)
                 } else {
@@ -38,9 +43,65 @@ impl Emitter<'_> {
             }
         });
         quote! {
-            /// The next knot of a table of t after `after` (docs/tables.md#knots-are-switches).
+            /// The next knot of a table of t or sample of a held input after `after`
+            /// (docs/tables.md#knots-are-switches, docs/inputs.md#sampled-inputs).
             fn next_stop_time(&self, after: f64) -> ::core::option::Option<f64> {
                 #body
+            }
+        }
+    }
+
+    /// `sample`: each sampled input's value at `(t, state)`, the user's method called at
+    /// its declared arguments, written into its held entry (docs/inputs.md#sampled-inputs).
+    /// Nothing without sampled inputs (the trait's default).
+    pub(crate) fn sample(&self) -> TokenStream {
+        let sampled: Vec<&ModelInput> = self.d.inputs.iter().filter(|i| i.held.is_some()).collect();
+        if sampled.is_empty() {
+            return TokenStream::new();
+        }
+        let runtime = &self.target.runtime;
+        let s = Literal::usize_unsuffixed(self.d.state_len());
+        let first = 2 * self.d.coordinates.len() + self.d.state_mass_count();
+        let alias = Ident::new(super::inputs::ALIAS, Span::call_site());
+        let coordinate = |name: &str| self.d.coordinates.iter().position(|c| c.name == name);
+        let n = self.d.coordinates.len();
+        let writes = sampled.iter().enumerate().map(|(j, input)| {
+            let method = Ident::new(&input.name, Span::call_site());
+            let arguments = input.arguments.iter().map(|a| match a.strip_suffix('\'') {
+                Some(name) => {
+                    let slot = Literal::usize_unsuffixed(n + coordinate(name).unwrap_or(0));
+                    quote!(__velocity_state[#slot])
+                }
+                None => match coordinate(a) {
+                    Some(i) => {
+                        let slot = Literal::usize_unsuffixed(i);
+                        quote!(__velocity_state[#slot])
+                    }
+                    None => quote!(t),
+                },
+            });
+            let slot = Literal::usize_unsuffixed(first + j);
+            quote!(state[#slot] = #alias::#method(self, #(#arguments),*);)
+        });
+        let needs_velocities = sampled
+            .iter()
+            .any(|i| i.arguments.iter().any(|a| a.ends_with('\'')));
+        let velocity_state = if needs_velocities {
+            quote!(let __velocity_state = #runtime::VariableMassSystem::velocity_state(self, t, state)?;)
+        } else {
+            quote!(let __velocity_state = *state;)
+        };
+        quote! {
+            /// Samples the held inputs at `(t, state)`: each calls its method of the inputs'
+            /// trait at its declared arguments (docs/inputs.md#sampled-inputs).
+            fn sample(
+                &self,
+                t: f64,
+                state: &mut #runtime::nalgebra::SVector<f64, #s>,
+            ) -> ::core::result::Result<(), #runtime::SystemError> {
+                #velocity_state
+                #(#writes)*
+                Ok(())
             }
         }
     }

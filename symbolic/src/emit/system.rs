@@ -137,6 +137,14 @@ impl Emitter<'_> {
                 out.extend(quote!(let #local = #vector[#index];));
             }
         }
+        // The held values of the sampled inputs, after the state masses.
+        for (j, held) in self.d.held().into_iter().enumerate() {
+            if used.contains(&held) {
+                let local = symbol_ident(&self.d.pool, held);
+                let index = Literal::usize_unsuffixed(2 * n + self.k() + j);
+                out.extend(quote!(let #local = #vector[#index];));
+            }
+        }
         let laws: Vec<(Symbol, Id)> = self
             .d
             .masses
@@ -327,7 +335,7 @@ impl Emitter<'_> {
         let values = quantity.read(self.d);
         let runtime = &self.target.runtime;
         let n = Literal::usize_unsuffixed(self.n());
-        let signature = method.signature(runtime, self.n(), 2 * self.n() + self.k());
+        let signature = method.signature(runtime, self.n(), self.d.state_len());
         let docs = self.docs(spec.doc, self.quantity_lines(quantity, &values));
         let all_zero = values.iter().all(|v| self.d.pool.is_zero(*v));
         let body = if all_zero {

@@ -98,7 +98,8 @@ impl Names<'_> {
 pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStream {
     let st = stages(d);
     let n = d.coordinates.len();
-    let s = 2 * n + d.state_mass_count();
+    let s = d.state_len();
+    let (k_masses, masses) = (d.state_mass_count(), d.masses.len());
     let s_lit = Literal::usize_unsuffixed(s);
     let ts = quote!(#runtime::steppers::taylor::series);
     let len = quote!(#ts::LEN);
@@ -120,8 +121,11 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
     let state_input = |j: usize| {
         input(if j < 2 * n {
             1 + j
-        } else {
+        } else if j < 2 * n + k_masses {
             1 + 3 * n + (j - 2 * n)
+        } else {
+            // A held input, after every mass among the tape's inputs.
+            1 + 3 * n + masses + (j - 2 * n - k_masses)
         })
     };
     let inputs = (0..st.inputs).map(input);
@@ -140,7 +144,8 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
         quote!(#to[k] = #from[k];)
     });
     let (factor, solve) = velocity_solve(&st, &velocities, n, runtime);
-    let next = (0..s).map(|j| {
+    // A held input's higher coefficients stay 0: it is constant between samples.
+    let next = (0..2 * n + k_masses).map(|j| {
         let to = state_input(j);
         let from = if j < n {
             input(1 + 2 * n + j)

@@ -15,6 +15,7 @@
 use super::func::Func;
 use super::node::Id;
 use super::pool::ExprPool;
+use super::symbol::Symbol;
 use crate::parse::ast::{Expr, ExprNode};
 use crate::parse::Span;
 
@@ -26,6 +27,8 @@ pub(crate) struct PoolInput {
     pub(crate) arguments: Vec<String>,
     /// The expression that replaces each call, if one was given.
     pub(crate) law: Option<ExprNode>,
+    /// The held value of a sampled input, the symbol each call lowers to.
+    pub(crate) held: Option<Symbol>,
 }
 
 impl ExprPool {
@@ -37,6 +40,7 @@ impl ExprPool {
             name: name.to_owned(),
             arguments,
             law: None,
+            held: None,
         });
         Some(index)
     }
@@ -47,6 +51,19 @@ impl ExprPool {
         if let Some(entry) = self.inputs.get_mut(usize::from(input)) {
             entry.law = Some(law);
         }
+    }
+
+    /// Makes input `input` sampled: each call lowers to `held`, its held value
+    /// (docs/inputs.md#sampled-inputs).
+    pub fn set_input_held(&mut self, input: u16, held: Symbol) {
+        if let Some(entry) = self.inputs.get_mut(usize::from(input)) {
+            entry.held = Some(held);
+        }
+    }
+
+    /// The held value of input `input` if it is sampled.
+    pub fn input_held(&self, input: u16) -> Option<Symbol> {
+        self.inputs.get(usize::from(input)).and_then(|i| i.held)
     }
 
     /// The law of input `input`, if it has one.

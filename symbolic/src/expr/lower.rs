@@ -8,7 +8,7 @@ use super::func::Func;
 use super::input_call::substitute_arguments;
 use super::node::Id;
 use super::pool::ExprPool;
-use super::symbol::SymbolKind;
+use super::symbol::{Symbol, SymbolKind};
 use crate::parse::ast::{BinOp, Expr, ExprNode};
 use crate::parse::keywords::FUNCTIONS;
 use crate::parse::{Diagnostic, Span};
@@ -168,6 +168,9 @@ fn lower_node(
                 let law = substitute_arguments(&law, &parameters, args, func.span);
                 return lower_node(pool, &law, resolver, errors);
             }
+            if let Some((input, held)) = held_input(pool, resolver, &func.node) {
+                return record(held_call(pool, (input, held), args, func.span), errors);
+            }
             let lowered: Vec<Option<Id>> = args
                 .iter()
                 .map(|a| lower_node(pool, a, resolver, errors))
@@ -230,6 +233,46 @@ fn input_law(
     }
     let law = pool.input_law(input)?.clone();
     Some((law, pool.input_arguments(input).to_vec()))
+}
+
+/// The index and held value of input `name` if it is a sampled input.
+fn held_input(pool: &ExprPool, resolver: &dyn Resolver, name: &str) -> Option<(u16, Symbol)> {
+    let (input, _) = resolver.input(name)?;
+    Some((input, pool.input_held(input)?))
+}
+
+/// A call of a sampled input: its held value, the input's value at the last sample
+/// (docs/inputs.md#sampled-inputs). The sample evaluates the input at its declared
+/// arguments, so a call must pass exactly those (`u(t, y, y')`): any other argument would
+/// ask for a value nothing sampled.
+fn held_call(
+    pool: &mut ExprPool,
+    (input, held): (u16, Symbol),
+    args: &[ExprNode],
+    span: Span,
+) -> Result<Id, Diagnostic> {
+    let declared = pool.input_arguments(input);
+    let written = |a: &ExprNode| match a.node.as_ref() {
+        Expr::Name(n) => Some(n.clone()),
+        Expr::Derivative { name, order } => {
+            Some(format!("{name}{}", "'".repeat(usize::from(*order))))
+        }
+        _ => None,
+    };
+    let same = args.len() == declared.len()
+        && (args.iter().zip(declared)).all(|(a, d)| written(a).as_deref() == Some(d.as_str()));
+    if same {
+        return Ok(pool.sym(held));
+    }
+    let name = pool.input_name(input);
+    Err(Diagnostic::new(
+        span,
+        format!(
+            "sampled input `{name}` is called with its declared arguments only: `{name}({})`",
+            declared.join(", ")
+        ),
+    )
+    .with_help("its value is held from the last sample, taken at the declared arguments"))
 }
 
 fn record(result: Result<Id, Diagnostic>, errors: &mut Vec<Diagnostic>) -> Option<Id> {

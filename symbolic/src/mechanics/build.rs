@@ -29,6 +29,7 @@ pub fn build_model(
     builder.laws = laws.to_vec();
     builder.declare(ast);
     builder.lower_statements(ast);
+    builder.lower_sampled_laws();
     builder.finish()
 }
 

@@ -13,7 +13,7 @@
 use super::build::Builder;
 use super::derivation::Derivation;
 use super::resolve::Binding;
-use crate::expr::{Func, Id, Node};
+use crate::expr::{Func, Id, Node, Symbol, SymbolKind};
 use crate::parse::ast::{Expr, ExprNode, InputDecl};
 use crate::parse::{keywords, Diagnostic, Span};
 
@@ -26,6 +26,13 @@ pub struct ModelInput {
     pub arguments: Vec<String>,
     /// `every h`: the sample period in seconds of a sampled (zero-order-hold) input.
     pub every: Option<f64>,
+    /// The symbol of a sampled input's held value, which its calls lower to: constant in
+    /// the calculus, read from the state's entry after the state masses.
+    pub held: Option<Symbol>,
+    /// The law given for a sampled input (`varmass run --input`), an expression of its
+    /// declared arguments (t, coordinates, velocities) and the parameters: what the
+    /// interpreter's sample evaluates. `None` under the macro (the trait's method serves).
+    pub law: Option<Id>,
     /// Its index in the pool ([`crate::expr::ExprPool::input_name`]).
     pub index: u16,
     /// Where the statement names it.
@@ -59,23 +66,7 @@ impl Builder {
             .every
             .as_ref()
             .and_then(|period| match period.node.parse::<f64>() {
-                Ok(h) if h.is_finite() && h > 0.0 => {
-                    // Parsed and checked, but not run: a continuous call in its place would
-                    // be a different controller, so a sampled input is refused until the
-                    // hold exists (docs/inputs.md#sampled-inputs).
-                    self.errors.push(
-                        Diagnostic::new(
-                            period.span,
-                            format!(
-                                "sampled inputs (`every`) are not supported yet: input `{}` \
-                                 would be called continuously, not held between samples",
-                                decl.name.node
-                            ),
-                        )
-                        .with_help("drop `every` for a continuous input"),
-                    );
-                    Some(h)
-                }
+                Ok(h) if h.is_finite() && h > 0.0 => Some(h),
                 _ => {
                     self.errors.push(Diagnostic::new(
                         period.span,
@@ -100,13 +91,25 @@ impl Builder {
         self.model
             .names
             .insert(decl.name.node.clone(), Binding::Input(index, arity));
-        if self.attach_law(decl, index) {
+        // A sampled input keeps its held value even with a law: the law is what the sample
+        // evaluates (the run-time interpreter's hook), lowered once the model is known.
+        if every.is_none() && self.attach_law(decl, index) {
             return;
         }
+        // The held value of a sampled input: a constant of the equations between samples,
+        // read from the state (docs/inputs.md#sampled-inputs).
+        let held = every.map(|_| {
+            let symbol =
+                (self.model.pool.symbols_mut()).add(&decl.name.node, SymbolKind::Parameter);
+            self.model.pool.set_input_held(index, symbol);
+            symbol
+        });
         self.model.inputs.push(ModelInput {
             name: decl.name.node.clone(),
             arguments,
             every,
+            held,
+            law: None,
             index,
             span: decl.name.span,
         });
@@ -136,6 +139,31 @@ impl Builder {
         }
         self.model.pool.set_input_law(index, law);
         true
+    }
+
+    /// Lowers the law given for each sampled input (its declared arguments are the model's
+    /// own t, coordinates and velocities, so the law is lowered as written). A law that calls
+    /// an input is refused as for a continuous input.
+    pub(super) fn lower_sampled_laws(&mut self) {
+        for k in 0..self.model.inputs.len() {
+            let input = &self.model.inputs[k];
+            if input.every.is_none() {
+                continue;
+            }
+            let Some((_, law)) = self.laws.iter().find(|(name, _)| *name == input.name) else {
+                continue;
+            };
+            let (law, name, span) = (law.clone(), input.name.clone(), input.span);
+            if let Some(called) = first_input_called(&law, &self.laws) {
+                self.errors.push(Diagnostic::new(
+                    span,
+                    format!("the law given for input `{name}` calls input `{called}`"),
+                ));
+                continue;
+            }
+            let lowered = self.lower(&law);
+            self.model.inputs[k].law = lowered;
+        }
     }
 
     /// Every argument of `decl` is `t`, a coordinate or a coordinate's velocity, and
@@ -195,6 +223,30 @@ fn first_input_called(law: &ExprNode, laws: &[(String, ExprNode)]) -> Option<Str
     }
 }
 
+/// A diagnostic at each sampled input whose held value is in the Lagrangian or a mass law:
+/// a sample would make a position, an energy or a mass jump, which the frozen-mass
+/// equations between samples do not describe.
+fn held_in_energies(d: &Derivation) -> Vec<Diagnostic> {
+    let mut roots = vec![d.lagrangian, d.energy];
+    roots.extend(d.closed_laws.iter().flatten());
+    let free: std::collections::BTreeSet<_> =
+        roots.iter().flat_map(|r| d.pool.free_symbols(*r)).collect();
+    let sampled = (d.inputs.iter()).filter(|i| i.held.is_some_and(|h| free.contains(&h)));
+    sampled
+        .map(|input| {
+            Diagnostic::new(
+                input.span,
+                format!(
+                    "sampled input `{}` is inside a position, a mass law or an energy: each \
+                     sample would make it jump",
+                    input.name
+                ),
+            )
+            .with_help("a sampled input may appear in forces, thrusts, impacts, torques, flows and mass rates")
+        })
+        .collect()
+}
+
 /// Every equation of `d` but the Jacobian.
 fn equation_roots(d: &Derivation) -> Vec<Id> {
     let mut roots = vec![d.lagrangian, d.energy, d.power];
@@ -240,7 +292,7 @@ pub(crate) fn check_not_differentiated(d: &Derivation) -> Vec<Diagnostic> {
             }
         }
     }
-    let mut diagnostics = Vec::new();
+    let mut diagnostics = held_in_energies(d);
     for input in &d.inputs {
         if differentiated.contains(&input.index) {
             diagnostics.push(

@@ -20,7 +20,8 @@ fn total_diff(pool: &mut ExprPool, e: Id, wrt: Symbol, law_masses: &[(Symbol, Id
     pool.add(&terms)
 }
 
-/// The blocks of the Jacobian of [q̇, ṗ, ṁ_s] with respect to [q, p, m_s].
+/// The blocks of the Jacobian of [q̇, ṗ, ṁ_s] with respect to [q, p, m_s, u_held] (the
+/// `state_mass` blocks have a column per state mass, then per held input).
 pub(crate) fn jacobian_parts(
     model: &mut Model,
     closed: &[Option<Id>],
@@ -41,12 +42,18 @@ pub(crate) fn jacobian_parts(
         .filter(|m| matches!(m.kind, MassKind::State { .. }))
         .map(|m| m.symbol)
         .collect();
+    let mass_count = state_masses.len();
+    // The held values of the sampled inputs are the state's last entries: their columns
+    // follow the state masses' (rate 0, so no rows).
+    let state_masses: Vec<Symbol> = (state_masses.into_iter())
+        .chain(model.inputs.iter().filter_map(|i| i.held))
+        .collect();
     let coordinates: Vec<Symbol> = model.coordinates.iter().map(|c| c.q).collect();
     let pool = &mut model.pool;
     let rows: Vec<Id> = momentum_rate
         .iter()
         .copied()
-        .chain(rates.iter().take(state_masses.len()).copied())
+        .chain(rates.iter().take(mass_count).copied())
         .collect();
     let block = |pool: &mut ExprPool, rows: &[Id], wrt: &[Symbol], total: bool| -> Matrix {
         rows.iter()

@@ -61,6 +61,8 @@ impl Derivation {
         inputs.extend(self.coordinates.iter().map(|c| c.momentum));
         inputs.extend(self.coordinates.iter().map(|c| c.velocity));
         inputs.extend(self.masses.iter().map(|m| m.symbol));
+        // The held values of the sampled inputs: constant series (docs/inputs.md).
+        inputs.extend(self.held());
         inputs
     }
 }

@@ -55,11 +55,13 @@ pub(crate) fn affine_in_time(d: &mut Derivation, argument: Id) -> Option<(Id, Id
     let slope = d.pool.diff(argument, d.time);
     let moved = d.pool.mul(&[slope, t]);
     let offset = d.pool.sub(argument, moved);
+    // A held input is a constant symbol too, but read from the state: not a parameter.
+    let held = d.held();
     let only_parameters = |d: &Derivation, e: Id| {
         d.pool
             .free_symbols(e)
             .into_iter()
-            .all(|s| d.pool.symbols().kind(s) == SymbolKind::Parameter)
+            .all(|s| d.pool.symbols().kind(s) == SymbolKind::Parameter && !held.contains(&s))
     };
     (!d.pool.is_zero(slope) && only_parameters(d, slope) && only_parameters(d, offset))
         .then_some((slope, offset))
