@@ -27,7 +27,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::fixed::{Fixed, FixedMethod};
+use super::fixed::{Fixed, FixedMethod, NewState, Step};
 use super::newton::{self, Newton, NewtonConfig};
 use super::FixedStep;
 use crate::error::{ConfigError, StepError};
@@ -179,17 +179,14 @@ impl<const N: usize, const S: usize> FixedMethod<N, S> for VariationalMethod {
         Ok((step, Self { newton, principle }))
     }
 
-    fn advance<Sys>(
-        &self,
-        system: &Sys,
-        statistics: &mut Statistics,
-        (t0, y0): (f64, &SVector<f64, S>),
-        h: f64,
-    ) -> Result<SVector<f64, S>, StepError<S>>
-    where
-        Sys: VariableMassSystem<N, S>,
-    {
-        let y0 = *y0;
+    fn advance<Sys: VariableMassSystem<N, S>>(&self, step: Step<'_, Sys, S>) -> NewState<S> {
+        let Step {
+            system,
+            statistics,
+            t0,
+            y0,
+            h,
+        } = step;
         let discrete = DiscreteStep {
             system,
             principle: self.principle,
@@ -219,8 +216,7 @@ impl<const N: usize, const S: usize> FixedMethod<N, S> for VariationalMethod {
             predictor,
             &self.newton,
             statistics,
-            t0,
-            &y0,
+            (t0, &y0),
         )?;
         let mid = discrete.midpoint::<N>(&solution);
         let (_, end_momenta) = discrete.end_momenta(t0 + 0.5 * h, &mid, statistics)?;
