@@ -52,12 +52,7 @@ impl<'a> Grammar<'a> {
     /// `rigid b: mass m, inertia …, position [..], angle e | orientation seq(a, b, c)
     /// [, centre [..]]`, options in any order, each at most once.
     pub(super) fn rigid(&self, input: &'a str) -> PResult<'a, (StatementKind, &'static str)> {
-        let (rest, name) = self.required(input, false, "a body name", keywords::RIGID, |i| {
-            self.name(i)
-        })?;
-        let (after, _) = self.required(rest, false, "`:`", &name.node, |i| {
-            self.punct_after_blanks(i, ':')
-        })?;
+        let (after, name) = self.name_then(input, "a body name", keywords::RIGID, ':')?;
         let mut read = RigidOptions::default();
         let (rest, ()) = self.options(
             after,

@@ -92,26 +92,16 @@ impl<'a> Grammar<'a> {
 
     /// The optional tags before a statement's keyword: `[tag]` or `[tag1, tag2]`.
     fn tags(&self, input: &'a str) -> PResult<'a, Vec<Spanned<String>>> {
-        let Ok((mut rest, _)) = self.punct(input, '[') else {
+        let Ok((rest, _)) = self.punct(input, '[') else {
             return Ok((input, Vec::new()));
         };
-        let mut tags: Vec<Spanned<String>> = Vec::new();
-        let mut after = "[".to_string();
-        loop {
-            let (next, tag) = self.required(rest, false, "a tag name", &after, |i| self.name(i))?;
-            after = tag.node.clone();
-            tags.push(tag);
-            match self.punct_after_blanks(next, ',') {
-                Ok((next, _)) => (rest, after) = (next, ",".to_string()),
-                Err(_) => {
-                    rest = next;
-                    break;
-                }
-            }
-        }
-        let (rest, _) = self.required(rest, false, "`,` or `]`", &after, |i| {
-            self.punct_after_blanks(i, ']')
-        })?;
+        let (rest, tags) = self.comma_list(
+            rest,
+            ("[", ']'),
+            "a tag name",
+            |i| self.name(i),
+            |tag| tag.node.clone(),
+        )?;
         Ok((self.skip_blanks(rest, false), tags))
     }
 
@@ -305,12 +295,7 @@ impl<'a> Grammar<'a> {
 
     /// `body b: mass m, position [..]`, options in any order, each exactly once.
     fn body(&self, input: &'a str) -> PResult<'a, Parts> {
-        let (rest, name) = self.required(input, false, "a body name", keywords::BODY, |i| {
-            self.name(i)
-        })?;
-        let (after, _) = self.required(rest, false, "`:`", &name.node, |i| {
-            self.punct_after_blanks(i, ':')
-        })?;
+        let (after, name) = self.name_then(input, "a body name", keywords::BODY, ':')?;
         let mut mass: Option<Spanned<String>> = None;
         let mut position: Option<VectorNode> = None;
         let (rest, ()) = self.options(
