@@ -229,6 +229,39 @@ impl<'a> Grammar<'a> {
         Ok((rest, items))
     }
 
+    /// What follows `punct` (after blanks), or a failure at the next token saying it expected
+    /// `expected` there, with `help` (how the statement is written).
+    pub(super) fn punct_or_help(
+        &self,
+        rest: &'a str,
+        punct: char,
+        expected: &str,
+        help: impl FnOnce() -> String,
+    ) -> Result<&'a str, nom::Err<ParseError>> {
+        match self.punct_after_blanks(rest, punct) {
+            Ok((after, _)) => Ok(after),
+            Err(_) => {
+                let at = self.skip_blanks(rest, false);
+                let diagnostic = self.unexpected_diagnostic(at, expected).with_help(help());
+                Err(self.fail(at, diagnostic))
+            }
+        }
+    }
+
+    /// The failure at `at` for the declaration of `name`, a `kind` (`body`, `rigid body`),
+    /// that lacks `option`, with `help` (how the declaration is written).
+    pub(super) fn missing_option(
+        &self,
+        at: &'a str,
+        (kind, name): (&str, &Spanned<String>),
+        option: &str,
+        help: &str,
+    ) -> nom::Err<ParseError> {
+        let message = format!("missing `{option}` for {kind} `{}`", name.node);
+        let diagnostic = Diagnostic::new(name.span, message).with_help(help.to_string());
+        self.fail(at, diagnostic)
+    }
+
     /// [`Grammar::required`] applied to a result already computed. The recursive
     /// expression parsers use this form so that neither a closure nor the error building
     /// sits on the stack between nesting levels.

@@ -61,20 +61,14 @@ impl<'a> Grammar<'a> {
             keywords::RIGID_OPTIONS,
             |option, at| self.rigid_option(option, at, &name, &mut read),
         )?;
-        let missing = |option: &str| {
-            let diagnostic = Diagnostic::new(
-                name.span,
-                format!("missing `{option}` for rigid body `{}`", name.node),
-            )
-            .with_help(format!(
-                "a rigid body is written `{} {}: mass m, inertia J, position [x, y], angle th` \
-                 (planar) or `…, inertia [A, B, C], position [x, y, z], orientation \
-                 zyx(psi, th, phi)` (spatial)",
-                keywords::RIGID,
-                name.node
-            ));
-            self.fail(rest, diagnostic)
-        };
+        let help = format!(
+            "a rigid body is written `{} {}: mass m, inertia J, position [x, y], angle th` \
+             (planar) or `…, inertia [A, B, C], position [x, y, z], orientation \
+             zyx(psi, th, phi)` (spatial)",
+            keywords::RIGID,
+            name.node
+        );
+        let missing = |option| self.missing_option(rest, ("rigid body", &name), option, &help);
         let Some(mass) = read.mass else {
             return Err(missing(keywords::MASS));
         };
