@@ -6,7 +6,7 @@ use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
 use crate::points::Points;
-use crate::text::{comma_fields, error_at, number, PointsBuilder};
+use crate::text::{comma_fields, error_at, header_and_data, number, PointsBuilder};
 
 /// A table read from CSV: the names its header gives the columns, and the points.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,16 +25,7 @@ const PAIR: &str = "2 fields (argument, value)";
 impl CsvTable {
     /// Reads `text`.
     pub fn parse(text: &str) -> Result<Self, ReadError> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .map(|(index, line)| (index + 1, line))
-            .filter(|(_, line)| !line.trim().is_empty() && !line.trim_start().starts_with('#'));
-        let (header_line, header) = lines.next().ok_or(error_at(
-            text.lines().count().max(1),
-            1,
-            ReadErrorKind::MissingHeader { expected: HEADER },
-        ))?;
+        let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
         let names = two_fields(header_line, header)?;
         if names.iter().all(|(_, name)| name.parse::<f64>().is_ok()) {
             return Err(error_at(header_line, 1, ReadErrorKind::HeaderIsData));
@@ -56,6 +47,15 @@ impl CsvTable {
             value: names[1].1.to_string(),
             points: points.finish(last_line)?,
         })
+    }
+}
+
+/// The line, or nothing if it is a `#` comment.
+fn without_comment(line: &str) -> &str {
+    if line.trim_start().starts_with('#') {
+        ""
+    } else {
+        line
     }
 }
 

@@ -7,7 +7,7 @@ use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
 use crate::points::Points;
-use crate::text::{error_at, number, whitespace_fields, PointsBuilder};
+use crate::text::{error_at, header_and_data, number, whitespace_fields, PointsBuilder};
 
 /// One motor of a RASP `.eng` file: its header and its thrust curve.
 #[derive(Clone, Debug, PartialEq)]
@@ -36,16 +36,7 @@ const PAIR: &str = "2 fields (time thrust)";
 impl Motor {
     /// Reads the first (and only) motor of `text`.
     pub fn parse(text: &str) -> Result<Self, ReadError> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .map(|(index, line)| (index + 1, without_comment(line)))
-            .filter(|(_, line)| !line.trim().is_empty());
-        let (header_line, header) = lines.next().ok_or(error_at(
-            text.lines().count().max(1),
-            1,
-            ReadErrorKind::MissingHeader { expected: HEADER },
-        ))?;
+        let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
         let header = parse_header(header_line, header)?;
         let mut thrust = PointsBuilder::default();
         let mut last_line = header_line;

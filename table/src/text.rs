@@ -42,6 +42,29 @@ pub(crate) fn comma_fields(line: &str) -> Vec<Field<'_>> {
     fields
 }
 
+/// The lines of `text` that hold data, numbered from 1 (`data` gives a line's data: the
+/// line without its comment), blank ones skipped; the first is the header, which must be
+/// there (else [`ReadErrorKind::MissingHeader`] names `expected`).
+pub(crate) fn header_and_data<'t>(
+    text: &'t str,
+    data: fn(&str) -> &str,
+    expected: &'static str,
+) -> Result<(Line<'t>, impl Iterator<Item = Line<'t>>), ReadError> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(move |(index, line)| (index + 1, data(line)))
+        .filter(|(_, line)| !line.trim().is_empty());
+    let missing = ReadErrorKind::MissingHeader { expected };
+    let header = lines
+        .next()
+        .ok_or(error_at(text.lines().count().max(1), 1, missing))?;
+    Ok((header, lines))
+}
+
+/// A line's number (from 1) and its text.
+pub(crate) type Line<'t> = (usize, &'t str);
+
 /// An error at `line`, `column`.
 pub(crate) fn error_at(line: usize, column: usize, kind: ReadErrorKind) -> ReadError {
     ReadError { line, column, kind }
