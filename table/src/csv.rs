@@ -30,22 +30,15 @@ impl CsvTable {
         if names.iter().all(|(_, name)| name.parse::<f64>().is_ok()) {
             return Err(error_at(header_line, 1, ReadErrorKind::HeaderIsData));
         }
-        let mut points = PointsBuilder::default();
-        let mut last_line = header_line;
-        for (line, content) in lines {
+        let points = PointsBuilder::read(header_line, lines, |points, line, content| {
             let [argument, value] = two_fields(line, content)?;
-            points.push(
-                line,
-                argument.0,
-                number(line, argument)?,
-                number(line, value)?,
-            )?;
-            last_line = line;
-        }
+            let (x, y) = (number(line, argument)?, number(line, value)?);
+            points.push(line, argument.0, x, y)
+        })?;
         Ok(Self {
             argument: names[0].1.to_string(),
             value: names[1].1.to_string(),
-            points: points.finish(last_line)?,
+            points,
         })
     }
 }

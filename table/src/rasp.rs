@@ -38,38 +38,8 @@ impl Motor {
     pub fn parse(text: &str) -> Result<Self, ReadError> {
         let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
         let header = parse_header(header_line, header)?;
-        let mut thrust = PointsBuilder::default();
-        let mut last_line = header_line;
-        for (line, content) in lines {
-            let fields = whitespace_fields(content);
-            if fields.len() != 2 {
-                let kind = if fields.len() >= 7 && fields[0].1.parse::<f64>().is_err() {
-                    ReadErrorKind::SecondMotor
-                } else {
-                    ReadErrorKind::FieldCount {
-                        expected: PAIR,
-                        found: fields.len(),
-                    }
-                };
-                return Err(error_at(line, 1, kind));
-            }
-            let time = number(line, fields[0])?;
-            let force = number(line, fields[1])?;
-            if time < 0.0 {
-                return Err(error_at(
-                    line,
-                    fields[0].0,
-                    ReadErrorKind::NegativeTime { time },
-                ));
-            }
-            // The curve starts from ignition at zero thrust unless the file says otherwise.
-            if thrust.len() == 0 && time > 0.0 {
-                thrust.push(line, fields[0].0, 0.0, 0.0)?;
-            }
-            thrust.push(line, fields[0].0, time, force)?;
-            last_line = line;
-        }
-        Ok(header.with_thrust(thrust.finish(last_line)?))
+        let thrust = PointsBuilder::read(header_line, lines, thrust_row)?;
+        Ok(header.with_thrust(thrust))
     }
 
     /// Total impulse, N·s: the integral of the thrust curve by exact trapezoids (the
@@ -89,6 +59,38 @@ impl Motor {
     pub fn exhaust_speed(&self) -> f64 {
         self.total_impulse() / self.propellant_kg
     }
+}
+
+/// Puts in the thrust curve a data line of a RASP file: `time thrust`, the time ≥ 0; the
+/// curve starts from ignition at zero thrust unless the file says otherwise. A line of seven
+/// fields or more that starts with a name is a second motor's header.
+fn thrust_row(thrust: &mut PointsBuilder, line: usize, content: &str) -> Result<(), ReadError> {
+    let fields = whitespace_fields(content);
+    if fields.len() != 2 {
+        let kind = if fields.len() >= 7 && fields[0].1.parse::<f64>().is_err() {
+            ReadErrorKind::SecondMotor
+        } else {
+            ReadErrorKind::FieldCount {
+                expected: PAIR,
+                found: fields.len(),
+            }
+        };
+        return Err(error_at(line, 1, kind));
+    }
+    let time = number(line, fields[0])?;
+    let force = number(line, fields[1])?;
+    if time < 0.0 {
+        return Err(error_at(
+            line,
+            fields[0].0,
+            ReadErrorKind::NegativeTime { time },
+        ));
+    }
+    // The curve starts from ignition at zero thrust unless the file says otherwise.
+    if thrust.len() == 0 && time > 0.0 {
+        thrust.push(line, fields[0].0, 0.0, 0.0)?;
+    }
+    thrust.push(line, fields[0].0, time, force)
 }
 
 /// The line without its `;` comment.

@@ -127,8 +127,24 @@ impl PointsBuilder {
         self.arguments.len()
     }
 
+    /// The points of the data `lines` after the header at `header_line`, each line put in
+    /// by `row` (which checks it, and may put in more than one point).
+    pub(crate) fn read<'t>(
+        header_line: usize,
+        lines: impl Iterator<Item = Line<'t>>,
+        mut row: impl FnMut(&mut Self, usize, &'t str) -> Result<(), ReadError>,
+    ) -> Result<Points, ReadError> {
+        let mut points = Self::default();
+        let mut last_line = header_line;
+        for (line, content) in lines {
+            row(&mut points, line, content)?;
+            last_line = line;
+        }
+        points.finish(last_line)
+    }
+
     /// The points; `last_line` is where a too-short file is reported.
-    pub(crate) fn finish(self, last_line: usize) -> Result<Points, ReadError> {
+    fn finish(self, last_line: usize) -> Result<Points, ReadError> {
         let found = self.arguments.len();
         // Every check of `Points::new` but the count was made as the lines were read.
         Points::new(self.arguments, self.values)
