@@ -37,9 +37,9 @@ impl Motor {
     /// Reads the first (and only) motor of `text`.
     pub fn parse(text: &str) -> Result<Self, ReadError> {
         let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
-        let header = parse_header(header_line, header)?;
+        let motor = parse_header(header_line, header)?;
         let thrust = PointsBuilder::read(header_line, lines, thrust_row)?;
-        Ok(header.with_thrust(thrust))
+        Ok(motor(thrust))
     }
 
     /// Total impulse, N·s: the integral of the thrust curve by exact trapezoids (the
@@ -98,42 +98,8 @@ fn without_comment(line: &str) -> &str {
     line.split(';').next().unwrap_or("")
 }
 
-/// A motor without its curve: what the header line says.
-struct Header {
-    name: String,
-    diameter_mm: f64,
-    length_mm: f64,
-    delays: String,
-    propellant_kg: f64,
-    total_kg: f64,
-    maker: String,
-}
-
-impl Header {
-    fn with_thrust(self, thrust: Points) -> Motor {
-        let Header {
-            name,
-            diameter_mm,
-            length_mm,
-            delays,
-            propellant_kg,
-            total_kg,
-            maker,
-        } = self;
-        Motor {
-            name,
-            diameter_mm,
-            length_mm,
-            delays,
-            propellant_kg,
-            total_kg,
-            maker,
-            thrust,
-        }
-    }
-}
-
-fn parse_header(line: usize, text: &str) -> Result<Header, ReadError> {
+/// What the header line says: the motor, once given its thrust curve.
+fn parse_header(line: usize, text: &str) -> Result<impl FnOnce(Points) -> Motor, ReadError> {
     let fields = whitespace_fields(text);
     if fields.len() < 7 {
         let kind = ReadErrorKind::FieldCount {
@@ -143,18 +109,23 @@ fn parse_header(line: usize, text: &str) -> Result<Header, ReadError> {
         };
         return Err(error_at(line, 1, kind));
     }
-    Ok(Header {
-        name: fields[0].1.to_string(),
-        diameter_mm: number(line, fields[1])?,
-        length_mm: number(line, fields[2])?,
-        delays: fields[3].1.to_string(),
-        propellant_kg: number(line, fields[4])?,
-        total_kg: number(line, fields[5])?,
-        // A maker written in several words keeps them.
-        maker: fields[6..]
-            .iter()
-            .map(|(_, word)| *word)
-            .collect::<alloc::vec::Vec<_>>()
-            .join(" "),
+    let name = fields[0].1.to_string();
+    let diameter_mm = number(line, fields[1])?;
+    let length_mm = number(line, fields[2])?;
+    let delays = fields[3].1.to_string();
+    let propellant_kg = number(line, fields[4])?;
+    let total_kg = number(line, fields[5])?;
+    // A maker written in several words keeps them.
+    let words = fields[6..].iter().map(|(_, word)| *word);
+    let maker = words.collect::<alloc::vec::Vec<_>>().join(" ");
+    Ok(move |thrust| Motor {
+        name,
+        diameter_mm,
+        length_mm,
+        delays,
+        propellant_kg,
+        total_kg,
+        maker,
+        thrust,
     })
 }
