@@ -22,7 +22,7 @@ use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl}
 use crate::error::{StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
 use crate::stepper::{
-    check_state, state_rate, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
+    state_rate, Checked, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
 };
 use crate::system::VariableMassSystem;
 use crate::tolerance::Tolerance;
@@ -128,7 +128,7 @@ where
     let increment =
         k1 * B1 + k6 * B6 + k7 * B7 + k8 * B8 + k9 * B9 + k10 * B10 + k11 * B11 + k12 * B12;
     let y1 = y0 + increment * h;
-    check_state(system, t0 + h, &y1)?;
+    system.check_state(t0 + h, &y1)?;
     let error = match tolerance {
         None => 0.0,
         Some(tolerance) => {
