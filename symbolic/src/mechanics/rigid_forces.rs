@@ -111,18 +111,6 @@ pub(crate) struct PointFlow<'a> {
 ///
 /// ```text
 /// K_α = Σ_φ φ̇ ∂*p_b,α/∂φ − ṁ_b ṙ_c · ∂r_c/∂q_α − ṙ_c · (∂R/∂q_α) I,
-/// The terms φ̇ ∂e/∂φ of the rate of `e` through the frozen symbols φ (each with its rate
-/// φ̇), in their order.
-fn frozen_rate_terms(pool: &mut ExprPool, e: Id, frozen: &[(Symbol, Id)]) -> Vec<Id> {
-    frozen
-        .iter()
-        .map(|(phi, rate)| {
-            let partial = pool.diff(e, *phi);
-            pool.mul(&[*rate, partial])
-        })
-        .collect()
-}
-
 /// I = d(m c)/dt + Σ_out Q a − Σ_in Q a
 /// ```
 ///
@@ -169,6 +157,18 @@ pub(crate) fn transport(
             let coupling = dot(pool, centre_velocity, &moved);
             terms.push(pool.neg(coupling));
             pool.add(&terms)
+        })
+        .collect()
+}
+
+/// The terms φ̇ ∂e/∂φ of the rate of `e` through the frozen symbols φ (each with its rate
+/// φ̇), in their order.
+fn frozen_rate_terms(pool: &mut ExprPool, e: Id, frozen: &[(Symbol, Id)]) -> Vec<Id> {
+    frozen
+        .iter()
+        .map(|(phi, rate)| {
+            let partial = pool.diff(e, *phi);
+            pool.mul(&[*rate, partial])
         })
         .collect()
 }
