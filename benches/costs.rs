@@ -21,7 +21,7 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion};
 use varmass::core::nalgebra::SVector;
 use varmass::core::VariableMassSystem;
-use varmass_symbolic::mechanics::{derive, derive_source, Outputs, Parameters};
+use varmass_symbolic::mechanics::{derive, derive_source, Outputs, Parameters, VelocitySolve};
 use varmass_symbolic::parse::parse_system;
 
 use common::adjugate::closed_velocities;
@@ -35,7 +35,7 @@ use common::problems::{KeplerProblem, Problem, RocketProblem, SledProblem};
 use common::rocket_6dof::{flight_states, HandRocket6};
 use common::timing::fastest_of;
 use common::workloads::{
-    chain, chain_parameters, chain_samples, disagreement, expand, generated_rates,
+    chain, chain_parameters, chain_samples, disagreement, expand, expand_with, generated_rates,
     interpreted_rates, kepler_parameters, pair, pair_rounds, rk4_run, rocket_parameters, samples,
     sled_parameters, ParameterValues, CHAIN_PARAMETERS, STEPS,
 };
@@ -245,6 +245,7 @@ fn summary() {
     );
     velocity_tapes(2);
     velocity_tapes(3);
+    threshold_expansion();
 
     say!("\n== generated state rate of the n-link chain (ns per call)");
     chain_rate(1, &chain(|m0, c, l, g| Chain1 { m0, c, l, g }));
@@ -428,6 +429,30 @@ fn threshold_row<A, B, const N: usize, const S: usize>(
         ta / calls,
         tb / calls,
         ta / tb,
+    );
+}
+
+/// The other side of the symbolic-inverse threshold: what the closed-form q̇ costs the
+/// macro for the 3-link chain (derive and emit, fastest of 10) and the code it generates,
+/// against the LDLᵀ the macro emits. Its figures in the dev profile are the ones users get
+/// (`cargo bench --profile dev -p varmass-benches --bench costs -- none`).
+fn threshold_expansion() {
+    let source = chain_source(3);
+    let budget = Duration::from_secs(5);
+    let (ldlt_time, ldlt) = fastest_of(3, 10, budget, || expand(3, &source));
+    let (closed_time, closed) = fastest_of(3, 10, budget, || {
+        expand_with(3, &source, |d| {
+            d.velocities = VelocitySolve::Symbolic(closed_velocities(d));
+        })
+    });
+    let (ldlt_size, closed_size) = (formatted_size(ldlt), formatted_size(closed));
+    say!(
+        "3 links, expansion: LDLᵀ {:.2} ms, {ldlt_size} B; q̇ closed form {:.2} ms, \
+         {closed_size} B (×{:.2} time, ×{:.2} code)",
+        ldlt_time.as_secs_f64() * 1e3,
+        closed_time.as_secs_f64() * 1e3,
+        closed_time.as_secs_f64() / ldlt_time.as_secs_f64(),
+        closed_size as f64 / ldlt_size as f64,
     );
 }
 

@@ -10,7 +10,7 @@ use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{ClassicalRk4, FixedStep};
 use varmass::core::{StepOutcome, Stepper, VariableMassSystem};
 use varmass_symbolic::emit::{emit_system, Target};
-use varmass_symbolic::mechanics::{derive_source, Parameters};
+use varmass_symbolic::mechanics::{derive_source, Derivation, Parameters};
 
 use super::generated::{Kepler, Rocket, Sled};
 use super::interpreted::Interpreted;
@@ -214,12 +214,25 @@ pub fn chain_parameters() -> Parameters {
 
 /// The macro's pipeline on the n-link chain: parse, derive (with checks), emit.
 pub fn expand(links: usize, source: &str) -> proc_macro2::TokenStream {
+    expand_with(links, source, |_| {})
+}
+
+/// [`expand`], `change` applied to the derivation before it is emitted (the closed-form
+/// q̇ of the symbolic-inverse threshold's other side, say).
+pub fn expand_with(
+    links: usize,
+    source: &str,
+    change: impl Fn(&mut Derivation),
+) -> proc_macro2::TokenStream {
     let target = Target {
         name: Ident::new(&format!("Chain{links}"), Span::call_site()),
         runtime: quote!(::varmass::core),
     };
     match derive_source(source, chain_parameters()) {
-        Ok(mut d) => emit_system(&mut d, source, &target),
+        Ok(mut d) => {
+            change(&mut d);
+            emit_system(&mut d, source, &target)
+        }
         Err(_) => proc_macro2::TokenStream::new(),
     }
 }

@@ -97,6 +97,7 @@
 #[cfg(feature = "run")]
 extern crate alloc;
 
+pub mod cholesky;
 pub mod error;
 pub mod input;
 pub mod math;

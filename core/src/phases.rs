@@ -16,7 +16,7 @@ use crate::error::StepError;
 use crate::events::Event;
 use crate::run::{run, RunConfig, RunError};
 use crate::solution::{Solution, StopReason};
-use crate::stepper::Stepper;
+use crate::stepper::{Checked, Stepper};
 use crate::system::VariableMassSystem;
 
 /// The error of a phase whose end condition already holds where it begins, or stands
@@ -311,9 +311,7 @@ where
             Ok((after, before_energy - kinetic(system, time, &moving)))
         }
         Carry::Capture => {
-            let after_velocity = system
-                .velocity_state(time, &entered)
-                .map_err(|error| StepError::from_system(system, error, time, &entered))?;
+            let after_velocity = system.velocity_state_at(time, &entered)?;
             Ok((
                 entered,
                 before_energy - kinetic(system, time, &after_velocity),

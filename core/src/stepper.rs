@@ -66,7 +66,7 @@ impl<const S: usize> Progress<S> {
                 "the initial time is not finite",
             ));
         }
-        check_state(system, time, &state)?;
+        system.check_state(time, &state)?;
         Ok(Self {
             time,
             state,
@@ -177,7 +177,7 @@ impl<const S: usize> Progress<S> {
             (true, Some(stop)) => stop,
             _ => self.time + step,
         };
-        check_state(system, time, &state)?;
+        system.check_state(time, &state)?;
         self.previous_time = self.time;
         self.previous_state = self.state;
         self.time = time;
@@ -191,22 +191,51 @@ impl<const S: usize> Progress<S> {
     }
 }
 
-/// The checks made on every state a stepper produces: finite, every mass positive.
-pub(crate) fn check_state<Sys, const N: usize, const S: usize>(
-    system: &Sys,
-    time: f64,
-    state: &SVector<f64, S>,
-) -> Result<(), StepError<S>>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    if !is_finite(state) {
-        return Err(StepError::new(time, *state, StepErrorKind::NonFiniteState));
+/// The checks made on the states a stepper produces and a run records, and q̇ with a failure
+/// typed: methods of every system (a blanket impl), so that a step writes
+/// `system.check_state(t, &y)?`.
+pub(crate) trait Checked<const N: usize, const S: usize>: VariableMassSystem<N, S> {
+    /// The checks made on every state a stepper produces: finite, every mass positive.
+    fn check_state(&self, time: f64, state: &SVector<f64, S>) -> Result<(), StepError<S>> {
+        if !is_finite(state) {
+            return Err(StepError::new(time, *state, StepErrorKind::NonFiniteState));
+        }
+        self.check_masses(time, state)
+            .map_err(|error| StepError::from_system(self, error, time, state))
     }
-    system
-        .check_masses(time, state)
-        .map_err(|error| StepError::from_system(system, error, time, state))
+
+    /// The velocity state at `(time, state)`, a failure turned into a typed error.
+    fn velocity_state_at(&self, time: f64, state: &SVector<f64, S>) -> StateResult<S> {
+        self.velocity_state(time, state)
+            .map_err(|error| StepError::from_system(self, error, time, state))
+    }
+
+    /// Checks the system's flow rates at `(time, state)` (nothing to do without flows): the
+    /// first negative one ends the run as [`StepErrorKind::NegativeFlowRate`] there. A rate
+    /// is ≥ 0 by definition; a negative one (`mu = -5` on an inflow, or a rate `mu - k*t`
+    /// past `mu/k`) would reverse the reactive forces (eqs. 15–16) without a word. Every
+    /// point a run or an observation computes passes here: the start, the end of every
+    /// step, an event's and a switch's point.
+    fn check_flows(&self, time: f64, state: &SVector<f64, S>) -> Result<(), StepError<S>> {
+        let count = self.flow_count();
+        if count == 0 {
+            return Ok(());
+        }
+        // Where q̇ cannot be had (a mass run out past a switch the run is about to land on),
+        // there is no rate to check: the stepper or the point's own needs report the cause,
+        // and a switch's redo must not be preempted by it.
+        let Ok(velocity_state) = self.velocity_state(time, state) else {
+            return Ok(());
+        };
+        let rates = (0..count).map(|index| self.flow_rate(index, time, &velocity_state));
+        StepError::check_flow_rates(time, state, rates)
+    }
 }
+
+impl<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize> Checked<N, S> for Sys {}
+
+/// A state (or a rate, or a velocity state) of a system, or why it could not be had.
+pub(crate) type StateResult<const S: usize> = Result<SVector<f64, S>, StepError<S>>;
 
 /// The state rate at `(time, state)`, counted, with a failure turned into a typed error.
 pub(crate) fn state_rate<Sys, const N: usize, const S: usize>(

@@ -1,7 +1,8 @@
 //! A small in-place Cholesky solve for the run-time sized mass matrix (allocation-free, so
-//! the state rate of a [`super::Program`] allocates nothing per evaluation).
+//! the state rate of a [`super::Program`] allocates nothing per evaluation): the core's
+//! [`varmass_core::cholesky`], with the lengths and the results checked.
 
-use varmass_core::system::regular_pivot;
+use varmass_core::cholesky;
 
 /// Solves M x = b in place (x into `b`) for a symmetric positive definite row-major `m` of
 /// size n × n, overwriting `m` with its Cholesky factor. Returns `false` (and leaves
@@ -11,54 +12,19 @@ pub(super) fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) -> bool {
 }
 
 /// Overwrites the lower triangle of the row-major `m` (n × n) with its Cholesky factor L
-/// (M = L Lᵀ); `false` when M is not positive definite or a value is not finite.
+/// (M = L Lᵀ, [`cholesky::factor`]); `false` when `m` is too short, M is not positive
+/// definite or a value is not finite.
 pub(super) fn cholesky_factor(m: &mut [f64], n: usize) -> bool {
-    if m.len() < n * n {
-        return false;
-    }
-    for j in 0..n {
-        let mut diagonal = m[j * n + j];
-        for k in 0..j {
-            diagonal -= m[j * n + k] * m[j * n + k];
-        }
-        // A pivot below RELATIVE_PIVOT_FLOOR of its diagonal entry is singular: the rates
-        // it divides have lost half their digits (gimbal lock, core::system).
-        if !regular_pivot(diagonal, m[j * n + j]) || diagonal.is_infinite() {
-            return false;
-        }
-        let diagonal = diagonal.sqrt();
-        m[j * n + j] = diagonal;
-        for i in j + 1..n {
-            let mut entry = m[i * n + j];
-            for k in 0..j {
-                entry -= m[i * n + k] * m[j * n + k];
-            }
-            m[i * n + j] = entry / diagonal;
-        }
-    }
-    true
+    m.len() >= n * n && cholesky::factor(m, n)
 }
 
-/// Solves L Lᵀ x = b in place with the factor of [`cholesky_factor`]; `false` when a
-/// result is not finite.
+/// Solves L Lᵀ x = b in place with the factor of [`cholesky_factor`]
+/// ([`cholesky::substitute`]); `false` when a slice is too short or a result is not finite.
 pub(super) fn cholesky_substitute(l: &[f64], b: &mut [f64], n: usize) -> bool {
     if l.len() < n * n || b.len() < n {
         return false;
     }
-    for i in 0..n {
-        let mut value = b[i];
-        for k in 0..i {
-            value -= l[i * n + k] * b[k];
-        }
-        b[i] = value / l[i * n + i];
-    }
-    for i in (0..n).rev() {
-        let mut value = b[i];
-        for k in i + 1..n {
-            value -= l[k * n + i] * b[k];
-        }
-        b[i] = value / l[i * n + i];
-    }
+    cholesky::substitute(l, b, n);
     b.iter().take(n).all(|x| x.is_finite())
 }
 

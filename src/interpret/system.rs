@@ -30,15 +30,8 @@ impl<const N: usize, const S: usize> TapeSystem<N, S> {
     /// Fixes the sizes of `program`; they must be its number of coordinates and its state
     /// length.
     pub fn new(program: Program) -> Result<Self, ProgramError> {
-        if program.coordinate_count() != N || program.state_len() != S {
-            return Err(ProgramError::WrongSize {
-                coordinates: program.coordinate_count(),
-                state_masses: program.state_mass_count(),
-                n: N,
-                s: S,
-            });
-        }
-        Ok(Self { program })
+        let state_fits = program.state_len() == S;
+        Self::sized(program, state_fits)
     }
 
     /// Like [`TapeSystem::new`], but `S` may exceed the program's state length: the extra
@@ -49,7 +42,14 @@ impl<const N: usize, const S: usize> TapeSystem<N, S> {
     /// averages over all `S` components, so a caller who wants the step control of the
     /// unpadded system scales its tolerances by √(len / S).
     pub fn padded(program: Program) -> Result<Self, ProgramError> {
-        if program.coordinate_count() != N || program.state_len() > S {
+        let state_fits = program.state_len() <= S;
+        Self::sized(program, state_fits)
+    }
+
+    /// `program` if it has `N` coordinates and its state fits (as the caller judged), else
+    /// [`ProgramError::WrongSize`].
+    fn sized(program: Program, state_fits: bool) -> Result<Self, ProgramError> {
+        if program.coordinate_count() != N || !state_fits {
             return Err(ProgramError::WrongSize {
                 coordinates: program.coordinate_count(),
                 state_masses: program.state_mass_count(),

@@ -6,7 +6,7 @@ use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
 use crate::points::Points;
-use crate::text::{comma_fields, error_at, number, PointsBuilder};
+use crate::text::{comma_fields, error_at, header_and_data, number, PointsBuilder};
 
 /// A table read from CSV: the names its header gives the columns, and the points.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,37 +25,30 @@ const PAIR: &str = "2 fields (argument, value)";
 impl CsvTable {
     /// Reads `text`.
     pub fn parse(text: &str) -> Result<Self, ReadError> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .map(|(index, line)| (index + 1, line))
-            .filter(|(_, line)| !line.trim().is_empty() && !line.trim_start().starts_with('#'));
-        let (header_line, header) = lines.next().ok_or(error_at(
-            text.lines().count().max(1),
-            1,
-            ReadErrorKind::MissingHeader { expected: HEADER },
-        ))?;
+        let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
         let names = two_fields(header_line, header)?;
         if names.iter().all(|(_, name)| name.parse::<f64>().is_ok()) {
             return Err(error_at(header_line, 1, ReadErrorKind::HeaderIsData));
         }
-        let mut points = PointsBuilder::default();
-        let mut last_line = header_line;
-        for (line, content) in lines {
+        let points = PointsBuilder::read(header_line, lines, |points, line, content| {
             let [argument, value] = two_fields(line, content)?;
-            points.push(
-                line,
-                argument.0,
-                number(line, argument)?,
-                number(line, value)?,
-            )?;
-            last_line = line;
-        }
+            let (x, y) = (number(line, argument)?, number(line, value)?);
+            points.push(line, argument.0, x, y)
+        })?;
         Ok(Self {
             argument: names[0].1.to_string(),
             value: names[1].1.to_string(),
-            points: points.finish(last_line)?,
+            points,
         })
+    }
+}
+
+/// The line, or nothing if it is a `#` comment.
+fn without_comment(line: &str) -> &str {
+    if line.trim_start().starts_with('#') {
+        ""
+    } else {
+        line
     }
 }
 

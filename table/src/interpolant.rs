@@ -72,15 +72,22 @@ fn abs(v: f64) -> f64 {
     }
 }
 
+/// The number of knots n, the interval widths hᵢ = xᵢ₊₁ − xᵢ and the chord slopes
+/// mᵢ = (yᵢ₊₁ − yᵢ)/hᵢ, i < n − 1: what both slope rules start from.
+fn chords(points: &Points) -> (usize, Vec<f64>, Vec<f64>) {
+    let (x, y) = (points.arguments(), points.values());
+    let n = x.len();
+    let h: Vec<f64> = (0..n - 1).map(|i| x[i + 1] - x[i]).collect();
+    let m: Vec<f64> = (0..n - 1).map(|i| (y[i + 1] - y[i]) / h[i]).collect();
+    (n, h, m)
+}
+
 /// PCHIP's slopes at the knots (Fritsch–Carlson, 1980, with Brodlie's weights): zero where
 /// the chords on either side differ in sign or one is flat, else the weighted harmonic mean
 /// of the two chords; at the ends the shape-preserving three-point formula (Moler,
 /// *Numerical Computing with MATLAB*, §3.6).
 fn pchip_slopes(points: &Points) -> Vec<f64> {
-    let (x, y) = (points.arguments(), points.values());
-    let n = x.len();
-    let h: Vec<f64> = (0..n - 1).map(|i| x[i + 1] - x[i]).collect();
-    let m: Vec<f64> = (0..n - 1).map(|i| (y[i + 1] - y[i]) / h[i]).collect();
+    let (n, h, m) = chords(points);
     if n == 2 {
         return alloc::vec![m[0]; 2];
     }
@@ -121,10 +128,8 @@ fn pchip_end_slope(h0: f64, h1: f64, m0: f64, m1: f64) -> f64 {
 /// (the rows of SciPy's banded system). The matrix is strictly diagonally dominant, so the
 /// Thomas algorithm needs no pivoting.
 fn natural_spline_slopes(points: &Points) -> Vec<f64> {
-    let (x, y) = (points.arguments(), points.values());
-    let n = x.len();
-    let h: Vec<f64> = (0..n - 1).map(|i| x[i + 1] - x[i]).collect();
-    let m: Vec<f64> = (0..n - 1).map(|i| (y[i + 1] - y[i]) / h[i]).collect();
+    let (n, h, m) = chords(points);
+    let y = points.values();
     // Row i: lower[i]·s[i−1] + diagonal[i]·s[i] + upper[i]·s[i+1] = rhs[i].
     let row = |i: usize| -> (f64, f64, f64, f64) {
         if i == 0 {

@@ -7,7 +7,7 @@ use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
 use crate::points::Points;
-use crate::text::{error_at, number, whitespace_fields, PointsBuilder};
+use crate::text::{error_at, header_and_data, number, whitespace_fields, PointsBuilder};
 
 /// One motor of a RASP `.eng` file: its header and its thrust curve.
 #[derive(Clone, Debug, PartialEq)]
@@ -36,49 +36,10 @@ const PAIR: &str = "2 fields (time thrust)";
 impl Motor {
     /// Reads the first (and only) motor of `text`.
     pub fn parse(text: &str) -> Result<Self, ReadError> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .map(|(index, line)| (index + 1, without_comment(line)))
-            .filter(|(_, line)| !line.trim().is_empty());
-        let (header_line, header) = lines.next().ok_or(error_at(
-            text.lines().count().max(1),
-            1,
-            ReadErrorKind::MissingHeader { expected: HEADER },
-        ))?;
-        let header = parse_header(header_line, header)?;
-        let mut thrust = PointsBuilder::default();
-        let mut last_line = header_line;
-        for (line, content) in lines {
-            let fields = whitespace_fields(content);
-            if fields.len() != 2 {
-                let kind = if fields.len() >= 7 && fields[0].1.parse::<f64>().is_err() {
-                    ReadErrorKind::SecondMotor
-                } else {
-                    ReadErrorKind::FieldCount {
-                        expected: PAIR,
-                        found: fields.len(),
-                    }
-                };
-                return Err(error_at(line, 1, kind));
-            }
-            let time = number(line, fields[0])?;
-            let force = number(line, fields[1])?;
-            if time < 0.0 {
-                return Err(error_at(
-                    line,
-                    fields[0].0,
-                    ReadErrorKind::NegativeTime { time },
-                ));
-            }
-            // The curve starts from ignition at zero thrust unless the file says otherwise.
-            if thrust.len() == 0 && time > 0.0 {
-                thrust.push(line, fields[0].0, 0.0, 0.0)?;
-            }
-            thrust.push(line, fields[0].0, time, force)?;
-            last_line = line;
-        }
-        Ok(header.with_thrust(thrust.finish(last_line)?))
+        let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
+        let motor = parse_header(header_line, header)?;
+        let thrust = PointsBuilder::read(header_line, lines, thrust_row)?;
+        Ok(motor(thrust))
     }
 
     /// Total impulse, N·s: the integral of the thrust curve by exact trapezoids (the
@@ -100,47 +61,45 @@ impl Motor {
     }
 }
 
+/// Puts in the thrust curve a data line of a RASP file: `time thrust`, the time ≥ 0; the
+/// curve starts from ignition at zero thrust unless the file says otherwise. A line of seven
+/// fields or more that starts with a name is a second motor's header.
+fn thrust_row(thrust: &mut PointsBuilder, line: usize, content: &str) -> Result<(), ReadError> {
+    let fields = whitespace_fields(content);
+    if fields.len() != 2 {
+        let kind = if fields.len() >= 7 && fields[0].1.parse::<f64>().is_err() {
+            ReadErrorKind::SecondMotor
+        } else {
+            ReadErrorKind::FieldCount {
+                expected: PAIR,
+                found: fields.len(),
+            }
+        };
+        return Err(error_at(line, 1, kind));
+    }
+    let time = number(line, fields[0])?;
+    let force = number(line, fields[1])?;
+    if time < 0.0 {
+        return Err(error_at(
+            line,
+            fields[0].0,
+            ReadErrorKind::NegativeTime { time },
+        ));
+    }
+    // The curve starts from ignition at zero thrust unless the file says otherwise.
+    if thrust.len() == 0 && time > 0.0 {
+        thrust.push(line, fields[0].0, 0.0, 0.0)?;
+    }
+    thrust.push(line, fields[0].0, time, force)
+}
+
 /// The line without its `;` comment.
 fn without_comment(line: &str) -> &str {
     line.split(';').next().unwrap_or("")
 }
 
-/// A motor without its curve: what the header line says.
-struct Header {
-    name: String,
-    diameter_mm: f64,
-    length_mm: f64,
-    delays: String,
-    propellant_kg: f64,
-    total_kg: f64,
-    maker: String,
-}
-
-impl Header {
-    fn with_thrust(self, thrust: Points) -> Motor {
-        let Header {
-            name,
-            diameter_mm,
-            length_mm,
-            delays,
-            propellant_kg,
-            total_kg,
-            maker,
-        } = self;
-        Motor {
-            name,
-            diameter_mm,
-            length_mm,
-            delays,
-            propellant_kg,
-            total_kg,
-            maker,
-            thrust,
-        }
-    }
-}
-
-fn parse_header(line: usize, text: &str) -> Result<Header, ReadError> {
+/// What the header line says: the motor, once given its thrust curve.
+fn parse_header(line: usize, text: &str) -> Result<impl FnOnce(Points) -> Motor, ReadError> {
     let fields = whitespace_fields(text);
     if fields.len() < 7 {
         let kind = ReadErrorKind::FieldCount {
@@ -150,18 +109,23 @@ fn parse_header(line: usize, text: &str) -> Result<Header, ReadError> {
         };
         return Err(error_at(line, 1, kind));
     }
-    Ok(Header {
-        name: fields[0].1.to_string(),
-        diameter_mm: number(line, fields[1])?,
-        length_mm: number(line, fields[2])?,
-        delays: fields[3].1.to_string(),
-        propellant_kg: number(line, fields[4])?,
-        total_kg: number(line, fields[5])?,
-        // A maker written in several words keeps them.
-        maker: fields[6..]
-            .iter()
-            .map(|(_, word)| *word)
-            .collect::<alloc::vec::Vec<_>>()
-            .join(" "),
+    let name = fields[0].1.to_string();
+    let diameter_mm = number(line, fields[1])?;
+    let length_mm = number(line, fields[2])?;
+    let delays = fields[3].1.to_string();
+    let propellant_kg = number(line, fields[4])?;
+    let total_kg = number(line, fields[5])?;
+    // A maker written in several words keeps them.
+    let words = fields[6..].iter().map(|(_, word)| *word);
+    let maker = words.collect::<alloc::vec::Vec<_>>().join(" ");
+    Ok(move |thrust| Motor {
+        name,
+        diameter_mm,
+        length_mm,
+        delays,
+        propellant_kg,
+        total_kg,
+        maker,
+        thrust,
     })
 }

@@ -42,6 +42,29 @@ pub(crate) fn comma_fields(line: &str) -> Vec<Field<'_>> {
     fields
 }
 
+/// The lines of `text` that hold data, numbered from 1 (`data` gives a line's data: the
+/// line without its comment), blank ones skipped; the first is the header, which must be
+/// there (else [`ReadErrorKind::MissingHeader`] names `expected`).
+pub(crate) fn header_and_data<'t>(
+    text: &'t str,
+    data: fn(&str) -> &str,
+    expected: &'static str,
+) -> Result<(Line<'t>, impl Iterator<Item = Line<'t>>), ReadError> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(move |(index, line)| (index + 1, data(line)))
+        .filter(|(_, line)| !line.trim().is_empty());
+    let missing = ReadErrorKind::MissingHeader { expected };
+    let header = lines
+        .next()
+        .ok_or(error_at(text.lines().count().max(1), 1, missing))?;
+    Ok((header, lines))
+}
+
+/// A line's number (from 1) and its text.
+pub(crate) type Line<'t> = (usize, &'t str);
+
 /// An error at `line`, `column`.
 pub(crate) fn error_at(line: usize, column: usize, kind: ReadErrorKind) -> ReadError {
     ReadError { line, column, kind }
@@ -104,8 +127,24 @@ impl PointsBuilder {
         self.arguments.len()
     }
 
+    /// The points of the data `lines` after the header at `header_line`, each line put in
+    /// by `row` (which checks it, and may put in more than one point).
+    pub(crate) fn read<'t>(
+        header_line: usize,
+        lines: impl Iterator<Item = Line<'t>>,
+        mut row: impl FnMut(&mut Self, usize, &'t str) -> Result<(), ReadError>,
+    ) -> Result<Points, ReadError> {
+        let mut points = Self::default();
+        let mut last_line = header_line;
+        for (line, content) in lines {
+            row(&mut points, line, content)?;
+            last_line = line;
+        }
+        points.finish(last_line)
+    }
+
     /// The points; `last_line` is where a too-short file is reported.
-    pub(crate) fn finish(self, last_line: usize) -> Result<Points, ReadError> {
+    fn finish(self, last_line: usize) -> Result<Points, ReadError> {
         let found = self.arguments.len();
         // Every check of `Points::new` but the count was made as the lines were read.
         Points::new(self.arguments, self.values)

@@ -257,6 +257,19 @@ fn failed(error: &CliError) -> (u8, String) {
     (error.exit_code(), error.to_string())
 }
 
+/// The verdict of the command `key` names: `command`'s the first time, remembered after.
+fn once(
+    commands: &RefCell<HashMap<String, Verdict>>,
+    key: String,
+    command: impl FnOnce() -> Result<(), CliError>,
+) -> Verdict {
+    let mut commands = commands.borrow_mut();
+    let verdict = commands
+        .entry(key)
+        .or_insert_with(|| command().map_err(|e| failed(&e)));
+    verdict.clone()
+}
+
 /// The programs already built, by (file, tags, `--set` values).
 type Programs = HashMap<(String, Vec<String>, Vec<String>), Result<Prepared, (u8, String)>>;
 
@@ -278,29 +291,15 @@ fn one(
     match cli.command {
         Command::Check(a) => {
             let key = format!("check {:?} {:?}", a.file, a.with);
-            let result = || {
-                crate::commands::check::check(&a)
-                    .map(|_| ())
-                    .map_err(|e| failed(&e))
-            };
-            commands
-                .borrow_mut()
-                .entry(key)
-                .or_insert_with(result)
-                .clone()
+            once(commands, key, || {
+                crate::commands::check::check(&a).map(|_| ())
+            })
         }
         Command::Derive(a) => {
             let key = format!("derive {:?} {:?} {}", a.model.file, a.model.with, a.latex);
-            let result = || {
-                crate::commands::derive::derive(&a.model, a.latex)
-                    .map(|_| ())
-                    .map_err(|e| failed(&e))
-            };
-            commands
-                .borrow_mut()
-                .entry(key)
-                .or_insert_with(result)
-                .clone()
+            once(commands, key, || {
+                crate::commands::derive::derive(&a.model, a.latex).map(|_| ())
+            })
         }
         Command::Run(a) => {
             let key = (

@@ -3,11 +3,7 @@
 //! [`varmass::core::run`] to the end (or to each output time in turn with `--every`).
 
 use varmass::core::nalgebra::SVector;
-use varmass::core::steppers::{
-    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
-    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Taylor, TaylorControl,
-    Variational, VariationalConfig,
-};
+use varmass::core::steppers::{AdaptiveControl, FixedStep, StepControl};
 use varmass::core::{
     run, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper, StopReason,
     VariableMassSystem,
@@ -17,7 +13,6 @@ use varmass::interpret::{Program, TapeSystem};
 use super::names::{evaluate, Observable};
 use super::plan::{Plan, Steps};
 use super::watch::Watched;
-use crate::args::Method;
 use crate::error::CliError;
 
 /// What a run produced, sizes erased.
@@ -59,38 +54,7 @@ pub fn integrate<const N: usize, const S: usize>(
             )
         };
     }
-    let driven = match (plan.method, plan.steps) {
-        (Method::DormandPrince, steps) => {
-            drive_with!(DormandPrince, control(steps, AdaptiveControl::default()))
-        }
-        (Method::Dop853, steps) => drive_with!(Dop853, control(steps, AdaptiveControl::dop853())),
-        (Method::Sdirk4, steps) => drive_with!(Sdirk4, control(steps, AdaptiveControl::sdirk4())),
-        (Method::Esdirk43, steps) => {
-            drive_with!(Esdirk43, control(steps, AdaptiveControl::sdirk4()))
-        }
-        (Method::Rk4, steps) => drive_with!(ClassicalRk4, FixedStep { step: step(steps) }),
-        (Method::Euler, steps) => drive_with!(ExplicitEuler, FixedStep { step: step(steps) }),
-        (Method::ImplicitMidpoint, steps) => drive_with!(
-            ImplicitMidpoint,
-            ImplicitMidpointConfig {
-                step: step(steps),
-                ..ImplicitMidpointConfig::default()
-            }
-        ),
-        (Method::Taylor, Steps::Adaptive(tol)) => {
-            drive_with!(Taylor, TaylorControl::adaptive(tol, tol))
-        }
-        (Method::Taylor, Steps::Fixed(step)) => {
-            drive_with!(Taylor, TaylorControl::Fixed { order: 20, step })
-        }
-        (Method::Variational, steps) => drive_with!(
-            Variational,
-            VariationalConfig {
-                step: step(steps),
-                ..VariationalConfig::default()
-            }
-        ),
-    };
+    let driven = with_stepper!(plan.method, plan.steps, drive_with);
     let (points, stopped_by, statistics, failure) = match driven {
         Ok((points, stopped_by, statistics)) => (points, stopped_by, statistics, None),
         Err((points, statistics, error)) => (points, None, statistics, Some(fail(error))),
@@ -103,6 +67,53 @@ pub fn integrate<const N: usize, const S: usize>(
         failure,
     })
 }
+
+/// `$with!(Stepper, settings)` for the core stepper of `method` and its settings from
+/// `steps`: the one table from `--method` to a stepper, read by `varmass run` and by the
+/// scenes. A macro, as each stepper is its own type with its own type of settings.
+macro_rules! with_stepper {
+    ($method:expr, $steps:expr, $with:ident) => {{
+        use varmass::core::steppers::{
+            AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler,
+            FixedStep, ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, Taylor, TaylorControl,
+            Variational, VariationalConfig,
+        };
+        use $crate::args::Method;
+        use $crate::run::integrate::{control, step};
+        use $crate::run::plan::Steps;
+        match ($method, $steps) {
+            (Method::DormandPrince, s) => {
+                $with!(DormandPrince, control(s, AdaptiveControl::default()))
+            }
+            (Method::Dop853, s) => $with!(Dop853, control(s, AdaptiveControl::dop853())),
+            (Method::Sdirk4, s) => $with!(Sdirk4, control(s, AdaptiveControl::sdirk4())),
+            (Method::Esdirk43, s) => $with!(Esdirk43, control(s, AdaptiveControl::sdirk4())),
+            (Method::Rk4, s) => $with!(ClassicalRk4, FixedStep { step: step(s) }),
+            (Method::Euler, s) => $with!(ExplicitEuler, FixedStep { step: step(s) }),
+            (Method::ImplicitMidpoint, s) => $with!(
+                ImplicitMidpoint,
+                ImplicitMidpointConfig {
+                    step: step(s),
+                    ..ImplicitMidpointConfig::default()
+                }
+            ),
+            (Method::Taylor, Steps::Adaptive(tol)) => {
+                $with!(Taylor, TaylorControl::adaptive(tol, tol))
+            }
+            (Method::Taylor, Steps::Fixed(h)) => {
+                $with!(Taylor, TaylorControl::Fixed { order: 20, step: h })
+            }
+            (Method::Variational, s) => $with!(
+                Variational,
+                VariationalConfig {
+                    step: step(s),
+                    ..VariationalConfig::default()
+                }
+            ),
+        }
+    }};
+}
+pub(crate) use with_stepper;
 
 /// The step control of an adaptive method: `defaults` (the method's own safety and step
 /// factors) at the tolerance asked for, or the fixed step.
@@ -330,6 +341,7 @@ fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, Stri
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::args::Method;
 
     fn plan(from: f64, until: f64, every: Option<f64>) -> Plan {
         Plan {

@@ -4,11 +4,6 @@
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::phases::ALREADY_PAST;
-use varmass::core::steppers::{
-    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
-    ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, Taylor, TaylorControl, Variational,
-    VariationalConfig,
-};
 use varmass::core::{
     run_phases_keeping, Event, EventAction, Phase, PhaseChange, Record, RunConfig, Statistics,
     StepError, StepErrorKind, StopReason,
@@ -16,10 +11,9 @@ use varmass::core::{
 use varmass::interpret::{Program, TapeSystem};
 
 use super::build::{End, Scene};
-use crate::args::Method;
 use crate::error::CliError;
 use crate::run::dispatch::MAX_STATE_MASSES;
-use crate::run::integrate::{control, describe, step};
+use crate::run::integrate::{describe, with_stepper};
 use crate::run::names::{evaluate, Observable};
 use crate::run::plan::{Steps, MIN_TOLERANCE};
 use crate::run::watch::Watched;
@@ -149,36 +143,7 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
             )
         };
     }
-    let (phased, error) = match (plan.method, steps) {
-        (Method::DormandPrince, s) => {
-            phased_with!(DormandPrince, control(s, AdaptiveControl::default()))
-        }
-        (Method::Dop853, s) => phased_with!(Dop853, control(s, AdaptiveControl::dop853())),
-        (Method::Sdirk4, s) => phased_with!(Sdirk4, control(s, AdaptiveControl::sdirk4())),
-        (Method::Esdirk43, s) => phased_with!(Esdirk43, control(s, AdaptiveControl::sdirk4())),
-        (Method::Rk4, s) => phased_with!(ClassicalRk4, FixedStep { step: step(s) }),
-        (Method::Euler, s) => phased_with!(ExplicitEuler, FixedStep { step: step(s) }),
-        (Method::ImplicitMidpoint, s) => phased_with!(
-            ImplicitMidpoint,
-            ImplicitMidpointConfig {
-                step: step(s),
-                ..ImplicitMidpointConfig::default()
-            }
-        ),
-        (Method::Taylor, Steps::Adaptive(tol)) => {
-            phased_with!(Taylor, TaylorControl::adaptive(tol, tol))
-        }
-        (Method::Taylor, Steps::Fixed(h)) => {
-            phased_with!(Taylor, TaylorControl::Fixed { order: 20, step: h })
-        }
-        (Method::Variational, s) => phased_with!(
-            Variational,
-            VariationalConfig {
-                step: step(s),
-                ..VariationalConfig::default()
-            }
-        ),
-    };
+    let (phased, error) = with_stepper!(plan.method, steps, phased_with);
     let last = phased.phase.last().copied().unwrap_or(0);
     let failure = error.map(|e| match never_triggers(&e) {
         // The change into the phase is recorded; none of its points are.

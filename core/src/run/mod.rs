@@ -389,13 +389,10 @@ where
             energy: config.needs_energy(),
         };
         let end = Point::at(system, hit.time, hit.state, needs)?;
-        recorder.add_step(system, previous, &end, &interpolate)?;
-        recorder.push(system, &end)?;
+        recorder.step_to(system, (previous, &end), &interpolate, false)?;
         return Ok(Some(StopReason::EventFound { index: hit.index }));
     }
-    recorder.add_step(system, previous, current, &interpolate)?;
-    recorder.guard(system, current)?;
-    recorder.push(system, current)?;
+    recorder.step_to(system, step, &interpolate, true)?;
     Ok(None)
 }
 

@@ -4,6 +4,7 @@
 use nalgebra::SVector;
 
 use crate::error::StepError;
+use crate::stepper::Checked;
 use crate::system::VariableMassSystem;
 
 /// What a run computes at every point besides the time and state.
@@ -41,7 +42,7 @@ impl<const S: usize> Point<S> {
         Sys: VariableMassSystem<N, S>,
     {
         let to_step_error = |error| StepError::from_system(system, error, time, &state);
-        check_flows(system, time, &state)?;
+        system.check_flows(time, &state)?;
         let rate = if needs.rate {
             Some(system.state_rate(time, &state).map_err(to_step_error)?)
         } else {
@@ -66,32 +67,4 @@ impl<const S: usize> Point<S> {
     pub(crate) fn power(&self) -> f64 {
         self.energy.map_or(0.0, |(_, power)| power)
     }
-}
-
-/// Checks the system's flow rates at `(time, state)` (nothing to do without flows): the
-/// first negative one ends the run as [`StepErrorKind::NegativeFlowRate`](crate::StepErrorKind)
-/// there. A rate is ≥ 0 by definition; a negative one (`mu = -5` on an inflow, or a rate
-/// `mu - k*t` past `mu/k`) would reverse the reactive forces (eqs. 15–16) without a word.
-/// Every point a run or an observation computes passes here: the start, the end of every
-/// step, an event's and a switch's point.
-pub(crate) fn check_flows<Sys, const N: usize, const S: usize>(
-    system: &Sys,
-    time: f64,
-    state: &SVector<f64, S>,
-) -> Result<(), StepError<S>>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    let count = system.flow_count();
-    if count == 0 {
-        return Ok(());
-    }
-    // Where q̇ cannot be had (a mass run out past a switch the run is about to land on),
-    // there is no rate to check: the stepper or the point's own needs report the cause, and
-    // a switch's redo must not be preempted by it.
-    let Ok(velocity_state) = system.velocity_state(time, state) else {
-        return Ok(());
-    };
-    let rates = (0..count).map(|index| system.flow_rate(index, time, &velocity_state));
-    StepError::check_flow_rates(time, state, rates)
 }

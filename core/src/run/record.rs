@@ -49,21 +49,25 @@ impl<const N: usize, const S: usize> Recorder<N, S> {
         &mut self.solution.events
     }
 
-    /// Adds the step from `start` to `end` to the energy budget, if one is kept.
-    pub(crate) fn add_step<Sys>(
+    /// Records the step from `start` to `end`: adds it to the energy budget if one is kept,
+    /// applies the energy guard at `end` if `guarded` and the run has one, and appends `end`.
+    pub(crate) fn step_to<Sys>(
         &mut self,
         system: &Sys,
-        start: &Point<S>,
-        end: &Point<S>,
+        (start, end): (&Point<S>, &Point<S>),
         interpolate: &impl Fn(f64) -> SVector<f64, S>,
+        guarded: bool,
     ) -> Result<(), StepError<S>>
     where
         Sys: VariableMassSystem<N, S>,
     {
-        match &mut self.energy {
-            Some(budget) => budget.add_step(system, start, end, interpolate),
-            None => Ok(()),
+        if let Some(budget) = &mut self.energy {
+            budget.add_step(system, start, end, interpolate)?;
         }
+        if guarded {
+            self.guard(system, end)?;
+        }
+        self.push(system, end)
     }
 
     /// Applies the energy guard at `point`, if the run has one.

@@ -25,6 +25,7 @@ use nalgebra::SVector;
 use super::point::Point;
 use crate::error::{StepError, StepErrorKind};
 use crate::events::locate_bracket;
+use crate::stepper::Checked;
 use crate::system::VariableMassSystem;
 
 /// How a run treats the system's switching functions. On by default.
@@ -153,9 +154,7 @@ impl SwitchWatch {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        let velocity_state = system
-            .velocity_state(time, state)
-            .map_err(|error| StepError::from_system(system, error, time, state))?;
+        let velocity_state = system.velocity_state_at(time, state)?;
         let before = self.anchors.clone();
         system.switch_anchors(time, &velocity_state, &mut self.anchors);
         if before == self.anchors {
@@ -183,9 +182,7 @@ impl SwitchWatch {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        let velocity_state = system
-            .velocity_state(time, state)
-            .map_err(|error| StepError::from_system(system, error, time, state))?;
+        let velocity_state = system.velocity_state_at(time, state)?;
         system.anchored_switching_functions(time, &velocity_state, &self.anchors, values);
         Ok(())
     }

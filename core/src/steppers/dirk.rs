@@ -33,7 +33,7 @@ use super::newton::Lu;
 use crate::error::{StepError, StepErrorKind};
 use crate::math::powf;
 use crate::stepper::{
-    check_state, state_rate, Progress, ProgressMut, Restarting, StepOutcome, Stepper,
+    state_rate, Checked, Progress, ProgressMut, Restarting, StepOutcome, Stepper,
 };
 use crate::system::VariableMassSystem;
 
@@ -243,7 +243,9 @@ where
             slowest_rate = slowest_rate.max(stage.slowest_rate);
         }
         let state = y0 + w[M - 1];
-        check_state(self.system, t0 + h, &state).map_err(StageFailure::Rate)?;
+        self.system
+            .check_state(t0 + h, &state)
+            .map_err(StageFailure::Rate)?;
         let embedded = combination(&tableau.embedded, &w, M);
         let estimate = context.lu.solve(w[M - 1] - embedded);
         let weights = self.weights(&y0.zip_map(&state, |a, b| a.abs().max(b.abs())));

@@ -22,7 +22,7 @@ use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl}
 use crate::error::{StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
 use crate::stepper::{
-    check_state, state_rate, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
+    state_rate, Checked, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
 };
 use crate::system::VariableMassSystem;
 use crate::tolerance::Tolerance;
@@ -128,7 +128,7 @@ where
     let increment =
         k1 * B1 + k6 * B6 + k7 * B7 + k8 * B8 + k9 * B9 + k10 * B10 + k11 * B11 + k12 * B12;
     let y1 = y0 + increment * h;
-    check_state(system, t0 + h, &y1)?;
+    system.check_state(t0 + h, &y1)?;
     let error = match tolerance {
         None => 0.0,
         Some(tolerance) => {
@@ -208,42 +208,25 @@ where
 {
     let [k1, _, _, _, _, k6, k7, k8, k9, k10, k11, k12] = attempt.stages;
     let k13 = *k13;
-    let mut rate = |c: f64, y: &SVector<f64, S>| state_rate(system, statistics, t0 + c * h, y);
-    let k14 = rate(
+    // f(t₀ + c h, y₀ + h Σⱼ aⱼ kⱼ), the sum taken term by term in the row's order.
+    let mut stage = |c: f64, k: [SVector<f64, S>; 8], a: [f64; 8]| {
+        let sum = (1..8).fold(k[0] * a[0], |sum, j| sum + k[j] * a[j]);
+        state_rate(system, statistics, t0 + c * h, &(y0 + sum * h))
+    };
+    let k14 = stage(
         C14,
-        &(y0 + (k1 * A141
-            + k7 * A147
-            + k8 * A148
-            + k9 * A149
-            + k10 * A1410
-            + k11 * A1411
-            + k12 * A1412
-            + k13 * A1413)
-            * h),
+        [k1, k7, k8, k9, k10, k11, k12, k13],
+        [A141, A147, A148, A149, A1410, A1411, A1412, A1413],
     )?;
-    let k15 = rate(
+    let k15 = stage(
         C15,
-        &(y0 + (k1 * A151
-            + k6 * A156
-            + k7 * A157
-            + k8 * A158
-            + k11 * A1511
-            + k12 * A1512
-            + k13 * A1513
-            + k14 * A1514)
-            * h),
+        [k1, k6, k7, k8, k11, k12, k13, k14],
+        [A151, A156, A157, A158, A1511, A1512, A1513, A1514],
     )?;
-    let k16 = rate(
+    let k16 = stage(
         C16,
-        &(y0 + (k1 * A161
-            + k6 * A166
-            + k7 * A167
-            + k8 * A168
-            + k9 * A169
-            + k13 * A1613
-            + k14 * A1614
-            + k15 * A1615)
-            * h),
+        [k1, k6, k7, k8, k9, k13, k14, k15],
+        [A161, A166, A167, A168, A169, A1613, A1614, A1615],
     )?;
     let stages = [k1, k6, k7, k8, k9, k10, k11, k12, k13, k14, k15, k16];
     let row = |d: [f64; 12]| {

@@ -31,7 +31,7 @@ use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl}
 use crate::error::StepError;
 use crate::math::powf;
 use crate::stepper::{
-    check_state, state_rate, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
+    state_rate, Checked, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
 };
 use crate::system::VariableMassSystem;
 use crate::tolerance::Tolerance;
@@ -160,7 +160,7 @@ where
         let y6 = y0 + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h;
         let k6 = state_rate(system, statistics, t0 + h, &y6)?;
         let y1 = y0 + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5 + k6 * B6) * h;
-        check_state(system, t0 + h, &y1)?;
+        system.check_state(t0 + h, &y1)?;
         let k7 = state_rate(system, statistics, t0 + h, &y1)?;
         // Each component weighed by atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|).
         let error = match tolerance {

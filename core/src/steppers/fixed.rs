@@ -9,7 +9,7 @@ use nalgebra::SVector;
 
 use super::FixedStep;
 use crate::error::{ConfigError, StepError};
-use crate::stepper::{Progress, ProgressMut, Statistics, StepOutcome, Stepper};
+use crate::stepper::{state_rate, Progress, ProgressMut, Statistics, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
 
 /// A fixed-step method: its settings and the formula of one step.
@@ -20,22 +20,55 @@ pub trait FixedMethod<const N: usize, const S: usize>: Sized {
     /// Checks the settings and returns the step size and the method.
     fn configure(config: Self::Config) -> Result<(f64, Self), ConfigError>;
 
-    /// The new state of a step of size `h` from `(t0, y0)`, its work counted in
-    /// `statistics`; the stepper checks it (finite, masses positive) before accepting it.
-    fn advance<Sys>(
-        &self,
-        system: &Sys,
-        statistics: &mut Statistics,
-        start: (f64, &SVector<f64, S>),
-        h: f64,
-    ) -> Result<SVector<f64, S>, StepError<S>>
-    where
-        Sys: VariableMassSystem<N, S>;
+    /// The new state of `step`, its work counted in `step.statistics`; the stepper checks
+    /// it (finite, masses positive) before accepting it.
+    fn advance<Sys: VariableMassSystem<N, S>>(&self, step: Step<'_, Sys, S>) -> NewState<S>;
 }
 
-/// The step size alone as the settings of a method that has no others.
-pub(crate) fn step_only(config: FixedStep) -> Result<f64, ConfigError> {
-    FixedStep::validated(config.step)
+/// The new state a method computes, or why it could not.
+pub type NewState<const S: usize> = Result<SVector<f64, S>, StepError<S>>;
+
+/// One step of size `h` from `(t0, y0)` of `system`, and where its work is counted.
+pub struct Step<'s, Sys, const S: usize> {
+    /// The system stepped.
+    pub system: &'s Sys,
+    /// Where the rate and Jacobian evaluations and Newton iterations are counted.
+    pub statistics: &'s mut Statistics,
+    /// The time the step starts at.
+    pub t0: f64,
+    /// The state the step starts from.
+    pub y0: SVector<f64, S>,
+    /// The step size.
+    pub h: f64,
+}
+
+impl<Sys, const S: usize> Step<'_, Sys, S> {
+    /// The state rate at `(time, state)`, counted ([`state_rate`]).
+    pub fn rate<const N: usize>(&mut self, time: f64, state: &SVector<f64, S>) -> NewState<S>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        state_rate(self.system, self.statistics, time, state)
+    }
+}
+
+/// An explicit method that holds nothing and takes no settings but the step: its
+/// [`FixedMethod`] is the formula alone (explicit Euler, classical RK4).
+pub trait Explicit<const N: usize, const S: usize>: Default {
+    /// The new state of `step` (see [`FixedMethod::advance`]).
+    fn formula<Sys: VariableMassSystem<N, S>>(step: Step<'_, Sys, S>) -> NewState<S>;
+}
+
+impl<M: Explicit<N, S>, const N: usize, const S: usize> FixedMethod<N, S> for M {
+    type Config = FixedStep;
+
+    fn configure(config: FixedStep) -> Result<(f64, Self), ConfigError> {
+        Ok((FixedStep::validated(config.step)?, M::default()))
+    }
+
+    fn advance<Sys: VariableMassSystem<N, S>>(&self, step: Step<'_, Sys, S>) -> NewState<S> {
+        M::formula(step)
+    }
 }
 
 /// A fixed-step stepper on the state `[q, p, m_s]` taking its steps by the method `M`; use
@@ -90,11 +123,14 @@ where
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         let (h, reaches_stop) = self.progress.next_step(self.step)?;
-        let start = (self.progress.time(), *self.progress.state());
-        let statistics = &mut self.progress.statistics;
-        let y1 = self
-            .method
-            .advance(self.system, statistics, (start.0, &start.1), h)?;
+        let step = Step {
+            system: self.system,
+            t0: self.progress.time(),
+            y0: *self.progress.state(),
+            statistics: &mut self.progress.statistics,
+            h,
+        };
+        let y1 = self.method.advance(step)?;
         self.progress.accept(self.system, h, reaches_stop, y1)
     }
 }

@@ -15,13 +15,13 @@
 //! y₁ = 2Y − y₀. With mass change the flow is not symplectic, and the method simply
 //! integrates the true state rate to second order.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SMatrix;
 
-use super::fixed::{Fixed, FixedMethod};
+use super::fixed::{Fixed, FixedMethod, NewState, Step};
 use super::newton::{self, Newton, NewtonConfig};
 use super::FixedStep;
 use crate::error::{ConfigError, StepError};
-use crate::stepper::{state_rate, Statistics};
+use crate::stepper::state_rate;
 use crate::system::VariableMassSystem;
 
 /// Settings of the implicit midpoint stepper.
@@ -62,21 +62,15 @@ impl<const N: usize, const S: usize> FixedMethod<N, S> for ImplicitMidpointMetho
         Ok((step, Self { newton }))
     }
 
-    fn advance<Sys>(
-        &self,
-        system: &Sys,
-        statistics: &mut Statistics,
-        (t0, y0): (f64, &SVector<f64, S>),
-        h: f64,
-    ) -> Result<SVector<f64, S>, StepError<S>>
-    where
-        Sys: VariableMassSystem<N, S>,
-    {
-        let y0 = *y0;
+    fn advance<Sys: VariableMassSystem<N, S>>(&self, mut step: Step<'_, Sys, S>) -> NewState<S> {
+        let Step { t0, y0, h, .. } = step;
         let t_mid = t0 + 0.5 * h;
 
         // Explicit Euler half step as the predictor of the stage.
-        let predictor = y0 + state_rate(system, statistics, t0, &y0)? * (0.5 * h);
+        let predictor = y0 + step.rate(t0, &y0)? * (0.5 * h);
+        let Step {
+            system, statistics, ..
+        } = step;
         statistics.jacobian_evaluations += 1;
         let jacobian = system
             .jacobian(t_mid, &predictor)
@@ -91,8 +85,7 @@ impl<const N: usize, const S: usize> FixedMethod<N, S> for ImplicitMidpointMetho
             predictor,
             &self.newton,
             statistics,
-            t0,
-            &y0,
+            (t0, &y0),
         )?;
         Ok(stage * 2.0 - y0)
     }

@@ -71,15 +71,13 @@ pub(crate) struct Newton {
 
 /// Solves r(z) = 0 from `initial` with the fixed iteration matrix ≈ ∂r/∂z. `time` and
 /// `state` (the start of the step) go into a divergence error.
-#[allow(clippy::too_many_arguments)] // the step's context, each a distinct role
 pub(crate) fn solve<const S: usize, R>(
     mut residual: R,
     iteration_matrix: SMatrix<f64, S, S>,
     initial: SVector<f64, S>,
     config: &Newton,
     statistics: &mut Statistics,
-    time: f64,
-    state: &SVector<f64, S>,
+    (time, state): (f64, &SVector<f64, S>),
 ) -> Result<SVector<f64, S>, StepError<S>>
 where
     R: FnMut(&SVector<f64, S>, &mut Statistics) -> Result<SVector<f64, S>, StepError<S>>,

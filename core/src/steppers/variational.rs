@@ -27,11 +27,11 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::fixed::{Fixed, FixedMethod};
+use super::fixed::{Fixed, FixedMethod, NewState, Step};
 use super::newton::{self, Newton, NewtonConfig};
 use super::FixedStep;
 use crate::error::{ConfigError, StepError};
-use crate::stepper::Statistics;
+use crate::stepper::{Checked, Statistics};
 use crate::system::VariableMassSystem;
 
 /// √ε, the relative step of a forward difference.
@@ -111,7 +111,7 @@ impl<Sys, const S: usize> DiscreteStep<'_, Sys, S> {
         statistics.rate_evaluations += 1;
         // The Lagrange-side functions cannot fail, but their values are meaningless with a
         // mass ≤ 0 or a non-finite state: check first.
-        crate::stepper::check_state(self.system, t_mid, mid)?;
+        self.system.check_state(t_mid, mid)?;
         let momenta = self.system.momenta(t_mid, mid);
         let force = match self.principle {
             Principle::Corrected => self.system.generalized_force(t_mid, mid),
@@ -179,17 +179,14 @@ impl<const N: usize, const S: usize> FixedMethod<N, S> for VariationalMethod {
         Ok((step, Self { newton, principle }))
     }
 
-    fn advance<Sys>(
-        &self,
-        system: &Sys,
-        statistics: &mut Statistics,
-        (t0, y0): (f64, &SVector<f64, S>),
-        h: f64,
-    ) -> Result<SVector<f64, S>, StepError<S>>
-    where
-        Sys: VariableMassSystem<N, S>,
-    {
-        let y0 = *y0;
+    fn advance<Sys: VariableMassSystem<N, S>>(&self, step: Step<'_, Sys, S>) -> NewState<S> {
+        let Step {
+            system,
+            statistics,
+            t0,
+            y0,
+            h,
+        } = step;
         let discrete = DiscreteStep {
             system,
             principle: self.principle,
@@ -200,9 +197,7 @@ impl<const N: usize, const S: usize> FixedMethod<N, S> for VariationalMethod {
 
         // Predictor: an explicit Euler step of q and of the state masses.
         statistics.rate_evaluations += 1;
-        let velocity_state = system
-            .velocity_state(t0, &y0)
-            .map_err(|error| StepError::from_system(system, error, t0, &y0))?;
+        let velocity_state = system.velocity_state_at(t0, &y0)?;
         let mut predictor = y0;
         predictor
             .fixed_rows_mut::<N>(0)
@@ -219,8 +214,7 @@ impl<const N: usize, const S: usize> FixedMethod<N, S> for VariationalMethod {
             predictor,
             &self.newton,
             statistics,
-            t0,
-            &y0,
+            (t0, &y0),
         )?;
         let mid = discrete.midpoint::<N>(&solution);
         let (_, end_momenta) = discrete.end_momenta(t0 + 0.5 * h, &mid, statistics)?;

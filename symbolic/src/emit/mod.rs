@@ -202,34 +202,14 @@ fn with_angle_sums(pool: &ExprPool, roots: &[Id]) -> Vec<Id> {
 
 /// Every expression of `d` that generated code evaluates with `outputs`.
 fn code_roots(d: &Derivation, outputs: Outputs) -> Vec<Id> {
-    let mut roots = vec![d.lagrangian, d.energy];
+    let mut head = vec![d.lagrangian, d.energy];
     if outputs.power {
-        roots.push(d.power);
+        head.push(d.power);
     }
     if outputs.hamiltonian {
-        roots.extend(d.hamiltonian);
+        head.extend(d.hamiltonian);
     }
-    roots.extend(d.closed_laws.iter().flatten());
-    for list in [
-        &d.mass_rates,
-        &d.momenta,
-        &d.momentum_offset,
-        &d.lagrangian_gradient,
-        &d.active_force,
-        &d.reactive_thrust,
-        &d.impact_force,
-        &d.frozen_momentum_rate,
-        &d.mass_flux_force,
-        &d.momentum_rate,
-        &d.acceleration_rhs,
-    ] {
-        roots.extend(list);
-    }
-    roots.extend(d.accelerations.iter().flatten());
-    if let crate::mechanics::VelocitySolve::Symbolic(v) = &d.velocities {
-        roots.extend(v);
-    }
-    roots.extend(d.mass_matrix.iter().flatten());
+    let mut roots = d.equation_roots(head, false);
     if let Some(j) = d.jacobian.as_ref().filter(|_| outputs.jacobian) {
         for matrix in [
             &j.rate_wrt_q,

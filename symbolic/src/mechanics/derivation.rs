@@ -178,6 +178,39 @@ impl Derivation {
         2 * self.coordinates.len() + self.state_mass_count() + self.held().len()
     }
 
+    /// `head`, then the roots of every equation of the state rate: the closed laws, the
+    /// per-coordinate equations (the flow rates among them if `flows`), q̈, q̇ when solved
+    /// symbolically, and M. The emitter (its code roots) and the input check (every equation
+    /// but the Jacobian) read this one list, in this order (the emitter's output depends on
+    /// it).
+    pub fn equation_roots(&self, head: Vec<Id>, flows: bool) -> Vec<Id> {
+        let mut roots = head;
+        roots.extend(self.closed_laws.iter().flatten());
+        let flow_rates: &[Id] = if flows { &self.flow_rates } else { &[] };
+        for list in [
+            &self.mass_rates[..],
+            flow_rates,
+            &self.momenta,
+            &self.momentum_offset,
+            &self.lagrangian_gradient,
+            &self.active_force,
+            &self.reactive_thrust,
+            &self.impact_force,
+            &self.frozen_momentum_rate,
+            &self.mass_flux_force,
+            &self.momentum_rate,
+            &self.acceleration_rhs,
+        ] {
+            roots.extend(list);
+        }
+        roots.extend(self.accelerations.iter().flatten());
+        if let VelocitySolve::Symbolic(v) = &self.velocities {
+            roots.extend(v);
+        }
+        roots.extend(self.mass_matrix.iter().flatten());
+        roots
+    }
+
     /// The number of state masses (the first masses).
     pub fn state_mass_count(&self) -> usize {
         self.masses

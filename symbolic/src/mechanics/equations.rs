@@ -21,11 +21,14 @@ use crate::parse::Diagnostic;
 /// "symbolic-inverse threshold" rows, recorded in `docs/bench/costs.txt`): for the 3-link
 /// chain of accreting bobs the closed form's state rate takes 45.5 ns against 50.1 ns for
 /// the straight-line LDLᵀ (ratio 0.91, fastest of 101 alternating rounds), a saving of
-/// under 5 ns per evaluation. Against it, at 3 coordinates the closed form multiplied the
-/// macro's expansion time by ~3 and the generated code by 5 (58K → 307K characters) when it
-/// was last measured (before this round's symbolic-engine work, against the Cholesky path
-/// the LDLᵀ replaced): compile time and code size every user pays. At 2 coordinates the
-/// adjugate is small and stays.
+/// under 5 ns per evaluation. Against it, the closed-form q̇ alone (the bench's
+/// `threshold_expansion` row, in the dev profile users expand in:
+/// `cargo bench --profile dev -p varmass-benches --bench costs -- none`) makes the 3-link
+/// chain's generated code 2.35× larger (73 115 → 171 591 bytes formatted, exact) and its
+/// expansion 1.17× longer (219 → 256 ms, fastest of 10, on a machine loaded ~15 on 2
+/// cores, so the time ratio is rough); a closed-form q̈ would add to both. Compile time and
+/// code size every user pays, for a few ns. At 2 coordinates the adjugate is small and
+/// stays.
 pub const SYMBOLIC_INVERSE_MAX_DOF: usize = 2;
 
 /// The momentum balance of eq. 14 and the true momentum rate, one entry per coordinate.

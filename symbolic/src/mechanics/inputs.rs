@@ -249,31 +249,9 @@ fn held_in_energies(d: &Derivation) -> Vec<Diagnostic> {
 
 /// Every equation of `d` but the Jacobian.
 fn equation_roots(d: &Derivation) -> Vec<Id> {
-    let mut roots = vec![d.lagrangian, d.energy, d.power];
-    roots.extend(d.hamiltonian);
-    roots.extend(d.closed_laws.iter().flatten());
-    for list in [
-        &d.mass_rates,
-        &d.flow_rates,
-        &d.momenta,
-        &d.momentum_offset,
-        &d.lagrangian_gradient,
-        &d.active_force,
-        &d.reactive_thrust,
-        &d.impact_force,
-        &d.frozen_momentum_rate,
-        &d.mass_flux_force,
-        &d.momentum_rate,
-        &d.acceleration_rhs,
-    ] {
-        roots.extend(list);
-    }
-    roots.extend(d.accelerations.iter().flatten());
-    if let super::VelocitySolve::Symbolic(v) = &d.velocities {
-        roots.extend(v);
-    }
-    roots.extend(d.mass_matrix.iter().flatten());
-    roots
+    let mut head = vec![d.lagrangian, d.energy, d.power];
+    head.extend(d.hamiltonian);
+    d.equation_roots(head, true)
 }
 
 /// A diagnostic at the declaration of each input whose partial the equations (not the

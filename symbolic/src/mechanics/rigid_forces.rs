@@ -144,13 +144,7 @@ pub(crate) fn transport(
         .iter()
         .map(|(q, v)| {
             let momentum = pool.diff(kinetic, *v);
-            let mut terms: Vec<Id> = frozen
-                .iter()
-                .map(|(phi, rate)| {
-                    let partial = pool.diff(momentum, *phi);
-                    pool.mul(&[*rate, partial])
-                })
-                .collect();
+            let mut terms = frozen_rate_terms(pool, momentum, frozen);
             let centre = pool.diff(translational, *v);
             let minus_rate = pool.neg(body_mass.1);
             terms.push(pool.mul(&[minus_rate, centre]));
@@ -163,6 +157,18 @@ pub(crate) fn transport(
             let coupling = dot(pool, centre_velocity, &moved);
             terms.push(pool.neg(coupling));
             pool.add(&terms)
+        })
+        .collect()
+}
+
+/// The terms φ̇ ∂e/∂φ of the rate of `e` through the frozen symbols φ (each with its rate
+/// φ̇), in their order.
+fn frozen_rate_terms(pool: &mut ExprPool, e: Id, frozen: &[(Symbol, Id)]) -> Vec<Id> {
+    frozen
+        .iter()
+        .map(|(phi, rate)| {
+            let partial = pool.diff(e, *phi);
+            pool.mul(&[*rate, partial])
         })
         .collect()
 }
@@ -183,13 +189,7 @@ fn internal_flow(
         .enumerate()
         .map(|(i, c)| {
             let moment = pool.mul(&[mass, *c]);
-            let mut terms: Vec<Id> = frozen
-                .iter()
-                .map(|(phi, rate)| {
-                    let partial = pool.diff(moment, *phi);
-                    pool.mul(&[*rate, partial])
-                })
-                .collect();
+            let mut terms = frozen_rate_terms(pool, moment, frozen);
             for flow in flows {
                 let carried = pool.mul(&[flow.rate, flow.point[i]]);
                 terms.push(if flow.inflow {

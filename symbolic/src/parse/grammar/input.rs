@@ -14,35 +14,14 @@ const AFTER_INPUT: &str = "`every`, `;` or a newline";
 impl<'a> Grammar<'a> {
     /// `input u(t, y, y') every 0.01`
     pub(super) fn input(&self, input: &'a str) -> PResult<'a, (StatementKind, &'static str)> {
-        let (rest, name) = self.required(input, false, "an input name", keywords::INPUT, |i| {
-            self.name(i)
-        })?;
-        let (mut rest, _) = self.required(rest, false, "`(`", &name.node, |i| {
-            self.punct_after_blanks(i, '(')
-        })?;
-        let mut arguments = Vec::new();
-        let mut after = "(".to_string();
-        loop {
-            let (next, argument) = self.required(
-                rest,
-                false,
-                "an argument: `t`, a coordinate or its velocity",
-                &after,
-                |i| self.input_argument(i),
-            )?;
-            after = argument.0.node.clone();
-            arguments.push(argument);
-            match self.punct_after_blanks(next, ',') {
-                Ok((next, _)) => (rest, after) = (next, ",".to_string()),
-                Err(_) => {
-                    rest = next;
-                    break;
-                }
-            }
-        }
-        let (rest, _) = self.required(rest, false, "`,` or `)`", &after, |i| {
-            self.punct_after_blanks(i, ')')
-        })?;
+        let (rest, name) = self.name_then(input, "an input name", keywords::INPUT, '(')?;
+        let (rest, arguments) = self.comma_list(
+            rest,
+            ("(", ')'),
+            "an argument: `t`, a coordinate or its velocity",
+            |i| self.input_argument(i),
+            |argument| argument.0.node.clone(),
+        )?;
         let (rest, every) = match self.keyword(rest, keywords::EVERY) {
             Ok((after_every, _)) => {
                 let (rest, period) = self.required(

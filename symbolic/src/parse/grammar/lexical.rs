@@ -180,6 +180,88 @@ impl<'a> Grammar<'a> {
         self.or_missing(parser(input), input, newlines, what, after)
     }
 
+    /// A declaration's name after its `keyword`, then `punct` (`input u(`, `table F(`,
+    /// `rigid b:`, `body b:`), each required; `what` names the name in a diagnostic.
+    pub(super) fn name_then(
+        &self,
+        input: &'a str,
+        what: &str,
+        keyword: &str,
+        punct: char,
+    ) -> PResult<'a, Spanned<String>> {
+        let (rest, name) = self.required(input, false, what, keyword, |i| self.name(i))?;
+        let punct_text = format!("`{punct}`");
+        let (rest, _) = self.required(rest, false, &punct_text, &name.node, |i| {
+            self.punct_after_blanks(i, punct)
+        })?;
+        Ok((rest, name))
+    }
+
+    /// Items separated by `,` up to the closing bracket (`open`, already read, and `close`),
+    /// each read by `item` and required (`what` names it in a diagnostic, after the text
+    /// before it: `open`, `,` or the last item's `text`).
+    pub(super) fn comma_list<T>(
+        &self,
+        mut rest: &'a str,
+        (open, close): (&str, char),
+        what: &str,
+        mut item: impl FnMut(&'a str) -> PResult<'a, T>,
+        text: impl Fn(&T) -> String,
+    ) -> PResult<'a, Vec<T>> {
+        let mut items = Vec::new();
+        let mut after = open.to_string();
+        loop {
+            let (next, one) = self.required(rest, false, what, &after, &mut item)?;
+            after = text(&one);
+            items.push(one);
+            match self.punct_after_blanks(next, ',') {
+                Ok((next, _)) => (rest, after) = (next, ",".to_string()),
+                Err(_) => {
+                    rest = next;
+                    break;
+                }
+            }
+        }
+        let expected = format!("`,` or `{close}`");
+        let (rest, _) = self.required(rest, false, &expected, &after, |i| {
+            self.punct_after_blanks(i, close)
+        })?;
+        Ok((rest, items))
+    }
+
+    /// What follows `punct` (after blanks), or a failure at the next token saying it expected
+    /// `expected` there, with `help` (how the statement is written).
+    pub(super) fn punct_or_help(
+        &self,
+        rest: &'a str,
+        punct: char,
+        expected: &str,
+        help: impl FnOnce() -> String,
+    ) -> Result<&'a str, nom::Err<ParseError>> {
+        match self.punct_after_blanks(rest, punct) {
+            Ok((after, _)) => Ok(after),
+            Err(_) => {
+                let at = self.skip_blanks(rest, false);
+                let diagnostic = self.unexpected_diagnostic(at, expected).with_help(help());
+                Err(self.fail(at, diagnostic))
+            }
+        }
+    }
+
+    /// The failure at `at` for the declaration of `name`, a `kind` (`body`, `rigid body`),
+    /// that lacks `option`, with `help` (how the declaration is written).
+    pub(super) fn missing_option(
+        &self,
+        at: &'a str,
+        (kind, name): (&str, &Spanned<String>),
+        option: &str,
+        help: &str,
+    ) -> nom::Err<ParseError> {
+        let message = format!("missing `{option}` for {kind} `{}`", name.node);
+        let diagnostic = Diagnostic::new(name.span, message).with_help(help.to_string());
+        self.fail(at, diagnostic)
+    }
+
     /// [`Grammar::required`] applied to a result already computed. The recursive
     /// expression parsers use this form so that neither a closure nor the error building
     /// sits on the stack between nesting levels.

@@ -52,12 +52,7 @@ impl<'a> Grammar<'a> {
     /// `rigid b: mass m, inertia …, position [..], angle e | orientation seq(a, b, c)
     /// [, centre [..]]`, options in any order, each at most once.
     pub(super) fn rigid(&self, input: &'a str) -> PResult<'a, (StatementKind, &'static str)> {
-        let (rest, name) = self.required(input, false, "a body name", keywords::RIGID, |i| {
-            self.name(i)
-        })?;
-        let (after, _) = self.required(rest, false, "`:`", &name.node, |i| {
-            self.punct_after_blanks(i, ':')
-        })?;
+        let (after, name) = self.name_then(input, "a body name", keywords::RIGID, ':')?;
         let mut read = RigidOptions::default();
         let (rest, ()) = self.options(
             after,
@@ -66,20 +61,14 @@ impl<'a> Grammar<'a> {
             keywords::RIGID_OPTIONS,
             |option, at| self.rigid_option(option, at, &name, &mut read),
         )?;
-        let missing = |option: &str| {
-            let diagnostic = Diagnostic::new(
-                name.span,
-                format!("missing `{option}` for rigid body `{}`", name.node),
-            )
-            .with_help(format!(
-                "a rigid body is written `{} {}: mass m, inertia J, position [x, y], angle th` \
-                 (planar) or `…, inertia [A, B, C], position [x, y, z], orientation \
-                 zyx(psi, th, phi)` (spatial)",
-                keywords::RIGID,
-                name.node
-            ));
-            self.fail(rest, diagnostic)
-        };
+        let help = format!(
+            "a rigid body is written `{} {}: mass m, inertia J, position [x, y], angle th` \
+             (planar) or `…, inertia [A, B, C], position [x, y, z], orientation \
+             zyx(psi, th, phi)` (spatial)",
+            keywords::RIGID,
+            name.node
+        );
+        let missing = |option| self.missing_option(rest, ("rigid body", &name), option, &help);
         let Some(mass) = read.mass else {
             return Err(missing(keywords::MASS));
         };

@@ -92,26 +92,16 @@ impl<'a> Grammar<'a> {
 
     /// The optional tags before a statement's keyword: `[tag]` or `[tag1, tag2]`.
     fn tags(&self, input: &'a str) -> PResult<'a, Vec<Spanned<String>>> {
-        let Ok((mut rest, _)) = self.punct(input, '[') else {
+        let Ok((rest, _)) = self.punct(input, '[') else {
             return Ok((input, Vec::new()));
         };
-        let mut tags: Vec<Spanned<String>> = Vec::new();
-        let mut after = "[".to_string();
-        loop {
-            let (next, tag) = self.required(rest, false, "a tag name", &after, |i| self.name(i))?;
-            after = tag.node.clone();
-            tags.push(tag);
-            match self.punct_after_blanks(next, ',') {
-                Ok((next, _)) => (rest, after) = (next, ",".to_string()),
-                Err(_) => {
-                    rest = next;
-                    break;
-                }
-            }
-        }
-        let (rest, _) = self.required(rest, false, "`,` or `]`", &after, |i| {
-            self.punct_after_blanks(i, ']')
-        })?;
+        let (rest, tags) = self.comma_list(
+            rest,
+            ("[", ']'),
+            "a tag name",
+            |i| self.name(i),
+            |tag| tag.node.clone(),
+        )?;
         Ok((self.skip_blanks(rest, false), tags))
     }
 
@@ -160,17 +150,13 @@ impl<'a> Grammar<'a> {
             let law = MassLaw::Law(law);
             return Ok((rest, MassDecl { name, law }));
         }
-        let Ok((after, _)) = self.punct_after_blanks(rest, ':') else {
-            let at = self.skip_blanks(rest, false);
-            let diagnostic = self
-                .unexpected_diagnostic(at, "`=` or `:`")
-                .with_help(format!(
-                    "write `{keyword} {name} = <law>` or `{keyword} {name}: {}, {} <expression>`",
-                    keywords::STATE,
-                    keywords::RATE
-                ));
-            return Err(self.fail(at, diagnostic));
-        };
+        let after = self.punct_or_help(rest, ':', "`=` or `:`", || {
+            format!(
+                "write `{keyword} {name} = <law>` or `{keyword} {name}: {}, {} <expression>`",
+                keywords::STATE,
+                keywords::RATE
+            )
+        })?;
         let state = format!("`{}`", keywords::STATE);
         let (after, _) = self.required(after, false, &state, ":", |i| {
             self.keyword(i, keywords::STATE)
@@ -261,16 +247,12 @@ impl<'a> Grammar<'a> {
     /// `check lhs = rhs`
     fn check(&self, input: &'a str) -> PResult<'a, Parts> {
         let (rest, (lhs, _)) = self.required_expression(input, STATEMENT_LEVEL, keywords::CHECK)?;
-        let Ok((after, _)) = self.punct_after_blanks(rest, '=') else {
-            let at = self.skip_blanks(rest, false);
-            let diagnostic = self
-                .unexpected_diagnostic(at, "an operator or `=`")
-                .with_help(format!(
-                    "a check is written `{} <expression> = <expression>`",
-                    keywords::CHECK
-                ));
-            return Err(self.fail(at, diagnostic));
-        };
+        let after = self.punct_or_help(rest, '=', "an operator or `=`", || {
+            format!(
+                "a check is written `{} <expression> = <expression>`",
+                keywords::CHECK
+            )
+        })?;
         let (rest, (rhs, _)) = self.required_expression(after, STATEMENT_LEVEL, "=")?;
         let text = self.source.get(lhs.span.start..rhs.span.end);
         let text = text.unwrap_or_default().to_string();
@@ -305,12 +287,7 @@ impl<'a> Grammar<'a> {
 
     /// `body b: mass m, position [..]`, options in any order, each exactly once.
     fn body(&self, input: &'a str) -> PResult<'a, Parts> {
-        let (rest, name) = self.required(input, false, "a body name", keywords::BODY, |i| {
-            self.name(i)
-        })?;
-        let (after, _) = self.required(rest, false, "`:`", &name.node, |i| {
-            self.punct_after_blanks(i, ':')
-        })?;
+        let (after, name) = self.name_then(input, "a body name", keywords::BODY, ':')?;
         let mut mass: Option<Spanned<String>> = None;
         let mut position: Option<VectorNode> = None;
         let (rest, ()) = self.options(
@@ -331,20 +308,14 @@ impl<'a> Grammar<'a> {
                 }
             },
         )?;
-        let missing = |option: &str| {
-            let diagnostic = Diagnostic::new(
-                name.span,
-                format!("missing `{option}` for body `{}`", name.node),
-            )
-            .with_help(format!(
-                "a body is written `{} {}: {} m, {} [x, y]`",
-                keywords::BODY,
-                name.node,
-                keywords::MASS,
-                keywords::POSITION
-            ));
-            self.fail(rest, diagnostic)
-        };
+        let help = format!(
+            "a body is written `{} {}: {} m, {} [x, y]`",
+            keywords::BODY,
+            name.node,
+            keywords::MASS,
+            keywords::POSITION
+        );
+        let missing = |option| self.missing_option(rest, ("body", &name), option, &help);
         let Some(mass) = mass else {
             return Err(missing(keywords::MASS));
         };

@@ -15,12 +15,7 @@ const AFTER_TABLE: &str = "`,`, `;` or a newline";
 impl<'a> Grammar<'a> {
     /// `table F(t) = "motors/M1670.eng", outside zero`
     pub(super) fn table(&self, input: &'a str) -> PResult<'a, (StatementKind, &'static str)> {
-        let (rest, name) = self.required(input, false, "a table name", keywords::TABLE, |i| {
-            self.name(i)
-        })?;
-        let (rest, _) = self.required(rest, false, "`(`", &name.node, |i| {
-            self.punct_after_blanks(i, '(')
-        })?;
+        let (rest, name) = self.name_then(input, "a table name", keywords::TABLE, '(')?;
         let (rest, parameter) =
             self.required(rest, false, "the argument's name", "(", |i| self.name(i))?;
         let (rest, _) = self.required(rest, false, "`)`", &parameter.node, |i| {
