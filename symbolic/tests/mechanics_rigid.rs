@@ -54,24 +54,49 @@ fn rigid_mistakes_are_diagnostics_at_their_text() {
             "[1, 2]",
         ),
         (
+            // A scalar torque with a point: refused by the derivation, not as a syntax error.
             "rigid r: mass m, inertia J, position [x, y], angle th\ntorque r: tau at [0, 1]",
-            "expected",
-            "at",
+            "a torque has no point of application: a couple acts on the whole body",
+            "at [0, 1]",
         ),
     ];
     for (statements, message, under) in cases {
         let source = format!("{PLANAR}{statements}\n");
-        match derive_source(&source, Parameters::Inferred) {
-            Err(errors) if statements.ends_with("at [0, 1]") && statements.starts_with("rigid") => {
-                // A scalar torque followed by `at` is a syntax error: a couple has no point.
-                assert!(errors[0].message.contains(message), "{:?}", errors[0]);
-            }
-            _ => {
-                let (found, text) = error(&source);
-                assert!(found.contains(message), "{statements}: {found}");
-                assert_eq!(text, under, "{statements}: {found}");
-            }
-        }
+        let (found, text) = error(&source);
+        assert!(found.contains(message), "{statements}: {found}");
+        assert_eq!(text, under, "{statements}: {found}");
+    }
+}
+
+/// A torque written with a point, planar (scalar) or spatial (vector): the message says a
+/// couple has no point and suggests the force at a point, pointing at `at [..]`.
+#[test]
+fn a_torque_at_a_point_suggests_a_force_at_the_point() {
+    let spatial = "coordinates x, y, z, a, b, c
+        mass m = m0
+        rigid r: mass m, inertia [A, A, C], position [x, y, z], orientation zyx(a, b, c)
+        torque r: body [0, 0, tau] at [0, 0, 1]\n";
+    let planar = format!(
+        "{PLANAR}rigid r: mass m, inertia J, position [x, y], angle th\ntorque r: tau at [0, 1]\n"
+    );
+    for (source, under) in [(spatial.to_string(), "at [0, 0, 1]"), (planar, "at [0, 1]")] {
+        let Err(errors) = derive_source(&source, Parameters::Inferred) else {
+            panic!("a torque at a point derived: {source}");
+        };
+        let first = &errors[0];
+        assert!(
+            first
+                .message
+                .contains("a torque has no point of application"),
+            "{first:?}"
+        );
+        let help = first.help.as_deref().unwrap_or_default();
+        assert!(help.contains("force r: body [..] at [..]"), "{first:?}");
+        assert_eq!(
+            &source[first.span.start..first.span.end],
+            under,
+            "{first:?}"
+        );
     }
 }
 
