@@ -69,4 +69,19 @@ impl ExprPool {
         }
         degrees.get(&e).copied().flatten()
     }
+
+    /// The arithmetic operations that evaluating `roots` once costs with every shared
+    /// subexpression computed once (what generated code does after its CSE): n − 1 for a
+    /// sum or product of n, one for a power or a call. A measure for choosing between
+    /// equal forms of an expression, not a count of machine instructions.
+    pub fn operation_count(&self, roots: &[Id]) -> usize {
+        self.reachable(roots, false)
+            .into_iter()
+            .map(|id| match self.node(id) {
+                Node::Add(c) | Node::Mul(c) => c.len().saturating_sub(1),
+                Node::Pow(..) | Node::Call(..) => 1,
+                Node::Num(_) | Node::Float(_) | Node::Sym(_) => 0,
+            })
+            .sum()
+    }
 }

@@ -82,12 +82,29 @@ pub(crate) fn momentum_rates(
         })
         .collect();
     let total = pairwise_sum(pool, &frozen, &mass_flux);
+    let total = total.iter().map(|t| cheaper_reduced(pool, *t)).collect();
     MomentumRates {
         lagrangian_gradient,
         applied,
         frozen,
         mass_flux,
         total,
+    }
+}
+
+/// `e` or its trigonometric reduction ([`ExprPool::reduce_trig`]: expanded, like terms
+/// collected, sin² + cos² and the angle-sum identities applied), whichever takes fewer
+/// operations. The true rate is a sum of parts that cancel in part once expanded: for a
+/// flow at a body point, R1's transport term K takes back what Σ φ̇ ∂*p/∂φ adds
+/// (docs/mechanics.md#flows-at-points), and the rigid body's world-frame products
+/// collapse by sin² + cos² = 1. Sums of a few terms, as most particle systems have, stay as
+/// derived; a reduction that does not pay is discarded.
+fn cheaper_reduced(pool: &mut ExprPool, e: Id) -> Id {
+    let reduced = pool.reduce_trig(e);
+    if pool.operation_count(&[reduced]) < pool.operation_count(&[e]) {
+        reduced
+    } else {
+        e
     }
 }
 

@@ -377,7 +377,12 @@ impl Builder {
         };
         if let Some(at) = &load.at {
             let message = "a torque has no point of application: a couple acts on the whole body";
-            self.errors.push(Diagnostic::new(at.span, message));
+            let name = &target.node;
+            let help = format!(
+                "a force at a point makes its own torque: write `force {name}: body [..] at [..]`"
+            );
+            self.errors
+                .push(Diagnostic::new(at.span, message).with_help(help));
             return;
         }
         let planar = self.model.bodies[body].position.len() == 2;

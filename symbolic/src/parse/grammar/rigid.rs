@@ -49,6 +49,25 @@ impl<'a> Grammar<'a> {
         }
     }
 
+    /// [`Self::at_point`] after a load; after a torque, its span covers `at [..]` (the
+    /// derivation refuses it there: a couple has no point of application).
+    pub(super) fn load_point(
+        &self,
+        input: &'a str,
+        keyword: &str,
+    ) -> PResult<'a, Option<VectorNode>> {
+        let at = self.keyword(input, keywords::AT).ok().map(|(_, span)| span);
+        let (rest, point) = self.at_point(input)?;
+        let point = match (point, at) {
+            (Some(mut point), Some(at)) if keyword == keywords::TORQUE => {
+                point.span = at.join(point.span);
+                Some(point)
+            }
+            (point, _) => point,
+        };
+        Ok((rest, point))
+    }
+
     /// `rigid b: mass m, inertia …, position [..], angle e | orientation seq(a, b, c)
     /// [, centre [..]]`, options in any order, each at most once.
     pub(super) fn rigid(&self, input: &'a str) -> PResult<'a, (StatementKind, &'static str)> {

@@ -217,7 +217,7 @@ impl<'a> Grammar<'a> {
         match self.framed_vector(after) {
             Ok((rest, (frame, vector))) => {
                 let value = LoadValue::Vector(vector);
-                let (rest, at) = self.at_point(rest)?;
+                let (rest, at) = self.load_point(rest, keyword)?;
                 let load = Load {
                     target,
                     value,
@@ -235,11 +235,18 @@ impl<'a> Grammar<'a> {
             self.expression(i, STATEMENT_LEVEL)
         })?;
         let value = LoadValue::Scalar(value);
+        // Read here only to be refused by the derivation with a better message than a
+        // syntax error: a planar torque is a scalar, and a torque has no point.
+        let (rest, at) = if keyword == keywords::TORQUE {
+            self.load_point(rest, keyword)?
+        } else {
+            (rest, None)
+        };
         let load = Load {
             target,
             value,
             frame: Frame::World,
-            at: None,
+            at,
         };
         Ok((rest, (kind(load), AFTER_EXPRESSION)))
     }
