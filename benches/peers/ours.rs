@@ -8,6 +8,8 @@
 //! ```sh
 //! cargo bench -p varmass-benches --bench peers            # the sweep
 //! cargo bench -p varmass-benches --bench peers -- rates   # initial states and rates
+//! # one point run `runs` times, for `perf stat` (instructions per run do not depend on load)
+//! cargo bench -p varmass-benches --bench peers -- only kepler taylor 1e-12 1000
 //! ```
 //!
 //! The pendulum's reference is our own Taylor method at order 30 and step 1/200 s; its
@@ -126,7 +128,56 @@ fn sweep<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
     }
 }
 
+/// `only <problem> <method> <tolerance> <runs>`: that point `runs` times, its error and steps
+/// printed once.
+fn only(args: &[String]) {
+    let (problem, method) = (args[0].as_str(), args[1].as_str());
+    let tolerance: f64 = args[2].parse().expect("a tolerance");
+    let runs: usize = args[3].parse().expect("a number of runs");
+    let repeat = |f: &dyn Fn() -> (f64, Statistics)| {
+        let mut last = f();
+        for _ in 1..runs {
+            last = std::hint::black_box(f());
+        }
+        println!(
+            "{problem}\t{method}\t{tolerance:e}\t{:e}\t{} steps\t{} runs",
+            last.0, last.1.accepted_steps, runs
+        );
+    };
+    match problem {
+        "sled" => {
+            let sled = SledProblem::standard();
+            let start = (sled.initial_state(), sled.end_time());
+            repeat(&|| {
+                let (y, s) = run(sled.system(), start, method, tolerance);
+                (sled.error(start.1, &y), s)
+            })
+        }
+        "kepler" => {
+            let kepler = KeplerProblem::standard();
+            let start = (kepler.initial_state(), kepler.end_time());
+            repeat(&|| {
+                let (y, s) = run(kepler.system(), start, method, tolerance);
+                (kepler.error(start.1, &y), s)
+            })
+        }
+        _ => {
+            let reference = pendulum_reference(1.0 / 200.0);
+            let start = (pendulum_start(), PENDULUM_END);
+            repeat(&|| {
+                let (y, s) = run(&PENDULUM, start, method, tolerance);
+                ((y - reference).amax(), s)
+            })
+        }
+    }
+}
+
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(at) = args.iter().position(|a| a == "only") {
+        only(&args[at + 1..]);
+        return;
+    }
     let sled = SledProblem::standard();
     let kepler = KeplerProblem::standard();
     if std::env::args().any(|a| a == "rates") {
