@@ -3,7 +3,7 @@
 //! emitted recurrences, and DOP853, on the sled to 50 m, Kepler e = 0.5 over three orbits
 //! and the planar 3-link pendulum over 10 s, swept over tolerances. One line per point,
 //! tab-separated: problem, method, tolerance, achieved error, fastest seconds per run,
-//! steps.
+//! steps, the final state's components.
 //!
 //! ```sh
 //! cargo bench -p varmass-benches --bench peers            # the sweep
@@ -118,11 +118,14 @@ fn sweep<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
                 fastest_of(3, 1000, Duration::from_millis(150), || {
                     run(system, start, method, tolerance)
                 });
+            // The final state too, for errors the script measures itself.
+            let state_text: Vec<String> = state.iter().map(|x| format!("{x:e}")).collect();
             println!(
-                "{name}\t{method}\t{tolerance:e}\t{:e}\t{:e}\t{}",
+                "{name}\t{method}\t{tolerance:e}\t{:e}\t{:e}\t{}\t{}",
                 error(&state),
                 elapsed.as_secs_f64(),
-                statistics.accepted_steps
+                statistics.accepted_steps,
+                state_text.join("\t")
             );
         }
     }
