@@ -201,7 +201,12 @@ where
 
     /// Jorba & Zou's step from the last two coefficients of an expansion to `order`, with
     /// the safety factor `safety`.
-    fn adaptive_step(&self, (order, safety): (usize, f64), relative_mode: bool, max_step: f64) -> f64 {
+    fn adaptive_step(
+        &self,
+        (order, safety): (usize, f64),
+        relative_mode: bool,
+        max_step: f64,
+    ) -> f64 {
         let scale = if relative_mode {
             self.progress.state().amax()
         } else {
