@@ -134,9 +134,18 @@ fn sweep<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
 /// `only <problem> <method> <tolerance> <runs>`: that point `runs` times, its error and steps
 /// printed once.
 fn only(args: &[String]) {
-    let (problem, method) = (args[0].as_str(), args[1].as_str());
-    let tolerance: f64 = args[2].parse().expect("a tolerance");
-    let runs: usize = args[3].parse().expect("a number of runs");
+    let parsed = match args {
+        [problem, method, tolerance, runs, ..] => tolerance
+            .parse::<f64>()
+            .ok()
+            .zip(runs.parse::<usize>().ok())
+            .map(|(t, r)| (problem.as_str(), method.as_str(), t, r.max(1))),
+        _ => None,
+    };
+    let Some((problem, method, tolerance, runs)) = parsed else {
+        eprintln!("usage: only <sled|kepler|pendulum3> <taylor|dop853> <tolerance> <runs>");
+        std::process::exit(2);
+    };
     let repeat = |f: &dyn Fn() -> (f64, Statistics)| {
         let mut last = f();
         for _ in 1..runs {
