@@ -16,22 +16,11 @@ fn control(tolerance: f64, defaults: AdaptiveControl) -> StepControl {
 }
 
 /// A vertical rocket whose burn is switched off at t_b inside the run: the mass rate and
-/// the thrust jump to zero where sign(t_b − t) flips.
-const SWITCHED_OFF: &str = "coordinates y
-let on = (1 + sign(t_b - t))/2
-mass m: state, rate -mu*on
-body rocket: mass m, position [y]
-potential m*g*y
-outflow rocket: rate mu*on, relative_velocity [-u_e]";
+/// the thrust jump to zero where sign(t_b − t) flips. One file for the macro and the
+/// interpreter (shared with `tests/taylor_switches.rs`).
+const SWITCHED_OFF: &str = include_str!("data/switched_off.vms");
 
-#[variable_mass_system(
-    "coordinates y
-let on = (1 + sign(t_b - t))/2
-mass m: state, rate -mu*on
-body rocket: mass m, position [y]
-potential m*g*y
-outflow rocket: rate mu*on, relative_velocity [-u_e]"
-)]
+#[variable_mass_system(file = "tests/data/switched_off.vms")]
 struct SwitchedOff {
     mu: f64,
     u_e: f64,

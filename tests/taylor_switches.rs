@@ -9,23 +9,10 @@ use varmass::interpret::{Program, TapeSystem};
 use varmass::prelude::*;
 use varmass::symbolic::mechanics::{derive_source, Parameters};
 
-/// The model text of the macro below, for the interpreter.
-const SWITCHED_OFF: &str = "coordinates y
-let on = (1 + sign(t_b - t))/2
-mass m: state, rate -mu*on
-body rocket: mass m, position [y]
-potential m*g*y
-outflow rocket: rate mu*on, relative_velocity [-u_e]";
+/// The model, one file for the macro and the interpreter.
+const SWITCHED_OFF: &str = include_str!("data/switched_off.vms");
 
-#[variable_mass_system(
-    "coordinates y
-let on = (1 + sign(t_b - t))/2
-mass m: state, rate -mu*on
-body rocket: mass m, position [y]
-potential m*g*y
-outflow rocket: rate mu*on, relative_velocity [-u_e]",
-    emit = ["taylor"]
-)]
+#[variable_mass_system(file = "tests/data/switched_off.vms", emit = ["taylor"])]
 struct SwitchedOff {
     mu: f64,
     u_e: f64,

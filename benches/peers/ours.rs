@@ -3,11 +3,13 @@
 //! emitted recurrences, and DOP853, on the sled to 50 m, Kepler e = 0.5 over three orbits
 //! and the planar 3-link pendulum over 10 s, swept over tolerances. One line per point,
 //! tab-separated: problem, method, tolerance, achieved error, fastest seconds per run,
-//! steps.
+//! steps, the final state's components.
 //!
 //! ```sh
 //! cargo bench -p varmass-benches --bench peers            # the sweep
 //! cargo bench -p varmass-benches --bench peers -- rates   # initial states and rates
+//! # one point run `runs` times, for `perf stat` (instructions per run do not depend on load)
+//! cargo bench -p varmass-benches --bench peers -- only kepler taylor 1e-12 1000
 //! ```
 //!
 //! The pendulum's reference is our own Taylor method at order 30 and step 1/200 s; its
@@ -116,17 +118,78 @@ fn sweep<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
                 fastest_of(3, 1000, Duration::from_millis(150), || {
                     run(system, start, method, tolerance)
                 });
+            // The final state too, for errors the script measures itself.
+            let state_text: Vec<String> = state.iter().map(|x| format!("{x:e}")).collect();
             println!(
-                "{name}\t{method}\t{tolerance:e}\t{:e}\t{:e}\t{}",
+                "{name}\t{method}\t{tolerance:e}\t{:e}\t{:e}\t{}\t{}",
                 error(&state),
                 elapsed.as_secs_f64(),
-                statistics.accepted_steps
+                statistics.accepted_steps,
+                state_text.join("\t")
             );
         }
     }
 }
 
+/// `only <problem> <method> <tolerance> <runs>`: that point `runs` times, its error and steps
+/// printed once.
+fn only(args: &[String]) {
+    let parsed = match args {
+        [problem, method, tolerance, runs, ..] => tolerance
+            .parse::<f64>()
+            .ok()
+            .zip(runs.parse::<usize>().ok())
+            .map(|(t, r)| (problem.as_str(), method.as_str(), t, r.max(1))),
+        _ => None,
+    };
+    let Some((problem, method, tolerance, runs)) = parsed else {
+        eprintln!("usage: only <sled|kepler|pendulum3> <taylor|dop853> <tolerance> <runs>");
+        std::process::exit(2);
+    };
+    let repeat = |f: &dyn Fn() -> (f64, Statistics)| {
+        let mut last = f();
+        for _ in 1..runs {
+            last = std::hint::black_box(f());
+        }
+        println!(
+            "{problem}\t{method}\t{tolerance:e}\t{:e}\t{} steps\t{} runs",
+            last.0, last.1.accepted_steps, runs
+        );
+    };
+    match problem {
+        "sled" => {
+            let sled = SledProblem::standard();
+            let start = (sled.initial_state(), sled.end_time());
+            repeat(&|| {
+                let (y, s) = run(sled.system(), start, method, tolerance);
+                (sled.error(start.1, &y), s)
+            })
+        }
+        "kepler" => {
+            let kepler = KeplerProblem::standard();
+            let start = (kepler.initial_state(), kepler.end_time());
+            repeat(&|| {
+                let (y, s) = run(kepler.system(), start, method, tolerance);
+                (kepler.error(start.1, &y), s)
+            })
+        }
+        _ => {
+            let reference = pendulum_reference(1.0 / 200.0);
+            let start = (pendulum_start(), PENDULUM_END);
+            repeat(&|| {
+                let (y, s) = run(&PENDULUM, start, method, tolerance);
+                ((y - reference).amax(), s)
+            })
+        }
+    }
+}
+
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(at) = args.iter().position(|a| a == "only") {
+        only(&args[at + 1..]);
+        return;
+    }
     let sled = SledProblem::standard();
     let kepler = KeplerProblem::standard();
     if std::env::args().any(|a| a == "rates") {

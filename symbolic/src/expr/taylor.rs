@@ -54,7 +54,7 @@ pub(crate) enum Op {
     Mul(usize, usize),
     /// a², the Cauchy product halved by symmetry.
     Square(usize),
-    /// 1/a: w\[k\] = −Σⱼ₌₁ᵏ a\[j\] w\[k−j\] / a\[0\].
+    /// 1/a: w\[k\] = −Σⱼ₌₁ᵏ a\[j\] w\[k−j\] · w\[0\] (w\[0\] = 1/a\[0\]: no division per order).
     Recip(usize),
     /// √a: w\[k\] = (a\[k\] − Σⱼ₌₁ᵏ⁻¹ w\[j\] w\[k−j\]) / (2 w\[0\]).
     Sqrt(usize),

@@ -110,8 +110,8 @@ fn coefficient(op: Op, operands: &[usize], jet: &TaylorJet, out: usize, k: usize
             };
             2.0 * cross + middle
         }
-        // w a = 1.
-        Op::Recip(a) => -sum(1, k + 1, |j| at(a, j) * at(out, k - j)) / at(a, 0),
+        // w a = 1, times w[0] = 1/a[0] (a product, not a division, on the chain of orders).
+        Op::Recip(a) => -sum(1, k + 1, |j| at(a, j) * at(out, k - j)) * at(out, 0),
         // w² = a.
         Op::Sqrt(a) => {
             let cross = sum(1, k, |j| at(out, j) * at(out, k - j));
@@ -126,7 +126,7 @@ fn coefficient(op: Op, operands: &[usize], jet: &TaylorJet, out: usize, k: usize
             total / (kf * at(a, 0))
         }
         // w′ = a′ w.
-        Op::Exp(a) => sum(1, k + 1, |j| j as f64 * at(a, j) * at(out, k - j)) / kf,
+        Op::Exp(a) => sum(1, k + 1, |j| j as f64 * at(a, j) * at(out, k - j)) * (1.0 / kf),
         // w′ d = sign·a′.
         Op::Quotient { a, d, sign, .. } => {
             let total = sum(1, k, |j| j as f64 * at(out, j) * at(d, k - j));
@@ -166,7 +166,8 @@ fn pair(jet: &mut TaylorJet, (s, c): (usize, usize), a: usize, k: usize, sign: f
     } else {
         let first = sum(1, k + 1, |j| j as f64 * jet.get(a, j) * jet.get(c, k - j));
         let second = sum(1, k + 1, |j| j as f64 * jet.get(a, j) * jet.get(s, k - j));
-        (first / k as f64, sign * second / k as f64)
+        let inverse = 1.0 / k as f64;
+        (first * inverse, sign * second * inverse)
     };
     jet.set(s, k, first);
     jet.set(c, k, second);
@@ -183,7 +184,7 @@ fn tan(
     let wk = if k == 0 {
         f.apply(&[jet.get(a, 0)])
     } else {
-        sum(1, k + 1, |j| j as f64 * jet.get(a, j) * jet.get(v, k - j)) / k as f64
+        sum(1, k + 1, |j| j as f64 * jet.get(a, j) * jet.get(v, k - j)) * (1.0 / k as f64)
     };
     jet.set(w, k, wk);
     let square = sum(0, k + 1, |j| jet.get(w, j) * jet.get(w, k - j));
