@@ -99,6 +99,7 @@ extern crate alloc;
 
 pub mod error;
 pub mod input;
+pub mod lanes;
 pub mod math;
 pub mod stepper;
 pub mod steppers;
