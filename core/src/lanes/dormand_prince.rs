@@ -247,9 +247,7 @@ where
             .validate::<Sys, N>()
             .map_err(|error| invalid(error.reason))?;
     }
-    core.progress
-        .set_stop_time(config.end_time)
-        .map_err(Err)?;
+    core.progress.set_stop_time(config.end_time).map_err(Err)?;
     check_flows(system, *time, state).map_err(Err)?;
     if config.end_time == *time {
         return Err(Ok(end_at(&core, *time, *state, None)));
@@ -474,8 +472,7 @@ where
     let start_time = core.progress.previous_time();
     let dense = Dense::new(attempt, index, core);
     let mut pending: Vec<(f64, usize)> = Vec::new();
-    for (event_index, (event, before)) in member.events.iter().zip(&mut member.values).enumerate()
-    {
+    for (event_index, (event, before)) in member.events.iter().zip(&mut member.values).enumerate() {
         let after = event.value(system, time, &state);
         if event.triggered(*before, after) {
             let located = locate_root(

@@ -9,6 +9,7 @@
 mod expression;
 mod factor;
 mod inputs;
+mod lanes;
 mod methods;
 mod signature;
 mod stops;
@@ -110,6 +111,7 @@ pub fn emit_system_for(
         emitter.flow_rates(),
         emitter.stop_times(&time_tables),
     ];
+    let lanes = optional(outputs.lanes, || lanes::lanes_impl(&emitter));
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");
         quote!(#[doc = ""] #[doc = #line])
@@ -142,6 +144,7 @@ pub fn emit_system_for(
 
         #inputs_trait
         #trait_impl
+        #lanes
     }
 }
 
