@@ -6,6 +6,9 @@
 //! speed-up from 1 to 2 threads, and the members per CPU-second of each (from Linux's
 //! per-thread schedstat): on a loaded machine the wall-clock speed-up measures the load,
 //! while equal members per CPU-second show that the threads add no work of their own.
+//! Then the scalar path against SIMD lanes on one thread (`LaneEnsemble` with
+//! `run_lanes`, 4 and 8 members per lane set; bit-identical members, so the same apexes):
+//! members per second, fastest of interleaved rounds.
 //! Then the same workloads under criterion.
 //!
 //! ```sh
@@ -19,7 +22,8 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, Throughput};
 use varmass::core::ensemble::rand::RngExt;
 use varmass::core::ensemble::rayon::{ThreadPool, ThreadPoolBuilder};
-use varmass::core::ensemble::{Ensemble, MemberRng};
+use varmass::core::ensemble::{Ensemble, LaneEnsemble, MemberRng};
+use varmass::core::lanes::{run_lanes, LaneJob};
 use varmass::prelude::*;
 
 use common::generated::Rocket;
@@ -64,6 +68,107 @@ fn fly(&[mu, u_e, dry_mass]: &[f64; 3]) -> Result<[f64; 1], StepError<3>> {
     let ballistic = run(&mut coast, &RunConfig::until(1e4), &apex)?;
     let (_, state) = ballistic.last().ok_or_else(|| no_point(&coast))?;
     Ok([state[0]])
+}
+
+/// The rocket again, with its state rate over lanes too (the same scalar code as
+/// `Rocket`'s: both from `models/rocket.vms` without drag).
+#[variable_mass_system(file = "../models/rocket.vms", emit = ["lanes"])]
+#[derive(Clone, Copy, Debug)]
+struct LaneRocket {
+    mu: f64,
+    u_e: f64,
+    g: f64,
+}
+
+/// [`fly`] for a chunk of members, W at a time in lanes: every burn to burnout, then every
+/// coast to the apex.
+fn fly_lanes<const W: usize>(members: &[[f64; 3]]) -> Vec<Result<[f64; 1], StepError<3>>> {
+    let config = RunConfig::until(1e4);
+    let burnout: Vec<[Event<'_, 3>; 1]> = members
+        .iter()
+        .map(|&[_, _, dry_mass]| [Event::mass_reaches(0, dry_mass)])
+        .collect();
+    let start = SVector::<f64, 3>::new(0.0, 0.0, M0);
+    let powered: Vec<_> = members
+        .iter()
+        .zip(&burnout)
+        .map(|(&[mu, u_e, _], events)| LaneJob {
+            system: LaneRocket { mu, u_e, g: 9.81 },
+            time: 0.0,
+            state: start,
+            events,
+        })
+        .collect();
+    let burnouts = run_lanes::<_, 1, 3, W>(&powered, control(), &config);
+    let apex = [Event::state_reaches(1, 0.0, Direction::Falling)];
+    let coasting: Vec<_> = powered
+        .iter()
+        .zip(&burnouts)
+        .filter_map(|(job, end)| {
+            let end = end.as_ref().ok()?;
+            let system = LaneRocket {
+                mu: 0.0,
+                ..job.system
+            };
+            let (time, state, events) = (end.time, end.state, &apex[..]);
+            Some(LaneJob {
+                system,
+                time,
+                state,
+                events,
+            })
+        })
+        .collect();
+    let mut apexes = run_lanes::<_, 1, 3, W>(&coasting, control(), &config).into_iter();
+    burnouts
+        .into_iter()
+        .map(|burnout| {
+            burnout?;
+            let apex = apexes.next().expect("one coast per burnout")?;
+            Ok([apex.state[0]])
+        })
+        .collect()
+}
+
+/// Runs `MEMBERS` members in lanes of W on the calling thread; the number completed.
+fn run_members_in_lanes<const W: usize>() -> usize {
+    let ensemble = LaneEnsemble::new(7, ["apex_height"], sample, fly_lanes::<W>)
+        .batch_size(256)
+        .serial();
+    ensemble.run(0..MEMBERS).completed().len()
+}
+
+/// Runs `MEMBERS` members on the calling thread on the scalar path.
+fn run_members_serial() -> usize {
+    let ensemble = Ensemble::new(7, ["apex_height"], sample, fly)
+        .batch_size(256)
+        .serial();
+    ensemble.run(0..MEMBERS).completed().len()
+}
+
+/// The scalar path against lanes of 4 and 8 on one thread, interleaved.
+fn lanes_summary() {
+    let runs: [(&str, fn() -> usize); 3] = [
+        ("scalar", run_members_serial),
+        ("lanes of 4", run_members_in_lanes::<4>),
+        ("lanes of 8", run_members_in_lanes::<8>),
+    ];
+    let mut best = [Duration::MAX; 3];
+    for _ in 0..5 {
+        for ((_, work), best) in runs.iter().zip(&mut best) {
+            let (time, completed) = fastest_of(3, 3, Duration::ZERO, work);
+            assert_eq!(completed, MEMBERS as usize, "a member failed");
+            *best = (*best).min(time);
+        }
+    }
+    println!("== ensemble in lanes: {MEMBERS} rockets to apex on 1 thread, fastest of 15 runs");
+    for ((name, _), time) in runs.iter().zip(best) {
+        println!(
+            "{name:>10}: {:.0} members/s, {:.2}× the scalar path",
+            MEMBERS as f64 / time.as_secs_f64(),
+            best[0].as_secs_f64() / time.as_secs_f64()
+        );
+    }
 }
 
 /// The error for a run that returned no point (a run always records its start).
@@ -139,11 +244,18 @@ fn criterion_benches(c: &mut Criterion) {
             b.iter(|| run_members(&pool))
         });
     }
+    group.bench_function("serial/scalar", |b| b.iter(run_members_serial));
+    group.bench_function("serial/lanes_4", |b| b.iter(run_members_in_lanes::<4>));
+    group.bench_function("serial/lanes_8", |b| b.iter(run_members_in_lanes::<8>));
     group.finish();
 }
 
 fn main() {
-    summary();
+    // `-- lanes` runs only the lanes summary (and criterion's rows that match it).
+    if !std::env::args().any(|a| a == "lanes") {
+        summary();
+    }
+    lanes_summary();
     let mut criterion = Criterion::default().configure_from_args();
     criterion_benches(&mut criterion);
     criterion.final_summary();

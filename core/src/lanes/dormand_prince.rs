@@ -470,11 +470,13 @@ where
     let (time, state) = (core.progress.time(), *core.progress.state());
     check_flows(system, time, &state)?;
     let start_time = core.progress.previous_time();
-    let dense = Dense::new(attempt, index, core);
+    // The dense output is read out of the lanes only when an event needs it.
+    let mut dense: Option<Dense<S>> = None;
     let mut pending: Vec<(f64, usize)> = Vec::new();
     for (event_index, (event, before)) in member.events.iter().zip(&mut member.values).enumerate() {
         let after = event.value(system, time, &state);
         if event.triggered(*before, after) {
+            let dense = dense.get_or_insert_with(|| Dense::new(attempt, index, core));
             let located = locate_root(
                 |t| event.value(system, t, &dense.at(t)),
                 (start_time, *before),
@@ -490,7 +492,7 @@ where
     let stop = pending
         .into_iter()
         .find(|(_, i)| events.get(*i).map(|e| e.action) == Some(EventAction::Stop));
-    if let Some((hit, event_index)) = stop {
+    if let (Some((hit, event_index)), Some(dense)) = (stop, &dense) {
         let hit_state = dense.at(hit);
         check_flows(system, hit, &hit_state)?;
         return Ok(Some(end_at(core, hit, hit_state, Some(event_index))));
