@@ -31,6 +31,7 @@ use crate::run::RunConfig;
 use crate::solution::Record;
 use crate::stepper::{check_state, Statistics, StepOutcome};
 use crate::steppers::control::{resolvable, Controlled, Mode, StepControl};
+use crate::tolerance::Tolerance;
 
 const C2: f64 = 1.0 / 5.0;
 const C3: f64 = 3.0 / 10.0;
@@ -118,6 +119,10 @@ struct Attempt<const S: usize, const W: usize> {
     k: [LaneState<S, W>; 7],
     /// The stage states y₂ … y₆ and y₁ (the new state), for the checks.
     y: [LaneState<S, W>; 6],
+    /// Whether every stage state and the new state of the lane are finite.
+    finite: [bool; W],
+    /// The scaled error of each lane.
+    error: Lanes<W>,
 }
 
 /// Runs every job to its first stopping event or `config.end_time` with Dormand–Prince
@@ -140,6 +145,17 @@ where
         (0..jobs.len()).map(|_| None).collect();
     let Some(first) = jobs.first() else {
         return Vec::new();
+    };
+    let Ok(Mode::Adaptive(_, tolerance)) = control.validated() else {
+        // Every member reports why, as it would on the scalar path.
+        return (0..jobs.len())
+            .map(
+                |job| match start::<Sys, N, S, W>(jobs, job, control, config) {
+                    Err(done) => done,
+                    Ok(_) => Err(unfinished()),
+                },
+            )
+            .collect();
     };
     let mut parameters = Sys::splat(&first.system);
     let mut lanes: [Option<Member<'_, '_, Sys, S>>; W] = core::array::from_fn(|_| None);
@@ -177,6 +193,7 @@ where
             }
         }
         attempt.stages::<Sys, N>(&parameters);
+        attempt.measure(&tolerance);
         for (index, slot) in lanes.iter_mut().enumerate() {
             let Some(member) = slot else { continue };
             match conclude(member, &attempt, index, config) {
@@ -289,6 +306,8 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
             y0: zero,
             k: [zero; 7],
             y: [zero; 6],
+            finite: [true; W],
+            error: Lanes::default(),
         }
     }
 
@@ -354,16 +373,34 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         self.y = [y2, y3, y4, y5, y6, y1];
     }
 
-    /// The scaled error of lane `index` (`DormandPrince::attempt`'s estimate and norm).
-    fn error(&self, index: usize, mode: &Mode) -> f64 {
-        let Mode::Adaptive(_, tolerance) = mode else {
-            return 0.0;
-        };
-        let h = self.h.0[index];
-        let k = |i: usize| lane(&self.k[i], index);
-        let estimate = (k(0) * E1 + k(2) * E3 + k(3) * E4 + k(4) * E5 + k(5) * E6 + k(6) * E7) * h;
-        let (y0, y1) = (lane(&self.y0, index), lane(&self.y[5], index));
-        tolerance.norm(&estimate, |i| y0[i].abs().max(y1[i].abs()))
+    /// Which lanes' stage states are all finite, and every lane's scaled error:
+    /// `DormandPrince::attempt`'s estimate and [`Tolerance::norm`]'s weighted RMS (weights
+    /// atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|), an exact zero counting 0, the squares summed in
+    /// component order), lane by lane.
+    fn measure(&mut self, tolerance: &Tolerance) {
+        let (k, h, y1) = (&self.k, self.h, &self.y[5]);
+        let mut sum = Lanes::<W>::splat(0.0);
+        for j in 0..S {
+            let estimate = (k[0][j] * E1
+                + k[2][j] * E3
+                + k[3][j] * E4
+                + k[4][j] * E5
+                + k[5][j] * E6
+                + k[6][j] * E7)
+                * h;
+            let magnitude = self.y0[j].abs().max(y1[j].abs());
+            let weight = magnitude.map(|m| tolerance.weight(m));
+            let scaled = estimate / weight;
+            let square = Lanes::select(
+                estimate.0.map(|e| e == 0.0),
+                Lanes::splat(0.0),
+                scaled * scaled,
+            );
+            sum += square;
+        }
+        self.error = (sum / S as f64).sqrt();
+        self.finite =
+            core::array::from_fn(|i| self.y.iter().all(|y| y.iter().all(|c| c.0[i].is_finite())));
     }
 }
 
@@ -393,7 +430,7 @@ where
     };
     let (h, reaches_stop) = (attempt.h.0[index], attempt.reaches_stop[index]);
     member.core.progress.statistics.rate_evaluations += 6;
-    if let Err(error) = check_stages(member.core.system, attempt, index) {
+    if let Err(error) = check_stages(member.core.system, attempt, index, attempt.finite[index]) {
         // A trial state outside the domain is a step too long (DormandPrince::control).
         member
             .core
@@ -406,7 +443,7 @@ where
             Err(error)
         };
     }
-    let error = attempt.error(index, &member.core.mode);
+    let error = attempt.error.0[index];
     let error_power = powf(error, 0.2 - 0.75 * control.beta);
     if error > 1.0 || error.is_nan() {
         let factor = error_power / control.safety;
@@ -438,11 +475,15 @@ fn check_stages<Sys, const N: usize, const S: usize, const W: usize>(
     system: &Sys,
     attempt: &Attempt<S, W>,
     index: usize,
+    finite: bool,
 ) -> Result<(), StepError<S>>
 where
     Sys: LaneSystem<N, S, W>,
 {
     let (t0, h) = (attempt.t0.0[index], attempt.h.0[index]);
+    if finite {
+        return check_state(system, t0 + h, &lane(&attempt.y[5], index));
+    }
     for (y, c) in attempt.y[..5].iter().zip([C2, C3, C4, C5, 1.0]) {
         let y = lane(y, index);
         if !is_finite(&y) {
