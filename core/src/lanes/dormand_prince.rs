@@ -269,6 +269,10 @@ where
     if config.end_time == *time {
         return Err(Ok(end_at(&core, *time, *state, None)));
     }
+    if config.max_steps == 0 {
+        let kind = StepErrorKind::TooManySteps { max_steps: 0 };
+        return Err(Err(StepError::new(*time, *state, kind)));
+    }
     let values = events
         .iter()
         .map(|event| event.value(system, *time, state))
@@ -399,8 +403,15 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
             sum += square;
         }
         self.error = (sum / S as f64).sqrt();
-        self.finite =
-            core::array::from_fn(|i| self.y.iter().all(|y| y.iter().all(|c| c.0[i].is_finite())));
+        // x − x is 0 for a finite x and NaN for ±∞ or NaN: one sum over the stage states
+        // tells, lane by lane, whether they were all finite.
+        let mut spread = Lanes::<W>::splat(0.0);
+        for y in &self.y {
+            for component in y {
+                spread += *component - *component;
+            }
+        }
+        self.finite = spread.0.map(|x| x == 0.0);
     }
 }
 
