@@ -1,7 +1,7 @@
 //! The state rate over lanes (`emit = [..., "lanes"]`) is the scalar state rate in every
 //! lane, bit for bit, on models whose rate calls the real functions: the double pendulum
 //! (sin and cos of both angles, the closed-form inverse of its 2 × 2 mass matrix) and the
-//! leaking spring pendulum (a mass law, a square root). 200 pseudo-random states each,
+//! leaking spring pendulum (a state mass, sin and cos, powers). 200 pseudo-random states each,
 //! spread over several orders of magnitude, in 4 lanes with a different system per lane.
 
 use varmass::core::lanes::{LaneSystem, Lanes};
@@ -9,11 +9,22 @@ use varmass::prelude::*;
 
 #[variable_mass_system(file = "models/double_pendulum.vms", emit = ["lanes"])]
 #[derive(Clone, Copy)]
+#[allow(non_snake_case)] // the model's names
 struct DoublePendulum {
     M1: f64,
     M2: f64,
     l1: f64,
     l2: f64,
+    g: f64,
+}
+
+#[variable_mass_system(file = "models/leaking_spring_pendulum.vms", emit = ["lanes"])]
+#[derive(Clone, Copy)]
+struct LeakingSpringPendulum {
+    mu: f64,
+    u_e: f64,
+    k: f64,
+    l0: f64,
     g: f64,
 }
 
@@ -77,6 +88,26 @@ fn double_pendulum_lanes_are_its_scalar_rates() {
             3.0 * s.next(),
             20.0 * s.next(),
             0.1 * s.next(),
+        )
+    });
+}
+
+#[test]
+fn leaking_spring_pendulum_lanes_are_its_scalar_rates() {
+    let systems = [0.0, 0.2, 1.0, 3.0].map(|mu| LeakingSpringPendulum {
+        mu,
+        u_e: 40.0 + 10.0 * mu,
+        k: 80.0,
+        l0: 1.0 + mu,
+        g: 9.81,
+    });
+    check(systems, |s| {
+        SVector::<f64, 5>::new(
+            1.0 + 0.5 * s.next(),
+            3.0 * s.next(),
+            5.0 * s.next(),
+            2.0 * s.next(),
+            2.0 + s.next().abs(),
         )
     });
 }

@@ -119,3 +119,42 @@ pub(crate) fn lanes_impl(emitter: &Emitter<'_>) -> TokenStream {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use proc_macro2::{Ident, Span};
+    use quote::quote;
+
+    use crate::emit::{emit_system_for, Target};
+    use crate::mechanics::{Outputs, Parameters};
+    use crate::pipeline::derive_source;
+
+    fn emitted(source: &str) -> String {
+        let mut d = derive_source(source, Parameters::Inferred).expect("the model derives");
+        let target = Target {
+            name: Ident::new("Oscillator", Span::call_site()),
+            runtime: quote!(::rt),
+        };
+        let outputs = Outputs {
+            lanes: true,
+            ..Outputs::MINIMAL
+        };
+        emit_system_for(&mut d, source, &target, outputs).to_string()
+    }
+
+    /// A smooth rate gets the lane impl; a rate calling `sign` (its runtime function has no
+    /// lane form) gets a compile error saying so, and no impl.
+    #[test]
+    fn a_rate_with_sign_is_refused_and_a_smooth_one_emitted() {
+        let model = "coordinates x\nmass m = m0\nbody b: mass m, position [x]\npotential k*x^2/2\n";
+        let smooth = emitted(model);
+        assert!(smooth.contains("LaneSystem") && smooth.contains("__OscillatorLanes"));
+        assert!(!smooth.contains("compile_error"));
+        let with_sign = emitted(&format!("{model}force b: [-f*sign(x')]\n"));
+        assert!(
+            with_sign.contains("`sign` in the state rate"),
+            "{with_sign}"
+        );
+        assert!(!with_sign.contains("LaneSystem"));
+    }
+}
