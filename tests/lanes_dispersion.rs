@@ -234,3 +234,41 @@ fn members_that_end_otherwise_keep_the_scalar_outcome() {
     // μ = 0: no burnout, so the end time.
     assert_eq!(ends[1].as_ref().map(|e| e.time), Ok(1e4));
 }
+
+/// `LaneEnsemble` flying the members in lanes gives the `Partial` — values, failures,
+/// statistics — that `Ensemble` gives on the scalar path, in parallel and serially, for a
+/// chunk size that does not divide the batches.
+#[test]
+fn a_lane_ensemble_equals_the_scalar_ensemble() {
+    use varmass::core::ensemble::{Ensemble, LaneEnsemble, MemberRng};
+    let sample = |rng: &mut MemberRng| {
+        (
+            rng.random_range(9.5..10.5),
+            rng.random_range(2400.0..2600.0),
+            rng.random_range(380.0..420.0),
+        )
+    };
+    let fly = |&(mu, u_e, dry): &(f64, f64, f64)| -> Result<[f64; 2], StepError<3>> {
+        let start = (0.0, SVector::<f64, 3>::new(0.0, 0.0, M0));
+        let burnout = scalar_run(&rocket(mu, u_e), start, &[Event::mass_reaches(0, dry)])?;
+        let apex = [Event::state_reaches(1, 0.0, Direction::Falling)];
+        let (t, y) = scalar_run(&rocket(0.0, u_e), burnout, &apex)?;
+        Ok([y[0], t])
+    };
+    let fly_chunk = |members: &[(f64, f64, f64)]| -> Vec<Result<[f64; 2], StepError<3>>> {
+        lanes_flight::<4>(members)
+            .into_iter()
+            .map(|(_, apex)| Ok([apex.state[0], apex.time]))
+            .collect()
+    };
+    let names = ["apex_height", "apex_time"];
+    let scalar = Ensemble::new(11, names, sample, fly)
+        .batch_size(100)
+        .run(0..300);
+    let lanes = LaneEnsemble::new(11, names, sample, fly_chunk)
+        .batch_size(100)
+        .chunk_size(37);
+    assert_eq!(lanes.run(0..300), scalar);
+    assert_eq!(lanes.serial().run(0..300), scalar);
+    assert_eq!(scalar.member_count(), 300);
+}
