@@ -150,11 +150,14 @@ fn run_members_serial() -> usize {
     ensemble.run(0..LANE_MEMBERS).completed().len()
 }
 
+/// A named run of the lanes summary, returning the members completed.
+type Workload = (&'static str, fn() -> usize);
+
 /// The scalar path against lanes of 4 and 8 on one thread, interleaved: the fastest of 15
 /// runs each in wall-clock time and in CPU time (Linux's schedstat; on a loaded machine the
 /// CPU time is the steadier measure of the work itself).
 fn lanes_summary() {
-    let runs: [(&str, fn() -> usize); 3] = [
+    let runs: [Workload; 3] = [
         ("scalar", run_members_serial),
         ("lanes of 4", run_members_in_lanes::<4>),
         ("lanes of 8", run_members_in_lanes::<8>),

@@ -403,12 +403,12 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
             sum += square;
         }
         self.error = (sum / S as f64).sqrt();
-        // x − x is 0 for a finite x and NaN for ±∞ or NaN: one sum over the stage states
+        // 0·x is 0 for a finite x and NaN for ±∞ or NaN: one sum over the stage states
         // tells, lane by lane, whether they were all finite.
         let mut spread = Lanes::<W>::splat(0.0);
         for y in &self.y {
             for component in y {
-                spread += *component - *component;
+                spread += *component * 0.0;
             }
         }
         self.finite = spread.0.map(|x| x == 0.0);
