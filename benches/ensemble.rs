@@ -6,6 +6,9 @@
 //! speed-up from 1 to 2 threads, and the members per CPU-second of each (from Linux's
 //! per-thread schedstat): on a loaded machine the wall-clock speed-up measures the load,
 //! while equal members per CPU-second show that the threads add no work of their own.
+//! Then the scalar path against SIMD lanes on one thread (`LaneEnsemble` with
+//! `run_lanes`, 4 and 8 members per lane set; bit-identical members, so the same apexes):
+//! members per second, fastest of interleaved rounds.
 //! Then the same workloads under criterion.
 //!
 //! ```sh
@@ -19,7 +22,8 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, Throughput};
 use varmass::core::ensemble::rand::RngExt;
 use varmass::core::ensemble::rayon::{ThreadPool, ThreadPoolBuilder};
-use varmass::core::ensemble::{Ensemble, MemberRng};
+use varmass::core::ensemble::{Ensemble, LaneEnsemble, MemberRng};
+use varmass::core::lanes::{run_lanes, LaneJob};
 use varmass::prelude::*;
 
 use common::generated::Rocket;
@@ -64,6 +68,125 @@ fn fly(&[mu, u_e, dry_mass]: &[f64; 3]) -> Result<[f64; 1], StepError<3>> {
     let ballistic = run(&mut coast, &RunConfig::until(1e4), &apex)?;
     let (_, state) = ballistic.last().ok_or_else(|| no_point(&coast))?;
     Ok([state[0]])
+}
+
+/// The rocket again, with its state rate over lanes too (the same scalar code as
+/// `Rocket`'s: both from `models/rocket.vms` without drag).
+#[variable_mass_system(file = "../models/rocket.vms", emit = ["lanes"])]
+#[derive(Clone, Copy, Debug)]
+struct LaneRocket {
+    mu: f64,
+    u_e: f64,
+    g: f64,
+}
+
+/// [`fly`] for a chunk of members, W at a time in lanes: every burn to burnout, then every
+/// coast to the apex.
+fn fly_lanes<const W: usize>(members: &[[f64; 3]]) -> Vec<Result<[f64; 1], StepError<3>>> {
+    let config = RunConfig::until(1e4);
+    let burnout: Vec<[Event<'_, 3>; 1]> = members
+        .iter()
+        .map(|&[_, _, dry_mass]| [Event::mass_reaches(0, dry_mass)])
+        .collect();
+    let start = SVector::<f64, 3>::new(0.0, 0.0, M0);
+    let powered: Vec<_> = members
+        .iter()
+        .zip(&burnout)
+        .map(|(&[mu, u_e, _], events)| LaneJob {
+            system: LaneRocket { mu, u_e, g: 9.81 },
+            time: 0.0,
+            state: start,
+            events,
+        })
+        .collect();
+    let burnouts = run_lanes::<_, 1, 3, W>(&powered, control(), &config);
+    let apex = [Event::state_reaches(1, 0.0, Direction::Falling)];
+    let coasting: Vec<_> = powered
+        .iter()
+        .zip(&burnouts)
+        .filter_map(|(job, end)| {
+            let end = end.as_ref().ok()?;
+            let system = LaneRocket {
+                mu: 0.0,
+                ..job.system
+            };
+            let (time, state, events) = (end.time, end.state, &apex[..]);
+            Some(LaneJob {
+                system,
+                time,
+                state,
+                events,
+            })
+        })
+        .collect();
+    let mut apexes = run_lanes::<_, 1, 3, W>(&coasting, control(), &config).into_iter();
+    burnouts
+        .into_iter()
+        .map(|burnout| {
+            burnout?;
+            let apex = apexes.next().expect("one coast per burnout")?;
+            Ok([apex.state[0]])
+        })
+        .collect()
+}
+
+/// Members per timed run of the lanes summary: runs of 0.1–0.3 s, long enough for the
+/// CPU time, which Linux counts in scheduler ticks (4 ms here), to be read to a few %.
+const LANE_MEMBERS: u64 = 8 * MEMBERS;
+
+/// Runs `LANE_MEMBERS` members in lanes of W on the calling thread; the number completed.
+fn run_members_in_lanes<const W: usize>() -> usize {
+    let ensemble = LaneEnsemble::new(7, ["apex_height"], sample, fly_lanes::<W>)
+        .batch_size(256)
+        .serial();
+    ensemble.run(0..LANE_MEMBERS).completed().len()
+}
+
+/// Runs `LANE_MEMBERS` members on the calling thread on the scalar path.
+fn run_members_serial() -> usize {
+    let ensemble = Ensemble::new(7, ["apex_height"], sample, fly)
+        .batch_size(256)
+        .serial();
+    ensemble.run(0..LANE_MEMBERS).completed().len()
+}
+
+/// A named run of the lanes summary, returning the members completed.
+type Workload = (&'static str, fn() -> usize);
+
+/// The scalar path against lanes of 4 and 8 on one thread, interleaved: the fastest of 15
+/// runs each in wall-clock time and in CPU time (Linux's schedstat; on a loaded machine the
+/// CPU time is the steadier measure of the work itself).
+fn lanes_summary() {
+    let runs: [Workload; 3] = [
+        ("scalar", run_members_serial),
+        ("lanes of 4", run_members_in_lanes::<4>),
+        ("lanes of 8", run_members_in_lanes::<8>),
+    ];
+    let mut wall = [Duration::MAX; 3];
+    let mut cpu = [u64::MAX; 3];
+    for _ in 0..15 {
+        for (((_, work), wall), cpu) in runs.iter().zip(&mut wall).zip(&mut cpu) {
+            let before = cpu_time();
+            let (time, completed) = fastest_of(1, 1, Duration::ZERO, work);
+            let spent = before.zip(cpu_time()).map_or(u64::MAX, |(a, b)| b - a);
+            assert_eq!(completed, LANE_MEMBERS as usize, "a member failed");
+            *wall = (*wall).min(time);
+            *cpu = (*cpu).min(spent);
+        }
+    }
+    println!(
+        "== ensemble in lanes: {LANE_MEMBERS} rockets to apex on 1 thread, fastest of 15 runs"
+    );
+    for (((name, _), wall_time), cpu_ns) in runs.iter().zip(wall).zip(cpu) {
+        let per_cpu_second = LANE_MEMBERS as f64 / (cpu_ns as f64 * 1e-9);
+        println!(
+            "{name:>10}: {:.0} members/s ({:.2}× the scalar path), {per_cpu_second:.0} members \
+             per CPU-second ({:.2}×)",
+            LANE_MEMBERS as f64 / wall_time.as_secs_f64(),
+            wall[0].as_secs_f64() / wall_time.as_secs_f64(),
+            cpu[0] as f64 / cpu_ns as f64
+        );
+    }
 }
 
 /// The error for a run that returned no point (a run always records its start).
@@ -140,10 +263,21 @@ fn criterion_benches(c: &mut Criterion) {
         });
     }
     group.finish();
+    let mut group = c.benchmark_group("ensemble_rocket_apex_one_thread");
+    group.throughput(Throughput::Elements(LANE_MEMBERS));
+    group.sample_size(10);
+    group.bench_function("scalar", |b| b.iter(run_members_serial));
+    group.bench_function("lanes_4", |b| b.iter(run_members_in_lanes::<4>));
+    group.bench_function("lanes_8", |b| b.iter(run_members_in_lanes::<8>));
+    group.finish();
 }
 
 fn main() {
-    summary();
+    // `-- lanes` runs only the lanes summary (and criterion's rows that match it).
+    if !std::env::args().any(|a| a == "lanes") {
+        summary();
+    }
+    lanes_summary();
     let mut criterion = Criterion::default().configure_from_args();
     criterion_benches(&mut criterion);
     criterion.final_summary();

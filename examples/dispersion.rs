@@ -7,17 +7,20 @@
 //! v = u_e ln(m0/m) − g t, y = u_e (t − (m/μ) ln(m0/m)) − ½ g t²; then apex at
 //! y_b + v_b²/(2g)); the example exits non-zero if a member misses by more than 1e-7 or fails.
 //!
-//! Run with `cargo run --release --example dispersion [members] [seed]`
-//! (`RAYON_NUM_THREADS=1` for one core).
+//! Run with `cargo run --release --example dispersion [members] [seed] [--lanes]`
+//! (`RAYON_NUM_THREADS=1` for one core). With `--lanes` the members are flown 8 at a time
+//! in SIMD lanes (`LaneEnsemble` and `run_lanes`), bit-identical member by member to the
+//! scalar path, so the study prints the same figures, sooner.
 
 use std::process::ExitCode;
 use std::time::Instant;
 
 use varmass::core::ensemble::rand::RngExt;
-use varmass::core::ensemble::{Ensemble, MemberRng, Partial, Summary, SummaryConfig};
+use varmass::core::ensemble::{Ensemble, LaneEnsemble, MemberRng, Partial, Summary, SummaryConfig};
+use varmass::core::lanes::{run_lanes, LaneJob};
 use varmass::prelude::*;
 
-#[variable_mass_system(file = "models/rocket.vms")]
+#[variable_mass_system(file = "models/rocket.vms", emit = ["lanes"])]
 struct Rocket {
     mu: f64,
     u_e: f64,
@@ -77,6 +80,72 @@ fn fly(d: &Dispersion) -> Result<[f64; 3], StepError<3>> {
     let (t_apex, state_apex) = ballistic.last().ok_or_else(|| no_point(&coast))?;
     let exact = exact_apex_height(d);
     Ok([state_apex[0], t_apex, (state_apex[0] - exact).abs() / exact])
+}
+
+/// Members in a lane set of `--lanes`.
+const LANES: usize = 8;
+
+/// [`fly`] for a chunk of members, [`LANES`] at a time in SIMD lanes: every burn to its
+/// burnout, then every coast to its apex.
+fn fly_lanes(members: &[Dispersion]) -> Vec<Result<[f64; 3], StepError<3>>> {
+    let config = RunConfig::until(1e4);
+    let burnout: Vec<[Event<'_, 3>; 1]> = members
+        .iter()
+        .map(|d| [Event::mass_reaches(0, d.dry_mass)])
+        .collect();
+    let start = SVector::<f64, 3>::new(0.0, 0.0, M0);
+    let powered: Vec<_> = members
+        .iter()
+        .zip(&burnout)
+        .map(|(d, events)| LaneJob {
+            system: Rocket {
+                mu: d.burn_rate,
+                u_e: d.exhaust_speed,
+                g: G,
+            },
+            time: 0.0,
+            state: start,
+            events,
+        })
+        .collect();
+    let burnouts = run_lanes::<_, 1, 3, LANES>(&powered, control(), &config);
+    let apex = [Event::state_reaches(1, 0.0, Direction::Falling)];
+    let coasting: Vec<_> = powered
+        .iter()
+        .zip(&burnouts)
+        .filter_map(|(job, end)| {
+            let end = end.as_ref().ok()?;
+            let system = Rocket {
+                mu: 0.0,
+                ..job.system
+            };
+            let (time, state, events) = (end.time, end.state, &apex[..]);
+            Some(LaneJob {
+                system,
+                time,
+                state,
+                events,
+            })
+        })
+        .collect();
+    let mut apexes = run_lanes::<_, 1, 3, LANES>(&coasting, control(), &config).into_iter();
+    members
+        .iter()
+        .zip(burnouts)
+        .map(|(d, burnout)| {
+            burnout?;
+            let apex = apexes.next().ok_or_else(|| lost(d))??;
+            let exact = exact_apex_height(d);
+            let height = apex.state[0];
+            Ok([height, apex.time, (height - exact).abs() / exact])
+        })
+        .collect()
+}
+
+/// The error for a coast that has no result (it cannot happen: every burnout has a coast).
+fn lost(d: &Dispersion) -> StepError<3> {
+    let state = SVector::<f64, 3>::new(0.0, 0.0, d.dry_mass);
+    StepError::invalid_configuration(f64::NAN, state, "a coast in lanes went missing")
 }
 
 /// The error for a run that returned no point (a run always records its start).
@@ -165,18 +234,27 @@ fn report(partial: &Partial<Dispersion, StepError<3>>, seconds: f64) -> bool {
 }
 
 fn main() -> ExitCode {
-    let mut args = std::env::args().skip(1).map(|a| a.parse::<u64>());
-    let members = args.next().unwrap_or(Ok(100_000));
-    let seed = args.next().unwrap_or(Ok(2015));
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let lanes = args.iter().any(|a| a == "--lanes");
+    let mut numbers = args
+        .iter()
+        .filter(|a| *a != "--lanes")
+        .map(|a| a.parse::<u64>());
+    let members = numbers.next().unwrap_or(Ok(100_000));
+    let seed = numbers.next().unwrap_or(Ok(2015));
     let (Ok(members), Ok(seed)) = (members, seed) else {
-        eprintln!("usage: dispersion [members] [seed]");
+        eprintln!("usage: dispersion [members] [seed] [--lanes]");
         return ExitCode::FAILURE;
     };
     let names = ["apex_height", "apex_time", "apex_height_error"];
-    let ensemble = Ensemble::new(seed, names, sample, fly);
     println!("{members} vertical rockets, seed {seed}: μ ~ U(9.5, 10.5) kg/s, u_e ~ U(2400, 2600) m/s, dry mass ~ U(380, 420) kg, m0 = {M0} kg");
     let start = Instant::now();
-    let partial = ensemble.run(0..members);
+    let partial = if lanes {
+        println!("flown {LANES} at a time in SIMD lanes");
+        LaneEnsemble::new(seed, names, sample, fly_lanes).run(0..members)
+    } else {
+        Ensemble::new(seed, names, sample, fly).run(0..members)
+    };
     let seconds = start.elapsed().as_secs_f64();
     if report(&partial, seconds) {
         ExitCode::SUCCESS

@@ -100,6 +100,7 @@ extern crate alloc;
 pub mod cholesky;
 pub mod error;
 pub mod input;
+pub mod lanes;
 pub mod math;
 pub mod stepper;
 pub mod steppers;

@@ -40,6 +40,7 @@
 //! # Ok::<(), varmass_core::ensemble::StatisticsError>(())
 //! ```
 
+mod lanes;
 mod partial;
 mod report;
 mod sampler;
@@ -52,6 +53,7 @@ mod wire;
 use alloc::vec::Vec;
 use core::ops::Range;
 
+pub use lanes::{LaneEnsemble, DEFAULT_CHUNK_SIZE};
 pub use partial::{MergeError, Partial};
 pub use report::{ErrorRecord, Failure, MemberError, NonFinite};
 pub use sampler::{member_rng, MemberRng};

@@ -1,7 +1,7 @@
 //! The steppers, one per file. Each is generic over the system (monomorphized: no `dyn`, no
 //! allocation per step) and implements [`crate::stepper::Stepper`].
 
-mod control;
+pub(crate) mod control;
 pub mod dirk;
 pub mod dop853;
 pub mod dormand_prince;

@@ -9,6 +9,7 @@
 mod expression;
 mod factor;
 mod inputs;
+mod lanes;
 mod methods;
 mod signature;
 mod stops;
@@ -113,6 +114,7 @@ pub fn emit_system_for(
         emitter.stop_times(&time_tables),
         emitter.sample(),
     ];
+    let lanes = optional(outputs.lanes, || lanes::lanes_impl(&emitter));
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");
         quote!(#[doc = ""] #[doc = #line])
@@ -155,6 +157,7 @@ pub fn emit_system_for(
 
         #inputs_trait
         #trait_impl
+        #lanes
     }
 }
 

@@ -21,6 +21,9 @@ pub struct Outputs {
     /// The Taylor recurrences (`taylor_coefficients`, for the Taylor stepper). Opt-in: not
     /// in [`Outputs::FULL`], since they add to expansion time and code size.
     pub taylor: bool,
+    /// The state rate over SIMD lanes (`LaneSystem`, for ensembles run in lanes). Opt-in
+    /// as the Taylor recurrences are: it repeats the state rate's code.
+    pub lanes: bool,
 }
 
 /// The name of an output that does not exist.
@@ -34,13 +37,14 @@ pub struct UnknownOutput {
 }
 
 impl Outputs {
-    /// Every output but the opt-in Taylor recurrences.
+    /// Every output but the opt-in Taylor recurrences and lanes.
     pub const FULL: Outputs = Outputs {
         hamiltonian: true,
         power: true,
         jacobian: true,
         derivation: true,
         taylor: false,
+        lanes: false,
     };
 
     /// Only what the steppers need.
@@ -50,11 +54,18 @@ impl Outputs {
         jacobian: false,
         derivation: false,
         taylor: false,
+        lanes: false,
     };
 
     /// The names of the optional outputs, as [`Outputs::from_names`] reads them.
-    pub const NAMES: [&'static str; 5] =
-        ["hamiltonian", "power", "jacobian", "derivation", "taylor"];
+    pub const NAMES: [&'static str; 6] = [
+        "hamiltonian",
+        "power",
+        "jacobian",
+        "derivation",
+        "taylor",
+        "lanes",
+    ];
 
     /// The outputs named (the others left out): `[]` is [`Outputs::MINIMAL`].
     ///
@@ -74,6 +85,7 @@ impl Outputs {
                 "jacobian" => outputs.jacobian = true,
                 "derivation" => outputs.derivation = true,
                 "taylor" => outputs.taylor = true,
+                "lanes" => outputs.lanes = true,
                 other => unknown.push(UnknownOutput {
                     name: other.to_string(),
                     index,

@@ -1,0 +1,604 @@
+//! Dormand–Prince 5(4) over lanes: W members at once, each with its own step size, its own
+//! error control and its own events, each lane giving bit for bit what
+//! [`DormandPrince`](crate::steppers::DormandPrince) driven by [`run`](crate::run::run)
+//! gives that member alone.
+//!
+//! The design is heyoka's batch mode's (Biscani & Izzo 2021, per-lane step sizes and
+//! times), reduced to what keeps the scalar path's arithmetic: the stages — six state rates
+//! and the combinations between them, the work of an attempt —, the error estimate with the
+//! weighted RMS of `Tolerance::norm` and the finiteness of the stage states run in lanes,
+//! each operation the scalar one lane by lane. Each lane then decides on its own, in scalar
+//! code, exactly as the scalar stepper does: the shared controller (`steppers/control.rs`'s
+//! `Controlled`: first step, FSAL rate, stop time), acceptance or rejection with the PI
+//! controller (its two `powf` per step stay scalar: a vector `pow` would round otherwise),
+//! the flow check of every point and the events located on the lane's own dense output
+//! (`locate_root`). A lane whose member is done is refilled with the next job at once, so
+//! the lanes stay busy while members take different numbers of steps. Hairer's stiffness
+//! test (statistics only) is not run.
+//!
+//! The tableau and the dense output are the scalar stepper's (`steppers/dormand_prince.rs`,
+//! HNW I, II.5, Table 5.2 and `CONTD5`), with every operation in the same order: that is
+//! what makes the lanes bit-identical, and `tests/lanes_dispersion.rs` holds it.
+
+use alloc::vec::Vec;
+
+use nalgebra::SVector;
+
+use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
+use crate::error::{is_finite, StepError, StepErrorKind};
+use crate::events::{locate_root, Event, EventAction};
+use crate::math::powf;
+use crate::run::point::check_flows;
+use crate::run::RunConfig;
+use crate::solution::Record;
+use crate::stepper::{check_state, Statistics, StepOutcome};
+use crate::steppers::control::{resolvable, Controlled, Mode, StepControl};
+use crate::tolerance::Tolerance;
+
+const C2: f64 = 1.0 / 5.0;
+const C3: f64 = 3.0 / 10.0;
+const C4: f64 = 4.0 / 5.0;
+const C5: f64 = 8.0 / 9.0;
+const A21: f64 = 1.0 / 5.0;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const B1: f64 = 35.0 / 384.0;
+const B3: f64 = 500.0 / 1113.0;
+const B4: f64 = 125.0 / 192.0;
+const B5: f64 = -2187.0 / 6784.0;
+const B6: f64 = 11.0 / 84.0;
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+const D1: f64 = -12715105075.0 / 11282082432.0;
+const D3: f64 = 87487479700.0 / 32700410799.0;
+const D4: f64 = -10690763975.0 / 1880347072.0;
+const D5: f64 = 701980252875.0 / 199316789632.0;
+const D6: f64 = -1453857185.0 / 822651844.0;
+const D7: f64 = 69997945.0 / 29380423.0;
+
+/// One member's run: its system, its initial value and the events that end it (as
+/// [`run`](crate::run::run)'s `events`).
+#[derive(Clone, Copy, Debug)]
+pub struct LaneJob<'e, Sys, const S: usize> {
+    /// The member's system (its parameters go into its lane).
+    pub system: Sys,
+    /// The initial time.
+    pub time: f64,
+    /// The initial state `[q, p, m_s]`.
+    pub state: SVector<f64, S>,
+    /// The events watched; the first [`EventAction::Stop`] hit ends the run.
+    pub events: &'e [Event<'e, S>],
+}
+
+/// Where a member's run ended: the last point of the scalar run's solution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LaneEnd<const S: usize> {
+    /// The time of the last point: the located event, or the end time.
+    pub time: f64,
+    /// The state there.
+    pub state: SVector<f64, S>,
+    /// The index of the stopping event, `None` when the run reached the end time.
+    pub event: Option<usize>,
+    /// The work counters (rate evaluations counted six per attempt and one at the start;
+    /// the stiffness flag is never set).
+    pub statistics: Statistics,
+}
+
+/// A member in its lane: the scalar controller and the run's bookkeeping.
+struct Member<'s, 'e, Sys, const S: usize> {
+    job: usize,
+    core: Controlled<'s, Sys, S>,
+    events: &'e [Event<'e, S>],
+    /// g of each event at the last point.
+    values: Vec<f64>,
+    steps: usize,
+}
+
+/// The inputs of one attempt in every lane, and the stages it computes.
+struct Attempt<const S: usize, const W: usize> {
+    t0: Lanes<W>,
+    h: Lanes<W>,
+    /// Whether the attempt was cut to land on the stop time.
+    reaches_stop: [bool; W],
+    y0: LaneState<S, W>,
+    /// k₁ … k₇; k₁ is the rate at y₀ (FSAL).
+    k: [LaneState<S, W>; 7],
+    /// The stage states y₂ … y₆ and y₁ (the new state), for the checks.
+    y: [LaneState<S, W>; 6],
+    /// Whether every stage state and the new state of the lane are finite.
+    finite: [bool; W],
+    /// The scaled error of each lane.
+    error: Lanes<W>,
+}
+
+/// Runs every job to its first stopping event or `config.end_time` with Dormand–Prince
+/// under `control`, W members at a time, and returns each member's end in job order: lane
+/// by lane what `run(&mut DormandPrince::new(&job.system, job.time, job.state, control)?,
+/// config, job.events)` ends with (its last point), or its error.
+///
+/// Only what that needs is supported: an adaptive control, nothing recorded, no energy
+/// guard, and systems without switches or stop times (a member that has them fails with a
+/// configuration error: run it on the scalar path).
+pub fn run_lanes<Sys, const N: usize, const S: usize, const W: usize>(
+    jobs: &[LaneJob<'_, Sys, S>],
+    control: StepControl,
+    config: &RunConfig,
+) -> Vec<Result<LaneEnd<S>, StepError<S>>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    let mut results: Vec<Option<Result<LaneEnd<S>, StepError<S>>>> =
+        (0..jobs.len()).map(|_| None).collect();
+    let Some(first) = jobs.first() else {
+        return Vec::new();
+    };
+    let Ok(Mode::Adaptive(_, tolerance)) = control.validated() else {
+        // Every member reports why, as it would on the scalar path.
+        return (0..jobs.len())
+            .map(
+                |job| match start::<Sys, N, S, W>(jobs, job, control, config) {
+                    Err(done) => done,
+                    Ok(_) => Err(unfinished()),
+                },
+            )
+            .collect();
+    };
+    let mut parameters = Sys::splat(&first.system);
+    let mut lanes: [Option<Member<'_, '_, Sys, S>>; W] = core::array::from_fn(|_| None);
+    let mut queue = 0..jobs.len();
+    let mut attempt = Attempt::<S, W>::new();
+    loop {
+        for (index, slot) in lanes.iter_mut().enumerate() {
+            while slot.is_none() {
+                let Some(job) = queue.next() else { break };
+                match start(jobs, job, control, config) {
+                    Ok(member) => {
+                        Sys::set_lane(&mut parameters, index, &jobs[job].system);
+                        *slot = Some(member);
+                    }
+                    Err(done) => results[job] = Some(done),
+                }
+            }
+            // An empty lane repeats the attempt of an occupied one (its results unread).
+            if let Some(member) = slot {
+                if let Err(error) = attempt.load(index, member) {
+                    results[member.job] = Some(Err(error));
+                    *slot = None;
+                }
+            }
+        }
+        let Some(busy) = lanes.iter().position(Option::is_some) else {
+            if queue.is_empty() {
+                break;
+            }
+            continue;
+        };
+        for (index, slot) in lanes.iter().enumerate() {
+            if slot.is_none() {
+                attempt.copy_lane(busy, index);
+            }
+        }
+        attempt.stages::<Sys, N>(&parameters);
+        attempt.measure(&tolerance);
+        for (index, slot) in lanes.iter_mut().enumerate() {
+            let Some(member) = slot else { continue };
+            match conclude(member, &attempt, index, config) {
+                Ok(None) => {}
+                Ok(Some(end)) => {
+                    results[member.job] = Some(Ok(end));
+                    *slot = None;
+                }
+                Err(error) => {
+                    results[member.job] = Some(Err(error));
+                    *slot = None;
+                }
+            }
+        }
+    }
+    results
+        .into_iter()
+        .map(|r| r.unwrap_or_else(|| Err(unfinished())))
+        .collect()
+}
+
+/// The error of a job the loop never finished (it cannot happen: every job is started,
+/// and a started member ends with a result).
+fn unfinished<const S: usize>() -> StepError<S> {
+    StepError::invalid_configuration(f64::NAN, SVector::zeros(), "a lane job never finished")
+}
+
+/// A member at the start of its run, with the scalar run's checks; `Err` holds the member's
+/// result when it ends before any step (a failed check, or a run of zero length).
+#[allow(clippy::type_complexity)]
+fn start<'s, 'e, Sys, const N: usize, const S: usize, const W: usize>(
+    jobs: &'s [LaneJob<'e, Sys, S>],
+    job: usize,
+    control: StepControl,
+    config: &RunConfig,
+) -> Result<Member<'s, 'e, Sys, S>, Result<LaneEnd<S>, StepError<S>>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    let LaneJob {
+        system,
+        time,
+        state,
+        events,
+    } = &jobs[job];
+    let mut core = Controlled::new::<N>(system, *time, *state, control).map_err(Err)?;
+    let invalid = |reason| Err(StepError::invalid_configuration(*time, *state, reason));
+    if !matches!(core.mode, Mode::Adaptive(..)) {
+        return Err(invalid("lanes: only adaptive steps run in lanes"));
+    }
+    let supported = config.record == Record::default()
+        && config.energy_tolerance.is_none()
+        && !config.event_tolerance.is_nan()
+        && config.event_tolerance >= 0.0;
+    if !supported {
+        return Err(invalid(
+            "lanes: a run in lanes records nothing and guards no energy; the event \
+             tolerance must be non-negative",
+        ));
+    }
+    if system.switch_count() > 0 || system.next_stop_time(*time).is_some() {
+        return Err(invalid(
+            "lanes: a system with switches or stop times runs on the scalar path",
+        ));
+    }
+    for event in *events {
+        event
+            .validate::<Sys, N>()
+            .map_err(|error| invalid(error.reason))?;
+    }
+    core.progress.set_stop_time(config.end_time).map_err(Err)?;
+    check_flows(system, *time, state).map_err(Err)?;
+    if config.end_time == *time {
+        return Err(Ok(end_at(&core, *time, *state, None)));
+    }
+    if config.max_steps == 0 {
+        let kind = StepErrorKind::TooManySteps { max_steps: 0 };
+        return Err(Err(StepError::new(*time, *state, kind)));
+    }
+    let values = events
+        .iter()
+        .map(|event| event.value(system, *time, state))
+        .collect();
+    Ok(Member {
+        job,
+        core,
+        events,
+        values,
+        steps: 0,
+    })
+}
+
+fn end_at<Sys, const S: usize>(
+    core: &Controlled<'_, Sys, S>,
+    time: f64,
+    state: SVector<f64, S>,
+    event: Option<usize>,
+) -> LaneEnd<S> {
+    LaneEnd {
+        time,
+        state,
+        event,
+        statistics: *core.progress.statistics(),
+    }
+}
+
+impl<const S: usize, const W: usize> Attempt<S, W> {
+    fn new() -> Self {
+        let zero = [Lanes::default(); S];
+        Self {
+            t0: Lanes::default(),
+            h: Lanes::default(),
+            reaches_stop: [false; W],
+            y0: zero,
+            k: [zero; 7],
+            y: [zero; 6],
+            finite: [true; W],
+            error: Lanes::default(),
+        }
+    }
+
+    /// Puts the member's next attempt (t₀, y₀, k₁, h) in lane `index`: the scalar
+    /// stepper's start of a step, its first step chosen if none is yet.
+    fn load<Sys, const N: usize>(
+        &mut self,
+        index: usize,
+        member: &mut Member<'_, '_, Sys, S>,
+    ) -> Result<(), StepError<S>>
+    where
+        Sys: LaneSystem<N, S, W>,
+    {
+        let (t0, y0, k1) = member.core.begin::<N>(5)?;
+        let (h, reaches_stop) = member.core.attempt_size((t0, &y0))?;
+        self.t0.0[index] = t0;
+        self.h.0[index] = h;
+        self.reaches_stop[index] = reaches_stop;
+        set_lane(&mut self.y0, index, &y0);
+        set_lane(&mut self.k[0], index, &k1);
+        Ok(())
+    }
+
+    /// Copies the inputs of lane `from` into lane `to`.
+    fn copy_lane(&mut self, from: usize, to: usize) {
+        self.t0.0[to] = self.t0.0[from];
+        self.h.0[to] = self.h.0[from];
+        self.reaches_stop[to] = self.reaches_stop[from];
+        for j in 0..S {
+            self.y0[j].0[to] = self.y0[j].0[from];
+            self.k[0][j].0[to] = self.k[0][j].0[from];
+        }
+    }
+
+    /// The stages k₂ … k₇ and the new state in every lane: `DormandPrince::attempt`'s
+    /// operations, in its order, lane by lane.
+    fn stages<Sys, const N: usize>(&mut self, parameters: &Sys::Parameters)
+    where
+        Sys: LaneSystem<N, S, W>,
+    {
+        let (t0, h, y0) = (self.t0, self.h, self.y0);
+        let rate = |t: Lanes<W>, y: &LaneState<S, W>| Sys::state_rate_lanes(parameters, t, y);
+        let k1 = self.k[0];
+        let y2 = combine(&y0, |j| k1[j] * (A21 * h));
+        let k2 = rate(t0 + C2 * h, &y2);
+        let y3 = combine(&y0, |j| (k1[j] * A31 + k2[j] * A32) * h);
+        let k3 = rate(t0 + C3 * h, &y3);
+        let y4 = combine(&y0, |j| (k1[j] * A41 + k2[j] * A42 + k3[j] * A43) * h);
+        let k4 = rate(t0 + C4 * h, &y4);
+        let y5 = combine(&y0, |j| {
+            (k1[j] * A51 + k2[j] * A52 + k3[j] * A53 + k4[j] * A54) * h
+        });
+        let k5 = rate(t0 + C5 * h, &y5);
+        let y6 = combine(&y0, |j| {
+            (k1[j] * A61 + k2[j] * A62 + k3[j] * A63 + k4[j] * A64 + k5[j] * A65) * h
+        });
+        let k6 = rate(t0 + h, &y6);
+        let y1 = combine(&y0, |j| {
+            (k1[j] * B1 + k3[j] * B3 + k4[j] * B4 + k5[j] * B5 + k6[j] * B6) * h
+        });
+        let k7 = rate(t0 + h, &y1);
+        self.k = [k1, k2, k3, k4, k5, k6, k7];
+        self.y = [y2, y3, y4, y5, y6, y1];
+    }
+
+    /// Which lanes' stage states are all finite, and every lane's scaled error:
+    /// `DormandPrince::attempt`'s estimate and [`Tolerance::norm`]'s weighted RMS (weights
+    /// atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|), an exact zero counting 0, the squares summed in
+    /// component order), lane by lane.
+    fn measure(&mut self, tolerance: &Tolerance) {
+        let (k, h, y1) = (&self.k, self.h, &self.y[5]);
+        let mut sum = Lanes::<W>::splat(0.0);
+        for j in 0..S {
+            let estimate = (k[0][j] * E1
+                + k[2][j] * E3
+                + k[3][j] * E4
+                + k[4][j] * E5
+                + k[5][j] * E6
+                + k[6][j] * E7)
+                * h;
+            let magnitude = self.y0[j].abs().max(y1[j].abs());
+            let weight = magnitude.map(|m| tolerance.weight(m));
+            let scaled = estimate / weight;
+            let square = Lanes::select(
+                estimate.0.map(|e| e == 0.0),
+                Lanes::splat(0.0),
+                scaled * scaled,
+            );
+            sum += square;
+        }
+        self.error = (sum / S as f64).sqrt();
+        // 0·x is 0 for a finite x and NaN for ±∞ or NaN: one sum over the stage states
+        // tells, lane by lane, whether they were all finite.
+        let mut spread = Lanes::<W>::splat(0.0);
+        for y in &self.y {
+            for component in y {
+                spread += *component * 0.0;
+            }
+        }
+        self.finite = spread.0.map(|x| x == 0.0);
+    }
+}
+
+/// y₀ + δ(j) in every component j.
+#[inline(always)]
+fn combine<const S: usize, const W: usize>(
+    y0: &LaneState<S, W>,
+    delta: impl Fn(usize) -> Lanes<W>,
+) -> LaneState<S, W> {
+    core::array::from_fn(|j| y0[j] + delta(j))
+}
+
+/// The verdict on lane `index`'s attempt for its member, as the scalar stepper and run
+/// reach it: rejected (`Ok(None)`, the next attempt shorter), accepted and the run goes on
+/// (`Ok(None)`), accepted and the run ends (`Ok(Some)`), or failed.
+fn conclude<Sys, const N: usize, const S: usize, const W: usize>(
+    member: &mut Member<'_, '_, Sys, S>,
+    attempt: &Attempt<S, W>,
+    index: usize,
+    config: &RunConfig,
+) -> Result<Option<LaneEnd<S>>, StepError<S>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    let Mode::Adaptive(control, _) = member.core.mode else {
+        return Err(unfinished());
+    };
+    let (h, reaches_stop) = (attempt.h.0[index], attempt.reaches_stop[index]);
+    member.core.progress.statistics.rate_evaluations += 6;
+    if let Err(error) = check_stages(member.core.system, attempt, index, attempt.finite[index]) {
+        // A trial state outside the domain is a step too long (DormandPrince::control).
+        member
+            .core
+            .memory
+            .reject(h * control.min_factor, &mut member.core.progress);
+        let time = member.core.progress.time();
+        return if resolvable(time, member.core.memory.next_step) {
+            Ok(None)
+        } else {
+            Err(error)
+        };
+    }
+    let error = attempt.error.0[index];
+    let error_power = powf(error, 0.2 - 0.75 * control.beta);
+    if error > 1.0 || error.is_nan() {
+        let factor = error_power / control.safety;
+        let factor = if error.is_finite() {
+            factor.min(1.0 / control.min_factor)
+        } else {
+            1.0 / control.min_factor
+        };
+        let memory = &mut member.core.memory;
+        memory.reject(h / factor, &mut member.core.progress);
+        return Ok(None);
+    }
+    let memory = &mut member.core.memory;
+    let next = memory.pi_after_acceptance(&control, h, error, error_power);
+    let y1 = lane(&attempt.y[5], index);
+    let outcome = member
+        .core
+        .progress
+        .accept(member.core.system, h, reaches_stop, y1)?;
+    let memory = &mut member.core.memory;
+    memory.accepted(h, lane(&attempt.k[6], index));
+    memory.propose(next, reaches_stop, control.max_step);
+    after_step(member, attempt, index, outcome, config)
+}
+
+/// Scalar `state_rate`'s check of each stage state (finite) and `check_state` of the new
+/// state, in the scalar stepper's order.
+fn check_stages<Sys, const N: usize, const S: usize, const W: usize>(
+    system: &Sys,
+    attempt: &Attempt<S, W>,
+    index: usize,
+    finite: bool,
+) -> Result<(), StepError<S>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    let (t0, h) = (attempt.t0.0[index], attempt.h.0[index]);
+    if finite {
+        return check_state(system, t0 + h, &lane(&attempt.y[5], index));
+    }
+    for (y, c) in attempt.y[..5].iter().zip([C2, C3, C4, C5, 1.0]) {
+        let y = lane(y, index);
+        if !is_finite(&y) {
+            let time = if c == 1.0 { t0 + h } else { t0 + c * h };
+            return Err(StepError::new(time, y, StepErrorKind::NonFiniteState));
+        }
+    }
+    check_state(system, t0 + h, &lane(&attempt.y[5], index))
+}
+
+/// The run's bookkeeping after an accepted step (`run`'s `drive` and `EventWatch`): the flow
+/// check of the new point, the events located on the lane's dense output, the end time.
+fn after_step<Sys, const N: usize, const S: usize, const W: usize>(
+    member: &mut Member<'_, '_, Sys, S>,
+    attempt: &Attempt<S, W>,
+    index: usize,
+    outcome: StepOutcome,
+    config: &RunConfig,
+) -> Result<Option<LaneEnd<S>>, StepError<S>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    let core = &member.core;
+    let system = core.system;
+    let (time, state) = (core.progress.time(), *core.progress.state());
+    check_flows(system, time, &state)?;
+    let start_time = core.progress.previous_time();
+    // The dense output is read out of the lanes only when an event needs it.
+    let mut dense: Option<Dense<S>> = None;
+    let mut pending: Vec<(f64, usize)> = Vec::new();
+    for (event_index, (event, before)) in member.events.iter().zip(&mut member.values).enumerate() {
+        let after = event.value(system, time, &state);
+        if event.triggered(*before, after) {
+            let dense = dense.get_or_insert_with(|| Dense::new(attempt, index, core));
+            let located = locate_root(
+                |t| event.value(system, t, &dense.at(t)),
+                (start_time, *before),
+                (time, after),
+                config.event_tolerance,
+            );
+            pending.push((located, event_index));
+        }
+        *before = after;
+    }
+    pending.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let events = member.events;
+    let stop = pending
+        .into_iter()
+        .find(|(_, i)| events.get(*i).map(|e| e.action) == Some(EventAction::Stop));
+    if let (Some((hit, event_index)), Some(dense)) = (stop, &dense) {
+        let hit_state = dense.at(hit);
+        check_flows(system, hit, &hit_state)?;
+        return Ok(Some(end_at(core, hit, hit_state, Some(event_index))));
+    }
+    member.steps += 1;
+    if outcome == StepOutcome::ReachedStopTime && time >= config.end_time {
+        return Ok(Some(end_at(core, time, state, None)));
+    }
+    if member.steps >= config.max_steps {
+        let kind = StepErrorKind::TooManySteps {
+            max_steps: config.max_steps,
+        };
+        return Err(StepError::new(time, state, kind));
+    }
+    Ok(None)
+}
+
+/// The dense output over a lane's last accepted step: `DormandPrince::interpolate`.
+struct Dense<const S: usize> {
+    y0: SVector<f64, S>,
+    y1: SVector<f64, S>,
+    k: [SVector<f64, S>; 7],
+    h: f64,
+    t0: f64,
+}
+
+impl<const S: usize> Dense<S> {
+    fn new<Sys, const W: usize>(
+        attempt: &Attempt<S, W>,
+        index: usize,
+        core: &Controlled<'_, Sys, S>,
+    ) -> Self {
+        Self {
+            y0: *core.progress.previous_state(),
+            y1: *core.progress.state(),
+            k: core::array::from_fn(|i| lane(&attempt.k[i], index)),
+            h: core.memory.last_step,
+            t0: core.progress.previous_time(),
+        }
+    }
+
+    fn at(&self, time: f64) -> SVector<f64, S> {
+        let (h, y0, y1, k) = (self.h, &self.y0, &self.y1, &self.k);
+        if h <= 0.0 {
+            return *y1;
+        }
+        let theta = (time - self.t0) / h;
+        let theta1 = 1.0 - theta;
+        let difference = y1 - y0;
+        let first = k[0] * h - difference;
+        let second = difference - k[6] * h - first;
+        let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
+        y0 + (difference + (first + (second + third * theta1) * theta) * theta1) * theta
+    }
+}

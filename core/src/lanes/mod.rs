@@ -1,0 +1,318 @@
+//! SIMD lanes: W members of an ensemble integrated side by side, each in its own lane.
+//!
+//! [`Lanes<W>`] is W `f64`s with the arithmetic and the real functions generated code uses,
+//! applied lane by lane: each lane sees exactly the operation the scalar code performs on
+//! its `f64` (no fused multiply-add, the same function for `ln`, `sin`, …), so a lane's
+//! values are bit-identical to the scalar path's. The arithmetic is written as plain loops
+//! over `[f64; W]`, which the compiler turns into packed instructions of whatever width the
+//! build targets (SSE2's two lanes in a default x86-64 build, AVX's four with
+//! `-C target-cpu=native`); the transcendental functions stay one call per lane.
+//!
+//! [`LaneSystem`] is what `emit = [..., "lanes"]` adds to a system: its parameters as
+//! lanes and its state rate over lanes. [`dormand_prince`] integrates with it.
+
+#[cfg(feature = "run")]
+pub mod dormand_prince;
+
+use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub};
+
+use nalgebra::{ComplexField, RealField, SVector};
+
+use crate::system::VariableMassSystem;
+
+#[cfg(feature = "run")]
+pub use dormand_prince::{run_lanes, LaneEnd, LaneJob};
+
+/// W `f64`s, one per lane, with arithmetic and functions applied lane by lane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(transparent)]
+pub struct Lanes<const W: usize>(pub [f64; W]);
+
+impl<const W: usize> Default for Lanes<W> {
+    fn default() -> Self {
+        Self([0.0; W])
+    }
+}
+
+impl<const W: usize> From<f64> for Lanes<W> {
+    fn from(value: f64) -> Self {
+        Self::splat(value)
+    }
+}
+
+impl<const W: usize> Lanes<W> {
+    /// `value` in every lane.
+    #[inline(always)]
+    pub fn splat(value: f64) -> Self {
+        Self([value; W])
+    }
+
+    /// Lane `i` is `f(i)`.
+    #[inline(always)]
+    pub fn from_fn(f: impl FnMut(usize) -> f64) -> Self {
+        Self(core::array::from_fn(f))
+    }
+
+    /// `f` applied to each lane.
+    #[inline(always)]
+    pub fn map(self, f: impl Fn(f64) -> f64) -> Self {
+        Self(self.0.map(f))
+    }
+
+    /// `f` applied to each lane of `self` and `other`.
+    #[inline(always)]
+    pub fn zip(self, other: Self, f: impl Fn(f64, f64) -> f64) -> Self {
+        Self(core::array::from_fn(|i| f(self.0[i], other.0[i])))
+    }
+
+    /// Lane by lane: `if_true` where `mask` is set, `if_false` elsewhere (the branches of a
+    /// switch, both evaluated).
+    #[inline(always)]
+    pub fn select(mask: [bool; W], if_true: Self, if_false: Self) -> Self {
+        Self(core::array::from_fn(|i| {
+            if mask[i] {
+                if_true.0[i]
+            } else {
+                if_false.0[i]
+            }
+        }))
+    }
+
+    /// √x (correctly rounded, as `f64::sqrt`).
+    #[inline(always)]
+    pub fn sqrt(self) -> Self {
+        self.map(<f64 as ComplexField>::sqrt)
+    }
+
+    /// ∛x.
+    #[inline(always)]
+    pub fn cbrt(self) -> Self {
+        self.map(<f64 as ComplexField>::cbrt)
+    }
+
+    /// xⁿ.
+    #[inline(always)]
+    pub fn powi(self, n: i32) -> Self {
+        self.map(|x| <f64 as ComplexField>::powi(x, n))
+    }
+
+    /// xʸ, y a lane value or an `f64` for all lanes.
+    #[inline(always)]
+    pub fn powf(self, y: impl Into<Self>) -> Self {
+        self.zip(y.into(), <f64 as ComplexField>::powf)
+    }
+
+    /// eˣ.
+    #[inline(always)]
+    pub fn exp(self) -> Self {
+        self.map(<f64 as ComplexField>::exp)
+    }
+
+    /// ln x.
+    #[inline(always)]
+    pub fn ln(self) -> Self {
+        self.map(<f64 as ComplexField>::ln)
+    }
+
+    /// sin x.
+    #[inline(always)]
+    pub fn sin(self) -> Self {
+        self.map(<f64 as ComplexField>::sin)
+    }
+
+    /// cos x.
+    #[inline(always)]
+    pub fn cos(self) -> Self {
+        self.map(<f64 as ComplexField>::cos)
+    }
+
+    /// tan x.
+    #[inline(always)]
+    pub fn tan(self) -> Self {
+        self.map(<f64 as ComplexField>::tan)
+    }
+
+    /// sinh x.
+    #[inline(always)]
+    pub fn sinh(self) -> Self {
+        self.map(<f64 as ComplexField>::sinh)
+    }
+
+    /// cosh x.
+    #[inline(always)]
+    pub fn cosh(self) -> Self {
+        self.map(<f64 as ComplexField>::cosh)
+    }
+
+    /// tanh x.
+    #[inline(always)]
+    pub fn tanh(self) -> Self {
+        self.map(<f64 as ComplexField>::tanh)
+    }
+
+    /// asin x.
+    #[inline(always)]
+    pub fn asin(self) -> Self {
+        self.map(<f64 as ComplexField>::asin)
+    }
+
+    /// acos x.
+    #[inline(always)]
+    pub fn acos(self) -> Self {
+        self.map(<f64 as ComplexField>::acos)
+    }
+
+    /// atan x.
+    #[inline(always)]
+    pub fn atan(self) -> Self {
+        self.map(<f64 as ComplexField>::atan)
+    }
+
+    /// atan2(self, x).
+    #[inline(always)]
+    pub fn atan2(self, x: impl Into<Self>) -> Self {
+        self.zip(x.into(), <f64 as RealField>::atan2)
+    }
+
+    /// |x|.
+    #[inline(always)]
+    pub fn abs(self) -> Self {
+        self.map(f64::abs)
+    }
+
+    /// The lesser, as `f64::min` (a NaN loses).
+    #[inline(always)]
+    pub fn min(self, other: impl Into<Self>) -> Self {
+        self.zip(other.into(), f64::min)
+    }
+
+    /// The greater, as `f64::max` (a NaN loses).
+    #[inline(always)]
+    pub fn max(self, other: impl Into<Self>) -> Self {
+        self.zip(other.into(), f64::max)
+    }
+}
+
+/// `impl Op<Lanes> for Lanes`, `Op<f64> for Lanes` and `Op<Lanes> for f64`, lane by lane.
+macro_rules! lane_operator {
+    ($Op:ident, $op:ident, $symbol:tt) => {
+        impl<const W: usize> $Op for Lanes<W> {
+            type Output = Self;
+            #[inline(always)]
+            fn $op(self, other: Self) -> Self {
+                Self(core::array::from_fn(|i| self.0[i] $symbol other.0[i]))
+            }
+        }
+        impl<const W: usize> $Op<f64> for Lanes<W> {
+            type Output = Self;
+            #[inline(always)]
+            fn $op(self, other: f64) -> Self {
+                Self(core::array::from_fn(|i| self.0[i] $symbol other))
+            }
+        }
+        impl<const W: usize> $Op<Lanes<W>> for f64 {
+            type Output = Lanes<W>;
+            #[inline(always)]
+            fn $op(self, other: Lanes<W>) -> Lanes<W> {
+                Lanes(core::array::from_fn(|i| self $symbol other.0[i]))
+            }
+        }
+    };
+}
+
+lane_operator!(Add, add, +);
+lane_operator!(Sub, sub, -);
+lane_operator!(Mul, mul, *);
+lane_operator!(Div, div, /);
+
+impl<const W: usize> Neg for Lanes<W> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        self.map(|x| -x)
+    }
+}
+
+impl<const W: usize> AddAssign for Lanes<W> {
+    #[inline(always)]
+    fn add_assign(&mut self, other: Self) {
+        *self = *self + other;
+    }
+}
+
+impl<const W: usize> MulAssign<f64> for Lanes<W> {
+    #[inline(always)]
+    fn mul_assign(&mut self, other: f64) {
+        *self = *self * other;
+    }
+}
+
+/// A state of S components over W lanes: component-major, `state[j].0[i]` is component j of
+/// lane i.
+pub type LaneState<const S: usize, const W: usize> = [Lanes<W>; S];
+
+/// Lane `lane` of a lane state, as the scalar code's vector.
+#[inline]
+pub fn lane<const S: usize, const W: usize>(
+    state: &LaneState<S, W>,
+    lane: usize,
+) -> SVector<f64, S> {
+    SVector::from_fn(|j, _| state[j].0[lane])
+}
+
+/// Writes `value` into lane `lane` of a lane state.
+#[inline]
+pub fn set_lane<const S: usize, const W: usize>(
+    state: &mut LaneState<S, W>,
+    lane: usize,
+    value: &SVector<f64, S>,
+) {
+    for (component, v) in state.iter_mut().zip(value.iter()) {
+        component.0[lane] = *v;
+    }
+}
+
+/// A system whose state rate can be evaluated for W members at once: what
+/// `emit = [..., "lanes"]` generates (for a model without tables, inputs, `sign` or a
+/// numeric velocity solve). Lane i of [`LaneSystem::state_rate_lanes`] is bit-identical to
+/// [`VariableMassSystem::state_rate`] of the system in lane i.
+pub trait LaneSystem<const N: usize, const S: usize, const W: usize>:
+    VariableMassSystem<N, S>
+{
+    /// The parameters (the struct's fields) of W systems, each field a [`Lanes<W>`].
+    type Parameters: Copy;
+
+    /// Every lane holding `system`'s parameters.
+    fn splat(system: &Self) -> Self::Parameters;
+
+    /// Puts `system`'s parameters in lane `lane`.
+    fn set_lane(parameters: &mut Self::Parameters, lane: usize, system: &Self);
+
+    /// The state rate [q̇, ṗ, ṁ_s] in every lane: the generated scalar state rate's
+    /// operations, lane by lane. Nothing is checked here: the caller checks each lane's
+    /// input is finite (as the scalar stepper does) before trusting its rate.
+    fn state_rate_lanes(
+        parameters: &Self::Parameters,
+        t: Lanes<W>,
+        state: &LaneState<S, W>,
+    ) -> LaneState<S, W>;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each lane gets exactly the scalar operation: mixed lane/scalar operands, a function,
+    /// a min with a NaN (which loses, as `f64::min`).
+    #[test]
+    fn lanes_compute_what_the_scalar_code_computes() {
+        let x = Lanes::<4>([0.1, -2.5, 3.0e10, f64::NAN]);
+        let y = Lanes::<4>([7.0, 0.3, -1.0e-3, 2.0]);
+        let lanes = (2.0 * x - y / 3.0) * (x + 1.5).abs().sqrt() + x.min(y).ln();
+        for i in 0..4 {
+            let (a, b) = (x.0[i], y.0[i]);
+            let scalar = (2.0 * a - b / 3.0) * (a + 1.5).abs().sqrt() + a.min(b).ln();
+            assert_eq!(lanes.0[i].to_bits(), scalar.to_bits(), "lane {i}");
+        }
+    }
+}
