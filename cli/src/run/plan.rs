@@ -205,6 +205,37 @@ pub fn plan_with(
     })
 }
 
+/// `plan`, made by [`plan_with`] for the same `args` and parameters of the same names, given
+/// the values `parameters`: only what depends on the values is made and checked again (the
+/// initial momenta and masses, and whether a `--stop-when` already holds at the start), in
+/// [`plan_with`]'s order, so a refusal is the one [`plan_with`] would give (everything
+/// else it checks reads only `args` and the model, and passed). A plan recording an
+/// expression is not refreshed ([`Plan::refreshable`]): its parameters are constants in it.
+pub fn refresh(
+    plan: &mut Plan,
+    args: &RunArgs,
+    parameters: Vec<(String, f64)>,
+    program: &Program,
+) -> Result<(), CliError> {
+    let initial_state = initial_state(args, program)?;
+    for (text, condition) in args.stop_when.iter().zip(&plan.stop_when) {
+        not_yet_true(program, condition, text, plan.from, &initial_state)?;
+    }
+    plan.initial_state = initial_state;
+    plan.parameters = parameters;
+    Ok(())
+}
+
+impl Plan {
+    /// Whether [`refresh`] can give this plan other parameter values: it records no
+    /// expression (an expression holds the values of the parameters it reads).
+    pub fn refreshable(&self) -> bool {
+        self.record
+            .iter()
+            .all(|(_, r)| matches!(r, Recorded::Quantity(_)))
+    }
+}
+
 /// Splits a `--stop-when` condition `NAME = VALUE`, `NAME > VALUE` or `NAME < VALUE`
 /// (`>=` and `<=` read as `>` and `<`: a crossing has no width).
 pub(crate) fn condition(text: &str) -> Result<(String, Direction, f64), CliError> {
