@@ -140,7 +140,10 @@ fn an_exact_size_runs_as_the_bare_interpreter() {
     let end: Vec<u64> = end.iter().map(|v| v.to_bits()).collect();
     let tool_end: Vec<u64> = done.end.1.iter().map(|v| v.to_bits()).collect();
     assert_eq!(tool_end, end);
-    assert_eq!(done.end.0.to_bits(), bare.times.last().expect("a time").to_bits());
+    assert_eq!(
+        done.end.0.to_bits(),
+        bare.times.last().expect("a time").to_bits()
+    );
 }
 
 /// A model run again with the same arguments keeps its plan and makes again only what
@@ -174,7 +177,10 @@ fn a_kept_plan_refuses_values_as_a_new_plan_does() {
         Ok(_) => panic!("m0 = {m0} runs"),
     };
     let mut kept = compiled();
-    let first = kept.run(&with_m0(10.0), &args).map_err(|f| f.error).unwrap();
+    let first = kept
+        .run(&with_m0(10.0), &args)
+        .map_err(|f| f.error)
+        .unwrap();
     assert_eq!(first.stopped_by, Some(0));
     for m0 in [-1.0, 0.0, 13.0, 15.0] {
         let fresh = message(&mut compiled(), m0);
@@ -185,6 +191,9 @@ fn a_kept_plan_refuses_values_as_a_new_plan_does() {
         };
         assert!(fresh.contains(expected), "{fresh}");
     }
-    let again = kept.run(&with_m0(10.0), &args).map_err(|f| f.error).unwrap();
+    let again = kept
+        .run(&with_m0(10.0), &args)
+        .map_err(|f| f.error)
+        .unwrap();
     assert_eq!(bits(&again), bits(&first));
 }

@@ -36,10 +36,12 @@ pub struct Compiled {
     planned: Option<Planned>,
 }
 
-/// A plan and what it was made for: the arguments and the parameters' names.
+/// A plan, what it was made for (the arguments and the parameters' names) and the initial
+/// `[q, q̇, m_s]` its arguments give.
 struct Planned {
     made_for: (RunArgs, Vec<String>),
     plan: Plan,
+    velocity_state: Vec<f64>,
 }
 
 impl Compiled {
@@ -132,7 +134,7 @@ impl Compiled {
     ) -> Result<T, CliError> {
         self.apply_laws(&args.input)?;
         let program = self.program(&values, warn)?;
-        let (mut plan, made_for) = match self.plan(args, values, &program) {
+        let (mut plan, made_for, velocity_state) = match self.plan(args, values, &program) {
             Ok(planned) => planned,
             Err(e) => {
                 self.program = Some(program);
@@ -143,7 +145,11 @@ impl Compiled {
         let mut outcome = dispatch(program, &plan)?;
         let result = finish(&mut outcome, &plan);
         self.program = Some(outcome.program);
-        self.planned = Some(Planned { made_for, plan });
+        self.planned = Some(Planned {
+            made_for,
+            plan,
+            velocity_state,
+        });
         Ok(result)
     }
 
@@ -156,19 +162,21 @@ impl Compiled {
         args: &RunArgs,
         values: Vec<(String, f64)>,
         program: &Program,
-    ) -> Result<(Plan, (RunArgs, Vec<String>)), CliError> {
+    ) -> Result<(Plan, (RunArgs, Vec<String>), Vec<f64>), CliError> {
         let reusable = self.planned.take().filter(|p| {
             let (made_args, names) = &p.made_for;
             p.plan.refreshable()
                 && made_args == args
                 && names.iter().eq(values.iter().map(|(n, _)| n))
         });
-        if let Some(Planned { mut plan, made_for }) = reusable {
-            // A refused refresh changes nothing in the plan: kept for the next values.
-            return match plan::refresh(&mut plan, args, values, program) {
-                Ok(()) => Ok((plan, made_for)),
+        if let Some(mut kept) = reusable {
+            let refreshed =
+                plan::refresh(&mut kept.plan, args, values, program, &kept.velocity_state);
+            return match refreshed {
+                Ok(()) => Ok((kept.plan, kept.made_for, kept.velocity_state)),
                 Err(e) => {
-                    self.planned = Some(Planned { plan, made_for });
+                    // A refused refresh changes nothing in the plan: kept for the next values.
+                    self.planned = Some(kept);
                     Err(e)
                 }
             };
@@ -176,7 +184,8 @@ impl Compiled {
         let names = values.iter().map(|(n, _)| n.clone()).collect();
         let mut plan = plan::plan_with(args, values, program, &self.model.selected)?;
         plan.flows = self.model.flows.clone();
-        Ok((plan, (args.clone(), names)))
+        let velocity_state = plan::initial_velocities(args, program)?;
+        Ok((plan, (args.clone(), names), velocity_state))
     }
 
     /// The tool's `run` of this model with the parameter values given as numbers (`args.set`
@@ -205,15 +214,21 @@ impl Compiled {
         args: &RunArgs,
     ) -> Result<(f64, Vec<f64>), CliError> {
         let values = typed(parameters)?;
-        self.execute(args, false, values, |_| {}, |outcome, plan| {
-            let program = &outcome.program;
-            let mut table = output::table(program, &plan.record, &outcome.points)?;
-            if let Some(error) = outcome.failure.take() {
-                return Err(error);
-            }
-            let no_point = || CliError::Run("the run returned no point".to_string());
-            table.rows.pop().ok_or_else(no_point)
-        })?
+        self.execute(
+            args,
+            false,
+            values,
+            |_| {},
+            |outcome, plan| {
+                let program = &outcome.program;
+                let mut table = output::table(program, &plan.record, &outcome.points)?;
+                if let Some(error) = outcome.failure.take() {
+                    return Err(error);
+                }
+                let no_point = || CliError::Run("the run returned no point".to_string());
+                table.rows.pop().ok_or_else(no_point)
+            },
+        )?
     }
 }
 

@@ -207,17 +207,19 @@ pub fn plan_with(
 
 /// `plan`, made by [`plan_with`] for the same `args` and parameters of the same names, given
 /// the values `parameters`: only what depends on the values is made and checked again (the
-/// initial momenta and masses, and whether a `--stop-when` already holds at the start), in
-/// [`plan_with`]'s order, so a refusal is the one [`plan_with`] would give (everything
-/// else it checks reads only `args` and the model, and passed). A plan recording an
-/// expression is not refreshed ([`Plan::refreshable`]): its parameters are constants in it.
+/// initial momenta and masses from `velocity_state`, [`initial_velocities`] of `args`, and
+/// whether a `--stop-when` already holds at the start), in [`plan_with`]'s order, so a
+/// refusal is the one [`plan_with`] would give (everything else it checks reads only
+/// `args` and the model, and passed). A plan recording an expression is not refreshed
+/// ([`Plan::refreshable`]): its parameters are constants in it.
 pub fn refresh(
     plan: &mut Plan,
     args: &RunArgs,
     parameters: Vec<(String, f64)>,
     program: &Program,
+    velocity_state: &[f64],
 ) -> Result<(), CliError> {
-    let initial_state = initial_state(args, program)?;
+    let initial_state = momenta(program, args.from, velocity_state.to_vec())?;
     for (text, condition) in args.stop_when.iter().zip(&plan.stop_when) {
         not_yet_true(program, condition, text, plan.from, &initial_state)?;
     }
@@ -409,6 +411,13 @@ enum Initial {
 /// `[q, p, m_s]` from `--init` (coordinates and state masses required, velocities 0 by
 /// default), with p = ∂*L/∂q̇ at the start.
 fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError> {
+    let velocity_state = initial_velocities(args, program)?;
+    momenta(program, args.from, velocity_state)
+}
+
+/// `[q, q̇, m_s]` from `--init` (coordinates and state masses required, velocities 0 by
+/// default): what of the initial state reads only the arguments, not the values.
+pub fn initial_velocities(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError> {
     let n = program.coordinate_count();
     let k = program.state_mass_count();
     let mut settable = Vec::new();
@@ -445,17 +454,23 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
             missing.join(", ")
         )));
     }
-    let velocity_state: Vec<f64> = values.iter().map(|v| v.unwrap_or(0.0)).collect();
-    masses_positive(program, args.from, &velocity_state)?;
+    Ok(values.iter().map(|v| v.unwrap_or(0.0)).collect())
+}
+
+/// `[q, p, m_s]` from `[q, q̇, m_s]` at `from`, with the program's values: every mass
+/// positive there and p = ∂*L/∂q̇ giving the velocities back.
+fn momenta(program: &Program, from: f64, velocity_state: Vec<f64>) -> Result<Vec<f64>, CliError> {
+    let n = program.coordinate_count();
+    masses_positive(program, from, &velocity_state)?;
     let mut state = velocity_state.clone();
     program.evaluate(
         Quantity::Momenta,
-        args.from,
+        from,
         &velocity_state,
         &mut state[n..2 * n],
     );
     // Round trip: the momenta must give back the velocities (M positive definite).
-    velocity_state_check(program, args.from, &state)?;
+    velocity_state_check(program, from, &state)?;
     Ok(state)
 }
 
