@@ -134,22 +134,18 @@ impl Compiled {
     ) -> Result<T, CliError> {
         self.apply_laws(&args.input)?;
         let program = self.program(&values, warn)?;
-        let (mut plan, made_for, velocity_state) = match self.plan(args, values, &program) {
+        let mut planned = match self.plan(args, values, &program) {
             Ok(planned) => planned,
             Err(e) => {
                 self.program = Some(program);
                 return Err(e);
             }
         };
-        plan.progress = progress;
-        let mut outcome = dispatch(program, &plan)?;
-        let result = finish(&mut outcome, &plan);
+        planned.plan.progress = progress;
+        let mut outcome = dispatch(program, &planned.plan)?;
+        let result = finish(&mut outcome, &planned.plan);
         self.program = Some(outcome.program);
-        self.planned = Some(Planned {
-            made_for,
-            plan,
-            velocity_state,
-        });
+        self.planned = Some(planned);
         Ok(result)
     }
 
@@ -162,7 +158,7 @@ impl Compiled {
         args: &RunArgs,
         values: Vec<(String, f64)>,
         program: &Program,
-    ) -> Result<(Plan, (RunArgs, Vec<String>), Vec<f64>), CliError> {
+    ) -> Result<Planned, CliError> {
         let reusable = self.planned.take().filter(|p| {
             let (made_args, names) = &p.made_for;
             p.plan.refreshable()
@@ -173,7 +169,7 @@ impl Compiled {
             let refreshed =
                 plan::refresh(&mut kept.plan, args, values, program, &kept.velocity_state);
             return match refreshed {
-                Ok(()) => Ok((kept.plan, kept.made_for, kept.velocity_state)),
+                Ok(()) => Ok(kept),
                 Err(e) => {
                     // A refused refresh changes nothing in the plan: kept for the next values.
                     self.planned = Some(kept);
@@ -185,7 +181,11 @@ impl Compiled {
         let mut plan = plan::plan_with(args, values, program, &self.model.selected)?;
         plan.flows = self.model.flows.clone();
         let velocity_state = plan::initial_velocities(args, program)?;
-        Ok((plan, (args.clone(), names), velocity_state))
+        Ok(Planned {
+            made_for: (args.clone(), names),
+            plan,
+            velocity_state,
+        })
     }
 
     /// The tool's `run` of this model with the parameter values given as numbers (`args.set`
