@@ -26,7 +26,7 @@ pub enum Command {
 }
 
 /// The model file and the optional effects it is built with.
-#[derive(Clone, Debug, Args)]
+#[derive(Clone, Debug, PartialEq, Args)]
 pub struct ModelArgs {
     /// The model file (varmass DSL).
     pub file: PathBuf,
@@ -50,7 +50,7 @@ pub struct DeriveArgs {
 /// value that starts with `-` (`--tol -1e-9` reaches the range check, not clap's "use
 /// `-- -1`" tip, which does not apply to options; clap's own negative-number rule does not
 /// know exponents like `-1e-9`).
-#[derive(Clone, Debug, Args)]
+#[derive(Clone, Debug, PartialEq, Args)]
 pub struct RunArgs {
     /// The model.
     #[command(flatten)]

@@ -38,6 +38,28 @@ pub struct SceneRun {
     pub csv: Option<std::path::PathBuf>,
     /// Why the run failed, if it did: the table then ends at the last accepted point.
     pub failure: Option<CliError>,
+    /// The changes of phase, in time order.
+    pub changes: Vec<Change>,
+    /// The time and state `[q, p, m_s]` of the last point (`None` if there is none).
+    pub end: Option<(f64, Vec<f64>)>,
+    /// The `stop_when` condition that ended the last phase, if one did (else the scene
+    /// reached `until`, or failed).
+    pub stopped_by: Option<String>,
+    /// The steppers' work over every phase.
+    pub statistics: Statistics,
+}
+
+/// A change of phase, as the summary prints it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Change {
+    /// The phase entered, counted from 1 as the table's `phase` column.
+    pub phase: usize,
+    /// The time of the change.
+    pub time: f64,
+    /// How the state was carried: `separation` or `capture`.
+    pub rule: &'static str,
+    /// The kinetic energy the change removed (docs/scenes.md).
+    pub kinetic_energy_removed: f64,
 }
 
 /// Reads, checks and runs the scene file at `path`. A mistake in the file is an `Err`
@@ -80,11 +102,32 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
         }
         start = end;
     }
-    let summary = summary(&flown, &phases, &ends);
+    let changes: Vec<Change> = flown
+        .changes
+        .iter()
+        .map(|change| Change {
+            phase: change.phase + 1,
+            time: change.time,
+            rule: match phases.get(change.phase).map(|p| p.0) {
+                Some(Carry::Capture) => "capture",
+                _ => "separation",
+            },
+            kinetic_energy_removed: change.kinetic_energy_removed,
+        })
+        .collect();
+    let stopped_by = match (flown.stopped, flown.phase.last()) {
+        (true, Some(last)) => ends.get(*last).cloned().flatten(),
+        _ => None,
+    };
+    let summary = summary(&flown, &changes, &ends, stopped_by.as_deref());
     Ok(SceneRun {
         table: Table { names, rows },
         summary,
         csv,
+        changes,
+        end: flown.points.last().cloned(),
+        stopped_by,
+        statistics: flown.statistics,
         failure: flown.failure,
     })
 }
@@ -130,22 +173,23 @@ fn refuse_one_phase_flags(args: &RunArgs, given: &[String]) -> Result<(), CliErr
 /// final state and the work.
 fn summary(
     flown: &fly::Flown,
-    phases: &[(Carry, Vec<(String, crate::run::record::Recorded)>)],
+    changes: &[Change],
     ends: &[Option<String>],
+    stopped_by: Option<&str>,
 ) -> String {
+    let phases = ends.len();
     let Some(((time, state), last)) = flown.points.last().zip(flown.phase.last()) else {
         return "the scene computed no point\n".to_string();
     };
-    let why = match (flown.stopped, ends.get(*last).and_then(Option::as_ref)) {
-        (true, Some(condition)) => format!("stop_when '{condition}'"),
-        _ => "reached until".to_string(),
+    let why = match stopped_by {
+        Some(condition) => format!("stop_when '{condition}'"),
+        None => "reached until".to_string(),
     };
     let mut out = format!(
-        "stopped at t = {time} in phase {} of {} ({why})\n",
+        "stopped at t = {time} in phase {} of {phases} ({why})\n",
         last + 1,
-        phases.len()
     );
-    if *last + 1 < phases.len() && flown.failure.is_none() {
+    if *last + 1 < phases && flown.failure.is_none() {
         let _ = writeln!(
             out,
             "note: phase {} was never entered: its condition `{}` did not occur before the end",
@@ -153,17 +197,11 @@ fn summary(
             ends.get(*last).and_then(Option::as_deref).unwrap_or("?")
         );
     }
-    for change in &flown.changes {
-        let rule = match phases.get(change.phase).map(|p| p.0) {
-            Some(Carry::Capture) => "capture",
-            _ => "separation",
-        };
+    for change in changes {
         let _ = writeln!(
             out,
-            "phase {} began at t = {} ({rule}); kinetic energy removed: {}",
-            change.phase + 1,
-            change.time,
-            change.kinetic_energy_removed
+            "phase {} began at t = {} ({}); kinetic energy removed: {}",
+            change.phase, change.time, change.rule, change.kinetic_energy_removed
         );
     }
     out.push_str("state:");

@@ -106,3 +106,94 @@ fn bad_values_are_the_tools_messages_and_the_model_still_runs() {
     );
     assert_eq!(bits(&run(&mut model, &sled(30.0)).unwrap()), bits(&steep));
 }
+
+/// A run of the tool's exact size (the sled: 1 coordinate, no state mass, an arm of its own
+/// in `run::dispatch`) is the bare interpreter's run, bit for bit: the program with the same
+/// values in a `TapeSystem<1, 2>`, DOP853 at the same tolerance, the same event, every
+/// accepted step (the second formulation of `python/bench/reference`). Padded to 3 state
+/// masses the steps differed in their last bits (the error norm's tolerance is scaled by
+/// √(2/5), not equal).
+#[test]
+fn an_exact_size_runs_as_the_bare_interpreter() {
+    use varmass::core::nalgebra::SVector;
+    use varmass::core::steppers::{AdaptiveControl, Dop853, StepControl};
+    use varmass::core::{run as core_run, Direction, Event, RunConfig};
+    use varmass::interpret::{Program, TapeSystem};
+
+    let mut tool = compiled();
+    let done = run(&mut tool, &sled(30.0)).unwrap();
+    let derivation = tool.model().derivation.clone();
+    let program = Program::new(derivation, &sled(30.0)).expect("parameters fit");
+    let system = TapeSystem::<1, 2>::new(program).expect("sizes");
+    let control = StepControl::Adaptive(AdaptiveControl {
+        relative_tolerance: 1e-12,
+        absolute_tolerance: 1e-12,
+        ..AdaptiveControl::dop853()
+    });
+    let mut stepper = Dop853::new(&system, 0.0, SVector::zeros(), control).expect("starts");
+    let at_50 = Event::state_reaches(0, 50.0, Direction::Either);
+    let bare = core_run(&mut stepper, &RunConfig::until(100.0), &[at_50]).expect("runs");
+    let times: Vec<u64> = done.table.rows.iter().map(|(t, _)| t.to_bits()).collect();
+    let bare_times: Vec<u64> = bare.times.iter().map(|t| t.to_bits()).collect();
+    assert_eq!(times, bare_times);
+    let (_, end) = bare.last().expect("a point");
+    let end: Vec<u64> = end.iter().map(|v| v.to_bits()).collect();
+    let tool_end: Vec<u64> = done.end.1.iter().map(|v| v.to_bits()).collect();
+    assert_eq!(tool_end, end);
+    assert_eq!(
+        done.end.0.to_bits(),
+        bare.times.last().expect("a time").to_bits()
+    );
+}
+
+/// A model run again with the same arguments keeps its plan and makes again only what
+/// depends on the values: what those values make wrong is refused as a plan made anew
+/// refuses it (a mass not positive at the start, a `--stop-when` already true there), and
+/// the plan still runs as one made anew afterwards.
+#[test]
+fn a_kept_plan_refuses_values_as_a_new_plan_does() {
+    let argv = [
+        "varmass",
+        "run",
+        "models/sled.vms",
+        "--with=impact",
+        "--until=100",
+        "--init=x=0",
+        // m = m0 + c x: rising through 12 kg at x = 1 m when m0 = 10 kg.
+        "--stop-when=m > 12",
+        "--method=dop853",
+        "--tol=1e-12",
+    ];
+    let Command::Run(args) = Cli::try_parse_from(argv).expect("parses").command else {
+        unreachable!("a run")
+    };
+    let with_m0 = |m0: f64| {
+        let mut values = sled(30.0);
+        values[0].1 = m0;
+        values
+    };
+    let message = |compiled: &mut Compiled, m0: f64| match compiled.run(&with_m0(m0), &args) {
+        Err(failed) => failed.error.to_string(),
+        Ok(_) => panic!("m0 = {m0} runs"),
+    };
+    let mut kept = compiled();
+    let first = kept
+        .run(&with_m0(10.0), &args)
+        .map_err(|f| f.error)
+        .unwrap();
+    assert_eq!(first.stopped_by, Some(0));
+    for m0 in [-1.0, 0.0, 13.0, 15.0] {
+        let fresh = message(&mut compiled(), m0);
+        assert_eq!(message(&mut kept, m0), fresh);
+        let expected = match m0 > 0.0 {
+            true => "already holds at the start",
+            false => "a mass must be positive",
+        };
+        assert!(fresh.contains(expected), "{fresh}");
+    }
+    let again = kept
+        .run(&with_m0(10.0), &args)
+        .map_err(|f| f.error)
+        .unwrap();
+    assert_eq!(bits(&again), bits(&first));
+}

@@ -67,19 +67,14 @@ impl Spec {
         let parameters: Vec<(&str, f64)> =
             fixed.chain(sampled.zip(drawn.iter().copied())).collect();
         let mut compiled = self.take();
-        let done = compiled.run(&parameters, &self.args);
+        let done = compiled.run_to_end(&parameters, &self.args);
         self.idle().push(compiled);
-        let done = done.map_err(|failed| failed.error)?;
-        let (time, row) = done
-            .table
-            .rows
-            .last()
-            .ok_or_else(|| CliError::Run("the run returned no point".to_string()))?;
+        let (time, row) = done?;
         Ok(self
             .sources
             .iter()
             .map(|s| match s {
-                Source::Time => *time,
+                Source::Time => time,
                 Source::Column(k) => row[*k],
             })
             .collect())

@@ -14,6 +14,7 @@ mod errors;
 mod model;
 mod run;
 mod sample;
+mod scene;
 
 use pyo3::prelude::*;
 
@@ -22,6 +23,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::load, m)?)?;
     m.add_function(wrap_pyfunction!(run::parse, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
     m.add_class::<model::NativeModel>()?;
     m.add_class::<run::RunFlags>()?;
     m.add_class::<ensemble::NativeEnsemble>()?;

@@ -3,8 +3,10 @@
 //! and message is the tool's; the parameter values arrive as numbers. The result comes back
 //! as raw little-endian `f64` bytes per column, which NumPy wraps without a copy per value.
 
+use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
+use varmass::core::Statistics;
 use varmass_cli::args::{Cli, Command, RunArgs};
 use varmass_cli::error::CliError;
 use varmass_cli::run::{Completed, Failed, Table};
@@ -91,15 +93,18 @@ fn failure(py: Python<'_>, failed: Failed) -> PyErr {
     error
 }
 
-/// The names, times and columns of `table` as little-endian bytes.
-fn columns<'py>(py: Python<'py>, table: &Table) -> PyResult<Bound<'py, PyDict>> {
+/// The names of `table` and its data: the times, then each column in turn, as one block
+/// of little-endian bytes (NumPy wraps it once and gives each column as a view).
+pub fn columns<'py>(py: Python<'py>, table: &Table) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    out.set_item("names", &table.names)?;
-    out.set_item("t", bytes(py, table.rows.iter().map(|(t, _)| *t)))?;
-    let columns: Vec<Bound<'py, PyBytes>> = (0..table.names.len())
-        .map(|k| bytes(py, table.rows.iter().map(|(_, v)| v[k])))
-        .collect();
-    out.set_item("columns", columns)?;
+    out.set_item(intern!(py, "names"), &table.names)?;
+    let rows = &table.rows;
+    let mut data: Vec<u8> = Vec::with_capacity(8 * rows.len() * (table.names.len() + 1));
+    data.extend(rows.iter().flat_map(|(t, _)| t.to_le_bytes()));
+    for k in 0..table.names.len() {
+        data.extend(rows.iter().flat_map(|(_, v)| v[k].to_le_bytes()));
+    }
+    out.set_item(intern!(py, "data"), PyBytes::new(py, &data))?;
     Ok(out)
 }
 
@@ -111,18 +116,22 @@ pub fn bytes<'py>(py: Python<'py>, values: impl Iterator<Item = f64>) -> Bound<'
 
 fn result<'py>(py: Python<'py>, done: &Completed) -> PyResult<Bound<'py, PyDict>> {
     let out = columns(py, &done.table)?;
-    out.set_item("end_time", done.end.0)?;
-    out.set_item("end_state", &done.end.1)?;
-    out.set_item("stopped_by", done.stopped_by)?;
-    let s = &done.statistics;
-    let statistics = PyDict::new(py);
-    statistics.set_item("accepted_steps", s.accepted_steps)?;
-    statistics.set_item("rejected_steps", s.rejected_steps)?;
-    statistics.set_item("rate_evaluations", s.rate_evaluations)?;
-    statistics.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
-    statistics.set_item("newton_iterations", s.newton_iterations)?;
-    statistics.set_item("stiffness_detected", s.stiffness_detected)?;
-    out.set_item("statistics", statistics)?;
-    out.set_item("summary", &done.summary)?;
+    out.set_item(intern!(py, "end_time"), done.end.0)?;
+    out.set_item(intern!(py, "end_state"), &done.end.1)?;
+    out.set_item(intern!(py, "stopped_by"), done.stopped_by)?;
+    out.set_item(intern!(py, "statistics"), statistics(py, &done.statistics)?)?;
+    out.set_item(intern!(py, "summary"), &done.summary)?;
+    Ok(out)
+}
+
+/// The stepper's work by name.
+pub fn statistics<'py>(py: Python<'py>, s: &Statistics) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    out.set_item(intern!(py, "accepted_steps"), s.accepted_steps)?;
+    out.set_item(intern!(py, "rejected_steps"), s.rejected_steps)?;
+    out.set_item(intern!(py, "rate_evaluations"), s.rate_evaluations)?;
+    out.set_item(intern!(py, "jacobian_evaluations"), s.jacobian_evaluations)?;
+    out.set_item(intern!(py, "newton_iterations"), s.newton_iterations)?;
+    out.set_item(intern!(py, "stiffness_detected"), s.stiffness_detected)?;
     Ok(out)
 }

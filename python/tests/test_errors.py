@@ -163,3 +163,20 @@ def test_bad_ensemble_arguments_name_themselves(rocket):
         ensemble.run_shard(4, 4, 100)
     with pytest.raises(ValueError, match="threads must be at least 1"):
         ensemble.run(10, threads=0)
+
+
+def test_a_run_after_a_remembered_one_still_checks_its_arguments(sled):
+    # Model.run remembers the last run's flags by its arguments (_checks.plain_key): True
+    # equals 1 but is refused, and must still be; a changed argument must change the run.
+    first = run_sled(sled, init={"x": 1})
+    with pytest.raises(TypeError, match=r"init\['x'\] must be a number, not bool"):
+        run_sled(sled, init={"x": True})
+    with pytest.raises(TypeError, match="until must be a number, not bool"):
+        run_sled(sled, init={"x": 1}, until=True)
+    with pytest.raises(TypeError, match=r"set\['g'\] must be a number, not bool"):
+        run_sled(sled, init={"x": 1}, set={**SLED, "g": True})
+    with pytest.raises(ValueError, match="`g` is given twice"):
+        run_sled(sled, init={"x": 1}, set={**SLED, " g": 9.81})
+    again = run_sled(sled, init={"x": 1.0})
+    assert again["x"].tobytes() == first["x"].tobytes()
+    assert run_sled(sled, init={"x": 1}, record=["x"]).names == ["x"]

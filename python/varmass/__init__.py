@@ -15,6 +15,7 @@ from ._checks import METHODS
 from ._ensemble import Distribution, Ensemble, EnsembleResult, Failure, normal, uniform
 from ._errors import Diagnostic, ModelError, RunError, VarmassError
 from ._model import Check, Model
+from ._scene import PhaseChange, Scene, run_scene
 from ._solution import Solution
 
 __all__ = [
@@ -27,9 +28,12 @@ __all__ = [
     "Failure",
     "Model",
     "ModelError",
+    "PhaseChange",
     "RunError",
+    "Scene",
     "Solution",
     "VarmassError",
     "normal",
+    "run_scene",
     "uniform",
 ]

@@ -26,8 +26,11 @@ METHODS = (
 
 def number(name: str, value, *, positive: bool = False) -> float:
     """``value`` as a finite float (positive if asked)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a number, not {type(value).__name__}")
+    # float and int first: the ABC check of numbers.Real costs more than the rest.
+    kind = type(value)
+    if kind is not float and kind is not int:
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError(f"{name} must be a number, not {type(value).__name__}")
     value = float(value)
     if not math.isfinite(value):
         raise ValueError(f"{name} must be finite, not {value}")
@@ -43,16 +46,17 @@ def optional_number(name: str, value, *, positive: bool = False) -> Optional[flo
 def name(argument: str, value) -> str:
     if not isinstance(value, str):
         raise TypeError(f"{argument} names must be strings, not {type(value).__name__}")
-    if not value.strip():
+    stripped = value.strip()
+    if not stripped:
         raise ValueError(f"{argument}: a name is empty")
-    return value.strip()
+    return stripped
 
 
 def values(argument: str, mapping) -> List[Tuple[str, float]]:
     """A mapping of names to numbers, checked."""
     if mapping is None:
         return []
-    if not isinstance(mapping, Mapping):
+    if type(mapping) is not dict and not isinstance(mapping, Mapping):
         raise TypeError(
             f"{argument} must be a mapping of names to numbers, not {type(mapping).__name__}"
         )
@@ -60,6 +64,25 @@ def values(argument: str, mapping) -> List[Tuple[str, float]]:
         (name(argument, key), number(f"{argument}[{key!r}]", value))
         for key, value in mapping.items()
     ]
+
+
+def unique_values(argument: str, mapping) -> List[Tuple[str, float]]:
+    """:func:`values`, each name once (two keys may be one name once stripped)."""
+    if type(mapping) is dict:
+        # A dict of names to finite floats, as written (nothing to strip): its pairs, as
+        # the checks below would give them, unique as a dict's keys are (a sweep's `set`
+        # takes this path).
+        pairs = list(mapping.items())
+        for key, value in pairs:
+            if type(key) is not str or type(value) is not float:
+                break
+            if not key or key.strip() != key or value - value != 0.0:
+                break
+        else:
+            return pairs
+    pairs = values(argument, mapping)
+    no_duplicates(argument, pairs)
+    return pairs
 
 
 def names(argument: str, given) -> List[str]:
@@ -136,6 +159,37 @@ def input_laws(inputs: Optional[Mapping]) -> List[Tuple[str, str]]:
             raise TypeError(f"inputs: {name!r}: names and laws must be strings")
         pairs.append((name, law))
     return pairs
+
+
+def plain_key(*arguments) -> Optional[tuple]:
+    """A key for the run flags of ``arguments``, or ``None``: two calls whose keys are
+    equal make the same flags (``Model.run`` then skips making them again). Only plain
+    types make a key — numbers of type ``float`` or ``int`` (``1 == 1.0`` makes the same
+    flag; a ``bool``, equal to 1 but refused, makes none), strings, ``None``, lists and
+    tuples of strings and dicts of strings to numbers or strings — so that equality means
+    the same flags; any other argument is checked and made anew each time."""
+    key = []
+    for value in arguments:
+        kind = type(value)
+        if value is None or kind is float or kind is int or kind is str:
+            key.append(value)
+        elif kind is dict:
+            items = tuple(value.items())
+            for k, v in items:
+                if type(k) is not str or type(v) not in _PLAIN_VALUES:
+                    return None
+            key.append(items)
+        elif kind is list or kind is tuple:
+            for v in value:
+                if type(v) is not str:
+                    return None
+            key.append(tuple(value))
+        else:
+            return None
+    return tuple(key)
+
+
+_PLAIN_VALUES = (float, int, str)
 
 
 def no_duplicates(argument: str, pairs: Sequence[Tuple[str, object]]) -> None:

@@ -7,7 +7,7 @@ from typing import List, Mapping, NamedTuple, Optional, Tuple
 
 from . import _checks, _native
 from ._errors import RunError
-from ._solution import Solution, column
+from ._solution import Solution, table
 
 
 class Check(NamedTuple):
@@ -38,8 +38,9 @@ class Model:
         self._facts = facts
         self._text: Optional[str] = None
         self._latex: Optional[str] = None
-        # The last run's flags as the tool parsed them (parsing costs about as much as a
-        # short run's integration; a sweep over `set` reuses them).
+        # The last run's arguments (`_checks.plain_key`), its flags and the flags as the
+        # tool parsed them: a sweep over `set` neither makes nor parses them again
+        # (parsing costs about as much as a short run's integration).
         self._parsed = None
 
     @classmethod
@@ -160,25 +161,31 @@ class Model:
         the model, ``{"u": "g + kp*(y_ref - y) - kd*y'"}``, as ``--input`` takes it
         (docs/inputs.md). The GIL is released while it runs.
         """
-        parameters = _checks.values("set", set)
-        _checks.no_duplicates("set", parameters)
-        flags = _checks.run_flags(
-            init=init,
-            until=until,
-            from_=from_,
-            stop_when=stop_when,
-            method_name=method,
-            tol=tol,
-            step=step,
-            record=record,
-            every=every,
-            inputs=inputs,
-        )
-        key = tuple(flags)
-        if self._parsed is None or self._parsed[0] != key:
-            self._parsed = (key, _native.parse(self._file, self._with, flags))
+        parameters = _checks.unique_values("set", set)
+        key = _checks.plain_key(init, until, from_, stop_when, method, tol, step, record, every, inputs)
+        parsed = self._parsed
+        if key is None or parsed is None or parsed[0] != key:
+            flags = tuple(
+                _checks.run_flags(
+                    init=init,
+                    until=until,
+                    from_=from_,
+                    stop_when=stop_when,
+                    method_name=method,
+                    tol=tol,
+                    step=step,
+                    record=record,
+                    every=every,
+                    inputs=inputs,
+                )
+            )
+            if parsed is None or parsed[1] != flags:
+                parsed = (key, flags, _native.parse(self._file, self._with, list(flags)))
+            else:
+                parsed = (key, flags, parsed[2])
+            self._parsed = parsed
         try:
-            raw = _native.run(self._native(), parameters, self._parsed[1])
+            raw = _native.run(self._native(), parameters, parsed[2])
         except RunError as error:
             error.points = _partial_points(error)
             raise
@@ -224,6 +231,5 @@ def _partial_points(error):
     partial = getattr(error, "_partial", None)
     if partial is None:
         return None
-    points = {"t": column(partial["t"])}
-    points.update((n, column(c)) for n, c in zip(partial["names"], partial["columns"]))
-    return points
+    t, columns = table(partial)
+    return {"t": t, **columns}

@@ -12,6 +12,15 @@ def column(raw: bytes) -> np.ndarray:
     return np.frombuffer(raw, dtype="<f8")
 
 
+def table(raw: dict):
+    """The times and the columns by name of a table from the extension (its ``names`` and
+    ``data``: the times, then each column, as one block of bytes), each a read-only view
+    of one array."""
+    names = raw["names"]
+    data = np.frombuffer(raw["data"], dtype="<f8").reshape(len(names) + 1, -1)
+    return data[0], dict(zip(names, data[1:]))
+
+
 class Solution:
     """The quantities a run recorded, one NumPy array per name, at every output time.
 
@@ -19,20 +28,25 @@ class Solution:
     ``sol.names`` the recorded names. ``sol.end_time`` and ``sol.end`` (the end state by
     name) say where the run ended, ``sol.stopped_by`` which ``stop_when`` condition ended it
     (``None`` if it reached ``until``), ``sol.statistics`` the stepper's work and
-    ``sol.summary`` what ``varmass run`` prints.
+    ``sol.summary`` what ``varmass run`` prints. A scene's solution
+    (:class:`varmass.Scene`) has the ``phase`` column and ``sol.changes``, its changes of
+    phase (:class:`varmass.PhaseChange`); a run's ``changes`` is empty.
     """
 
-    def __init__(self, raw: dict, stop_when: List[str]):
-        self.t: np.ndarray = column(raw["t"])
-        self.names: List[str] = list(raw["names"])
-        self._columns: Dict[str, np.ndarray] = {
-            n: column(c) for n, c in zip(self.names, raw["columns"])
-        }
+    def __init__(self, raw: dict, stop_when: Optional[List[str]], changes=()):
+        self.t: np.ndarray
+        self._columns: Dict[str, np.ndarray]
+        self.t, self._columns = table(raw)
+        self.names: List[str] = raw["names"]
         self.end_time: float = raw["end_time"]
-        self.end_state: List[float] = list(raw["end_state"])
-        index = raw["stopped_by"]
-        self.stopped_by: Optional[str] = None if index is None else stop_when[index]
-        self.statistics: Dict[str, object] = dict(raw["statistics"])
+        self.end_state: List[float] = raw["end_state"]
+        # A run gives the index of its condition; a scene the condition itself.
+        stopped_by = raw["stopped_by"]
+        if stop_when is not None and stopped_by is not None:
+            stopped_by = stop_when[stopped_by]
+        self.stopped_by: Optional[str] = stopped_by
+        self.changes: list = list(changes)
+        self.statistics: Dict[str, object] = raw["statistics"]
         self.summary: str = raw["summary"]
 
     def __getitem__(self, name: str) -> np.ndarray:

@@ -7,6 +7,9 @@
 //! parameter values. A [`Compiled`] keeps the derived model, compiles its program at the
 //! first run and, for every later run, only gives it the new values
 //! ([`Program::set_parameters`]), which evaluates exactly as a program made anew.
+//! It keeps the last run's plan too: a run with the same arguments and other values of the
+//! same parameters only makes again what depends on the values ([`plan::refresh`]), not
+//! the parsing and resolving of every argument.
 
 use varmass::interpret::Program;
 
@@ -33,6 +36,16 @@ pub struct Compiled {
     used: Vec<String>,
     /// `None` before the first run, and after a run that failed before giving it back.
     program: Option<Program>,
+    /// The last run's plan, with the arguments and the parameters' names it was made for.
+    planned: Option<Planned>,
+}
+
+/// A plan, what it was made for (the arguments and the parameters' names) and the initial
+/// `[q, q̇, m_s]` its arguments give.
+struct Planned {
+    made_for: (RunArgs, Vec<String>),
+    plan: Plan,
+    velocity_state: Vec<f64>,
 }
 
 impl Compiled {
@@ -47,6 +60,7 @@ impl Compiled {
             declared,
             used,
             program: None,
+            planned: None,
         }
     }
 
@@ -76,6 +90,7 @@ impl Compiled {
         *current = Some(options);
         self.used = self.model.derivation.used_parameters();
         self.program = None;
+        self.planned = None;
         Ok(())
     }
 
@@ -132,20 +147,58 @@ impl Compiled {
     ) -> Result<T, CliError> {
         self.apply_laws(&args.input, &args.table)?;
         let program = self.program(&values, warn)?;
-        let planned = plan::plan_with(args, values, &program, &self.model.selected);
-        let mut plan = match planned {
-            Ok(plan) => plan,
+        let mut planned = match self.plan(args, values, &program) {
+            Ok(planned) => planned,
             Err(e) => {
                 self.program = Some(program);
                 return Err(e);
             }
         };
-        plan.flows = self.model.flows.clone();
-        plan.progress = progress;
-        let mut outcome = dispatch(program, &plan)?;
-        let result = finish(&mut outcome, &plan);
+        planned.plan.progress = progress;
+        let mut outcome = dispatch(program, &planned.plan)?;
+        let result = finish(&mut outcome, &planned.plan);
         self.program = Some(outcome.program);
+        self.planned = Some(planned);
         Ok(result)
+    }
+
+    /// The plan of a run with `args` and the parameter values `values`: the last run's
+    /// refreshed with the values when it was made for the same arguments and parameter
+    /// names ([`plan::refresh`] gives the same plan and the same refusals), else made anew;
+    /// with what it is made for.
+    fn plan(
+        &mut self,
+        args: &RunArgs,
+        values: Vec<(String, f64)>,
+        program: &Program,
+    ) -> Result<Planned, CliError> {
+        let reusable = self.planned.take().filter(|p| {
+            let (made_args, names) = &p.made_for;
+            p.plan.refreshable()
+                && made_args == args
+                && names.iter().eq(values.iter().map(|(n, _)| n))
+        });
+        if let Some(mut kept) = reusable {
+            let refreshed =
+                plan::refresh(&mut kept.plan, args, values, program, &kept.velocity_state);
+            return match refreshed {
+                Ok(()) => Ok(kept),
+                Err(e) => {
+                    // A refused refresh changes nothing in the plan: kept for the next values.
+                    self.planned = Some(kept);
+                    Err(e)
+                }
+            };
+        }
+        let names = values.iter().map(|(n, _)| n.clone()).collect();
+        let mut plan = plan::plan_with(args, values, program, &self.model.selected)?;
+        plan.flows = self.model.flows.clone();
+        let velocity_state = plan::initial_velocities(args, program)?;
+        Ok(Planned {
+            made_for: (args.clone(), names),
+            plan,
+            velocity_state,
+        })
     }
 
     /// The tool's `run` of this model with the parameter values given as numbers (`args.set`
@@ -162,6 +215,33 @@ impl Compiled {
             |outcome, plan| completed(outcome, plan, args),
         );
         done.map_err(Failed::before)?
+    }
+
+    /// [`Compiled::run`] for a caller that wants only where the run ended (an ensemble's
+    /// member): the time and the recorded values at the last point, or the run's error;
+    /// no summary is made (its text, the state's velocities among it, cost a member more
+    /// than the rest of the recording).
+    pub fn run_to_end(
+        &mut self,
+        parameters: &[(&str, f64)],
+        args: &RunArgs,
+    ) -> Result<(f64, Vec<f64>), CliError> {
+        let values = typed(parameters)?;
+        self.execute(
+            args,
+            false,
+            values,
+            |_| {},
+            |outcome, plan| {
+                let program = &outcome.program;
+                let mut table = output::table(program, &plan.record, &outcome.points)?;
+                if let Some(error) = outcome.failure.take() {
+                    return Err(error);
+                }
+                let no_point = || CliError::Run("the run returned no point".to_string());
+                table.rows.pop().ok_or_else(no_point)
+            },
+        )?
     }
 }
 

@@ -1,14 +1,17 @@
-//! Where run-time sizes meet the const-generic core: one `match` arm per number of
-//! coordinates N, each monomorphizing [`integrate`] — and through it every stepper — for its
-//! `N` and `S = 2N + MAX_STATE_MASSES`. A model with fewer state masses runs padded
+//! Where run-time sizes meet the const-generic core: `match` arms monomorphizing
+//! [`integrate`] — and through it every stepper — for an `N` and a state length `S`. The
+//! small models most runs and ensembles are made of (1 to 3 coordinates, 0 or 1 state mass)
+//! have an arm of their exact size, `S = 2N + K`; every other model runs in the arm of its
+//! `N` with `S = 2N + MAX_STATE_MASSES`, padded
 //! ([`TapeSystem::padded`](varmass::interpret::TapeSystem::padded)): the extra state entries
-//! are masses that never change and that the model never reads, so one arm serves every
-//! number of state masses. A model outside the table is a clear error naming the limits.
+//! are masses that never change and that the model never reads. A model outside the table
+//! is a clear error naming the limits.
 //!
-//! Why padding rather than an arm per (N, K): each arm compiles the eight steppers and the
-//! run loop again (about 3 s of CPU each); eight arms reach 8 coordinates and 3 state
-//! masses with fewer arms than the former 4 × 3 table. The cost is a few more components in
-//! each stepper's vector arithmetic (measured in the crate's README section).
+//! Why not an exact arm for every (N, K): each arm compiles the eight steppers and the run
+//! loop again (about 3 s of CPU each); eight padded arms reach 8 coordinates and 3 state
+//! masses. Why exact arms for the small ones: there the padding is most of the state (the
+//! sled's 2 entries ran as 5) and cost its run 18 % (52 µs instead of 44, DOP853 at 1e-12);
+//! an exact arm runs the bare interpreter's steps bit for bit (`cli/tests/compiled.rs`).
 
 use varmass::interpret::Program;
 
@@ -21,18 +24,23 @@ pub const MAX_COORDINATES: usize = 8;
 /// The most state masses a model run by the tool may have.
 pub const MAX_STATE_MASSES: usize = 3;
 
-/// One arm per N, with S = 2N + 3 spelled out (const generic arithmetic is not stable).
+/// The exact arms `(N, S = 2N + K)`, then one padded arm per N with S = 2N + 3, spelled out
+/// (const generic arithmetic is not stable).
 macro_rules! sizes {
-    ($program:ident, $plan:ident; $(($n:literal, $s:literal)),* $(,)?) => {
-        match $program.coordinate_count() {
-            $($n => integrate::<$n, $s>($program, $plan),)*
+    ($program:ident, $plan:ident, $len:ident;
+     exact $(($n:literal, $s:literal)),*;
+     padded $(($pn:literal, $ps:literal)),* $(,)?) => {
+        match ($program.coordinate_count(), $len) {
+            $(($n, $s) => integrate::<$n, $s>($program, $plan),)*
+            $(($pn, _) => padded::<$pn, $ps>($program, $plan, $len),)*
             _ => unreachable!("sizes are checked before"),
         }
     };
 }
 
-/// Integrates `program` with the monomorphized code for its number of coordinates, padded
-/// to `MAX_STATE_MASSES` state masses; the points come back unpadded.
+/// Integrates `program` with the monomorphized code for its size: its exact size when the
+/// table has it, else its number of coordinates padded to `MAX_STATE_MASSES` state masses
+/// (the points come back unpadded).
 pub fn dispatch(program: Program, plan: &Plan) -> Result<Outcome, CliError> {
     let (n, k) = (program.coordinate_count(), program.state_mass_count());
     // The held values of sampled inputs take places of the padding too.
@@ -49,11 +57,20 @@ pub fn dispatch(program: Program, plan: &Plan) -> Result<Outcome, CliError> {
         )));
     }
     let len = program.state_len();
-    let padded = padded_plan(plan, len, 2 * n + MAX_STATE_MASSES);
-    let plan = &padded;
-    let mut outcome = sizes!(program, plan;
-        (1, 5), (2, 7), (3, 9), (4, 11), (5, 13), (6, 15), (7, 17), (8, 19),
-    )?;
+    sizes!(program, plan, len;
+        exact (1, 2), (1, 3), (2, 4), (2, 5), (3, 6), (3, 7);
+        padded (1, 5), (2, 7), (3, 9), (4, 11), (5, 13), (6, 15), (7, 17), (8, 19),
+    )
+}
+
+/// [`integrate`] in the arm `(N, S)` of a model whose state is shorter (`len`): the plan
+/// padded to `S`, the points given back unpadded.
+fn padded<const N: usize, const S: usize>(
+    program: Program,
+    plan: &Plan,
+    len: usize,
+) -> Result<Outcome, CliError> {
+    let mut outcome = integrate::<N, S>(program, &padded_plan(plan, len, S))?;
     for (_, state) in &mut outcome.points {
         state.truncate(len);
     }

@@ -99,33 +99,45 @@ pub fn evaluate(
     state: &[f64],
 ) -> Result<f64, SystemError> {
     let n = program.coordinate_count();
-    Ok(match observable {
-        Observable::Coordinate(a) => state[a],
-        Observable::Velocity(a) => {
-            let mut v = vec![f64::NAN; n];
-            program.velocities(t, state, &mut v)?;
-            pick(v, a)
-        }
-        Observable::Mass(i) => {
-            let mut m = vec![f64::NAN; program.derivation().masses.len()];
-            program.masses(t, state, &mut m);
-            pick(m, i)
-        }
+    match observable {
+        Observable::Coordinate(a) => Ok(state[a]),
+        Observable::Velocity(a) => scratch(n, |v| {
+            program.velocities(t, state, v)?;
+            Ok(pick(v, a))
+        }),
+        Observable::Mass(i) => scratch(program.derivation().masses.len(), |m| {
+            program.masses(t, state, m);
+            Ok(pick(m, i))
+        }),
         Observable::Held(j) => {
             let first = 2 * n + program.state_mass_count();
-            state.get(first + j).copied().unwrap_or(f64::NAN)
+            Ok(state.get(first + j).copied().unwrap_or(f64::NAN))
         }
         Observable::Quantity(quantity, index) => {
             let len = quantity.read(program.derivation()).len().max(n);
-            let mut out = vec![f64::NAN; len];
-            program.evaluate_at_state(quantity, t, state, &mut out)?;
-            pick(out, index)
+            scratch(len, |out| {
+                program.evaluate_at_state(quantity, t, state, out)?;
+                Ok(pick(out, index))
+            })
         }
-    })
+    }
+}
+
+/// `f` given `len` NaNs to write into: on the stack up to a size beyond the tool's models
+/// (a recorded column evaluates at every point: no allocation each time), on the heap
+/// beyond.
+fn scratch<R>(len: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
+    const STACK: usize = 32;
+    if len <= STACK {
+        let mut buffer = [f64::NAN; STACK];
+        f(&mut buffer[..len])
+    } else {
+        f(&mut vec![f64::NAN; len])
+    }
 }
 
 /// Entry `index` of `values`, NaN past its end (an index from [`observables`] is never).
-fn pick(values: Vec<f64>, index: usize) -> f64 {
+fn pick(values: &[f64], index: usize) -> f64 {
     values.get(index).copied().unwrap_or(f64::NAN)
 }
 

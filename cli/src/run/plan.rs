@@ -205,6 +205,39 @@ pub fn plan_with(
     })
 }
 
+/// `plan`, made by [`plan_with`] for the same `args` and parameters of the same names, given
+/// the values `parameters`: only what depends on the values is made and checked again (the
+/// initial momenta and masses from `velocity_state`, [`initial_velocities`] of `args`, and
+/// whether a `--stop-when` already holds at the start), in [`plan_with`]'s order, so a
+/// refusal is the one [`plan_with`] would give (everything else it checks reads only
+/// `args` and the model, and passed). A plan recording an expression is not refreshed
+/// ([`Plan::refreshable`]): its parameters are constants in it.
+pub fn refresh(
+    plan: &mut Plan,
+    args: &RunArgs,
+    parameters: Vec<(String, f64)>,
+    program: &Program,
+    velocity_state: &[f64],
+) -> Result<(), CliError> {
+    let initial_state = momenta(program, args.from, velocity_state.to_vec())?;
+    for (text, condition) in args.stop_when.iter().zip(&plan.stop_when) {
+        not_yet_true(program, condition, text, plan.from, &initial_state)?;
+    }
+    plan.initial_state = initial_state;
+    plan.parameters = parameters;
+    Ok(())
+}
+
+impl Plan {
+    /// Whether [`refresh`] can give this plan other parameter values: it records no
+    /// expression (an expression holds the values of the parameters it reads).
+    pub fn refreshable(&self) -> bool {
+        self.record
+            .iter()
+            .all(|(_, r)| matches!(r, Recorded::Quantity(_)))
+    }
+}
+
 /// Splits a `--stop-when` condition `NAME = VALUE`, `NAME > VALUE` or `NAME < VALUE`
 /// (`>=` and `<=` read as `>` and `<`: a crossing has no width).
 pub(crate) fn condition(text: &str) -> Result<(String, Direction, f64), CliError> {
@@ -384,6 +417,13 @@ enum Initial {
 /// `[q, p, m_s]` from `--init` (coordinates and state masses required, velocities 0 by
 /// default), with p = ∂*L/∂q̇ at the start.
 fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError> {
+    let velocity_state = initial_velocities(args, program)?;
+    momenta(program, args.from, velocity_state)
+}
+
+/// `[q, q̇, m_s]` from `--init` (coordinates and state masses required, velocities 0 by
+/// default): what of the initial state reads only the arguments, not the values.
+pub fn initial_velocities(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError> {
     let n = program.coordinate_count();
     let k = program.state_mass_count();
     let mut settable = Vec::new();
@@ -425,23 +465,31 @@ fn initial_state(args: &RunArgs, program: &Program) -> Result<Vec<f64>, CliError
             missing.join(", ")
         )));
     }
-    let mut velocity_state: Vec<f64> = values.iter().map(|v| v.unwrap_or(0.0)).collect();
-    // The held values of sampled inputs: replaced by the run's first sample.
+    Ok(values.iter().map(|v| v.unwrap_or(0.0)).collect())
+}
+
+/// `[q, p, m_s, u_held]` from `[q, q̇, m_s]` at `from`, with the program's values: every
+/// mass positive there, p = ∂*L/∂q̇ giving the velocities back, and the held values of the
+/// sampled inputs sampled at the start.
+fn momenta(program: &Program, from: f64, velocity_state: Vec<f64>) -> Result<Vec<f64>, CliError> {
+    let n = program.coordinate_count();
+    let mut velocity_state = velocity_state;
+    // The held values of sampled inputs: replaced by the first sample below.
     velocity_state.resize(program.state_len(), 0.0);
-    masses_positive(program, args.from, &velocity_state)?;
+    masses_positive(program, from, &velocity_state)?;
     let mut state = velocity_state.clone();
     program.evaluate(
         Quantity::Momenta,
-        args.from,
+        from,
         &velocity_state,
         &mut state[n..2 * n],
     );
     // Round trip: the momenta must give back the velocities (M positive definite).
-    velocity_state_check(program, args.from, &state)?;
+    velocity_state_check(program, from, &state)?;
     // The held inputs sampled at the start (the run's own sample there changes nothing),
     // so the first row and `--stop-when` see u(t₀, …).
     program
-        .sample(args.from, &mut state)
+        .sample(from, &mut state)
         .map_err(|e| CliError::Input(format!("the sampled inputs at the start: {e}")))?;
     Ok(state)
 }

@@ -39,9 +39,21 @@ impl<St> Watched<St> {
         if let Ok(style) = ProgressStyle::with_template("{bar:40} {msg} [{elapsed}, eta {eta}]") {
             bar.set_style(style);
         }
+        Self::with_bar(inner, from, until, Some(bar))
+    }
+
+    /// [`Watched::new`] without a progress bar: for a library caller (the Python package,
+    /// an ensemble's members), where the bar's bookkeeping at every step (a clock read and
+    /// its atomics) is a cost with nothing to show, and so is making it (parsing its
+    /// template and dropping it cost a 50 µs run 4 %).
+    pub fn quiet(inner: St, from: f64, until: f64) -> Self {
+        Self::with_bar(inner, from, until, None)
+    }
+
+    fn with_bar(inner: St, from: f64, until: f64, bar: Option<ProgressBar>) -> Self {
         Self {
             inner,
-            bar: Some(bar),
+            bar,
             started: Instant::now(),
             shown: false,
             from,
@@ -49,15 +61,6 @@ impl<St> Watched<St> {
             steps: 0,
             max_seconds: None,
         }
-    }
-
-    /// [`Watched::new`] without a progress bar: for a library caller (the Python package,
-    /// an ensemble's members), where the bar's bookkeeping at every step (a clock read and
-    /// its atomics) is a cost with nothing to show.
-    pub fn quiet(inner: St, from: f64, until: f64) -> Self {
-        let mut watched = Self::new(inner, from, until);
-        watched.bar = None;
-        watched
     }
 
     /// Fails the run with [`StepErrorKind::WallClockExceeded`] after `seconds`.

@@ -1,0 +1,41 @@
+//! A scene file (`varmass run SCENE.toml`, docs/scenes.md) run from Python: the tool's own
+//! reading, checks and phases (`varmass_cli::scene::run_file`), so its messages and
+//! numbers are the tool's. The table comes back as a run's does ([`crate::run`]), with the
+//! `phase` column first and the changes of phase beside it.
+
+use pyo3::intern;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use varmass_cli::scene::{run_file, SceneRun};
+
+use crate::errors::to_py;
+use crate::run::{columns, statistics};
+
+/// Runs the scene file at `path`: the recorded columns (`phase` first), the changes of
+/// phase, the end, the statistics and the summary the tool prints. A mistake in the file
+/// is the tool's `ValueError`/`ModelError`; a failed run its `RunError`, with the points
+/// up to the failure as `_partial`.
+#[pyfunction]
+pub fn run_scene<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyDict>> {
+    let path = std::path::PathBuf::from(path);
+    let mut done: SceneRun = py.detach(|| run_file(&path)).map_err(|e| to_py(py, e))?;
+    if let Some(failure) = done.failure.take() {
+        let error = to_py(py, failure);
+        columns(py, &done.table).and_then(|d| error.value(py).setattr("_partial", d))?;
+        return Err(error);
+    }
+    let out = columns(py, &done.table)?;
+    let (time, state) = done.end.clone().unwrap_or((f64::NAN, Vec::new()));
+    out.set_item(intern!(py, "end_time"), time)?;
+    out.set_item(intern!(py, "end_state"), state)?;
+    out.set_item(intern!(py, "stopped_by"), &done.stopped_by)?;
+    let changes: Vec<(usize, f64, &str, f64)> = done
+        .changes
+        .iter()
+        .map(|c| (c.phase, c.time, c.rule, c.kinetic_energy_removed))
+        .collect();
+    out.set_item(intern!(py, "changes"), changes)?;
+    out.set_item(intern!(py, "statistics"), statistics(py, &done.statistics)?)?;
+    out.set_item(intern!(py, "summary"), &done.summary)?;
+    Ok(out)
+}

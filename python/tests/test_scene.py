@@ -1,0 +1,103 @@
+"""Scene files from Python (``varmass.Scene``, ``varmass.run_scene``): the tool's phases,
+messages and numbers, checked against the two-stage rocket's closed form."""
+
+import math
+
+import numpy as np
+import pytest
+
+import varmass
+from conftest import MODELS
+
+TWO_STAGE = MODELS / "two_stage_rocket.toml"
+
+
+def test_the_two_stage_rocket_scene_reaches_its_closed_form_speed():
+    sol = varmass.Scene.from_file(TWO_STAGE).run()
+    # Stage 1 burns 10 kg/s at u_e = 2500 m/s from 1000 kg to 500 kg (t = 50 s), stage 2
+    # 2 kg/s at 3000 m/s from 300 kg to 100 kg (t = 150 s), g = 9.81; Tsiolkovsky with
+    # gravity loss: v(150) = 2500 ln 2 − 9.81·50 + 3000 ln 3 − 9.81·100.
+    exact = 2500 * math.log(2) - 9.81 * 50 + 3000 * math.log(3) - 9.81 * 100
+    assert sol.t[-1] == 150.0 and sol.stopped_by is None
+    error = abs(sol["y'"][-1] - exact) / exact
+    assert error <= 1e-12, error  # measured 6.3e-15 (the tool's run: cli/tests/scene.rs)
+    assert abs(sol["m"][-1] - 100.0) <= 1e-9
+    # The phase column: 1 up to the separation, 2 after; the change appears twice at
+    # t = 50 s (m = 500 kg before, 300 kg after, the same velocity).
+    assert sol.keys()[:2] == ["t", "phase"]
+    phase = sol["phase"]
+    assert phase[0] == 1.0 and phase[-1] == 2.0
+    assert np.all(np.diff(phase) >= 0)
+    k = int(np.argmax(phase == 2.0))
+    assert sol.t[k - 1] == sol.t[k] and abs(sol.t[k] - 50.0) < 1e-9
+    assert abs(sol["m"][k - 1] - 500.0) < 1e-9 and sol["m"][k] == 300.0
+    # One change: the 200 kg dry stage leaves with v(50) = 2500 ln 2 − 9.81·50, taking
+    # ½·200·v(50)² of kinetic energy.
+    (change,) = sol.changes
+    assert isinstance(change, varmass.PhaseChange)
+    assert (change.phase, change.rule) == (2, "separation")
+    assert change.time == sol.t[k]
+    v_50 = 2500 * math.log(2) - 9.81 * 50
+    taken = 0.5 * 200 * v_50**2
+    assert abs(change.kinetic_energy_removed - taken) <= 1e-9 * taken
+    assert "kinetic energy removed" in sol.summary
+    assert sol.statistics["accepted_steps"] > 0
+    assert sol.end_time == 150.0 and len(sol.end_state) == 3
+    # run_scene is the same run, bit for bit.
+    again = varmass.run_scene(str(TWO_STAGE))
+    assert again["y'"].tobytes() == sol["y'"].tobytes()
+    assert again.changes == sol.changes
+
+
+def test_a_scene_ending_on_its_stop_when_names_it(tmp_path):
+    model = MODELS / "two_stage_rocket.vms"
+    path = tmp_path / "apex.toml"
+    path.write_text(
+        f'model = "{model}"\nuntil = 1000.0\nstop_when = "y\' < 0"\n'
+        "set = { mu = 10.0, u_e = 2500.0, g = 9.81 }\ninit = { y = 0.0, m = 1000.0 }\n\n"
+        '[[phase]]\nwhen = "m = 500"\nset = { mu = 2.0, u_e = 3000.0 }\n'
+        "masses = { m = 300.0 }\n\n"
+        '[[phase]]\nwhen = "t = 150"\nset = { mu = 0.0 }\n'
+    )
+    sol = varmass.Scene.from_file(path).run()
+    assert sol.stopped_by == "y' < 0"
+    assert [c.phase for c in sol.changes] == [2, 3]
+    # The apex: t = 150 + v(150)/g = 512.610073129887 s (cli/tests/scene.rs); tolerance
+    # 1e-9 (default), bound 1e-6 relative.
+    assert abs(sol.end_time - 512.610073129887) <= 1e-6 * 512.6
+    assert sol["phase"][-1] == 3.0
+
+
+def test_a_failing_scene_raises_run_error_with_its_points(tmp_path):
+    # Stage 2 burns 2 kg/s from 300 kg: its mass reaches 0 at t = 200 s, before until.
+    model = MODELS / "two_stage_rocket.vms"
+    path = tmp_path / "runs_out.toml"
+    path.write_text(
+        f'model = "{model}"\nuntil = 250.0\n'
+        "set = { mu = 10.0, u_e = 2500.0, g = 9.81 }\ninit = { y = 0.0, m = 1000.0 }\n\n"
+        '[[phase]]\nwhen = "m = 500"\nset = { mu = 2.0, u_e = 3000.0 }\n'
+        "masses = { m = 300.0 }\n"
+    )
+    with pytest.raises(varmass.RunError) as caught:
+        varmass.run_scene(path)
+    error = caught.value
+    assert error.reason == "the mass `m` is not positive"
+    assert abs(error.time - 200.0) < 1e-6, error.time
+    points = error.points
+    assert points["phase"][0] == 1.0 and points["phase"][-1] == 2.0
+    assert 190.0 < points["t"][-1] <= 200.0
+
+
+def test_a_bad_scene_file_is_the_tools_message_at_its_line(tmp_path):
+    path = tmp_path / "bad.toml"
+    model = MODELS / "two_stage_rocket.vms"
+    path.write_text(
+        f'model = "{model}"\nuntil = 150.0\nset = {{ mu = 10.0, u_e = 2500.0, g = 9.81 }}\n'
+        'init = { y = 0.0, m = 1000.0 }\nmethod = "dop8"\n'
+    )
+    with pytest.raises(ValueError, match=r":5:10.*unknown method `dop8`|unknown method `dop8`"):
+        varmass.Scene.from_file(path).run()
+    with pytest.raises(FileNotFoundError):
+        varmass.Scene.from_file(tmp_path / "none.toml")
+    with pytest.raises(TypeError, match="path"):
+        varmass.Scene.from_file(3)

@@ -1,0 +1,72 @@
+"""``varmass.Scene``: a scene file (``varmass run SCENE.toml``, docs/scenes.md) run from
+Python — a model flown through phases, its parameters, state masses and tags changed at
+events, the state carried by separation or capture."""
+
+from __future__ import annotations
+
+import os
+from typing import NamedTuple
+
+from . import _native
+from ._errors import RunError
+from ._model import _partial_points
+from ._solution import Solution
+
+
+class PhaseChange(NamedTuple):
+    """A change of phase: the phase entered (counted from 1, as the ``phase`` column), its
+    time, how the state was carried (``"separation"`` or ``"capture"``) and the kinetic
+    energy the change removed (½ q̇ᵀ (M_before − M_after) q̇ at a separation; the kinetic
+    energy lost in the plastic impact at a capture)."""
+
+    phase: int
+    time: float
+    rule: str
+    kinetic_energy_removed: float
+
+
+class Scene:
+    """A scene file, run by the command line tool's own code (its checks, messages and
+    numbers are those of ``varmass run SCENE.toml``).
+
+    ``Scene.from_file("models/two_stage_rocket.toml").run()`` returns a
+    :class:`varmass.Solution` whose first column is ``phase`` (1, 2, …; a change appears
+    twice, before and after, at the same time) and whose ``changes`` lists each
+    :class:`PhaseChange`. A mistake in the file is a ``ValueError`` (or a
+    :class:`varmass.ModelError` for its model) before any step; a run that fails raises
+    :class:`varmass.RunError` with the points computed up to the failure.
+    """
+
+    def __init__(self, path):
+        if not isinstance(path, (str, os.PathLike)):
+            raise TypeError(f"path must be a str or os.PathLike, not {type(path).__name__}")
+        self._path = os.fspath(path)
+        if not os.path.isfile(self._path):
+            raise FileNotFoundError(f"no scene file {self._path!r}")
+
+    @classmethod
+    def from_file(cls, path) -> "Scene":
+        """The scene file at ``path`` (read, checked and run by :meth:`run`)."""
+        return cls(path)
+
+    @property
+    def path(self) -> str:
+        return self._path
+
+    def run(self) -> Solution:
+        """Reads, checks and runs the scene (the GIL is released while it computes)."""
+        try:
+            raw = _native.run_scene(self._path)
+        except RunError as error:
+            error.points = _partial_points(error)
+            raise
+        changes = [PhaseChange(*change) for change in raw["changes"]]
+        return Solution(raw, None, changes=changes)
+
+    def __repr__(self) -> str:
+        return f"<varmass.Scene {self._path}>"
+
+
+def run_scene(path) -> Solution:
+    """``Scene.from_file(path).run()``."""
+    return Scene.from_file(path).run()
