@@ -28,10 +28,9 @@ use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
 use crate::error::{is_finite, StepError, StepErrorKind};
 use crate::events::{locate_root, Event, EventAction};
 use crate::math::powf;
-use crate::run::point::check_flows;
 use crate::run::RunConfig;
 use crate::solution::Record;
-use crate::stepper::{check_state, Statistics, StepOutcome};
+use crate::stepper::{Checked, Statistics, StepOutcome};
 use crate::steppers::control::{resolvable, Controlled, Mode, StepControl};
 use crate::tolerance::Tolerance;
 
@@ -267,7 +266,7 @@ where
             .map_err(|error| invalid(error.reason))?;
     }
     core.progress.set_stop_time(config.end_time).map_err(Err)?;
-    check_flows(system, *time, state).map_err(Err)?;
+    system.check_flows(*time, state).map_err(Err)?;
     if config.end_time == *time {
         return Err(Ok(end_at(&core, *time, *state, None)));
     }
@@ -482,7 +481,7 @@ where
     after_step(member, attempt, index, outcome, config)
 }
 
-/// Scalar `state_rate`'s check of each stage state (finite) and `check_state` of the new
+/// Scalar `state_rate`'s check of each stage state (finite) and `Checked::check_state` of the new
 /// state, in the scalar stepper's order.
 fn check_stages<Sys, const N: usize, const S: usize, const W: usize>(
     system: &Sys,
@@ -495,7 +494,7 @@ where
 {
     let (t0, h) = (attempt.t0.0[index], attempt.h.0[index]);
     if finite {
-        return check_state(system, t0 + h, &lane(&attempt.y[5], index));
+        return system.check_state(t0 + h, &lane(&attempt.y[5], index));
     }
     for (y, c) in attempt.y[..5].iter().zip([C2, C3, C4, C5, 1.0]) {
         let y = lane(y, index);
@@ -504,7 +503,7 @@ where
             return Err(StepError::new(time, y, StepErrorKind::NonFiniteState));
         }
     }
-    check_state(system, t0 + h, &lane(&attempt.y[5], index))
+    system.check_state(t0 + h, &lane(&attempt.y[5], index))
 }
 
 /// The run's bookkeeping after an accepted step (`run`'s `drive` and `EventWatch`): the flow
@@ -522,7 +521,7 @@ where
     let core = &member.core;
     let system = core.system;
     let (time, state) = (core.progress.time(), *core.progress.state());
-    check_flows(system, time, &state)?;
+    system.check_flows(time, &state)?;
     let start_time = core.progress.previous_time();
     // The dense output is read out of the lanes only when an event needs it.
     let mut dense: Option<Dense<S>> = None;
@@ -548,7 +547,7 @@ where
         .find(|(_, i)| events.get(*i).map(|e| e.action) == Some(EventAction::Stop));
     if let (Some((hit, event_index)), Some(dense)) = (stop, &dense) {
         let hit_state = dense.at(hit);
-        check_flows(system, hit, &hit_state)?;
+        system.check_flows(hit, &hit_state)?;
         return Ok(Some(end_at(core, hit, hit_state, Some(event_index))));
     }
     member.steps += 1;
