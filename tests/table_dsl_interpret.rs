@@ -100,3 +100,48 @@ fn density() -> Table {
     let data = CsvTable::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
     Table::new(&data.points, Interpolation::Pchip, Outside::Hold)
 }
+
+/// Derives `source` with files relative to the workspace.
+fn program(
+    source: &str,
+    parameters: &[(&str, f64)],
+) -> Result<Program, varmass::interpret::ProgramError> {
+    let ast = parse_system(source).unwrap();
+    let base = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let d = derive_in(&ast, Parameters::Inferred, Outputs::FULL, base).unwrap();
+    Program::new(d, parameters)
+}
+
+/// `Program::accelerations` reports a lookup outside the data as the table's typed error
+/// (below the atmosphere's first altitude, 0 m), not as the singular mass matrix its NaN
+/// made of the solve before.
+#[test]
+fn accelerations_outside_a_table_name_it() {
+    let source = "coordinates y\ntable rho(y) = \"models/atmosphere/density.csv\", pchip\n\
+                  mass m = m0\nbody b: mass m, position [y]\nforce b: [-k*rho(y)*y']";
+    let p = program(source, &[("m0", 1.0), ("k", 0.1)]).unwrap();
+    let mut out = [f64::NAN];
+    assert_eq!(
+        p.accelerations(0.0, &[-100.0, 1.0], &mut out),
+        Err(varmass::core::SystemError::TableOutside {
+            table: "rho",
+            argument: -100.0
+        })
+    );
+    // Inside the data it is the force over the mass: q̈ = −k ρ(100) ẏ / m0.
+    p.accelerations(0.0, &[100.0, 1.0], &mut out).unwrap();
+    assert!(out[0] < 0.0 && out[0].is_finite(), "{out:?}");
+}
+
+/// A continuous input has no value in the interpreter without a law: `Program::new`
+/// refuses it by name (its calls compiled to NaN before, and every state rate was NaN).
+#[test]
+fn an_input_without_a_law_is_refused_by_the_program() {
+    let source =
+        "coordinates y\ninput u(t)\nmass m = m0\nbody b: mass m, position [y]\nforce b: [u(t)]";
+    let refused = program(source, &[("m0", 1.0)]).err();
+    assert!(
+        matches!(&refused, Some(varmass::interpret::ProgramError::InputWithoutLaw { name }) if name == "u"),
+        "{refused:?}"
+    );
+}

@@ -42,6 +42,16 @@ pub enum ProgramError {
         /// The input's name.
         name: String,
     },
+    /// A continuous input (a function written in Rust under the macro) has no law: its
+    /// calls would evaluate to NaN.
+    #[error(
+        "input `{name}` is a function written in Rust; the interpreter needs a law for it \
+         (varmass run --input {name}=EXPRESSION)"
+    )]
+    InputWithoutLaw {
+        /// The input's name.
+        name: String,
+    },
     /// The sizes of a [`super::TapeSystem`] do not match the model's.
     #[error(
         "the model has {coordinates} coordinates and {state_masses} state masses, \

@@ -109,6 +109,12 @@ impl Program {
                 name: table.name.clone(),
             });
         }
+        let lawless = d.inputs.iter().find(|i| i.held.is_none());
+        if let Some(input) = lawless.filter(|i| d.pool.input_law(i.index).is_none()) {
+            return Err(ProgramError::InputWithoutLaw {
+                name: input.name.clone(),
+            });
+        }
         let used = d.used_parameters();
         let env = parameter_env(&d, &used, parameters)?;
         // Law masses → q̇ → ṗ and ṁ, as every evaluator of the state rate stages them.
@@ -309,6 +315,25 @@ impl Program {
         copy(&scratch.values, out);
     }
 
+    /// [`Program::evaluate`], a table lookup outside its data the typed error (not NaN,
+    /// which a solve would report as something else).
+    fn evaluate_checked(
+        &self,
+        quantity: Quantity,
+        t: f64,
+        velocity_state: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), SystemError> {
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_velocity_state(scratch, t, velocity_state);
+        self.run(self.stage(quantity), scratch);
+        if let Some(error) = scratch.outside.take() {
+            return Err(error);
+        }
+        copy(&scratch.values, out);
+        Ok(())
+    }
+
     /// A velocity-form quantity at a state `[q, p, m_s]` (q̇ recovered from p) into `out`.
     pub fn evaluate_at_state(
         &self,
@@ -351,9 +376,9 @@ impl Program {
     ) -> Result<(), SystemError> {
         let n = self.coordinate_count();
         let mut matrix = vec![f64::NAN; n * n];
-        self.evaluate(Quantity::MassMatrix, t, velocity_state, &mut matrix);
+        self.evaluate_checked(Quantity::MassMatrix, t, velocity_state, &mut matrix)?;
         let mut rhs = vec![f64::NAN; n];
-        self.evaluate(Quantity::AccelerationRhs, t, velocity_state, &mut rhs);
+        self.evaluate_checked(Quantity::AccelerationRhs, t, velocity_state, &mut rhs)?;
         if !cholesky_solve(&mut matrix, &mut rhs, n) {
             return Err(SystemError::SingularMassMatrix);
         }

@@ -61,9 +61,10 @@ pub fn derive_with_laws(
     let model = build_model_in(ast, parameters, base, laws)?;
     let units = crate::units::check_units(ast, &model)?;
     let mut derivation = derive_model(model, outputs)?;
-    let differentiated = crate::mechanics::check_not_differentiated(&derivation);
-    if !differentiated.is_empty() {
-        return Err(differentiated);
+    let mut refused = crate::mechanics::check_not_differentiated(&derivation);
+    refused.extend(crate::mechanics::check_smooth_enough(&derivation));
+    if !refused.is_empty() {
+        return Err(refused);
     }
     derivation.units = units;
     Ok(derivation)

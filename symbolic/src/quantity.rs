@@ -5,8 +5,11 @@
 //!
 //! Everything that lists quantities reads this one table: the reserved names and the
 //! `check` bindings of `mechanics`, the units table, the macro's name message, the command
-//! line tool's recordable names, the emitter's roots and vector methods, and the
-//! interpreter's groups. [`Quantity::spec`] is one exhaustive `match`, so a new variant
+//! line tool's recordable names, the emitter's vector methods, and the interpreter's
+//! groups. Not (yet) the lists of *expressions* that evaluators walk: the roots of every
+//! equation ([`Derivation::equation_roots`], read by the emitter and the checks of inputs
+//! and tables) and the switches' `state_rate_roots` are kept by hand beside the
+//! `Derivation`'s fields. [`Quantity::spec`] is one exhaustive `match`, so a new variant
 //! without its entry does not compile; `symbolic/tests/quantities.rs` holds every entry to
 //! each of those uses (ARCHITECTURE.md, "Add a generated quantity").
 //!

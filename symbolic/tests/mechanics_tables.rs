@@ -311,3 +311,30 @@ fn a_runtime_table_derives_over_a_placeholder_and_its_checks_hold() {
         d.help
     );
 }
+
+/// A bead on a track y = h(x) given by a table: T = ½ m (1 + h′²) ẋ², so ṗ needs h″. A
+/// `linear` table's h″ is an impulse at each knot that the piecewise derivative (≡ 0)
+/// drops — across a 0 → 1 change of slope p is kept and ẋ halves, losing half of T without
+/// a trace in the energy budget — so it is refused at the table's file; `pchip` (C¹) and
+/// `spline` (C²) derive.
+#[test]
+fn a_linear_table_in_a_position_is_refused() {
+    let track = |options: &str| {
+        format!(
+            "coordinates x\ntable h(x) = \"ramp.csv\"{options}\nmass m = m0\n\
+             body bead: mass m, position [x, h(x)]\npotential m*g*h(x)"
+        )
+    };
+    error(&track(""), "differentiate table `h` 2 times", 2, 14);
+    error(
+        &track(""),
+        "`linear` tables have an impulse in derivative 2",
+        2,
+        14,
+    );
+    for smooth in [", pchip", ", spline"] {
+        assert!(derive(&track(smooth)).is_ok(), "{smooth}");
+    }
+    // A linear table in a force is differentiated by the Jacobian only: derives.
+    assert!(derive(RAMP).is_ok());
+}

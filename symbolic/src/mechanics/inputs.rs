@@ -248,7 +248,7 @@ fn held_in_energies(d: &Derivation) -> Vec<Diagnostic> {
 }
 
 /// Every equation of `d` but the Jacobian.
-fn equation_roots(d: &Derivation) -> Vec<Id> {
+pub(crate) fn equation_roots(d: &Derivation) -> Vec<Id> {
     let mut head = vec![d.lagrangian, d.energy, d.power];
     head.extend(d.hamiltonian);
     d.equation_roots(head, true)

@@ -60,6 +60,7 @@ pub use resolve::{is_reserved, Parameters};
 pub use stages::RateStages;
 pub use stops::{time_tables, TimeTable};
 pub use switches::{switching_functions, table_switches, TableSwitch};
+pub(crate) use tables::check_smooth_enough;
 pub use tables::{read_points, runtime_placeholder, ModelTable};
 pub use unit_table::UnitTable;
 

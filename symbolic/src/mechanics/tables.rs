@@ -7,7 +7,9 @@
 use std::path::{Path, PathBuf};
 
 use super::build::Builder;
+use super::derivation::Derivation;
 use super::resolve::Binding;
+use crate::expr::{Func, Node};
 use crate::parse::ast::TableDecl;
 use crate::parse::{Diagnostic, Span};
 use varmass_table::{CsvTable, Interpolation, Motor, Outside, Piecewise, Points, Table};
@@ -144,4 +146,65 @@ impl Builder {
             runtime: true,
         });
     }
+}
+
+/// The highest derivative order of a table that the equations may use: its interpolant's
+/// smoothness class plus one. A `linear` table (C⁰) has a slope that jumps at each knot,
+/// which the knots' stop times and switches handle; its second derivative is an impulse at
+/// each knot, which the piecewise derivative (≡ 0 between knots) silently drops — a bead on
+/// a piecewise-linear track would keep p across a kink and lose half its kinetic energy at a
+/// 0 → 1 change of slope. `pchip` is C¹ and the natural spline C².
+fn highest_order(interpolation: Interpolation) -> u8 {
+    match interpolation {
+        Interpolation::Linear => 1,
+        Interpolation::Pchip => 2,
+        Interpolation::Spline => 3,
+    }
+}
+
+/// A diagnostic at each table that the equations (not the Jacobian) differentiate beyond its
+/// smoothness ([`highest_order`]): a table inside a position (its second derivative enters
+/// ṗ) or in a law differentiated twice.
+pub(crate) fn check_smooth_enough(d: &Derivation) -> Vec<Diagnostic> {
+    if d.tables.is_empty() {
+        return Vec::new();
+    }
+    let roots = super::inputs::equation_roots(d);
+    let mut orders: Vec<(u16, u8)> = Vec::new();
+    for id in d.pool.reachable(&roots, false) {
+        if let Node::Call(Func::Table { table, order }, _) = d.pool.node(id) {
+            match orders.iter_mut().find(|(t, _)| t == table) {
+                Some((_, highest)) => *highest = (*highest).max(*order),
+                None => orders.push((*table, *order)),
+            }
+        }
+    }
+    d.tables
+        .iter()
+        .filter_map(|table| {
+            let (_, order) = orders.iter().find(|(t, _)| *t == table.index)?;
+            (*order > highest_order(table.interpolation)).then(|| too_rough(table, *order))
+        })
+        .collect()
+}
+
+fn too_rough(table: &ModelTable, order: u8) -> Diagnostic {
+    Diagnostic::new(
+        table.span,
+        format!(
+            "the equations differentiate table `{}` {order} times (it is inside a position, or a \
+             law differentiated twice), more than its interpolation is smooth: `{}` tables \
+             have an impulse in derivative {} at each knot, which the equations would drop",
+            table.name,
+            match table.interpolation {
+                Interpolation::Linear => "linear",
+                Interpolation::Pchip => "pchip",
+                Interpolation::Spline => "spline",
+            },
+            highest_order(table.interpolation) + 1
+        ),
+    )
+    .with_help(
+        "give the table `pchip` (C¹) or `spline` (C²) interpolation where a position uses it",
+    )
 }
