@@ -1,7 +1,7 @@
 //! The Cholesky factorisation M = L Lᵀ of a small symmetric positive definite matrix, row
 //! major, in place and without allocating, and the solve with its factor. The interpreter's
-//! mass-matrix solve (`varmass::interpret`) calls it; the Taylor stepper's series of q̇
-//! (`steppers/taylor/series.rs`) holds the same two loops (to be replaced by calls here).
+//! mass-matrix solve (`varmass::interpret`) and the Taylor stepper's series of q̇
+//! (`steppers/taylor/series.rs`) call it.
 
 use crate::math::sqrt;
 use crate::system::regular_pivot;

@@ -8,8 +8,8 @@
 
 use nalgebra::{ComplexField, RealField};
 
+use crate::cholesky::{factor as cholesky, substitute};
 use crate::math::{powf, sqrt};
-use crate::system::regular_pivot;
 
 /// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
 pub const LEN: usize = super::MAX_ORDER + 1;
@@ -263,47 +263,4 @@ pub fn solve_velocities(
         v[k] = rhs[a];
     }
     rhs.iter().take(n).all(|x| x.is_finite())
-}
-
-/// L with M = L Lᵀ into the lower triangle of the row-major `m`.
-fn cholesky(m: &mut [f64], n: usize) -> bool {
-    for j in 0..n {
-        let mut diagonal = m[j * n + j];
-        for k in 0..j {
-            diagonal -= m[j * n + k] * m[j * n + k];
-        }
-        // A pivot below RELATIVE_PIVOT_FLOOR of its diagonal entry is singular: the rates
-        // it divides have lost half their digits (gimbal lock, core::system).
-        if !regular_pivot(diagonal, m[j * n + j]) || diagonal.is_infinite() {
-            return false;
-        }
-        let diagonal = sqrt(diagonal);
-        m[j * n + j] = diagonal;
-        for i in j + 1..n {
-            let mut entry = m[i * n + j];
-            for k in 0..j {
-                entry -= m[i * n + k] * m[j * n + k];
-            }
-            m[i * n + j] = entry / diagonal;
-        }
-    }
-    true
-}
-
-/// Solves L Lᵀ x = b in place.
-fn substitute(l: &[f64], b: &mut [f64], n: usize) {
-    for i in 0..n {
-        let mut value = b[i];
-        for k in 0..i {
-            value -= l[i * n + k] * b[k];
-        }
-        b[i] = value / l[i * n + i];
-    }
-    for i in (0..n).rev() {
-        let mut value = b[i];
-        for k in i + 1..n {
-            value -= l[k * n + i] * b[k];
-        }
-        b[i] = value / l[i * n + i];
-    }
 }
