@@ -5,6 +5,7 @@ pub(crate) mod control;
 pub mod dirk;
 pub mod dop853;
 pub mod dormand_prince;
+pub(crate) mod dp_tableau;
 pub mod esdirk43;
 pub mod euler;
 pub mod fixed;
