@@ -192,14 +192,15 @@ fn accelerations(d: &Derivation) -> Vec<String> {
 
 #[test]
 fn a_law_replaces_each_call_with_the_arguments_bound_at_once() {
-    // `u(y, x')` is declared with y first; the call `u(x, y)` passes x for y and y for x'.
-    // The law y - 2·x' read at (y := x, x' := y) is x − 2y: bound at once, not in turn
-    // (in turn, x' := y and then y := x, it would be x − 2x).
+    // `u(y, x')` is declared with y first; the call `u(x, 3*y)` passes x for y and 3y for
+    // x'. The law y - 2·x' read at (y := x, x' := 3y) is x − 6y: bound at once, not in turn
+    // (in turn, x' := 3y and then y := x, it would be x − 6x). (A declared name at another
+    // position, `u(x', y)`, is refused: an_input_called_with_its_arguments_swapped_is_refused.)
     let with_input =
         "coordinates x, y\ninput u(y, x')\nmass m = m0\nbody a: mass m, position [x, y]\n\
-                      force x: u(x, y)\nforce y: k*u(2*t, x')";
+                      force x: u(x, 3*y)\nforce y: k*u(2*t, x')";
     let written = "coordinates x, y\nmass m = m0\nbody a: mass m, position [x, y]\n\
-                   force x: x - 2*y\nforce y: k*(2*t - 2*x')";
+                   force x: x - 6*y\nforce y: k*(2*t - 2*x')";
     let given = derive_with_law(with_input, "y - 2*x'").expect("derives");
     let expected = derive(written).expect("derives");
     assert!(given.inputs.is_empty(), "a law leaves no input");
@@ -227,4 +228,22 @@ fn a_law_that_calls_the_input_is_a_diagnostic_at_its_declaration() {
         ),
         "{errors:?}"
     );
+}
+
+/// A call that passes a declared argument at another position (`u(y, t)` for
+/// `input u(t, y)`) is refused at that argument: the Rust function takes its arguments by
+/// position, so t and y would arrive swapped. Any other expression is passed as written.
+#[test]
+fn an_input_called_with_its_arguments_swapped_is_refused() {
+    let swapped = "coordinates y\ninput u(t, y)\nmass m = m0\nbody b: mass m, position [y]\nforce b: [u(y, t)]";
+    error(
+        swapped,
+        "its argument 1 is `y`, which the declaration puts at argument 2",
+        5,
+        13,
+    );
+    let velocity = "coordinates y\ninput u(y, y')\nmass m = m0\nbody b: mass m, position [y]\nforce b: [u(y', y)]";
+    error(velocity, "its argument 1 is `y'`", 5, 13);
+    let shifted = "coordinates y\ninput u(t, y)\nmass m = m0\nbody b: mass m, position [y]\nforce b: [u(t, 2*y)]";
+    assert!(derive(shifted).is_ok());
 }

@@ -164,6 +164,10 @@ fn lower_node(
             })
         }
         Expr::Call { func, args } => {
+            if let Some(swapped) = swapped_argument(pool, resolver, &func.node, args) {
+                errors.push(swapped);
+                return None;
+            }
             if let Some((law, parameters)) = input_law(pool, resolver, &func.node, args.len()) {
                 let law = substitute_arguments(&law, &parameters, args, func.span);
                 return lower_node(pool, &law, resolver, errors);
@@ -235,6 +239,47 @@ fn input_law(
     Some((law, pool.input_arguments(input).to_vec()))
 }
 
+/// A call of input `name` that passes, as argument j, a bare name the input declares at
+/// another position (`u(y, t)` for `input u(t, y)`): the Rust function (and a law) take
+/// their arguments by position, so the values would arrive swapped, silently.
+fn swapped_argument(
+    pool: &ExprPool,
+    resolver: &dyn Resolver,
+    name: &str,
+    args: &[ExprNode],
+) -> Option<Diagnostic> {
+    let (input, _) = resolver.input(name)?;
+    let declared = pool.input_arguments(input);
+    args.iter().enumerate().find_map(|(j, arg)| {
+        let written = written_name(arg)?;
+        let k = declared.iter().position(|d| *d == written)?;
+        (k != j).then(|| {
+            Diagnostic::new(
+                arg.span,
+                format!(
+                    "input `{name}` is declared `{name}({})`: its argument {} is `{written}`, \
+                     which the declaration puts at argument {}",
+                    declared.join(", "),
+                    j + 1,
+                    k + 1
+                ),
+            )
+            .with_help("an input takes its arguments by position: pass them in the declared order")
+        })
+    })
+}
+
+/// The name an argument is written as when it is a bare name or a velocity (`y`, `y'`).
+fn written_name(a: &ExprNode) -> Option<String> {
+    match a.node.as_ref() {
+        Expr::Name(n) => Some(n.clone()),
+        Expr::Derivative { name, order } => {
+            Some(format!("{name}{}", "'".repeat(usize::from(*order))))
+        }
+        _ => None,
+    }
+}
+
 /// The index and held value of input `name` if it is a sampled input.
 fn held_input(pool: &ExprPool, resolver: &dyn Resolver, name: &str) -> Option<(u16, Symbol)> {
     let (input, _) = resolver.input(name)?;
@@ -252,15 +297,8 @@ fn held_call(
     span: Span,
 ) -> Result<Id, Diagnostic> {
     let declared = pool.input_arguments(input);
-    let written = |a: &ExprNode| match a.node.as_ref() {
-        Expr::Name(n) => Some(n.clone()),
-        Expr::Derivative { name, order } => {
-            Some(format!("{name}{}", "'".repeat(usize::from(*order))))
-        }
-        _ => None,
-    };
     let same = args.len() == declared.len()
-        && (args.iter().zip(declared)).all(|(a, d)| written(a).as_deref() == Some(d.as_str()));
+        && (args.iter().zip(declared)).all(|(a, d)| written_name(a).as_deref() == Some(d.as_str()));
     if same {
         return Ok(pool.sym(held));
     }
