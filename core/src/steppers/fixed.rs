@@ -43,7 +43,7 @@ pub struct Step<'s, Sys, const S: usize> {
 }
 
 impl<Sys, const S: usize> Step<'_, Sys, S> {
-    /// The state rate at `(time, state)`, counted ([`state_rate`]).
+    /// The state rate at `(time, state)`, counted (`stepper::state_rate`).
     pub fn rate<const N: usize>(&mut self, time: f64, state: &SVector<f64, S>) -> NewState<S>
     where
         Sys: VariableMassSystem<N, S>,
