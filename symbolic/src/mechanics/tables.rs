@@ -100,7 +100,24 @@ impl Builder {
             }
         };
         let table = Table::new(&points, decl.interpolation, decl.outside);
-        let Some(index) = self.model.pool.add_table(&decl.name.node, table) else {
+        let index = self.model.pool.add_table(&decl.name.node, table);
+        self.bind_table(decl, index, path, false);
+    }
+
+    /// Binds the name of a `= runtime` table over a placeholder.
+    fn declare_runtime_table(&mut self, decl: &TableDecl) {
+        let placeholder = runtime_placeholder(decl.interpolation, decl.outside);
+        let index = self
+            .model
+            .pool
+            .add_runtime_table(&decl.name.node, placeholder);
+        self.bind_table(decl, index, PathBuf::new(), true);
+    }
+
+    /// Binds the name of the table the pool registered at `index` (`None`: too many) and
+    /// records it in the model.
+    fn bind_table(&mut self, decl: &TableDecl, index: Option<u16>, path: PathBuf, runtime: bool) {
+        let Some(index) = index else {
             self.errors
                 .push(Diagnostic::new(decl.name.span, "too many tables"));
             return;
@@ -116,34 +133,7 @@ impl Builder {
             outside: decl.outside,
             index,
             span: decl.file.span,
-            runtime: false,
-        });
-    }
-
-    /// Binds the name of a `= runtime` table over a placeholder.
-    fn declare_runtime_table(&mut self, decl: &TableDecl) {
-        let placeholder = runtime_placeholder(decl.interpolation, decl.outside);
-        let Some(index) = self
-            .model
-            .pool
-            .add_runtime_table(&decl.name.node, placeholder)
-        else {
-            self.errors
-                .push(Diagnostic::new(decl.name.span, "too many tables"));
-            return;
-        };
-        self.model
-            .names
-            .insert(decl.name.node.clone(), Binding::Table(index));
-        self.model.tables.push(ModelTable {
-            name: decl.name.node.clone(),
-            file: decl.file.node.clone(),
-            path: PathBuf::new(),
-            interpolation: decl.interpolation,
-            outside: decl.outside,
-            index,
-            span: decl.file.span,
-            runtime: true,
+            runtime,
         });
     }
 }
