@@ -226,7 +226,7 @@ where
                     continue;
                 }
                 Crossing::Cross { time, state } => {
-                    previous = restart_past(stepper, recorder, config, (time, state), needs)?;
+                    previous = restart_past(stepper, recorder, (time, state), needs)?;
                     target = next_target(stepper.system(), time, config.end_time);
                     stepper.set_stop_time(target)?;
                     continue;
@@ -262,7 +262,7 @@ where
         };
         match crossing {
             Crossing::Cross { time, state } => {
-                previous = restart_past(stepper, recorder, config, (time, state), needs)?;
+                previous = restart_past(stepper, recorder, (time, state), needs)?;
             }
             Crossing::Redo { near } => {
                 // The crossing is still ahead: land nearer.
@@ -335,7 +335,6 @@ where
 fn restart_past<St, const N: usize, const S: usize>(
     stepper: &mut St,
     recorder: &mut Recorder<N, S>,
-    config: &RunConfig,
     (time, state): (f64, SVector<f64, S>),
     needs: Needs,
 ) -> Result<Point<S>, StepError<S>>
@@ -346,7 +345,6 @@ where
     let point = Point::at(stepper.system(), time, state, needs)?;
     recorder.guard(stepper.system(), &point)?;
     recorder.push(stepper.system(), &point)?;
-    let _ = config;
     Ok(point)
 }
 
