@@ -38,41 +38,83 @@ pub fn local_or_nan(table: &Table, x: f64) -> Local {
 /// or not finite). What generated systems' `next_stop_time` asks of each table of t, by a
 /// binary search on the knots.
 ///
-/// For a rising argument the time is moved up by ulps until `slope·t + offset` rounds to
-/// the knot or past it, so that the run restarting there reads the piece after the knot
-/// (its slope, for a derivative table in the state rate), not the one before: computed
-/// as (knot − offset)/slope, a quarter of the M1670's knots at ignition times up to 3 s
-/// landed an ulp short.
+/// The time is moved up by ulps until the argument has reached the knot in its direction of
+/// travel, so that the run restarting there reads the piece the argument enters (its slope,
+/// for a derivative table in the state rate; the Taylor series' piece,
+/// `Table::local_at`), not the one it leaves: a rising argument on or past the knot
+/// (computed as (knot − offset)/slope, a quarter of the M1670's knots at ignition times up
+/// to 3 s landed an ulp short), a falling one strictly below it. At an end where the table
+/// jumps ([`Table::jumps_at`]) the argument is moved beyond the lookups' rounding slack, so
+/// that the restart reads the value after the jump. A knot counts as crossed only once the
+/// argument has reached it so: a run *starting* with a falling argument on a knot gets a
+/// stop time a few roundings later, where it lies below (a Taylor series there would read
+/// the piece above for its whole first step).
 pub fn next_knot_time(table: &Table, slope: f64, offset: f64, after: f64) -> f64 {
     if !(slope.is_finite() && offset.is_finite()) || slope == 0.0 {
         return f64::INFINITY;
     }
     let knots = table.knots();
-    let time = |x: f64| (x - offset) / slope;
+    let argument = |t: f64| slope * t + offset;
+    let reached = |knot: f64, t: f64| {
+        // The end the argument leaves the data by, if the table jumps there.
+        let leaving = match slope > 0.0 {
+            true => knots.last() == Some(&knot),
+            false => knots.first() == Some(&knot),
+        };
+        let jumps = leaving && table.jumps_at(knot);
+        let x = if jumps {
+            table.snapped(argument(t))
+        } else {
+            argument(t)
+        };
+        match (slope > 0.0, jumps) {
+            (true, false) => x >= knot,
+            (true, true) => x > knot,
+            (false, _) => x < knot,
+        }
+    };
+    // The first knot along the argument's travel it has not reached at `after` (one it
+    // sits on counts as not reached when falling: it still reads the piece above).
     let found = if slope > 0.0 {
-        // Times increase with the knot: the first knot whose time is past `after`.
-        knots.get(knots.partition_point(|&x| time(x) <= after))
+        knots.get(knots.partition_point(|&k| reached(k, after)))
     } else {
-        // Times decrease with the knot: the last knot whose time is past `after`.
         knots
-            .partition_point(|&x| time(x) > after)
+            .partition_point(|&k| !reached(k, after))
             .checked_sub(1)
             .and_then(|k| knots.get(k))
     };
-    found.map_or(f64::INFINITY, |&x| match slope > 0.0 {
-        true => on_or_past(x, slope, offset, time(x)),
-        false => time(x),
+    found.map_or(f64::INFINITY, |&knot| {
+        // An ulp of the argument, in time: how far t must move for it to change.
+        let scale = f64::EPSILON * knot.abs().max(offset.abs()) / slope.abs();
+        let start = ((knot - offset) / slope).max(after);
+        let time = moved_until(start, scale, |t| reached(knot, t));
+        if time > after {
+            time
+        } else {
+            after.next_up()
+        }
     })
 }
 
-/// `t`, or the next times up (a few ulps at most) until `slope·t + offset ≥ knot`.
-fn on_or_past(knot: f64, slope: f64, offset: f64, t: f64) -> f64 {
+/// `t`, or the first time after it (up by ulps, then by steps doubling from `scale`: at most
+/// ~70 tries) at which `reached` holds; `t` if none is found.
+fn moved_until(t: f64, scale: f64, reached: impl Fn(f64) -> bool) -> f64 {
+    if reached(t) {
+        return t;
+    }
     let mut moved = t;
     for _ in 0..8 {
-        if slope * moved + offset >= knot {
+        moved = moved.next_up();
+        if reached(moved) {
             return moved;
         }
-        moved = moved.next_up();
+    }
+    let mut step = (moved - t).max(scale);
+    for _ in 0..60 {
+        if reached(t + step) {
+            return t + step;
+        }
+        step *= 2.0;
     }
     t
 }

@@ -46,33 +46,47 @@ impl Table {
         local
     }
 
-    /// The piece holding `x` (within rounding of an end: the end's, as
-    /// [`Table::value_at`]), starting the search from `cursor`; the outside rule as for a
-    /// value (an error under `outside error`). From the last knot on the piece is the
-    /// constant the table is worth after its data (zero, the held value, or NaN under
-    /// `outside error`), since a series looks forward; `value` stays the table's value at
-    /// `x` (the state rate's).
+    /// The piece holding `x`, starting the search from `cursor`, for a series that looks
+    /// forward from `x` with the argument rising (or at rest); the outside rule as for a value
+    /// (an error under `outside error`).
+    ///
+    /// The piece is chosen from `x` itself, not from `x` snapped onto an end as a value is
+    /// ([`Table::value_at`]): from the last knot on, the piece is the constant the table is
+    /// worth after its data (zero or the held value; under `outside error` a
+    /// [`LookupError::Outside`]), and that constant is also the series' value at order 0 —
+    /// where `outside zero` meets a last value that is not zero, the table jumps at its last
+    /// knot, and the series of a step leaving it is the value after the jump (a step
+    /// arriving there ended at the knot: it is a stop time). Below the first knot, likewise
+    /// the constant before the data. On an interior knot, the piece starting there.
+    ///
+    /// A falling argument needs the piece *below* a knot: the stop times of a falling
+    /// argument are moved until it lies strictly below the knot
+    /// (`varmass_core::table::next_knot_time`), and a table of the
+    /// state is restarted past a knot it crosses, so an argument falls exactly on a knot only
+    /// when a run *starts* there (docs/tables.md#taylor-series).
     pub fn local_at(&self, x: f64, cursor: &mut Cursor) -> Result<Local, LookupError> {
         let value = self.value_at(x, cursor)?;
-        let curve = self.curve();
-        let (first, last) = curve.domain();
-        let inside = self.snapped(x);
-        if !(first <= inside && inside < last) {
-            // Outside under `zero` or `hold`: a constant. From the last knot on, what the
-            // table is worth after it (the series looks forward: the last piece extended
-            // would be a thrust curve's negative tail); under `outside error` nothing.
-            let after = match self.outside() {
-                _ if inside != last => value,
+        let (first, last) = self.curve().domain();
+        if !(first <= x && x < last) {
+            let constant = match self.outside() {
                 Outside::Zero => 0.0,
+                // The end's value: the value at `x`, on or beyond the end.
                 Outside::Hold => value,
-                Outside::Error => f64::NAN,
+                Outside::Error => {
+                    return Err(LookupError::Outside {
+                        argument: x,
+                        first,
+                        last,
+                    })
+                }
             };
             return Ok(Local {
                 knot: 0.0,
-                coefficients: [after, 0.0, 0.0, 0.0],
-                value,
+                coefficients: [constant, 0.0, 0.0, 0.0],
+                value: constant,
             });
         }
+        let curve = self.curve();
         let interval = self.cursor_interval(cursor);
         let width = curve.degree() + 1;
         let piece = &curve.coefficients()[interval * width..(interval + 1) * width];
@@ -93,7 +107,8 @@ impl Table {
 /// Coefficient `k` of w = F(a(t)) on the piece `local` (looked up at a\[0\] at order 0),
 /// with `a(j)` the argument's coefficient j ≤ k and `h(j)` the stored coefficients j < k of
 /// the Horner stage h₁; returns (h₁\[k\], w\[k\]), the caller storing h₁\[k\]. At order 0,
-/// w\[0\] is the table's own value (as the state rate's lookup gives it).
+/// w\[0\] is `local.value`: the table's own value (as the state rate's lookup gives it), or
+/// on and beyond an end the constant after it.
 #[inline]
 pub fn series_coefficient(
     local: &Local,

@@ -169,22 +169,45 @@ impl Table {
     /// curve's final zero is a negative thrust). The table does not know t: the slack is
     /// [`END_SLACK`] of the data's span, which covers the roundings of any t up to about
     /// 10⁵ spans (a motor of 3.9 s ignited up to ~10 days into a run), besides
-    /// [`ROUNDING_ULPS`] roundings of the largest knot.
+    /// [`ROUNDING_ULPS`] roundings of the largest knot — except at an end where the table
+    /// *jumps* (`outside zero` after a value that is not zero): there a run restarts just
+    /// past the knot and must read the value after the jump, so only the roundings of the
+    /// knot are taken back (`Table::jumps_at`).
     #[inline]
     fn snap(&self, x: f64) -> f64 {
         let (first, last) = self.curve.domain();
         if first <= x && x <= last {
             return x;
         }
-        let rounding = (ROUNDING_ULPS * f64::EPSILON * first.abs().max(last.abs()))
-            .max(END_SLACK * (last - first));
-        if x > last && x <= last + rounding {
-            last
-        } else if x < first && x >= first - rounding {
-            first
+        let end = if x > last { last } else { first };
+        let ulps = ROUNDING_ULPS * f64::EPSILON * first.abs().max(last.abs());
+        let rounding = match self.jumps_at(end) {
+            true => ulps,
+            false => ulps.max(END_SLACK * (last - first)),
+        };
+        if (x - end).abs() <= rounding {
+            end
         } else {
             x
         }
+    }
+
+    /// Whether the table's value jumps at `end` (its first or last knot): `outside zero`
+    /// where the data's value there is not zero — beyond the rounding of the end piece's
+    /// evaluation, 10⁻¹⁰ of the piece's larger end value (a thrust curve's final zero
+    /// evaluates to ~10⁻¹³ of its thrust). (`hold` is continuous; `error` has no value
+    /// beyond.) False for any other argument.
+    pub fn jumps_at(&self, end: f64) -> bool {
+        let (first, last) = self.curve.domain();
+        let knots = self.curve.knots();
+        let (interval, other) = match end {
+            _ if end == first => (0, knots[1]),
+            _ if end == last => (self.curve.intervals() - 1, knots[knots.len() - 2]),
+            _ => return false,
+        };
+        let near = self.curve.value_on(interval, end).abs();
+        let far = self.curve.value_on(interval, other).abs();
+        self.outside == Outside::Zero && near > 1e-10 * near.max(far)
     }
 
     /// A cursor on the table's own hint.
@@ -201,8 +224,9 @@ impl Table {
         }
     }
 
-    /// [`Table::snap`] for the Taylor series' piece (`series.rs`).
-    pub(crate) fn snapped(&self, x: f64) -> f64 {
+    /// The argument a lookup at `x` uses: `x`, or the end it lies within rounding beyond
+    /// (see [`END_SLACK`]; only the knot's roundings where the table jumps there).
+    pub fn snapped(&self, x: f64) -> f64 {
         self.snap(x)
     }
 
