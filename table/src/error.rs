@@ -69,6 +69,15 @@ pub enum ReadErrorKind {
     /// A second RASP header after data: one file, one motor.
     #[error("a second motor header; a table reads one motor per file")]
     SecondMotor,
+    /// The slope between two points overflows (values near ±1.8e308, or arguments a
+    /// subnormal apart): the interpolant there would be ±∞ or NaN.
+    #[error("the slope from ({}, {}) to ({}, {}) is not finite", from.0, from.1, to.0, to.1)]
+    SlopeNotFinite {
+        /// The previous point (argument, value).
+        from: (f64, f64),
+        /// This point.
+        to: (f64, f64),
+    },
     /// Fewer than two points: no interval to interpolate on.
     #[error("{found} point(s); a table needs at least two")]
     TooFewPoints {

@@ -5,7 +5,7 @@ use alloc::string::ToString;
 use alloc::vec::Vec;
 
 use crate::error::{ReadError, ReadErrorKind};
-use crate::points::Points;
+use crate::points::{InvalidPoints, Points};
 
 /// A field of a line: its 1-based column (in characters) and its text.
 pub(crate) type Field<'a> = (usize, &'a str);
@@ -100,6 +100,8 @@ pub(crate) fn number(line: usize, (column, text): Field<'_>) -> Result<f64, Read
 pub(crate) struct PointsBuilder {
     arguments: Vec<f64>,
     values: Vec<f64>,
+    /// The line each point was read on.
+    lines: Vec<usize>,
 }
 
 impl PointsBuilder {
@@ -119,6 +121,7 @@ impl PointsBuilder {
         }
         self.arguments.push(x);
         self.values.push(y);
+        self.lines.push(line);
         Ok(())
     }
 
@@ -146,8 +149,19 @@ impl PointsBuilder {
     /// The points; `last_line` is where a too-short file is reported.
     fn finish(self, last_line: usize) -> Result<Points, ReadError> {
         let found = self.arguments.len();
-        // Every check of `Points::new` but the count was made as the lines were read.
-        Points::new(self.arguments, self.values)
-            .map_err(|_| error_at(last_line, 1, ReadErrorKind::TooFewPoints { found }))
+        let lines = self.lines;
+        // Every check of `Points::new` but the count and the slopes was made as the lines
+        // were read.
+        let (arguments, values) = (self.arguments.clone(), self.values.clone());
+        Points::new(self.arguments, self.values).map_err(|invalid| match invalid {
+            InvalidPoints::SlopeNotFinite { index } => {
+                let kind = ReadErrorKind::SlopeNotFinite {
+                    from: (arguments[index - 1], values[index - 1]),
+                    to: (arguments[index], values[index]),
+                };
+                error_at(lines[index], 1, kind)
+            }
+            _ => error_at(last_line, 1, ReadErrorKind::TooFewPoints { found }),
+        })
     }
 }

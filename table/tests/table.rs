@@ -386,3 +386,19 @@ fn a_stretched_thrust_curve_scales_the_impulse_by_both_factors() {
         Err(InvalidPoints::NotFinite { index: 0 })
     );
 }
+
+#[test]
+fn a_file_with_an_overflowing_slope_names_its_line() {
+    // 1e308 to −1e308 over 1e-308: the chord overflows. The message named "2 point(s); a
+    // table needs at least two" before (every refusal of the points read as a count).
+    let text = "x,F\n0,1e308\n1e-308,-1e308\n";
+    let error = varmass_table::CsvTable::parse(text).unwrap_err();
+    assert_eq!(error.line, 3, "{error}");
+    assert!(
+        matches!(
+            error.kind,
+            varmass_table::ReadErrorKind::SlopeNotFinite { .. }
+        ),
+        "{error}"
+    );
+}
