@@ -264,7 +264,10 @@ fn swapped_argument(
                     k + 1
                 ),
             )
-            .with_help("an input takes its arguments by position: pass them in the declared order")
+            .with_help(
+                "an input takes its arguments by position: pass them in the declared order \
+                 (to evaluate it at other values on purpose, name them with a `let`)",
+            )
         })
     })
 }
