@@ -351,21 +351,22 @@ pub(crate) fn resolvable(t0: f64, h: f64) -> bool {
     h > 0.0 && t0 + h != t0
 }
 
-/// What an explicit adaptive pair (Dormand–Prince, DOP853) holds besides its stages: the
-/// system, the progress, the checked settings, the controller's memory and Hairer's
-/// stiffness test. One constructor, the start of a step and the step size to try, written
-/// once for both.
+/// What an adaptive stepper (Dormand–Prince, DOP853, the DIRK stepper) holds besides its
+/// stages: the system, the progress, the checked settings, the controller's memory and, for
+/// the explicit pairs, Hairer's stiffness test (`Test` = [`StiffnessTest`]; the DIRK stepper,
+/// made for stiff problems, has none: `()`). One constructor, the start of a step and the step
+/// size to try, written once for all.
 #[derive(Clone, Debug)]
-pub(crate) struct Controlled<'a, Sys, const S: usize> {
+pub(crate) struct Controlled<'a, Sys, const S: usize, Test = StiffnessTest> {
     pub(crate) system: &'a Sys,
     pub(crate) progress: Progress<S>,
     pub(crate) mode: Mode,
     /// Next and last step, the controller's memory, the FSAL rate.
     pub(crate) memory: ControlState<S>,
-    pub(crate) stiffness: StiffnessTest,
+    pub(crate) stiffness: Test,
 }
 
-impl<'a, Sys, const S: usize> Controlled<'a, Sys, S> {
+impl<'a, Sys, const S: usize, Test: Default> Controlled<'a, Sys, S, Test> {
     /// Starts at `(time, state)`; the state and the control are checked.
     pub(crate) fn new<const N: usize>(
         system: &'a Sys,
@@ -382,7 +383,7 @@ impl<'a, Sys, const S: usize> Controlled<'a, Sys, S> {
             progress: Progress::new(system, time, state)?,
             mode,
             memory: ControlState::new(),
-            stiffness: StiffnessTest::default(),
+            stiffness: Test::default(),
         })
     }
 
