@@ -12,7 +12,7 @@ use super::stiffness::StiffnessTest;
 use super::FixedStep;
 use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::powf;
-use crate::stepper::{state_rate, Progress};
+use crate::stepper::{state_rate, Progress, StepOutcome};
 use crate::system::VariableMassSystem;
 use crate::tolerance::{weighted_rms, Tolerance};
 
@@ -417,6 +417,34 @@ impl<'a, Sys, const S: usize, Test: Default> Controlled<'a, Sys, S, Test> {
             return Err(StepError::new(t0, *y0, kind));
         }
         Ok((h, reaches_stop))
+    }
+}
+
+/// A pair's two stages at the same time t₀ + h for the stiffness test: (state, rate).
+pub(crate) type StagePair<'v, const S: usize> = (&'v SVector<f64, S>, &'v SVector<f64, S>);
+
+impl<Sys, const S: usize> Controlled<'_, Sys, S, StiffnessTest> {
+    /// Accepts a step of size `h` ending at `end` (the new state and the rate there, which
+    /// the next step starts from: FSAL) and runs Hairer's stiffness test on `end` and
+    /// `stage`, the other stage at t₀ + h, against the method's h|λ| `bound`.
+    pub(crate) fn accept_observed<const N: usize>(
+        &mut self,
+        (h, reaches_stop): (f64, bool),
+        end: StagePair<'_, S>,
+        stage: StagePair<'_, S>,
+        bound: f64,
+    ) -> Result<StepOutcome, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let outcome = self.progress.accept(self.system, h, reaches_stop, *end.0)?;
+        let statistics = &mut self.progress.statistics;
+        let stiff = self
+            .stiffness
+            .observe(statistics.accepted_steps, h, end, stage, bound);
+        statistics.stiffness_detected |= stiff;
+        self.memory.accepted(h, *end.1);
+        Ok(outcome)
     }
 }
 
