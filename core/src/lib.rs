@@ -137,7 +137,7 @@ pub use observe::{observe, Observable, Quantity, Recording};
 #[cfg(feature = "run")]
 pub use phases::{
     continue_phases, continue_phases_keeping, run_phases, run_phases_keeping, Carry, Phase,
-    PhaseChange, PhasedSolution,
+    PhaseChange, PhasedSolution, StepperFor,
 };
 #[cfg(feature = "run")]
 pub use run::{run, RunConfig, RunError, Switching};

@@ -35,6 +35,23 @@ pub const BAD_STATE_MASS: &str =
 pub const NOTHING_TO_CONTINUE: &str =
     "the phases to continue failed: there is nothing to go on from";
 
+/// What builds the stepper of a phase from its system and where the phase begins: a
+/// closure such as `|system, time, state| Dop853::new(system, time, state, control)`.
+pub trait StepperFor<'p, Sys: 'p, const N: usize, const S: usize>:
+    FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<Self::Stepper, StepError<S>>
+{
+    /// The stepper it builds.
+    type Stepper: Stepper<N, S>;
+}
+
+impl<'p, Sys: 'p, St, F, const N: usize, const S: usize> StepperFor<'p, Sys, N, S> for F
+where
+    F: FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    St: Stepper<N, S>,
+{
+    type Stepper = St;
+}
+
 /// How the state enters a phase from the one before.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Carry {
@@ -91,15 +108,14 @@ pub struct PhasedSolution<const N: usize, const S: usize> {
 /// `stepper_for` builds for its system, until its event (or the end). On a failure the
 /// [`RunError`] carries the solution of every phase so far (see [`run_phases_keeping`] to
 /// keep the phase of each point too).
-pub fn run_phases<'p, Sys, St, const N: usize, const S: usize>(
+pub fn run_phases<'p, Sys, const N: usize, const S: usize>(
     phases: &'p [Phase<'p, Sys, S>],
     start: (f64, SVector<f64, S>),
-    stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    stepper_for: impl StepperFor<'p, Sys, N, S>,
     config: &RunConfig,
 ) -> Result<PhasedSolution<N, S>, RunError<N, S>>
 where
     Sys: VariableMassSystem<N, S>,
-    St: Stepper<N, S>,
 {
     into_result(run_phases_keeping(phases, start, stepper_for, config))
 }
@@ -107,15 +123,14 @@ where
 /// [`run_phases`], a failure returned beside the phased solution so far (its `stop`
 /// [`StopReason::Failed`]) instead of in a [`RunError`]: the phase of every point and the
 /// changes are kept, as a caller recording the phase column needs.
-pub fn run_phases_keeping<'p, Sys, St, const N: usize, const S: usize>(
+pub fn run_phases_keeping<'p, Sys, const N: usize, const S: usize>(
     phases: &'p [Phase<'p, Sys, S>],
     start: (f64, SVector<f64, S>),
-    stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    stepper_for: impl StepperFor<'p, Sys, N, S>,
     config: &RunConfig,
 ) -> (PhasedSolution<N, S>, Option<StepError<S>>)
 where
     Sys: VariableMassSystem<N, S>,
-    St: Stepper<N, S>,
 {
     let phased = PhasedSolution {
         solution: Solution::new(),
@@ -132,17 +147,16 @@ where
 /// its `carry` rule at the last point, and the phases are numbered on from `phased`'s. A
 /// `phased` that reached the end time is returned as it is; one that failed is an
 /// [`StepErrorKind::InvalidConfiguration`](crate::StepErrorKind) error ([`NOTHING_TO_CONTINUE`]).
-pub fn continue_phases<'p, Before, Sys, St, const N: usize, const S: usize>(
+pub fn continue_phases<'p, Before, Sys, const N: usize, const S: usize>(
     phased: PhasedSolution<N, S>,
     before: &Before,
     phases: &'p [Phase<'p, Sys, S>],
-    stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    stepper_for: impl StepperFor<'p, Sys, N, S>,
     config: &RunConfig,
 ) -> Result<PhasedSolution<N, S>, RunError<N, S>>
 where
     Before: VariableMassSystem<N, S>,
     Sys: VariableMassSystem<N, S>,
-    St: Stepper<N, S>,
 {
     into_result(continue_phases_keeping(
         phased,
@@ -155,17 +169,16 @@ where
 
 /// [`continue_phases`], a failure returned beside the phased solution so far, as
 /// [`run_phases_keeping`] does.
-pub fn continue_phases_keeping<'p, Before, Sys, St, const N: usize, const S: usize>(
+pub fn continue_phases_keeping<'p, Before, Sys, const N: usize, const S: usize>(
     phased: PhasedSolution<N, S>,
     before: &Before,
     phases: &'p [Phase<'p, Sys, S>],
-    stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    stepper_for: impl StepperFor<'p, Sys, N, S>,
     config: &RunConfig,
 ) -> (PhasedSolution<N, S>, Option<StepError<S>>)
 where
     Before: VariableMassSystem<N, S>,
     Sys: VariableMassSystem<N, S>,
-    St: Stepper<N, S>,
 {
     let Some((time, state)) = phased.solution.last() else {
         return (phased, None);
@@ -190,18 +203,17 @@ where
 
 /// The loop of [`run_phases_keeping`] and [`continue_phases_keeping`]: runs `phases` from
 /// `(time, state)`, the first entered from `entry` when there is one, appending to `phased`.
-fn extend<'p, Before, Sys, St, const N: usize, const S: usize>(
+fn extend<'p, Before, Sys, const N: usize, const S: usize>(
     mut phased: PhasedSolution<N, S>,
     entry: Option<&Before>,
     phases: &'p [Phase<'p, Sys, S>],
     (mut time, mut state): (f64, SVector<f64, S>),
-    mut stepper_for: impl FnMut(&'p Sys, f64, SVector<f64, S>) -> Result<St, StepError<S>>,
+    mut stepper_for: impl StepperFor<'p, Sys, N, S>,
     config: &RunConfig,
 ) -> (PhasedSolution<N, S>, Option<StepError<S>>)
 where
     Before: VariableMassSystem<N, S>,
     Sys: VariableMassSystem<N, S>,
-    St: Stepper<N, S>,
 {
     let fail = |error, mut phased: PhasedSolution<N, S>| {
         phased.solution.stop = StopReason::Failed;

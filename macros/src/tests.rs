@@ -14,6 +14,11 @@ fn sled_struct() -> proc_macro2::TokenStream {
     }
 }
 
+/// The sled's expansion with `arguments`, as token text.
+fn sled_text(arguments: proc_macro2::TokenStream) -> String {
+    expand(arguments, sled_struct()).to_string()
+}
+
 /// The items of an expansion, as token text, split into the file-tracking constants and the
 /// rest.
 fn items(tokens: proc_macro2::TokenStream) -> (Vec<String>, Vec<String>) {
@@ -67,25 +72,17 @@ fn leaving_the_impact_out_changes_the_code() {
 
 #[test]
 fn minimal_emission_leaves_the_optional_outputs_out() {
-    let full = expand(
-        quote!(file = "../models/sled.vms", with = ["impact"]),
-        sled_struct(),
-    )
-    .to_string();
-    let minimal = expand(
-        quote!(file = "../models/sled.vms", with = ["impact"], emit = []),
-        sled_struct(),
-    )
-    .to_string();
-    let power_only = expand(
-        quote!(
-            file = "../models/sled.vms",
-            with = ["impact"],
-            emit = ["power"]
-        ),
-        sled_struct(),
-    )
-    .to_string();
+    let full = sled_text(quote!(file = "../models/sled.vms", with = ["impact"]));
+    let minimal = sled_text(quote!(
+        file = "../models/sled.vms",
+        with = ["impact"],
+        emit = []
+    ));
+    let power_only = sled_text(quote!(
+        file = "../models/sled.vms",
+        with = ["impact"],
+        emit = ["power"]
+    ));
     for optional in ["fn hamiltonian", "fn power", "fn jacobian", "DERIVATION"] {
         assert!(full.contains(optional), "{optional}");
         assert!(!minimal.contains(optional), "{optional}");
@@ -104,11 +101,7 @@ fn minimal_emission_leaves_the_optional_outputs_out() {
 
 #[test]
 fn an_unknown_output_is_an_error_naming_the_known_ones() {
-    let expanded = expand(
-        quote!(file = "../models/sled.vms", emit = ["jacobain"]),
-        sled_struct(),
-    )
-    .to_string();
+    let expanded = sled_text(quote!(file = "../models/sled.vms", emit = ["jacobain"]));
     assert!(
         expanded.contains(
             "unknown output `jacobain`; expected one of `hamiltonian`, `power`, `jacobian`, `derivation`"

@@ -326,12 +326,7 @@ impl Program {
     ) -> Result<(), SystemError> {
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_velocity_state(scratch, t, velocity_state);
-        self.run(self.stage(quantity), scratch);
-        if let Some(error) = scratch.outside.take() {
-            return Err(error);
-        }
-        copy(&scratch.values, out);
-        Ok(())
+        self.run_checked(quantity, scratch, out)
     }
 
     /// A velocity-form quantity at a state `[q, p, m_s]` (q̇ recovered from p) into `out`.
@@ -351,6 +346,17 @@ impl Program {
         }
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_state(scratch, t, state)?;
+        self.run_checked(quantity, scratch, out)
+    }
+
+    /// Runs the stage of `quantity` on the loaded `scratch` into `out`; a table lookup
+    /// outside its data is the typed error.
+    fn run_checked(
+        &self,
+        quantity: Quantity,
+        scratch: &mut Scratch,
+        out: &mut [f64],
+    ) -> Result<(), SystemError> {
         self.run(self.stage(quantity), scratch);
         if let Some(error) = scratch.outside.take() {
             return Err(error);

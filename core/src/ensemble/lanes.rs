@@ -7,10 +7,7 @@
 use alloc::vec::Vec;
 use core::ops::Range;
 
-use super::{
-    check_finite, collect_parallel, member_rng, Failure, MemberError, MemberRng, Partial,
-    DEFAULT_BATCH_SIZE,
-};
+use super::{check_finite, collect_parallel, Ensemble, Failure, MemberError, MemberRng, Partial};
 
 /// Members per call of the chunk function by default: enough for every lane to be
 /// refilled many times (members take different numbers of steps), few enough that the
@@ -21,13 +18,11 @@ pub const DEFAULT_CHUNK_SIZE: usize = 64;
 /// docs): `chunk` receives the parameters of consecutive members and returns their results
 /// in the same order.
 pub struct LaneEnsemble<const K: usize, Sample, Chunk> {
-    seed: u64,
-    observables: [&'static str; K],
-    sample: Sample,
-    chunk: Chunk,
+    /// The seed, the observables, the sampler and the batching, held as an [`Ensemble`]
+    /// whose member function is the chunk function: the settings and their builder methods
+    /// are [`Ensemble`]'s, written once.
+    ensemble: Ensemble<K, Sample, Chunk>,
     chunk_size: usize,
-    batch_size: u64,
-    parallel: bool,
 }
 
 impl<const K: usize, Sample, Chunk> LaneEnsemble<K, Sample, Chunk> {
@@ -45,13 +40,8 @@ impl<const K: usize, Sample, Chunk> LaneEnsemble<K, Sample, Chunk> {
         Chunk: Fn(&[P]) -> Vec<Result<[f64; K], E>>,
     {
         Self {
-            seed,
-            observables,
-            sample,
-            chunk,
+            ensemble: Ensemble::from_parts(seed, observables, sample, chunk),
             chunk_size: DEFAULT_CHUNK_SIZE,
-            batch_size: DEFAULT_BATCH_SIZE,
-            parallel: cfg!(feature = "parallel"),
         }
     }
 
@@ -63,20 +53,16 @@ impl<const K: usize, Sample, Chunk> LaneEnsemble<K, Sample, Chunk> {
         }
     }
 
-    /// Members per batch (as [`Ensemble::batch_size`](super::Ensemble::batch_size)).
+    /// Members per batch (as [`Ensemble::batch_size`]).
     pub fn batch_size(self, batch_size: u64) -> Self {
-        Self {
-            batch_size: batch_size.max(1),
-            ..self
-        }
+        let ensemble = self.ensemble.batch_size(batch_size);
+        Self { ensemble, ..self }
     }
 
-    /// Runs on the calling thread only.
+    /// Runs on the calling thread only (as [`Ensemble::serial`]).
     pub fn serial(self) -> Self {
-        Self {
-            parallel: false,
-            ..self
-        }
+        let ensemble = self.ensemble.serial();
+        Self { ensemble, ..self }
     }
 }
 
@@ -94,10 +80,9 @@ where
     /// If the chunk function returns other than one result per member it was given (a
     /// bug in that function, which no result could stand for).
     pub fn run(&self, members: Range<u64>) -> Partial<P, E> {
-        let mut partial = Partial::empty(self.seed, &self.observables);
-        let size = usize::try_from(self.batch_size).unwrap_or(usize::MAX);
-        for start in (members.start..members.end).step_by(size) {
-            let batch = start..start.saturating_add(self.batch_size).min(members.end);
+        let ensemble = &self.ensemble;
+        let mut partial = Partial::empty(ensemble.seed, &ensemble.observables);
+        for batch in ensemble.batches(members) {
             self.run_batch(batch, &mut partial);
         }
         partial
@@ -109,7 +94,7 @@ where
             .step_by(self.chunk_size)
             .map(|start| start..(start + chunk_size).min(batch.end))
             .collect();
-        let outcomes: Vec<Vec<_>> = if self.parallel {
+        let outcomes: Vec<Vec<_>> = if self.ensemble.parallel {
             collect_parallel(0..chunks.len() as u64, &|i| {
                 self.run_chunk(&chunks[i as usize])
             })
@@ -124,11 +109,8 @@ where
     /// The members of `chunk`, sampled and flown, as the scalar ensemble records them.
     #[allow(clippy::type_complexity)]
     fn run_chunk(&self, chunk: &Range<u64>) -> Vec<Result<[f64; K], Failure<P, E>>> {
-        let params: Vec<P> = chunk
-            .clone()
-            .map(|index| (self.sample)(&mut member_rng(self.seed, index)))
-            .collect();
-        let results = (self.chunk)(&params);
+        let params: Vec<P> = chunk.clone().map(|i| self.ensemble.params(i)).collect();
+        let results = (self.ensemble.member)(&params);
         // The chunk function's contract, as `Iterator::zip` would hide its breach.
         assert_eq!(
             results.len(),

@@ -95,6 +95,17 @@ impl<const K: usize, Sample, Member> Ensemble<K, Sample, Member> {
         Sample: Fn(&mut MemberRng) -> P,
         Member: Fn(&P) -> Result<[f64; K], E>,
     {
+        Self::from_parts(seed, observables, sample, member)
+    }
+
+    /// The ensemble with the default batching, whatever `member` is: the constructor of
+    /// [`LaneEnsemble`] too, whose member function takes a chunk.
+    fn from_parts(
+        seed: u64,
+        observables: [&'static str; K],
+        sample: Sample,
+        member: Member,
+    ) -> Self {
         Self {
             seed,
             observables,
@@ -127,6 +138,23 @@ impl<const K: usize, Sample, Member> Ensemble<K, Sample, Member> {
     pub fn seed(&self) -> u64 {
         self.seed
     }
+
+    /// `members` cut into consecutive batches.
+    fn batches(&self, members: Range<u64>) -> impl Iterator<Item = Range<u64>> {
+        let size = self.batch_size;
+        let end = members.end;
+        (members.start..end)
+            .step_by(usize::try_from(size).unwrap_or(usize::MAX))
+            .map(move |start| start..start.saturating_add(size).min(end))
+    }
+
+    /// The parameters of member `index`, drawn from its own stream.
+    fn params<P>(&self, index: u64) -> P
+    where
+        Sample: Fn(&mut MemberRng) -> P,
+    {
+        (self.sample)(&mut member_rng(self.seed, index))
+    }
 }
 
 impl<const K: usize, P, E, Sample, Member> Ensemble<K, Sample, Member>
@@ -139,7 +167,7 @@ where
     /// Member `index` alone: its parameters and its observables (or why it failed), as in
     /// any run of the ensemble.
     pub fn member(&self, index: u64) -> (P, Result<[f64; K], MemberError<E>>) {
-        let params = (self.sample)(&mut member_rng(self.seed, index));
+        let params = self.params(index);
         let result = (self.member)(&params)
             .map_err(MemberError::Run)
             .and_then(check_finite);
@@ -177,15 +205,6 @@ where
             }
         }
         Ok(partial)
-    }
-
-    /// `members` cut into consecutive batches.
-    fn batches(&self, members: Range<u64>) -> impl Iterator<Item = Range<u64>> {
-        let size = self.batch_size;
-        let end = members.end;
-        (members.start..end)
-            .step_by(usize::try_from(size).unwrap_or(usize::MAX))
-            .map(move |start| start..start.saturating_add(size).min(end))
     }
 
     /// Runs one batch (in parallel if enabled) and appends it to `partial` in index order.

@@ -28,7 +28,7 @@ use nalgebra::{SMatrix, SVector};
 use self::stage::{weighted_norm, StepContext};
 pub(crate) use self::tableau::{explicit_parts, on_increments, rate_transform};
 pub use self::tableau::{DirkMethod, DirkTableau};
-use super::control::{resolvable, AdaptiveControl, ControlState, Mode, StepControl};
+use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl};
 use super::newton::Lu;
 use crate::error::{StepError, StepErrorKind};
 use crate::math::powf;
@@ -68,13 +68,11 @@ const FIXED_MODE_TOLERANCE: f64 = 1e-10;
 /// [`super::Sdirk4`] or [`super::Esdirk43`].
 #[derive(Clone, Debug)]
 pub struct Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> {
-    system: &'a Sys,
-    progress: Progress<S>,
-    mode: Mode,
+    /// The system, the progress, the settings and the controller's memory: next and last
+    /// step, the last rejection, and (with an explicit first stage) the FSAL rate; the PI
+    /// memory it also holds is unused here, and there is no stiffness test.
+    core: Controlled<'a, Sys, S, ()>,
     newton: DirkNewton,
-    /// Next and last step, the last rejection, and (with an explicit first stage) the
-    /// FSAL rate; the PI memory it also holds is unused here.
-    memory: ControlState<S>,
     /// The stage vectors W₁…W_M of the last accepted step.
     increments: [SVector<f64, S>; M],
     /// The Jacobian in use, and whether it was evaluated at the current state.
@@ -134,13 +132,9 @@ where
         state: SVector<f64, S>,
         control: StepControl,
     ) -> Result<Self, StepError<S>> {
-        let mode = control.validated().map_err(|e| e.at(time, &state))?;
         Ok(Self {
-            system,
-            progress: Progress::new(system, time, state)?,
-            mode,
+            core: Controlled::new::<N>(system, time, state, control)?,
             newton: DirkNewton::default(),
-            memory: ControlState::new(),
             increments: [SVector::zeros(); M],
             jacobian: None,
             contraction: [1.0; M],
@@ -167,25 +161,25 @@ where
     /// `time` within the step; outside it extrapolates). Before the first step it returns
     /// the current state.
     pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
-        let h = self.memory.last_step;
+        let h = self.core.memory.last_step;
         if h <= 0.0 {
-            return *self.progress.state();
+            return *self.core.progress.state();
         }
         let [d1, d2, d3, d4] = &T::TABLEAU.dense;
         let row = |d| combination(d, &self.increments, M);
-        let s = (time - self.progress.previous_time()) / h;
+        let s = (time - self.core.progress.previous_time()) / h;
         let (c1, c2, c3, c4) = (row(d1), row(d2), row(d3), row(d4));
-        self.progress.previous_state() + (c1 + (c2 + (c3 + c4 * s) * s) * s) * s
+        self.core.progress.previous_state() + (c1 + (c2 + (c3 + c4 * s) * s) * s) * s
     }
 
     /// The size of the step the stepper will try next (0 before the first step).
     pub fn proposed_step(&self) -> f64 {
-        self.memory.next_step
+        self.core.memory.next_step
     }
 
     /// The error weights atol + rtol·|y| (fixed mode: [`FIXED_MODE_TOLERANCE`]).
     fn weights(&self, y: &SVector<f64, S>) -> SVector<f64, S> {
-        let (atol, rtol) = match &self.mode {
+        let (atol, rtol) = match &self.core.mode {
             Mode::Adaptive(c, _) => (c.absolute_tolerance, c.relative_tolerance),
             Mode::Fixed(_) => (FIXED_MODE_TOLERANCE, FIXED_MODE_TOLERANCE),
         };
@@ -197,12 +191,12 @@ where
         match self.jacobian {
             Some((jacobian, fresh)) if fresh || !force => Ok(jacobian),
             _ => {
-                let (t0, y0) = (self.progress.time(), *self.progress.state());
-                self.progress.statistics.jacobian_evaluations += 1;
-                let jacobian = self
-                    .system
-                    .jacobian(t0, &y0)
-                    .map_err(|error| StepError::from_system(self.system, error, t0, &y0))?;
+                let (t0, y0) = (self.core.progress.time(), *self.core.progress.state());
+                self.core.progress.statistics.jacobian_evaluations += 1;
+                let jacobian =
+                    self.core.system.jacobian(t0, &y0).map_err(|error| {
+                        StepError::from_system(self.core.system, error, t0, &y0)
+                    })?;
                 if !jacobian.iter().all(|x| x.is_finite()) {
                     return Err(StepError::new(t0, y0, StepErrorKind::NonFiniteState));
                 }
@@ -224,18 +218,21 @@ where
         let mut w = [SVector::zeros(); M];
         let first = usize::from(tableau.explicit_first);
         if tableau.explicit_first {
-            let rate = self.memory.rate_at_start(self.system, &mut self.progress);
+            let rate = self
+                .core
+                .memory
+                .rate_at_start(self.core.system, &mut self.core.progress);
             w[0] = rate.map_err(StageFailure::Rate)? * h;
         }
         let (mut explicit, mut last_iterations, mut slowest_rate) = (SVector::zeros(), 0, 0.0f64);
         for i in first..M {
             explicit = combination(&tableau.alpha[i], &w, i);
-            let start = if i == first && extrapolate && self.memory.last_step > 0.0 {
+            let start = if i == first && extrapolate && self.core.memory.last_step > 0.0 {
                 self.interpolate(t0 + tableau.c[i] * h) - y0
             } else {
                 combination(&tableau.start[i], &w, i)
             };
-            let statistics = &mut self.progress.statistics;
+            let statistics = &mut self.core.progress.statistics;
             let eta = &mut self.contraction[i];
             let stage = context.solve_stage(statistics, tableau.c[i], &explicit, start, eta)?;
             w[i] = stage.increment;
@@ -243,7 +240,8 @@ where
             slowest_rate = slowest_rate.max(stage.slowest_rate);
         }
         let state = y0 + w[M - 1];
-        self.system
+        self.core
+            .system
             .check_state(t0 + h, &state)
             .map_err(StageFailure::Rate)?;
         let embedded = combination(&tableau.embedded, &w, M);
@@ -277,13 +275,14 @@ where
         reaches_stop: bool,
         attempt: Attempt<S, M>,
     ) -> Result<StepOutcome, StepError<S>> {
-        let outcome = self
-            .progress
-            .accept(self.system, h, reaches_stop, attempt.state)?;
+        let outcome =
+            self.core
+                .progress
+                .accept(self.core.system, h, reaches_stop, attempt.state)?;
         self.increments = attempt.increments;
         // The last stage's rate is f at the new state: the next step's explicit first
         // stage (SDIRK4, without one, never reads it).
-        self.memory.accepted(h, attempt.last_rate);
+        self.core.memory.accepted(h, attempt.last_rate);
         // Keep the Jacobian (now from an earlier state) while Newton contracts fast.
         self.jacobian = match self.jacobian {
             Some((jacobian, _)) if attempt.slowest_rate <= self.newton.jacobian_reuse_rate => {
@@ -304,8 +303,10 @@ where
     ) -> Result<StepOutcome, StepError<S>> {
         let error = attempt.error;
         let outcome = self.accept(h, reaches_stop, attempt)?;
-        let next = self.memory.after_acceptance(h, proposed, error);
-        self.memory.propose(next, reaches_stop, control.max_step);
+        let next = self.core.memory.after_acceptance(h, proposed, error);
+        self.core
+            .memory
+            .propose(next, reaches_stop, control.max_step);
         Ok(outcome)
     }
 
@@ -331,9 +332,9 @@ where
             }
             StageFailure::Rate(error) => (error, 0.25),
         };
-        self.memory.next_step = h * shrink;
-        let fixed = matches!(self.mode, Mode::Fixed(_));
-        if fixed || !resolvable(t0, self.memory.next_step) {
+        self.core.memory.next_step = h * shrink;
+        let fixed = matches!(self.core.mode, Mode::Fixed(_));
+        if fixed || !resolvable(t0, self.core.memory.next_step) {
             return Err(error);
         }
         Ok(())
@@ -349,15 +350,15 @@ where
     type System = Sys;
 
     fn parts(&self) -> (&Sys, &Progress<S>) {
-        (self.system, &self.progress)
+        (self.core.system, &self.core.progress)
     }
 
     fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
-        ProgressMut::new(self.system, &mut self.progress)
+        ProgressMut::new(self.core.system, &mut self.core.progress)
     }
 
     fn forget_history(&mut self, _: Restarting) {
-        self.memory.restart();
+        self.core.memory.restart();
         self.jacobian = None;
         self.contraction = [1.0; M];
     }
@@ -367,26 +368,25 @@ where
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (t0, y0) = (self.progress.time(), *self.progress.state());
-        if self.memory.next_step <= 0.0 {
+        let (t0, y0) = (self.core.progress.time(), *self.core.progress.state());
+        if self.core.memory.next_step <= 0.0 {
             // HNW's heuristic for order 4, from the rate at the start (evaluated only then).
-            let (system, start) = (self.system, (t0, &y0));
+            let (system, start) = (self.core.system, (t0, &y0));
             let rate = |progress: &mut Progress<S>| {
                 state_rate(system, &mut progress.statistics, start.0, start.1)
             };
-            self.memory.next_step = self.mode.first_step(system, &mut self.progress, rate, 4)?;
+            self.core.memory.next_step =
+                self.core
+                    .mode
+                    .first_step(system, &mut self.core.progress, rate, 4)?;
         }
-        let adaptive = match self.mode {
+        let adaptive = match self.core.mode {
             Mode::Adaptive(control, _) => Some(control),
             Mode::Fixed(_) => None,
         };
         let mut extrapolate = true;
         loop {
-            let (h, reaches_stop) = self.progress.next_step(self.memory.next_step)?;
-            if !resolvable(t0, h) {
-                let kind = StepErrorKind::StepSizeUnderflow { step: h };
-                return Err(StepError::new(t0, y0, kind));
-            }
+            let (h, reaches_stop) = self.core.attempt_size((t0, &y0))?;
             let (jacobian, fresh) = match self.jacobian {
                 Some(pair) => pair,
                 None => (self.refresh_jacobian(true)?, true),
@@ -397,7 +397,7 @@ where
                 Some(lu) => {
                     let newton = self.newton;
                     let context = StepContext {
-                        system: self.system,
+                        system: self.core.system,
                         t0,
                         y0,
                         h,
@@ -415,7 +415,7 @@ where
                                 let accepted = (h, reaches_stop, attempt);
                                 return self.accept_controlled(&control, proposed, accepted);
                             }
-                            self.memory.reject(proposed, &mut self.progress);
+                            self.core.memory.reject(proposed, &mut self.core.progress);
                             continue;
                         }
                         (Err(failure), _) => failure,
@@ -427,8 +427,8 @@ where
                 },
             };
             extrapolate = false;
-            self.progress.statistics.rejected_steps += 1;
-            self.memory.last_rejected = true;
+            self.core.progress.statistics.rejected_steps += 1;
+            self.core.memory.last_rejected = true;
             self.recover(failure, fresh, (t0, y0), h)?;
         }
     }

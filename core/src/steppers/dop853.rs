@@ -294,23 +294,16 @@ where
         attempt: &Attempt<S>,
         completion: Completion<S>,
     ) -> Result<StepOutcome, StepError<S>> {
-        let outcome =
-            self.core
-                .progress
-                .accept(self.core.system, h, reaches_stop, attempt.state)?;
-        let statistics = &mut self.core.progress.statistics;
-        let stiff = self.core.stiffness.observe(
-            statistics.accepted_steps,
-            h,
+        // Stage 12 and the rate at the new state are both at t₀ + h.
+        let outcome = self.core.accept_observed::<N>(
+            (h, reaches_stop),
             (&attempt.state, &completion.rate),
             (&attempt.stage_12_state, &attempt.stages[11]),
             STIFFNESS_BOUND,
-        );
-        statistics.stiffness_detected |= stiff;
+        )?;
         if let Some(continuous) = completion.continuous {
             self.continuous = continuous;
         }
-        self.core.memory.accepted(h, completion.rate);
         Ok(outcome)
     }
 

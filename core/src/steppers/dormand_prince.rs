@@ -267,21 +267,14 @@ where
         reaches_stop: bool,
         attempt: Attempt<S>,
     ) -> Result<StepOutcome, StepError<S>> {
-        let outcome =
-            self.core
-                .progress
-                .accept(self.core.system, h, reaches_stop, attempt.state)?;
-        let statistics = &mut self.core.progress.statistics;
-        let stiff = self.core.stiffness.observe(
-            statistics.accepted_steps,
-            h,
+        // Stages 6 and 7 are both at t₀ + h; stage 7 is the rate at the new state.
+        let outcome = self.core.accept_observed::<N>(
+            (h, reaches_stop),
             (&attempt.state, &attempt.stages[6]),
             (&attempt.stage_6_state, &attempt.stages[5]),
             STIFFNESS_BOUND,
-        );
-        statistics.stiffness_detected |= stiff;
+        )?;
         self.stages = attempt.stages;
-        self.core.memory.accepted(h, attempt.stages[6]);
         Ok(outcome)
     }
 }

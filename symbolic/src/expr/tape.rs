@@ -98,6 +98,17 @@ impl Clone for Tape {
     }
 }
 
+/// Appends the slots of `ids` (by `slot`) to `operands`: where they start and how many.
+fn push_operands(
+    operands: &mut Vec<usize>,
+    ids: &[Id],
+    slot: impl Fn(&Id) -> usize,
+) -> (usize, usize) {
+    let start = operands.len();
+    operands.extend(ids.iter().map(slot));
+    (start, ids.len())
+}
+
 impl ExprPool {
     /// Compiles `roots` into one [`Tape`]; `out[i]` of [`Tape::eval`] is the value of
     /// `roots[i]`.
@@ -116,20 +127,12 @@ impl ExprPool {
                     None => Instr::Var(sym.index()),
                 },
                 Node::Add(terms) => {
-                    let start = operands.len();
-                    operands.extend(terms.iter().map(s));
-                    Instr::Add {
-                        start,
-                        len: terms.len(),
-                    }
+                    let (start, len) = push_operands(&mut operands, terms, s);
+                    Instr::Add { start, len }
                 }
                 Node::Mul(factors) => {
-                    let start = operands.len();
-                    operands.extend(factors.iter().map(s));
-                    Instr::Mul {
-                        start,
-                        len: factors.len(),
-                    }
+                    let (start, len) = push_operands(&mut operands, factors, s);
+                    Instr::Mul { start, len }
                 }
                 Node::Pow(b, x) => {
                     let exponent = self.as_rational(*x);

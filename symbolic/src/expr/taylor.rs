@@ -441,20 +441,14 @@ impl Compiler<'_> {
             return self.emit(constant_call(f, a), &[]);
         }
         match f {
-            Func::Sin | Func::Cos => {
-                let (sin, cos) = self.pair(a, false);
-                if f == Func::Sin {
-                    sin
+            Func::Sin | Func::Cos | Func::Sinh | Func::Cosh => {
+                // One pair of recurrences gives both functions (sin with cos, sinh with cosh).
+                let hyperbolic = matches!(f, Func::Sinh | Func::Cosh);
+                let (odd, even) = self.pair(a, hyperbolic);
+                if matches!(f, Func::Sin | Func::Sinh) {
+                    odd
                 } else {
-                    cos
-                }
-            }
-            Func::Sinh | Func::Cosh => {
-                let (sinh, cosh) = self.pair(a, true);
-                if f == Func::Sinh {
-                    sinh
-                } else {
-                    cosh
+                    even
                 }
             }
             Func::Tan | Func::Tanh => {

@@ -15,7 +15,9 @@ use varmass_table::{series_coefficient, Local, Table};
 /// range into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)): four
 /// independent chains of additions instead of one (heyoka sums pairwise for the same
 /// reason). The generated code's copy (`varmass_core::steppers::taylor::series::sum`) adds
-/// in this same order: `tests/taylor_emitted.rs` holds the two bit-identical.
+/// in this same order: `tests/taylor_emitted.rs` holds the two bit-identical. A copy on
+/// purpose: `varmass-symbolic` does not depend on `varmass-core` (generated code needs only
+/// the core), and the generated code's copy is `#[inline(always)]` for its hot loops.
 pub(super) fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
     let mut s = [0.0f64; 4];
     let mut j = start;

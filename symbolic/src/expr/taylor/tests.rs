@@ -56,7 +56,11 @@ impl Bench {
 
     /// The tape's coefficients of `root`, with x and y as inputs and c = 1.7.
     fn taylor(&self, root: Id) -> Series {
-        let tape: TaylorTape = self.pool.compile_taylor(&[root], &[self.x, self.y]);
+        self.run(&self.pool.compile_taylor(&[root], &[self.x, self.y]))
+    }
+
+    /// The coefficients of `tape`'s first output, its inputs x and y, with c = 1.7.
+    fn run(&self, tape: &TaylorTape) -> Series {
         let mut jet = TaylorJet::new();
         let mut env = vec![f64::NAN; self.pool.symbols().len()];
         env[self.c.index()] = 1.7;
@@ -223,21 +227,7 @@ fn stages_share_their_slots_and_substitutions_make_constants() {
     assert_eq!(substituted.series_instructions().len(), 2);
     let c_inverse = b.pool.pow(c, minus_one);
     let written = b.pool.mul(&[cos, c_inverse]);
-    let mut env = vec![f64::NAN; b.pool.symbols().len()];
-    env[b.c.index()] = 1.7;
-    let run = |tape: &TaylorTape| -> Series {
-        let mut jet = TaylorJet::new();
-        tape.begin(&mut jet, ORDER, &env);
-        (0..=ORDER)
-            .map(|k| {
-                tape.set_input(&mut jet, 0, k, b.xs[k]);
-                tape.set_input(&mut jet, 1, k, b.ys[k]);
-                tape.advance(&mut jet, k);
-                tape.output(&jet, 0, k)
-            })
-            .collect()
-    };
-    let expected = run(&b.pool.compile_taylor(&[written], &inputs));
-    assert_eq!(run(&substituted), expected);
+    let expected = b.run(&b.pool.compile_taylor(&[written], &inputs));
+    assert_eq!(b.run(&substituted), expected);
     assert!(!substituted.output_is_constant(0));
 }
