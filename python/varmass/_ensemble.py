@@ -8,7 +8,7 @@ from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _checks, _native
+from . import _checks, _native, _tables
 from ._solution import column
 
 DEFAULT_QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
@@ -94,6 +94,8 @@ class Ensemble:
         method="dormand-prince",
         tol=None,
         step=None,
+        inputs=None,
+        tables=None,
     ):
         if not isinstance(sample, dict):
             raise TypeError(
@@ -126,10 +128,17 @@ class Ensemble:
             tol=tol,
             step=step,
         )
+        # The inputs and tables as another process reads them (paths made absolute, arrays
+        # kept): each process makes their flags, writing arrays to its own files.
+        self._data = (
+            _tables.portable(inputs, laws=True),
+            _tables.portable(tables),
+        )
         self._native = None
         self._build()
 
     def _build(self):
+        flags = self._flags + _checks.data_flags(*self._data)
         self._native = _native.NativeEnsemble(
             self.seed,
             self.model._native(),
@@ -137,7 +146,7 @@ class Ensemble:
             self.model._with,
             self._fixed,
             [(k, d.kind, d.a, d.b) for k, d in self.sample.items()],
-            self._flags,
+            flags,
             self.observables,
         )
 
