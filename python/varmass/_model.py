@@ -38,8 +38,9 @@ class Model:
         self._facts = facts
         self._text: Optional[str] = None
         self._latex: Optional[str] = None
-        # The last run's arguments (`_checks.plain_key`), its flags and the flags as the
-        # tool parsed them: a sweep over `set` neither makes nor parses them again
+        # The last run's arguments (`_checks.plain_key`), its flags, the flags as the
+        # tool parsed them and its stop_when conditions by name: a sweep over `set`
+        # neither makes nor parses them again
         # (parsing costs about as much as a short run's integration).
         self._parsed = None
 
@@ -193,13 +194,14 @@ class Model:
                 parsed = (key, flags, _native.parse(self._file, self._with, list(flags)))
             else:
                 parsed = (key, flags, parsed[2])
+            parsed += (_checks.names("stop_when", stop_when),)
             self._parsed = parsed
         try:
             raw = _native.run(self._native(), parameters, parsed[2])
         except RunError as error:
             error.points = _partial_points(error)
             raise
-        return Solution(raw, _checks.names("stop_when", stop_when))
+        return Solution(raw, parsed[3])
 
     def ensemble(
         self,
