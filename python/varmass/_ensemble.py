@@ -74,9 +74,11 @@ class Ensemble:
 
     Each member runs as ``model.run`` would with ``set`` and its sampled values, and
     reports ``observables`` at the end of its run (``"t"`` or any quantity ``record``
-    takes, e.g. ``"y"``, ``"y'"``, ``"m"``, ``"H"``). Results are bit-identical for any
-    thread count, any split into shards and any merge order. An ensemble pickles (its
-    specification), so it can be sent to Dask workers.
+    takes, e.g. ``"y"``, ``"y'"``, ``"m"``, ``"H"``). ``inputs`` and ``tables`` are
+    ``Model.run``'s: laws, data files or arrays, the same for every member. Results are
+    bit-identical for any thread count, any split into shards and any merge order. An
+    ensemble pickles (its specification, with the arrays of ``tables``/``inputs`` and their
+    paths made absolute), so it can be sent to Dask workers; a path must be readable there.
     """
 
     def __init__(
