@@ -9,7 +9,10 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
 from typing import Iterable, List, Mapping, Optional, Sequence, Tuple
+
+from . import _tables
 
 METHODS = (
     "dormand-prince",
@@ -123,6 +126,7 @@ def run_flags(
     record=None,
     every=None,
     inputs: Optional[Mapping] = None,
+    tables: Optional[Mapping] = None,
 ) -> List[str]:
     """The tool's ``run`` flags for these arguments (numbers in Python's round-trip form)."""
     if until is None:
@@ -143,20 +147,35 @@ def run_flags(
     every = optional_number("every", every, positive=True)
     if every is not None:
         flags.append(f"--every={every!r}")
-    flags += [f"--input={name}={law}" for name, law in input_laws(inputs)]
-    return flags
+    return flags + data_flags(inputs, tables)
+
+
+def data_flags(inputs: Optional[Mapping], tables: Optional[Mapping]) -> List[str]:
+    """The ``--input`` and ``--table`` flags of ``inputs`` and ``tables`` (arrays written
+    to this process's data files)."""
+    flags = [f"--input={name}={law}" for name, law in input_laws(inputs)]
+    return flags + [f"--table={option}" for option in _tables.table_options(tables)]
 
 
 def input_laws(inputs: Optional[Mapping]) -> List[Tuple[str, str]]:
-    """``inputs`` ({name: DSL expression}) as (name, law) pairs; the tool parses the laws."""
+    """``inputs`` ({name: DSL expression, data file or (arguments, values)}) as (name, law)
+    pairs, as ``--input`` takes them: the tool parses a law, and reads a ``.csv``/``.eng``
+    file as a table of the input's first argument (arrays are written to such a file)."""
     if inputs is None:
         return []
     if not isinstance(inputs, Mapping):
         raise TypeError(f"inputs must be a mapping of names to expressions, not {type(inputs).__name__}")
     pairs = []
     for name, law in inputs.items():
-        if not isinstance(name, str) or not isinstance(law, str):
-            raise TypeError(f"inputs: {name!r}: names and laws must be strings")
+        if not isinstance(name, str):
+            raise TypeError(f"inputs: {name!r}: names must be strings")
+        if not isinstance(law, str):
+            if not isinstance(law, (os.PathLike, tuple, list)):
+                raise TypeError(
+                    f"inputs[{name!r}] must be a law (str), a .csv/.eng file or a pair "
+                    f"(arguments, values), not {type(law).__name__}"
+                )
+            law = _tables.data(f"inputs[{name!r}]", name.strip(), law)
         pairs.append((name, law))
     return pairs
 

@@ -8,7 +8,7 @@ from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _checks, _native
+from . import _checks, _native, _tables
 from ._solution import column
 
 DEFAULT_QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
@@ -74,9 +74,11 @@ class Ensemble:
 
     Each member runs as ``model.run`` would with ``set`` and its sampled values, and
     reports ``observables`` at the end of its run (``"t"`` or any quantity ``record``
-    takes, e.g. ``"y"``, ``"y'"``, ``"m"``, ``"H"``). Results are bit-identical for any
-    thread count, any split into shards and any merge order. An ensemble pickles (its
-    specification), so it can be sent to Dask workers.
+    takes, e.g. ``"y"``, ``"y'"``, ``"m"``, ``"H"``). ``inputs`` and ``tables`` are
+    ``Model.run``'s: laws, data files or arrays, the same for every member. Results are
+    bit-identical for any thread count, any split into shards and any merge order. An
+    ensemble pickles (its specification, with the arrays of ``tables``/``inputs`` and their
+    paths made absolute), so it can be sent to Dask workers; a path must be readable there.
     """
 
     def __init__(
@@ -94,6 +96,8 @@ class Ensemble:
         method="dormand-prince",
         tol=None,
         step=None,
+        inputs=None,
+        tables=None,
     ):
         if not isinstance(sample, dict):
             raise TypeError(
@@ -126,10 +130,17 @@ class Ensemble:
             tol=tol,
             step=step,
         )
+        # The inputs and tables as another process reads them (paths made absolute, arrays
+        # kept): each process makes their flags, writing arrays to its own files.
+        self._data = (
+            _tables.portable(inputs, laws=True),
+            _tables.portable(tables),
+        )
         self._native = None
         self._build()
 
     def _build(self):
+        flags = self._flags + _checks.data_flags(*self._data)
         self._native = _native.NativeEnsemble(
             self.seed,
             self.model._native(),
@@ -137,7 +148,7 @@ class Ensemble:
             self.model._with,
             self._fixed,
             [(k, d.kind, d.a, d.b) for k, d in self.sample.items()],
-            self._flags,
+            flags,
             self.observables,
         )
 

@@ -38,8 +38,9 @@ class Model:
         self._facts = facts
         self._text: Optional[str] = None
         self._latex: Optional[str] = None
-        # The last run's arguments (`_checks.plain_key`), its flags and the flags as the
-        # tool parsed them: a sweep over `set` neither makes nor parses them again
+        # The last run's arguments (`_checks.plain_key`), its flags, the flags as the
+        # tool parsed them and its stop_when conditions by name: a sweep over `set`
+        # neither makes nor parses them again
         # (parsing costs about as much as a short run's integration).
         self._parsed = None
 
@@ -148,6 +149,7 @@ class Model:
         record=None,
         every=None,
         inputs: Optional[Mapping] = None,
+        tables: Optional[Mapping] = None,
     ) -> Solution:
         """Integrates the model as ``varmass run`` does, with its defaults and messages.
 
@@ -159,10 +161,18 @@ class Model:
         record (default coordinates, velocities and state masses); ``every``: output
         spacing instead of every accepted step; ``inputs``: a law for each ``input`` of
         the model, ``{"u": "g + kp*(y_ref - y) - kd*y'"}``, as ``--input`` takes it
-        (docs/inputs.md). The GIL is released while it runs.
+        (docs/inputs.md), or its data as a table of its first argument: a ``.csv``/``.eng``
+        file or a pair of arrays ``(arguments, values)`` (linear, an error outside);
+        ``tables``: the data of the model's tables, ``{"F": "motors/x.eng"}`` (a path,
+        relative to the current directory) or ``{"F": (t, F)}`` (two arrays), as
+        ``--table`` takes them: required by each ``table F(t) = runtime``, and replacing
+        the file of a file table; the statement's options (interpolation, ``outside``) hold
+        (docs/tables.md#runtime-tables). The GIL is released while it runs.
         """
         parameters = _checks.unique_values("set", set)
-        key = _checks.plain_key(init, until, from_, stop_when, method, tol, step, record, every, inputs)
+        key = _checks.plain_key(
+            init, until, from_, stop_when, method, tol, step, record, every, inputs, tables
+        )
         parsed = self._parsed
         if key is None or parsed is None or parsed[0] != key:
             flags = tuple(
@@ -177,19 +187,21 @@ class Model:
                     record=record,
                     every=every,
                     inputs=inputs,
+                    tables=tables,
                 )
             )
             if parsed is None or parsed[1] != flags:
                 parsed = (key, flags, _native.parse(self._file, self._with, list(flags)))
             else:
                 parsed = (key, flags, parsed[2])
+            parsed += (_checks.names("stop_when", stop_when),)
             self._parsed = parsed
         try:
             raw = _native.run(self._native(), parameters, parsed[2])
         except RunError as error:
             error.points = _partial_points(error)
             raise
-        return Solution(raw, _checks.names("stop_when", stop_when))
+        return Solution(raw, parsed[3])
 
     def ensemble(
         self,
@@ -205,6 +217,8 @@ class Model:
         method: str = "dormand-prince",
         tol=None,
         step=None,
+        inputs: Optional[Mapping] = None,
+        tables: Optional[Mapping] = None,
     ):
         """An ensemble of runs of this model (see :class:`varmass.Ensemble`)."""
         from ._ensemble import Ensemble
@@ -222,6 +236,8 @@ class Model:
             method=method,
             tol=tol,
             step=step,
+            inputs=inputs,
+            tables=tables,
         )
 
 

@@ -11,6 +11,8 @@
 //! same parameters only makes again what depends on the values ([`plan::refresh`]), not
 //! the parsing and resolving of every argument.
 
+use std::time::SystemTime;
+
 use varmass::interpret::Program;
 
 use super::dispatch::dispatch;
@@ -21,8 +23,40 @@ use crate::args::RunArgs;
 use crate::error::CliError;
 use crate::model::LoadedModel;
 
-/// A run's `--input` and `--table` values, which the model is derived again for.
-type RunOptions = (Vec<String>, Vec<String>);
+/// A run's `--input` and `--table` values, which the model is derived again for, with the
+/// length and modification time of each file they name: a file rewritten between two runs
+/// of one `Compiled` (a notebook writing another thrust curve to the same path) is read
+/// again, as the tool, one run per process, always reads it.
+#[derive(PartialEq)]
+struct RunOptions {
+    input: Vec<String>,
+    table: Vec<String>,
+    files: Vec<Option<(u64, SystemTime)>>,
+}
+
+impl RunOptions {
+    fn new(input: &[String], table: &[String]) -> Self {
+        let files = table
+            .iter()
+            .filter_map(|option| option.split_once('=').map(|(_, file)| file.trim()))
+            .chain(
+                input
+                    .iter()
+                    .filter_map(|option| option.split_once('=').map(|(_, law)| law.trim()))
+                    .filter(|law| super::input_tables::is_table_file(law)),
+            )
+            .map(|file| {
+                let metadata = std::fs::metadata(file).ok()?;
+                Some((metadata.len(), metadata.modified().ok()?))
+            })
+            .collect();
+        Self {
+            input: input.to_vec(),
+            table: table.to_vec(),
+            files,
+        }
+    }
+}
 
 /// A derived model and its program, compiled at the first run and reused by the next.
 pub struct Compiled {
@@ -66,9 +100,9 @@ impl Compiled {
 
     /// Reads the tables `table` (`--table NAME=FILE`, docs/tables.md#runtime-tables) and
     /// puts the laws `input` (`--input NAME=EXPR`) in the calls of the model's inputs
-    /// (docs/inputs.md), deriving the model again when they differ from the last run's;
-    /// a missing law, a law for a model without inputs, a bad table file or name is the
-    /// tool's input error.
+    /// (docs/inputs.md), deriving the model again when they, or the files they name, differ
+    /// from the last run's; a missing law, a law for a model without inputs, a bad table
+    /// file or name is the tool's input error.
     fn apply_laws(&mut self, input: &[String], table: &[String]) -> Result<(), CliError> {
         let Some((declared, current)) = &mut self.declared else {
             // No inputs and no tables: nothing to do (no copy: an ensemble member passes
@@ -81,7 +115,7 @@ impl Compiled {
                 false => super::inputs::laws(input, &[]).map(|_| ()),
             };
         };
-        let options = (input.to_vec(), table.to_vec());
+        let options = RunOptions::new(input, table);
         if current.as_ref() == Some(&options) {
             return Ok(());
         }

@@ -11,6 +11,13 @@
 //!   on one thread (the core's serial ensemble), the model derived and compiled once and
 //!   each member's values given to that program. Prints members per second.
 //!
+//! * `sled-recorded REPEATS`: the same, with x' evaluated at every accepted point (the
+//!   program's velocities from `[x, p]`), as a run recording x and x' must.
+//! * `tool-sled REPEATS`: the same sled run through the command line tool's code as the
+//!   Python package reaches it (`varmass_cli::run::Compiled::run`: the tool's checks, kept
+//!   plan, run, recorded x and x' at every point and summary), from Rust: Python's `run`
+//!   less this is the boundary's cost, this less `sled` the tool's own work.
+//!
 //! `cargo run --release --manifest-path python/bench/reference/Cargo.toml -- sled 200`
 
 use std::sync::Mutex;
@@ -51,8 +58,10 @@ const SLED_VALUES: [(&str, f64); 5] = [
     ("f_d", 0.1),
 ];
 
-/// One sled run on the compiled `program` (given back); returns x' at 50 m.
-fn sled(program: &mut Option<Program>) -> f64 {
+/// One sled run on the compiled `program` (given back); returns x' at 50 m. With
+/// `recorded`, x' is also evaluated at every point, as the tool (and so Python) records it:
+/// the program's velocities from the state `[x, p]`.
+fn sled(program: &mut Option<Program>, recorded: bool) -> f64 {
     let mut compiled = program.take().expect("a program");
     compiled
         .set_parameters(&SLED_VALUES)
@@ -63,7 +72,19 @@ fn sled(program: &mut Option<Program>) -> f64 {
     let at_50 = Event::state_reaches(0, 50.0, Direction::Either);
     let solution = run(&mut stepper, &RunConfig::until(100.0), &[at_50]).expect("runs");
     let (_, state) = solution.last().expect("a point");
-    let velocity = state[1] / (10.0 + 2.0 * state[0]);
+    let mut velocity = state[1] / (10.0 + 2.0 * state[0]);
+    if recorded {
+        let mut column = Vec::with_capacity(solution.times.len());
+        for (t, state) in solution.times.iter().zip(&solution.states) {
+            let mut v = [0.0];
+            system
+                .program()
+                .velocities(*t, state.as_slice(), &mut v)
+                .expect("velocities");
+            column.push(v[0]);
+        }
+        velocity = *std::hint::black_box(column).last().expect("a point");
+    }
     *program = Some(system.into_program());
     velocity
 }
@@ -107,21 +128,59 @@ fn standard_normal(rng: &mut MemberRng) -> f64 {
     (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
 }
 
+/// The tool's run of the sled, as `Model.run` makes it: the flags parsed by the tool's own
+/// parser once, the model loaded once, each timed run `Compiled::run` with the values.
+fn tool_sled(count: u64) -> f64 {
+    use varmass_cli::args::{Cli, Command};
+    let argv = [
+        "varmass",
+        "run",
+        "models/sled.vms",
+        "--with=impact",
+        "--from=0.0",
+        "--until=100.0",
+        "--init=x=0.0",
+        "--stop-when=x = 50",
+        "--method=dop853",
+        "--tol=1e-12",
+        "--record=x",
+        "--record=x'",
+    ];
+    let cli = <Cli as clap::Parser>::try_parse_from(argv).expect("the flags parse");
+    let Command::Run(args) = cli.command else {
+        unreachable!("a run")
+    };
+    let path = std::path::Path::new("models/sled.vms");
+    let with = ["impact".to_string()];
+    let model = varmass_cli::model::load_source(SLED, path, &with).expect("derives");
+    let mut compiled = varmass_cli::run::Compiled::new(model);
+    let mut fastest = f64::INFINITY;
+    for _ in 0..count {
+        let start = Instant::now();
+        let done = compiled.run(&SLED_VALUES, &args);
+        std::hint::black_box(done.ok().expect("runs").table.rows.len());
+        fastest = fastest.min(start.elapsed().as_secs_f64());
+    }
+    fastest
+}
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let what = args.next().unwrap_or_default();
     let count: u64 = args.next().and_then(|n| n.parse().ok()).unwrap_or(100);
     match what.as_str() {
-        "sled" => {
+        "sled" | "sled-recorded" => {
+            let recorded = what == "sled-recorded";
             let mut program = Some(program(SLED, &["impact"], &SLED_VALUES));
             let mut fastest = f64::INFINITY;
             for _ in 0..count {
                 let start = Instant::now();
-                std::hint::black_box(sled(&mut program));
+                std::hint::black_box(sled(&mut program, recorded));
                 fastest = fastest.min(start.elapsed().as_secs_f64());
             }
             println!("{fastest:e}");
         }
+        "tool-sled" => println!("{:e}", tool_sled(count)),
         "ensemble" => {
             let values = [("mu", 10.0), ("u_e", 2500.0), ("g", 9.81)];
             let program = Mutex::new(Some(program(ROCKET, &[], &values)));
@@ -136,7 +195,10 @@ fn main() {
             println!("{}", count as f64 / seconds);
         }
         _ => {
-            eprintln!("usage: reference sled REPEATS | reference ensemble MEMBERS");
+            eprintln!(
+                "usage: reference sled|sled-recorded|tool-sled REPEATS | \
+                 reference ensemble MEMBERS"
+            );
             std::process::exit(2);
         }
     }
