@@ -120,3 +120,22 @@ fn the_symmetric_sequence_refuses_its_gimbal_lock() {
     let rate = BODY.state_rate(0.0, &s).expect("above the floor");
     assert!(rate.iter().all(|x| x.is_finite()));
 }
+
+/// A tensor that is not positive definite (I₁₁ I₂₂ − I₁₂² = 12 − 25 < 0: I's second
+/// pivot is negative) and a mass that is not positive are refused with the typed error, as
+/// the LDLᵀ of M refuses a pivot that is not positive.
+#[test]
+fn a_mass_matrix_that_is_not_positive_definite_is_refused() {
+    let s = SVector::<f64, 12>::from_element(0.5);
+    let skewed = Tumbler { a12: 5.0, ..BODY };
+    assert!(matches!(
+        skewed.state_rate(0.0, &s),
+        Err(SystemError::SingularMassMatrix)
+    ));
+    let massless = Tumbler { m0: 0.0, ..BODY };
+    assert!(matches!(
+        massless.state_rate(0.0, &s),
+        Err(SystemError::SingularMassMatrix)
+    ));
+    assert!(BODY.state_rate(0.0, &s).is_ok());
+}

@@ -232,7 +232,7 @@ impl Emitter<'_> {
 
     /// q̇ of a lone spatial rigid body in closed form (`mechanics/rigid_solve.rs`): its
     /// guards first (`SystemError::SingularMassMatrix` unless each is above 0, or above the
-    /// relative pivot floor: m, I's leading minors, det E² at gimbal lock), then q̇.
+    /// relative pivot floor: m, I's pivots, det E² at gimbal lock), then q̇.
     fn rigid_velocity_stage(&self, names: Vec<Ident>) -> (Vec<Id>, Bridge<'_>) {
         let runtime = &self.target.runtime;
         let Some(rigid) = &self.d.rigid_velocities else {

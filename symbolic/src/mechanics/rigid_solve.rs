@@ -21,7 +21,7 @@
 //! The generated code refuses that attitude with the typed singular-mass-matrix error below
 //! the same relative floor as the LDLᵀ pivots (det E² ≤ `RELATIVE_PIVOT_FLOOR`; E's entries
 //! are sines and cosines, so det E² is already relative), and a mass or inertia that is not
-//! positive (m ≤ 0 or a leading minor of I ≤ 0: M not positive definite) the same way.
+//! positive (m ≤ 0 or a pivot of I ≤ 0: M not positive definite) the same way.
 //!
 //! Only where this is M's exact inverse: one body, rigid and spatial, whose position and
 //! angles are the coordinates themselves (each once, all of them) and no other term of L
@@ -39,7 +39,7 @@ pub struct RigidVelocities {
     /// q̇ in coordinate order, in the momentum symbols (`p_x`), q and the masses.
     pub velocities: Vec<Id>,
     /// `(value, relative)`: the state is refused unless each value is above 0, or above
-    /// `RELATIVE_PIVOT_FLOOR` when `relative` (m; I's leading minors; det E²).
+    /// `RELATIVE_PIVOT_FLOOR` when `relative` (m; I's pivots; det E²).
     pub guards: Vec<(Id, bool)>,
 }
 
@@ -97,11 +97,7 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
         out[*slot] = rate;
     }
     let mut guards = vec![(mass, false)];
-    guards.extend(
-        leading_minors(pool, &inertia)
-            .into_iter()
-            .map(|m| (m, false)),
-    );
+    guards.extend(pivots(pool, &inertia).into_iter().map(|m| (m, false)));
     let two = pool.int(2);
     guards.push((pool.pow(metric.det, two), true));
     Some(RigidVelocities {
@@ -189,14 +185,23 @@ fn cross(pool: &mut ExprPool, a: &[Id], b: &[Id]) -> Vec<Id> {
         .collect()
 }
 
-/// I₀₀, the leading 2×2 minor and det I (Sylvester: all positive ⇔ I positive definite).
-fn leading_minors(pool: &mut ExprPool, inertia: &Matrix) -> Vec<Id> {
-    let mut minors = Vec::with_capacity(3);
+/// The pivots of I's LDLᵀ, each leading minor over the one before (Sylvester: all
+/// positive ⇔ I positive definite), without repeats: A and C for `[A, A, C]`.
+fn pivots(pool: &mut ExprPool, inertia: &Matrix) -> Vec<Id> {
+    let mut pivots: Vec<Id> = Vec::with_capacity(3);
+    let mut previous = pool.int(1);
     for n in 1..=3 {
         let block: Matrix = inertia[..n].iter().map(|row| row[..n].to_vec()).collect();
-        if let Some(minor) = determinant(pool, &block) {
-            minors.push(minor);
+        let Some(minor) = determinant(pool, &block) else {
+            continue;
+        };
+        let minus_one = pool.int(-1);
+        let below = pool.pow(previous, minus_one);
+        let pivot = pool.mul(&[minor, below]);
+        if !pivots.contains(&pivot) {
+            pivots.push(pivot);
         }
+        previous = minor;
     }
-    minors
+    pivots
 }
