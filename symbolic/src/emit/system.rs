@@ -195,6 +195,9 @@ impl Emitter<'_> {
                 };
                 (self.code_all(v), Box::new(bridge))
             }
+            VelocitySolve::Numeric if self.d.rigid_velocities.is_some() => {
+                self.rigid_velocity_stage(names)
+            }
             VelocitySolve::Numeric => {
                 let mut first: Vec<Id> = self.code_all(&self.d.mass_matrix.concat());
                 let entries = first.len();
@@ -225,6 +228,46 @@ impl Emitter<'_> {
                 (first, Box::new(bridge))
             }
         }
+    }
+
+    /// q̇ of a lone spatial rigid body in closed form (`mechanics/rigid_solve.rs`): its
+    /// guards first (`SystemError::SingularMassMatrix` unless each is above 0, or above the
+    /// relative pivot floor: m, I's pivots, det E² at gimbal lock), then q̇.
+    fn rigid_velocity_stage(&self, names: Vec<Ident>) -> (Vec<Id>, Bridge<'_>) {
+        let runtime = &self.target.runtime;
+        let Some(rigid) = &self.d.rigid_velocities else {
+            return (Vec::new(), Box::new(|_| Vec::new()));
+        };
+        let mut first = self.code_all(&rigid.velocities);
+        first.extend(rigid.guards.iter().map(|(value, _)| self.code(*value)));
+        let relative: Vec<bool> = rigid.guards.iter().map(|(_, r)| *r).collect();
+        let bridge = move |values: Vec<TokenStream>| {
+            let (rates, guards) = values.split_at(names.len());
+            let mut out: Vec<TokenStream> = guards
+                .iter()
+                .zip(&relative)
+                .map(|(value, relative)| {
+                    let floor = if *relative {
+                        quote!(#runtime::system::RELATIVE_PIVOT_FLOOR)
+                    } else {
+                        quote!(0.0)
+                    };
+                    quote! {
+                        if !((#value) > #floor) {
+                            return Err(#runtime::SystemError::SingularMassMatrix);
+                        }
+                    }
+                })
+                .collect();
+            out.extend(
+                names
+                    .iter()
+                    .zip(rates)
+                    .map(|(name, value)| quote!(let #name = #value;)),
+            );
+            out
+        };
+        (first, Box::new(bridge))
     }
 
     /// Which entries of M (row-major) are identically zero.

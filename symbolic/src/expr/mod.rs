@@ -37,6 +37,7 @@ mod diff;
 mod eval;
 mod expand;
 mod func;
+mod horner;
 mod identity;
 mod input_call;
 mod latex;

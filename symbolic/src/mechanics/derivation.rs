@@ -18,6 +18,7 @@ use super::linear::Matrix;
 use super::masses::{closed_laws, flow_rates, mass_rates};
 use super::model::{Coordinate, Mass, MassKind, Model};
 use super::outputs::Outputs;
+use super::rigid_solve::rigid_velocities;
 use crate::expr::{ExprPool, Id, Symbol};
 use crate::parse::Diagnostic;
 
@@ -101,6 +102,10 @@ pub struct Derivation {
     pub momentum_offset: Vec<Id>,
     /// q̇(q, p, t).
     pub velocities: VelocitySolve,
+    /// With [`VelocitySolve::Numeric`], q̇(q, p) in closed form when the system is a lone
+    /// spatial rigid body in its own coordinates (`rigid_solve.rs`): what the generated
+    /// methods on the state evaluate instead of the LDLᵀ of M.
+    pub rigid_velocities: Option<super::RigidVelocities>,
     /// The energy function p·q̇ − L in velocity form (equals H on p = ∂*L/∂q̇).
     pub energy: Id,
     /// H(q, p, t) (eqs. 9–10), when q̇ is solved symbolically.
@@ -240,6 +245,8 @@ pub(crate) struct Equations {
     pub accelerations: Accelerations,
     /// Eqs. 9–10.
     pub hamiltonian: Hamiltonian,
+    /// q̇ of a lone spatial rigid body in closed form (`rigid_solve.rs`).
+    pub rigid_velocities: Option<super::RigidVelocities>,
     /// dH/dt.
     pub power: Id,
     /// The Jacobian of the state rate (`None` when not asked for, see [`Outputs`]).
@@ -274,6 +281,10 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
     let accelerations = accelerations(model, &momenta, &rates.frozen)?;
     let inverse_mass = accelerations.inverse_mass.as_ref();
     let hamiltonian = hamiltonian(model, lagrangian, &momenta, inverse_mass);
+    let rigid_velocities = match hamiltonian.velocities {
+        VelocitySolve::Numeric => rigid_velocities(model, &momenta),
+        VelocitySolve::Symbolic(_) => None,
+    };
     let power = power(model, lagrangian, &rates, &mass_rates);
     let jacobian = outputs.jacobian.then(|| {
         jacobian_parts(
@@ -295,6 +306,7 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
         rates,
         accelerations,
         hamiltonian,
+        rigid_velocities,
         power,
         jacobian,
     })
@@ -332,6 +344,7 @@ fn assemble(model: Model, e: Equations) -> (Derivation, CheckScope) {
         mass_matrix: e.momenta.mass_matrix,
         momentum_offset: e.momenta.offset,
         velocities: e.hamiltonian.velocities,
+        rigid_velocities: e.rigid_velocities,
         energy: e.hamiltonian.energy,
         hamiltonian: e.hamiltonian.hamiltonian,
         lagrangian_gradient: e.rates.lagrangian_gradient,

@@ -102,7 +102,7 @@ pub(crate) fn momentum_rates(
 fn cheaper_reduced(pool: &mut ExprPool, e: Id) -> Id {
     let reduced = pool.reduce_trig(e);
     if pool.operation_count(&[reduced]) < pool.operation_count(&[e]) {
-        reduced
+        pool.factor_out(reduced)
     } else {
         e
     }

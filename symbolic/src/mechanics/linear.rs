@@ -49,7 +49,7 @@ pub fn determinant(pool: &mut ExprPool, m: &Matrix) -> Option<Id> {
 }
 
 /// The cofactor (−1)^(i+j) · minor(i, j), for n ≤ 3.
-fn cofactor(pool: &mut ExprPool, m: &Matrix, i: usize, j: usize) -> Option<Id> {
+pub(crate) fn cofactor(pool: &mut ExprPool, m: &Matrix, i: usize, j: usize) -> Option<Id> {
     let n = m.len();
     if n == 1 {
         return Some(pool.int(1));

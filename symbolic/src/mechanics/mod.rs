@@ -37,6 +37,7 @@ mod render;
 mod resolve;
 mod rigid;
 mod rigid_forces;
+mod rigid_solve;
 mod rotation;
 mod stages;
 mod stops;
@@ -57,6 +58,7 @@ pub use model::{
 pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
+pub use rigid_solve::RigidVelocities;
 pub use stages::RateStages;
 pub use stops::{time_tables, TimeTable};
 pub use switches::{switching_functions, table_switches, TableSwitch};

@@ -1,0 +1,207 @@
+//! q̇ from p in closed form for a lone spatial rigid body: the body's own metric instead of a
+//! 6×6 LDLᵀ of M (docs/mechanics.md#rigid-bodies, "q̇ from p").
+//!
+//! With q = [r_O, η] (the origin's world components and three Euler angles), ω = E(η) η̇ in
+//! body axes, R(η) body → world, the centre c and the inertia I about it (body axes, frozen),
+//! T = ½ m |w|² + ½ ωᵀ I ω with w = Rᵀ ṙ_O + ω × c the centre's velocity in body axes, so
+//!
+//! ```text
+//! p_r = ∂T/∂ṙ_O = m R w,     p_η = ∂T/∂η̇ = Eᵀ h,   h = I ω + m c × w
+//! ```
+//!
+//! and backwards, with P = Rᵀ p_r = m w:
+//!
+//! ```text
+//! h = E⁻ᵀ p_η,   ω = I⁻¹ (h − c × P),   ṙ_O = R (P/m − ω × c),   η̇ = E⁻¹ ω
+//! ```
+//!
+//! E⁻¹ = adj(E)/det E, each entry trigonometrically reduced: det E is ± the cosine (or, for
+//! the symmetric sequences `zyz` …, the sine) of the middle angle, zero at the sequence's
+//! gimbal lock, where M's Schur complement on the angles, Eᵀ I E, is singular as det E².
+//! The generated code refuses that attitude with the typed singular-mass-matrix error below
+//! the same relative floor as the LDLᵀ pivots (det E² ≤ `RELATIVE_PIVOT_FLOOR`; E's entries
+//! are sines and cosines, so det E² is already relative), and a mass or inertia that is not
+//! positive (m ≤ 0 or a pivot of I ≤ 0: M not positive definite) the same way.
+//!
+//! Only where this is M's exact inverse: one body, rigid and spatial, whose position and
+//! angles are the coordinates themselves (each once, all of them) and no other term of L
+//! with a velocity in it. Everywhere else q̇ comes from the LDLᵀ of `emit/factor.rs`.
+
+use super::lagrangian::Momenta;
+use super::linear::{cofactor, determinant, mat_vec, Matrix};
+use super::model::Model;
+use super::rotation::transpose;
+use crate::expr::{ExprPool, Id, Symbol};
+
+/// q̇(q, p) for a lone spatial rigid body, and when it holds.
+#[derive(Clone, Debug)]
+pub struct RigidVelocities {
+    /// q̇ in coordinate order, in the momentum symbols (`p_x`), q and the masses.
+    pub velocities: Vec<Id>,
+    /// `(value, relative)`: the state is refused unless each value is above 0, or above
+    /// `RELATIVE_PIVOT_FLOOR` when `relative` (m; I's pivots; det E²).
+    pub guards: Vec<(Id, bool)>,
+}
+
+/// The closed form above when the model is a lone spatial rigid body in its own
+/// coordinates (see the module's comment), `None` otherwise.
+pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<RigidVelocities> {
+    let [body] = model.bodies.as_slice() else {
+        return None;
+    };
+    let rigid = body.rigid.as_ref()?;
+    if rigid.origin.len() != 3 || !momenta.offset.iter().all(|b| model.pool.is_zero(*b)) {
+        return None;
+    }
+    let velocities: Vec<Symbol> = model.coordinates.iter().map(|c| c.velocity).collect();
+    let pool = &model.pool;
+    let moving_term = (model.terms.iter()).any(|t| pool.degree(t.value, &velocities) != Some(0));
+    // The origin's components are coordinates; ω is a function of the other three's rates.
+    let index_of = |e: &Id| {
+        let s = pool.as_symbol(*e)?;
+        model.coordinates.iter().position(|c| c.q == s)
+    };
+    let origin: Option<Vec<usize>> = rigid.origin.iter().map(index_of).collect();
+    let angles: Vec<usize> = (0..model.coordinates.len())
+        .filter(|i| (rigid.angular_velocity.iter()).any(|w| pool.contains(*w, velocities[*i])))
+        .collect();
+    let mut slots = origin?;
+    slots.extend(&angles);
+    let mut seen = slots.clone();
+    seen.sort_unstable();
+    seen.dedup();
+    if moving_term || angles.len() != 3 || seen.len() != 6 || model.coordinates.len() != 6 {
+        return None;
+    }
+    let (rotation, omega, inertia, centre) = (
+        rigid.rotation.clone(),
+        rigid.angular_velocity.clone(),
+        rigid.inertia.clone(),
+        rigid.centre.clone(),
+    );
+    let mass = model.pool.sym(model.masses[body.mass].symbol);
+    let momentum: Vec<Id> = slots
+        .iter()
+        .map(|&i| model.pool.sym(model.coordinates[i].momentum))
+        .collect();
+    let angle_rates: Vec<Symbol> = slots[3..].iter().map(|&i| velocities[i]).collect();
+    let pool = &mut model.pool;
+    let metric = Metric::new(pool, &omega, &angle_rates)?;
+    let (origin_rates, angle_rates) =
+        solve(pool, &metric, &rotation, &inertia, &centre, mass, &momentum);
+    let mut out = vec![pool.int(0); 6];
+    for (slot, rate) in slots
+        .iter()
+        .zip(origin_rates.into_iter().chain(angle_rates))
+    {
+        out[*slot] = rate;
+    }
+    let mut guards = vec![(mass, false)];
+    guards.extend(pivots(pool, &inertia).into_iter().map(|m| (m, false)));
+    let two = pool.int(2);
+    guards.push((pool.pow(metric.det, two), true));
+    Some(RigidVelocities {
+        velocities: out,
+        guards,
+    })
+}
+
+/// E = ∂ω/∂η̇ and E⁻¹ = adj(E)/det E, reduced.
+struct Metric {
+    inverse: Matrix,
+    det: Id,
+}
+
+impl Metric {
+    fn new(pool: &mut ExprPool, omega: &[Id], rates: &[Symbol]) -> Option<Metric> {
+        let e: Matrix = omega
+            .iter()
+            .map(|w| rates.iter().map(|r| pool.diff(*w, *r)).collect())
+            .collect();
+        let det = determinant(pool, &e)?;
+        let det = pool.reduce_trig(det);
+        if pool.is_zero(det) {
+            return None;
+        }
+        let minus_one = pool.int(-1);
+        let inverse_det = pool.pow(det, minus_one);
+        let mut inverse = vec![vec![det; 3]; 3];
+        for (i, row) in inverse.iter_mut().enumerate() {
+            for (j, entry) in row.iter_mut().enumerate() {
+                let adjugate = cofactor(pool, &e, j, i)?;
+                let adjugate = pool.reduce_trig(adjugate);
+                *entry = pool.mul(&[adjugate, inverse_det]);
+            }
+        }
+        Some(Metric { inverse, det })
+    }
+}
+
+/// ṙ_O and η̇ from p_r and p_η (the formulas of the module's comment).
+fn solve(
+    pool: &mut ExprPool,
+    metric: &Metric,
+    rotation: &Matrix,
+    inertia: &Matrix,
+    centre: &[Id],
+    mass: Id,
+    momentum: &[Id],
+) -> (Vec<Id>, Vec<Id>) {
+    let big_p = mat_vec(pool, &transpose(rotation), &momentum[..3]);
+    let h = mat_vec(pool, &transpose(&metric.inverse), &momentum[3..]);
+    let c_x_p = cross(pool, centre, &big_p);
+    let excess: Vec<Id> = h
+        .iter()
+        .zip(&c_x_p)
+        .map(|(a, b)| pool.sub(*a, *b))
+        .collect();
+    let inverse_inertia = super::linear::inverse(pool, inertia).unwrap_or_default();
+    let omega = mat_vec(pool, &inverse_inertia, &excess);
+    let minus_one = pool.int(-1);
+    let inverse_mass = pool.pow(mass, minus_one);
+    let w_x_c = cross(pool, &omega, centre);
+    let velocity: Vec<Id> = big_p
+        .iter()
+        .zip(&w_x_c)
+        .map(|(p, wc)| {
+            let w = pool.mul(&[*p, inverse_mass]);
+            pool.sub(w, *wc)
+        })
+        .collect();
+    let origin_rates = mat_vec(pool, rotation, &velocity);
+    let angle_rates = mat_vec(pool, &metric.inverse, &omega);
+    (origin_rates, angle_rates)
+}
+
+/// a × b.
+fn cross(pool: &mut ExprPool, a: &[Id], b: &[Id]) -> Vec<Id> {
+    (0..3)
+        .map(|i| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            let plus = pool.mul(&[a[j], b[k]]);
+            let minus = pool.mul(&[a[k], b[j]]);
+            pool.sub(plus, minus)
+        })
+        .collect()
+}
+
+/// The pivots of I's LDLᵀ, each leading minor over the one before (Sylvester: all
+/// positive ⇔ I positive definite), without repeats: A and C for `[A, A, C]`.
+fn pivots(pool: &mut ExprPool, inertia: &Matrix) -> Vec<Id> {
+    let mut pivots: Vec<Id> = Vec::with_capacity(3);
+    let mut previous = pool.int(1);
+    for n in 1..=3 {
+        let block: Matrix = inertia[..n].iter().map(|row| row[..n].to_vec()).collect();
+        let Some(minor) = determinant(pool, &block) else {
+            continue;
+        };
+        let minus_one = pool.int(-1);
+        let below = pool.pow(previous, minus_one);
+        let pivot = pool.mul(&[minor, below]);
+        if !pivots.contains(&pivot) {
+            pivots.push(pivot);
+        }
+        previous = minor;
+    }
+    pivots
+}
