@@ -6,6 +6,15 @@ use super::node::{Id, Node};
 use super::pool::ExprPool;
 use rustc_hash::FxHashMap;
 
+/// What every [`ExprPool::expand`] of a pool shares (see its field `expansions`).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Expansions {
+    /// The expanded form of each node visited.
+    images: FxHashMap<Id, Id>,
+    /// `a * t` for terms `a` and `t` that a distribution multiplied.
+    products: FxHashMap<(Id, Id), Id>,
+}
+
 /// A product whose expansion would exceed this many terms is left as a product: the
 /// identity check then falls back to numerical evaluation instead of running out of memory.
 const MAX_TERMS: usize = 5_000;
@@ -16,9 +25,16 @@ const MAX_EXPONENT: i128 = 32;
 impl ExprPool {
     /// The expanded form of `e`: a sum of products with no sum inside a product or under an
     /// integer power (within the size limits above). Defined symbols are kept as symbols.
+    ///
+    /// Only the nodes no earlier call expanded are visited (the pool remembers every
+    /// image, and every product of two terms): expanding a node again would only re-intern
+    /// nodes that exist, so skipping it changes neither the result nor the order in which
+    /// nodes are created.
     pub fn expand(&mut self, e: Id) -> Id {
-        let mut new: FxHashMap<Id, Id> = FxHashMap::default();
-        for id in self.reachable(&[e], false) {
+        let todo =
+            self.reachable_where(&[e], false, |id| !self.expansions.images.contains_key(&id));
+        for id in todo {
+            let new = &self.expansions.images;
             let image = |c: &Id| new.get(c).copied().unwrap_or(*c);
             let value = match self.node(id).clone() {
                 Node::Num(_) | Node::Float(_) | Node::Sym(_) => id,
@@ -39,9 +55,9 @@ impl ExprPool {
                     self.call(f, &args)
                 }
             };
-            new.insert(id, value);
+            self.expansions.images.insert(id, value);
         }
-        new.get(&e).copied().unwrap_or(e)
+        self.expansions.images.get(&e).copied().unwrap_or(e)
     }
 
     /// Π factors with every sum among them distributed, term by term, collecting as it goes
@@ -60,13 +76,23 @@ impl ExprPool {
             let mut products = Vec::with_capacity(acc.len() * f_terms.len());
             for &a in &acc {
                 for &t in &f_terms {
-                    products.push(self.mul(&[a, t]));
+                    products.push(self.product(a, t));
                 }
             }
             let sum = self.add(&products);
             acc = self.terms(sum);
         }
         self.add(&acc)
+    }
+
+    /// `a * t`, formed once per pool.
+    fn product(&mut self, a: Id, t: Id) -> Id {
+        if let Some(known) = self.expansions.products.get(&(a, t)) {
+            return *known;
+        }
+        let product = self.mul(&[a, t]);
+        self.expansions.products.insert((a, t), product);
+        product
     }
 
     /// `b^x` with a sum `b` multiplied out for a small integer `x`

@@ -39,6 +39,11 @@ pub struct ExprPool {
     /// [`expand_trig_arguments`](Self::expand_trig_arguments) visited: like derivatives, it
     /// never changes.
     pub(super) trig_images: FxHashMap<Id, Id>,
+    /// The image of every node an [`expand`](Self::expand) visited, and every product of
+    /// two terms its distribution formed: like derivatives, they never change, and the
+    /// trigonometric reductions of a rigid body's momentum rates expand the same
+    /// subexpressions and multiply the same pairs of terms again and again.
+    pub(super) expansions: super::expand::Expansions,
     /// The ids of the integers −1, 0, 1, 2 once interned (every constructor asks for
     /// them, and interning hashes the node each time); filled on first use, so the order
     /// in which nodes are created does not change.
@@ -81,6 +86,7 @@ impl ExprPool {
             definitions: FxHashMap::default(),
             derivatives: FxHashMap::default(),
             trig_images: FxHashMap::default(),
+            expansions: Default::default(),
             small_ints: [None; 4],
             tables: Vec::new(),
             inputs: Vec::new(),
