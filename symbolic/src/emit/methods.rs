@@ -247,6 +247,13 @@ impl Emitter<'_> {
     fn velocity_docs(&self) -> Vec<String> {
         match &self.d.velocities {
             VelocitySolve::Symbolic(v) => self.velocity_lines(v),
+            // A lone spatial rigid body: the closed form through E⁻¹ and I⁻¹
+            // (`mechanics/rigid_solve.rs`), not the LDLᵀ.
+            VelocitySolve::Numeric if self.d.rigid_velocities.is_some() => {
+                vec!["q' from p in closed form: ω = I⁻¹(E⁻ᵀ p_η − c × P), \
+                 ṙ = R(P/m − ω × c), η̇ = E⁻¹ ω"
+                    .to_string()]
+            }
             VelocitySolve::Numeric => vec!["q' from M q' = p - b (LDLᵀ)".to_string()],
         }
     }
