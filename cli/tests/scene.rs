@@ -191,6 +191,40 @@ masses = {{ m = 300.0 }}
 }
 
 /// Every bad scene file is a message at its line and exit 2, before any step.
+/// A scene whose recorded V reads a table that only V reads (`tests/data/tables/
+/// recorded_only.vms`: h(t) has data up to t = 1, the run goes to 2): the run fails with
+/// exit 1 at the first point V cannot be had, and the CSV keeps every row before it, each
+/// V the closed form m0 g y + h(t) (before the fix the scene wrote no CSV).
+#[test]
+fn a_point_that_cannot_be_recorded_keeps_the_scenes_rows_before_it() {
+    let out = scratch("recorded_only_scene.csv");
+    let _ = std::fs::remove_file(&out);
+    let file = scene(
+        "recorded_only.toml",
+        &format!(
+            "model = \"{}\"\nuntil = 2.0\nrecord = [\"y\", \"V\"]\n\
+             [set]\nm0 = 2.0\ng = 10.0\n[init]\ny = 0.0\n",
+            workspace("cli/tests/data/tables/recorded_only.vms")
+        ),
+    );
+    let (_, stderr) = run(&["run", &file, "--csv", &out.display().to_string()], 1);
+    assert!(stderr.contains("cannot record `V` at t = "), "{stderr}");
+    let (names, rows) = csv(&out);
+    assert_eq!(names, ["t", "phase", "y", "V"]);
+    assert!(rows.len() >= 2, "{rows:?}");
+    for row in &rows {
+        let (t, y, v) = (row[0], row[2], row[3]);
+        assert!(t <= 1.0, "a row past the table's data: {row:?}");
+        let h = if t <= 0.5 {
+            2.0 * t
+        } else {
+            1.0 + 4.0 * (t - 0.5)
+        };
+        // y is quadratic in t: Dormand–Prince is exact to rounding.
+        assert!((v - (20.0 * y + h)).abs() <= 1e-12, "{row:?}");
+    }
+}
+
 #[test]
 fn bad_scene_files_are_refused_at_their_line() {
     let model = workspace("models/two_stage_rocket.vms");

@@ -48,11 +48,17 @@ fn finish(
     plan: &plan::Plan,
 ) -> Result<String, CliError> {
     let program = &outcome.program;
-    let table = output::table(program, &plan.record, &outcome.points)?;
+    let (table, failure) = match output::table(program, &plan.record, &outcome.points) {
+        Ok(table) => (table, outcome.failure.take()),
+        Err(partial) => {
+            let (table, error) = partial.with_run_failure(outcome.failure.take());
+            (table, Some(error))
+        }
+    };
     if let Some(path) = &args.csv {
         output::write_csv(&table, path)?;
     }
-    if let Some(failure) = outcome.failure.take() {
+    if let Some(failure) = failure {
         // The CSV holds the points up to the failure; the error is what the run reports.
         return Err(failure);
     }
