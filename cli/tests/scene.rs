@@ -458,3 +458,63 @@ fn a_phase_entered_on_its_end_condition_names_it() {
         "{stderr}"
     );
 }
+
+/// The two-stage scene cut to its first phase (no `[[phase]]`), `extra` added at the top.
+fn one_phase(name: &str, extra: &str) -> String {
+    let text = std::fs::read_to_string(two_stage(name, extra, "m = 500")).expect("written");
+    let cut = text.find("[[phase]]").expect("a phase");
+    scene(name, &text[..cut])
+}
+
+/// A scene's user never typed a flag: its messages name the scene file's keys (`set`,
+/// `when`, `stop_when`, `until`) and the phase, never `--set` or `--stop-when` (before,
+/// a missing parameter said "give --set g=VALUE", a condition already true at the start
+/// "--stop-when `m > 10` already holds", and a failed run's help "--stop-when 'm < VALUE'
+/// or an earlier --until").
+#[test]
+fn scene_messages_name_the_scene_files_keys() {
+    let no_flag = |stderr: &str| {
+        for flag in ["--set", "--stop-when", "--until", "--with"] {
+            assert!(!stderr.contains(flag), "{flag} in {stderr}");
+        }
+    };
+    let text = std::fs::read_to_string(two_stage("no_g.toml", "", "m = 500")).expect("written");
+    let file = scene("no_g.toml", &text.replace("g = 9.81\n", ""));
+    let (_, stderr) = run(&["run", &file], 2);
+    assert!(
+        stderr.contains("(the first phase): missing value for g")
+            && stderr.contains("give `g = VALUE` under `[set]`"),
+        "{stderr}"
+    );
+    no_flag(&stderr);
+
+    let file = two_stage("holds_when.toml", "", "m > 10");
+    let (_, stderr) = run(&["run", &file], 2);
+    // The `when` of the scene file's phase, on its line 25.
+    assert!(
+        stderr.contains("holds_when.toml:25:8: phase 2's `when = \"m > 10\"` already holds at the start (the value there is 1000)"),
+        "{stderr}"
+    );
+    no_flag(&stderr);
+
+    let file = one_phase("holds_stop.toml", "stop_when = \"m > 10\"");
+    let (_, stderr) = run(&["run", &file], 2);
+    assert!(
+        stderr.contains("holds_stop.toml:8:13: `stop_when = \"m > 10\"` already holds"),
+        "{stderr}"
+    );
+    no_flag(&stderr);
+
+    // Stage 1 alone burns its 1000 kg out at t = 100 s, before `until` (150 s); at the
+    // default tolerance the step past it finds m < 0 (at 1e-13 the step size underflows
+    // first, whose help names `stop_when` and `until` too).
+    let text = std::fs::read_to_string(one_phase("burnt_out.toml", "")).expect("written");
+    let file = scene("burnt_out.toml", &text.replace("tol = 1e-13\n", ""));
+    let (_, stderr) = run(&["run", &file], 1);
+    assert!(
+        stderr.contains("the mass `m` is not positive")
+            && stderr.contains("e.g. `stop_when = \"m < VALUE\"` or an earlier `until`"),
+        "{stderr}"
+    );
+    no_flag(&stderr);
+}

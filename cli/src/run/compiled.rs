@@ -17,7 +17,7 @@ use super::dispatch::dispatch;
 use super::integrate::Outcome;
 use super::output::{self, Table};
 use super::plan::{self, Plan};
-use crate::args::RunArgs;
+use crate::args::{RunArgs, Words};
 use crate::error::CliError;
 use crate::model::LoadedModel;
 
@@ -131,7 +131,7 @@ impl Compiled {
     /// A refused value list in the tool's words.
     fn refused(&self, e: varmass::interpret::ProgramError) -> CliError {
         let m = &self.model;
-        super::program_error(&m.ast, &m.with, &m.base, e)
+        super::program_error(&m.ast, &m.with, &m.base, Words::Flags, e)
     }
 
     /// The tool's `run` from the parameter values on: the program, the plan (every check
