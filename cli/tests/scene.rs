@@ -518,3 +518,34 @@ fn scene_messages_name_the_scene_files_keys() {
     );
     no_flag(&stderr);
 }
+
+/// A run failing in a later phase names that phase's flows: `tests/data/vented.vms` has the
+/// flows [rocket] under `[plain]` and [tank, rocket] under `[pump]`; a `[pump]` phase from
+/// t = 1 with a negative vent rate fails at its first step on flow 0, the tank's (before the
+/// fix the first phase's list named it `rocket`, whose rate mu = 1 is positive).
+#[test]
+fn a_later_phase_names_its_own_flows() {
+    let file = scene(
+        "vented.toml",
+        &format!(
+            r#"
+model = "{}"
+until = 10.0
+with = ["plain"]
+set = {{ mu = 1.0, w0 = 10.0, u_e = 100.0, g = 9.81 }}
+init = {{ y = 0.0, m = 100.0 }}
+
+[[phase]]
+when = "t = 1"
+with = ["pump"]
+set = {{ nu = -1.0 }}
+"#,
+            workspace("cli/tests/data/vented.vms")
+        ),
+    );
+    let (_, stderr) = run(&["run", &file], 1);
+    assert!(
+        stderr.contains("the run failed at t = 1: the rate of the outflow `tank` is negative (-1)"),
+        "{stderr}"
+    );
+}

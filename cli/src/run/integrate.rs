@@ -36,7 +36,9 @@ pub fn integrate<const N: usize, const S: usize>(
 ) -> Result<Outcome, CliError> {
     let system = TapeSystem::<N, S>::padded(program).map_err(|e| CliError::Input(e.to_string()))?;
     let mut start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
-    let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, plan, e));
+    let (t0, fail) = (plan.from, |e: StepError<S>| {
+        describe(&system, plan, &plan.flows, e)
+    });
     // The held inputs sampled at t0 before the first point is recorded (the run's own
     // sample there then changes nothing).
     let before = start;
@@ -244,14 +246,16 @@ fn watcher<const S: usize>(
 }
 
 /// A failed run as a message with the error in the user's names, its time, the state by
-/// name and what to do about it.
+/// name and what to do about it; `flows` names the flows of `system`'s model (a scene's
+/// later phase may have other tags, so other flows, than the plan's first).
 pub(crate) fn describe<const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
     plan: &Plan,
+    flows: &[String],
     error: StepError<S>,
 ) -> CliError {
     let program = system.program();
-    let (what, fix) = explain(program, plan, error.kind);
+    let (what, fix) = explain(program, plan, flows, error.kind);
     let state = super::output::state_lines(program, error.time, error.state.as_slice());
     CliError::Run(format!(
         "the run failed at t = {}: {what}\nstate there:{state}\nhelp: {fix}",
@@ -261,7 +265,12 @@ pub(crate) fn describe<const N: usize, const S: usize>(
 
 /// What went wrong, in the model's names, and how to fix it, naming the settings as the
 /// run's user wrote them (flags, or a scene file's keys: `plan.words`).
-fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, String) {
+fn explain(
+    program: &Program,
+    plan: &Plan,
+    flows: &[String],
+    kind: StepErrorKind,
+) -> (String, String) {
     let what = kind.to_string();
     let w = |flag: &str| plan.words.setting(flag);
     let (stop_when, until, tol, step) = (w("--stop-when"), w("--until"), w("--tol"), w("--step"));
@@ -277,7 +286,7 @@ fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, Stri
             )
         }
         StepErrorKind::NegativeFlowRate { index, rate } => {
-            let flow = plan.flows.get(index).map_or("a flow", String::as_str);
+            let flow = flows.get(index).map_or("a flow", String::as_str);
             (
                 format!("the rate of the {flow} is negative ({rate})"),
                 format!(

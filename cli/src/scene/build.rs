@@ -40,6 +40,8 @@ pub struct End {
 pub struct ScenePhase {
     /// The model with this phase's tags and parameter values.
     pub program: Program,
+    /// Its model's flows, named for messages (`outflow `nozzle``), in the derivation's order.
+    pub flows: Vec<String>,
     /// How the state enters it.
     pub carry: Carry,
     /// The state masses it sets on entry.
@@ -107,6 +109,7 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
     };
     let first = ScenePhase {
         program,
+        flows: plan.flows.clone(),
         carry: Carry::Separation,
         state_masses: Vec::new(),
         record: plan.record.clone(),
@@ -279,7 +282,7 @@ fn phase(
     })
     .map_err(|e| located(e, &here))?;
     let selected = model.selected.clone();
-    let program = program_from(model, &in_force).map_err(|e| located(e, &here))?;
+    let (program, flows) = program_from(model, &in_force).map_err(|e| located(e, &here))?;
     let same = |p: &Program| {
         let k = p.state_mass_count();
         let coordinates: Vec<&str> = p.coordinate_names().collect();
@@ -312,6 +315,7 @@ fn phase(
     };
     Ok(ScenePhase {
         program,
+        flows,
         carry,
         state_masses,
         record,
@@ -398,11 +402,15 @@ fn program_of(file: &Path, in_force: &InForce) -> Result<Program, CliError> {
         file: file.to_path_buf(),
         with: in_force.with.clone(),
     })?;
-    program_from(model, in_force)
+    Ok(program_from(model, in_force)?.0)
 }
 
-/// The program of a loaded model with `in_force`'s values, as `varmass run` builds it.
-fn program_from(model: LoadedModel, in_force: &InForce) -> Result<Program, CliError> {
+/// The program of a loaded model with `in_force`'s values, as `varmass run` builds it, and
+/// its flows' names.
+fn program_from(
+    model: LoadedModel,
+    in_force: &InForce,
+) -> Result<(Program, Vec<String>), CliError> {
     let args = RunArgs {
         input: Vec::new(),
         table: Vec::new(),
@@ -426,7 +434,8 @@ fn program_from(model: LoadedModel, in_force: &InForce) -> Result<Program, CliEr
         plot: None,
         words: Words::Scene,
     };
-    Ok(crate::run::program(&args, model, |_| {})?.program)
+    let prepared = crate::run::program(&args, model, |_| {})?;
+    Ok((prepared.program, prepared.flows))
 }
 
 /// `error` with the place in the scene file it comes from.
