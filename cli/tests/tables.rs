@@ -192,3 +192,43 @@ fn a_point_that_cannot_be_recorded_keeps_the_rows_before_it() {
         );
     }
 }
+
+/// The interpreter's stop times are the generated code's: the knots of a table of t that
+/// only V (L, H) reads — `emit`'s code roots hold L and H, so the macro's `next_stop_time`
+/// gives h's knots — are stop times of `varmass run` too: every accepted step, recorded,
+/// lands on t = 0.5 and t = 1 exactly (before the fix the steps went from 0.0555 to 2).
+#[test]
+fn a_table_read_only_by_a_recorded_quantity_places_stop_times() {
+    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("recorded_stops.csv");
+    let _ = std::fs::remove_file(&csv);
+    run(
+        &[
+            "run",
+            &format!(
+                "{}/tests/data/tables/recorded_only.vms",
+                env!("CARGO_MANIFEST_DIR")
+            ),
+            "--set",
+            "m0=2",
+            "--set",
+            "g=10",
+            "--init",
+            "y=0",
+            "--until",
+            "1",
+            "--record",
+            "y",
+            "--csv",
+            csv.to_str().unwrap(),
+        ],
+        0,
+    );
+    let text = std::fs::read_to_string(&csv).expect("the CSV is written");
+    let times: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert!(times.contains(&0.5), "{times:?}");
+    assert_eq!(times.last(), Some(&1.0));
+}
