@@ -128,6 +128,49 @@ pub struct RunArgs {
     /// Plot the recorded quantities against t (SVG, or PNG with the `png` feature).
     #[arg(long, value_name = "PATH")]
     pub plot: Option<PathBuf>,
+    /// How messages name these settings: as flags, or as the keys of the scene file they
+    /// were read from (not a flag).
+    #[arg(skip)]
+    pub words: Words,
+}
+
+/// Where a run's settings were written, so that a message names what its user wrote: the
+/// flags of `varmass run`, or the keys of a scene file (docs/scenes.md), whose user never
+/// typed a flag.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Words {
+    /// Command-line flags (`--set`, `--stop-when`, …).
+    #[default]
+    Flags,
+    /// A scene file's keys (`set`, `stop_when`, …).
+    Scene,
+}
+
+impl Words {
+    /// The setting `flag` (a `varmass run` flag, `--max-steps`) as its user wrote it: the
+    /// flag, or the scene file's key (`max_steps`: the keys are the flags' names with `_`).
+    pub fn setting(self, flag: &str) -> String {
+        match self {
+            Words::Flags => flag.to_string(),
+            Words::Scene => format!("`{}`", flag.trim_start_matches('-').replace('-', "_")),
+        }
+    }
+
+    /// A stop condition `condition` written as this user would write it.
+    pub fn stop_when(self, condition: &str) -> String {
+        match self {
+            Words::Flags => format!("--stop-when '{condition}'"),
+            Words::Scene => format!("`stop_when = \"{condition}\"`"),
+        }
+    }
+
+    /// How to give the parameter `name` a value.
+    pub fn give_parameter(self, name: &str) -> String {
+        match self {
+            Words::Flags => format!("--set {name}=VALUE"),
+            Words::Scene => format!("`{name} = VALUE` under `[set]`"),
+        }
+    }
 }
 
 /// The core's steppers.

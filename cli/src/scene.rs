@@ -20,6 +20,7 @@ use crate::args::RunArgs;
 use crate::error::CliError;
 use crate::run::output::{self, Table};
 use crate::run::plot;
+use crate::run::record::Recorded;
 
 pub use build::ENERGY_RESIDUAL;
 
@@ -69,7 +70,7 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
     let read = file::read(path)?;
     let scene = build::build(&read, path)?;
     let csv = scene.csv.clone();
-    let phases: Vec<(Carry, Vec<(String, crate::run::record::Recorded)>)> = scene
+    let phases: Vec<(Carry, Vec<(String, Recorded)>)> = scene
         .phases
         .iter()
         .map(|p| (p.carry, p.record.clone()))
@@ -80,28 +81,13 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
         .map(|p| p.end.as_ref().map(|e| e.text.clone()))
         .collect();
     let energy = scene.energy_residual;
-    let flown = fly::fly(scene)?;
+    let mut flown = fly::fly(scene)?;
     let mut names = vec!["phase".to_string()];
     names.extend(phases[0].1.iter().map(|(n, _)| n.clone()));
     if energy {
         names.push(ENERGY_RESIDUAL.to_string());
     }
-    let mut rows = Vec::with_capacity(flown.points.len());
-    let mut start = 0;
-    while start < flown.points.len() {
-        let k = flown.phase[start];
-        let end = start + flown.phase[start..].iter().take_while(|p| **p == k).count();
-        let part = output::table(&flown.programs[k], &phases[k].1, &flown.points[start..end])?;
-        for (i, (t, values)) in part.rows.into_iter().enumerate() {
-            let mut row = vec![(k + 1) as f64];
-            row.extend(values);
-            if energy {
-                row.extend(flown.energy_residual.get(start + i));
-            }
-            rows.push((t, row));
-        }
-        start = end;
-    }
+    let rows = rows(&mut flown, &phases, energy);
     let changes: Vec<Change> = flown
         .changes
         .iter()
@@ -130,6 +116,45 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
         statistics: flown.statistics,
         failure: flown.failure,
     })
+}
+
+/// The table's rows: each point's phase (counted from 1), its phase's recorded quantities
+/// and, if asked, the energy residual. A point that cannot be recorded ends the rows there,
+/// the rows before it kept, and becomes `flown`'s failure (the run's own, if it failed
+/// later, follows in the message).
+fn rows(
+    flown: &mut fly::Flown,
+    phases: &[(Carry, Vec<(String, Recorded)>)],
+    energy: bool,
+) -> Vec<(f64, Vec<f64>)> {
+    let mut rows = Vec::with_capacity(flown.points.len());
+    let mut start = 0;
+    while start < flown.points.len() {
+        let k = flown.phase[start];
+        let end = start + flown.phase[start..].iter().take_while(|p| **p == k).count();
+        let recorded = output::table(&flown.programs[k], &phases[k].1, &flown.points[start..end]);
+        let (part, complete) = match recorded {
+            Ok(part) => (part, true),
+            Err(partial) => {
+                let (part, error) = partial.with_run_failure(flown.failure.take());
+                flown.failure = Some(error);
+                (part, false)
+            }
+        };
+        for (i, (t, values)) in part.rows.into_iter().enumerate() {
+            let mut row = vec![(k + 1) as f64];
+            row.extend(values);
+            if energy {
+                row.extend(flown.energy_residual.get(start + i));
+            }
+            rows.push((t, row));
+        }
+        if !complete {
+            break;
+        }
+        start = end;
+    }
+    rows
 }
 
 /// `varmass run SCENE.toml`: runs the scene, writes its CSV (`--csv` overrides the file's

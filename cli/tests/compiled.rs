@@ -197,3 +197,40 @@ fn a_kept_plan_refuses_values_as_a_new_plan_does() {
         .unwrap();
     assert_eq!(bits(&again), bits(&first));
 }
+
+/// A library caller (the Python package's `RunError`) gets the rows before a point that
+/// cannot be recorded with the error: `tests/data/tables/recorded_only.vms` records V,
+/// whose table h has no data past t = 1 while the run goes on to t = 2 (before the fix
+/// `Failed::table` was `None`).
+#[test]
+fn a_failed_recording_hands_back_the_rows_before_it() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/tables/recorded_only.vms");
+    let source = std::fs::read_to_string(&file).expect("readable");
+    let mut model = Compiled::new(load_source(&source, &file, &[]).expect("derives"));
+    let argv = [
+        "varmass",
+        "run",
+        "recorded_only.vms",
+        "--until=2",
+        "--init=y=0",
+        "--every=0.25",
+        "--record=V",
+    ];
+    let Command::Run(args) = Cli::try_parse_from(argv).expect("parses").command else {
+        unreachable!("a run")
+    };
+    let Err(failed) = model.run(&[("m0", 2.0), ("g", 10.0)], &args) else {
+        panic!("V is recorded past the table's data");
+    };
+    assert!(
+        matches!(&failed.error, CliError::Run(m) if m.contains("cannot record `V` at t = 1.25")),
+        "{}",
+        failed.error
+    );
+    let table = failed.table.expect("the rows before the failure");
+    let times: Vec<f64> = table.rows.iter().map(|(t, _)| *t).collect();
+    assert_eq!(times, [0.0, 0.25, 0.5, 0.75, 1.0]);
+    // V(1) = m0 g y(1) + h(1) = 2·10·(−5) + 3, y exact to rounding (quadratic in t).
+    let v_1 = table.rows[4].1[0];
+    assert!((v_1 + 97.0).abs() <= 1e-12, "{v_1}");
+}

@@ -191,6 +191,40 @@ masses = {{ m = 300.0 }}
 }
 
 /// Every bad scene file is a message at its line and exit 2, before any step.
+/// A scene whose recorded V reads a table that only V reads (`tests/data/tables/
+/// recorded_only.vms`: h(t) has data up to t = 1, the run goes to 2): the run fails with
+/// exit 1 at the first point V cannot be had, and the CSV keeps every row before it, each
+/// V the closed form m0 g y + h(t) (before the fix the scene wrote no CSV).
+#[test]
+fn a_point_that_cannot_be_recorded_keeps_the_scenes_rows_before_it() {
+    let out = scratch("recorded_only_scene.csv");
+    let _ = std::fs::remove_file(&out);
+    let file = scene(
+        "recorded_only.toml",
+        &format!(
+            "model = \"{}\"\nuntil = 2.0\nrecord = [\"y\", \"V\"]\n\
+             [set]\nm0 = 2.0\ng = 10.0\n[init]\ny = 0.0\n",
+            workspace("cli/tests/data/tables/recorded_only.vms")
+        ),
+    );
+    let (_, stderr) = run(&["run", &file, "--csv", &out.display().to_string()], 1);
+    assert!(stderr.contains("cannot record `V` at t = "), "{stderr}");
+    let (names, rows) = csv(&out);
+    assert_eq!(names, ["t", "phase", "y", "V"]);
+    assert!(rows.len() >= 2, "{rows:?}");
+    for row in &rows {
+        let (t, y, v) = (row[0], row[2], row[3]);
+        assert!(t <= 1.0, "a row past the table's data: {row:?}");
+        let h = if t <= 0.5 {
+            2.0 * t
+        } else {
+            1.0 + 4.0 * (t - 0.5)
+        };
+        // y is quadratic in t: Dormand–Prince is exact to rounding.
+        assert!((v - (20.0 * y + h)).abs() <= 1e-12, "{row:?}");
+    }
+}
+
 #[test]
 fn bad_scene_files_are_refused_at_their_line() {
     let model = workspace("models/two_stage_rocket.vms");
@@ -421,6 +455,97 @@ fn a_phase_entered_on_its_end_condition_names_it() {
     );
     assert!(
         stderr.contains("at t = 49.999999") || stderr.contains("at t = 50"),
+        "{stderr}"
+    );
+}
+
+/// The two-stage scene cut to its first phase (no `[[phase]]`), `extra` added at the top.
+fn one_phase(name: &str, extra: &str) -> String {
+    let text = std::fs::read_to_string(two_stage(name, extra, "m = 500")).expect("written");
+    let cut = text.find("[[phase]]").expect("a phase");
+    scene(name, &text[..cut])
+}
+
+/// A scene's user never typed a flag: its messages name the scene file's keys (`set`,
+/// `when`, `stop_when`, `until`) and the phase, never `--set` or `--stop-when` (before,
+/// a missing parameter said "give --set g=VALUE", a condition already true at the start
+/// "--stop-when `m > 10` already holds", and a failed run's help "--stop-when 'm < VALUE'
+/// or an earlier --until").
+#[test]
+fn scene_messages_name_the_scene_files_keys() {
+    let no_flag = |stderr: &str| {
+        for flag in ["--set", "--stop-when", "--until", "--with"] {
+            assert!(!stderr.contains(flag), "{flag} in {stderr}");
+        }
+    };
+    let text = std::fs::read_to_string(two_stage("no_g.toml", "", "m = 500")).expect("written");
+    let file = scene("no_g.toml", &text.replace("g = 9.81\n", ""));
+    let (_, stderr) = run(&["run", &file], 2);
+    assert!(
+        stderr.contains("(the first phase): missing value for g")
+            && stderr.contains("give `g = VALUE` under `[set]`"),
+        "{stderr}"
+    );
+    no_flag(&stderr);
+
+    let file = two_stage("holds_when.toml", "", "m > 10");
+    let (_, stderr) = run(&["run", &file], 2);
+    // The `when` of the scene file's phase, on its line 25.
+    assert!(
+        stderr.contains("holds_when.toml:25:8: phase 2's `when = \"m > 10\"` already holds at the start (the value there is 1000)"),
+        "{stderr}"
+    );
+    no_flag(&stderr);
+
+    let file = one_phase("holds_stop.toml", "stop_when = \"m > 10\"");
+    let (_, stderr) = run(&["run", &file], 2);
+    assert!(
+        stderr.contains("holds_stop.toml:8:13: `stop_when = \"m > 10\"` already holds"),
+        "{stderr}"
+    );
+    no_flag(&stderr);
+
+    // Stage 1 alone burns its 1000 kg out at t = 100 s, before `until` (150 s); at the
+    // default tolerance the step past it finds m < 0 (at 1e-13 the step size underflows
+    // first, whose help names `stop_when` and `until` too).
+    let text = std::fs::read_to_string(one_phase("burnt_out.toml", "")).expect("written");
+    let file = scene("burnt_out.toml", &text.replace("tol = 1e-13\n", ""));
+    let (_, stderr) = run(&["run", &file], 1);
+    assert!(
+        stderr.contains("the mass `m` is not positive")
+            && stderr.contains("e.g. `stop_when = \"m < VALUE\"` or an earlier `until`"),
+        "{stderr}"
+    );
+    no_flag(&stderr);
+}
+
+/// A run failing in a later phase names that phase's flows: `tests/data/vented.vms` has the
+/// flows [rocket] under `[plain]` and [tank, rocket] under `[pump]`; a `[pump]` phase from
+/// t = 1 with a negative vent rate fails at its first step on flow 0, the tank's (before the
+/// fix the first phase's list named it `rocket`, whose rate mu = 1 is positive).
+#[test]
+fn a_later_phase_names_its_own_flows() {
+    let file = scene(
+        "vented.toml",
+        &format!(
+            r#"
+model = "{}"
+until = 10.0
+with = ["plain"]
+set = {{ mu = 1.0, w0 = 10.0, u_e = 100.0, g = 9.81 }}
+init = {{ y = 0.0, m = 100.0 }}
+
+[[phase]]
+when = "t = 1"
+with = ["pump"]
+set = {{ nu = -1.0 }}
+"#,
+            workspace("cli/tests/data/vented.vms")
+        ),
+    );
+    let (_, stderr) = run(&["run", &file], 1);
+    assert!(
+        stderr.contains("the run failed at t = 1: the rate of the outflow `tank` is negative (-1)"),
         "{stderr}"
     );
 }

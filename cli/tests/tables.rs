@@ -125,3 +125,110 @@ fn a_malformed_table_file_is_a_diagnostic_with_its_line() {
     );
     assert!(stderr.contains("model.vms:2:14"), "{stderr}");
 }
+
+/// V = m0 g y + h(t) of `tests/data/tables/recorded_only.vms` at (t, y): y = −g t²/2 from
+/// rest, h the linear ramp (0, 0), (0.5, 1), (1, 3) of `ramp.csv`.
+fn ramp_potential(t: f64, y: f64) -> f64 {
+    let h = if t <= 0.5 {
+        2.0 * t
+    } else {
+        1.0 + 4.0 * (t - 0.5)
+    };
+    2.0 * 10.0 * y + h
+}
+
+/// A table that only a recorded quantity reads (h(t) in V, not in the equations): past its
+/// data the run goes on, V has no value, and the run fails there with exit 1 naming the
+/// quantity and the time — the CSV keeping every row before that point, each the closed
+/// form (before the fix the first unrecordable point dropped every row: no CSV at all).
+#[test]
+fn a_point_that_cannot_be_recorded_keeps_the_rows_before_it() {
+    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("recorded_only.csv");
+    let _ = std::fs::remove_file(&csv);
+    let (_, stderr) = run(
+        &[
+            "run",
+            &format!(
+                "{}/tests/data/tables/recorded_only.vms",
+                env!("CARGO_MANIFEST_DIR")
+            ),
+            "--set",
+            "m0=2",
+            "--set",
+            "g=10",
+            "--init",
+            "y=0",
+            "--until",
+            "2",
+            "--every",
+            "0.25",
+            "--record",
+            "y,V",
+            "--csv",
+            csv.to_str().unwrap(),
+        ],
+        1,
+    );
+    assert!(
+        stderr.contains("cannot record `V` at t = 1.25: table `h` has no value at 1.25"),
+        "{stderr}"
+    );
+    let text = std::fs::read_to_string(&csv).expect("the CSV is written");
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("t,y,V"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let times: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(times, [0.0, 0.25, 0.5, 0.75, 1.0]);
+    for row in &rows {
+        let (t, y, v) = (row[0], row[1], row[2]);
+        // y is quadratic in t: Dormand–Prince is exact to rounding (measured ≤ 1 ulp).
+        assert!((y + 5.0 * t * t).abs() <= 1e-14, "y({t}) = {y}");
+        let exact = ramp_potential(t, y);
+        assert!(
+            (v - exact).abs() <= 1e-13 * (1.0 + exact.abs()),
+            "V({t}) = {v}"
+        );
+    }
+}
+
+/// The interpreter's stop times are the generated code's: the knots of a table of t that
+/// only V (L, H) reads — `emit`'s code roots hold L and H, so the macro's `next_stop_time`
+/// gives h's knots — are stop times of `varmass run` too: every accepted step, recorded,
+/// lands on t = 0.5 and t = 1 exactly (before the fix the steps went from 0.0555 to 2).
+#[test]
+fn a_table_read_only_by_a_recorded_quantity_places_stop_times() {
+    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("recorded_stops.csv");
+    let _ = std::fs::remove_file(&csv);
+    run(
+        &[
+            "run",
+            &format!(
+                "{}/tests/data/tables/recorded_only.vms",
+                env!("CARGO_MANIFEST_DIR")
+            ),
+            "--set",
+            "m0=2",
+            "--set",
+            "g=10",
+            "--init",
+            "y=0",
+            "--until",
+            "1",
+            "--record",
+            "y",
+            "--csv",
+            csv.to_str().unwrap(),
+        ],
+        0,
+    );
+    let text = std::fs::read_to_string(&csv).expect("the CSV is written");
+    let times: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert!(times.contains(&0.5), "{times:?}");
+    assert_eq!(times.last(), Some(&1.0));
+}

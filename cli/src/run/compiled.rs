@@ -19,7 +19,7 @@ use super::dispatch::dispatch;
 use super::integrate::Outcome;
 use super::output::{self, Table};
 use super::plan::{self, Plan};
-use crate::args::RunArgs;
+use crate::args::{RunArgs, Words};
 use crate::error::CliError;
 use crate::model::LoadedModel;
 
@@ -165,7 +165,7 @@ impl Compiled {
     /// A refused value list in the tool's words.
     fn refused(&self, e: varmass::interpret::ProgramError) -> CliError {
         let m = &self.model;
-        super::program_error(&m.ast, &m.with, &m.base, e)
+        super::program_error(&m.ast, &m.with, &m.base, Words::Flags, e)
     }
 
     /// The tool's `run` from the parameter values on: the program, the plan (every check
@@ -268,7 +268,9 @@ impl Compiled {
             |_| {},
             |outcome, plan| {
                 let program = &outcome.program;
-                let mut table = output::table(program, &plan.record, &outcome.points)?;
+                // A member wants the end: rows before an unrecordable point are of no use.
+                let mut table = output::table(program, &plan.record, &outcome.points)
+                    .map_err(|partial| partial.with_run_failure(outcome.failure.take()).1)?;
                 if let Some(error) = outcome.failure.take() {
                     return Err(error);
                 }
@@ -297,7 +299,15 @@ fn typed(parameters: &[(&str, f64)]) -> Result<Vec<(String, f64)>, CliError> {
 /// What a finished run gives a library caller.
 fn completed(outcome: &mut Outcome, plan: &Plan, args: &RunArgs) -> Result<Completed, Failed> {
     let program = &outcome.program;
-    let table = output::table(program, &plan.record, &outcome.points).map_err(Failed::before)?;
+    let table = match output::table(program, &plan.record, &outcome.points) {
+        Ok(table) => table,
+        Err(partial) => {
+            // The rows before the point that could not be recorded go with the error.
+            let (table, error) = partial.with_run_failure(outcome.failure.take());
+            let table = Some(table);
+            return Err(Failed { error, table });
+        }
+    };
     if let Some(error) = outcome.failure.take() {
         let table = Some(table);
         return Err(Failed { error, table });

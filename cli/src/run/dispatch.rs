@@ -105,5 +105,6 @@ fn padded_plan(plan: &Plan, len: usize, padded: usize) -> Plan {
         progress: plan.progress,
         parameters: plan.parameters.clone(),
         flows: plan.flows.clone(),
+        words: plan.words,
     }
 }

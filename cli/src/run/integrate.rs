@@ -36,7 +36,9 @@ pub fn integrate<const N: usize, const S: usize>(
 ) -> Result<Outcome, CliError> {
     let system = TapeSystem::<N, S>::padded(program).map_err(|e| CliError::Input(e.to_string()))?;
     let mut start = SVector::<f64, S>::from_column_slice(&plan.initial_state);
-    let (t0, fail) = (plan.from, |e: StepError<S>| describe(&system, plan, e));
+    let (t0, fail) = (plan.from, |e: StepError<S>| {
+        describe(&system, plan, &plan.flows, e)
+    });
     // The held inputs sampled at t0 before the first point is recorded (the run's own
     // sample there then changes nothing).
     let before = start;
@@ -244,14 +246,16 @@ fn watcher<const S: usize>(
 }
 
 /// A failed run as a message with the error in the user's names, its time, the state by
-/// name and what to do about it.
+/// name and what to do about it; `flows` names the flows of `system`'s model (a scene's
+/// later phase may have other tags, so other flows, than the plan's first).
 pub(crate) fn describe<const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
     plan: &Plan,
+    flows: &[String],
     error: StepError<S>,
 ) -> CliError {
     let program = system.program();
-    let (what, fix) = explain(program, plan, error.kind);
+    let (what, fix) = explain(program, plan, flows, error.kind);
     let state = super::output::state_lines(program, error.time, error.state.as_slice());
     CliError::Run(format!(
         "the run failed at t = {}: {what}\nstate there:{state}\nhelp: {fix}",
@@ -259,81 +263,108 @@ pub(crate) fn describe<const N: usize, const S: usize>(
     ))
 }
 
-/// What went wrong, in the model's names, and how to fix it.
-fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, String) {
+/// What went wrong, in the model's names, and how to fix it, naming the settings as the
+/// run's user wrote them (flags, or a scene file's keys: `plan.words`).
+fn explain(
+    program: &Program,
+    plan: &Plan,
+    flows: &[String],
+    kind: StepErrorKind,
+) -> (String, String) {
     let what = kind.to_string();
+    let w = |flag: &str| plan.words.setting(flag);
+    let (stop_when, until, tol, step) = (w("--stop-when"), w("--until"), w("--tol"), w("--step"));
     match kind {
         StepErrorKind::NonPositiveMass { index } => {
             let name = program.mass_names().nth(index).unwrap_or("?");
             (
                 format!("the mass `{name}` is not positive"),
                 format!(
-                    "end the run before `{name}` runs out, e.g. --stop-when '{name} < VALUE' \
-                     or an earlier --until"
+                    "end the run before `{name}` runs out, e.g. {} or an earlier {until}",
+                    plan.words.stop_when(&format!("{name} < VALUE"))
                 ),
             )
         }
         StepErrorKind::NegativeFlowRate { index, rate } => {
-            let flow = plan.flows.get(index).map_or("a flow", String::as_str);
+            let flow = flows.get(index).map_or("a flow", String::as_str);
             (
                 format!("the rate of the {flow} is negative ({rate})"),
-                "a flow's rate is the mass it moves per second, ≥ 0 by definition; correct \
-                 the parameters it reads (--set), or write the flow the other way round \
-                 (outflow ↔ inflow)"
-                    .to_string(),
+                format!(
+                    "a flow's rate is the mass it moves per second, ≥ 0 by definition; correct \
+                     the parameters it reads ({}), or write the flow the other way round \
+                     (outflow ↔ inflow)",
+                    w("--set")
+                ),
             )
         }
         StepErrorKind::TooManySteps { .. } => (
-            format!("more than --max-steps {} steps were needed", plan.max_steps),
-            "raise --max-steps, loosen --tol, or use --method sdirk4 if the model is stiff"
-                .to_string(),
+            format!(
+                "more than {} {} steps were needed",
+                w("--max-steps"),
+                plan.max_steps
+            ),
+            format!(
+                "raise {}, loosen {tol}, or use {} sdirk4 if the model is stiff",
+                w("--max-steps"),
+                w("--method")
+            ),
         ),
         StepErrorKind::WallClockExceeded { .. } => (
             what,
-            "raise --max-seconds, loosen --tol, or shorten --until".to_string(),
+            format!(
+                "raise {}, loosen {tol}, or shorten {until}",
+                w("--max-seconds")
+            ),
         ),
         StepErrorKind::NonFiniteState | StepErrorKind::EnergyBudgetExceeded { .. } => (
             what,
-            "a fixed step past the stability limit does this: use a smaller --step or an \
-             adaptive method (--tol)"
-                .to_string(),
+            format!(
+                "a fixed step past the stability limit does this: use a smaller {step} or an \
+                 adaptive method ({tol})"
+            ),
         ),
         StepErrorKind::StepSizeUnderflow { .. } => (
             what,
-            "the solution is singular here, or the model stiff: stop before this time \
-             (--stop-when, --until), or use --method sdirk4"
-                .to_string(),
+            format!(
+                "the solution is singular here, or the model stiff: stop before this time \
+                 ({stop_when}, {until}), or use {} sdirk4",
+                w("--method")
+            ),
         ),
         StepErrorKind::NewtonDivergence { .. } => (
             what,
-            "use a smaller --step, or an adaptive method (--tol)".to_string(),
+            format!("use a smaller {step}, or an adaptive method ({tol})"),
         ),
         StepErrorKind::SingularMassMatrix => (
             format!("{what} (the velocities cannot be recovered from the momenta)"),
-            "the model's kinetic energy stops depending on a velocity here: stop before \
-             this state (--stop-when), or check the masses and positions; a rigid body at \
-             the gimbal lock of its Euler sequence (middle angle ±90° for zyx-like, 0° or \
-             180° for zxz-like sequences) needs a sequence whose lock the motion avoids \
-             (docs/mechanics.md#rigid-bodies)"
-                .to_string(),
+            format!(
+                "the model's kinetic energy stops depending on a velocity here: stop before \
+                 this state ({stop_when}), or check the masses and positions; a rigid body at \
+                 the gimbal lock of its Euler sequence (middle angle ±90° for zyx-like, 0° or \
+                 180° for zxz-like sequences) needs a sequence whose lock the motion avoids \
+                 (docs/mechanics.md#rigid-bodies)"
+            ),
         ),
         StepErrorKind::Chattering { switch, .. } => {
             let name = program.switch_name(switch).unwrap_or("?");
             (
                 format!("{what}: the motion sticks on the switch `{name}`"),
-                "the equations as written cannot continue on the switch: model the stuck \
-                 motion as its own phase (a scene file), or stop before it (--stop-when)"
-                    .to_string(),
+                format!(
+                    "the equations as written cannot continue on the switch: model the stuck \
+                     motion as its own phase (a scene file), or stop before it ({stop_when})"
+                ),
             )
         }
-        StepErrorKind::NonFiniteTime { .. } | StepErrorKind::InvalidConfiguration { .. } => {
-            (what, "check --from, --until, --step and --tol".to_string())
-        }
+        StepErrorKind::NonFiniteTime { .. } | StepErrorKind::InvalidConfiguration { .. } => (
+            what,
+            format!("check {}, {until}, {step} and {tol}", w("--from")),
+        ),
         StepErrorKind::TableOutside { .. } => (
             what,
-            "the table has no data there: stop before it (--until, --stop-when), or give the \
-             table `outside zero` or `outside hold` in the model"
-                .to_string(),
+            format!(
+                "the table has no data there: stop before it ({until}, {stop_when}), or give \
+                 the table `outside zero` or `outside hold` in the model"
+            ),
         ),
     }
 }
@@ -358,6 +389,7 @@ mod tests {
             progress: false,
             parameters: Vec::new(),
             flows: Vec::new(),
+            words: Default::default(),
         }
     }
 

@@ -22,7 +22,7 @@ use std::path::Path;
 use varmass::interpret::{Program, ProgramError};
 use varmass::symbolic::parse::ast::SystemAst;
 
-use crate::args::RunArgs;
+use crate::args::{RunArgs, Words};
 use crate::error::CliError;
 use crate::model::{load, tag_with_parameter, LoadedModel};
 
@@ -48,11 +48,17 @@ fn finish(
     plan: &plan::Plan,
 ) -> Result<String, CliError> {
     let program = &outcome.program;
-    let table = output::table(program, &plan.record, &outcome.points)?;
+    let (table, failure) = match output::table(program, &plan.record, &outcome.points) {
+        Ok(table) => (table, outcome.failure.take()),
+        Err(partial) => {
+            let (table, error) = partial.with_run_failure(outcome.failure.take());
+            (table, Some(error))
+        }
+    };
     if let Some(path) = &args.csv {
         output::write_csv(&table, path)?;
     }
-    if let Some(failure) = outcome.failure.take() {
+    if let Some(failure) = failure {
         // The CSV holds the points up to the failure; the error is what the run reports.
         return Err(failure);
     }
@@ -119,7 +125,7 @@ pub fn program(
     }
     let borrowed: Vec<(&str, f64)> = values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
     let program = Program::new(model.derivation, &borrowed)
-        .map_err(|e| program_error(&model.ast, &model.with, &model.base, e))?;
+        .map_err(|e| program_error(&model.ast, &model.with, &model.base, args.words, e))?;
     Ok(Prepared {
         program,
         flows: model.flows,
@@ -128,21 +134,38 @@ pub fn program(
 }
 
 /// A value list that does not fit `model`, as the tool says it: an unknown name that a tag
-/// left out would make a parameter names the tag; missing values name the flags to give.
-fn program_error(ast: &SystemAst, with: &[String], base: &Path, e: ProgramError) -> CliError {
+/// left out would make a parameter names the tag; missing values name the flags (or the
+/// scene file's keys, as `words` says) to give.
+fn program_error(
+    ast: &SystemAst,
+    with: &[String],
+    base: &Path,
+    words: Words,
+    e: ProgramError,
+) -> CliError {
     match &e {
         ProgramError::UnknownParameter { name, .. } => {
             match tag_with_parameter(ast, with, name, base) {
-                Some(tag) => CliError::Input(format!(
-                    "`{name}` is a parameter of the statements tagged `[{tag}]`, which this run \
-                 leaves out; add `--with {tag}` to include them"
-                )),
+                Some(tag) => {
+                    let add = match words {
+                        Words::Flags => format!("`--with {tag}`"),
+                        Words::Scene => format!("\"{tag}\" to `with`"),
+                    };
+                    CliError::Input(format!(
+                        "`{name}` is a parameter of the statements tagged `[{tag}]`, which \
+                         this run leaves out; add {add} to include them"
+                    ))
+                }
                 None => CliError::Input(e.to_string()),
             }
         }
         ProgramError::MissingParameters { missing, .. } => {
-            let give: Vec<String> = missing.iter().map(|m| format!("--set {m}=VALUE")).collect();
-            CliError::Input(format!("{e}; give {}", give.join(" ")))
+            let give: Vec<String> = missing.iter().map(|m| words.give_parameter(m)).collect();
+            let join = match words {
+                Words::Flags => " ",
+                Words::Scene => ", ",
+            };
+            CliError::Input(format!("{e}; give {}", give.join(join)))
         }
         _ => CliError::Input(e.to_string()),
     }

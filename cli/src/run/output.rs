@@ -17,31 +17,64 @@ pub struct Table {
     pub rows: Vec<(f64, Vec<f64>)>,
 }
 
-/// Evaluates `record` at every point; a quantity that cannot be had is an error with its time.
+/// A recording that stopped at a point whose quantity cannot be had: the rows before that
+/// point, and the error naming the quantity and the time. Nothing already recorded is lost:
+/// the callers write these rows (the CSV up to the failing point) or hand them to the
+/// library caller with the error.
+pub struct Partial {
+    /// The rows before the failing point.
+    pub table: Table,
+    /// Which quantity could not be recorded, and at what time.
+    pub error: CliError,
+}
+
+impl Partial {
+    /// The rows and the error to report for a run whose own outcome was `failure`: the
+    /// recording's error, which ends the table, followed by the run's if it failed later.
+    pub fn with_run_failure(self, failure: Option<CliError>) -> (Table, CliError) {
+        let error = match failure {
+            None => self.error,
+            Some(run) => CliError::Run(format!(
+                "{}
+(then: {run})",
+                self.error
+            )),
+        };
+        (self.table, error)
+    }
+}
+
+/// Evaluates `record` at every point; a quantity that cannot be had ends the recording with
+/// its time, the rows before it kept in the [`Partial`].
 pub fn table(
     program: &Program,
     record: &[(String, Recorded)],
     points: &[(f64, Vec<f64>)],
-) -> Result<Table, CliError> {
-    let mut rows = Vec::with_capacity(points.len());
+) -> Result<Table, Partial> {
+    let names = record.iter().map(|(n, _)| n.clone()).collect();
+    let mut table = Table {
+        names,
+        rows: Vec::with_capacity(points.len()),
+    };
     for (t, state) in points {
         let values = record
             .iter()
             .map(|(name, o)| {
                 o.value(program, *t, state).map_err(|e| {
                     CliError::Run(format!(
-                        "cannot record `{name}` at t = {t}: {e}; record other quantities, or \
-                         stop the run before this time"
+                        "cannot record `{name}` at t = {t}: {e}; the points before this time \
+                         are recorded; record other quantities, or stop the run before this \
+                         time"
                     ))
                 })
             })
-            .collect::<Result<Vec<f64>, CliError>>()?;
-        rows.push((*t, values));
+            .collect::<Result<Vec<f64>, CliError>>();
+        match values {
+            Ok(values) => table.rows.push((*t, values)),
+            Err(error) => return Err(Partial { table, error }),
+        }
     }
-    Ok(Table {
-        names: record.iter().map(|(n, _)| n.clone()).collect(),
-        rows,
-    })
+    Ok(table)
 }
 
 /// Writes `table` as CSV: a header `t,<names>` and one row per output time, each number

@@ -9,7 +9,7 @@ use varmass::symbolic::parse::ast::SystemAst;
 
 use super::names::{assignment, evaluate, named, observables, resolve, velocity_state, Observable};
 use super::record::{entries, recorded, Recorded, Scope};
-use crate::args::{Method, RunArgs};
+use crate::args::{Method, RunArgs, Words};
 use crate::error::CliError;
 
 /// A `--stop-when` condition: an observable crossing a value.
@@ -63,6 +63,8 @@ pub struct Plan {
     /// Each flow's name for messages, in the derivation's flow order (`flow 1`, … until
     /// the caller, which has the model's statements, names them).
     pub flows: Vec<String>,
+    /// How messages name the settings: flags, or a scene file's keys.
+    pub words: Words,
 }
 
 /// The default tolerance of the adaptive methods when `--tol` is not given.
@@ -153,14 +155,16 @@ pub fn plan_with(
     let initial_state = initial_state(args, program)?;
     let mut stop_when = Vec::new();
     for text in &args.stop_when {
-        let (name, direction, value) = condition(text)?;
+        let flag = args.words.setting("--stop-when");
+        let what = format!("{flag} `{text}`");
+        let (name, direction, value) = condition(text, &flag)?;
         let observable = resolve(&name, &known, "a quantity")?;
         let condition = StopWhen {
             observable,
             value,
             direction,
         };
-        not_yet_true(program, &condition, text, from, &initial_state)?;
+        not_yet_true(program, &condition, &what, from, &initial_state)?;
         stop_when.push(condition);
     }
     let record = match args.record.is_empty() {
@@ -202,6 +206,7 @@ pub fn plan_with(
         flows: (1..=program.derivation().flow_rates.len())
             .map(|i| format!("flow {i}"))
             .collect(),
+        words: args.words,
     })
 }
 
@@ -221,7 +226,8 @@ pub fn refresh(
 ) -> Result<(), CliError> {
     let initial_state = momenta(program, args.from, velocity_state.to_vec())?;
     for (text, condition) in args.stop_when.iter().zip(&plan.stop_when) {
-        not_yet_true(program, condition, text, plan.from, &initial_state)?;
+        let what = format!("{} `{text}`", args.words.setting("--stop-when"));
+        not_yet_true(program, condition, &what, plan.from, &initial_state)?;
     }
     plan.initial_state = initial_state;
     plan.parameters = parameters;
@@ -239,11 +245,12 @@ impl Plan {
 }
 
 /// Splits a `--stop-when` condition `NAME = VALUE`, `NAME > VALUE` or `NAME < VALUE`
-/// (`>=` and `<=` read as `>` and `<`: a crossing has no width).
-pub(crate) fn condition(text: &str) -> Result<(String, Direction, f64), CliError> {
+/// (`>=` and `<=` read as `>` and `<`: a crossing has no width); `flag` is the setting
+/// as its user wrote it (`--stop-when`, a scene's `when`).
+pub(crate) fn condition(text: &str, flag: &str) -> Result<(String, Direction, f64), CliError> {
     let Some(at) = text.find(['=', '<', '>']) else {
         return Err(CliError::Input(format!(
-            "--stop-when `{text}`: expected NAME = VALUE, NAME > VALUE or NAME < VALUE"
+            "{flag} `{text}`: expected NAME = VALUE, NAME > VALUE or NAME < VALUE"
         )));
     };
     let (name, rest) = text.split_at(at);
@@ -252,21 +259,22 @@ pub(crate) fn condition(text: &str) -> Result<(String, Direction, f64), CliError
         ("<", value) => (Direction::Falling, value.strip_prefix('=').unwrap_or(value)),
         (_, value) => (Direction::Either, value),
     };
-    let (name, value) = named(text, "--stop-when", name, value)?;
+    let (name, value) = named(text, flag, name, value)?;
     Ok((name, direction, value))
 }
 
 /// A `>` or `<` condition that already holds at the start would wait for a crossing the
-/// user did not mean: refused, with the value there.
+/// user did not mean: refused, with the value there; `what` names the condition as its
+/// user wrote it.
 pub(crate) fn not_yet_true(
     program: &Program,
     condition: &StopWhen,
-    text: &str,
+    what: &str,
     from: f64,
     state: &[f64],
 ) -> Result<(), CliError> {
     let start = evaluate(program, condition.observable, from, state)
-        .map_err(|e| CliError::Input(format!("--stop-when `{text}`: {e} at the start")))?;
+        .map_err(|e| CliError::Input(format!("{what}: {e} at the start")))?;
     let holds = match condition.direction {
         Direction::Rising => start > condition.value,
         Direction::Falling => start < condition.value,
@@ -274,8 +282,8 @@ pub(crate) fn not_yet_true(
     };
     if holds {
         return Err(CliError::Input(format!(
-            "--stop-when `{text}` already holds at the start (the value there is {start}): \
-             a run stops when the quantity crosses the value"
+            "{what} already holds at the start (the value there is {start}): a run stops \
+             when the quantity crosses the value"
         )));
     }
     Ok(())

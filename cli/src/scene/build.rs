@@ -11,7 +11,7 @@ use varmass::interpret::Program;
 use varmass::symbolic::parse::ast::SystemAst;
 
 use super::file::{line_column, CarryRule, PhaseEntry, Read};
-use crate::args::{ModelArgs, RunArgs};
+use crate::args::{ModelArgs, RunArgs, Words};
 use crate::error::CliError;
 use crate::model::{load, LoadedModel};
 use crate::run::names::{observables, resolve, Observable};
@@ -40,6 +40,8 @@ pub struct End {
 pub struct ScenePhase {
     /// The model with this phase's tags and parameter values.
     pub program: Program,
+    /// Its model's flows, named for messages (`outflow `nozzle``), in the derivation's order.
+    pub flows: Vec<String>,
     /// How the state enters it.
     pub carry: Carry,
     /// The state masses it sets on entry.
@@ -107,6 +109,7 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
     };
     let first = ScenePhase {
         program,
+        flows: plan.flows.clone(),
         carry: Carry::Separation,
         state_masses: Vec::new(),
         record: plan.record.clone(),
@@ -126,32 +129,40 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
             &phases[0],
             &where_,
         )?;
-        let end = end(&entry.when, &phases[before])
+        let end = end(&entry.when, "`when`", &phases[before])
             .map_err(|e| located(e, &where_(entry.when.span().start)))?;
         phases[before].end = Some(end);
         phases.push(phase);
     }
     if let Some(stop) = &scene.stop_when {
         let last = phases.len() - 1;
-        let end = end(stop, &phases[last]).map_err(|e| located(e, &at(stop.span().start)))?;
+        let end = end(stop, "`stop_when`", &phases[last])
+            .map_err(|e| located(e, &at(stop.span().start)))?;
         phases[last].end = Some(end);
     }
     if let Some(first_end) = &phases[0].end {
         if let Some(observable) = first_end.observable {
-            let (_, _, value) = condition(&first_end.text)?;
             let check = crate::run::plan::StopWhen {
                 observable,
-                value,
+                value: first_end.value,
                 direction: first_end.direction,
             };
+            // The condition ending the first phase: phase 2's `when`, or the scene's
+            // `stop_when` when there is one phase.
+            let (what, offset) = match (scene.phases.first(), &scene.stop_when) {
+                (Some(next), _) => ("phase 2's `when", next.when.span().start),
+                (None, Some(stop)) => ("`stop_when", stop.span().start),
+                (None, None) => ("`stop_when", 0),
+            };
+            let what = format!("{what} = \"{}\"`", first_end.text);
             not_yet_true(
                 &phases[0].program,
                 &check,
-                &first_end.text,
+                &what,
                 plan.from,
                 &plan.initial_state,
             )
-            .map_err(|e| located(e, &path.display().to_string()))?;
+            .map_err(|e| located(e, &at(offset)))?;
         }
     }
     for phase in &mut phases {
@@ -202,6 +213,7 @@ fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String
         every: None,
         csv: None,
         plot: None,
+        words: Words::Scene,
     }
 }
 
@@ -270,7 +282,7 @@ fn phase(
     })
     .map_err(|e| located(e, &here))?;
     let selected = model.selected.clone();
-    let program = program_from(model, &in_force).map_err(|e| located(e, &here))?;
+    let (program, flows) = program_from(model, &in_force).map_err(|e| located(e, &here))?;
     let same = |p: &Program| {
         let k = p.state_mass_count();
         let coordinates: Vec<&str> = p.coordinate_names().collect();
@@ -303,6 +315,7 @@ fn phase(
     };
     Ok(ScenePhase {
         program,
+        flows,
         carry,
         state_masses,
         record,
@@ -355,10 +368,11 @@ fn record(
         .collect()
 }
 
-/// The condition `text` ending `phase`: `t` or one of its quantities crossing a value.
-fn end(text: &toml::Spanned<String>, phase: &ScenePhase) -> Result<End, CliError> {
+/// The condition `text` (the scene's `key`) ending `phase`: `t` or one of its quantities
+/// crossing a value.
+fn end(text: &toml::Spanned<String>, key: &str, phase: &ScenePhase) -> Result<End, CliError> {
     let text = text.get_ref();
-    let (name, direction, value) = condition(text)?;
+    let (name, direction, value) = condition(text, key)?;
     let observable = match name.as_str() {
         "t" => None,
         _ => Some(resolve(&name, &observables(&phase.program), "a quantity")?),
@@ -388,11 +402,15 @@ fn program_of(file: &Path, in_force: &InForce) -> Result<Program, CliError> {
         file: file.to_path_buf(),
         with: in_force.with.clone(),
     })?;
-    program_from(model, in_force)
+    Ok(program_from(model, in_force)?.0)
 }
 
-/// The program of a loaded model with `in_force`'s values, as `varmass run` builds it.
-fn program_from(model: LoadedModel, in_force: &InForce) -> Result<Program, CliError> {
+/// The program of a loaded model with `in_force`'s values, as `varmass run` builds it, and
+/// its flows' names.
+fn program_from(
+    model: LoadedModel,
+    in_force: &InForce,
+) -> Result<(Program, Vec<String>), CliError> {
     let args = RunArgs {
         input: Vec::new(),
         table: Vec::new(),
@@ -414,8 +432,10 @@ fn program_from(model: LoadedModel, in_force: &InForce) -> Result<Program, CliEr
         every: None,
         csv: None,
         plot: None,
+        words: Words::Scene,
     };
-    Ok(crate::run::program(&args, model, |_| {})?.program)
+    let prepared = crate::run::program(&args, model, |_| {})?;
+    Ok((prepared.program, prepared.flows))
 }
 
 /// `error` with the place in the scene file it comes from.

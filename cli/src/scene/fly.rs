@@ -84,7 +84,9 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
     let mut systems = Vec::new();
     let mut ends = Vec::new();
     let mut masses = Vec::new();
+    let mut flows = Vec::new();
     for phase in built {
+        flows.push(phase.flows);
         let system = TapeSystem::<N, S>::padded(phase.program)
             .map_err(|e| CliError::Input(e.to_string()))?;
         systems.push((system, phase.carry));
@@ -161,7 +163,13 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
                 e.time
             ))
         }
-        false => describe(&phases[last.min(phases.len() - 1)].system, &plan, e),
+        false => {
+            // The phase the run failed in, with its own model's flows: the last one
+            // entered (a failure at its first step leaves no point of it).
+            let entered = phased.changes.last().map_or(0, |c| c.phase).max(last);
+            let k = entered.min(phases.len() - 1);
+            describe(&phases[k].system, &plan, &flows[k], e)
+        }
     });
     let stopped = phases.len() == last + 1
         && phases[last].until.is_some()
