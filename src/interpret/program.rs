@@ -7,7 +7,7 @@ use std::sync::Arc;
 use varmass_core::table::{knot_bracket, knot_gap, next_knot_time, Table};
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, Tape};
-use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation};
+use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation, Outputs};
 use varmass_symbolic::parse::keywords::closest;
 use varmass_symbolic::quantity::Evaluated;
 pub use varmass_symbolic::quantity::Quantity;
@@ -125,7 +125,7 @@ impl Program {
             .map(|&i| d.masses[i].symbol.index());
         let law_slots = law_slots.collect();
         let (switch_roots, switch_names, switch_tables) = switches(&mut d);
-        let code = code_roots(&d);
+        let code = d.code_roots(Outputs::FULL);
         let (tables, stop_roots) = stop_tables(
             &mut d,
             &[&stages.rates, &stages.velocities, &stages.laws, &code],
@@ -670,28 +670,6 @@ fn switches(d: &mut Derivation) -> (Vec<Id>, Vec<String>, Vec<Arc<Table>>) {
         roots.push(s.argument);
     }
     (roots, names, tables)
-}
-
-/// The roots of every method the generated code has (`emit`'s `code_roots` with every
-/// output: L, the energy, the power, H, the state rate's equations, the Jacobian), so that
-/// the interpreter's stop times are the generated code's: a table of t that only L, V, H
-/// or the power reads (a recorded quantity) has its knots as stop times in both.
-fn code_roots(d: &Derivation) -> Vec<Id> {
-    let mut head = vec![d.lagrangian, d.energy, d.power];
-    head.extend(d.hamiltonian);
-    let mut roots = d.equation_roots(head, false);
-    if let Some(j) = d.jacobian.as_ref() {
-        for matrix in [
-            &j.rate_wrt_q,
-            &j.rate_wrt_velocity,
-            &j.rate_wrt_state_mass,
-            &j.momentum_wrt_q,
-            &j.momentum_wrt_state_mass,
-        ] {
-            roots.extend(matrix.iter().flatten());
-        }
-    }
-    roots
 }
 
 /// The tables of t called by `roots`, and the slope and offset of each one's argument

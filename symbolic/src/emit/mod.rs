@@ -54,7 +54,7 @@ pub fn emit_system_for(
     // The code evaluates sin/cos of sums of two coordinates through the sines and cosines
     // of the coordinates themselves (shared by CSE); the text above keeps cos(a - b).
     let mut for_code = FxHashMap::default();
-    for e in with_angle_sums(&d.pool, &code_roots(d, outputs)) {
+    for e in with_angle_sums(&d.pool, &d.code_roots(outputs)) {
         let expanded = d.pool.expand_trig_arguments(e);
         if expanded != e {
             for_code.insert(e, expanded);
@@ -62,7 +62,7 @@ pub fn emit_system_for(
     }
     let switches = crate::mechanics::switching_functions(d);
     let table_switches = crate::mechanics::table_switches(d);
-    let time_tables = crate::mechanics::time_tables(d, &code_roots(d, outputs));
+    let time_tables = crate::mechanics::time_tables(d, &d.code_roots(outputs));
     let shown = documented_roots(d);
     let shown_texts = shown
         .iter()
@@ -201,28 +201,4 @@ fn with_angle_sums(pool: &ExprPool, roots: &[Id]) -> Vec<Id> {
     let mut seen = FxHashSet::default();
     let unique = roots.iter().copied().filter(|r| seen.insert(*r));
     unique.filter(|r| below.contains(r)).collect()
-}
-
-/// Every expression of `d` that generated code evaluates with `outputs`.
-fn code_roots(d: &Derivation, outputs: Outputs) -> Vec<Id> {
-    let mut head = vec![d.lagrangian, d.energy];
-    if outputs.power {
-        head.push(d.power);
-    }
-    if outputs.hamiltonian {
-        head.extend(d.hamiltonian);
-    }
-    let mut roots = d.equation_roots(head, false);
-    if let Some(j) = d.jacobian.as_ref().filter(|_| outputs.jacobian) {
-        for matrix in [
-            &j.rate_wrt_q,
-            &j.rate_wrt_velocity,
-            &j.rate_wrt_state_mass,
-            &j.momentum_wrt_q,
-            &j.momentum_wrt_state_mass,
-        ] {
-            roots.extend(matrix.iter().flatten());
-        }
-    }
-    roots
 }

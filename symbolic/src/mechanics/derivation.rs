@@ -183,6 +183,34 @@ impl Derivation {
         2 * self.coordinates.len() + self.state_mass_count() + self.held().len()
     }
 
+    /// Every expression generated code evaluates with `outputs`: L, the energy, the power
+    /// and H as asked, the state rate's equations ([`Derivation::equation_roots`]) and the
+    /// Jacobian as asked. The emitter reads it, and the interpreter with every output, so
+    /// that both place stop times at the knots of every table of t the code reads (one
+    /// only L, V or H reads included).
+    pub fn code_roots(&self, outputs: Outputs) -> Vec<Id> {
+        let mut head = vec![self.lagrangian, self.energy];
+        if outputs.power {
+            head.push(self.power);
+        }
+        if outputs.hamiltonian {
+            head.extend(self.hamiltonian);
+        }
+        let mut roots = self.equation_roots(head, false);
+        if let Some(j) = self.jacobian.as_ref().filter(|_| outputs.jacobian) {
+            for matrix in [
+                &j.rate_wrt_q,
+                &j.rate_wrt_velocity,
+                &j.rate_wrt_state_mass,
+                &j.momentum_wrt_q,
+                &j.momentum_wrt_state_mass,
+            ] {
+                roots.extend(matrix.iter().flatten());
+            }
+        }
+        roots
+    }
+
     /// `head`, then the roots of every equation of the state rate: the closed laws, the
     /// per-coordinate equations (the flow rates among them if `flows`), q̈, q̇ when solved
     /// symbolically, and M. The emitter (its code roots) and the input check (every equation
