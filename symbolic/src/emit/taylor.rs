@@ -91,10 +91,12 @@ impl Names<'_> {
             .unwrap_or(usize::MAX))
     }
 
-    /// The fields of every slot that is not an input.
+    /// The fields of the slots this tape's instructions write (inputs excluded).
     fn fields(&self) -> Vec<Ident> {
         let inputs = self.tape.input_slots();
-        (0..self.tape.slot_count())
+        self.tape
+            .written_slots()
+            .into_iter()
             .filter(|s| !inputs.contains(s))
             .map(|s| self.field(s))
             .collect()
@@ -154,6 +156,7 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
         .map(field)
         .chain(laws.fields())
         .chain(velocities.fields())
+        .chain(rates.fields())
         .collect();
     let k = quote!(k);
     let zero = quote!(0);
@@ -405,6 +408,10 @@ fn op(
         Op::Recip(a) => {
             let a = n(a);
             quote!(#w[#k] = #ts::recip(&#a, &#w, #k);)
+        }
+        Op::Div(a, den) => {
+            let (a, den) = (n(a), n(den));
+            quote!(#w[#k] = #ts::div(&#a, &#den, &#w, #k);)
         }
         Op::Sqrt(a) => {
             let a = n(a);
