@@ -59,12 +59,13 @@ pub(super) fn prune(tapes: &mut [TaylorTape]) {
             mark(&mut live, *s);
         }
     }
-    // Every kept instruction's reads are live; repeat until nothing changes (instructions
-    // of later stages read earlier ones, fixed instructions feed series ones).
+    // Every kept instruction's reads are live. Readers come after what they read (later
+    // stages after earlier ones, a stage's series instructions after its fixed ones, each
+    // list in order), so one pass backwards settles it; the loop only confirms.
     loop {
         let mut changed = false;
-        for tape in tapes.iter() {
-            for instr in tape.fixed.iter().chain(&tape.series) {
+        for tape in tapes.iter().rev() {
+            for instr in tape.series.iter().rev().chain(tape.fixed.iter().rev()) {
                 if writes(instr).iter().any(|s| live.get(*s) == Some(&true)) {
                     for s in reads(instr, &tape.operands) {
                         if live.get(s) == Some(&false) {
