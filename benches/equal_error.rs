@@ -192,7 +192,7 @@ pub fn rows(
         .zip(cost(OURS))
         .map(|(t, d)| format!("{:.3}", t.seconds / d.seconds));
     rows.push(format!(
-        "{problem:<24} {target:>7.0e} {:>20} {:>9} {:>9.2}",
+        "{problem:<24} {target:>7.0e} {:>20} {:>9} {:>9}",
         "Taylor time/DOP853",
         "",
         taylor.unwrap_or("–".into())

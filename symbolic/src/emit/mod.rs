@@ -109,7 +109,7 @@ pub fn emit_system_for(
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
         emitter.switching_functions(&switches, &table_switches),
-        optional(outputs.taylor, || taylor::taylor_method(d, runtime)),
+        optional(outputs.taylor, || taylor::taylor_method(d, runtime, name)),
         emitter.flow_rates(),
         emitter.stop_times(&time_tables),
         emitter.sample(),

@@ -68,14 +68,21 @@ struct Names<'a> {
 }
 
 impl Names<'_> {
-    fn of(&self, slot: usize) -> Ident {
+    /// The field of the jet holding `slot`'s coefficients.
+    fn field(&self, slot: usize) -> Ident {
         match self.tape.input_slots().iter().position(|s| *s == slot) {
             Some(i) => format_ident!("i{}", i),
             None => format_ident!("{}{}", self.prefix, slot),
         }
     }
 
-    fn output(&self, i: usize) -> Ident {
+    /// `slot`'s coefficient array, `jet.<field>`.
+    fn of(&self, slot: usize) -> TokenStream {
+        let field = self.field(slot);
+        quote!(jet.#field)
+    }
+
+    fn output(&self, i: usize) -> TokenStream {
         self.of(self
             .tape
             .output_slots()
@@ -84,18 +91,31 @@ impl Names<'_> {
             .unwrap_or(usize::MAX))
     }
 
-    /// `let mut` arrays for every slot that is not an input.
-    fn declarations(&self, len: &TokenStream) -> TokenStream {
+    /// The fields of the slots this tape's instructions write (inputs excluded).
+    fn fields(&self) -> Vec<Ident> {
         let inputs = self.tape.input_slots();
-        let names = (0..self.tape.slot_count())
+        self.tape
+            .written_slots()
+            .into_iter()
             .filter(|s| !inputs.contains(s))
-            .map(|s| self.of(s));
-        quote!(#(let mut #names = [0.0f64; #len];)*)
+            .map(|s| self.field(s))
+            .collect()
     }
 }
 
-/// The `taylor_coefficients` method of `d`'s system, with the runtime at `runtime`.
-pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStream {
+/// Orders 0 … `steppers::taylor::MAX_ORDER`: one instance of the per-order function each.
+const ORDERS: usize = 33;
+
+/// The `taylor_coefficients` method of `d`'s system `name`, with the runtime at `runtime`.
+///
+/// Every coefficient array is a field of one local struct, the jet, and the work of one
+/// order k is a function generic over `const K: usize`, instantiated for each k and
+/// dispatched by a `match` in the loop over the orders. With k a constant, every
+/// recurrence's sum over j has a known length, so the compiler unrolls it into
+/// straight-line code with constant offsets and no bounds checks (heyoka compiles one
+/// function per order for the same reason); the arithmetic, and so every bit of the result,
+/// is that of the loop over a run-time k (`tests/taylor_emitted.rs`).
+pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident) -> TokenStream {
     let st = stages(d);
     let n = d.coordinates.len();
     let s = d.state_len();
@@ -117,7 +137,11 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
         tape: &st.rates,
         prefix: "v",
     };
-    let input = |i: usize| format_ident!("i{}", i);
+    let field = |i: usize| format_ident!("i{}", i);
+    let input = |i: usize| {
+        let f = field(i);
+        quote!(jet.#f)
+    };
     let state_input = |j: usize| {
         input(if j < 2 * n {
             1 + j
@@ -128,8 +152,12 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
             1 + 3 * n + masses + (j - 2 * n - k_masses)
         })
     };
-    let inputs = (0..st.inputs).map(input);
-    let declarations = [&laws, &velocities].map(|names| names.declarations(&len));
+    let fields: Vec<Ident> = (0..st.inputs)
+        .map(field)
+        .chain(laws.fields())
+        .chain(velocities.fields())
+        .chain(rates.fields())
+        .collect();
     let k = quote!(k);
     let zero = quote!(0);
     let fixed = [&laws, &velocities, &rates].map(|names| ops(d, names, true, &zero, runtime));
@@ -143,7 +171,15 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
         let (to, from) = (input(1 + 3 * n + mass), laws.output(i));
         quote!(#to[k] = #from[k];)
     });
-    let (factor, solve) = velocity_solve(&st, &velocities, n, runtime);
+    let (solve, factor_size) = velocity_solve(&st, &velocities, n, runtime);
+    // M[0]'s Cholesky factor when q̇ is solved order by order.
+    let (factor, factor_zero) = match factor_size {
+        Some(size) => (
+            quote!(factor: [f64; #size],),
+            quote!(factor: [0.0f64; #size],),
+        ),
+        None => (TokenStream::new(), TokenStream::new()),
+    };
     // A held input's higher coefficients stay 0: it is constant between samples.
     let next = (0..2 * n + k_masses).map(|j| {
         let to = state_input(j);
@@ -158,36 +194,66 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
         let from = state_input(j);
         quote!(c[#j] = #from[k];)
     });
+    let orders = (0..ORDERS).map(Literal::usize_unsuffixed);
+    let orders_len = Literal::usize_unsuffixed(ORDERS);
+    let system = quote!(#runtime::SystemError);
+    let vector = quote!(#runtime::nalgebra::SVector<f64, #s_lit>);
     quote! {
         /// The Taylor coefficients y[k] = y⁽ᵏ⁾(t)/k! of the solution through `(t, state)`
         /// (k ≤ `steppers::taylor::MAX_ORDER`), by the recurrences of automatic
         /// differentiation over the state rate (Jorba & Zou 2005).
-        #[allow(unused_mut, unused_assignments, clippy::all)]
+        #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
         fn taylor_coefficients(
             &self,
             t: f64,
-            state: &#runtime::nalgebra::SVector<f64, #s_lit>,
-            coefficients: &mut [#runtime::nalgebra::SVector<f64, #s_lit>],
-        ) -> ::core::option::Option<::core::result::Result<(), #runtime::SystemError>> {
-            let order = coefficients.len().checked_sub(1)?.min(#len - 1);
-            #(let mut #inputs = [0.0f64; #len];)*
-            #(#declarations)*
-            #factor
-            i0[0] = t;
-            i0[1] = 1.0;
-            #(#start)*
-            #(#fixed)*
-            for k in 0..=order {
+            state: &#vector,
+            coefficients: &mut [#vector],
+        ) -> ::core::option::Option<::core::result::Result<(), #system>> {
+            const _: () = assert!(#len == #orders_len, "one instance per order");
+            struct Jet {
+                #(#fields: [f64; #len],)*
+                #factor
+            }
+            /// Order `K` of every stage; `Some` ends the expansion with an error.
+            #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
+            fn order_k<const K: usize>(
+                this: &#name,
+                jet: &mut Jet,
+                state: &#vector,
+                last: bool,
+            ) -> ::core::option::Option<::core::result::Result<(), #system>> {
+                let k = K;
                 #law_series
                 #(#law_copies)*
                 #velocity_series
                 #solve
-                if k == order {
-                    break;
+                if last || K + 1 >= #len {
+                    return None;
                 }
                 #rate_series
                 let next = 1.0 / (k + 1) as f64;
                 #(#next)*
+                None
+            }
+            let order = coefficients.len().checked_sub(1)?.min(#len - 1);
+            let this = self;
+            let mut jet = Jet {
+                #(#fields: [0.0f64; #len],)*
+                #factor_zero
+            };
+            jet.i0[0] = t;
+            jet.i0[1] = 1.0;
+            #(#start)*
+            #(#fixed)*
+            for k in 0..=order {
+                let last = k == order;
+                let failed = match k {
+                    #(#orders => order_k::<#orders>(this, &mut jet, state, last),)*
+                    _ => None,
+                };
+                if failed.is_some() {
+                    return failed;
+                }
             }
             for (k, c) in coefficients.iter_mut().enumerate().take(order + 1) {
                 #(#out)*
@@ -198,14 +264,18 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream) -> TokenStrea
 }
 
 /// Coefficient k of q̇ into its inputs: copied from the closed form (a non-finite value at
-/// order 0 is a singular M), or solved with M\[0\]'s factor, declared before the loop.
+/// order 0 is a singular M), or solved with M\[0\]'s factor, the jet's field `factor` of
+/// the size returned.
 fn velocity_solve(
     st: &Stages,
     names: &Names,
     n: usize,
     runtime: &TokenStream,
-) -> (TokenStream, TokenStream) {
-    let velocity = |a: usize| format_ident!("i{}", 1 + 2 * n + a);
+) -> (TokenStream, Option<Literal>) {
+    let velocity = |a: usize| {
+        let f = format_ident!("i{}", 1 + 2 * n + a);
+        quote!(jet.#f)
+    };
     let singular = quote!(return Some(Err(#runtime::SystemError::SingularMassMatrix)););
     if !st.numeric {
         let copies = (0..n).map(|a| {
@@ -217,11 +287,14 @@ fn velocity_solve(
                 }
             }
         });
-        return (TokenStream::new(), quote!(#(#copies)*));
+        return (quote!(#(#copies)*), None);
     }
     let matrix = (0..n * n).map(|e| names.output(e));
     let offset = (0..n).map(|a| names.output(n * n + a));
-    let momenta = (0..n).map(|a| format_ident!("i{}", 1 + n + a));
+    let momenta = (0..n).map(|a| {
+        let f = format_ident!("i{}", 1 + n + a);
+        quote!(jet.#f)
+    });
     let velocities = (0..n).map(velocity);
     let size = Literal::usize_unsuffixed(n * n);
     let solve = quote! {
@@ -229,13 +302,13 @@ fn velocity_solve(
             #n,
             (&[#(&#matrix),*], &[#(&#offset),*], &[#(&#momenta),*]),
             &mut [#(&mut #velocities),*],
-            &mut factor,
+            &mut jet.factor,
             k,
         ) {
             #singular
         }
     };
-    (quote!(let mut factor = [0.0f64; #size];), solve)
+    (solve, Some(size))
 }
 
 /// The statements of one tape's fixed (order-0) or series instructions at order `k`.
@@ -308,7 +381,7 @@ fn op(
                 .find(|(_, s)| s.index() == index)
                 .map(|(name, _)| Ident::new(name, Span::call_site()));
             match field {
-                Some(field) => quote!(#w[0] = self.#field;),
+                Some(field) => quote!(#w[0] = this.#field;),
                 None => quote!(#w[0] = f64::NAN;),
             }
         }
@@ -335,6 +408,10 @@ fn op(
         Op::Recip(a) => {
             let a = n(a);
             quote!(#w[#k] = #ts::recip(&#a, &#w, #k);)
+        }
+        Op::Div(a, den) => {
+            let (a, den) = (n(a), n(den));
+            quote!(#w[#k] = #ts::div(&#a, &#den, &#w, #k);)
         }
         Op::Sqrt(a) => {
             let a = n(a);
@@ -402,14 +479,15 @@ fn op(
 /// order 0 into the `piece` slots, then the series by the same function the tapes call.
 fn table_op(
     d: &Derivation,
-    (w, a, h): (Ident, Ident, Ident),
+    (w, a, h): (TokenStream, TokenStream, TokenStream),
     (table, order): (u16, u8),
     piece: usize,
     names: &Names,
     k: &TokenStream,
     rt: &TokenStream,
 ) -> TokenStream {
-    let reference = super::tables::reference(&d.pool, table, order);
+    // Inside the per-order function the system is `this` (`self` is not in scope there).
+    let reference = super::tables::reference(&d.pool, table, order).replace("self.", "this.");
     let reference = super::expression::tokens(&reference);
     let [p0, p1, p2, p3, p4] = [0, 1, 2, 3, 4].map(|i| names.of(piece + i));
     quote! {{

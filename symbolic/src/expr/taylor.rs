@@ -18,6 +18,8 @@
 //! chosen by the order-0 values: a step must not straddle their switch, which is located
 //! elsewhere (events on the dense output), as for every other stepper.
 
+#[path = "taylor/prune.rs"]
+mod prune;
 #[path = "taylor/recurrence.rs"]
 mod recurrence;
 
@@ -56,6 +58,9 @@ pub(crate) enum Op {
     Square(usize),
     /// 1/a: w\[k\] = −Σⱼ₌₁ᵏ a\[j\] w\[k−j\] · w\[0\] (w\[0\] = 1/a\[0\]: no division per order).
     Recip(usize),
+    /// a/d from w d = a: w\[k\] = (a\[k\] − Σⱼ₌₁ᵏ d\[j\] w\[k−j\]) · (1/d\[0\]), one sum
+    /// where 1/d and a product took two.
+    Div(usize, usize),
     /// √a: w\[k\] = (a\[k\] − Σⱼ₌₁ᵏ⁻¹ w\[j\] w\[k−j\]) / (2 w\[0\]).
     Sqrt(usize),
     /// a^α for the constant α in the second slot (J&Z eq. 2.6):
@@ -185,6 +190,8 @@ struct Compiler<'p> {
     is_series: Vec<bool>,
     /// The slot of each node compiled.
     slot: FxHashMap<Id, usize>,
+    /// The denominator d of each slot holding a reciprocal 1/d.
+    reciprocal_of: FxHashMap<usize, usize>,
     /// Pair slots already made for an argument slot: (sin, cos) and (sinh, cosh).
     sin_cos: FxHashMap<usize, (usize, usize)>,
     sinh_cosh: FxHashMap<usize, (usize, usize)>,
@@ -237,6 +244,7 @@ impl ExprPool {
             operands: Vec::new(),
             is_series: Vec::new(),
             slot: FxHashMap::default(),
+            reciprocal_of: FxHashMap::default(),
             sin_cos: FxHashMap::default(),
             sinh_cosh: FxHashMap::default(),
             substitutions,
@@ -266,6 +274,7 @@ impl ExprPool {
             tape.slots = c.is_series.len();
             tape.tables.clone_from(&c.tables);
         }
+        prune::prune(&mut tapes);
         tapes
     }
 }
@@ -375,9 +384,23 @@ impl Compiler<'_> {
         let constant = constant
             .into_iter()
             .reduce(|a, b| self.emit(Op::Mul(a, b), &[a, b]));
-        let series = series
+        // A series factor 1/d divides the others' product (`Op::Div`): one recurrence where
+        // the reciprocal's and a product's took two (the reciprocal is pruned if unread).
+        let (denominators, numerators): (Vec<usize>, Vec<usize>) = series
+            .iter()
+            .partition(|s| self.reciprocal_of.contains_key(s));
+        let mut series = numerators
             .into_iter()
             .reduce(|a, b| self.emit(Op::Mul(a, b), &[a, b]));
+        for r in denominators {
+            series = Some(match series {
+                Some(a) => {
+                    let d = self.reciprocal_of[&r];
+                    self.emit(Op::Div(a, d), &[a, d])
+                }
+                None => r,
+            });
+        }
         match (constant, series) {
             (Some(c), Some(s)) => self.emit(Op::Scale(c, s), &[s]),
             (Some(c), None) => c,
@@ -405,7 +428,9 @@ impl Compiler<'_> {
             (Some(n), _) if n > 0 => self.integer_power(b, n.unsigned_abs()),
             (Some(n), _) => {
                 let positive = self.integer_power(b, n.unsigned_abs());
-                self.emit(Op::Recip(positive), &[positive])
+                let reciprocal = self.emit(Op::Recip(positive), &[positive]);
+                self.reciprocal_of.insert(reciprocal, positive);
+                reciprocal
             }
             (None, Some(Rational::HALF)) => self.emit(Op::Sqrt(b), &[b]),
             _ => self.emit(Op::Pow(b, e), &[b]),
@@ -605,9 +630,9 @@ impl TaylorTape {
         !self.series_outputs.get(i).copied().unwrap_or(true)
     }
 
-    /// Number of slots (inputs included).
-    pub(crate) fn slot_count(&self) -> usize {
-        self.slots
+    /// Every slot an instruction of this tape writes.
+    pub(crate) fn written_slots(&self) -> Vec<usize> {
+        prune::written(self)
     }
 
     /// The instructions run once at order 0.

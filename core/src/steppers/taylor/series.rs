@@ -45,14 +45,14 @@ pub fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
 }
 
 /// w = a b.
-#[inline]
+#[inline(always)]
 pub fn mul(a: &[f64; LEN], b: &[f64; LEN], k: usize) -> f64 {
     let k = k.min(LEN - 1);
     sum(0, k + 1, |j| a[j] * b[k - j])
 }
 
 /// w = a².
-#[inline]
+#[inline(always)]
 pub fn square(a: &[f64; LEN], k: usize) -> f64 {
     let k = k.min(LEN - 1);
     let cross = sum(0, k.div_ceil(2), |j| a[j] * a[k - j]);
@@ -67,7 +67,7 @@ pub fn square(a: &[f64; LEN], k: usize) -> f64 {
 /// w a = 1. Times w\[0\] = 1/a\[0\] rather than over a\[0\]: each order's coefficient
 /// depends on the last, so the expansion is one long chain of dependent operations, and a
 /// division on it costs three to five times a product's latency at every order.
-#[inline]
+#[inline(always)]
 pub fn recip(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return 1.0 / a[0];
@@ -76,8 +76,19 @@ pub fn recip(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     -sum(1, k + 1, |j| a[j] * w[k - j]) * w[0]
 }
 
+/// w d = a, times 1/d\[0\] as `recip` multiplies: one sum where 1/d and a product took two.
+#[inline(always)]
+pub fn div(a: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+    let inverse = 1.0 / d[0];
+    if k == 0 {
+        return a[0] * inverse;
+    }
+    let k = k.min(LEN - 1);
+    (a[k] - sum(1, k + 1, |j| d[j] * w[k - j])) * inverse
+}
+
 /// w² = a.
-#[inline]
+#[inline(always)]
 pub fn sqrt_of(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return sqrt(a[0]);
@@ -88,7 +99,7 @@ pub fn sqrt_of(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
 }
 
 /// a w′ = α a′ w, w = a^α for the constant α = e\[0\].
-#[inline]
+#[inline(always)]
 pub fn pow(a: &[f64; LEN], e: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     let alpha = e[0];
     if k == 0 {
@@ -113,7 +124,7 @@ fn power(b: f64, e: f64) -> f64 {
 }
 
 /// w′ = a′ w.
-#[inline]
+#[inline(always)]
 pub fn exp(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return crate::math::exp(a[0]);
@@ -124,7 +135,7 @@ pub fn exp(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
 }
 
 /// (sin a, cos a): s′ = a′ c, c′ = −a′ s; for `hyperbolic`, (sinh, cosh) with both +.
-#[inline]
+#[inline(always)]
 pub fn sin_cos(a: &[f64; LEN], s: &mut [f64; LEN], c: &mut [f64; LEN], k: usize, hyperbolic: bool) {
     if k == 0 {
         (s[0], c[0]) = if hyperbolic {
@@ -144,7 +155,7 @@ pub fn sin_cos(a: &[f64; LEN], s: &mut [f64; LEN], c: &mut [f64; LEN], k: usize,
 }
 
 /// tan (or tanh for `hyperbolic`): w′ = v a′ with v = 1 ± w².
-#[inline]
+#[inline(always)]
 pub fn tan(a: &[f64; LEN], w: &mut [f64; LEN], v: &mut [f64; LEN], k: usize, hyperbolic: bool) {
     w[k] = if k == 0 {
         if hyperbolic {
@@ -163,7 +174,7 @@ pub fn tan(a: &[f64; LEN], w: &mut [f64; LEN], v: &mut [f64; LEN], k: usize, hyp
 
 /// w′ d = sign·a′ for k ≥ 1 (ln: d = a; asin, acos: d = √(1 − a²); atan: d = 1 + a²);
 /// `value` = f(a\[0\]) at k = 0.
-#[inline]
+#[inline(always)]
 pub fn quotient(
     a: &[f64; LEN],
     d: &[f64; LEN],
@@ -180,7 +191,7 @@ pub fn quotient(
 }
 
 /// w′ d = x y′ − y x′ with d = x² + y², w = atan2(y, x).
-#[inline]
+#[inline(always)]
 pub fn atan2(y: &[f64; LEN], x: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return RealField::atan2(y[0], x[0]);
@@ -194,7 +205,7 @@ pub fn atan2(y: &[f64; LEN], x: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: 
 }
 
 /// |a| on the branch of a\[0\]'s sign.
-#[inline]
+#[inline(always)]
 pub fn abs(a: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         ComplexField::abs(a[0])
@@ -206,7 +217,7 @@ pub fn abs(a: &[f64; LEN], k: usize) -> f64 {
 }
 
 /// sign a\[0\], constant over the step.
-#[inline]
+#[inline(always)]
 pub fn sign(a: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         crate::math::sign(a[0])
@@ -216,7 +227,7 @@ pub fn sign(a: &[f64; LEN], k: usize) -> f64 {
 }
 
 /// The smaller (`larger` false) or larger argument at order 0, NaN-propagating there.
-#[inline]
+#[inline(always)]
 pub fn min_max(a: &[f64; LEN], b: &[f64; LEN], k: usize, larger: bool) -> f64 {
     if a[0].is_nan() || b[0].is_nan() {
         return f64::NAN;
@@ -232,6 +243,7 @@ pub fn min_max(a: &[f64; LEN], b: &[f64; LEN], k: usize, larger: bool) -> f64 {
 /// Coefficient k of q̇ from M q̇ = p − b, n coordinates: M\[0\] q̇\[k\] = p\[k\] − b\[k\] −
 /// Σⱼ₌₁ᵏ M\[j\] q̇\[k−j\], with M\[0\] factored (Cholesky, row-major in `factor`) at k = 0.
 /// `false` when M\[0\] is not positive definite or a result is not finite.
+#[inline(always)]
 pub fn solve_velocities(
     n: usize,
     (matrix, offset, momenta): (Arrays<'_>, Arrays<'_>, Arrays<'_>),

@@ -74,6 +74,7 @@ fn value(op: Op, operands: &[usize], env: &[f64], jet: &TaylorJet) -> f64 {
         Op::Affine { a, scale, offset } => offset + scale * at(a),
         Op::Square(a) => at(a) * at(a),
         Op::Recip(a) => 1.0 / at(a),
+        Op::Div(a, d) => at(a) * (1.0 / at(d)),
         Op::Sqrt(a) => at(a).sqrt(),
         Op::Pow(a, e) => power(at(a), at(e)),
         Op::Exp(a) => at(a).exp(),
@@ -114,6 +115,10 @@ fn coefficient(op: Op, operands: &[usize], jet: &TaylorJet, out: usize, k: usize
         }
         // w a = 1, times w[0] = 1/a[0] (a product, not a division, on the chain of orders).
         Op::Recip(a) => -sum(1, k + 1, |j| at(a, j) * at(out, k - j)) * at(out, 0),
+        // w d = a, times 1/d[0] (see Recip).
+        Op::Div(a, d) => {
+            (at(a, k) - sum(1, k + 1, |j| at(d, j) * at(out, k - j))) * (1.0 / at(d, 0))
+        }
         // w² = a.
         Op::Sqrt(a) => {
             let cross = sum(1, k, |j| at(out, j) * at(out, k - j));
