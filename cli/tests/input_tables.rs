@@ -102,3 +102,23 @@ fn a_bad_input_table_file_is_an_input_error_with_its_line() {
         "{stderr}"
     );
 }
+
+#[test]
+fn the_table_made_for_an_input_takes_a_name_no_let_has() {
+    // The table made for `--input u=FILE` is named `u_table` unless the model spells that
+    // name; a `let u_table = …` was not seen (the derivation inlines lets), and the run
+    // failed with "`u_table` is declared twice".
+    let source = std::fs::read_to_string(data("hover_input.vms")).unwrap();
+    let model = format!("{}/hover_input_let.vms", env!("CARGO_TARGET_TMPDIR"));
+    std::fs::write(&model, format!("{source}\nlet u_table = 2\n")).unwrap();
+    let csv = format!("{}/hover_input_let.csv", env!("CARGO_TARGET_TMPDIR"));
+    let args = [
+        "run", &model, "--set", "u_e=2000", "--set", "g=9.80665", "--init", "y=0", "--init",
+        "m=50", "--until", "15", "--tol", "1e-10", "--record", "y,y',m", "--input",
+        "u=tables/hover_u.csv", "--csv", &csv,
+    ];
+    varmass(&args, 0);
+    let with_let = std::fs::read_to_string(&csv).unwrap();
+    let without = flight("hover_input.vms", &["--input", "u=tables/hover_u.csv"], "no_let");
+    assert_eq!(with_let, without);
+}

@@ -65,12 +65,18 @@ fn free_name(model: &LoadedModel, wanted: &str) -> String {
             || d.parameters.iter().any(|(p, _)| p == name)
             || d.coordinates.iter().any(|c| c.name == name)
             || d.masses.iter().any(|m| m.name == name)
+            || model.ast.statements.iter().any(|s| is_let_of(&s.kind, name))
     };
     let mut name = wanted.to_string();
     while taken(&name) {
         name.push('_');
     }
     name
+}
+
+/// Whether `kind` is `let NAME = …` (a name the derivation inlines and no longer lists).
+fn is_let_of(kind: &StatementKind, name: &str) -> bool {
+    matches!(kind, StatementKind::Let { name: n, .. } if n.node == name)
 }
 
 /// The statement `table TABLE(ARGUMENT) = "FILE"` for input `input` with the file's absolute path, the file
