@@ -27,11 +27,10 @@ use nalgebra::SVector;
 use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
 use crate::error::{is_finite, StepError, StepErrorKind};
 use crate::events::{locate_root, Event, EventAction};
-use crate::math::powf;
 use crate::run::RunConfig;
 use crate::solution::Record;
 use crate::stepper::{Checked, Statistics, StepOutcome};
-use crate::steppers::control::{resolvable, Controlled, Mode, StepControl};
+use crate::steppers::control::{resolvable, ClampedErrors, Controlled, Mode, StepControl};
 use crate::tolerance::Tolerance;
 
 use crate::steppers::dp_tableau::*;
@@ -99,10 +98,60 @@ struct Attempt<const S: usize, const W: usize> {
 /// Only what that needs is supported: an adaptive control, nothing recorded, no energy
 /// guard, and systems without switches or stop times (a member that has them fails with a
 /// configuration error: run it on the scalar path).
+///
+/// The lanes' arithmetic runs with AVX where the CPU has it (x86-64 with `std`), otherwise
+/// with what the build targets; both give the same bits.
 pub fn run_lanes<Sys, const N: usize, const S: usize, const W: usize>(
     jobs: &[LaneJob<'_, Sys, S>],
     control: StepControl,
     config: &RunConfig,
+) -> Vec<Result<LaneEnd<S>, StepError<S>>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    run_lanes_with(jobs, control, config, Kernel::detect())
+}
+
+/// [`run_lanes`] with the lanes' arithmetic compiled for the build's target only, never
+/// AVX: for tests of that path on a CPU that has AVX.
+#[doc(hidden)]
+pub fn run_lanes_portable<Sys, const N: usize, const S: usize, const W: usize>(
+    jobs: &[LaneJob<'_, Sys, S>],
+    control: StepControl,
+    config: &RunConfig,
+) -> Vec<Result<LaneEnd<S>, StepError<S>>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    run_lanes_with(jobs, control, config, Kernel::Portable)
+}
+
+/// Which compilation of the lanes' arithmetic runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kernel {
+    /// For the build's target (SSE2 in a default x86-64 build: two lanes per instruction).
+    Portable,
+    /// For AVX (four lanes per instruction), which the CPU was found to have.
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    Avx,
+}
+
+impl Kernel {
+    /// AVX where the CPU has it, otherwise the build's target.
+    fn detect() -> Self {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if std::is_x86_feature_detected!("avx") {
+            return Self::Avx;
+        }
+        Self::Portable
+    }
+}
+
+fn run_lanes_with<Sys, const N: usize, const S: usize, const W: usize>(
+    jobs: &[LaneJob<'_, Sys, S>],
+    control: StepControl,
+    config: &RunConfig,
+    kernel: Kernel,
 ) -> Vec<Result<LaneEnd<S>, StepError<S>>>
 where
     Sys: LaneSystem<N, S, W>,
@@ -112,7 +161,7 @@ where
     let Some(first) = jobs.first() else {
         return Vec::new();
     };
-    let Ok(Mode::Adaptive(_, tolerance)) = control.validated() else {
+    let Ok(Mode::Adaptive(adaptive, tolerance)) = control.validated() else {
         // Every member reports why, as it would on the scalar path.
         return (0..jobs.len())
             .map(
@@ -123,6 +172,7 @@ where
             )
             .collect();
     };
+    let clamped = ClampedErrors::dormand_prince(&adaptive);
     let mut parameters = Sys::splat(&first.system);
     let mut lanes: [Option<Member<'_, '_, Sys, S>>; W] = core::array::from_fn(|_| None);
     let mut queue = 0..jobs.len();
@@ -158,11 +208,10 @@ where
                 attempt.copy_lane(busy, index);
             }
         }
-        attempt.stages::<Sys, N>(&parameters);
-        attempt.measure(&tolerance);
+        attempt.kernel::<Sys, N>(kernel, &parameters, &tolerance);
         for (index, slot) in lanes.iter_mut().enumerate() {
             let Some(member) = slot else { continue };
-            match conclude(member, &attempt, index, config) {
+            match conclude(member, &attempt, (index, &clamped), config) {
                 Ok(None) => {}
                 Ok(Some(end)) => {
                     results[member.job] = Some(Ok(end));
@@ -312,8 +361,59 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         }
     }
 
+    /// The work of an attempt in every lane: the stages, then the error and the finiteness
+    /// check. On x86-64 it is compiled twice, for the build's target (SSE2 by default: two
+    /// lanes per instruction) and for AVX (four), the AVX one chosen at run time where the
+    /// CPU has it (`Kernel::detect`). AVX only, not FMA: a fused multiply-add rounds once
+    /// where the scalar path rounds twice, and the lanes would no longer be the scalar
+    /// path's bits (`objdump -d` of a build shows no `vfmadd`).
+    fn kernel<Sys, const N: usize>(
+        &mut self,
+        kernel: Kernel,
+        parameters: &Sys::Parameters,
+        tolerance: &Tolerance,
+    ) where
+        Sys: LaneSystem<N, S, W>,
+    {
+        match kernel {
+            Kernel::Portable => self.kernel_portable::<Sys, N>(parameters, tolerance),
+            // SAFETY: `Kernel::Avx` is only chosen where the CPU has AVX (`Kernel::detect`).
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            Kernel::Avx => unsafe { self.kernel_avx::<Sys, N>(parameters, tolerance) },
+        }
+    }
+
+    /// [`Self::kernel`] for the build's target.
+    #[inline(always)]
+    fn kernel_portable<Sys, const N: usize>(
+        &mut self,
+        parameters: &Sys::Parameters,
+        tolerance: &Tolerance,
+    ) where
+        Sys: LaneSystem<N, S, W>,
+    {
+        self.stages::<Sys, N>(parameters);
+        self.measure(tolerance);
+    }
+
+    /// [`Self::kernel`] compiled for AVX: the same code, inlined into a function with the
+    /// feature on (the generated state rate too, being `#[inline]`).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx")]
+    #[inline(never)]
+    fn kernel_avx<Sys, const N: usize>(
+        &mut self,
+        parameters: &Sys::Parameters,
+        tolerance: &Tolerance,
+    ) where
+        Sys: LaneSystem<N, S, W>,
+    {
+        self.kernel_portable::<Sys, N>(parameters, tolerance);
+    }
+
     /// The stages k₂ … k₇ and the new state in every lane: `DormandPrince::attempt`'s
     /// operations, in its order, lane by lane.
+    #[inline(always)]
     fn stages<Sys, const N: usize>(&mut self, parameters: &Sys::Parameters)
     where
         Sys: LaneSystem<N, S, W>,
@@ -347,8 +447,11 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
     /// `DormandPrince::attempt`'s estimate and [`Tolerance::norm`]'s weighted RMS (weights
     /// atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|), an exact zero counting 0, the squares summed in
     /// component order), lane by lane.
+    #[inline(always)]
     fn measure(&mut self, tolerance: &Tolerance) {
         let (k, h, y1) = (&self.k, self.h, &self.y[5]);
+        let absolute = Lanes::<W>::splat(tolerance.absolute());
+        let relative = Lanes::<W>::splat(tolerance.relative());
         let mut sum = Lanes::<W>::splat(0.0);
         for j in 0..S {
             let estimate = (k[0][j] * E1
@@ -359,7 +462,8 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
                 + k[6][j] * E7)
                 * h;
             let magnitude = self.y0[j].abs().max(y1[j].abs());
-            let weight = magnitude.map(|m| tolerance.weight(m));
+            // `Tolerance::weight`: atol + rtol·m.
+            let weight = absolute + relative * magnitude;
             let scaled = estimate / weight;
             let square = Lanes::select(
                 estimate.0.map(|e| e == 0.0),
@@ -387,7 +491,11 @@ fn combine<const S: usize, const W: usize>(
     y0: &LaneState<S, W>,
     delta: impl Fn(usize) -> Lanes<W>,
 ) -> LaneState<S, W> {
-    core::array::from_fn(|j| y0[j] + delta(j))
+    let mut out = *y0;
+    for (j, component) in out.iter_mut().enumerate() {
+        *component += delta(j);
+    }
+    out
 }
 
 /// The verdict on lane `index`'s attempt for its member, as the scalar stepper and run
@@ -396,7 +504,7 @@ fn combine<const S: usize, const W: usize>(
 fn conclude<Sys, const N: usize, const S: usize, const W: usize>(
     member: &mut Member<'_, '_, Sys, S>,
     attempt: &Attempt<S, W>,
-    index: usize,
+    (index, clamped): (usize, &ClampedErrors),
     config: &RunConfig,
 ) -> Result<Option<LaneEnd<S>>, StepError<S>>
 where
@@ -421,20 +529,16 @@ where
         };
     }
     let error = attempt.error.0[index];
-    let error_power = powf(error, 0.2 - 0.75 * control.beta);
+    // The scalar controller's factors; their `powf`s skipped where the clamp alone decides
+    // (`ClampedErrors`: the same bits by construction).
     if error > 1.0 || error.is_nan() {
-        let factor = error_power / control.safety;
-        let factor = if error.is_finite() {
-            factor.min(1.0 / control.min_factor)
-        } else {
-            1.0 / control.min_factor
-        };
+        let factor = clamped.rejection_factor(&control, error);
         let memory = &mut member.core.memory;
         memory.reject(h / factor, &mut member.core.progress);
         return Ok(None);
     }
     let memory = &mut member.core.memory;
-    let next = memory.pi_after_acceptance(&control, h, error, error_power);
+    let next = memory.dormand_prince_after_acceptance(&control, clamped, h, error);
     let y1 = lane(&attempt.y[5], index);
     let outcome = member
         .core
