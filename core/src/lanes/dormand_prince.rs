@@ -24,13 +24,16 @@ use alloc::vec::Vec;
 
 use nalgebra::SVector;
 
+use super::control::step_after_acceptance;
 use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
 use crate::error::{is_finite, StepError, StepErrorKind};
 use crate::events::{locate_root, Event, EventAction};
 use crate::run::RunConfig;
 use crate::solution::Record;
 use crate::stepper::{Checked, Statistics, StepOutcome};
-use crate::steppers::control::{resolvable, ClampedErrors, Controlled, Mode, StepControl};
+use crate::steppers::control::{
+    resolvable, AdaptiveControl, ClampedErrors, Controlled, Mode, StepControl,
+};
 use crate::tolerance::Tolerance;
 
 use crate::steppers::dp_tableau::*;
@@ -71,6 +74,20 @@ struct Member<'s, 'e, Sys, const S: usize> {
     /// g of each event at the last point.
     values: Vec<f64>,
     steps: usize,
+    /// How the member's last attempt ended, which says where its next one starts.
+    last: Last,
+}
+
+/// How a member's last attempt ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Last {
+    /// None yet: the attempt starts from the member's initial value.
+    Started,
+    /// Accepted: the next starts from its new state and last stage (FSAL), which are in the
+    /// lanes already.
+    Accepted,
+    /// Rejected: the next starts where it did, from what the lane holds still.
+    Rejected,
 }
 
 /// The inputs of one attempt in every lane, and the stages it computes.
@@ -178,6 +195,10 @@ where
     let mut queue = 0..jobs.len();
     let mut attempt = Attempt::<S, W>::new();
     loop {
+        let accepted = lanes
+            .each_ref()
+            .map(|slot| slot.as_ref().is_some_and(|m| m.last == Last::Accepted));
+        attempt.carry(accepted);
         for (index, slot) in lanes.iter_mut().enumerate() {
             while slot.is_none() {
                 let Some(job) = queue.next() else { break };
@@ -209,9 +230,23 @@ where
             }
         }
         attempt.kernel::<Sys, N>(kernel, &parameters, &tolerance);
+        // An empty lane's error is NaN here, so that its proposal costs no `powf`.
+        let previous = Lanes::from_fn(|i| {
+            lanes[i]
+                .as_ref()
+                .map_or(1.0, |member| member.core.memory.previous_error)
+        });
+        let busy = lanes.each_ref().map(Option::is_some);
+        let error = Lanes::select(busy, attempt.error, Lanes::splat(f64::NAN));
+        let proposals = step_after_acceptance(&adaptive, &clamped, attempt.h, error, previous);
         for (index, slot) in lanes.iter_mut().enumerate() {
             let Some(member) = slot else { continue };
-            match conclude(member, &attempt, (index, &clamped), config) {
+            let verdict = Verdict {
+                index,
+                clamped: &clamped,
+                proposal: proposals.0[index],
+            };
+            match conclude(member, &attempt, verdict, config) {
                 Ok(None) => {}
                 Ok(Some(end)) => {
                     results[member.job] = Some(Ok(end));
@@ -298,6 +333,7 @@ where
         events,
         values,
         steps: 0,
+        last: Last::Started,
     })
 }
 
@@ -330,8 +366,21 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         }
     }
 
+    /// Where the `accepted` lanes' next attempts start: the new state y₁ and its rate k₇
+    /// (FSAL) of the attempt just accepted, which the member's progress and controller now
+    /// hold too (the same values: `Progress::accept` stores y₁ as given, `accepted` k₇), so
+    /// they move within the lanes instead of out and back in.
+    fn carry(&mut self, accepted: [bool; W]) {
+        for j in 0..S {
+            self.y0[j] = Lanes::select(accepted, self.y[5][j], self.y0[j]);
+            self.k[0][j] = Lanes::select(accepted, self.k[6][j], self.k[0][j]);
+        }
+    }
+
     /// Puts the member's next attempt (t₀, y₀, k₁, h) in lane `index`: the scalar
-    /// stepper's start of a step, its first step chosen if none is yet.
+    /// stepper's start of a step, its first step chosen if none is yet. After an attempt
+    /// the lane holds y₀ and k₁ already (`carry`; a rejection leaves them): only t₀ and h
+    /// are new.
     fn load<Sys, const N: usize>(
         &mut self,
         index: usize,
@@ -340,13 +389,19 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
     where
         Sys: LaneSystem<N, S, W>,
     {
-        let (t0, y0, k1) = member.core.begin::<N>(5)?;
+        let (t0, y0) = if member.last == Last::Started {
+            let (t0, y0, k1) = member.core.begin::<N>(5)?;
+            set_lane(&mut self.y0, index, &y0);
+            set_lane(&mut self.k[0], index, &k1);
+            (t0, y0)
+        } else {
+            // `begin` would give the same: the rate is known, the step chosen.
+            (member.core.progress.time(), *member.core.progress.state())
+        };
         let (h, reaches_stop) = member.core.attempt_size((t0, &y0))?;
         self.t0.0[index] = t0;
         self.h.0[index] = h;
         self.reaches_stop[index] = reaches_stop;
-        set_lane(&mut self.y0, index, &y0);
-        set_lane(&mut self.k[0], index, &k1);
         Ok(())
     }
 
@@ -498,13 +553,21 @@ fn combine<const S: usize, const W: usize>(
     out
 }
 
+/// What `conclude` needs besides the attempt: the lane, the controller's bounds and the
+/// step the controller proposes should the lane's attempt be accepted.
+struct Verdict<'c> {
+    index: usize,
+    clamped: &'c ClampedErrors,
+    proposal: f64,
+}
+
 /// The verdict on lane `index`'s attempt for its member, as the scalar stepper and run
 /// reach it: rejected (`Ok(None)`, the next attempt shorter), accepted and the run goes on
 /// (`Ok(None)`), accepted and the run ends (`Ok(Some)`), or failed.
 fn conclude<Sys, const N: usize, const S: usize, const W: usize>(
     member: &mut Member<'_, '_, Sys, S>,
     attempt: &Attempt<S, W>,
-    (index, clamped): (usize, &ClampedErrors),
+    verdict: Verdict<'_>,
     config: &RunConfig,
 ) -> Result<Option<LaneEnd<S>>, StepError<S>>
 where
@@ -513,41 +576,61 @@ where
     let Mode::Adaptive(control, _) = member.core.mode else {
         return Err(unfinished());
     };
+    let index = verdict.index;
     let (h, reaches_stop) = (attempt.h.0[index], attempt.reaches_stop[index]);
     member.core.progress.statistics.rate_evaluations += 6;
-    if let Err(error) = check_stages(member.core.system, attempt, index, attempt.finite[index]) {
-        // A trial state outside the domain is a step too long (DormandPrince::control).
-        member
-            .core
-            .memory
-            .reject(h * control.min_factor, &mut member.core.progress);
-        let time = member.core.progress.time();
-        return if resolvable(time, member.core.memory.next_step) {
-            Ok(None)
-        } else {
-            Err(error)
-        };
+    member.last = Last::Rejected;
+    let (error, finite) = (attempt.error.0[index], attempt.finite[index]);
+    let accepting = error <= 1.0;
+    // The scalar stepper checks the new state twice: in its attempt (a failure there is a
+    // step too long) and on accepting it (`Progress::accept`: the same check at the same
+    // time, t₀ + h, unless the step lands on the stop time). Where the two are one, the
+    // check on accepting serves both.
+    if !finite || !accepting || reaches_stop {
+        if let Err(error) = check_stages(member.core.system, attempt, index, finite) {
+            return too_long(member, h, &control, error);
+        }
     }
-    let error = attempt.error.0[index];
-    // The scalar controller's factors; their `powf`s skipped where the clamp alone decides
-    // (`ClampedErrors`: the same bits by construction).
-    if error > 1.0 || error.is_nan() {
-        let factor = clamped.rejection_factor(&control, error);
+    if !accepting {
+        // `DormandPrince::control`'s factor, its `powf` skipped where the clamp decides.
+        let factor = verdict.clamped.rejection_factor(&control, error);
         let memory = &mut member.core.memory;
         memory.reject(h / factor, &mut member.core.progress);
         return Ok(None);
     }
-    let memory = &mut member.core.memory;
-    let next = memory.dormand_prince_after_acceptance(&control, clamped, h, error);
     let y1 = lane(&attempt.y[5], index);
-    let outcome = member
-        .core
-        .progress
-        .accept(member.core.system, h, reaches_stop, y1)?;
+    let progress = &mut member.core.progress;
+    let outcome = match progress.accept(member.core.system, h, reaches_stop, y1) {
+        Ok(outcome) => outcome,
+        // Unchecked before: the attempt's own check failed.
+        Err(error) if !reaches_stop => return too_long(member, h, &control, error),
+        Err(error) => return Err(error),
+    };
     let memory = &mut member.core.memory;
+    let next = memory.after_acceptance(h, verdict.proposal, error);
     memory.accepted(h, lane(&attempt.k[6], index));
     memory.propose(next, reaches_stop, control.max_step);
+    member.last = Last::Accepted;
     after_step(member, attempt, index, outcome, config)
+}
+
+/// A trial state outside the domain (non-finite, a mass not positive): a step too long,
+/// shrunk by `min_factor` and retried, unless it can shrink no more
+/// (`DormandPrince::control`).
+fn too_long<Sys, const S: usize>(
+    member: &mut Member<'_, '_, Sys, S>,
+    h: f64,
+    control: &AdaptiveControl,
+    error: StepError<S>,
+) -> Result<Option<LaneEnd<S>>, StepError<S>> {
+    let core = &mut member.core;
+    core.memory
+        .reject(h * control.min_factor, &mut core.progress);
+    if resolvable(core.progress.time(), core.memory.next_step) {
+        Ok(None)
+    } else {
+        Err(error)
+    }
 }
 
 /// Scalar `state_rate`'s check of each stage state (finite) and `Checked::check_state` of the new

@@ -12,6 +12,8 @@
 //! lanes and its state rate over lanes. [`dormand_prince`] integrates with it.
 
 #[cfg(feature = "run")]
+mod control;
+#[cfg(feature = "run")]
 pub mod dormand_prince;
 
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub};
