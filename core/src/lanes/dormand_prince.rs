@@ -351,6 +351,18 @@ fn end_at<Sys, const S: usize>(
     }
 }
 
+/// y₀ + δ(j) in every component j, δ written out in place: a closure would be compiled on
+/// its own, without the AVX of the kernel it serves.
+macro_rules! stage {
+    ($y0:expr, |$j:ident| $delta:expr) => {{
+        let mut out = $y0;
+        for ($j, component) in out.iter_mut().enumerate() {
+            *component += $delta;
+        }
+        out
+    }};
+}
+
 impl<const S: usize, const W: usize> Attempt<S, W> {
     fn new() -> Self {
         let zero = [Lanes::default(); S];
@@ -474,26 +486,28 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         Sys: LaneSystem<N, S, W>,
     {
         let (t0, h, y0) = (self.t0, self.h, self.y0);
-        let rate = |t: Lanes<W>, y: &LaneState<S, W>| Sys::state_rate_lanes(parameters, t, y);
+        // Called directly and the stages written out (`stage!`), with no closure: a closure
+        // is compiled on its own, without the AVX of the kernel that calls it.
+        let rate = Sys::state_rate_lanes;
         let k1 = self.k[0];
-        let y2 = combine(&y0, |j| k1[j] * (A21 * h));
-        let k2 = rate(t0 + C2 * h, &y2);
-        let y3 = combine(&y0, |j| (k1[j] * A31 + k2[j] * A32) * h);
-        let k3 = rate(t0 + C3 * h, &y3);
-        let y4 = combine(&y0, |j| (k1[j] * A41 + k2[j] * A42 + k3[j] * A43) * h);
-        let k4 = rate(t0 + C4 * h, &y4);
-        let y5 = combine(&y0, |j| {
+        let y2 = stage!(y0, |j| k1[j] * (A21 * h));
+        let k2 = rate(parameters, t0 + C2 * h, &y2);
+        let y3 = stage!(y0, |j| (k1[j] * A31 + k2[j] * A32) * h);
+        let k3 = rate(parameters, t0 + C3 * h, &y3);
+        let y4 = stage!(y0, |j| (k1[j] * A41 + k2[j] * A42 + k3[j] * A43) * h);
+        let k4 = rate(parameters, t0 + C4 * h, &y4);
+        let y5 = stage!(y0, |j| {
             (k1[j] * A51 + k2[j] * A52 + k3[j] * A53 + k4[j] * A54) * h
         });
-        let k5 = rate(t0 + C5 * h, &y5);
-        let y6 = combine(&y0, |j| {
+        let k5 = rate(parameters, t0 + C5 * h, &y5);
+        let y6 = stage!(y0, |j| {
             (k1[j] * A61 + k2[j] * A62 + k3[j] * A63 + k4[j] * A64 + k5[j] * A65) * h
         });
-        let k6 = rate(t0 + h, &y6);
-        let y1 = combine(&y0, |j| {
+        let k6 = rate(parameters, t0 + h, &y6);
+        let y1 = stage!(y0, |j| {
             (k1[j] * B1 + k3[j] * B3 + k4[j] * B4 + k5[j] * B5 + k6[j] * B6) * h
         });
-        let k7 = rate(t0 + h, &y1);
+        let k7 = rate(parameters, t0 + h, &y1);
         self.k = [k1, k2, k3, k4, k5, k6, k7];
         self.y = [y2, y3, y4, y5, y6, y1];
     }
@@ -538,19 +552,6 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         }
         self.finite = spread.0.map(|x| x == 0.0);
     }
-}
-
-/// y₀ + δ(j) in every component j.
-#[inline(always)]
-fn combine<const S: usize, const W: usize>(
-    y0: &LaneState<S, W>,
-    delta: impl Fn(usize) -> Lanes<W>,
-) -> LaneState<S, W> {
-    let mut out = *y0;
-    for (j, component) in out.iter_mut().enumerate() {
-        *component += delta(j);
-    }
-    out
 }
 
 /// What `conclude` needs besides the attempt: the lane, the controller's bounds and the
@@ -716,10 +717,15 @@ where
 }
 
 /// The dense output over a lane's last accepted step: `DormandPrince::interpolate`.
+/// Its four vectors are the interpolant's coefficients, which do not depend on the time:
+/// computed once, with `interpolate`'s operations, for the several times root finding asks.
 struct Dense<const S: usize> {
     y0: SVector<f64, S>,
     y1: SVector<f64, S>,
-    k: [SVector<f64, S>; 7],
+    difference: SVector<f64, S>,
+    first: SVector<f64, S>,
+    second: SVector<f64, S>,
+    third: SVector<f64, S>,
     h: f64,
     t0: f64,
 }
@@ -730,26 +736,33 @@ impl<const S: usize> Dense<S> {
         index: usize,
         core: &Controlled<'_, Sys, S>,
     ) -> Self {
+        let k: [SVector<f64, S>; 7] = core::array::from_fn(|i| lane(&attempt.k[i], index));
+        let (y0, y1) = (*core.progress.previous_state(), *core.progress.state());
+        let h = core.memory.last_step;
+        let difference = y1 - y0;
+        let first = k[0] * h - difference;
+        let second = difference - k[6] * h - first;
+        let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
         Self {
-            y0: *core.progress.previous_state(),
-            y1: *core.progress.state(),
-            k: core::array::from_fn(|i| lane(&attempt.k[i], index)),
-            h: core.memory.last_step,
+            y0,
+            y1,
+            difference,
+            first,
+            second,
+            third,
+            h,
             t0: core.progress.previous_time(),
         }
     }
 
     fn at(&self, time: f64) -> SVector<f64, S> {
-        let (h, y0, y1, k) = (self.h, &self.y0, &self.y1, &self.k);
+        let h = self.h;
         if h <= 0.0 {
-            return *y1;
+            return self.y1;
         }
         let theta = (time - self.t0) / h;
         let theta1 = 1.0 - theta;
-        let difference = y1 - y0;
-        let first = k[0] * h - difference;
-        let second = difference - k[6] * h - first;
-        let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
-        y0 + (difference + (first + (second + third * theta1) * theta) * theta1) * theta
+        let (difference, first, second) = (self.difference, self.first, self.second);
+        self.y0 + (difference + (first + (second + self.third * theta1) * theta) * theta1) * theta
     }
 }
