@@ -243,6 +243,7 @@ where
             let Some(member) = slot else { continue };
             let verdict = Verdict {
                 index,
+                control: &adaptive,
                 clamped: &clamped,
                 proposal: proposals.0[index],
             };
@@ -558,6 +559,8 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
 /// step the controller proposes should the lane's attempt be accepted.
 struct Verdict<'c> {
     index: usize,
+    /// Every member's control (one `StepControl` for the run).
+    control: &'c AdaptiveControl,
     clamped: &'c ClampedErrors,
     proposal: f64,
 }
@@ -574,10 +577,7 @@ fn conclude<Sys, const N: usize, const S: usize, const W: usize>(
 where
     Sys: LaneSystem<N, S, W>,
 {
-    let Mode::Adaptive(control, _) = member.core.mode else {
-        return Err(unfinished());
-    };
-    let index = verdict.index;
+    let (index, control) = (verdict.index, verdict.control);
     let (h, reaches_stop) = (attempt.h.0[index], attempt.reaches_stop[index]);
     member.core.progress.statistics.rate_evaluations += 6;
     member.last = Last::Rejected;
@@ -589,12 +589,12 @@ where
     // check on accepting serves both.
     if !finite || !accepting || reaches_stop {
         if let Err(error) = check_stages(member.core.system, attempt, index, finite) {
-            return too_long(member, h, &control, error);
+            return too_long(member, h, control, error);
         }
     }
     if !accepting {
         // `DormandPrince::control`'s factor, its `powf` skipped where the clamp decides.
-        let factor = verdict.clamped.rejection_factor(&control, error);
+        let factor = verdict.clamped.rejection_factor(control, error);
         let memory = &mut member.core.memory;
         memory.reject(h / factor, &mut member.core.progress);
         return Ok(None);
@@ -604,12 +604,14 @@ where
     let outcome = match progress.accept(member.core.system, h, reaches_stop, y1) {
         Ok(outcome) => outcome,
         // Unchecked before: the attempt's own check failed.
-        Err(error) if !reaches_stop => return too_long(member, h, &control, error),
+        Err(error) if !reaches_stop => return too_long(member, h, control, error),
         Err(error) => return Err(error),
     };
     let memory = &mut member.core.memory;
     let next = memory.after_acceptance(h, verdict.proposal, error);
-    memory.accepted(h, lane(&attempt.k[6], index));
+    // `accepted(h, k₇)` but for the FSAL rate k₇, which stays in the lane (`carry`): only a
+    // member's first attempt asks the controller for its rate (`load`).
+    memory.last_step = h;
     memory.propose(next, reaches_stop, control.max_step);
     member.last = Last::Accepted;
     after_step(member, attempt, index, outcome, config)
