@@ -27,7 +27,7 @@ use nalgebra::SVector;
 use super::control::step_after_acceptance;
 use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
 use crate::error::{is_finite, StepError, StepErrorKind};
-use crate::events::{locate_root, Event, EventAction};
+use crate::events::{locate_root, Event, EventAction, EventCondition};
 use crate::run::RunConfig;
 use crate::solution::Record;
 use crate::stepper::{Checked, Statistics, StepOutcome};
@@ -686,7 +686,13 @@ where
         if event.triggered(*before, after) {
             let dense = dense.get_or_insert_with(|| Dense::new(attempt, index, core));
             let located = locate_root(
-                |t| event.value(system, t, &dense.at(t)),
+                |t| match event.condition {
+                    // g of one component needs only that component of the interpolant.
+                    EventCondition::StateComponent { index, value } if index < S => {
+                        dense.component_at(index, t) - value
+                    }
+                    _ => event.value(system, t, &dense.at(t)),
+                },
                 (start_time, *before),
                 (time, after),
                 config.event_tolerance,
@@ -755,6 +761,20 @@ impl<const S: usize> Dense<S> {
             h,
             t0: core.progress.previous_time(),
         }
+    }
+
+    /// Component `j` of [`Self::at`], with its operations (each component of `at` is
+    /// computed on its own, so the two agree to the bit).
+    fn component_at(&self, j: usize, time: f64) -> f64 {
+        let h = self.h;
+        if h <= 0.0 {
+            return self.y1[j];
+        }
+        let theta = (time - self.t0) / h;
+        let theta1 = 1.0 - theta;
+        let (difference, first, second) = (self.difference[j], self.first[j], self.second[j]);
+        self.y0[j]
+            + (difference + (first + (second + self.third[j] * theta1) * theta) * theta1) * theta
     }
 
     fn at(&self, time: f64) -> SVector<f64, S> {
