@@ -30,10 +30,10 @@ pub(super) fn step_after_acceptance<const W: usize>(
     let mut power = Lanes::splat(1.0);
     let mut previous_power = Lanes::splat(1.0);
     let mut decided = [false; W];
-    for i in 0..W {
-        let e = error.0[i];
-        // `!(e <= 1)`: a rejection (or NaN), whose proposal is not read.
-        if !(e <= 1.0) || e <= clamped.smallest {
+    for (i, &e) in error.0.iter().enumerate() {
+        // An error above 1 or NaN is a rejection, whose proposal is not read.
+        let accepted = e <= 1.0;
+        if !accepted || e <= clamped.smallest {
             decided[i] = true;
             continue;
         }

@@ -7,14 +7,17 @@
 //! times), reduced to what keeps the scalar path's arithmetic: the stages — six state rates
 //! and the combinations between them, the work of an attempt —, the error estimate with the
 //! weighted RMS of `Tolerance::norm` and the finiteness of the stage states run in lanes,
-//! each operation the scalar one lane by lane. Each lane then decides on its own, in scalar
-//! code, exactly as the scalar stepper does: the shared controller (`steppers/control.rs`'s
-//! `Controlled`: first step, FSAL rate, stop time), acceptance or rejection with the PI
-//! controller (its two `powf` per step stay scalar: a vector `pow` would round otherwise),
-//! the flow check of every point and the events located on the lane's own dense output
-//! (`locate_root`). A lane whose member is done is refilled with the next job at once, so
-//! the lanes stay busy while members take different numbers of steps. Hairer's stiffness
-//! test (statistics only) is not run.
+//! each operation the scalar one lane by lane, compiled for AVX where the CPU has it (chosen
+//! at run time; never FMA). So does the PI controller's arithmetic after the attempt
+//! (`lanes/control.rs`): its two `powf` per step stay one scalar call per lane (a vector
+//! `pow` would round otherwise), skipped where the clamp decides alone (`ClampedErrors`).
+//! Each lane then decides on its own, in scalar code, exactly as the scalar stepper does:
+//! the shared controller (`steppers/control.rs`'s `Controlled`: first step, stop time),
+//! acceptance or rejection, the flow check of every point and the events located on the
+//! lane's own dense output (`locate_root`). An accepted lane's next attempt starts from
+//! the new state and its rate (FSAL) where the lanes hold them. A lane whose member is done
+//! is refilled with the next job at once, so the lanes stay busy while members take
+//! different numbers of steps. Hairer's stiffness test (statistics only) is not run.
 //!
 //! The tableau and the dense output are the scalar stepper's (`steppers/dormand_prince.rs`,
 //! HNW I, II.5, Table 5.2 and `CONTD5`), with every operation in the same order: that is

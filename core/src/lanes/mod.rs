@@ -5,8 +5,9 @@
 //! its `f64` (no fused multiply-add, the same function for `ln`, `sin`, …), so a lane's
 //! values are bit-identical to the scalar path's. The arithmetic is written as plain loops
 //! over `[f64; W]`, which the compiler turns into packed instructions of whatever width the
-//! build targets (SSE2's two lanes in a default x86-64 build, AVX's four with
-//! `-C target-cpu=native`); the transcendental functions stay one call per lane.
+//! code is compiled for (SSE2's two lanes in a default x86-64 build; [`run_lanes`] also
+//! compiles its kernel for AVX's four and takes it where the CPU has AVX); the
+//! transcendental functions stay one call per lane.
 //!
 //! [`LaneSystem`] is what `emit = [..., "lanes"]` adds to a system: its parameters as
 //! lanes and its state rate over lanes. [`dormand_prince`] integrates with it.
