@@ -7,14 +7,17 @@
 //! times), reduced to what keeps the scalar path's arithmetic: the stages — six state rates
 //! and the combinations between them, the work of an attempt —, the error estimate with the
 //! weighted RMS of `Tolerance::norm` and the finiteness of the stage states run in lanes,
-//! each operation the scalar one lane by lane. Each lane then decides on its own, in scalar
-//! code, exactly as the scalar stepper does: the shared controller (`steppers/control.rs`'s
-//! `Controlled`: first step, FSAL rate, stop time), acceptance or rejection with the PI
-//! controller (its two `powf` per step stay scalar: a vector `pow` would round otherwise),
-//! the flow check of every point and the events located on the lane's own dense output
-//! (`locate_root`). A lane whose member is done is refilled with the next job at once, so
-//! the lanes stay busy while members take different numbers of steps. Hairer's stiffness
-//! test (statistics only) is not run.
+//! each operation the scalar one lane by lane, compiled for AVX where the CPU has it (chosen
+//! at run time; never FMA). So does the PI controller's arithmetic after the attempt
+//! (`lanes/control.rs`): its two `powf` per step stay one scalar call per lane (a vector
+//! `pow` would round otherwise), skipped where the clamp decides alone (`ClampedErrors`).
+//! Each lane then decides on its own, in scalar code, exactly as the scalar stepper does:
+//! the shared controller (`steppers/control.rs`'s `Controlled`: first step, stop time),
+//! acceptance or rejection, the flow check of every point and the events located on the
+//! lane's own dense output (`locate_root`). An accepted lane's next attempt starts from
+//! the new state and its rate (FSAL) where the lanes hold them. A lane whose member is done
+//! is refilled with the next job at once, so the lanes stay busy while members take
+//! different numbers of steps. Hairer's stiffness test (statistics only) is not run.
 //!
 //! The tableau and the dense output are the scalar stepper's (`steppers/dormand_prince.rs`,
 //! HNW I, II.5, Table 5.2 and `CONTD5`), with every operation in the same order: that is
@@ -24,14 +27,16 @@ use alloc::vec::Vec;
 
 use nalgebra::SVector;
 
+use super::control::step_after_acceptance;
 use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
 use crate::error::{is_finite, StepError, StepErrorKind};
-use crate::events::{locate_root, Event, EventAction};
-use crate::math::powf;
+use crate::events::{locate_root, Event, EventAction, EventCondition};
 use crate::run::RunConfig;
 use crate::solution::Record;
 use crate::stepper::{Checked, Statistics, StepOutcome};
-use crate::steppers::control::{resolvable, Controlled, Mode, StepControl};
+use crate::steppers::control::{
+    resolvable, AdaptiveControl, ClampedErrors, Controlled, Mode, StepControl,
+};
 use crate::tolerance::Tolerance;
 
 use crate::steppers::dp_tableau::*;
@@ -72,6 +77,20 @@ struct Member<'s, 'e, Sys, const S: usize> {
     /// g of each event at the last point.
     values: Vec<f64>,
     steps: usize,
+    /// How the member's last attempt ended, which says where its next one starts.
+    last: Last,
+}
+
+/// How a member's last attempt ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Last {
+    /// None yet: the attempt starts from the member's initial value.
+    Started,
+    /// Accepted: the next starts from its new state and last stage (FSAL), which are in the
+    /// lanes already.
+    Accepted,
+    /// Rejected: the next starts where it did, from what the lane holds still.
+    Rejected,
 }
 
 /// The inputs of one attempt in every lane, and the stages it computes.
@@ -99,10 +118,60 @@ struct Attempt<const S: usize, const W: usize> {
 /// Only what that needs is supported: an adaptive control, nothing recorded, no energy
 /// guard, and systems without switches or stop times (a member that has them fails with a
 /// configuration error: run it on the scalar path).
+///
+/// The lanes' arithmetic runs with AVX where the CPU has it (x86-64 with `std`), otherwise
+/// with what the build targets; both give the same bits.
 pub fn run_lanes<Sys, const N: usize, const S: usize, const W: usize>(
     jobs: &[LaneJob<'_, Sys, S>],
     control: StepControl,
     config: &RunConfig,
+) -> Vec<Result<LaneEnd<S>, StepError<S>>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    run_lanes_with(jobs, control, config, Kernel::detect())
+}
+
+/// [`run_lanes`] with the lanes' arithmetic compiled for the build's target only, never
+/// AVX: for tests of that path on a CPU that has AVX.
+#[doc(hidden)]
+pub fn run_lanes_portable<Sys, const N: usize, const S: usize, const W: usize>(
+    jobs: &[LaneJob<'_, Sys, S>],
+    control: StepControl,
+    config: &RunConfig,
+) -> Vec<Result<LaneEnd<S>, StepError<S>>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    run_lanes_with(jobs, control, config, Kernel::Portable)
+}
+
+/// Which compilation of the lanes' arithmetic runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kernel {
+    /// For the build's target (SSE2 in a default x86-64 build: two lanes per instruction).
+    Portable,
+    /// For AVX (four lanes per instruction), which the CPU was found to have.
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    Avx,
+}
+
+impl Kernel {
+    /// AVX where the CPU has it, otherwise the build's target.
+    fn detect() -> Self {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if std::is_x86_feature_detected!("avx") {
+            return Self::Avx;
+        }
+        Self::Portable
+    }
+}
+
+fn run_lanes_with<Sys, const N: usize, const S: usize, const W: usize>(
+    jobs: &[LaneJob<'_, Sys, S>],
+    control: StepControl,
+    config: &RunConfig,
+    kernel: Kernel,
 ) -> Vec<Result<LaneEnd<S>, StepError<S>>>
 where
     Sys: LaneSystem<N, S, W>,
@@ -112,7 +181,7 @@ where
     let Some(first) = jobs.first() else {
         return Vec::new();
     };
-    let Ok(Mode::Adaptive(_, tolerance)) = control.validated() else {
+    let Ok(Mode::Adaptive(adaptive, tolerance)) = control.validated() else {
         // Every member reports why, as it would on the scalar path.
         return (0..jobs.len())
             .map(
@@ -123,11 +192,16 @@ where
             )
             .collect();
     };
+    let clamped = ClampedErrors::dormand_prince(&adaptive);
     let mut parameters = Sys::splat(&first.system);
     let mut lanes: [Option<Member<'_, '_, Sys, S>>; W] = core::array::from_fn(|_| None);
     let mut queue = 0..jobs.len();
     let mut attempt = Attempt::<S, W>::new();
     loop {
+        let accepted = lanes
+            .each_ref()
+            .map(|slot| slot.as_ref().is_some_and(|m| m.last == Last::Accepted));
+        attempt.carry(accepted);
         for (index, slot) in lanes.iter_mut().enumerate() {
             while slot.is_none() {
                 let Some(job) = queue.next() else { break };
@@ -158,11 +232,25 @@ where
                 attempt.copy_lane(busy, index);
             }
         }
-        attempt.stages::<Sys, N>(&parameters);
-        attempt.measure(&tolerance);
+        attempt.kernel::<Sys, N>(kernel, &parameters, &tolerance);
+        // An empty lane's error is NaN here, so that its proposal costs no `powf`.
+        let previous = Lanes::from_fn(|i| {
+            lanes[i]
+                .as_ref()
+                .map_or(1.0, |member| member.core.memory.previous_error)
+        });
+        let busy = lanes.each_ref().map(Option::is_some);
+        let error = Lanes::select(busy, attempt.error, Lanes::splat(f64::NAN));
+        let proposals = step_after_acceptance(&adaptive, &clamped, attempt.h, error, previous);
         for (index, slot) in lanes.iter_mut().enumerate() {
             let Some(member) = slot else { continue };
-            match conclude(member, &attempt, index, config) {
+            let verdict = Verdict {
+                index,
+                control: &adaptive,
+                clamped: &clamped,
+                proposal: proposals.0[index],
+            };
+            match conclude(member, &attempt, verdict, config) {
                 Ok(None) => {}
                 Ok(Some(end)) => {
                     results[member.job] = Some(Ok(end));
@@ -249,6 +337,7 @@ where
         events,
         values,
         steps: 0,
+        last: Last::Started,
     })
 }
 
@@ -266,6 +355,18 @@ fn end_at<Sys, const S: usize>(
     }
 }
 
+/// y₀ + δ(j) in every component j, δ written out in place: a closure would be compiled on
+/// its own, without the AVX of the kernel it serves.
+macro_rules! stage {
+    ($y0:expr, |$j:ident| $delta:expr) => {{
+        let mut out = $y0;
+        for ($j, component) in out.iter_mut().enumerate() {
+            *component += $delta;
+        }
+        out
+    }};
+}
+
 impl<const S: usize, const W: usize> Attempt<S, W> {
     fn new() -> Self {
         let zero = [Lanes::default(); S];
@@ -281,8 +382,21 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         }
     }
 
+    /// Where the `accepted` lanes' next attempts start: the new state y₁ and its rate k₇
+    /// (FSAL) of the attempt just accepted, which the member's progress and controller now
+    /// hold too (the same values: `Progress::accept` stores y₁ as given, `accepted` k₇), so
+    /// they move within the lanes instead of out and back in.
+    fn carry(&mut self, accepted: [bool; W]) {
+        for j in 0..S {
+            self.y0[j] = Lanes::select(accepted, self.y[5][j], self.y0[j]);
+            self.k[0][j] = Lanes::select(accepted, self.k[6][j], self.k[0][j]);
+        }
+    }
+
     /// Puts the member's next attempt (t₀, y₀, k₁, h) in lane `index`: the scalar
-    /// stepper's start of a step, its first step chosen if none is yet.
+    /// stepper's start of a step, its first step chosen if none is yet. After an attempt
+    /// the lane holds y₀ and k₁ already (`carry`; a rejection leaves them): only t₀ and h
+    /// are new.
     fn load<Sys, const N: usize>(
         &mut self,
         index: usize,
@@ -291,13 +405,19 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
     where
         Sys: LaneSystem<N, S, W>,
     {
-        let (t0, y0, k1) = member.core.begin::<N>(5)?;
+        let (t0, y0) = if member.last == Last::Started {
+            let (t0, y0, k1) = member.core.begin::<N>(5)?;
+            set_lane(&mut self.y0, index, &y0);
+            set_lane(&mut self.k[0], index, &k1);
+            (t0, y0)
+        } else {
+            // `begin` would give the same: the rate is known, the step chosen.
+            (member.core.progress.time(), *member.core.progress.state())
+        };
         let (h, reaches_stop) = member.core.attempt_size((t0, &y0))?;
         self.t0.0[index] = t0;
         self.h.0[index] = h;
         self.reaches_stop[index] = reaches_stop;
-        set_lane(&mut self.y0, index, &y0);
-        set_lane(&mut self.k[0], index, &k1);
         Ok(())
     }
 
@@ -312,33 +432,86 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         }
     }
 
+    /// The work of an attempt in every lane: the stages, then the error and the finiteness
+    /// check. On x86-64 it is compiled twice, for the build's target (SSE2 by default: two
+    /// lanes per instruction) and for AVX (four), the AVX one chosen at run time where the
+    /// CPU has it (`Kernel::detect`). AVX only, not FMA: a fused multiply-add rounds once
+    /// where the scalar path rounds twice, and the lanes would no longer be the scalar
+    /// path's bits (`objdump -d` of a build shows no `vfmadd`).
+    fn kernel<Sys, const N: usize>(
+        &mut self,
+        kernel: Kernel,
+        parameters: &Sys::Parameters,
+        tolerance: &Tolerance,
+    ) where
+        Sys: LaneSystem<N, S, W>,
+    {
+        match kernel {
+            Kernel::Portable => self.kernel_portable::<Sys, N>(parameters, tolerance),
+            // SAFETY: `Kernel::Avx` is only chosen where the CPU has AVX (`Kernel::detect`).
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            Kernel::Avx => unsafe { self.kernel_avx::<Sys, N>(parameters, tolerance) },
+        }
+    }
+
+    /// [`Self::kernel`] for the build's target.
+    #[inline(always)]
+    fn kernel_portable<Sys, const N: usize>(
+        &mut self,
+        parameters: &Sys::Parameters,
+        tolerance: &Tolerance,
+    ) where
+        Sys: LaneSystem<N, S, W>,
+    {
+        self.stages::<Sys, N>(parameters);
+        self.measure(tolerance);
+    }
+
+    /// [`Self::kernel`] compiled for AVX: the same code, inlined into a function with the
+    /// feature on (the generated state rate too, being `#[inline]`).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx")]
+    #[inline(never)]
+    fn kernel_avx<Sys, const N: usize>(
+        &mut self,
+        parameters: &Sys::Parameters,
+        tolerance: &Tolerance,
+    ) where
+        Sys: LaneSystem<N, S, W>,
+    {
+        self.kernel_portable::<Sys, N>(parameters, tolerance);
+    }
+
     /// The stages k₂ … k₇ and the new state in every lane: `DormandPrince::attempt`'s
     /// operations, in its order, lane by lane.
+    #[inline(always)]
     fn stages<Sys, const N: usize>(&mut self, parameters: &Sys::Parameters)
     where
         Sys: LaneSystem<N, S, W>,
     {
         let (t0, h, y0) = (self.t0, self.h, self.y0);
-        let rate = |t: Lanes<W>, y: &LaneState<S, W>| Sys::state_rate_lanes(parameters, t, y);
+        // Called directly and the stages written out (`stage!`), with no closure: a closure
+        // is compiled on its own, without the AVX of the kernel that calls it.
+        let rate = Sys::state_rate_lanes;
         let k1 = self.k[0];
-        let y2 = combine(&y0, |j| k1[j] * (A21 * h));
-        let k2 = rate(t0 + C2 * h, &y2);
-        let y3 = combine(&y0, |j| (k1[j] * A31 + k2[j] * A32) * h);
-        let k3 = rate(t0 + C3 * h, &y3);
-        let y4 = combine(&y0, |j| (k1[j] * A41 + k2[j] * A42 + k3[j] * A43) * h);
-        let k4 = rate(t0 + C4 * h, &y4);
-        let y5 = combine(&y0, |j| {
+        let y2 = stage!(y0, |j| k1[j] * (A21 * h));
+        let k2 = rate(parameters, t0 + C2 * h, &y2);
+        let y3 = stage!(y0, |j| (k1[j] * A31 + k2[j] * A32) * h);
+        let k3 = rate(parameters, t0 + C3 * h, &y3);
+        let y4 = stage!(y0, |j| (k1[j] * A41 + k2[j] * A42 + k3[j] * A43) * h);
+        let k4 = rate(parameters, t0 + C4 * h, &y4);
+        let y5 = stage!(y0, |j| {
             (k1[j] * A51 + k2[j] * A52 + k3[j] * A53 + k4[j] * A54) * h
         });
-        let k5 = rate(t0 + C5 * h, &y5);
-        let y6 = combine(&y0, |j| {
+        let k5 = rate(parameters, t0 + C5 * h, &y5);
+        let y6 = stage!(y0, |j| {
             (k1[j] * A61 + k2[j] * A62 + k3[j] * A63 + k4[j] * A64 + k5[j] * A65) * h
         });
-        let k6 = rate(t0 + h, &y6);
-        let y1 = combine(&y0, |j| {
+        let k6 = rate(parameters, t0 + h, &y6);
+        let y1 = stage!(y0, |j| {
             (k1[j] * B1 + k3[j] * B3 + k4[j] * B4 + k5[j] * B5 + k6[j] * B6) * h
         });
-        let k7 = rate(t0 + h, &y1);
+        let k7 = rate(parameters, t0 + h, &y1);
         self.k = [k1, k2, k3, k4, k5, k6, k7];
         self.y = [y2, y3, y4, y5, y6, y1];
     }
@@ -347,8 +520,11 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
     /// `DormandPrince::attempt`'s estimate and [`Tolerance::norm`]'s weighted RMS (weights
     /// atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|), an exact zero counting 0, the squares summed in
     /// component order), lane by lane.
+    #[inline(always)]
     fn measure(&mut self, tolerance: &Tolerance) {
         let (k, h, y1) = (&self.k, self.h, &self.y[5]);
+        let absolute = Lanes::<W>::splat(tolerance.absolute());
+        let relative = Lanes::<W>::splat(tolerance.relative());
         let mut sum = Lanes::<W>::splat(0.0);
         for j in 0..S {
             let estimate = (k[0][j] * E1
@@ -359,7 +535,8 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
                 + k[6][j] * E7)
                 * h;
             let magnitude = self.y0[j].abs().max(y1[j].abs());
-            let weight = magnitude.map(|m| tolerance.weight(m));
+            // `Tolerance::weight`: atol + rtol·m.
+            let weight = absolute + relative * magnitude;
             let scaled = estimate / weight;
             let square = Lanes::select(
                 estimate.0.map(|e| e == 0.0),
@@ -381,13 +558,14 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
     }
 }
 
-/// y₀ + δ(j) in every component j.
-#[inline(always)]
-fn combine<const S: usize, const W: usize>(
-    y0: &LaneState<S, W>,
-    delta: impl Fn(usize) -> Lanes<W>,
-) -> LaneState<S, W> {
-    core::array::from_fn(|j| y0[j] + delta(j))
+/// What `conclude` needs besides the attempt: the lane, the controller's bounds and the
+/// step the controller proposes should the lane's attempt be accepted.
+struct Verdict<'c> {
+    index: usize,
+    /// Every member's control (one `StepControl` for the run).
+    control: &'c AdaptiveControl,
+    clamped: &'c ClampedErrors,
+    proposal: f64,
 }
 
 /// The verdict on lane `index`'s attempt for its member, as the scalar stepper and run
@@ -396,54 +574,69 @@ fn combine<const S: usize, const W: usize>(
 fn conclude<Sys, const N: usize, const S: usize, const W: usize>(
     member: &mut Member<'_, '_, Sys, S>,
     attempt: &Attempt<S, W>,
-    index: usize,
+    verdict: Verdict<'_>,
     config: &RunConfig,
 ) -> Result<Option<LaneEnd<S>>, StepError<S>>
 where
     Sys: LaneSystem<N, S, W>,
 {
-    let Mode::Adaptive(control, _) = member.core.mode else {
-        return Err(unfinished());
-    };
+    let (index, control) = (verdict.index, verdict.control);
     let (h, reaches_stop) = (attempt.h.0[index], attempt.reaches_stop[index]);
     member.core.progress.statistics.rate_evaluations += 6;
-    if let Err(error) = check_stages(member.core.system, attempt, index, attempt.finite[index]) {
-        // A trial state outside the domain is a step too long (DormandPrince::control).
-        member
-            .core
-            .memory
-            .reject(h * control.min_factor, &mut member.core.progress);
-        let time = member.core.progress.time();
-        return if resolvable(time, member.core.memory.next_step) {
-            Ok(None)
-        } else {
-            Err(error)
-        };
+    member.last = Last::Rejected;
+    let (error, finite) = (attempt.error.0[index], attempt.finite[index]);
+    let accepting = error <= 1.0;
+    // The scalar stepper checks the new state twice: in its attempt (a failure there is a
+    // step too long) and on accepting it (`Progress::accept`: the same check at the same
+    // time, t₀ + h, unless the step lands on the stop time). Where the two are one, the
+    // check on accepting serves both.
+    if !finite || !accepting || reaches_stop {
+        if let Err(error) = check_stages(member.core.system, attempt, index, finite) {
+            return too_long(member, h, control, error);
+        }
     }
-    let error = attempt.error.0[index];
-    let error_power = powf(error, 0.2 - 0.75 * control.beta);
-    if error > 1.0 || error.is_nan() {
-        let factor = error_power / control.safety;
-        let factor = if error.is_finite() {
-            factor.min(1.0 / control.min_factor)
-        } else {
-            1.0 / control.min_factor
-        };
+    if !accepting {
+        // `DormandPrince::control`'s factor, its `powf` skipped where the clamp decides.
+        let factor = verdict.clamped.rejection_factor(control, error);
         let memory = &mut member.core.memory;
         memory.reject(h / factor, &mut member.core.progress);
         return Ok(None);
     }
-    let memory = &mut member.core.memory;
-    let next = memory.pi_after_acceptance(&control, h, error, error_power);
     let y1 = lane(&attempt.y[5], index);
-    let outcome = member
-        .core
-        .progress
-        .accept(member.core.system, h, reaches_stop, y1)?;
+    let progress = &mut member.core.progress;
+    let outcome = match progress.accept(member.core.system, h, reaches_stop, y1) {
+        Ok(outcome) => outcome,
+        // Unchecked before: the attempt's own check failed.
+        Err(error) if !reaches_stop => return too_long(member, h, control, error),
+        Err(error) => return Err(error),
+    };
     let memory = &mut member.core.memory;
-    memory.accepted(h, lane(&attempt.k[6], index));
+    let next = memory.after_acceptance(h, verdict.proposal, error);
+    // `accepted(h, k₇)` but for the FSAL rate k₇, which stays in the lane (`carry`): only a
+    // member's first attempt asks the controller for its rate (`load`).
+    memory.last_step = h;
     memory.propose(next, reaches_stop, control.max_step);
+    member.last = Last::Accepted;
     after_step(member, attempt, index, outcome, config)
+}
+
+/// A trial state outside the domain (non-finite, a mass not positive): a step too long,
+/// shrunk by `min_factor` and retried, unless it can shrink no more
+/// (`DormandPrince::control`).
+fn too_long<Sys, const S: usize>(
+    member: &mut Member<'_, '_, Sys, S>,
+    h: f64,
+    control: &AdaptiveControl,
+    error: StepError<S>,
+) -> Result<Option<LaneEnd<S>>, StepError<S>> {
+    let core = &mut member.core;
+    core.memory
+        .reject(h * control.min_factor, &mut core.progress);
+    if resolvable(core.progress.time(), core.memory.next_step) {
+        Ok(None)
+    } else {
+        Err(error)
+    }
 }
 
 /// Scalar `state_rate`'s check of each stage state (finite) and `Checked::check_state` of the new
@@ -496,7 +689,13 @@ where
         if event.triggered(*before, after) {
             let dense = dense.get_or_insert_with(|| Dense::new(attempt, index, core));
             let located = locate_root(
-                |t| event.value(system, t, &dense.at(t)),
+                |t| match event.condition {
+                    // g of one component needs only that component of the interpolant.
+                    EventCondition::StateComponent { index, value } if index < S => {
+                        dense.component_at(index, t) - value
+                    }
+                    _ => event.value(system, t, &dense.at(t)),
+                },
                 (start_time, *before),
                 (time, after),
                 config.event_tolerance,
@@ -529,10 +728,15 @@ where
 }
 
 /// The dense output over a lane's last accepted step: `DormandPrince::interpolate`.
+/// Its four vectors are the interpolant's coefficients, which do not depend on the time:
+/// computed once, with `interpolate`'s operations, for the several times root finding asks.
 struct Dense<const S: usize> {
     y0: SVector<f64, S>,
     y1: SVector<f64, S>,
-    k: [SVector<f64, S>; 7],
+    difference: SVector<f64, S>,
+    first: SVector<f64, S>,
+    second: SVector<f64, S>,
+    third: SVector<f64, S>,
     h: f64,
     t0: f64,
 }
@@ -543,26 +747,47 @@ impl<const S: usize> Dense<S> {
         index: usize,
         core: &Controlled<'_, Sys, S>,
     ) -> Self {
-        Self {
-            y0: *core.progress.previous_state(),
-            y1: *core.progress.state(),
-            k: core::array::from_fn(|i| lane(&attempt.k[i], index)),
-            h: core.memory.last_step,
-            t0: core.progress.previous_time(),
-        }
-    }
-
-    fn at(&self, time: f64) -> SVector<f64, S> {
-        let (h, y0, y1, k) = (self.h, &self.y0, &self.y1, &self.k);
-        if h <= 0.0 {
-            return *y1;
-        }
-        let theta = (time - self.t0) / h;
-        let theta1 = 1.0 - theta;
+        let k: [SVector<f64, S>; 7] = core::array::from_fn(|i| lane(&attempt.k[i], index));
+        let (y0, y1) = (*core.progress.previous_state(), *core.progress.state());
+        let h = core.memory.last_step;
         let difference = y1 - y0;
         let first = k[0] * h - difference;
         let second = difference - k[6] * h - first;
         let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
-        y0 + (difference + (first + (second + third * theta1) * theta) * theta1) * theta
+        Self {
+            y0,
+            y1,
+            difference,
+            first,
+            second,
+            third,
+            h,
+            t0: core.progress.previous_time(),
+        }
+    }
+
+    /// Component `j` of [`Self::at`], with its operations (each component of `at` is
+    /// computed on its own, so the two agree to the bit).
+    fn component_at(&self, j: usize, time: f64) -> f64 {
+        let h = self.h;
+        if h <= 0.0 {
+            return self.y1[j];
+        }
+        let theta = (time - self.t0) / h;
+        let theta1 = 1.0 - theta;
+        let (difference, first, second) = (self.difference[j], self.first[j], self.second[j]);
+        self.y0[j]
+            + (difference + (first + (second + self.third[j] * theta1) * theta) * theta1) * theta
+    }
+
+    fn at(&self, time: f64) -> SVector<f64, S> {
+        let h = self.h;
+        if h <= 0.0 {
+            return self.y1;
+        }
+        let theta = (time - self.t0) / h;
+        let theta1 = 1.0 - theta;
+        let (difference, first, second) = (self.difference, self.first, self.second);
+        self.y0 + (difference + (first + (second + self.third * theta1) * theta) * theta1) * theta
     }
 }
