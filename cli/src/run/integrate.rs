@@ -41,7 +41,7 @@ pub fn integrate<const N: usize, const S: usize>(
     // sample there then changes nothing).
     let before = start;
     system
-        .sample(t0, &mut start)
+        .sample(t0, &mut start, varmass::core::input::Sampling::All)
         .map_err(|e| fail(StepError::from_system(&system, e, t0, &before)))?;
     // Every stepper is built as `Type::new(&system, t0, start, settings)` and driven alike;
     // only the type and its settings differ.

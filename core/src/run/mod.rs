@@ -19,6 +19,7 @@ pub use switching::Switching;
 
 use crate::error::{StepError, StepErrorKind};
 use crate::events::Event;
+use crate::input::Sampling;
 use crate::solution::{Record, Solution, StopReason};
 use crate::stepper::{StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
@@ -190,7 +191,7 @@ where
     // The held inputs are sampled at the start, so the first held value is u(t₀, …).
     if config.sample_at_start {
         let state = *stepper.state();
-        sample(stepper, start_time, state)?;
+        sample(stepper, start_time, state, Sampling::All)?;
     }
     let mut target = next_target(stepper.system(), start_time, config.end_time);
     stepper.set_stop_time(target)?;
@@ -237,7 +238,6 @@ where
         if let Some(stop) = record_step(&*stepper, recorder, &mut watch, config, step)? {
             return Ok(stop);
         }
-        let step_start = previous.time;
         previous = current;
         if outcome != StepOutcome::ReachedStopTime {
             continue;
@@ -248,13 +248,11 @@ where
                 switch_watch.cross_from(stepper.system(), &previous)?
             }
             _ if time >= config.end_time => {
-                // An end on a sample time samples too, so that a run continuing this one
-                // (which does not sample at its start) starts from the value held there.
-                if stepper.system().next_stop_time(step_start) == Some(time) {
-                    if let Some(sampled) = sample(stepper, time, previous.state)? {
-                        let point = Point::at(stepper.system(), time, sampled, needs)?;
-                        recorder.push(stepper.system(), &point)?;
-                    }
+                // An end on a sample time samples the inputs due there too, so that a run
+                // continuing this one starts from the value held there.
+                if let Some(sampled) = sample(stepper, time, previous.state, Sampling::Due)? {
+                    let point = Point::at(stepper.system(), time, sampled, needs)?;
+                    recorder.push(stepper.system(), &point)?;
                 }
                 return Ok(StopReason::ReachedEnd);
             }
@@ -271,10 +269,11 @@ where
                 continue;
             }
             // A stop time of the system, or a crossing not there after all: restart here
-            // (the rate may have a kink in t), sample the held inputs if it is a sample
-            // time, and aim at the next.
+            // (the rate may have a kink in t), sample the held inputs whose grid holds it
+            // (a knot of a table of t, or another input's sample, samples none), and aim at
+            // the next.
             Crossing::None => {
-                if let Some(sampled) = sample(stepper, time, previous.state)? {
+                if let Some(sampled) = sample(stepper, time, previous.state, Sampling::Due)? {
                     let after = Point::at(stepper.system(), time, sampled, needs)?;
                     let before = core::mem::replace(&mut previous, after);
                     // The jump of the held values may trigger an event (a condition on u):
@@ -304,14 +303,15 @@ where
     Err(StepError::new(stepper.time(), *stepper.state(), kind))
 }
 
-/// Samples the held inputs at `(time, state)` ([`VariableMassSystem::sample`],
+/// Samples the held inputs `which` takes at `(time, state)` ([`VariableMassSystem::sample`],
 /// docs/inputs.md#sampled-inputs) and, if a held value changed, restarts the stepper there
 /// with the sampled state and returns it (nothing is done when none changed: a system
-/// without sampled inputs, or a time between samples, steps on as before).
+/// without sampled inputs, or a time off every grid, steps on as before).
 pub(crate) fn sample<St, const N: usize, const S: usize>(
     stepper: &mut St,
     time: f64,
     state: SVector<f64, S>,
+    which: Sampling,
 ) -> Result<Option<SVector<f64, S>>, StepError<S>>
 where
     St: Stepper<N, S>,
@@ -319,7 +319,7 @@ where
     let mut sampled = state;
     let system = stepper.system();
     system
-        .sample(time, &mut sampled)
+        .sample(time, &mut sampled, which)
         .map_err(|error| StepError::from_system(system, error, time, &state))?;
     // Compared bit for bit, so that a NaN sampled is a change (the restart refuses it).
     let same = (sampled.iter().zip(&state)).all(|(a, b)| a.to_bits() == b.to_bits());
