@@ -193,3 +193,43 @@ fn a_run_starting_between_samples_samples_every_input_there() {
     assert_eq!(changes(&solution, 2), [(0.01, 0.01), (0.02, 0.02)]);
     assert_eq!(changes(&solution, 3), []);
 }
+
+#[test]
+fn a_phase_entered_on_a_sample_time_samples_there() {
+    use varmass::core::{run_phases, Carry, Direction, Event, EventAction, Phase};
+    // Phase 1 stops on t = 0.5, a sample time of u (0.5 = 50·0.01) but not of w (16·0.03
+    // = 0.48 < 0.5 < 0.51): the stop is found on the landing before its sample, so phase 2
+    // samples u there (before the fix it held u(0.49) to 0.51) and keeps w(0.48).
+    let at = |t: f64, _: &SVector<f64, 4>| t - 0.5;
+    let phase = |until| Phase {
+        system: Two { m0: 1.0 },
+        carry: Carry::Capture,
+        state_masses: &[],
+        until,
+    };
+    let until = Some(Event::function(&at, Direction::Either, EventAction::Stop));
+    let phases = [phase(until), phase(None)];
+    let stepper = |system, t, state| DormandPrince::new(system, t, state, control());
+    let phased = run_phases(
+        &phases,
+        (0.0, Vector4::zeros()),
+        stepper,
+        &RunConfig::until(0.53),
+    );
+    let phased = phased.unwrap();
+    assert_eq!(phased.changes[0].time, 0.5);
+    let solution = &phased.solution;
+    let second = (solution.times.iter().zip(&solution.states)).zip(&phased.phase);
+    let held: Vec<(f64, f64, f64)> = second
+        .filter(|(_, phase)| **phase == 1)
+        .map(|((t, x), _)| (*t, x[2], x[3]))
+        .collect();
+    // From 0.5 to the point before the sample at 0.51: u(0.5) and w(0.48).
+    let before_next = held.iter().take_while(|(t, _, _)| *t < 0.51);
+    assert!(before_next.clone().count() >= 1);
+    for (t, u, w) in before_next {
+        assert_eq!((*u, *w), (0.5, 0.48), "at {t}");
+    }
+    let changes = changes(solution, 2);
+    assert!(changes.contains(&(0.5, 0.5)), "{changes:?}");
+}

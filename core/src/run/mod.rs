@@ -54,11 +54,12 @@ pub struct RunConfig {
     /// How the system's switching functions are treated: located and restarted at, with a
     /// chattering guard, by default (docs/mechanics.md#switches).
     pub switching: Switching,
-    /// Whether the run samples the held inputs at its start ([`VariableMassSystem::sample`],
+    /// Whether the run samples every held input at its start ([`VariableMassSystem::sample`],
     /// docs/inputs.md#sampled-inputs): yes by default, so a flight's first held value is
     /// u(t₀, …); a run that continues an earlier one (the next phase, the next output
     /// interval) sets it off with [`RunConfig::continuing`], so the held values keep their
-    /// grid k·T instead of being sampled again where the earlier run stopped.
+    /// grid k·T instead of being sampled again where the earlier run stopped: it samples at
+    /// its start only the inputs whose grid holds t₀.
     pub sample_at_start: bool,
 }
 
@@ -77,8 +78,8 @@ impl RunConfig {
         }
     }
 
-    /// The same run, continuing an earlier one: the held inputs are not sampled at the
-    /// start (see [`RunConfig::sample_at_start`]).
+    /// The same run, continuing an earlier one: at the start only the held inputs whose
+    /// grid holds it are sampled (see [`RunConfig::sample_at_start`]).
     pub fn continuing(self) -> Self {
         Self {
             sample_at_start: false,
@@ -188,11 +189,15 @@ where
 {
     check(stepper, config, events)?;
     let start_time = stepper.time();
-    // The held inputs are sampled at the start, so the first held value is u(t₀, …).
-    if config.sample_at_start {
-        let state = *stepper.state();
-        sample(stepper, start_time, state, Sampling::All)?;
-    }
+    // The held inputs are sampled at the start, so the first held value is u(t₀, …); a run
+    // continuing another samples those whose grid holds t₀ (a phase entered on a sample
+    // time, where the run before stopped on an event before sampling).
+    let which = match config.sample_at_start {
+        true => Sampling::All,
+        false => Sampling::Due,
+    };
+    let state = *stepper.state();
+    sample(stepper, start_time, state, which)?;
     let mut target = next_target(stepper.system(), start_time, config.end_time);
     stepper.set_stop_time(target)?;
     let switches = stepper.system().switch_count() > 0 && config.switching.locate;
