@@ -233,3 +233,47 @@ fn a_phase_entered_on_a_sample_time_samples_there() {
     let changes = changes(solution, 2);
     assert!(changes.contains(&(0.5, 0.5)), "{changes:?}");
 }
+
+/// A sampled input beside a switch in t just before a sample time.
+#[variable_mass_system(
+    r#"
+    coordinates y
+    input u(t) every 0.01
+    mass m = m0
+    body b: mass m, position [y]
+    force b: [u(t) + abs(t - c)]
+"#
+)]
+struct Switch {
+    m0: f64,
+    c: f64,
+}
+
+impl SwitchInputs for Switch {
+    fn u(&self, t: f64) -> f64 {
+        t
+    }
+}
+
+#[test]
+fn a_switch_crossed_just_before_a_sample_time_does_not_skip_it() {
+    // |t − c| kinks at c = 0.01 − 1e-16: the run crosses it with a step of a few roundings
+    // and restarts past it, at 0.010000000000000788, past the sample time 0.01 (before the
+    // fix, the sample at 0.01 was skipped and u(0) held to 0.02). The sample is taken at
+    // the restart, a few roundings late: u = t there.
+    // With c = 0.01 − 5e-18 the restart falls on 0.01 itself, not landed on either.
+    for c in [0.009_999_999_999_999_9, 0.009_999_999_999_999_995] {
+        let solution: Solution<1, 3> = solve(&Switch { m0: 1.0, c }, 0.025);
+        let changes = changes(&solution, 2);
+        let (first, value) = changes[0];
+        // Measured 7.9e-16 and 0 late; bound 1e6 roundings of t (8.9e-10), the most a
+        // crossing's restart may go past its switch.
+        println!("c = {c}: sampled {:e} after 0.01", first - 0.01);
+        assert!(
+            first >= 0.01 && first - 0.01 <= 1e6 * 4.0 * f64::EPSILON,
+            "{first}"
+        );
+        assert_eq!(value, first);
+        assert_eq!(changes[1..], [(0.02, 0.02)]);
+    }
+}

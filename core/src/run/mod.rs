@@ -232,7 +232,15 @@ where
                     continue;
                 }
                 Crossing::Cross { time, state } => {
+                    let step_start = previous.time;
                     previous = restart_past(stepper, recorder, (time, state), needs)?;
+                    let watches = (&mut *recorder, &mut watch, Some(&mut *switch_watch));
+                    let which = Sampling::Since(step_start);
+                    if let Sampled::Stopped(stop) =
+                        sample_point(stepper, watches, &mut previous, which, needs)?
+                    {
+                        return Ok(stop);
+                    }
                     target = next_target(stepper.system(), time, config.end_time);
                     stepper.set_stop_time(target)?;
                     continue;
@@ -243,6 +251,7 @@ where
         if let Some(stop) = record_step(&*stepper, recorder, &mut watch, config, step)? {
             return Ok(stop);
         }
+        let step_start = previous.time;
         previous = current;
         if outcome != StepOutcome::ReachedStopTime {
             continue;
@@ -263,9 +272,18 @@ where
             }
             _ => Crossing::None,
         };
+        let watches = (&mut *recorder, &mut watch, switch_watch.as_mut());
         match crossing {
+            // Restarted a few roundings past the switch, maybe past a sample time: the
+            // inputs with a sample since the step's start are sampled at the restart.
             Crossing::Cross { time, state } => {
-                previous = restart_past(stepper, recorder, (time, state), needs)?;
+                previous = restart_past(stepper, watches.0, (time, state), needs)?;
+                let which = Sampling::Since(step_start);
+                if let Sampled::Stopped(stop) =
+                    sample_point(stepper, watches, &mut previous, which, needs)?
+                {
+                    return Ok(stop);
+                }
             }
             Crossing::Redo { near } => {
                 // The crossing is still ahead: land nearer.
@@ -278,24 +296,10 @@ where
             // (a knot of a table of t, or another input's sample, samples none), and aim at
             // the next.
             Crossing::None => {
-                if let Some(sampled) = sample(stepper, time, previous.state, Sampling::Due)? {
-                    let after = Point::at(stepper.system(), time, sampled, needs)?;
-                    let before = core::mem::replace(&mut previous, after);
-                    // The jump of the held values may trigger an event (a condition on u):
-                    // it is checked across the jump, and hits at the sample time.
-                    let hits = recorder.hits();
-                    let step = (&before, &previous);
-                    let hold = |_| sampled;
-                    let hit = watch.check_step(stepper.system(), step, &hold, 0.0, hits);
-                    recorder.push(stepper.system(), &previous)?;
-                    if let Some(hit) = hit {
-                        return Ok(StopReason::EventFound { index: hit.index });
-                    }
-                    if let Some(switch_watch) = &mut switch_watch {
-                        switch_watch.resume(stepper.system(), &previous)?;
-                    }
-                } else {
-                    stepper.restart(time, previous.state)?;
+                match sample_point(stepper, watches, &mut previous, Sampling::Due, needs)? {
+                    Sampled::Unchanged => stepper.restart(time, previous.state)?,
+                    Sampled::Changed => {}
+                    Sampled::Stopped(stop) => return Ok(stop),
                 }
             }
         }
@@ -334,6 +338,60 @@ where
     stepper.restart(time, sampled)?;
     Ok(Some(sampled))
 }
+
+/// What [`sample_point`] did.
+enum Sampled {
+    /// No held value changed (nothing was due, or the values came out the same): the
+    /// stepper was left as it was.
+    Unchanged,
+    /// The stepper was restarted with the values sampled.
+    Changed,
+    /// The jump of a held value met a stopping event.
+    Stopped(StopReason),
+}
+
+/// Samples the held inputs `which` takes at `previous`, the point the run stands at. When
+/// a value changed, the stepper is restarted with it, the point after the sample replaces
+/// `previous` and is recorded (the solution holds both), the events are checked across the
+/// jump (a condition on u hits at the sample time) and the switches are taken afresh (a
+/// switch on a held value changes there without the state crossing it).
+fn sample_point<St, const N: usize, const S: usize>(
+    stepper: &mut St,
+    (recorder, watch, switch_watch): Watches<'_, '_, '_, '_, N, S>,
+    previous: &mut Point<S>,
+    which: Sampling,
+    needs: Needs,
+) -> Result<Sampled, StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    let time = previous.time;
+    let Some(sampled) = sample(stepper, time, previous.state, which)? else {
+        return Ok(Sampled::Unchanged);
+    };
+    let after = Point::at(stepper.system(), time, sampled, needs)?;
+    let before = core::mem::replace(previous, after);
+    let hits = recorder.hits();
+    let hold = |_| sampled;
+    let hit = watch.check_step(stepper.system(), (&before, previous), &hold, 0.0, hits);
+    recorder.push(stepper.system(), previous)?;
+    if let Some(hit) = hit {
+        return Ok(Sampled::Stopped(StopReason::EventFound {
+            index: hit.index,
+        }));
+    }
+    if let Some(switch_watch) = switch_watch {
+        switch_watch.resume(stepper.system(), previous)?;
+    }
+    Ok(Sampled::Changed)
+}
+
+/// What a sample updates besides the stepper: the solution, the events and the switches.
+type Watches<'r, 'w, 'e, 'a, const N: usize, const S: usize> = (
+    &'r mut Recorder<N, S>,
+    &'w mut EventWatch<'e, 'a, S>,
+    Option<&'w mut SwitchWatch>,
+);
 
 /// Restarts the stepper past a switch at `(time, state)` and records that point (the
 /// bracket crossed is a few roundings of t wide: its energy is not integrated).
