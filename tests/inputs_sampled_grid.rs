@@ -277,3 +277,76 @@ fn a_switch_crossed_just_before_a_sample_time_does_not_skip_it() {
         assert_eq!(changes[1..], [(0.02, 0.02)]);
     }
 }
+
+/// A sampled input whose method has no value past t = 0.015.
+#[variable_mass_system(
+    r#"
+    coordinates y
+    input u(t) every 0.01
+    mass m = m0
+    body b: mass m, position [y]
+    force b: [u(t)]
+"#
+)]
+struct Root {
+    m0: f64,
+}
+
+impl RootInputs for Root {
+    fn u(&self, t: f64) -> f64 {
+        (0.015 - t).sqrt()
+    }
+}
+
+#[test]
+fn a_sample_that_is_not_a_number_is_a_typed_error_naming_the_input() {
+    use varmass::core::StepErrorKind;
+    // √(0.015 − t) is NaN at the sample 0.02: the run ends there with the input's name
+    // (before: "the state became non-finite", found by the next step).
+    let mut stepper =
+        DormandPrince::new(&Root { m0: 1.0 }, 0.0, Vector3::zeros(), control()).unwrap();
+    let failure = run(&mut stepper, &RunConfig::until(0.05), &[]).unwrap_err();
+    assert!(
+        matches!(
+            failure.error.kind,
+            StepErrorKind::SampledInputNotFinite { input: "u", value } if value.is_nan()
+        ),
+        "{:?}",
+        failure.error.kind
+    );
+    assert_eq!(failure.error.time, 0.02);
+    assert_eq!(failure.partial.times.last(), Some(&0.02));
+}
+
+#[test]
+fn a_phase_setting_a_state_mass_the_system_lacks_is_refused_before_the_held_values() {
+    use varmass::core::{run_phases, Carry, Direction, Event, EventAction, Phase, StepErrorKind};
+    // `Knot` has no state mass (K = 0): index 0 would be the held value of u, S = 2N + 1.
+    // Before, only an index past S was refused, so this wrote 40 into the held value.
+    let at = |t: f64, _: &SVector<f64, 3>| t - 0.005;
+    let until = Some(Event::function(&at, Direction::Either, EventAction::Stop));
+    let phase = |state_masses, until| Phase {
+        system: Knot { m0: 1.0 },
+        carry: Carry::Capture,
+        state_masses,
+        until,
+    };
+    let phases = [phase(&[][..], until), phase(&[(0, 40.0)][..], None)];
+    let stepper = |system, t, state| DormandPrince::new(system, t, state, control());
+    let start = (0.0, Vector3::zeros());
+    let failure = run_phases(&phases, start, stepper, &RunConfig::until(0.02)).unwrap_err();
+    assert!(
+        matches!(
+            failure.error.kind,
+            StepErrorKind::InvalidConfiguration { reason }
+                if reason == varmass::core::phases::BAD_STATE_MASS
+        ),
+        "{:?}",
+        failure.error.kind
+    );
+    assert!(
+        (failure.error.time - 0.005).abs() <= 1e-12,
+        "{}",
+        failure.error.time
+    );
+}

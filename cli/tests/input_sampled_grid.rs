@@ -94,3 +94,51 @@ fn a_table_knot_or_an_output_time_between_samples_does_not_sample() {
     ];
     assert_eq!(held, expected);
 }
+
+#[test]
+fn a_switch_crossed_just_before_a_sample_time_does_not_skip_it_in_the_tool() {
+    // The kink of |t − c| at c = 0.01 − 1e-16 is crossed with a restart past 0.01: the
+    // sample is taken there, a few roundings late (before the fix: u(0) held to 0.02).
+    let args = [
+        "--input",
+        "u=t",
+        "--set",
+        "c=0.0099999999999999",
+        "--until",
+        "0.025",
+    ];
+    let rows = tool("sampled_switch.vms", &args, "u", "grid_switch");
+    let changes = changes(&rows, 1);
+    let (first, value) = changes[0];
+    // Measured 7.9e-16 late; bound 1e6 roundings of t (8.9e-10).
+    assert!(
+        first >= 0.01 && first - 0.01 <= 1e6 * 4.0 * f64::EPSILON,
+        "{first}"
+    );
+    assert_eq!(value, first);
+    assert_eq!(changes[1..], [(0.02, 0.02)]);
+}
+
+#[test]
+fn a_law_without_a_value_at_a_sample_names_the_input_and_the_time() {
+    // √(0.015 − t) is NaN at the sample 0.02 (before: "the state became non-finite" and
+    // help about a fixed step past the stability limit). A run that fails exits 1.
+    let model = format!("{}/tests/data/sampled_knot.vms", env!("CARGO_MANIFEST_DIR"));
+    let output = Command::cargo_bin("varmass")
+        .expect("the binary is built")
+        .args(["run", &model, "--init", "y=0", "--until", "0.05"])
+        .args(["--input", "u=sqrt(0.015 - t)"])
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("at t = 0.02: the sampled input `u` is not finite at its sample (NaN)"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("the --input law of `u` has no value"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("stability limit"), "{stderr}");
+}

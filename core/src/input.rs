@@ -1,6 +1,8 @@
 //! Inputs written in Rust (docs/inputs.md): the default partials of the generated
 //! `…Inputs` trait, by central differences, and the sample grid of a sampled input.
 
+use crate::system::SystemError;
+
 /// The partials ∂f/∂xⱼ at `x` by central differences,
 /// (f(x + hⱼeⱼ) − f(x − hⱼeⱼ)) / (2hⱼ), with hⱼ = ε^(1/3) · max(|xⱼ|, 1).
 ///
@@ -62,6 +64,16 @@ pub fn is_sample_time(period: f64, t: f64) -> bool {
     // The nearest k, give or take the rounding of the quotient.
     let k = nalgebra::ComplexField::round(t / period);
     [k - 1.0, k, k + 1.0].iter().any(|k| k * period == t)
+}
+
+/// `value`, the sample of input `input`, if it is a finite number, else the typed
+/// [`SystemError::SampledInputNotFinite`] naming the input (the run reports it at the
+/// sample's time) instead of a held NaN that the next step would find.
+pub fn checked_sample(input: &'static str, value: f64) -> Result<f64, SystemError> {
+    match value.is_finite() {
+        true => Ok(value),
+        false => Err(SystemError::SampledInputNotFinite { input, value }),
+    }
 }
 
 /// Which held inputs a sample replaces ([`crate::VariableMassSystem::sample`],

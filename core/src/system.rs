@@ -70,6 +70,15 @@ pub enum SystemError {
         /// The argument asked for.
         argument: f64,
     },
+    /// A sampled input's value at a sample is not a finite number: its method (or its
+    /// `--input` law) gave NaN or ±∞ there (docs/inputs.md#sampled-inputs).
+    #[error("the sampled input `{input}` is not finite at its sample ({value})")]
+    SampledInputNotFinite {
+        /// The input's name.
+        input: &'static str,
+        /// The value it gave.
+        value: f64,
+    },
 }
 
 /// A holonomic variable-mass system in the sense of Zhang Jiuzhu (2015): generalized

@@ -329,6 +329,14 @@ fn explain(program: &Program, plan: &Plan, kind: StepErrorKind) -> (String, Stri
         StepErrorKind::NonFiniteTime { .. } | StepErrorKind::InvalidConfiguration { .. } => {
             (what, "check --from, --until, --step and --tol".to_string())
         }
+        StepErrorKind::SampledInputNotFinite { input, .. } => (
+            what,
+            format!(
+                "the --input law of `{input}` has no value at this sample (a square root of \
+                 a negative number, a division by zero): correct the law or its parameters, \
+                 or stop the run before (--until, --stop-when)"
+            ),
+        ),
         StepErrorKind::TableOutside { .. } => (
             what,
             "the table has no data there: stop before it (--until, --stop-when), or give the \

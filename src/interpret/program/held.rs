@@ -42,8 +42,17 @@ impl Program {
             if let Some(error) = scratch.outside.take() {
                 return Err(error);
             }
-            if let (Some(x), Some(value)) = (state.get_mut(first + j), scratch.values.first()) {
-                *x = *value;
+            let value = scratch.values.first().copied().unwrap_or(f64::NAN);
+            let value = match value.is_finite() {
+                true => value,
+                false => {
+                    let input = self.held_names().nth(j).unwrap_or("?");
+                    let input = crate::interpret::names::intern(input);
+                    return Err(SystemError::SampledInputNotFinite { input, value });
+                }
+            };
+            if let Some(x) = state.get_mut(first + j) {
+                *x = value;
             }
         }
         Ok(())

@@ -84,7 +84,11 @@ impl Emitter<'_> {
             });
             let slot = Literal::usize_unsuffixed(first + j);
             let index = Literal::usize_unsuffixed(j);
-            quote!(if __due[#index] { state[#slot] = #alias::#method(self, #(#arguments),*); })
+            let name = &input.name;
+            let value = quote!(#alias::#method(self, #(#arguments),*));
+            quote!(if __due[#index] {
+                state[#slot] = #runtime::input::checked_sample(#name, #value)?;
+            })
         });
         let periods = sampled.iter().map(|i| i.every.unwrap_or(f64::NAN));
         let needs_velocities = sampled
