@@ -134,6 +134,16 @@ pub enum StepErrorKind {
         /// The argument asked for.
         argument: f64,
     },
+    /// A sampled input gave a value that is not a finite number at a sample (its method,
+    /// or its `--input` law, returned NaN or ±∞ there; docs/inputs.md#sampled-inputs). The
+    /// error's time is the sample's, its state the one sampled at.
+    #[error("the sampled input `{input}` is not finite at its sample ({value})")]
+    SampledInputNotFinite {
+        /// The input's name.
+        input: &'static str,
+        /// The value it gave.
+        value: f64,
+    },
 }
 
 impl<const S: usize> StepError<S> {
@@ -173,13 +183,18 @@ impl<const S: usize> StepError<S> {
                 Err(mass_error) => mass_error,
                 Ok(()) => error,
             },
-            SystemError::NonPositiveMass { .. } | SystemError::TableOutside { .. } => error,
+            SystemError::NonPositiveMass { .. }
+            | SystemError::TableOutside { .. }
+            | SystemError::SampledInputNotFinite { .. } => error,
         };
         let kind = match error {
             SystemError::SingularMassMatrix => StepErrorKind::SingularMassMatrix,
             SystemError::NonPositiveMass { index } => StepErrorKind::NonPositiveMass { index },
             SystemError::TableOutside { table, argument } => {
                 StepErrorKind::TableOutside { table, argument }
+            }
+            SystemError::SampledInputNotFinite { input, value } => {
+                StepErrorKind::SampledInputNotFinite { input, value }
             }
         };
         Self::new(time, state, kind)

@@ -12,6 +12,7 @@ use alloc::vec::Vec;
 use nalgebra::SVector;
 
 use crate::error::{StepError, StepErrorKind};
+use crate::input::Sampling;
 use crate::run::interpolation::over_last_step;
 use crate::run::next_target;
 use crate::run::point::{Needs, Point};
@@ -139,6 +140,13 @@ impl Recording {
 /// Integrates with `stepper` to the last of `output_times` and records `observables` at
 /// every output time. The times must be finite, ascending and not before the stepper's
 /// time; a time equal to it is recorded from the current state.
+///
+/// The held values of sampled inputs (docs/inputs.md#sampled-inputs) are the stepper's: a
+/// held input is sampled at the start only when its grid holds the start time (so a later
+/// phase's recording keeps the value held where the earlier one stopped), then at each of
+/// its sample times. To start a flight between samples with u(t₀, …), sample the initial
+/// state first with [`VariableMassSystem::sample`] and
+/// [`Sampling::All`](crate::input::Sampling::All).
 pub fn observe<St, const N: usize, const S: usize>(
     stepper: &mut St,
     output_times: &[f64],
@@ -160,9 +168,10 @@ where
     };
     let mut pending = output_times;
     let start_time = stepper.time();
-    // The held inputs are sampled at the start, as a run does.
+    // The recording continues the stepper's state as it is: only the held inputs whose
+    // grid holds the start are sampled there (as a continuing run does).
     let state = *stepper.state();
-    crate::run::sample(stepper, start_time, state)?;
+    crate::run::sample(stepper, start_time, state, Sampling::Due)?;
     while let Some((&time, rest)) = pending.split_first().filter(|(t, _)| **t <= start_time) {
         record(
             stepper.system(),
@@ -203,11 +212,26 @@ where
         let current = Point::at(stepper.system(), stepper.time(), *stepper.state(), needs)?;
         let landed = outcome == StepOutcome::ReachedStopTime;
         let reached_end = landed && current.time >= end;
+        // An end on a sample time shows the value after it, as every output time on a
+        // sample does (the run's end samples too).
+        let mut at_end = None;
         while let Some((&time, rest)) = pending.split_first() {
             if (time > current.time || (landed && time == current.time)) && !reached_end {
                 break;
             }
-            let state = over_last_step(&*stepper, &previous, &current, time.min(current.time));
+            if reached_end && time >= current.time && at_end.is_none() {
+                let state = current.state;
+                at_end = Some(crate::run::sample(
+                    stepper,
+                    current.time,
+                    state,
+                    Sampling::Due,
+                )?);
+            }
+            let state = match at_end {
+                Some(Some(sampled)) => sampled,
+                _ => over_last_step(&*stepper, &previous, &current, time.min(current.time)),
+            };
             record(stepper.system(), recording, observables, time, &state)?;
             pending = rest;
         }
@@ -216,9 +240,10 @@ where
         }
         previous = current;
         if landed {
-            // A stop time of the system: restart there (sampled if it is a sample time).
+            // A stop time of the system: restart there (the inputs whose grid holds it
+            // sampled).
             let (time, state) = (previous.time, previous.state);
-            match crate::run::sample(stepper, time, state)? {
+            match crate::run::sample(stepper, time, state, Sampling::Due)? {
                 Some(sampled) => previous = Point::at(stepper.system(), time, sampled, needs)?,
                 None => stepper.restart(time, state)?,
             }

@@ -306,7 +306,9 @@ where
     let mut moving = velocity_state;
     for &(k, value) in phase.state_masses {
         let index = 2 * N + k;
-        if index >= S || !(value.is_finite() && value > 0.0) {
+        // Against the phase's state masses, not S: the held values of sampled inputs follow
+        // them, and an index past the masses would write a held value.
+        if k >= Sys::STATE_MASSES || !(value.is_finite() && value > 0.0) {
             return Err(StepError::invalid_configuration(
                 time,
                 *state,

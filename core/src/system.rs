@@ -19,6 +19,8 @@
 
 use nalgebra::{SMatrix, SVector};
 
+use crate::input::Sampling;
+
 /// ε^(1/3), the step of a central difference that balances truncation against rounding.
 /// A literal because `f64::powf` is not available without `std`.
 const CBRT_EPSILON: f64 = 6.055_454_452_393_343e-6;
@@ -67,6 +69,15 @@ pub enum SystemError {
         table: &'static str,
         /// The argument asked for.
         argument: f64,
+    },
+    /// A sampled input's value at a sample is not a finite number: its method (or its
+    /// `--input` law) gave NaN or ±∞ there (docs/inputs.md#sampled-inputs).
+    #[error("the sampled input `{input}` is not finite at its sample ({value})")]
+    SampledInputNotFinite {
+        /// The input's name.
+        input: &'static str,
+        /// The value it gave.
+        value: f64,
     },
 }
 
@@ -182,11 +193,20 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     }
 
     /// Replaces the held values of the sampled inputs (the last [`Self::HELD`] entries of
-    /// `state`) by the inputs' values at `(t, state)`: a zero-order hold samples here
-    /// (docs/inputs.md#sampled-inputs). A run calls it at its start time and at every
-    /// sample time it lands on (the sample times are among [`Self::next_stop_time`]), never
-    /// inside a step. Nothing by default (no sampled inputs).
-    fn sample(&self, _t: f64, _state: &mut SVector<f64, S>) -> Result<(), SystemError> {
+    /// `state`) that `which` takes by the inputs' values at `(t, state)`: a zero-order hold
+    /// samples here (docs/inputs.md#sampled-inputs). An input is sampled on its own grid
+    /// only: with [`Sampling::Due`] its entry is replaced only when t = k·T of its period T
+    /// ([`crate::input::is_sample_time`]), and left as it is at any other stop time (a knot
+    /// of a table of t, another input's sample); [`Sampling::All`] replaces every entry (a
+    /// run's start). A run calls it at its start time and at every stop time it lands on
+    /// (the sample times are among [`Self::next_stop_time`]), never inside a step. Nothing
+    /// by default (no sampled inputs).
+    fn sample(
+        &self,
+        _t: f64,
+        _state: &mut SVector<f64, S>,
+        _which: Sampling,
+    ) -> Result<(), SystemError> {
         Ok(())
     }
 

@@ -83,9 +83,10 @@ pub struct Program {
     /// The parameters the equations read (`Derivation::used_parameters`, a walk of every
     /// expression): found once, checked at every [`Program::set_parameters`].
     used: Vec<String>,
-    /// The held values of the sampled inputs (`held.rs`), their laws and periods.
+    /// The held values of the sampled inputs (`held.rs`), their laws (one stage each, so
+    /// that a sample evaluates only the inputs due) and periods.
     held_symbols: Vec<Symbol>,
-    held_laws: Stage,
+    held_laws: Vec<Stage>,
     periods: Vec<f64>,
     scratch: RefCell<Scratch>,
 }
@@ -143,7 +144,11 @@ impl Program {
                 name: input.name.clone(),
             });
         }
-        let held_laws = stage(sampled.iter().filter_map(|i| i.law).collect());
+        let held_laws = sampled
+            .iter()
+            .filter_map(|i| i.law)
+            .map(|law| stage(vec![law]));
+        let held_laws = held_laws.collect();
         let periods = sampled.iter().filter_map(|i| i.every).collect();
         Ok(Self {
             taylor: TaylorProgram::new(&d, &env),

@@ -1,6 +1,7 @@
 //! [`TapeSystem`]: a [`Program`] with its sizes fixed at compile time, so that the core's
 //! steppers integrate it like generated code.
 
+use varmass_core::input::Sampling;
 use varmass_core::nalgebra::{SMatrix, SVector};
 use varmass_core::{SystemError, VariableMassSystem};
 
@@ -127,8 +128,13 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     /// The held values sit after the state masses, inside the padding of
     /// [`TapeSystem::padded`] ([`VariableMassSystem::HELD`] stays 0: the count is known only
     /// at run time, and a held entry, like the padding, has rate 0 and is no mass).
-    fn sample(&self, t: f64, state: &mut SVector<f64, S>) -> Result<(), SystemError> {
-        self.program.sample(t, state.as_mut_slice())
+    fn sample(
+        &self,
+        t: f64,
+        state: &mut SVector<f64, S>,
+        which: Sampling,
+    ) -> Result<(), SystemError> {
+        self.program.sample(t, state.as_mut_slice(), which)
     }
 
     fn mass(&self, index: usize, t: f64, state: &SVector<f64, S>) -> f64 {

@@ -247,3 +247,27 @@ fn an_input_called_with_its_arguments_swapped_is_refused() {
     let shifted = "coordinates y\ninput u(t, y)\nmass m = m0\nbody b: mass m, position [y]\nforce b: [u(t, 2*y)]";
     assert!(derive(shifted).is_ok());
 }
+
+/// A period given twice is named as such (before: "unexpected `every`; expected `every`,
+/// `;` or a newline"), and a reserved name says "an input".
+#[test]
+fn a_second_period_and_a_reserved_name_are_worded_for_an_input() {
+    error(
+        "coordinates y\ninput u(t) every 0.01 every 0.02\nforce y: u(t)",
+        "`every` is given twice",
+        2,
+        23,
+    );
+    let errors = parse_system("coordinates y\ninput u(t) every 0.01 x").unwrap_err();
+    assert!(
+        errors[0].message.contains("expected `;` or a newline"),
+        "{}",
+        errors[0].message
+    );
+    error(
+        "coordinates y\ninput H(t)\nforce y: H(t)",
+        "cannot name an input",
+        2,
+        7,
+    );
+}

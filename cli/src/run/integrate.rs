@@ -43,7 +43,7 @@ pub fn integrate<const N: usize, const S: usize>(
     // sample there then changes nothing).
     let before = start;
     system
-        .sample(t0, &mut start)
+        .sample(t0, &mut start, varmass::core::input::Sampling::All)
         .map_err(|e| fail(StepError::from_system(&system, e, t0, &before)))?;
     // Every stepper is built as `Type::new(&system, t0, start, settings)` and driven alike;
     // only the type and its settings differ.
@@ -359,11 +359,22 @@ fn explain(
             what,
             format!("check {}, {until}, {step} and {tol}", w("--from")),
         ),
+        StepErrorKind::SampledInputNotFinite { input, .. } => (
+            what,
+            format!(
+                "the {} law of `{input}` has no value at this sample (a square root of a \
+                 negative number, a division by zero): correct the law or its parameters, or \
+                 stop the run before ({until}, {stop_when})",
+                w("--input")
+            ),
+        ),
         StepErrorKind::TableOutside { .. } => (
             what,
             format!(
                 "the table has no data there: stop before it ({until}, {stop_when}), or give \
-                 the table `outside zero` or `outside hold` in the model"
+                 the table `outside zero` or `outside hold` in the model (a table given by {} \
+                 NAME=FILE errs outside its data: extend the file)",
+                w("--input")
             ),
         ),
     }

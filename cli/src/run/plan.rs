@@ -497,7 +497,7 @@ fn momenta(program: &Program, from: f64, velocity_state: Vec<f64>) -> Result<Vec
     // The held inputs sampled at the start (the run's own sample there changes nothing),
     // so the first row and `--stop-when` see u(t₀, …).
     program
-        .sample(from, &mut state)
+        .sample(from, &mut state, varmass::core::input::Sampling::All)
         .map_err(|e| CliError::Input(format!("the sampled inputs at the start: {e}")))?;
     Ok(state)
 }

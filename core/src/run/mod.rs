@@ -19,6 +19,7 @@ pub use switching::Switching;
 
 use crate::error::{StepError, StepErrorKind};
 use crate::events::Event;
+use crate::input::Sampling;
 use crate::solution::{Record, Solution, StopReason};
 use crate::stepper::{StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
@@ -53,11 +54,12 @@ pub struct RunConfig {
     /// How the system's switching functions are treated: located and restarted at, with a
     /// chattering guard, by default (docs/mechanics.md#switches).
     pub switching: Switching,
-    /// Whether the run samples the held inputs at its start ([`VariableMassSystem::sample`],
+    /// Whether the run samples every held input at its start ([`VariableMassSystem::sample`],
     /// docs/inputs.md#sampled-inputs): yes by default, so a flight's first held value is
     /// u(t₀, …); a run that continues an earlier one (the next phase, the next output
     /// interval) sets it off with [`RunConfig::continuing`], so the held values keep their
-    /// grid k·T instead of being sampled again where the earlier run stopped.
+    /// grid k·T instead of being sampled again where the earlier run stopped: it samples at
+    /// its start only the inputs whose grid holds t₀.
     pub sample_at_start: bool,
 }
 
@@ -76,8 +78,8 @@ impl RunConfig {
         }
     }
 
-    /// The same run, continuing an earlier one: the held inputs are not sampled at the
-    /// start (see [`RunConfig::sample_at_start`]).
+    /// The same run, continuing an earlier one: at the start only the held inputs whose
+    /// grid holds it are sampled (see [`RunConfig::sample_at_start`]).
     pub fn continuing(self) -> Self {
         Self {
             sample_at_start: false,
@@ -187,11 +189,15 @@ where
 {
     check(stepper, config, events)?;
     let start_time = stepper.time();
-    // The held inputs are sampled at the start, so the first held value is u(t₀, …).
-    if config.sample_at_start {
-        let state = *stepper.state();
-        sample(stepper, start_time, state)?;
-    }
+    // The held inputs are sampled at the start, so the first held value is u(t₀, …); a run
+    // continuing another samples those whose grid holds t₀ (a phase entered on a sample
+    // time, where the run before stopped on an event before sampling).
+    let which = match config.sample_at_start {
+        true => Sampling::All,
+        false => Sampling::Due,
+    };
+    let state = *stepper.state();
+    sample(stepper, start_time, state, which)?;
     let mut target = next_target(stepper.system(), start_time, config.end_time);
     stepper.set_stop_time(target)?;
     let switches = stepper.system().switch_count() > 0 && config.switching.locate;
@@ -226,7 +232,15 @@ where
                     continue;
                 }
                 Crossing::Cross { time, state } => {
+                    let step_start = previous.time;
                     previous = restart_past(stepper, recorder, (time, state), needs)?;
+                    let watches = (&mut *recorder, &mut watch, Some(&mut *switch_watch));
+                    let which = Sampling::Since(step_start);
+                    if let Sampled::Stopped(stop) =
+                        sample_point(stepper, watches, &mut previous, which, needs)?
+                    {
+                        return Ok(stop);
+                    }
                     target = next_target(stepper.system(), time, config.end_time);
                     stepper.set_stop_time(target)?;
                     continue;
@@ -248,21 +262,28 @@ where
                 switch_watch.cross_from(stepper.system(), &previous)?
             }
             _ if time >= config.end_time => {
-                // An end on a sample time samples too, so that a run continuing this one
-                // (which does not sample at its start) starts from the value held there.
-                if stepper.system().next_stop_time(step_start) == Some(time) {
-                    if let Some(sampled) = sample(stepper, time, previous.state)? {
-                        let point = Point::at(stepper.system(), time, sampled, needs)?;
-                        recorder.push(stepper.system(), &point)?;
-                    }
+                // An end on a sample time samples the inputs due there too, so that a run
+                // continuing this one starts from the value held there.
+                if let Some(sampled) = sample(stepper, time, previous.state, Sampling::Due)? {
+                    let point = Point::at(stepper.system(), time, sampled, needs)?;
+                    recorder.push(stepper.system(), &point)?;
                 }
                 return Ok(StopReason::ReachedEnd);
             }
             _ => Crossing::None,
         };
+        let watches = (&mut *recorder, &mut watch, switch_watch.as_mut());
         match crossing {
+            // Restarted a few roundings past the switch, maybe past a sample time: the
+            // inputs with a sample since the step's start are sampled at the restart.
             Crossing::Cross { time, state } => {
-                previous = restart_past(stepper, recorder, (time, state), needs)?;
+                previous = restart_past(stepper, watches.0, (time, state), needs)?;
+                let which = Sampling::Since(step_start);
+                if let Sampled::Stopped(stop) =
+                    sample_point(stepper, watches, &mut previous, which, needs)?
+                {
+                    return Ok(stop);
+                }
             }
             Crossing::Redo { near } => {
                 // The crossing is still ahead: land nearer.
@@ -271,27 +292,14 @@ where
                 continue;
             }
             // A stop time of the system, or a crossing not there after all: restart here
-            // (the rate may have a kink in t), sample the held inputs if it is a sample
-            // time, and aim at the next.
+            // (the rate may have a kink in t), sample the held inputs whose grid holds it
+            // (a knot of a table of t, or another input's sample, samples none), and aim at
+            // the next.
             Crossing::None => {
-                if let Some(sampled) = sample(stepper, time, previous.state)? {
-                    let after = Point::at(stepper.system(), time, sampled, needs)?;
-                    let before = core::mem::replace(&mut previous, after);
-                    // The jump of the held values may trigger an event (a condition on u):
-                    // it is checked across the jump, and hits at the sample time.
-                    let hits = recorder.hits();
-                    let step = (&before, &previous);
-                    let hold = |_| sampled;
-                    let hit = watch.check_step(stepper.system(), step, &hold, 0.0, hits);
-                    recorder.push(stepper.system(), &previous)?;
-                    if let Some(hit) = hit {
-                        return Ok(StopReason::EventFound { index: hit.index });
-                    }
-                    if let Some(switch_watch) = &mut switch_watch {
-                        switch_watch.resume(stepper.system(), &previous)?;
-                    }
-                } else {
-                    stepper.restart(time, previous.state)?;
+                match sample_point(stepper, watches, &mut previous, Sampling::Due, needs)? {
+                    Sampled::Unchanged => stepper.restart(time, previous.state)?,
+                    Sampled::Changed => {}
+                    Sampled::Stopped(stop) => return Ok(stop),
                 }
             }
         }
@@ -304,14 +312,15 @@ where
     Err(StepError::new(stepper.time(), *stepper.state(), kind))
 }
 
-/// Samples the held inputs at `(time, state)` ([`VariableMassSystem::sample`],
+/// Samples the held inputs `which` takes at `(time, state)` ([`VariableMassSystem::sample`],
 /// docs/inputs.md#sampled-inputs) and, if a held value changed, restarts the stepper there
 /// with the sampled state and returns it (nothing is done when none changed: a system
-/// without sampled inputs, or a time between samples, steps on as before).
+/// without sampled inputs, or a time off every grid, steps on as before).
 pub(crate) fn sample<St, const N: usize, const S: usize>(
     stepper: &mut St,
     time: f64,
     state: SVector<f64, S>,
+    which: Sampling,
 ) -> Result<Option<SVector<f64, S>>, StepError<S>>
 where
     St: Stepper<N, S>,
@@ -319,7 +328,7 @@ where
     let mut sampled = state;
     let system = stepper.system();
     system
-        .sample(time, &mut sampled)
+        .sample(time, &mut sampled, which)
         .map_err(|error| StepError::from_system(system, error, time, &state))?;
     // Compared bit for bit, so that a NaN sampled is a change (the restart refuses it).
     let same = (sampled.iter().zip(&state)).all(|(a, b)| a.to_bits() == b.to_bits());
@@ -329,6 +338,60 @@ where
     stepper.restart(time, sampled)?;
     Ok(Some(sampled))
 }
+
+/// What [`sample_point`] did.
+enum Sampled {
+    /// No held value changed (nothing was due, or the values came out the same): the
+    /// stepper was left as it was.
+    Unchanged,
+    /// The stepper was restarted with the values sampled.
+    Changed,
+    /// The jump of a held value met a stopping event.
+    Stopped(StopReason),
+}
+
+/// Samples the held inputs `which` takes at `previous`, the point the run stands at. When
+/// a value changed, the stepper is restarted with it, the point after the sample replaces
+/// `previous` and is recorded (the solution holds both), the events are checked across the
+/// jump (a condition on u hits at the sample time) and the switches are taken afresh (a
+/// switch on a held value changes there without the state crossing it).
+fn sample_point<St, const N: usize, const S: usize>(
+    stepper: &mut St,
+    (recorder, watch, switch_watch): Watches<'_, '_, '_, '_, N, S>,
+    previous: &mut Point<S>,
+    which: Sampling,
+    needs: Needs,
+) -> Result<Sampled, StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    let time = previous.time;
+    let Some(sampled) = sample(stepper, time, previous.state, which)? else {
+        return Ok(Sampled::Unchanged);
+    };
+    let after = Point::at(stepper.system(), time, sampled, needs)?;
+    let before = core::mem::replace(previous, after);
+    let hits = recorder.hits();
+    let hold = |_| sampled;
+    let hit = watch.check_step(stepper.system(), (&before, previous), &hold, 0.0, hits);
+    recorder.push(stepper.system(), previous)?;
+    if let Some(hit) = hit {
+        return Ok(Sampled::Stopped(StopReason::EventFound {
+            index: hit.index,
+        }));
+    }
+    if let Some(switch_watch) = switch_watch {
+        switch_watch.resume(stepper.system(), previous)?;
+    }
+    Ok(Sampled::Changed)
+}
+
+/// What a sample updates besides the stepper: the solution, the events and the switches.
+type Watches<'r, 'w, 'e, 'a, const N: usize, const S: usize> = (
+    &'r mut Recorder<N, S>,
+    &'w mut EventWatch<'e, 'a, S>,
+    Option<&'w mut SwitchWatch>,
+);
 
 /// Restarts the stepper past a switch at `(time, state)` and records that point (the
 /// bracket crossed is a few roundings of t wide: its energy is not integrated).

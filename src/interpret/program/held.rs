@@ -4,7 +4,7 @@
 //! `varmass run --input`) at the state reached, and the sample grid k·T joins the stop
 //! times.
 
-use varmass_core::input::next_sample_time;
+use varmass_core::input::{next_sample_time, Sampling};
 use varmass_core::SystemError;
 
 use super::{component, set, Program, Scratch};
@@ -21,23 +21,38 @@ impl Program {
         inputs.map(|i| i.name.as_str())
     }
 
-    /// Replaces the held values in `state` (a state `[q, p, m_s, u_held]`) by each sampled
-    /// input's law at `(t, state)`: the zero-order hold's sample. The law reads t, the
-    /// coordinates, the velocities recovered from the state and the parameters.
-    pub fn sample(&self, t: f64, state: &mut [f64]) -> Result<(), SystemError> {
-        if self.held_symbols.is_empty() {
+    /// Replaces the held values in `state` (a state `[q, p, m_s, u_held]`) of the sampled
+    /// inputs `which` takes (each on its own grid, or all at a run's start) by each one's
+    /// law at `(t, state)`: the zero-order hold's sample. The law reads t, the coordinates,
+    /// the velocities recovered from the state and the parameters; an input not due is not
+    /// evaluated.
+    pub fn sample(&self, t: f64, state: &mut [f64], which: Sampling) -> Result<(), SystemError> {
+        let due: Vec<usize> = (self.periods.iter().enumerate())
+            .filter(|(_, period)| which.takes(**period, t))
+            .map(|(j, _)| j)
+            .collect();
+        if due.is_empty() {
             return Ok(());
         }
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_state(scratch, t, state)?;
-        self.run(&self.held_laws, scratch);
-        if let Some(error) = scratch.outside.take() {
-            return Err(error);
-        }
         let first = 2 * self.coordinate_count() + self.state_mass_count();
-        for (j, value) in scratch.values.iter().enumerate() {
+        for j in due {
+            self.run(&self.held_laws[j], scratch);
+            if let Some(error) = scratch.outside.take() {
+                return Err(error);
+            }
+            let value = scratch.values.first().copied().unwrap_or(f64::NAN);
+            let value = match value.is_finite() {
+                true => value,
+                false => {
+                    let input = self.held_names().nth(j).unwrap_or("?");
+                    let input = crate::interpret::names::intern(input);
+                    return Err(SystemError::SampledInputNotFinite { input, value });
+                }
+            };
             if let Some(x) = state.get_mut(first + j) {
-                *x = *value;
+                *x = value;
             }
         }
         Ok(())

@@ -51,9 +51,11 @@ impl Emitter<'_> {
         }
     }
 
-    /// `sample`: each sampled input's value at `(t, state)`, the user's method called at
-    /// its declared arguments, written into its held entry (docs/inputs.md#sampled-inputs).
-    /// Nothing without sampled inputs (the trait's default).
+    /// `sample`: each sampled input that the `which` asked for takes (all at a run's start,
+    /// else those whose grid holds t), its value at `(t, state)`, the user's method called
+    /// at its declared arguments, written into its held entry
+    /// (docs/inputs.md#sampled-inputs). Nothing without sampled inputs (the trait's
+    /// default).
     pub(crate) fn sample(&self) -> TokenStream {
         let sampled: Vec<&ModelInput> = self.d.inputs.iter().filter(|i| i.held.is_some()).collect();
         if sampled.is_empty() {
@@ -81,8 +83,14 @@ impl Emitter<'_> {
                 },
             });
             let slot = Literal::usize_unsuffixed(first + j);
-            quote!(state[#slot] = #alias::#method(self, #(#arguments),*);)
+            let index = Literal::usize_unsuffixed(j);
+            let name = &input.name;
+            let value = quote!(#alias::#method(self, #(#arguments),*));
+            quote!(if __due[#index] {
+                state[#slot] = #runtime::input::checked_sample(#name, #value)?;
+            })
         });
+        let periods = sampled.iter().map(|i| i.every.unwrap_or(f64::NAN));
         let needs_velocities = sampled
             .iter()
             .any(|i| i.arguments.iter().any(|a| a.ends_with('\'')));
@@ -92,13 +100,19 @@ impl Emitter<'_> {
             quote!(let __velocity_state = *state;)
         };
         quote! {
-            /// Samples the held inputs at `(t, state)`: each calls its method of the inputs'
-            /// trait at its declared arguments (docs/inputs.md#sampled-inputs).
+            /// Samples the held inputs `which` takes at `(t, state)` (each on its own grid):
+            /// each calls its method of the inputs' trait at its declared arguments
+            /// (docs/inputs.md#sampled-inputs).
             fn sample(
                 &self,
                 t: f64,
                 state: &mut #runtime::nalgebra::SVector<f64, #s>,
+                which: #runtime::input::Sampling,
             ) -> ::core::result::Result<(), #runtime::SystemError> {
+                let __due = [#(which.takes(#periods, t)),*];
+                if !__due.contains(&true) {
+                    return Ok(());
+                }
                 #velocity_state
                 #(#writes)*
                 Ok(())

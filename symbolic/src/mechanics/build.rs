@@ -94,7 +94,7 @@ impl Builder {
         if is_reserved(name) {
             self.errors.push(Diagnostic::new(
                 span,
-                format!("`{name}` is reserved for a derived quantity or the time, and cannot name a {what}"),
+                format!("`{name}` is reserved for a derived quantity or the time, and cannot name {} {what}", article(what)),
             ));
             return false;
         }
@@ -600,5 +600,14 @@ fn did_you_mean(diagnostic: Diagnostic, close: Option<&str>) -> Diagnostic {
     match close {
         Some(close) => diagnostic.with_help(format!("did you mean `{close}`?")),
         None => diagnostic,
+    }
+}
+
+/// "a" or "an" before `word` (by its first letter: the words named here are plain nouns,
+/// "an input", "a mass").
+fn article(word: &str) -> &'static str {
+    match word.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        true => "an",
+        false => "a",
     }
 }

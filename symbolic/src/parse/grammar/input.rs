@@ -11,6 +11,9 @@ use crate::parse::span::{Diagnostic, Spanned};
 /// What may follow an input's declaration.
 const AFTER_INPUT: &str = "`every`, `;` or a newline";
 
+/// What may follow a sampled input's declaration.
+const AFTER_SAMPLED: &str = "`;` or a newline";
+
 impl<'a> Grammar<'a> {
     /// `input u(t, y, y') every 0.01`
     pub(super) fn input(&self, input: &'a str) -> PResult<'a, (StatementKind, &'static str)> {
@@ -38,12 +41,27 @@ impl<'a> Grammar<'a> {
             }
             Err(_) => (rest, None),
         };
+        if every.is_some() {
+            // One period per input: a second `every` is named as such, not as unexpected.
+            if let Ok((after, span)) = self.keyword(rest, keywords::EVERY) {
+                let diagnostic = Diagnostic::new(
+                    span,
+                    "`every` is given twice: an input has one sample period",
+                )
+                .with_help("keep one `every PERIOD`");
+                return Err(self.fail(after, diagnostic));
+            }
+        }
+        let after = match every {
+            Some(_) => AFTER_SAMPLED,
+            None => AFTER_INPUT,
+        };
         let decl = InputDecl {
             name,
             arguments,
             every,
         };
-        Ok((rest, (StatementKind::Input(decl), AFTER_INPUT)))
+        Ok((rest, (StatementKind::Input(decl), after)))
     }
 
     /// One argument: a name and at most one prime.
