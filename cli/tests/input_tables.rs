@@ -113,12 +113,33 @@ fn the_table_made_for_an_input_takes_a_name_no_let_has() {
     std::fs::write(&model, format!("{source}\nlet u_table = 2\n")).unwrap();
     let csv = format!("{}/hover_input_let.csv", env!("CARGO_TARGET_TMPDIR"));
     let args = [
-        "run", &model, "--set", "u_e=2000", "--set", "g=9.80665", "--init", "y=0", "--init",
-        "m=50", "--until", "15", "--tol", "1e-10", "--record", "y,y',m", "--input",
-        "u=tables/hover_u.csv", "--csv", &csv,
+        "run",
+        &model,
+        "--set",
+        "u_e=2000",
+        "--set",
+        "g=9.80665",
+        "--init",
+        "y=0",
+        "--init",
+        "m=50",
+        "--until",
+        "15",
+        "--tol",
+        "1e-10",
+        "--record",
+        "y,y',m",
+        "--input",
+        "u=tables/hover_u.csv",
+        "--csv",
+        &csv,
     ];
     varmass(&args, 0);
     let with_let = std::fs::read_to_string(&csv).unwrap();
-    let without = flight("hover_input.vms", &["--input", "u=tables/hover_u.csv"], "no_let");
+    let without = flight(
+        "hover_input.vms",
+        &["--input", "u=tables/hover_u.csv"],
+        "no_let",
+    );
     assert_eq!(with_let, without);
 }

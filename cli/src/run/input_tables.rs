@@ -65,7 +65,11 @@ fn free_name(model: &LoadedModel, wanted: &str) -> String {
             || d.parameters.iter().any(|(p, _)| p == name)
             || d.coordinates.iter().any(|c| c.name == name)
             || d.masses.iter().any(|m| m.name == name)
-            || model.ast.statements.iter().any(|s| is_let_of(&s.kind, name))
+            || model
+                .ast
+                .statements
+                .iter()
+                .any(|s| is_let_of(&s.kind, name))
     };
     let mut name = wanted.to_string();
     while taken(&name) {
