@@ -22,11 +22,16 @@ fn varmass(args: &[&str], code: i32) -> String {
     stderr
 }
 
-/// The hover flight to 15 s: the CSV text of y, y', m at every step.
+/// The hover flight to 15 s of the data directory's `model`: the CSV text of y, y', m at
+/// every step.
 fn flight(model: &str, extra: &[&str], name: &str) -> String {
+    flight_of(&data(model), extra, name)
+}
+
+/// [`flight`] of the model file at `model`.
+fn flight_of(model: &str, extra: &[&str], name: &str) -> String {
     let csv = format!("{}/{name}.csv", env!("CARGO_TARGET_TMPDIR"));
-    let model = data(model);
-    let mut args = vec!["run", model.as_str()];
+    let mut args = vec!["run", model];
     args.extend([
         "--set",
         "u_e=2000",
@@ -111,35 +116,8 @@ fn the_table_made_for_an_input_takes_a_name_no_let_has() {
     let source = std::fs::read_to_string(data("hover_input.vms")).unwrap();
     let model = format!("{}/hover_input_let.vms", env!("CARGO_TARGET_TMPDIR"));
     std::fs::write(&model, format!("{source}\nlet u_table = 2\n")).unwrap();
-    let csv = format!("{}/hover_input_let.csv", env!("CARGO_TARGET_TMPDIR"));
-    let args = [
-        "run",
-        &model,
-        "--set",
-        "u_e=2000",
-        "--set",
-        "g=9.80665",
-        "--init",
-        "y=0",
-        "--init",
-        "m=50",
-        "--until",
-        "15",
-        "--tol",
-        "1e-10",
-        "--record",
-        "y,y',m",
-        "--input",
-        "u=tables/hover_u.csv",
-        "--csv",
-        &csv,
-    ];
-    varmass(&args, 0);
-    let with_let = std::fs::read_to_string(&csv).unwrap();
-    let without = flight(
-        "hover_input.vms",
-        &["--input", "u=tables/hover_u.csv"],
-        "no_let",
-    );
+    let input = ["--input", "u=tables/hover_u.csv"];
+    let with_let = flight_of(&model, &input, "with_let");
+    let without = flight("hover_input.vms", &input, "no_let");
     assert_eq!(with_let, without);
 }
