@@ -146,7 +146,7 @@ impl Recording {
 /// phase's recording keeps the value held where the earlier one stopped), then at each of
 /// its sample times. To start a flight between samples with u(t₀, …), sample the initial
 /// state first with [`VariableMassSystem::sample`] and
-/// [`Sampling::All`](crate::input::Sampling::All).
+/// [`Sampling::All`].
 pub fn observe<St, const N: usize, const S: usize>(
     stepper: &mut St,
     output_times: &[f64],
