@@ -126,6 +126,30 @@ fn a_malformed_table_file_is_a_diagnostic_with_its_line() {
     assert!(stderr.contains("model.vms:2:14"), "{stderr}");
 }
 
+/// `varmass run` of `tests/data/tables/recorded_only.vms` (m0 = 2, g = 10, from y = 0) with
+/// `extra`, recording `record` into the CSV `name`.csv (removed first); expects exit `code`;
+/// returns the CSV's path and stderr.
+fn recorded_only(
+    name: &str,
+    extra: &[&str],
+    record: &str,
+    code: i32,
+) -> (std::path::PathBuf, String) {
+    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.csv"));
+    let _ = std::fs::remove_file(&csv);
+    let model = format!(
+        "{}/tests/data/tables/recorded_only.vms",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut args = vec![
+        "run", &model, "--set", "m0=2", "--set", "g=10", "--init", "y=0", "--record", record,
+    ];
+    args.extend(extra);
+    args.extend(["--csv", csv.to_str().unwrap()]);
+    let (_, stderr) = run(&args, code);
+    (csv, stderr)
+}
+
 /// V = m0 g y + h(t) of `tests/data/tables/recorded_only.vms` at (t, y): y = −g t²/2 from
 /// rest, h the linear ramp (0, 0), (0.5, 1), (1, 3) of `ramp.csv`.
 fn ramp_potential(t: f64, y: f64) -> f64 {
@@ -143,30 +167,10 @@ fn ramp_potential(t: f64, y: f64) -> f64 {
 /// form (before the fix the first unrecordable point dropped every row: no CSV at all).
 #[test]
 fn a_point_that_cannot_be_recorded_keeps_the_rows_before_it() {
-    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("recorded_only.csv");
-    let _ = std::fs::remove_file(&csv);
-    let (_, stderr) = run(
-        &[
-            "run",
-            &format!(
-                "{}/tests/data/tables/recorded_only.vms",
-                env!("CARGO_MANIFEST_DIR")
-            ),
-            "--set",
-            "m0=2",
-            "--set",
-            "g=10",
-            "--init",
-            "y=0",
-            "--until",
-            "2",
-            "--every",
-            "0.25",
-            "--record",
-            "y,V",
-            "--csv",
-            csv.to_str().unwrap(),
-        ],
+    let (csv, stderr) = recorded_only(
+        "recorded_only",
+        &["--until", "2", "--every", "0.25"],
+        "y,V",
         1,
     );
     assert!(
@@ -199,30 +203,7 @@ fn a_point_that_cannot_be_recorded_keeps_the_rows_before_it() {
 /// lands on t = 0.5 and t = 1 exactly (before the fix the steps went from 0.0555 to 2).
 #[test]
 fn a_table_read_only_by_a_recorded_quantity_places_stop_times() {
-    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("recorded_stops.csv");
-    let _ = std::fs::remove_file(&csv);
-    run(
-        &[
-            "run",
-            &format!(
-                "{}/tests/data/tables/recorded_only.vms",
-                env!("CARGO_MANIFEST_DIR")
-            ),
-            "--set",
-            "m0=2",
-            "--set",
-            "g=10",
-            "--init",
-            "y=0",
-            "--until",
-            "1",
-            "--record",
-            "y",
-            "--csv",
-            csv.to_str().unwrap(),
-        ],
-        0,
-    );
+    let (csv, _) = recorded_only("recorded_stops", &["--until", "1"], "y", 0);
     let text = std::fs::read_to_string(&csv).expect("the CSV is written");
     let times: Vec<f64> = text
         .lines()
