@@ -233,7 +233,11 @@ where
                 }
                 Crossing::Cross { time, state } => {
                     let step_start = previous.time;
-                    previous = restart_past(stepper, recorder, (time, state), needs)?;
+                    let sliver = (&mut *recorder, &mut watch, config);
+                    previous = match cross_past(stepper, sliver, &previous, (time, state), needs)? {
+                        Crossed::Past(point) => point,
+                        Crossed::Stopped(stop) => return Ok(stop),
+                    };
                     let watches = (&mut *recorder, &mut watch, Some(&mut *switch_watch));
                     let which = Sampling::Since(step_start);
                     if let Sampled::Stopped(stop) =
@@ -248,7 +252,10 @@ where
             }
         }
         let step = (&previous, &current);
-        if let Some(stop) = record_step(&*stepper, recorder, &mut watch, config, step)? {
+        let interpolate = |time| over_last_step(&*stepper, &previous, &current, time);
+        let system = stepper.system();
+        if let Some(stop) = record_step(system, (recorder, &mut watch, config), step, &interpolate)?
+        {
             return Ok(stop);
         }
         let step_start = previous.time;
@@ -272,12 +279,16 @@ where
             }
             _ => Crossing::None,
         };
-        let watches = (&mut *recorder, &mut watch, switch_watch.as_mut());
         match crossing {
             // Restarted a few roundings past the switch, maybe past a sample time: the
             // inputs with a sample since the step's start are sampled at the restart.
             Crossing::Cross { time, state } => {
-                previous = restart_past(stepper, watches.0, (time, state), needs)?;
+                let sliver = (&mut *recorder, &mut watch, config);
+                previous = match cross_past(stepper, sliver, &previous, (time, state), needs)? {
+                    Crossed::Past(point) => point,
+                    Crossed::Stopped(stop) => return Ok(stop),
+                };
+                let watches = (&mut *recorder, &mut watch, switch_watch.as_mut());
                 let which = Sampling::Since(step_start);
                 if let Sampled::Stopped(stop) =
                     sample_point(stepper, watches, &mut previous, which, needs)?
@@ -296,6 +307,7 @@ where
             // (a knot of a table of t, or another input's sample, samples none), and aim at
             // the next.
             Crossing::None => {
+                let watches = (&mut *recorder, &mut watch, switch_watch.as_mut());
                 match sample_point(stepper, watches, &mut previous, Sampling::Due, needs)? {
                     Sampled::Unchanged => stepper.restart(time, previous.state)?,
                     Sampled::Changed => {}
@@ -393,22 +405,41 @@ type Watches<'r, 'w, 'e, 'a, const N: usize, const S: usize> = (
     Option<&'w mut SwitchWatch>,
 );
 
-/// Restarts the stepper past a switch at `(time, state)` and records that point (the
-/// bracket crossed is a few roundings of t wide: its energy is not integrated).
-fn restart_past<St, const N: usize, const S: usize>(
+/// How [`cross_past`] ended.
+enum Crossed<const S: usize> {
+    /// The stepper restarted at this point past the switch.
+    Past(Point<S>),
+    /// A stopping event in the sliver before the switch.
+    Stopped(StopReason),
+}
+
+/// Crosses a switch from `previous` to `(time, state)`, the far end of the crossing's
+/// bracket reached by one Euler step ([`SwitchWatch::cross_from`]): that sliver is recorded
+/// as any step is — its events located on the Euler line, its energy added, the point past
+/// the switch appended — and the stepper restarts there. A stopping event in the sliver
+/// ends the run at its hit (docs/mechanics.md#switches).
+fn cross_past<St, const N: usize, const S: usize>(
     stepper: &mut St,
-    recorder: &mut Recorder<N, S>,
+    sliver: (&mut Recorder<N, S>, &mut EventWatch<'_, '_, S>, &RunConfig),
+    previous: &Point<S>,
     (time, state): (f64, SVector<f64, S>),
     needs: Needs,
-) -> Result<Point<S>, StepError<S>>
+) -> Result<Crossed<S>, StepError<S>>
 where
     St: Stepper<N, S>,
 {
+    let system = stepper.system();
+    let past = Point::at(system, time, state, needs)?;
+    let width = time - previous.time;
+    let line = |at: f64| match width > 0.0 {
+        true => previous.state + (state - previous.state) * ((at - previous.time) / width),
+        false => state,
+    };
+    if let Some(stop) = record_step(system, sliver, (previous, &past), &line)? {
+        return Ok(Crossed::Stopped(stop));
+    }
     stepper.restart(time, state)?;
-    let point = Point::at(stepper.system(), time, state, needs)?;
-    recorder.guard(stepper.system(), &point)?;
-    recorder.push(stepper.system(), &point)?;
-    Ok(point)
+    Ok(Crossed::Past(past))
 }
 
 /// The next time the stepper must land on: the system's next stop time after `time` if it
@@ -427,33 +458,31 @@ where
         .unwrap_or(end_time)
 }
 
-/// Records the step from `previous` to `current` the stepper just took: the events in it
-/// first, and if one of them stops the run, the point and the energy budget up to that event
-/// and the reason to stop; otherwise the energy budget, its guard and `current`.
-fn record_step<St, const N: usize, const S: usize>(
-    stepper: &St,
-    recorder: &mut Recorder<N, S>,
-    watch: &mut EventWatch<'_, '_, S>,
-    config: &RunConfig,
+/// Records a step from `previous` to `current` (the stepper's last, or the Euler sliver
+/// across a switch), the states within it from `interpolate`: the events in it first, and
+/// if one of them stops the run, the point and the energy budget up to that event and the
+/// reason to stop; otherwise the energy budget, its guard and `current`.
+fn record_step<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    (recorder, watch, config): (&mut Recorder<N, S>, &mut EventWatch<'_, '_, S>, &RunConfig),
     (previous, current): (&Point<S>, &Point<S>),
+    interpolate: &impl Fn(f64) -> SVector<f64, S>,
 ) -> Result<Option<StopReason>, StepError<S>>
 where
-    St: Stepper<N, S>,
+    Sys: VariableMassSystem<N, S>,
 {
-    let system = stepper.system();
-    let interpolate = |time| over_last_step(stepper, previous, current, time);
     let step = (previous, current);
     let hits = recorder.hits();
-    if let Some(hit) = watch.check_step(system, step, &interpolate, config.event_tolerance, hits) {
+    if let Some(hit) = watch.check_step(system, step, interpolate, config.event_tolerance, hits) {
         let needs = Needs {
             rate: false,
             energy: config.needs_energy(),
         };
         let end = Point::at(system, hit.time, hit.state, needs)?;
-        recorder.step_to(system, (previous, &end), &interpolate, false)?;
+        recorder.step_to(system, (previous, &end), interpolate, false)?;
         return Ok(Some(StopReason::EventFound { index: hit.index }));
     }
-    recorder.step_to(system, step, &interpolate, true)?;
+    recorder.step_to(system, step, interpolate, true)?;
     Ok(None)
 }
 
