@@ -80,14 +80,8 @@ pub struct RunArgs {
     )]
     pub from: f64,
     /// The end time (required, except with a scene file `SCENE.toml`, which gives its own).
-    #[arg(
-        long,
-        value_name = "T",
-        allow_hyphen_values = true,
-        default_value_t = f64::NAN,
-        hide_default_value = true
-    )]
-    pub until: f64,
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub until: Option<f64>,
     /// Stop at the first crossing of a recorded quantity through a value: 'NAME = VALUE'
     /// (either way), 'NAME > VALUE' (rising through it), 'NAME < VALUE' (falling).
     #[arg(long = "stop-when", value_name = "CONDITION")]
@@ -152,7 +146,16 @@ impl Words {
     pub fn setting(self, flag: &str) -> String {
         match self {
             Words::Flags => flag.to_string(),
-            Words::Scene => format!("`{}`", flag.trim_start_matches('-').replace('-', "_")),
+            Words::Scene => format!("`{}`", key(flag)),
+        }
+    }
+
+    /// The setting `flag` given `value`, as its user wrote it: `--tol 0.5`, or the scene
+    /// file's `tol = 0.5`.
+    pub fn given(self, flag: &str, value: &str) -> String {
+        match self {
+            Words::Flags => format!("{flag} {value}"),
+            Words::Scene => format!("`{} = {value}`", key(flag)),
         }
     }
 
@@ -171,6 +174,11 @@ impl Words {
             Words::Scene => format!("`{name} = VALUE` under `[set]`"),
         }
     }
+}
+
+/// The scene file's key for the flag `flag`: its name with `_` (`--max-steps` → `max_steps`).
+fn key(flag: &str) -> String {
+    flag.trim_start_matches('-').replace('-', "_")
 }
 
 /// The core's steppers.

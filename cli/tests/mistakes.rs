@@ -399,3 +399,16 @@ fn the_frozen_rule_for_distributed_bodies_is_documented_with_the_falling_chain()
     let dsl = std::fs::read_to_string(dsl).expect("read");
     assert!(dsl.contains("mechanics.md#distributed-bodies"));
 }
+
+/// `--until nan` is a mistake of its own, not a missing `--until` (before, NaN was the
+/// field's "not given" and the tool said "--until T is required"); `--until inf` too.
+#[test]
+fn an_end_time_that_is_not_a_number_is_named_as_given() {
+    let stderr = rocket_until("nan", &[], 2);
+    assert!(
+        stderr.contains("--until NaN must be finite and not before the start time 0"),
+        "{stderr}"
+    );
+    let stderr = rocket_until("inf", &[], 2);
+    assert!(stderr.contains("--until inf must be finite"), "{stderr}");
+}

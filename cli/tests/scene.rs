@@ -519,6 +519,42 @@ fn scene_messages_name_the_scene_files_keys() {
     no_flag(&stderr);
 }
 
+/// The settings a scene shares with `varmass run` are refused in the scene file's words
+/// too: each message names the key (`method = "rk4"`, `tol = 0.5`, `max_steps = 0`,
+/// `record`, `step = 1e-300`, `until`), never the flag it stands for (before, each of these
+/// said `--method`, `--tol`, `--max-steps`, `--record`, `--step` or `--until`).
+#[test]
+fn scene_settings_are_refused_in_the_scene_files_words() {
+    let base = std::fs::read_to_string(one_phase("settings.toml", "")).expect("written");
+    let cases = [
+        (
+            "method = \"dormand-prince\"\ntol = 1e-13",
+            "method = \"rk4\"",
+            "`method = \"rk4\"` takes a fixed step: give `step = H`",
+        ),
+        ("tol = 1e-13", "tol = 0.5", "`tol = 0.5` is too loose"),
+        (
+            "tol = 1e-13",
+            "tol = 1e-13\nmax_steps = 0",
+            "`max_steps = 0`: a run needs at least one step",
+        ),
+        ("record = [", "record = [\"y +\", ", "`record` `y +`:"),
+        ("tol = 1e-13", "step = 1e-300", "`step = 1e-300` needs"),
+        (
+            "until = 150.0",
+            "until = 150.0\nfrom = 200.0",
+            "`until = 150` must be finite and not before the start time 200 (`from`)",
+        ),
+    ];
+    for (old, new, expected) in cases {
+        assert!(base.contains(old), "{old}");
+        let file = scene("settings.toml", &base.replacen(old, new, 1));
+        let (_, stderr) = run(&["run", &file], 2);
+        assert!(stderr.contains(expected), "{expected}: {stderr}");
+        assert!(!stderr.contains("--"), "a flag in {stderr}");
+    }
+}
+
 /// A run failing in a later phase names that phase's flows: `tests/data/vented.vms` has the
 /// flows [rocket] under `[plain]` and [tank, rocket] under `[pump]`; a `[pump]` phase from
 /// t = 1 with a negative vent rate fails at its first step on flow 0, the tank's (before the

@@ -30,15 +30,22 @@ pub fn central_partials<const K: usize>(f: impl Fn([f64; K]) -> f64, x: [f64; K]
 /// convention, so the samples are the same whatever time a run starts at. Each time is
 /// computed as `k as f64 * period` (not by adding T to the last), so a run lands on the
 /// same times as a loop over k, with no drift. Infinity for a period that is not positive
-/// and finite, or past the grid f64 can index.
+/// and finite. Where |t|/T reaches 2⁵³ the grid is finer than t's rounding (T is below an
+/// ulp of t): every representable time holds a sample, so the next is the next
+/// representable time (a run there takes a step per ulp of t and ends on its step limit
+/// rather than holding one value for ever).
 pub fn next_sample_time(period: f64, after: f64) -> f64 {
     if !(period.is_finite() && period > 0.0) || after.is_nan() {
         return f64::INFINITY;
     }
     let mut k = nalgebra::ComplexField::floor(after / period) + 1.0;
+    if k.abs() >= FINER_THAN_T {
+        return after.next_up();
+    }
     // Rounding in the quotient may give the sample at (or before) `after` itself, or one
     // past the first after it (`after` = 0.35 just below fl(35 · 0.01) = 0.35000000000000003
-    // has the quotient 35 exactly, so k = 36 would skip that sample).
+    // has the quotient 35 exactly, so k = 36 would skip that sample). Below 2⁵³, k ± 1 is
+    // exact, so each loop ends within a step or two.
     while (k - 1.0) * period > after {
         k -= 1.0;
     }
@@ -53,16 +60,24 @@ pub fn next_sample_time(period: f64, after: f64) -> f64 {
     }
 }
 
+/// Where k·T stops being a grid: at |k| ≥ 2⁵³, k ± 1 is no longer exact in f64, and T is
+/// below an ulp of t = k·T.
+const FINER_THAN_T: f64 = 9_007_199_254_740_992.0;
+
 /// Whether `t` is a sample time of a sampled input of period `period`: t = k·T for some
 /// integer k, computed as [`next_sample_time`] computes it (`k as f64 * period`, compared
-/// exactly), so a run that lands on a sample time finds it on the grid. False for a period
-/// that is not positive and finite, and for a time that is not finite.
+/// exactly), so a run that lands on a sample time finds it on the grid — and, where the
+/// grid is finer than t's rounding (|t|/T ≥ 2⁵³), every time. False for a period that is
+/// not positive and finite, and for a time that is not finite.
 pub fn is_sample_time(period: f64, t: f64) -> bool {
     if !(period.is_finite() && period > 0.0 && t.is_finite()) {
         return false;
     }
     // The nearest k, give or take the rounding of the quotient.
     let k = nalgebra::ComplexField::round(t / period);
+    if k.abs() >= FINER_THAN_T {
+        return true;
+    }
     [k - 1.0, k, k + 1.0].iter().any(|k| k * period == t)
 }
 
@@ -182,6 +197,23 @@ mod tests {
         assert!(!is_sample_time(0.0, 0.0));
         assert!(!is_sample_time(0.01, f64::NAN));
         assert!(!is_sample_time(0.01, f64::INFINITY));
+    }
+
+    /// Past 2⁵³ periods (t = 10¹⁵ with T = 0.01: an ulp of t is 0.125) every representable
+    /// time holds a sample: the next is the next representable time, on either side of 0,
+    /// and each is a sample time. Before, the loops correcting k could not move it (k ± 1 = k
+    /// there) and the call never returned.
+    #[test]
+    fn a_grid_finer_than_t_samples_at_every_representable_time() {
+        for t in [1e15, -1e15, 1e17, 2f64.powi(53) * 0.01] {
+            let next = next_sample_time(0.01, t);
+            assert_eq!(next, t.next_up(), "{t}");
+            assert!(is_sample_time(0.01, next), "{next}");
+        }
+        // Just below the limit the grid is still one: 2⁵³ − 2 periods of 1.
+        let below = 2f64.powi(53) - 2.0;
+        assert_eq!(next_sample_time(1.0, below), below + 1.0);
+        assert!(!is_sample_time(2.0, below + 1.0));
     }
 
     #[test]

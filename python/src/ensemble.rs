@@ -184,13 +184,13 @@ impl NativeEnsemble {
         flags.extend(recorded.iter().map(|name| format!("--record={name}")));
         let args = parse_args(&file, &with, &flags).map_err(|e| to_py(py, e))?;
         // Keep only the end point: one output interval, the whole run (the same steps).
-        let args = match args.until > args.from {
-            true => {
+        let args = match args.until.filter(|&until| until > args.from) {
+            Some(until) => {
                 let mut flags = flags;
-                flags.push(format!("--every={:?}", args.until - args.from));
+                flags.push(format!("--every={:?}", until - args.from));
                 parse_args(&file, &with, &flags).map_err(|e| to_py(py, e))?
             }
-            false => args,
+            None => args,
         };
         let mut next = 0;
         let sources = observables

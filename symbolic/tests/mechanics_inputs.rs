@@ -101,6 +101,12 @@ fn misuses_are_diagnostics_at_their_text() {
         18,
     );
     error(
+        "coordinates y\ninput u(t) every 1e-320\nforce y: u(t)",
+        "below the smallest normal f64",
+        2,
+        18,
+    );
+    error(
         "coordinates y\ninput u(t) every -1\nforce y: u(t)",
         "the sample period in seconds",
         2,

@@ -10,7 +10,7 @@ use varmass::core::{
 };
 use varmass::interpret::{Program, TapeSystem};
 
-use super::names::{evaluate, Observable};
+use super::names::{evaluate, shown, Observable};
 use super::plan::{Plan, Steps};
 use super::watch::Watched;
 use crate::error::CliError;
@@ -255,11 +255,22 @@ pub(crate) fn describe<const N: usize, const S: usize>(
     error: StepError<S>,
 ) -> CliError {
     let program = system.program();
-    let (what, fix) = explain(program, plan, flows, error.kind);
+    let (what, mut fix) = explain(program, plan, flows, error.kind);
+    if let StepErrorKind::StepSizeUnderflow { step } = error.kind {
+        // Far from t = 0 the rounding of t itself stops the steps, not the model.
+        let ulp = error.time.abs().next_up() - error.time.abs();
+        fix = format!(
+            "{fix}; an ulp of t is {} here (the step {}): if the model needs finer steps than \
+             that, t is too far from 0 — measure time from a nearer origin ({})",
+            shown(ulp),
+            shown(step),
+            plan.words.setting("--from")
+        );
+    }
     let state = super::output::state_lines(program, error.time, error.state.as_slice());
     CliError::Run(format!(
         "the run failed at t = {}: {what}\nstate there:{state}\nhelp: {fix}",
-        error.time
+        shown(error.time)
     ))
 }
 

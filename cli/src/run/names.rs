@@ -91,6 +91,16 @@ pub fn number(text: &str, what: &str) -> Result<f64, CliError> {
     }
 }
 
+/// A number as a user would write it, the inverse of [`number`]: `0.5`, `100`, `1e-30`,
+/// `1e12`, every digit kept (Rust's `{}` spells 1e-310 with 310 digits).
+pub fn shown(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// The value of `observable` at `(t, state)`; `state` is `[q, p, m_s]`.
 pub fn evaluate(
     program: &Program,

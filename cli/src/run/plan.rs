@@ -7,7 +7,9 @@ use varmass::interpret::{Program, Quantity};
 use varmass::symbolic::mechanics::Derivation;
 use varmass::symbolic::parse::ast::SystemAst;
 
-use super::names::{assignment, evaluate, named, observables, resolve, velocity_state, Observable};
+use super::names::{
+    assignment, evaluate, named, observables, resolve, shown, velocity_state, Observable,
+};
 use super::record::{entries, recorded, Recorded, Scope};
 use crate::args::{Method, RunArgs, Words};
 use crate::error::CliError;
@@ -135,20 +137,20 @@ pub fn plan_with(
     ast: &SystemAst,
 ) -> Result<Plan, CliError> {
     let from = args.from;
-    let until = args.until;
-    if until.is_nan() {
-        return Err(CliError::Input(
-            "--until T is required: the end time of the run (a scene file, SCENE.toml, gives \
-             its own)"
-                .to_string(),
-        ));
-    }
+    let w = |flag| args.words.setting(flag);
+    let Some(until) = args.until else {
+        return Err(CliError::Input(format!(
+            "{} is required: the end time of the run (a scene file, SCENE.toml, gives its own)",
+            args.words.given("--until", "T")
+        )));
+    };
     if !from.is_finite() || !until.is_finite() || until < from {
         return Err(CliError::Input(format!(
-            "--until {} must be finite and not before the start time {} (--from): a run goes \
-             forward in time",
-            shown(until),
-            shown(from)
+            "{} must be finite and not before the start time {} ({}): a run goes forward in \
+             time",
+            args.words.given("--until", &shown(until)),
+            shown(from),
+            w("--from")
         )));
     }
     let known = observables(program);
@@ -176,26 +178,27 @@ pub fn plan_with(
             let scope = Scope::new(program, ast, &known, &parameters);
             entries(&args.record)
                 .iter()
-                .map(|entry| recorded(entry, &scope))
+                .map(|entry| recorded(entry, &scope, args.words))
                 .collect::<Result<_, _>>()?
         }
     };
-    let every = args.every.map(|dt| every(dt, args)).transpose()?;
+    let every = args.every.map(|dt| every(dt, args, until)).transpose()?;
     let max_seconds = args
         .max_seconds
-        .map(|s| positive(s, "--max-seconds"))
+        .map(|s| positive(s, "--max-seconds", args.words))
         .transpose()?;
     if args.max_steps == 0 {
-        return Err(CliError::Input(
-            "--max-steps 0: a run needs at least one step".to_string(),
-        ));
+        return Err(CliError::Input(format!(
+            "{}: a run needs at least one step",
+            args.words.given("--max-steps", "0")
+        )));
     }
     Ok(Plan {
         from,
         until,
         initial_state,
         method: args.method,
-        steps: steps(args)?,
+        steps: steps(args, until)?,
         stop_when,
         every,
         record,
@@ -289,28 +292,18 @@ pub(crate) fn not_yet_true(
     Ok(())
 }
 
-fn positive(value: f64, flag: &str) -> Result<f64, CliError> {
+fn positive(value: f64, flag: &str, words: Words) -> Result<f64, CliError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
         Err(CliError::Input(format!(
-            "{flag} {}: must be positive and finite",
-            shown(value)
+            "{}: must be positive and finite",
+            words.given(flag, &shown(value))
         )))
     }
 }
 
-/// A number as a user would write it: `0.5`, `100`, `1e-30`, `1e12` (Rust's `{}` spells
-/// 1e-30 with thirty zeros).
-fn shown(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
-}
-
-fn steps(args: &RunArgs) -> Result<Steps, CliError> {
+fn steps(args: &RunArgs, until: f64) -> Result<Steps, CliError> {
     match (args.method, args.step, args.tol) {
         // clap refuses the pair on the command line; a scene file reaches here with both.
         (_, Some(_), Some(_)) => Err(CliError::Input(
@@ -318,7 +311,7 @@ fn steps(args: &RunArgs) -> Result<Steps, CliError> {
              control (give `tol` or `step`, not both)"
                 .into(),
         )),
-        (_, Some(h), _) => fixed_step(h, args).map(Steps::Fixed),
+        (_, Some(h), _) => fixed_step(h, args, until).map(Steps::Fixed),
         (
             Method::DormandPrince
             | Method::Dop853
@@ -327,40 +320,49 @@ fn steps(args: &RunArgs) -> Result<Steps, CliError> {
             | Method::Taylor,
             None,
             tol,
-        ) => tolerance(tol.unwrap_or(DEFAULT_TOLERANCE)).map(Steps::Adaptive),
-        (method, None, _) => Err(CliError::Input(format!(
-            "--method {} takes a fixed step: give --step H",
-            clap::ValueEnum::to_possible_value(&method)
+        ) => tolerance(tol.unwrap_or(DEFAULT_TOLERANCE), args.words).map(Steps::Adaptive),
+        (method, None, _) => {
+            let name = clap::ValueEnum::to_possible_value(&method)
                 .map(|v| v.get_name().to_string())
-                .unwrap_or_default()
-        ))),
+                .unwrap_or_default();
+            let method = match args.words {
+                Words::Flags => name,
+                Words::Scene => format!("\"{name}\""),
+            };
+            Err(CliError::Input(format!(
+                "{} takes a fixed step: give {}",
+                args.words.given("--method", &method),
+                args.words.given("--step", "H")
+            )))
+        }
     }
 }
 
 /// An `--every` that is positive and asks for no more output times than `--max-steps`
 /// allows steps (each output time ends a step): `--every 1e-12 --until 1` is refused here,
 /// not after building 10¹² output times.
-fn every(dt: f64, args: &RunArgs) -> Result<f64, CliError> {
-    let dt = positive(dt, "--every")?;
-    let span = args.until - args.from;
+fn every(dt: f64, args: &RunArgs, until: f64) -> Result<f64, CliError> {
+    let dt = positive(dt, "--every", args.words)?;
+    let span = until - args.from;
     let times = (span / dt).ceil();
     if times > args.max_steps as f64 {
+        let words = args.words;
         return Err(CliError::Input(format!(
-            "--every {} asks for {times:.3e} output times from t = {} to --until {}, more \
-             than --max-steps {}; the usable spacings are {:.3e} to {span} (or raise \
-             --max-steps)",
-            shown(dt),
+            "{} asks for {times:.3e} output times from t = {} to {}, more than {}; the usable \
+             spacings are {:.3e} to {span} (or raise {})",
+            words.given("--every", &shown(dt)),
             shown(args.from),
-            shown(args.until),
-            args.max_steps,
-            span / args.max_steps as f64
+            words.given("--until", &shown(until)),
+            words.given("--max-steps", &args.max_steps.to_string()),
+            span / args.max_steps as f64,
+            words.setting("--max-steps")
         )));
     }
     Ok(dt)
 }
 
 /// A `--tol` within [`MIN_TOLERANCE`, `MAX_TOLERANCE`].
-fn tolerance(tol: f64) -> Result<f64, CliError> {
+fn tolerance(tol: f64, words: Words) -> Result<f64, CliError> {
     let range = format!("the usable range is {MIN_TOLERANCE:.1e} to {MAX_TOLERANCE}");
     let why = if !(tol.is_finite() && tol > 0.0) {
         "must be positive and finite"
@@ -373,28 +375,30 @@ fn tolerance(tol: f64) -> Result<f64, CliError> {
         return Ok(tol);
     };
     Err(CliError::Input(format!(
-        "--tol {} {why}; {range}",
-        shown(tol)
+        "{} {why}; {range}",
+        words.given("--tol", &shown(tol))
     )))
 }
 
 /// A `--step` that is positive and reaches `--until` within `--max-steps` steps: checked
 /// here, before the first step, instead of found out at the step limit.
-fn fixed_step(h: f64, args: &RunArgs) -> Result<f64, CliError> {
-    let h = positive(h, "--step")?;
-    let span = args.until - args.from;
+fn fixed_step(h: f64, args: &RunArgs, until: f64) -> Result<f64, CliError> {
+    let h = positive(h, "--step", args.words)?;
+    let span = until - args.from;
     let needed = (span / h).ceil();
     // u64 → f64 is exact to 2⁵³, far above any step budget that finishes.
     let limit = args.max_steps as f64;
     if needed > limit {
+        let words = args.words;
         return Err(CliError::Input(format!(
-            "--step {} needs {needed:.3e} steps from t = {} to --until {}, more than \
-             --max-steps {}; the usable steps are {:.3e} to {span} (or raise --max-steps)",
-            shown(h),
+            "{} needs {needed:.3e} steps from t = {} to {}, more than {}; the usable steps \
+             are {:.3e} to {span} (or raise {})",
+            words.given("--step", &shown(h)),
             shown(args.from),
-            shown(args.until),
-            args.max_steps,
-            span / limit
+            words.given("--until", &shown(until)),
+            words.given("--max-steps", &args.max_steps.to_string()),
+            span / limit,
+            words.setting("--max-steps")
         )));
     }
     Ok(h)

@@ -14,6 +14,7 @@ use varmass::symbolic::parse::ast::{BinOp, Expr, ExprNode, StatementKind, System
 use varmass::symbolic::parse::parse_expression;
 
 use super::names::{evaluate, resolve, velocity_state, Observable};
+use crate::args::Words;
 use crate::error::CliError;
 
 /// One recorded column's value.
@@ -115,7 +116,11 @@ pub fn entries(values: &[String]) -> Vec<String> {
 }
 
 /// One `--record` entry: a quantity's name, `NAME=EXPRESSION`, or an expression.
-pub fn recorded(entry: &str, scope: &Scope<'_>) -> Result<(String, Recorded), CliError> {
+pub fn recorded(
+    entry: &str,
+    scope: &Scope<'_>,
+    words: Words,
+) -> Result<(String, Recorded), CliError> {
     if let Some((_, observable)) = scope.quantities.iter().find(|(n, _)| n == entry) {
         return Ok((entry.to_string(), Recorded::Quantity(*observable)));
     }
@@ -123,15 +128,16 @@ pub fn recorded(entry: &str, scope: &Scope<'_>) -> Result<(String, Recorded), Cl
         Some((name, text)) if is_identifier(name.trim()) => (name.trim(), text.trim()),
         _ => (entry, entry),
     };
+    let setting = words.setting("--record");
     let node = parse_expression(text).map_err(|d| {
         CliError::Input(format!(
-            "--record `{entry}`: {} (at `{}`)",
+            "{setting} `{entry}`: {} (at `{}`)",
             d.message,
             text.get(d.span.start..d.span.end).unwrap_or(text)
         ))
     })?;
     let term = resolve_term(&node, scope, 0).map_err(|e| match e {
-        CliError::Input(message) => CliError::Input(format!("--record `{entry}`: {message}")),
+        CliError::Input(message) => CliError::Input(format!("{setting} `{entry}`: {message}")),
         other => other,
     })?;
     Ok((name.to_string(), Recorded::Expression(term)))

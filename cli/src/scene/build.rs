@@ -202,7 +202,7 @@ fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String
             .map(|(n, v)| format!("{}={v:?}", n.get_ref()))
             .collect(),
         from: scene.from,
-        until: scene.until,
+        until: Some(scene.until),
         stop_when: Vec::new(),
         method: scene.method.0,
         tol: scene.tol,
@@ -364,7 +364,7 @@ fn record(
     let scope = Scope::new(program, selected, &known, parameters);
     entries(record_entries)
         .iter()
-        .map(|entry| recorded(entry, &scope))
+        .map(|entry| recorded(entry, &scope, Words::Scene))
         .collect()
 }
 
@@ -421,7 +421,7 @@ fn program_from(
         set: settings(&in_force.parameters),
         init: Vec::new(),
         from: 0.0,
-        until: 0.0,
+        until: Some(0.0),
         stop_when: Vec::new(),
         method: crate::args::Method::DormandPrince,
         tol: None,

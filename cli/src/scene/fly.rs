@@ -14,7 +14,7 @@ use super::build::{End, Scene};
 use crate::error::CliError;
 use crate::run::dispatch::MAX_STATE_MASSES;
 use crate::run::integrate::{describe, with_stepper};
-use crate::run::names::{evaluate, Observable};
+use crate::run::names::{evaluate, shown, Observable};
 use crate::run::plan::{Steps, MIN_TOLERANCE};
 use crate::run::watch::Watched;
 
@@ -160,7 +160,7 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
                  boundary) where the phase begins, at t = {}: it could never end the phase\n\
                  help: give the phase a condition that its motion reaches later",
                 k + 1,
-                e.time
+                shown(e.time)
             ))
         }
         false => {

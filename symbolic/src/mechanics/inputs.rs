@@ -66,15 +66,18 @@ impl Builder {
             .every
             .as_ref()
             .and_then(|period| match period.node.parse::<f64>() {
-                Ok(h) if h.is_finite() && h > 0.0 => Some(h),
-                _ => {
-                    self.errors.push(Diagnostic::new(
-                        period.span,
-                        format!(
-                            "the sample period `{}` is not a positive number of seconds",
-                            period.node
-                        ),
-                    ));
+                // A subnormal period has no exact grid k·T (and no step a run could take).
+                Ok(h) if h.is_normal() && h > 0.0 => Some(h),
+                parsed => {
+                    let why = match parsed {
+                        Ok(h) if h > 0.0 && h.is_finite() => {
+                            "is below the smallest normal f64 (2.2e-308): no grid k·T of it \
+                             can be computed"
+                        }
+                        _ => "is not a positive number of seconds",
+                    };
+                    let message = format!("the sample period `{}` {why}", period.node);
+                    self.errors.push(Diagnostic::new(period.span, message));
                     None
                 }
             });
