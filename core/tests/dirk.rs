@@ -21,7 +21,9 @@ use varmass_core::steppers::{
     AdaptiveControl, Dirk, DirkMethod, DirkNewton, Esdirk43Method, FixedStep, Sdirk4Method,
     StepControl,
 };
-use varmass_core::{run, Direction, Event, RunConfig, StepErrorKind, Stepper, StopReason};
+use varmass_core::{
+    run, Direction, Event, RunConfig, StepErrorKind, Stepper, StopReason, SystemError,
+};
 
 fn fixed(step: f64) -> StepControl {
     StepControl::Fixed(FixedStep { step })
@@ -206,8 +208,8 @@ fn rocket_out_of_propellant_ends_in_the_event_or_a_typed_error() {
         assert!(
             matches!(
                 error.kind,
-                StepErrorKind::NonPositiveMass { index: 0, .. }
-                    | StepErrorKind::SingularMassMatrix
+                StepErrorKind::System(SystemError::NonPositiveMass { index: 0, .. })
+                    | StepErrorKind::System(SystemError::SingularMassMatrix)
                     | StepErrorKind::NewtonDivergence { .. }
             ),
             "{error:?}"

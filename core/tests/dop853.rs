@@ -10,7 +10,9 @@ use nalgebra::SVector;
 use support::problems::{KeplerProblem, OscillatorProblem, RocketProblem};
 use support::{integrate, Problem};
 use varmass_core::steppers::{AdaptiveControl, Dop853, FixedStep, StepControl};
-use varmass_core::{run, Direction, Event, RunConfig, StepErrorKind, Stepper, StopReason};
+use varmass_core::{
+    run, Direction, Event, RunConfig, StepErrorKind, Stepper, StopReason, SystemError,
+};
 
 fn fixed(step: f64) -> StepControl {
     StepControl::Fixed(FixedStep { step })
@@ -241,8 +243,8 @@ fn rocket_out_of_propellant_ends_in_the_event_or_a_typed_error() {
     assert!(
         matches!(
             error.kind,
-            StepErrorKind::NonPositiveMass { index: 0, .. }
-                | StepErrorKind::SingularMassMatrix
+            StepErrorKind::System(SystemError::NonPositiveMass { index: 0, .. })
+                | StepErrorKind::System(SystemError::SingularMassMatrix)
                 | StepErrorKind::StepSizeUnderflow { .. }
                 | StepErrorKind::NonFiniteState
         ),
