@@ -126,11 +126,28 @@ impl Emitter<'_> {
             Quantity::Lagrangian.spec().doc,
             self.quantity_lines(Quantity::Lagrangian, &[self.d.lagrangian]),
         );
-        let body = self.body(Input::VelocityState, &[self.d.lagrangian], |mut o| {
-            o.pop().unwrap_or_default()
+        let root = (Input::VelocityState, self.d.lagrangian);
+        self.scalar_method(Method::Lagrangian, docs, root, false)
+    }
+
+    /// A method whose value is the one expression `root` of its input, returned as it is or
+    /// (`fallible`) as `Ok`.
+    fn scalar_method(
+        &self,
+        method: Method,
+        docs: TokenStream,
+        (input, root): (Input, Id),
+        fallible: bool,
+    ) -> TokenStream {
+        let body = self.body(input, &[root], |mut o| {
+            let value = o.pop().unwrap_or_default();
+            if fallible {
+                quote!(Ok(#value))
+            } else {
+                value
+            }
         });
-        let signature = self.signature(Method::Lagrangian);
-        method_item(docs, signature, body)
+        method_item(docs, self.signature(method), body)
     }
 
     /// `accelerations(t, velocity_state)`: q̈ in closed form, or M q̈ = rhs solved by the
@@ -208,12 +225,7 @@ impl Emitter<'_> {
             ),
         };
         let docs = self.docs(Quantity::Energy.spec().doc, [line]);
-        let body = self.body(Input::State, &[root], |mut o| {
-            let h = o.pop().unwrap_or_default();
-            quote!(Ok(#h))
-        });
-        let signature = self.signature(Method::Hamiltonian);
-        method_item(docs, signature, body)
+        self.scalar_method(Method::Hamiltonian, docs, (Input::State, root), true)
     }
 
     /// `canonical_rates(t, state)`: (q̇, d*p/dt) of eq. 14.
@@ -292,12 +304,7 @@ impl Emitter<'_> {
             Quantity::Power.spec().doc,
             self.quantity_lines(Quantity::Power, &[self.d.power]),
         );
-        let body = self.body(Input::State, &[self.d.power], |mut o| {
-            let p = o.pop().unwrap_or_default();
-            quote!(Ok(#p))
-        });
-        let signature = self.signature(Method::Power);
-        method_item(docs, signature, body)
+        self.scalar_method(Method::Power, docs, (Input::State, self.d.power), true)
     }
 
     /// `jacobian(t, state)` from the derivation's blocks, combined with M⁻¹ numerically.
