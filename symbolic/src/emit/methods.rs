@@ -5,7 +5,7 @@ use quote::{format_ident, quote};
 
 use super::factor::ldlt_solve;
 use super::signature::Method;
-use super::system::{method_item, Emitter, Input};
+use super::system::{count_and_names, method_item, Emitter, Input};
 use crate::expr::Id;
 use crate::mechanics::{Of, VelocitySolve};
 use crate::quantity::Quantity;
@@ -393,7 +393,6 @@ impl Emitter<'_> {
         }
         let runtime = &self.target.runtime;
         let (_, s_lit, _, _) = self.sizes();
-        let count = Literal::usize_unsuffixed(d.flow_rates.len());
         let docs = self.docs(
             "The flows' rates, ≥ 0 by definition: a run ends where one is negative.",
             d.flow_names
@@ -408,21 +407,9 @@ impl Emitter<'_> {
             });
             quote!(#index => { #body },)
         });
-        let name_arms = d.flow_names.iter().enumerate().map(|(i, name)| {
-            let index = Literal::usize_unsuffixed(i);
-            quote!(#index => ::core::option::Option::Some(#name),)
-        });
+        let count_and_names = count_and_names("flow", d.flow_rates.len(), &d.flow_names);
         quote! {
-            #[inline]
-            fn flow_count(&self) -> usize {
-                #count
-            }
-            fn flow_name(&self, index: usize) -> ::core::option::Option<&str> {
-                match index {
-                    #(#name_arms)*
-                    _ => ::core::option::Option::None,
-                }
-            }
+            #count_and_names
             #docs
             #[inline]
             fn flow_rate(
