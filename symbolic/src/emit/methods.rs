@@ -122,12 +122,22 @@ impl Emitter<'_> {
 
     /// `lagrangian(t, velocity_state)`.
     pub(crate) fn lagrangian(&self) -> TokenStream {
-        let docs = self.docs(
-            Quantity::Lagrangian.spec().doc,
-            self.quantity_lines(Quantity::Lagrangian, &[self.d.lagrangian]),
-        );
-        let root = (Input::VelocityState, self.d.lagrangian);
-        self.scalar_method(Method::Lagrangian, docs, root, false)
+        let lagrangian = (Quantity::Lagrangian, self.d.lagrangian);
+        self.quantity_method(Method::Lagrangian, Input::VelocityState, lagrangian, false)
+    }
+
+    /// A method whose value is the scalar `quantity`'s expression `root` of `input`,
+    /// documented by the quantity's registry entry (see [`Self::scalar_method`]).
+    fn quantity_method(
+        &self,
+        method: Method,
+        input: Input,
+        (quantity, root): (Quantity, Id),
+        fallible: bool,
+    ) -> TokenStream {
+        let lines = self.quantity_lines(quantity, &[root]);
+        let docs = self.docs(quantity.spec().doc, lines);
+        self.scalar_method(method, docs, (input, root), fallible)
     }
 
     /// A method whose value is the one expression `root` of its input, returned as it is or
@@ -300,11 +310,8 @@ impl Emitter<'_> {
 
     /// `power(t, state)`: the energy-budget dH/dt.
     pub(crate) fn power(&self) -> TokenStream {
-        let docs = self.docs(
-            Quantity::Power.spec().doc,
-            self.quantity_lines(Quantity::Power, &[self.d.power]),
-        );
-        self.scalar_method(Method::Power, docs, (Input::State, self.d.power), true)
+        let power = (Quantity::Power, self.d.power);
+        self.quantity_method(Method::Power, Input::State, power, true)
     }
 
     /// `jacobian(t, state)` from the derivation's blocks, combined with M⁻¹ numerically.
