@@ -1,11 +1,11 @@
 //! The one shape of the adaptive steppers (Dormand–Prince, DOP853, the DIRK stepper of SDIRK4
 //! and ESDIRK4(3)), as diffsol and OrdinaryDiffEq split a solver: [`Adaptive`] holds what
 //! every method holds — the system, the progress, the checked settings and the controller's
-//! memory ([`Controlled`]) — and the method `A` ([`AdaptiveMethod`]) holds what only it carries
-//! from one step to the next (its stages, its dense output, its Jacobian) and takes the step.
-//! The constructor, the [`Stepper`] accessors and the restart are written here once; users
-//! name the steppers by their aliases ([`super::DormandPrince`], [`super::Dop853`],
-//! [`super::Sdirk4`], [`super::Esdirk43`]).
+//! memory (`control::Controlled`) — and the method `A` ([`AdaptiveMethod`]) holds what only
+//! it carries from one step to the next (its stages, its dense output, its Jacobian) and
+//! takes the step. The constructor, the [`Stepper`] accessors and the restart are written
+//! here once; users name the steppers by their aliases ([`super::DormandPrince`],
+//! [`super::Dop853`], [`super::Sdirk4`], [`super::Esdirk43`]).
 
 use nalgebra::SVector;
 
