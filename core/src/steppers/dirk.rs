@@ -72,6 +72,7 @@ pub type Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> =
 /// What the DIRK stepper carries from one step to the next ([`Adaptive`]'s method).
 #[derive(Clone, Debug)]
 pub struct DirkState<T, const S: usize, const M: usize> {
+    /// The Newton settings ([`Dirk::with_newton`]).
     newton: DirkNewton,
     /// The stage vectors W₁…W_M of the last accepted step.
     increments: [SVector<f64, S>; M],
