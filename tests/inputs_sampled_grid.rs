@@ -300,7 +300,7 @@ impl RootInputs for Root {
 
 #[test]
 fn a_sample_that_is_not_a_number_is_a_typed_error_naming_the_input() {
-    use varmass::core::{StepErrorKind, SystemError};
+    use varmass::core::StepErrorKind;
     // √(0.015 − t) is NaN at the sample 0.02: the run ends there with the input's name
     // (before: "the state became non-finite", found by the next step).
     let mut stepper =
@@ -309,7 +309,7 @@ fn a_sample_that_is_not_a_number_is_a_typed_error_naming_the_input() {
     assert!(
         matches!(
             failure.error.kind,
-            StepErrorKind::System(SystemError::SampledInputNotFinite { input: "u", value }) if value.is_nan()
+            StepErrorKind::SampledInputNotFinite { input: "u", value } if value.is_nan()
         ),
         "{:?}",
         failure.error.kind

@@ -236,8 +236,8 @@ fn esdirk_running_out_of_propellant_ends_in_the_event_or_a_typed_error() {
     assert!(
         matches!(
             error.kind,
-            StepErrorKind::System(SystemError::NonPositiveMass { index: 0, .. })
-                | StepErrorKind::System(SystemError::SingularMassMatrix)
+            StepErrorKind::NonPositiveMass { index: 0, .. }
+                | StepErrorKind::SingularMassMatrix
                 | StepErrorKind::NewtonDivergence { .. }
                 | StepErrorKind::StepSizeUnderflow { .. }
         ),

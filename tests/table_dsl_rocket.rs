@@ -8,7 +8,7 @@
 
 use varmass::core::nalgebra::{SVector, Vector3};
 use varmass::core::steppers::{AdaptiveControl, Dop853, DormandPrince, StepControl};
-use varmass::core::{run, RunConfig, StepErrorKind, Stepper, SystemError, VariableMassSystem};
+use varmass::core::{run, RunConfig, StepErrorKind, Stepper, VariableMassSystem};
 use varmass::prelude::variable_mass_system;
 use varmass_table::{Interpolation, Motor, Piecewise};
 
@@ -164,7 +164,7 @@ fn past_the_data_without_outside_the_run_ends_with_a_typed_error() {
         .error;
     // The run lands on burnout (the last knot, a stop time) and restarts there; the first
     // step past it asks F after the data.
-    let StepErrorKind::System(SystemError::TableOutside { table, argument }) = error.kind else {
+    let StepErrorKind::TableOutside { table, argument } = error.kind else {
         panic!("expected TableOutside, got {error}");
     };
     assert_eq!(table, "F");

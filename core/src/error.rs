@@ -34,14 +34,12 @@ pub enum StepErrorKind {
     /// fixed step is far past the stability limit.
     #[error("the state became non-finite")]
     NonFiniteState,
-    /// The system could not be evaluated at the error's state ([`SystemError`]): a mass or
-    /// inertia reached zero or became negative (a rocket out of propellant), the mass matrix
-    /// is singular, a table was asked for a value outside its data (a thrust curve past
-    /// burnout without `outside zero`, docs/tables.md#outside-the-data), or a sampled input
-    /// gave a value that is not finite (the error's time is then the sample's,
-    /// docs/inputs.md#sampled-inputs).
-    #[error(transparent)]
-    System(SystemError),
+    /// A mass or inertia reached zero or became negative, e.g. a rocket out of propellant.
+    #[error("mass {index} is not positive")]
+    NonPositiveMass {
+        /// Index into [`VariableMassSystem::MASSES`].
+        index: usize,
+    },
     /// The end of the next step, t + h, is not a finite time (it overflows f64). The error's
     /// time and state are those at the start of the step, which are finite.
     #[error("the time t + {step:e} is not finite")]
@@ -49,6 +47,9 @@ pub enum StepErrorKind {
         /// The step that would have been taken.
         step: f64,
     },
+    /// The mass matrix ∂²L/∂q̇² is singular here, so q̇ cannot be recovered from p.
+    #[error("the mass matrix is singular")]
+    SingularMassMatrix,
     /// An adaptive stepper had to shrink its step below what the time resolution allows.
     /// The error's time and state are those at the start of the failed step.
     #[error("the step size {step:e} underflowed")]
@@ -123,6 +124,26 @@ pub enum StepErrorKind {
         /// The time they fell within.
         within: f64,
     },
+    /// A table (`outside error`, the default) was asked for a value outside its data
+    /// (docs/tables.md#outside-the-data): a thrust curve past burnout without `outside
+    /// zero`, an atmosphere above its last altitude.
+    #[error("table `{table}` has no value at {argument} (outside its data)")]
+    TableOutside {
+        /// The table's name (`F`, or `F'` for its derivative).
+        table: &'static str,
+        /// The argument asked for.
+        argument: f64,
+    },
+    /// A sampled input gave a value that is not a finite number at a sample (its method,
+    /// or its `--input` law, returned NaN or ±∞ there; docs/inputs.md#sampled-inputs). The
+    /// error's time is the sample's, its state the one sampled at.
+    #[error("the sampled input `{input}` is not finite at its sample ({value})")]
+    SampledInputNotFinite {
+        /// The input's name.
+        input: &'static str,
+        /// The value it gave.
+        value: f64,
+    },
 }
 
 impl<const S: usize> StepError<S> {
@@ -157,11 +178,26 @@ impl<const S: usize> StepError<S> {
         if !is_finite(&state) {
             return Self::new(time, state, StepErrorKind::NonFiniteState);
         }
-        let cause = match error {
-            SystemError::SingularMassMatrix => system.check_masses(time, &state).err(),
-            _ => None,
+        let error = match error {
+            SystemError::SingularMassMatrix => match system.check_masses(time, &state) {
+                Err(mass_error) => mass_error,
+                Ok(()) => error,
+            },
+            SystemError::NonPositiveMass { .. }
+            | SystemError::TableOutside { .. }
+            | SystemError::SampledInputNotFinite { .. } => error,
         };
-        Self::new(time, state, StepErrorKind::System(cause.unwrap_or(error)))
+        let kind = match error {
+            SystemError::SingularMassMatrix => StepErrorKind::SingularMassMatrix,
+            SystemError::NonPositiveMass { index } => StepErrorKind::NonPositiveMass { index },
+            SystemError::TableOutside { table, argument } => {
+                StepErrorKind::TableOutside { table, argument }
+            }
+            SystemError::SampledInputNotFinite { input, value } => {
+                StepErrorKind::SampledInputNotFinite { input, value }
+            }
+        };
+        Self::new(time, state, kind)
     }
 }
 

@@ -52,7 +52,7 @@ pub fn regular_pivot(pivot: f64, diagonal: f64) -> bool {
 pub enum SystemError {
     /// The mass matrix ∂²L/∂q̇² is singular (or not positive definite) here, so q̇ cannot be
     /// recovered from p.
-    #[error("the mass matrix is singular")]
+    #[error("the mass matrix is singular, so q̇ cannot be recovered from p")]
     SingularMassMatrix,
     /// A mass (or inertia) is zero or negative; its index is into
     /// [`VariableMassSystem::MASSES`].

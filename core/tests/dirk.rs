@@ -21,9 +21,7 @@ use varmass_core::steppers::{
     AdaptiveControl, Dirk, DirkMethod, DirkNewton, Esdirk43Method, FixedStep, Sdirk4Method,
     StepControl,
 };
-use varmass_core::{
-    run, Direction, Event, RunConfig, StepErrorKind, Stepper, StopReason, SystemError,
-};
+use varmass_core::{run, Direction, Event, RunConfig, StepErrorKind, Stepper, StopReason};
 
 fn fixed(step: f64) -> StepControl {
     StepControl::Fixed(FixedStep { step })
@@ -208,8 +206,8 @@ fn rocket_out_of_propellant_ends_in_the_event_or_a_typed_error() {
         assert!(
             matches!(
                 error.kind,
-                StepErrorKind::System(SystemError::NonPositiveMass { index: 0, .. })
-                    | StepErrorKind::System(SystemError::SingularMassMatrix)
+                StepErrorKind::NonPositiveMass { index: 0, .. }
+                    | StepErrorKind::SingularMassMatrix
                     | StepErrorKind::NewtonDivergence { .. }
             ),
             "{error:?}"

@@ -10,9 +10,7 @@ use nalgebra::SVector;
 use support::problems::{KeplerProblem, OscillatorProblem, RocketProblem};
 use support::{integrate, Problem};
 use varmass_core::steppers::{AdaptiveControl, Dop853, FixedStep, StepControl};
-use varmass_core::{
-    run, Direction, Event, RunConfig, StepErrorKind, Stepper, StopReason, SystemError,
-};
+use varmass_core::{run, Direction, Event, RunConfig, StepErrorKind, Stepper, StopReason};
 
 fn fixed(step: f64) -> StepControl {
     StepControl::Fixed(FixedStep { step })
@@ -243,8 +241,8 @@ fn rocket_out_of_propellant_ends_in_the_event_or_a_typed_error() {
     assert!(
         matches!(
             error.kind,
-            StepErrorKind::System(SystemError::NonPositiveMass { index: 0, .. })
-                | StepErrorKind::System(SystemError::SingularMassMatrix)
+            StepErrorKind::NonPositiveMass { index: 0, .. }
+                | StepErrorKind::SingularMassMatrix
                 | StepErrorKind::StepSizeUnderflow { .. }
                 | StepErrorKind::NonFiniteState
         ),

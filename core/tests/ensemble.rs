@@ -13,7 +13,7 @@ use varmass_core::ensemble::{
     StopRule, Summary, SummaryConfig,
 };
 use varmass_core::steppers::{AdaptiveControl, DormandPrince, StepControl};
-use varmass_core::{run, Event, RunConfig, StepError, StepErrorKind, Stepper, SystemError};
+use varmass_core::{run, Event, RunConfig, StepError, StepErrorKind, Stepper};
 
 /// Start and end mass of the free-space burn, and its rate: m goes 1 → 1/4 in 7.5 s.
 const M0: f64 = 1.0;
@@ -241,7 +241,7 @@ fn failed_members_are_reported_with_index_parameters_and_error() {
         match &failure.error {
             MemberError::Run(StepError {
                 time,
-                kind: StepErrorKind::System(SystemError::NonPositiveMass { index: 0 }),
+                kind: StepErrorKind::NonPositiveMass { index: 0 },
                 ..
             }) => {
                 assert!((time - 10.0).abs() < 1e-9, "failed at t = {time}");

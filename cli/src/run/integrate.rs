@@ -6,7 +6,7 @@ use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{AdaptiveControl, FixedStep, StepControl};
 use varmass::core::{
     run, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper, StopReason,
-    SystemError, VariableMassSystem,
+    VariableMassSystem,
 };
 use varmass::interpret::{Program, TapeSystem};
 
@@ -275,7 +275,7 @@ fn explain(
     let w = |flag: &str| plan.words.setting(flag);
     let (stop_when, until, tol, step) = (w("--stop-when"), w("--until"), w("--tol"), w("--step"));
     match kind {
-        StepErrorKind::System(SystemError::NonPositiveMass { index }) => {
+        StepErrorKind::NonPositiveMass { index } => {
             let name = program.mass_names().nth(index).unwrap_or("?");
             (
                 format!("the mass `{name}` is not positive"),
@@ -335,7 +335,7 @@ fn explain(
             what,
             format!("use a smaller {step}, or an adaptive method ({tol})"),
         ),
-        StepErrorKind::System(SystemError::SingularMassMatrix) => (
+        StepErrorKind::SingularMassMatrix => (
             format!("{what} (the velocities cannot be recovered from the momenta)"),
             format!(
                 "the model's kinetic energy stops depending on a velocity here: stop before \
@@ -359,7 +359,7 @@ fn explain(
             what,
             format!("check {}, {until}, {step} and {tol}", w("--from")),
         ),
-        StepErrorKind::System(SystemError::SampledInputNotFinite { input, .. }) => (
+        StepErrorKind::SampledInputNotFinite { input, .. } => (
             what,
             format!(
                 "the {} law of `{input}` has no value at this sample (a square root of a \
@@ -368,7 +368,7 @@ fn explain(
                 w("--input")
             ),
         ),
-        StepErrorKind::System(SystemError::TableOutside { .. }) => (
+        StepErrorKind::TableOutside { .. } => (
             what,
             format!(
                 "the table has no data there: stop before it ({until}, {stop_when}), or give \
