@@ -429,22 +429,20 @@ pub(crate) fn resolvable(t0: f64, h: f64) -> bool {
     h > 0.0 && t0 + h != t0
 }
 
-/// What an adaptive stepper (Dormand–Prince, DOP853, the DIRK stepper) holds besides its
-/// stages: the system, the progress, the checked settings, the controller's memory and, for
-/// the explicit pairs, Hairer's stiffness test (`Test` = [`StiffnessTest`]; the DIRK stepper,
-/// made for stiff problems, has none: `()`). One constructor, the start of a step and the step
-/// size to try, written once for all.
+/// What an adaptive stepper (Dormand–Prince, DOP853, the DIRK stepper; see
+/// [`super::adaptive::Adaptive`]) holds besides what its method carries: the system, the
+/// progress, the checked settings and the controller's memory. One constructor, the start of a
+/// step and the step size to try, written once for all.
 #[derive(Clone, Debug)]
-pub(crate) struct Controlled<'a, Sys, const S: usize, Test = StiffnessTest> {
+pub(crate) struct Controlled<'a, Sys, const S: usize> {
     pub(crate) system: &'a Sys,
     pub(crate) progress: Progress<S>,
     pub(crate) mode: Mode,
     /// Next and last step, the controller's memory, the FSAL rate.
     pub(crate) memory: ControlState<S>,
-    pub(crate) stiffness: Test,
 }
 
-impl<'a, Sys, const S: usize, Test: Default> Controlled<'a, Sys, S, Test> {
+impl<'a, Sys, const S: usize> Controlled<'a, Sys, S> {
     /// Starts at `(time, state)`; the state and the control are checked.
     pub(crate) fn new<const N: usize>(
         system: &'a Sys,
@@ -461,7 +459,6 @@ impl<'a, Sys, const S: usize, Test: Default> Controlled<'a, Sys, S, Test> {
             progress: Progress::new(system, time, state)?,
             mode,
             memory: ControlState::new(),
-            stiffness: Test::default(),
         })
     }
 
@@ -501,15 +498,16 @@ impl<'a, Sys, const S: usize, Test: Default> Controlled<'a, Sys, S, Test> {
 /// A pair's two stages at the same time t₀ + h for the stiffness test: (state, rate).
 pub(crate) type StagePair<'v, const S: usize> = (&'v SVector<f64, S>, &'v SVector<f64, S>);
 
-impl<Sys, const S: usize> Controlled<'_, Sys, S, StiffnessTest> {
+impl<Sys, const S: usize> Controlled<'_, Sys, S> {
     /// Accepts a step of size `h` ending at `end` (the new state and the rate there, which
-    /// the next step starts from: FSAL) and runs Hairer's stiffness test on `end` and
-    /// `stage`, the other stage at t₀ + h, against the method's h|λ| `bound`.
+    /// the next step starts from: FSAL) and runs Hairer's stiffness test `stiffness` on `end`
+    /// and `stage`, the other stage at t₀ + h, against the method's h|λ| `bound`.
     pub(crate) fn accept_observed<const N: usize>(
         &mut self,
         (h, reaches_stop): (f64, bool),
         end: StagePair<'_, S>,
         stage: StagePair<'_, S>,
+        stiffness: &mut StiffnessTest,
         bound: f64,
     ) -> Result<StepOutcome, StepError<S>>
     where
@@ -517,9 +515,7 @@ impl<Sys, const S: usize> Controlled<'_, Sys, S, StiffnessTest> {
     {
         let outcome = self.progress.accept(self.system, h, reaches_stop, *end.0)?;
         let statistics = &mut self.progress.statistics;
-        let stiff = self
-            .stiffness
-            .observe(statistics.accepted_steps, h, end, stage, bound);
+        let stiff = stiffness.observe(statistics.accepted_steps, h, end, stage, bound);
         statistics.stiffness_detected |= stiff;
         self.memory.accepted(h, *end.1);
         Ok(outcome)

@@ -28,13 +28,12 @@ use nalgebra::{SMatrix, SVector};
 use self::stage::{weighted_norm, StepContext};
 pub(crate) use self::tableau::{explicit_parts, on_increments, rate_transform};
 pub use self::tableau::{DirkMethod, DirkTableau};
-use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl};
+use super::adaptive::{Adaptive, AdaptiveMethod};
+use super::control::{resolvable, AdaptiveControl, Mode};
 use super::newton::Lu;
 use crate::error::{StepError, StepErrorKind};
 use crate::math::powf;
-use crate::stepper::{
-    state_rate, Checked, Progress, ProgressMut, Restarting, StepOutcome, Stepper,
-};
+use crate::stepper::{state_rate, Checked, Progress, StepOutcome};
 use crate::system::VariableMassSystem;
 
 /// The Newton settings of the diagonally implicit steppers (defaults of `sdirk4.f`).
@@ -65,13 +64,15 @@ impl Default for DirkNewton {
 const FIXED_MODE_TOLERANCE: f64 = 1e-10;
 
 /// A diagonally implicit stepper with M stages on the state `[q, p, m_s]`; use it through
-/// [`super::Sdirk4`] or [`super::Esdirk43`].
+/// [`super::Sdirk4`] or [`super::Esdirk43`]. There is no stiffness test (it is made for stiff
+/// problems), and of the controller's memory the PI term is unused.
+pub type Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> =
+    Adaptive<'a, Sys, DirkState<T, S, M>, N, S>;
+
+/// What the DIRK stepper carries from one step to the next ([`Adaptive`]'s method).
 #[derive(Clone, Debug)]
-pub struct Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> {
-    /// The system, the progress, the settings and the controller's memory: next and last
-    /// step, the last rejection, and (with an explicit first stage) the FSAL rate; the PI
-    /// memory it also holds is unused here, and there is no stiffness test.
-    core: Controlled<'a, Sys, S, ()>,
+pub struct DirkState<T, const S: usize, const M: usize> {
+    /// The Newton settings ([`Dirk::with_newton`]).
     newton: DirkNewton,
     /// The stage vectors W₁…W_M of the last accepted step.
     increments: [SVector<f64, S>; M],
@@ -80,7 +81,108 @@ pub struct Dirk<'a, Sys, T, const N: usize, const S: usize, const M: usize> {
     /// Hairer's `FACCO`: the last contraction factor θ/(1 − θ) of each stage's Newton
     /// iteration, which lets a fast-converging iteration stop after one update.
     contraction: [f64; M],
-    method: PhantomData<T>,
+    tableau: PhantomData<T>,
+}
+
+impl<T, const S: usize, const M: usize> Default for DirkState<T, S, M> {
+    fn default() -> Self {
+        Self {
+            newton: DirkNewton::default(),
+            increments: [SVector::zeros(); M],
+            jacobian: None,
+            contraction: [1.0; M],
+            tableau: PhantomData,
+        }
+    }
+}
+
+impl<T, const N: usize, const S: usize, const M: usize> AdaptiveMethod<N, S> for DirkState<T, S, M>
+where
+    T: DirkMethod<M>,
+{
+    fn step<Sys: VariableMassSystem<N, S>>(
+        stepper: &mut Dirk<'_, Sys, T, N, S, M>,
+    ) -> Result<StepOutcome, StepError<S>> {
+        let (t0, y0) = (stepper.core.progress.time(), *stepper.core.progress.state());
+        if stepper.core.memory.next_step <= 0.0 {
+            // HNW's heuristic for order 4, from the rate at the start (evaluated only then).
+            let (system, start) = (stepper.core.system, (t0, &y0));
+            let rate = |progress: &mut Progress<S>| {
+                state_rate(system, &mut progress.statistics, start.0, start.1)
+            };
+            stepper.core.memory.next_step =
+                stepper
+                    .core
+                    .mode
+                    .first_step(system, &mut stepper.core.progress, rate, 4)?;
+        }
+        let adaptive = match stepper.core.mode {
+            Mode::Adaptive(control, _) => Some(control),
+            Mode::Fixed(_) => None,
+        };
+        let mut extrapolate = true;
+        loop {
+            let (h, reaches_stop) = stepper.core.attempt_size((t0, &y0))?;
+            let (jacobian, fresh) = match stepper.method.jacobian {
+                Some(pair) => pair,
+                None => (stepper.refresh_jacobian(true)?, true),
+            };
+            let gamma = T::TABLEAU.gamma;
+            let matrix = SMatrix::<f64, S, S>::identity() - jacobian * (h * gamma);
+            let failure = match Lu::factor(matrix) {
+                Some(lu) => {
+                    let newton = stepper.method.newton;
+                    let context = StepContext {
+                        system: stepper.core.system,
+                        t0,
+                        y0,
+                        h,
+                        lu: &lu,
+                        fresh_jacobian: fresh,
+                        weights: stepper.weights(&y0),
+                        newton: &newton,
+                        gamma,
+                    };
+                    match (stepper.attempt(&context, extrapolate), adaptive) {
+                        (Ok(attempt), None) => return stepper.accept(h, reaches_stop, attempt),
+                        (Ok(attempt), Some(control)) => {
+                            let proposed = stepper.proposed_after(h, &attempt, &control);
+                            if attempt.error <= 1.0 {
+                                let accepted = (h, reaches_stop, attempt);
+                                return stepper.accept_controlled(&control, proposed, accepted);
+                            }
+                            stepper
+                                .core
+                                .memory
+                                .reject(proposed, &mut stepper.core.progress);
+                            continue;
+                        }
+                        (Err(failure), _) => failure,
+                    }
+                }
+                None => StageFailure::Newton {
+                    iterations: 0,
+                    shrink: 0.5,
+                },
+            };
+            extrapolate = false;
+            stepper.core.progress.statistics.rejected_steps += 1;
+            stepper.core.memory.last_rejected = true;
+            stepper.recover(failure, fresh, (t0, y0), h)?;
+        }
+    }
+
+    fn dense_output<Sys: VariableMassSystem<N, S>>(
+        stepper: &Dirk<'_, Sys, T, N, S, M>,
+        time: f64,
+    ) -> Option<SVector<f64, S>> {
+        Some(stepper.interpolate(time))
+    }
+
+    fn forget_history(&mut self) {
+        self.jacobian = None;
+        self.contraction = [1.0; M];
+    }
 }
 
 /// Why the stages of an attempt could not be solved.
@@ -124,26 +226,8 @@ where
     Sys: VariableMassSystem<N, S>,
     T: DirkMethod<M>,
 {
-    /// Starts at `(time, state)`; the state and the control are checked. See
-    /// [`AdaptiveControl::sdirk4`] for the step-size settings of `sdirk4.f`.
-    pub fn new(
-        system: &'a Sys,
-        time: f64,
-        state: SVector<f64, S>,
-        control: StepControl,
-    ) -> Result<Self, StepError<S>> {
-        Ok(Self {
-            core: Controlled::new::<N>(system, time, state, control)?,
-            newton: DirkNewton::default(),
-            increments: [SVector::zeros(); M],
-            jacobian: None,
-            contraction: [1.0; M],
-            method: PhantomData,
-        })
-    }
-
     /// The same stepper with other Newton settings (checked).
-    pub fn with_newton(self, newton: DirkNewton) -> Result<Self, StepError<S>> {
+    pub fn with_newton(mut self, newton: DirkNewton) -> Result<Self, StepError<S>> {
         let valid = newton.max_iterations >= 2
             && newton.tolerance_fraction > 0.0
             && newton.tolerance_fraction < 1.0
@@ -152,9 +236,14 @@ where
             let reason = "DIRK Newton: at least 2 iterations, tolerance fraction in (0, 1), \
                           Jacobian reuse rate in [0, 1)";
             let kind = StepErrorKind::InvalidConfiguration { reason };
-            return Err(StepError::new(self.time(), *self.state(), kind));
+            return Err(StepError::new(
+                self.core.progress.time(),
+                *self.core.progress.state(),
+                kind,
+            ));
         }
-        Ok(Self { newton, ..self })
+        self.method.newton = newton;
+        Ok(self)
     }
 
     /// The third-order dense output over the last accepted step at `time` (meant for
@@ -166,15 +255,10 @@ where
             return *self.core.progress.state();
         }
         let [d1, d2, d3, d4] = &T::TABLEAU.dense;
-        let row = |d| combination(d, &self.increments, M);
+        let row = |d| combination(d, &self.method.increments, M);
         let s = (time - self.core.progress.previous_time()) / h;
         let (c1, c2, c3, c4) = (row(d1), row(d2), row(d3), row(d4));
         self.core.progress.previous_state() + (c1 + (c2 + (c3 + c4 * s) * s) * s) * s
-    }
-
-    /// The size of the step the stepper will try next (0 before the first step).
-    pub fn proposed_step(&self) -> f64 {
-        self.core.memory.next_step
     }
 
     /// The error weights atol + rtol·|y| (fixed mode: [`FIXED_MODE_TOLERANCE`]).
@@ -188,7 +272,7 @@ where
 
     /// The Jacobian at the current state if the one in hand is stale or missing.
     fn refresh_jacobian(&mut self, force: bool) -> Result<SMatrix<f64, S, S>, StepError<S>> {
-        match self.jacobian {
+        match self.method.jacobian {
             Some((jacobian, fresh)) if fresh || !force => Ok(jacobian),
             _ => {
                 let (t0, y0) = (self.core.progress.time(), *self.core.progress.state());
@@ -200,7 +284,7 @@ where
                 if !jacobian.iter().all(|x| x.is_finite()) {
                     return Err(StepError::new(t0, y0, StepErrorKind::NonFiniteState));
                 }
-                self.jacobian = Some((jacobian, true));
+                self.method.jacobian = Some((jacobian, true));
                 Ok(jacobian)
             }
         }
@@ -233,7 +317,7 @@ where
                 combination(&tableau.start[i], &w, i)
             };
             let statistics = &mut self.core.progress.statistics;
-            let eta = &mut self.contraction[i];
+            let eta = &mut self.method.contraction[i];
             let stage = context.solve_stage(statistics, tableau.c[i], &explicit, start, eta)?;
             w[i] = stage.increment;
             last_iterations = stage.iterations;
@@ -260,7 +344,7 @@ where
     /// The step size `sdirk4.f` proposes after an attempt with this error: err^(−1/4) with
     /// a safety factor lowered when the last stage needed many Newton iterations.
     fn proposed_after(&self, h: f64, attempt: &Attempt<S, M>, control: &AdaptiveControl) -> f64 {
-        let iterations = self.newton.max_iterations as f64;
+        let iterations = self.method.newton.max_iterations as f64;
         let work = control.safety * (1.0 + 2.0 * iterations)
             / (attempt.last_iterations as f64 + 2.0 * iterations);
         let safety = control.safety.min(work);
@@ -279,13 +363,15 @@ where
             self.core
                 .progress
                 .accept(self.core.system, h, reaches_stop, attempt.state)?;
-        self.increments = attempt.increments;
+        self.method.increments = attempt.increments;
         // The last stage's rate is f at the new state: the next step's explicit first
         // stage (SDIRK4, without one, never reads it).
         self.core.memory.accepted(h, attempt.last_rate);
         // Keep the Jacobian (now from an earlier state) while Newton contracts fast.
-        self.jacobian = match self.jacobian {
-            Some((jacobian, _)) if attempt.slowest_rate <= self.newton.jacobian_reuse_rate => {
+        self.method.jacobian = match self.method.jacobian {
+            Some((jacobian, _))
+                if attempt.slowest_rate <= self.method.newton.jacobian_reuse_rate =>
+            {
                 Some((jacobian, false))
             }
             _ => None,
@@ -341,95 +427,9 @@ where
     }
 }
 
-impl<Sys, T, const N: usize, const S: usize, const M: usize> Stepper<N, S>
-    for Dirk<'_, Sys, T, N, S, M>
+impl<Sys, T, const N: usize, const S: usize, const M: usize> Dirk<'_, Sys, T, N, S, M>
 where
     Sys: VariableMassSystem<N, S>,
     T: DirkMethod<M>,
 {
-    type System = Sys;
-
-    fn parts(&self) -> (&Sys, &Progress<S>) {
-        (self.core.system, &self.core.progress)
-    }
-
-    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
-        ProgressMut::new(self.core.system, &mut self.core.progress)
-    }
-
-    fn forget_history(&mut self, _: Restarting) {
-        self.core.memory.restart();
-        self.jacobian = None;
-        self.contraction = [1.0; M];
-    }
-
-    fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
-        Some(self.interpolate(time))
-    }
-
-    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (t0, y0) = (self.core.progress.time(), *self.core.progress.state());
-        if self.core.memory.next_step <= 0.0 {
-            // HNW's heuristic for order 4, from the rate at the start (evaluated only then).
-            let (system, start) = (self.core.system, (t0, &y0));
-            let rate = |progress: &mut Progress<S>| {
-                state_rate(system, &mut progress.statistics, start.0, start.1)
-            };
-            self.core.memory.next_step =
-                self.core
-                    .mode
-                    .first_step(system, &mut self.core.progress, rate, 4)?;
-        }
-        let adaptive = match self.core.mode {
-            Mode::Adaptive(control, _) => Some(control),
-            Mode::Fixed(_) => None,
-        };
-        let mut extrapolate = true;
-        loop {
-            let (h, reaches_stop) = self.core.attempt_size((t0, &y0))?;
-            let (jacobian, fresh) = match self.jacobian {
-                Some(pair) => pair,
-                None => (self.refresh_jacobian(true)?, true),
-            };
-            let gamma = T::TABLEAU.gamma;
-            let matrix = SMatrix::<f64, S, S>::identity() - jacobian * (h * gamma);
-            let failure = match Lu::factor(matrix) {
-                Some(lu) => {
-                    let newton = self.newton;
-                    let context = StepContext {
-                        system: self.core.system,
-                        t0,
-                        y0,
-                        h,
-                        lu: &lu,
-                        fresh_jacobian: fresh,
-                        weights: self.weights(&y0),
-                        newton: &newton,
-                        gamma,
-                    };
-                    match (self.attempt(&context, extrapolate), adaptive) {
-                        (Ok(attempt), None) => return self.accept(h, reaches_stop, attempt),
-                        (Ok(attempt), Some(control)) => {
-                            let proposed = self.proposed_after(h, &attempt, &control);
-                            if attempt.error <= 1.0 {
-                                let accepted = (h, reaches_stop, attempt);
-                                return self.accept_controlled(&control, proposed, accepted);
-                            }
-                            self.core.memory.reject(proposed, &mut self.core.progress);
-                            continue;
-                        }
-                        (Err(failure), _) => failure,
-                    }
-                }
-                None => StageFailure::Newton {
-                    iterations: 0,
-                    shrink: 0.5,
-                },
-            };
-            extrapolate = false;
-            self.core.progress.statistics.rejected_steps += 1;
-            self.core.memory.last_rejected = true;
-            self.recover(failure, fresh, (t0, y0), h)?;
-        }
-    }
 }

@@ -18,12 +18,12 @@ mod coefficients;
 use nalgebra::SVector;
 
 use self::coefficients::*;
-use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl};
+use super::adaptive::{Adaptive, AdaptiveMethod, ExplicitAttempt};
+use super::control::{resolvable, AdaptiveControl, Mode};
+use super::stiffness::StiffnessTest;
 use crate::error::{StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
-use crate::stepper::{
-    state_rate, Checked, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
-};
+use crate::stepper::{state_rate, Checked, Statistics, StepOutcome};
 use crate::system::VariableMassSystem;
 use crate::tolerance::Tolerance;
 
@@ -31,74 +31,99 @@ use crate::tolerance::Tolerance;
 const STIFFNESS_BOUND: f64 = 6.1;
 
 /// The DOP853 stepper on the state `[q, p, m_s]`.
+pub type Dop853<'a, Sys, const N: usize, const S: usize> = Adaptive<'a, Sys, Dop853State<S>, N, S>;
+
+/// What DOP853 carries from one step to the next ([`Adaptive`]'s method).
 #[derive(Clone, Debug)]
-pub struct Dop853<'a, Sys, const N: usize, const S: usize> {
-    /// The system, the progress, the settings, the controller's memory, the stiffness test.
-    core: Controlled<'a, Sys, S>,
+pub struct Dop853State<const S: usize> {
     /// Whether the three extra stages of the dense output are computed.
     dense: bool,
     /// The coefficients of the dense output over the last accepted step (`CONT` of
     /// `dop853.f`).
     continuous: [SVector<f64, S>; 8],
+    /// Hairer's stiffness test (on stage 12 and the rate at the new state, both at t₀ + h).
+    stiffness: StiffnessTest,
 }
 
-/// One attempted step: the new state, the twelve stages, the state of stage 12 (for the
-/// stiffness test) and the scaled error.
-struct Attempt<const S: usize> {
-    state: SVector<f64, S>,
-    stages: [SVector<f64, S>; 12],
-    stage_12_state: SVector<f64, S>,
-    error: f64,
+impl<const S: usize> Default for Dop853State<S> {
+    /// With the dense output.
+    fn default() -> Self {
+        Self {
+            stiffness: StiffnessTest::default(),
+            dense: true,
+            continuous: [SVector::zeros(); 8],
+        }
+    }
 }
 
-impl<'a, Sys, const N: usize, const S: usize> Dop853<'a, Sys, N, S>
+impl<const N: usize, const S: usize> AdaptiveMethod<N, S> for Dop853State<S> {
+    fn step<Sys: VariableMassSystem<N, S>>(
+        stepper: &mut Dop853<'_, Sys, N, S>,
+    ) -> Result<StepOutcome, StepError<S>> {
+        let (t0, y0, k1) = stepper.core.begin::<N>(8)?;
+        let Mode::Adaptive(control, tolerance) = stepper.core.mode else {
+            let (h, reaches_stop) = stepper
+                .core
+                .progress
+                .next_step(stepper.core.memory.next_step)?;
+            let statistics = &mut stepper.core.progress.statistics;
+            let attempt = attempt(stepper.core.system, statistics, (t0, &y0), &k1, h, None)?;
+            let completion = stepper.complete((t0, &y0), h, &attempt)?;
+            return stepper.accept(h, reaches_stop, &attempt, completion);
+        };
+        loop {
+            let (h, reaches_stop) = stepper.core.attempt_size((t0, &y0))?;
+            let statistics = &mut stepper.core.progress.statistics;
+            let tolerance = Some(&tolerance);
+            let trial = attempt(
+                stepper.core.system,
+                statistics,
+                (t0, &y0),
+                &k1,
+                h,
+                tolerance,
+            );
+            let step = ((t0, &y0), h, reaches_stop);
+            if let Some(outcome) = stepper.control(&control, step, trial)? {
+                return Ok(outcome);
+            }
+        }
+    }
+
+    fn dense_output<Sys: VariableMassSystem<N, S>>(
+        stepper: &Dop853<'_, Sys, N, S>,
+        time: f64,
+    ) -> Option<SVector<f64, S>> {
+        stepper.interpolate(time)
+    }
+}
+
+impl<Sys, const N: usize, const S: usize> Dop853<'_, Sys, N, S>
 where
     Sys: VariableMassSystem<N, S>,
 {
-    /// Starts at `(time, state)`; the state and the control are checked. See
-    /// [`AdaptiveControl::dop853`] for the settings of `dop853.f`.
-    pub fn new(
-        system: &'a Sys,
-        time: f64,
-        state: SVector<f64, S>,
-        control: StepControl,
-    ) -> Result<Self, StepError<S>> {
-        Ok(Self {
-            core: Controlled::new::<N>(system, time, state, control)?,
-            dense: true,
-            continuous: [SVector::zeros(); 8],
-        })
-    }
-
     /// The same stepper without the dense output: three rate evaluations fewer per step
-    /// (12 instead of 15), and [`Stepper::dense_output`] returns `None`.
-    pub fn without_dense_output(self) -> Self {
-        Self {
-            dense: false,
-            ..self
-        }
+    /// (12 instead of 15), and [`Stepper::dense_output`](crate::stepper::Stepper::dense_output) returns `None`.
+    pub fn without_dense_output(mut self) -> Self {
+        self.method.dense = false;
+        self
     }
 
     /// The seventh-order dense output over the last accepted step at `time` (`CONTD8`),
     /// or `None` without dense output. Before the first step it returns the current state.
     pub fn interpolate(&self, time: f64) -> Option<SVector<f64, S>> {
-        if !self.dense {
+        if !self.method.dense {
             return None;
         }
         let h = self.core.memory.last_step;
         if h <= 0.0 {
             return Some(*self.core.progress.state());
         }
-        let c = &self.continuous;
+        let c = &self.method.continuous;
         let s = (time - self.core.progress.previous_time()) / h;
         let s1 = 1.0 - s;
         let inner = c[4] + (c[5] + (c[6] + c[7] * s) * s1) * s;
         Some(c[0] + (c[1] + (c[2] + (c[3] + inner * s1) * s) * s1) * s)
-    }
-
-    /// The size of the step the stepper will try next (0 before the first step).
-    pub fn proposed_step(&self) -> f64 {
-        self.core.memory.next_step
     }
 }
 
@@ -110,7 +135,7 @@ fn attempt<Sys, const N: usize, const S: usize>(
     k1: &SVector<f64, S>,
     h: f64,
     tolerance: Option<&Tolerance>,
-) -> Result<Attempt<S>, StepError<S>>
+) -> Result<ExplicitAttempt<S, 12>, StepError<S>>
 where
     Sys: VariableMassSystem<N, S>,
 {
@@ -144,10 +169,10 @@ where
             error_norm(&fifth, &third, (y0, &y1), tolerance, h)
         }
     };
-    Ok(Attempt {
+    Ok(ExplicitAttempt {
         state: y1,
         stages: k,
-        stage_12_state,
+        stiffness_state: stage_12_state,
         error,
     })
 }
@@ -200,7 +225,7 @@ fn dense_coefficients<Sys, const N: usize, const S: usize>(
     statistics: &mut Statistics,
     (t0, y0): (f64, &SVector<f64, S>),
     h: f64,
-    attempt: &Attempt<S>,
+    attempt: &ExplicitAttempt<S, 12>,
     k13: &SVector<f64, S>,
 ) -> Result<[SVector<f64, S>; 8], StepError<S>>
 where
@@ -267,11 +292,11 @@ where
         &mut self,
         (t0, y0): (f64, &SVector<f64, S>),
         h: f64,
-        attempt: &Attempt<S>,
+        attempt: &ExplicitAttempt<S, 12>,
     ) -> Result<Completion<S>, StepError<S>> {
         let statistics = &mut self.core.progress.statistics;
         let rate = state_rate(self.core.system, statistics, t0 + h, &attempt.state)?;
-        let continuous = if self.dense {
+        let continuous = if self.method.dense {
             let step = (t0, y0);
             Some(dense_coefficients(
                 self.core.system,
@@ -291,18 +316,19 @@ where
         &mut self,
         h: f64,
         reaches_stop: bool,
-        attempt: &Attempt<S>,
+        attempt: &ExplicitAttempt<S, 12>,
         completion: Completion<S>,
     ) -> Result<StepOutcome, StepError<S>> {
         // Stage 12 and the rate at the new state are both at t₀ + h.
         let outcome = self.core.accept_observed::<N>(
             (h, reaches_stop),
             (&attempt.state, &completion.rate),
-            (&attempt.stage_12_state, &attempt.stages[11]),
+            (&attempt.stiffness_state, &attempt.stages[11]),
+            &mut self.method.stiffness,
             STIFFNESS_BOUND,
         )?;
         if let Some(continuous) = completion.continuous {
-            self.continuous = continuous;
+            self.method.continuous = continuous;
         }
         Ok(outcome)
     }
@@ -321,56 +347,7 @@ where
             Err(error)
         }
     }
-}
 
-impl<Sys, const N: usize, const S: usize> Stepper<N, S> for Dop853<'_, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    type System = Sys;
-
-    fn parts(&self) -> (&Sys, &Progress<S>) {
-        (self.core.system, &self.core.progress)
-    }
-
-    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
-        ProgressMut::new(self.core.system, &mut self.core.progress)
-    }
-
-    fn forget_history(&mut self, _: Restarting) {
-        self.core.memory.restart();
-    }
-
-    fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
-        self.interpolate(time)
-    }
-
-    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (t0, y0, k1) = self.core.begin::<N>(8)?;
-        let Mode::Adaptive(control, tolerance) = self.core.mode else {
-            let (h, reaches_stop) = self.core.progress.next_step(self.core.memory.next_step)?;
-            let statistics = &mut self.core.progress.statistics;
-            let attempt = attempt(self.core.system, statistics, (t0, &y0), &k1, h, None)?;
-            let completion = self.complete((t0, &y0), h, &attempt)?;
-            return self.accept(h, reaches_stop, &attempt, completion);
-        };
-        loop {
-            let (h, reaches_stop) = self.core.attempt_size((t0, &y0))?;
-            let statistics = &mut self.core.progress.statistics;
-            let tolerance = Some(&tolerance);
-            let trial = attempt(self.core.system, statistics, (t0, &y0), &k1, h, tolerance);
-            let step = ((t0, &y0), h, reaches_stop);
-            if let Some(outcome) = self.control(&control, step, trial)? {
-                return Ok(outcome);
-            }
-        }
-    }
-}
-
-impl<Sys, const N: usize, const S: usize> Dop853<'_, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
     /// The step-size controller's verdict on an attempted step of size `h` (`dop853.f`):
     /// accepted (its outcome) when its error is at most 1 and the rate at its end and its
     /// dense output can be evaluated, otherwise `None` with a shorter next step; an error
@@ -379,7 +356,7 @@ where
         &mut self,
         control: &AdaptiveControl,
         ((t0, y0), h, reaches_stop): ((f64, &SVector<f64, S>), f64, bool),
-        trial: Result<Attempt<S>, StepError<S>>,
+        trial: Result<ExplicitAttempt<S, 12>, StepError<S>>,
     ) -> Result<Option<StepOutcome>, StepError<S>> {
         // Borrowed, not moved out: a step's stages are a few hundred bytes.
         let attempt = match trial {

@@ -27,12 +27,12 @@
 
 use nalgebra::SVector;
 
-use super::control::{resolvable, AdaptiveControl, Controlled, Mode, StepControl};
+use super::adaptive::{Adaptive, AdaptiveMethod, ExplicitAttempt};
+use super::control::{resolvable, AdaptiveControl, Mode};
+use super::stiffness::StiffnessTest;
 use crate::error::StepError;
 use crate::math::powf;
-use crate::stepper::{
-    state_rate, Checked, Progress, ProgressMut, Restarting, Statistics, StepOutcome, Stepper,
-};
+use crate::stepper::{state_rate, Checked, Statistics, StepOutcome};
 use crate::system::VariableMassSystem;
 use crate::tolerance::Tolerance;
 
@@ -42,41 +42,68 @@ const STIFFNESS_BOUND: f64 = 3.25;
 use super::dp_tableau::*;
 
 /// The Dormand–Prince 5(4) stepper on the state `[q, p, m_s]`.
+pub type DormandPrince<'a, Sys, const N: usize, const S: usize> =
+    Adaptive<'a, Sys, DormandPrinceState<S>, N, S>;
+
+/// What Dormand–Prince carries from one step to the next ([`Adaptive`]'s method).
 #[derive(Clone, Debug)]
-pub struct DormandPrince<'a, Sys, const N: usize, const S: usize> {
-    /// The system, the progress, the settings, the controller's memory and Hairer's
-    /// stiffness test (on stages 6 and 7, both at t₀ + h).
-    core: Controlled<'a, Sys, S>,
+pub struct DormandPrinceState<const S: usize> {
     /// The stages k₁…k₇ of the last accepted step.
     stages: [SVector<f64, S>; 7],
+    /// Hairer's stiffness test (on stages 6 and 7, both at t₀ + h).
+    stiffness: StiffnessTest,
 }
 
-/// One attempted step: the new state, its stages, the state of stage 6 (for the stiffness
-/// test) and its scaled error.
-struct Attempt<const S: usize> {
-    state: SVector<f64, S>,
-    stages: [SVector<f64, S>; 7],
-    stage_6_state: SVector<f64, S>,
-    error: f64,
+impl<const S: usize> Default for DormandPrinceState<S> {
+    fn default() -> Self {
+        Self {
+            stages: [SVector::zeros(); 7],
+            stiffness: StiffnessTest::default(),
+        }
+    }
 }
 
-impl<'a, Sys, const N: usize, const S: usize> DormandPrince<'a, Sys, N, S>
+impl<const N: usize, const S: usize> AdaptiveMethod<N, S> for DormandPrinceState<S> {
+    fn step<Sys: VariableMassSystem<N, S>>(
+        stepper: &mut DormandPrince<'_, Sys, N, S>,
+    ) -> Result<StepOutcome, StepError<S>> {
+        let (t0, y0, k1) = stepper.core.begin::<N>(5)?;
+        loop {
+            let (h, reaches_stop) = stepper.core.attempt_size((t0, &y0))?;
+            let tolerance = match &stepper.core.mode {
+                Mode::Adaptive(_, tolerance) => Some(tolerance),
+                Mode::Fixed(_) => None,
+            };
+            let attempt = DormandPrince::attempt(
+                stepper.core.system,
+                &mut stepper.core.progress.statistics,
+                t0,
+                &y0,
+                &k1,
+                h,
+                tolerance,
+            );
+            let Mode::Adaptive(control, _) = stepper.core.mode else {
+                return stepper.accept(h, reaches_stop, attempt?);
+            };
+            if let Some(outcome) = stepper.control(&control, h, reaches_stop, attempt)? {
+                return Ok(outcome);
+            }
+        }
+    }
+
+    fn dense_output<Sys: VariableMassSystem<N, S>>(
+        stepper: &DormandPrince<'_, Sys, N, S>,
+        time: f64,
+    ) -> Option<SVector<f64, S>> {
+        Some(stepper.interpolate(time))
+    }
+}
+
+impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
 where
     Sys: VariableMassSystem<N, S>,
 {
-    /// Starts at `(time, state)`; the state and the control are checked.
-    pub fn new(
-        system: &'a Sys,
-        time: f64,
-        state: SVector<f64, S>,
-        control: StepControl,
-    ) -> Result<Self, StepError<S>> {
-        Ok(Self {
-            core: Controlled::new::<N>(system, time, state, control)?,
-            stages: [SVector::zeros(); 7],
-        })
-    }
-
     /// The dense output over the last accepted step: the fourth-order continuous extension,
     /// evaluated at `time` (meant for `time` within the step; outside it extrapolates).
     /// Before the first step it returns the current state.
@@ -87,7 +114,7 @@ where
         if h <= 0.0 {
             return *y1;
         }
-        let k = &self.stages;
+        let k = &self.method.stages;
         let theta = (time - self.core.progress.previous_time()) / h;
         let theta1 = 1.0 - theta;
         let difference = y1 - y0;
@@ -95,11 +122,6 @@ where
         let second = difference - k[6] * h - first;
         let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
         y0 + (difference + (first + (second + third * theta1) * theta) * theta1) * theta
-    }
-
-    /// The size of the step the stepper will try next (0 before the first step).
-    pub fn proposed_step(&self) -> f64 {
-        self.core.memory.next_step
     }
 
     /// The six new stages and the new state of a step of size `h` from `(t0, y0)`.
@@ -111,7 +133,7 @@ where
         k1: &SVector<f64, S>,
         h: f64,
         tolerance: Option<&Tolerance>,
-    ) -> Result<Attempt<S>, StepError<S>> {
+    ) -> Result<ExplicitAttempt<S, 7>, StepError<S>> {
         let k1 = *k1;
         let k2 = state_rate(system, statistics, t0 + C2 * h, &(y0 + k1 * (A21 * h)))?;
         let y3 = y0 + (k1 * A31 + k2 * A32) * h;
@@ -133,68 +155,14 @@ where
                 tolerance.norm(&estimate, |i| y0[i].abs().max(y1[i].abs()))
             }
         };
-        Ok(Attempt {
+        Ok(ExplicitAttempt {
             state: y1,
             stages: [k1, k2, k3, k4, k5, k6, k7],
-            stage_6_state: y6,
+            stiffness_state: y6,
             error,
         })
     }
-}
 
-impl<Sys, const N: usize, const S: usize> Stepper<N, S> for DormandPrince<'_, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
-    type System = Sys;
-
-    fn parts(&self) -> (&Sys, &Progress<S>) {
-        (self.core.system, &self.core.progress)
-    }
-
-    fn parts_mut(&mut self) -> ProgressMut<'_, Sys, S> {
-        ProgressMut::new(self.core.system, &mut self.core.progress)
-    }
-
-    fn forget_history(&mut self, _: Restarting) {
-        self.core.memory.restart();
-    }
-
-    fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
-        Some(self.interpolate(time))
-    }
-
-    fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let (t0, y0, k1) = self.core.begin::<N>(5)?;
-        loop {
-            let (h, reaches_stop) = self.core.attempt_size((t0, &y0))?;
-            let tolerance = match &self.core.mode {
-                Mode::Adaptive(_, tolerance) => Some(tolerance),
-                Mode::Fixed(_) => None,
-            };
-            let attempt = Self::attempt(
-                self.core.system,
-                &mut self.core.progress.statistics,
-                t0,
-                &y0,
-                &k1,
-                h,
-                tolerance,
-            );
-            let Mode::Adaptive(control, _) = self.core.mode else {
-                return self.accept(h, reaches_stop, attempt?);
-            };
-            if let Some(outcome) = self.control(&control, h, reaches_stop, attempt)? {
-                return Ok(outcome);
-            }
-        }
-    }
-}
-
-impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
-where
-    Sys: VariableMassSystem<N, S>,
-{
     /// The step-size controller's verdict on an attempted step of size `h`: accepted (its
     /// outcome) when its error is at most 1, otherwise `None` with a shorter next step. A
     /// failed attempt is a step too long as well, unless the step cannot shrink any more.
@@ -203,7 +171,7 @@ where
         control: &AdaptiveControl,
         h: f64,
         reaches_stop: bool,
-        attempt: Result<Attempt<S>, StepError<S>>,
+        attempt: Result<ExplicitAttempt<S, 7>, StepError<S>>,
     ) -> Result<Option<StepOutcome>, StepError<S>> {
         match attempt {
             Ok(attempt) if attempt.error <= 1.0 => self
@@ -242,7 +210,7 @@ where
         control: &AdaptiveControl,
         h: f64,
         reaches_stop: bool,
-        attempt: Attempt<S>,
+        attempt: ExplicitAttempt<S, 7>,
     ) -> Result<StepOutcome, StepError<S>> {
         let error_power = powf(attempt.error, 0.2 - 0.75 * control.beta);
         let next = self
@@ -265,16 +233,17 @@ where
         &mut self,
         h: f64,
         reaches_stop: bool,
-        attempt: Attempt<S>,
+        attempt: ExplicitAttempt<S, 7>,
     ) -> Result<StepOutcome, StepError<S>> {
         // Stages 6 and 7 are both at t₀ + h; stage 7 is the rate at the new state.
         let outcome = self.core.accept_observed::<N>(
             (h, reaches_stop),
             (&attempt.state, &attempt.stages[6]),
-            (&attempt.stage_6_state, &attempt.stages[5]),
+            (&attempt.stiffness_state, &attempt.stages[5]),
+            &mut self.method.stiffness,
             STIFFNESS_BOUND,
         )?;
-        self.stages = attempt.stages;
+        self.method.stages = attempt.stages;
         Ok(outcome)
     }
 }

@@ -1,6 +1,7 @@
 //! The steppers, one per file. Each is generic over the system (monomorphized: no `dyn`, no
 //! allocation per step) and implements [`crate::stepper::Stepper`].
 
+pub mod adaptive;
 pub(crate) mod control;
 pub mod dirk;
 pub mod dop853;
@@ -19,10 +20,11 @@ mod stiffness;
 pub mod taylor;
 pub mod variational;
 
+pub use adaptive::{Adaptive, AdaptiveMethod};
 pub use control::{AdaptiveControl, StepControl};
-pub use dirk::{Dirk, DirkMethod, DirkNewton, DirkTableau};
-pub use dop853::Dop853;
-pub use dormand_prince::DormandPrince;
+pub use dirk::{Dirk, DirkMethod, DirkNewton, DirkState, DirkTableau};
+pub use dop853::{Dop853, Dop853State};
+pub use dormand_prince::{DormandPrince, DormandPrinceState};
 pub use esdirk43::{Esdirk43, Esdirk43Method};
 pub use euler::{EulerMethod, ExplicitEuler};
 pub use fixed::{Fixed, FixedMethod};

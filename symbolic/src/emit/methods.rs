@@ -5,7 +5,7 @@ use quote::{format_ident, quote};
 
 use super::factor::ldlt_solve;
 use super::signature::Method;
-use super::system::{method_item, Emitter, Input};
+use super::system::{count_and_names, method_item, Emitter, Input};
 use crate::expr::Id;
 use crate::mechanics::{Of, VelocitySolve};
 use crate::quantity::Quantity;
@@ -122,15 +122,42 @@ impl Emitter<'_> {
 
     /// `lagrangian(t, velocity_state)`.
     pub(crate) fn lagrangian(&self) -> TokenStream {
-        let docs = self.docs(
-            Quantity::Lagrangian.spec().doc,
-            self.quantity_lines(Quantity::Lagrangian, &[self.d.lagrangian]),
-        );
-        let body = self.body(Input::VelocityState, &[self.d.lagrangian], |mut o| {
-            o.pop().unwrap_or_default()
+        let lagrangian = (Quantity::Lagrangian, self.d.lagrangian);
+        self.quantity_method(Method::Lagrangian, Input::VelocityState, lagrangian, false)
+    }
+
+    /// A method whose value is the scalar `quantity`'s expression `root` of `input`,
+    /// documented by the quantity's registry entry (see [`Self::scalar_method`]).
+    fn quantity_method(
+        &self,
+        method: Method,
+        input: Input,
+        (quantity, root): (Quantity, Id),
+        fallible: bool,
+    ) -> TokenStream {
+        let lines = self.quantity_lines(quantity, &[root]);
+        let docs = self.docs(quantity.spec().doc, lines);
+        self.scalar_method(method, docs, (input, root), fallible)
+    }
+
+    /// A method whose value is the one expression `root` of its input, returned as it is or
+    /// (`fallible`) as `Ok`.
+    fn scalar_method(
+        &self,
+        method: Method,
+        docs: TokenStream,
+        (input, root): (Input, Id),
+        fallible: bool,
+    ) -> TokenStream {
+        let body = self.body(input, &[root], |mut o| {
+            let value = o.pop().unwrap_or_default();
+            if fallible {
+                quote!(Ok(#value))
+            } else {
+                value
+            }
         });
-        let signature = self.signature(Method::Lagrangian);
-        method_item(docs, signature, body)
+        method_item(docs, self.signature(method), body)
     }
 
     /// `accelerations(t, velocity_state)`: q̈ in closed form, or M q̈ = rhs solved by the
@@ -208,12 +235,7 @@ impl Emitter<'_> {
             ),
         };
         let docs = self.docs(Quantity::Energy.spec().doc, [line]);
-        let body = self.body(Input::State, &[root], |mut o| {
-            let h = o.pop().unwrap_or_default();
-            quote!(Ok(#h))
-        });
-        let signature = self.signature(Method::Hamiltonian);
-        method_item(docs, signature, body)
+        self.scalar_method(Method::Hamiltonian, docs, (Input::State, root), true)
     }
 
     /// `canonical_rates(t, state)`: (q̇, d*p/dt) of eq. 14.
@@ -288,16 +310,8 @@ impl Emitter<'_> {
 
     /// `power(t, state)`: the energy-budget dH/dt.
     pub(crate) fn power(&self) -> TokenStream {
-        let docs = self.docs(
-            Quantity::Power.spec().doc,
-            self.quantity_lines(Quantity::Power, &[self.d.power]),
-        );
-        let body = self.body(Input::State, &[self.d.power], |mut o| {
-            let p = o.pop().unwrap_or_default();
-            quote!(Ok(#p))
-        });
-        let signature = self.signature(Method::Power);
-        method_item(docs, signature, body)
+        let power = (Quantity::Power, self.d.power);
+        self.quantity_method(Method::Power, Input::State, power, true)
     }
 
     /// `jacobian(t, state)` from the derivation's blocks, combined with M⁻¹ numerically.
@@ -386,7 +400,6 @@ impl Emitter<'_> {
         }
         let runtime = &self.target.runtime;
         let (_, s_lit, _, _) = self.sizes();
-        let count = Literal::usize_unsuffixed(d.flow_rates.len());
         let docs = self.docs(
             "The flows' rates, ≥ 0 by definition: a run ends where one is negative.",
             d.flow_names
@@ -401,21 +414,9 @@ impl Emitter<'_> {
             });
             quote!(#index => { #body },)
         });
-        let name_arms = d.flow_names.iter().enumerate().map(|(i, name)| {
-            let index = Literal::usize_unsuffixed(i);
-            quote!(#index => ::core::option::Option::Some(#name),)
-        });
+        let count_and_names = count_and_names("flow", d.flow_rates.len(), &d.flow_names);
         quote! {
-            #[inline]
-            fn flow_count(&self) -> usize {
-                #count
-            }
-            fn flow_name(&self, index: usize) -> ::core::option::Option<&str> {
-                match index {
-                    #(#name_arms)*
-                    _ => ::core::option::Option::None,
-                }
-            }
+            #count_and_names
             #docs
             #[inline]
             fn flow_rate(

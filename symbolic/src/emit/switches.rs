@@ -6,7 +6,7 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use super::system::{Emitter, Input};
+use super::system::{count_and_names, Emitter, Input};
 use super::tables::reference;
 use crate::expr::Id;
 use crate::mechanics::TableSwitch;
@@ -25,7 +25,6 @@ impl Emitter<'_> {
         }
         let runtime = &self.target.runtime;
         let (_, s_lit, _, _) = self.sizes();
-        let count = Literal::usize_unsuffixed(switches.len() + tables.len());
         let mut names: Vec<String> = switches.iter().map(|g| self.display(*g)).collect();
         names.extend(tables.iter().map(|s| {
             let table = self.d.pool.table_name(s.table);
@@ -61,18 +60,9 @@ impl Emitter<'_> {
             }
         });
         let anchored = self.anchored(switches, tables, &statics, &table_slots);
-        let indices = (0..names.len()).map(Literal::usize_unsuffixed);
+        let count_and_names = count_and_names("switch", switches.len() + tables.len(), &names);
         quote! {
-            #[inline]
-            fn switch_count(&self) -> usize {
-                #count
-            }
-            fn switch_name(&self, index: usize) -> ::core::option::Option<&str> {
-                match index {
-                    #(#indices => ::core::option::Option::Some(#names),)*
-                    _ => ::core::option::Option::None,
-                }
-            }
+            #count_and_names
             #docs
             #[inline]
             fn switching_functions(

@@ -404,6 +404,26 @@ pub(crate) fn method_item(
     code
 }
 
+/// `<what>_count()` and `<what>_name(index)` of a list of `count` named items (the flows, the
+/// switching functions), the names in their order.
+pub(crate) fn count_and_names(what: &str, count: usize, names: &[String]) -> TokenStream {
+    let (count_method, name_method) = (format_ident!("{what}_count"), format_ident!("{what}_name"));
+    let count = Literal::usize_unsuffixed(count);
+    let indices = (0..names.len()).map(Literal::usize_unsuffixed);
+    quote! {
+        #[inline]
+        fn #count_method(&self) -> usize {
+            #count
+        }
+        fn #name_method(&self, index: usize) -> ::core::option::Option<&str> {
+            match index {
+                #(#indices => ::core::option::Option::Some(#names),)*
+                _ => ::core::option::Option::None,
+            }
+        }
+    }
+}
+
 /// `a, b, c`, the parts moved into place (see [`method_item`]).
 pub(crate) fn comma_separated(parts: Vec<TokenStream>) -> TokenStream {
     let mut list = TokenStream::new();

@@ -332,34 +332,18 @@ impl Builder {
                     self.lower_rigid(rigid, span);
                     self.note_failed_body(&rigid.name.node);
                 }
-                StatementKind::Kinetic(e)
-                | StatementKind::Potential(e)
-                | StatementKind::Lagrangian(e) => {
-                    let kind = match statement.kind {
-                        StatementKind::Kinetic(_) => TermKind::Kinetic,
-                        StatementKind::Potential(_) => TermKind::Potential,
-                        _ => TermKind::Lagrangian,
-                    };
-                    if let Some(value) = self.lower(e) {
-                        self.model.terms.push(Term { kind, value, span });
-                    }
-                }
+                StatementKind::Kinetic(e) => self.lower_term(TermKind::Kinetic, e, span),
+                StatementKind::Potential(e) => self.lower_term(TermKind::Potential, e, span),
+                StatementKind::Lagrangian(e) => self.lower_term(TermKind::Lagrangian, e, span),
                 _ => {}
             }
         }
         for statement in &ast.statements {
             let span = statement.span;
             match &statement.kind {
-                StatementKind::Force(load)
-                | StatementKind::Thrust(load)
-                | StatementKind::Impact(load) => {
-                    let kind = match statement.kind {
-                        StatementKind::Force(_) => LoadKind::Active,
-                        StatementKind::Thrust(_) => LoadKind::Thrust,
-                        _ => LoadKind::Impact,
-                    };
-                    self.lower_load(kind, load, span);
-                }
+                StatementKind::Force(load) => self.lower_load(LoadKind::Active, load, span),
+                StatementKind::Thrust(load) => self.lower_load(LoadKind::Thrust, load, span),
+                StatementKind::Impact(load) => self.lower_load(LoadKind::Impact, load, span),
                 StatementKind::Torque(load) => self.lower_torque(load, span),
                 StatementKind::Outflow(flow) | StatementKind::Inflow(flow) => {
                     let inflow = matches!(statement.kind, StatementKind::Inflow(_));
@@ -373,6 +357,13 @@ impl Builder {
                 }),
                 _ => {}
             }
+        }
+    }
+
+    /// A term of the Lagrangian L = T − V: a `kinetic`, `potential` or `lagrangian` statement.
+    fn lower_term(&mut self, kind: TermKind, e: &ExprNode, span: Span) {
+        if let Some(value) = self.lower(e) {
+            self.model.terms.push(Term { kind, value, span });
         }
     }
 
