@@ -34,6 +34,7 @@ use crate::events::{locate_root, Event, EventAction, EventCondition};
 use crate::run::RunConfig;
 use crate::solution::Record;
 use crate::stepper::{Checked, Statistics, StepOutcome};
+use crate::system::VariableMassSystem;
 use crate::steppers::control::{
     resolvable, AdaptiveControl, ClampedErrors, Controlled, Mode, StepControl,
 };
@@ -104,6 +105,8 @@ struct Attempt<const S: usize, const W: usize> {
     k: [LaneState<S, W>; 7],
     /// The stage states y₂ … y₆ and y₁ (the new state), for the checks.
     y: [LaneState<S, W>; 6],
+    /// The new state y₁ of each lane as the scalar code's vector (`rows`).
+    new_states: [SVector<f64, S>; W],
     /// Whether every stage state and the new state of the lane are finite.
     finite: [bool; W],
     /// The scaled error of each lane.
@@ -129,21 +132,18 @@ pub fn run_lanes<Sys, const N: usize, const S: usize, const W: usize>(
 where
     Sys: LaneSystem<N, S, W>,
 {
-    run_lanes_with(jobs, control, config, Kernel::detect())
+    run_lanes_with(jobs, control, config, LaneKernel::Detected)
 }
 
-/// [`run_lanes`] with the lanes' arithmetic compiled for the build's target only, never
-/// AVX: for tests of that path on a CPU that has AVX.
+/// Which compilation of the lanes' arithmetic [`run_lanes_with`] runs: for tests of the
+/// portable path on a CPU that has AVX.
 #[doc(hidden)]
-pub fn run_lanes_portable<Sys, const N: usize, const S: usize, const W: usize>(
-    jobs: &[LaneJob<'_, Sys, S>],
-    control: StepControl,
-    config: &RunConfig,
-) -> Vec<Result<LaneEnd<S>, StepError<S>>>
-where
-    Sys: LaneSystem<N, S, W>,
-{
-    run_lanes_with(jobs, control, config, Kernel::Portable)
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LaneKernel {
+    /// AVX where the CPU has it, otherwise the build's target (what [`run_lanes`] runs).
+    Detected,
+    /// The build's target only (SSE2 in a default x86-64 build), never AVX.
+    Portable,
 }
 
 /// Which compilation of the lanes' arithmetic runs.
@@ -157,25 +157,29 @@ enum Kernel {
 }
 
 impl Kernel {
-    /// AVX where the CPU has it, otherwise the build's target.
-    fn detect() -> Self {
+    /// AVX where the CPU has it and `asked` allows, otherwise the build's target.
+    fn detect(asked: LaneKernel) -> Self {
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
-        if std::is_x86_feature_detected!("avx") {
+        if asked == LaneKernel::Detected && std::is_x86_feature_detected!("avx") {
             return Self::Avx;
         }
+        let _ = asked;
         Self::Portable
     }
 }
 
-fn run_lanes_with<Sys, const N: usize, const S: usize, const W: usize>(
+/// [`run_lanes`] with the lanes' arithmetic compiled as `kernel` says.
+#[doc(hidden)]
+pub fn run_lanes_with<Sys, const N: usize, const S: usize, const W: usize>(
     jobs: &[LaneJob<'_, Sys, S>],
     control: StepControl,
     config: &RunConfig,
-    kernel: Kernel,
+    kernel: LaneKernel,
 ) -> Vec<Result<LaneEnd<S>, StepError<S>>>
 where
     Sys: LaneSystem<N, S, W>,
 {
+    let kernel = Kernel::detect(kernel);
     let mut results: Vec<Option<Result<LaneEnd<S>, StepError<S>>>> =
         (0..jobs.len()).map(|_| None).collect();
     let Some(first) = jobs.first() else {
@@ -233,6 +237,7 @@ where
             }
         }
         attempt.kernel::<Sys, N>(kernel, &parameters, &tolerance);
+        attempt.rows();
         // An empty lane's error is NaN here, so that its proposal costs no `powf`.
         let previous = Lanes::from_fn(|i| {
             lanes[i]
@@ -377,6 +382,7 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
             y0: zero,
             k: [zero; 7],
             y: [zero; 6],
+            new_states: [SVector::zeros(); W],
             finite: [true; W],
             error: Lanes::default(),
         }
@@ -419,6 +425,17 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         self.h.0[index] = h;
         self.reaches_stop[index] = reaches_stop;
         Ok(())
+    }
+
+    /// Reads every lane's new state out of the lanes, all at once right after the kernel:
+    /// read lane by lane just before its acceptance, the vector was loaded while its
+    /// components were still being stored (a store-to-load forwarding stall, the hottest
+    /// spot of the loop in `perf annotate`), where here the `powf`s that follow give the
+    /// stores time to land.
+    fn rows(&mut self) {
+        for (i, row) in self.new_states.iter_mut().enumerate() {
+            *row = lane(&self.y[5], i);
+        }
     }
 
     /// Copies the inputs of lane `from` into lane `to`.
@@ -602,7 +619,7 @@ where
         memory.reject(h / factor, &mut member.core.progress);
         return Ok(None);
     }
-    let y1 = lane(&attempt.y[5], index);
+    let y1 = attempt.new_states[index];
     let progress = &mut member.core.progress;
     let outcome = match progress.accept(member.core.system, h, reaches_stop, y1) {
         Ok(outcome) => outcome,
@@ -652,7 +669,7 @@ where
 {
     let (t0, h) = (attempt.t0.0[index], attempt.h.0[index]);
     if finite {
-        return system.check_state(t0 + h, &lane(&attempt.y[5], index));
+        return system.check_state(t0 + h, &attempt.new_states[index]);
     }
     for (y, c) in attempt.y[..5].iter().zip([C2, C3, C4, C5, 1.0]) {
         let y = lane(y, index);
@@ -661,7 +678,7 @@ where
             return Err(StepError::new(time, y, StepErrorKind::NonFiniteState));
         }
     }
-    system.check_state(t0 + h, &lane(&attempt.y[5], index))
+    system.check_state(t0 + h, &attempt.new_states[index])
 }
 
 /// The run's bookkeeping after an accepted step (`run`'s `drive` and `EventWatch`): the flow
@@ -681,6 +698,7 @@ where
     let (time, state) = (core.progress.time(), *core.progress.state());
     system.check_flows(time, &state)?;
     let start_time = core.progress.previous_time();
+    let state_masses = <Sys as VariableMassSystem<N, S>>::STATE_MASSES;
     // The dense output is read out of the lanes only when an event needs it.
     let mut dense: Option<Dense<S>> = None;
     let mut pending: Vec<(f64, usize)> = Vec::new();
@@ -693,6 +711,10 @@ where
                     // g of one component needs only that component of the interpolant.
                     EventCondition::StateComponent { index, value } if index < S => {
                         dense.component_at(index, t) - value
+                    }
+                    // So does a state mass's: it is component 2N + k (`LaneSystem`).
+                    EventCondition::Mass { index, threshold } if index < state_masses => {
+                        dense.component_at(2 * N + index, t) - threshold
                     }
                     _ => event.value(system, t, &dense.at(t)),
                 },
