@@ -16,6 +16,8 @@
 mod control;
 #[cfg(feature = "run")]
 pub mod dormand_prince;
+#[cfg(feature = "run")]
+mod events;
 
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub};
 
