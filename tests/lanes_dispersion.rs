@@ -348,3 +348,44 @@ fn rejected_and_failed_attempts_go_as_on_the_scalar_path() {
     // Measured: 27 rejections over the six members; the test needs some to mean anything.
     assert!(rejected >= 6, "{rejected} rejections");
 }
+
+/// Events of every kind, several per member, end each lane where they end its scalar run:
+/// a user function recording the 5 km mark (located, then the run goes on), a stop at
+/// 15 km (a state component) and the burnout (a state mass). With burn rates of 25 to
+/// 48 kg/s the burnout comes first for the fast burners (burnout height from the closed
+/// form: 13.5 km at 40 kg/s, 17.5 km at 30 kg/s) and the 15 km stop for the slow ones, so
+/// both stops and the recorded crossing are exercised, on the AVX and the portable path.
+#[test]
+fn several_events_of_every_kind_end_as_on_the_scalar_path() {
+    let start = SVector::<f64, 3>::new(0.0, 0.0, M0);
+    let mark = |_: f64, y: &SVector<f64, 3>| y[0] - 5_000.0;
+    let events = [
+        Event::function(&mark, Direction::Rising, varmass::core::EventAction::Record),
+        Event::state_reaches(0, 15_000.0, Direction::Rising),
+        Event::mass_reaches(0, 400.0),
+    ];
+    let rates: Vec<f64> = (0..24).map(|i| 25.0 + f64::from(i)).collect();
+    let jobs: Vec<_> = rates
+        .iter()
+        .map(|&mu| LaneJob {
+            system: rocket(mu, 2500.0),
+            time: 0.0,
+            state: start,
+            events: &events,
+        })
+        .collect();
+    let config = RunConfig::until(1e4);
+    let mut stopped_by = [0; 3];
+    for kernel in [LaneKernel::Detected, LaneKernel::Portable] {
+        let ends = run_lanes_with::<_, 1, 3, 4>(&jobs, control(), &config, kernel);
+        for (&mu, end) in rates.iter().zip(ends) {
+            let end = end.expect("the lanes' run");
+            let (t, y) = scalar_run(&rocket(mu, 2500.0), (0.0, start), &events).expect("scalar");
+            assert!(end.time.to_bits() == t.to_bits() && same_bits(&end.state, &y), "μ = {mu}");
+            let event = end.event.expect("a stop");
+            stopped_by[event] += 1;
+        }
+    }
+    assert_eq!(stopped_by[0], 0, "the recording event never stops a run");
+    assert!(stopped_by[1] > 0 && stopped_by[2] > 0, "{stopped_by:?}");
+}
