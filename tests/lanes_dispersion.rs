@@ -381,7 +381,10 @@ fn several_events_of_every_kind_end_as_on_the_scalar_path() {
         for (&mu, end) in rates.iter().zip(ends) {
             let end = end.expect("the lanes' run");
             let (t, y) = scalar_run(&rocket(mu, 2500.0), (0.0, start), &events).expect("scalar");
-            assert!(end.time.to_bits() == t.to_bits() && same_bits(&end.state, &y), "μ = {mu}");
+            assert!(
+                end.time.to_bits() == t.to_bits() && same_bits(&end.state, &y),
+                "μ = {mu}"
+            );
             let event = end.event.expect("a stop");
             stopped_by[event] += 1;
         }
