@@ -9,7 +9,9 @@
 
 use varmass::core::ensemble::member_rng;
 use varmass::core::ensemble::rand::RngExt;
-use varmass::core::lanes::{run_lanes, run_lanes_portable, LaneEnd, LaneJob, LaneSystem, Lanes};
+use varmass::core::lanes::{
+    run_lanes, run_lanes_with, LaneEnd, LaneJob, LaneKernel, LaneSystem, Lanes,
+};
 use varmass::prelude::*;
 
 #[variable_mass_system(file = "models/rocket.vms", emit = ["lanes"])]
@@ -72,32 +74,21 @@ fn exact_apex_height((mu, u_e, dry): (f64, f64, f64)) -> f64 {
     y_b + v_b * v_b / (2.0 * G)
 }
 
-/// Which compilation of the lanes' arithmetic a test runs.
-#[derive(Clone, Copy, Debug)]
-enum Kernel {
-    /// AVX where the CPU has it (`run_lanes`).
-    Detected,
-    /// The build's target only (`run_lanes_portable`: SSE2 in a default x86-64 build), the
-    /// path of a CPU without AVX.
-    Portable,
-}
-
-/// `run_lanes` or `run_lanes_portable`, as `kernel` says.
+/// `run_lanes` with the lanes' arithmetic compiled as `kernel` says: `Detected` is AVX
+/// where the CPU has it (`run_lanes`), `Portable` the build's target only (SSE2 in a
+/// default x86-64 build), the path of a CPU without AVX.
 fn run_in<const W: usize>(
-    kernel: Kernel,
+    kernel: LaneKernel,
     jobs: &[LaneJob<'_, Rocket, 3>],
     config: &RunConfig,
 ) -> Vec<Result<LaneEnd<3>, StepError<3>>> {
-    match kernel {
-        Kernel::Detected => run_lanes::<_, 1, 3, W>(jobs, control(), config),
-        Kernel::Portable => run_lanes_portable::<_, 1, 3, W>(jobs, control(), config),
-    }
+    run_lanes_with::<_, 1, 3, W>(jobs, control(), config, kernel)
 }
 
 /// Both phases of `members` rockets in W lanes: the burnout and apex ends.
 fn lanes_flight<const W: usize>(
     members: &[(f64, f64, f64)],
-    kernel: Kernel,
+    kernel: LaneKernel,
 ) -> Vec<(LaneEnd<3>, LaneEnd<3>)> {
     let burnout: Vec<[Event<'_, 3>; 1]> = members
         .iter()
@@ -138,7 +129,7 @@ fn lanes_flight<const W: usize>(
         .collect()
 }
 
-fn check_against_scalar<const W: usize>(count: u64, kernel: Kernel) {
+fn check_against_scalar<const W: usize>(count: u64, kernel: LaneKernel) {
     let members: Vec<_> = (0..count).map(sample).collect();
     let flights = lanes_flight::<W>(&members, kernel);
     let mut worst = 0.0_f64;
@@ -169,19 +160,19 @@ fn check_against_scalar<const W: usize>(count: u64, kernel: Kernel) {
 
 #[test]
 fn four_lanes_give_the_scalar_runs_bit_for_bit() {
-    check_against_scalar::<4>(1000, Kernel::Detected);
+    check_against_scalar::<4>(1000, LaneKernel::Detected);
 }
 
 #[test]
 fn eight_lanes_give_the_scalar_runs_bit_for_bit() {
-    check_against_scalar::<8>(1000, Kernel::Detected);
+    check_against_scalar::<8>(1000, LaneKernel::Detected);
 }
 
 /// The same without AVX, on any CPU: the arithmetic compiled for the build's target.
 #[test]
 fn lanes_without_avx_give_the_scalar_runs_bit_for_bit() {
-    check_against_scalar::<4>(500, Kernel::Portable);
-    check_against_scalar::<8>(500, Kernel::Portable);
+    check_against_scalar::<4>(500, LaneKernel::Portable);
+    check_against_scalar::<8>(500, LaneKernel::Portable);
 }
 
 /// The generated lane state rate is the scalar one in every lane, bit for bit, at states
@@ -288,7 +279,7 @@ fn a_lane_ensemble_equals_the_scalar_ensemble() {
         Ok([y[0], t])
     };
     let fly_chunk = |members: &[(f64, f64, f64)]| -> Vec<Result<[f64; 2], StepError<3>>> {
-        lanes_flight::<4>(members, Kernel::Detected)
+        lanes_flight::<4>(members, LaneKernel::Detected)
             .into_iter()
             .map(|(_, apex)| Ok([apex.state[0], apex.time]))
             .collect()
@@ -339,7 +330,7 @@ fn rejected_and_failed_attempts_go_as_on_the_scalar_path() {
         let jobs = [job(), job(), job()];
         for ends in [
             run_lanes::<_, 1, 3, 4>(&jobs, control_for(h), &config),
-            run_lanes_portable::<_, 1, 3, 4>(&jobs, control_for(h), &config),
+            run_lanes_with::<_, 1, 3, 4>(&jobs, control_for(h), &config, LaneKernel::Portable),
         ] {
             for end in ends {
                 let end = end.expect("burnout in lanes");
@@ -356,4 +347,48 @@ fn rejected_and_failed_attempts_go_as_on_the_scalar_path() {
     }
     // Measured: 27 rejections over the six members; the test needs some to mean anything.
     assert!(rejected >= 6, "{rejected} rejections");
+}
+
+/// Events of every kind, several per member, end each lane where they end its scalar run:
+/// a user function recording the 5 km mark (located, then the run goes on), a stop at
+/// 15 km (a state component) and the burnout (a state mass). With burn rates of 25 to
+/// 48 kg/s the burnout comes first for the fast burners (burnout height from the closed
+/// form: 13.5 km at 40 kg/s, 17.5 km at 30 kg/s) and the 15 km stop for the slow ones, so
+/// both stops and the recorded crossing are exercised, on the AVX and the portable path.
+#[test]
+fn several_events_of_every_kind_end_as_on_the_scalar_path() {
+    let start = SVector::<f64, 3>::new(0.0, 0.0, M0);
+    let mark = |_: f64, y: &SVector<f64, 3>| y[0] - 5_000.0;
+    let events = [
+        Event::function(&mark, Direction::Rising, varmass::core::EventAction::Record),
+        Event::state_reaches(0, 15_000.0, Direction::Rising),
+        Event::mass_reaches(0, 400.0),
+    ];
+    let rates: Vec<f64> = (0..24).map(|i| 25.0 + f64::from(i)).collect();
+    let jobs: Vec<_> = rates
+        .iter()
+        .map(|&mu| LaneJob {
+            system: rocket(mu, 2500.0),
+            time: 0.0,
+            state: start,
+            events: &events,
+        })
+        .collect();
+    let config = RunConfig::until(1e4);
+    let mut stopped_by = [0; 3];
+    for kernel in [LaneKernel::Detected, LaneKernel::Portable] {
+        let ends = run_lanes_with::<_, 1, 3, 4>(&jobs, control(), &config, kernel);
+        for (&mu, end) in rates.iter().zip(ends) {
+            let end = end.expect("the lanes' run");
+            let (t, y) = scalar_run(&rocket(mu, 2500.0), (0.0, start), &events).expect("scalar");
+            assert!(
+                end.time.to_bits() == t.to_bits() && same_bits(&end.state, &y),
+                "μ = {mu}"
+            );
+            let event = end.event.expect("a stop");
+            stopped_by[event] += 1;
+        }
+    }
+    assert_eq!(stopped_by[0], 0, "the recording event never stops a run");
+    assert!(stopped_by[1] > 0 && stopped_by[2] > 0, "{stopped_by:?}");
 }

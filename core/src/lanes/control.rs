@@ -53,29 +53,16 @@ pub(super) fn step_after_acceptance<const W: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::steppers::control::tests::controls;
     use crate::steppers::control::ControlState;
 
     /// Every lane's proposal is the scalar controller's (`pi_after_acceptance` with err^α
     /// by `powf`) to the bit, for errors across the clamp's bound (to a few ulps of it, and
-    /// at 0), previous errors at the floor and above it, and the controls of Hairer's
-    /// defaults, of no PI term (β = 0) and of the largest β.
+    /// at 0), previous errors at the floor and above it, and the controls of the scalar
+    /// controller's tests (Hairer's defaults, no PI term, the largest β, one factor).
     #[test]
     fn lanes_propose_the_scalar_controllers_step() {
-        let default = AdaptiveControl::default();
-        let controls = [
-            default,
-            AdaptiveControl {
-                beta: 0.0,
-                ..AdaptiveControl::dop853()
-            },
-            AdaptiveControl {
-                beta: 0.199,
-                safety: 1.0,
-                max_factor: 3.0,
-                ..default
-            },
-        ];
-        for control in controls {
+        for control in controls() {
             let clamped = ClampedErrors::dormand_prince(&control);
             let alpha = ClampedErrors::exponent(&control);
             let bound = clamped.smallest.to_bits();

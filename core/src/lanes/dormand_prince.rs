@@ -28,12 +28,13 @@ use alloc::vec::Vec;
 use nalgebra::SVector;
 
 use super::control::step_after_acceptance;
+use super::events::after_step;
 use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
 use crate::error::{is_finite, StepError, StepErrorKind};
-use crate::events::{locate_root, Event, EventAction, EventCondition};
+use crate::events::Event;
 use crate::run::RunConfig;
 use crate::solution::Record;
-use crate::stepper::{Checked, Statistics, StepOutcome};
+use crate::stepper::{Checked, Statistics};
 use crate::steppers::control::{
     resolvable, AdaptiveControl, ClampedErrors, Controlled, Mode, StepControl,
 };
@@ -70,13 +71,13 @@ pub struct LaneEnd<const S: usize> {
 }
 
 /// A member in its lane: the scalar controller and the run's bookkeeping.
-struct Member<'s, 'e, Sys, const S: usize> {
-    job: usize,
-    core: Controlled<'s, Sys, S>,
-    events: &'e [Event<'e, S>],
+pub(super) struct Member<'s, 'e, Sys, const S: usize> {
+    pub(super) job: usize,
+    pub(super) core: Controlled<'s, Sys, S>,
+    pub(super) events: &'e [Event<'e, S>],
     /// g of each event at the last point.
-    values: Vec<f64>,
-    steps: usize,
+    pub(super) values: Vec<f64>,
+    pub(super) steps: usize,
     /// How the member's last attempt ended, which says where its next one starts.
     last: Last,
 }
@@ -94,16 +95,18 @@ enum Last {
 }
 
 /// The inputs of one attempt in every lane, and the stages it computes.
-struct Attempt<const S: usize, const W: usize> {
+pub(super) struct Attempt<const S: usize, const W: usize> {
     t0: Lanes<W>,
     h: Lanes<W>,
     /// Whether the attempt was cut to land on the stop time.
     reaches_stop: [bool; W],
     y0: LaneState<S, W>,
     /// k₁ … k₇; k₁ is the rate at y₀ (FSAL).
-    k: [LaneState<S, W>; 7],
+    pub(super) k: [LaneState<S, W>; 7],
     /// The stage states y₂ … y₆ and y₁ (the new state), for the checks.
     y: [LaneState<S, W>; 6],
+    /// The new state y₁ of each lane as the scalar code's vector (`rows`).
+    new_states: [SVector<f64, S>; W],
     /// Whether every stage state and the new state of the lane are finite.
     finite: [bool; W],
     /// The scaled error of each lane.
@@ -129,21 +132,18 @@ pub fn run_lanes<Sys, const N: usize, const S: usize, const W: usize>(
 where
     Sys: LaneSystem<N, S, W>,
 {
-    run_lanes_with(jobs, control, config, Kernel::detect())
+    run_lanes_with(jobs, control, config, LaneKernel::Detected)
 }
 
-/// [`run_lanes`] with the lanes' arithmetic compiled for the build's target only, never
-/// AVX: for tests of that path on a CPU that has AVX.
+/// Which compilation of the lanes' arithmetic [`run_lanes_with`] runs: for tests of the
+/// portable path on a CPU that has AVX.
 #[doc(hidden)]
-pub fn run_lanes_portable<Sys, const N: usize, const S: usize, const W: usize>(
-    jobs: &[LaneJob<'_, Sys, S>],
-    control: StepControl,
-    config: &RunConfig,
-) -> Vec<Result<LaneEnd<S>, StepError<S>>>
-where
-    Sys: LaneSystem<N, S, W>,
-{
-    run_lanes_with(jobs, control, config, Kernel::Portable)
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LaneKernel {
+    /// AVX where the CPU has it, otherwise the build's target (what [`run_lanes`] runs).
+    Detected,
+    /// The build's target only (SSE2 in a default x86-64 build), never AVX.
+    Portable,
 }
 
 /// Which compilation of the lanes' arithmetic runs.
@@ -157,25 +157,29 @@ enum Kernel {
 }
 
 impl Kernel {
-    /// AVX where the CPU has it, otherwise the build's target.
-    fn detect() -> Self {
+    /// AVX where the CPU has it and `asked` allows, otherwise the build's target.
+    fn detect(asked: LaneKernel) -> Self {
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
-        if std::is_x86_feature_detected!("avx") {
+        if asked == LaneKernel::Detected && std::is_x86_feature_detected!("avx") {
             return Self::Avx;
         }
+        let _ = asked;
         Self::Portable
     }
 }
 
-fn run_lanes_with<Sys, const N: usize, const S: usize, const W: usize>(
+/// [`run_lanes`] with the lanes' arithmetic compiled as `kernel` says.
+#[doc(hidden)]
+pub fn run_lanes_with<Sys, const N: usize, const S: usize, const W: usize>(
     jobs: &[LaneJob<'_, Sys, S>],
     control: StepControl,
     config: &RunConfig,
-    kernel: Kernel,
+    kernel: LaneKernel,
 ) -> Vec<Result<LaneEnd<S>, StepError<S>>>
 where
     Sys: LaneSystem<N, S, W>,
 {
+    let kernel = Kernel::detect(kernel);
     let mut results: Vec<Option<Result<LaneEnd<S>, StepError<S>>>> =
         (0..jobs.len()).map(|_| None).collect();
     let Some(first) = jobs.first() else {
@@ -233,6 +237,7 @@ where
             }
         }
         attempt.kernel::<Sys, N>(kernel, &parameters, &tolerance);
+        attempt.rows();
         // An empty lane's error is NaN here, so that its proposal costs no `powf`.
         let previous = Lanes::from_fn(|i| {
             lanes[i]
@@ -341,7 +346,8 @@ where
     })
 }
 
-fn end_at<Sys, const S: usize>(
+/// The member's end at `(time, state)`, stopped by `event` (`None`: at the end time).
+pub(super) fn end_at<Sys, const S: usize>(
     core: &Controlled<'_, Sys, S>,
     time: f64,
     state: SVector<f64, S>,
@@ -377,6 +383,7 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
             y0: zero,
             k: [zero; 7],
             y: [zero; 6],
+            new_states: [SVector::zeros(); W],
             finite: [true; W],
             error: Lanes::default(),
         }
@@ -419,6 +426,17 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         self.h.0[index] = h;
         self.reaches_stop[index] = reaches_stop;
         Ok(())
+    }
+
+    /// Reads every lane's new state out of the lanes, all at once right after the kernel:
+    /// read lane by lane just before its acceptance, the vector was loaded while its
+    /// components were still being stored (a store-to-load forwarding stall, the hottest
+    /// spot of the loop in `perf annotate`), where here the `powf`s that follow give the
+    /// stores time to land.
+    fn rows(&mut self) {
+        for (i, row) in self.new_states.iter_mut().enumerate() {
+            *row = lane(&self.y[5], i);
+        }
     }
 
     /// Copies the inputs of lane `from` into lane `to`.
@@ -602,7 +620,7 @@ where
         memory.reject(h / factor, &mut member.core.progress);
         return Ok(None);
     }
-    let y1 = lane(&attempt.y[5], index);
+    let y1 = attempt.new_states[index];
     let progress = &mut member.core.progress;
     let outcome = match progress.accept(member.core.system, h, reaches_stop, y1) {
         Ok(outcome) => outcome,
@@ -652,7 +670,7 @@ where
 {
     let (t0, h) = (attempt.t0.0[index], attempt.h.0[index]);
     if finite {
-        return system.check_state(t0 + h, &lane(&attempt.y[5], index));
+        return system.check_state(t0 + h, &attempt.new_states[index]);
     }
     for (y, c) in attempt.y[..5].iter().zip([C2, C3, C4, C5, 1.0]) {
         let y = lane(y, index);
@@ -661,133 +679,5 @@ where
             return Err(StepError::new(time, y, StepErrorKind::NonFiniteState));
         }
     }
-    system.check_state(t0 + h, &lane(&attempt.y[5], index))
-}
-
-/// The run's bookkeeping after an accepted step (`run`'s `drive` and `EventWatch`): the flow
-/// check of the new point, the events located on the lane's dense output, the end time.
-fn after_step<Sys, const N: usize, const S: usize, const W: usize>(
-    member: &mut Member<'_, '_, Sys, S>,
-    attempt: &Attempt<S, W>,
-    index: usize,
-    outcome: StepOutcome,
-    config: &RunConfig,
-) -> Result<Option<LaneEnd<S>>, StepError<S>>
-where
-    Sys: LaneSystem<N, S, W>,
-{
-    let core = &member.core;
-    let system = core.system;
-    let (time, state) = (core.progress.time(), *core.progress.state());
-    system.check_flows(time, &state)?;
-    let start_time = core.progress.previous_time();
-    // The dense output is read out of the lanes only when an event needs it.
-    let mut dense: Option<Dense<S>> = None;
-    let mut pending: Vec<(f64, usize)> = Vec::new();
-    for (event_index, (event, before)) in member.events.iter().zip(&mut member.values).enumerate() {
-        let after = event.value(system, time, &state);
-        if event.triggered(*before, after) {
-            let dense = dense.get_or_insert_with(|| Dense::new(attempt, index, core));
-            let located = locate_root(
-                |t| match event.condition {
-                    // g of one component needs only that component of the interpolant.
-                    EventCondition::StateComponent { index, value } if index < S => {
-                        dense.component_at(index, t) - value
-                    }
-                    _ => event.value(system, t, &dense.at(t)),
-                },
-                (start_time, *before),
-                (time, after),
-                config.event_tolerance,
-            );
-            pending.push((located, event_index));
-        }
-        *before = after;
-    }
-    pending.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let events = member.events;
-    let stop = pending
-        .into_iter()
-        .find(|(_, i)| events.get(*i).map(|e| e.action) == Some(EventAction::Stop));
-    if let (Some((hit, event_index)), Some(dense)) = (stop, &dense) {
-        let hit_state = dense.at(hit);
-        system.check_flows(hit, &hit_state)?;
-        return Ok(Some(end_at(core, hit, hit_state, Some(event_index))));
-    }
-    member.steps += 1;
-    if outcome == StepOutcome::ReachedStopTime && time >= config.end_time {
-        return Ok(Some(end_at(core, time, state, None)));
-    }
-    if member.steps >= config.max_steps {
-        let kind = StepErrorKind::TooManySteps {
-            max_steps: config.max_steps,
-        };
-        return Err(StepError::new(time, state, kind));
-    }
-    Ok(None)
-}
-
-/// The dense output over a lane's last accepted step: `DormandPrince::interpolate`.
-/// Its four vectors are the interpolant's coefficients, which do not depend on the time:
-/// computed once, with `interpolate`'s operations, for the several times root finding asks.
-struct Dense<const S: usize> {
-    y0: SVector<f64, S>,
-    y1: SVector<f64, S>,
-    difference: SVector<f64, S>,
-    first: SVector<f64, S>,
-    second: SVector<f64, S>,
-    third: SVector<f64, S>,
-    h: f64,
-    t0: f64,
-}
-
-impl<const S: usize> Dense<S> {
-    fn new<Sys, const W: usize>(
-        attempt: &Attempt<S, W>,
-        index: usize,
-        core: &Controlled<'_, Sys, S>,
-    ) -> Self {
-        let k: [SVector<f64, S>; 7] = core::array::from_fn(|i| lane(&attempt.k[i], index));
-        let (y0, y1) = (*core.progress.previous_state(), *core.progress.state());
-        let h = core.memory.last_step;
-        let difference = y1 - y0;
-        let first = k[0] * h - difference;
-        let second = difference - k[6] * h - first;
-        let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
-        Self {
-            y0,
-            y1,
-            difference,
-            first,
-            second,
-            third,
-            h,
-            t0: core.progress.previous_time(),
-        }
-    }
-
-    /// Component `j` of [`Self::at`], with its operations (each component of `at` is
-    /// computed on its own, so the two agree to the bit).
-    fn component_at(&self, j: usize, time: f64) -> f64 {
-        let h = self.h;
-        if h <= 0.0 {
-            return self.y1[j];
-        }
-        let theta = (time - self.t0) / h;
-        let theta1 = 1.0 - theta;
-        let (difference, first, second) = (self.difference[j], self.first[j], self.second[j]);
-        self.y0[j]
-            + (difference + (first + (second + self.third[j] * theta1) * theta) * theta1) * theta
-    }
-
-    fn at(&self, time: f64) -> SVector<f64, S> {
-        let h = self.h;
-        if h <= 0.0 {
-            return self.y1;
-        }
-        let theta = (time - self.t0) / h;
-        let theta1 = 1.0 - theta;
-        let (difference, first, second) = (self.difference, self.first, self.second);
-        self.y0 + (difference + (first + (second + self.third * theta1) * theta) * theta1) * theta
-    }
+    system.check_state(t0 + h, &attempt.new_states[index])
 }

@@ -16,6 +16,8 @@
 mod control;
 #[cfg(feature = "run")]
 pub mod dormand_prince;
+#[cfg(feature = "run")]
+mod events;
 
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub};
 
@@ -24,7 +26,7 @@ use nalgebra::{ComplexField, RealField, SVector};
 use crate::system::VariableMassSystem;
 
 #[cfg(feature = "run")]
-pub use dormand_prince::{run_lanes, run_lanes_portable, LaneEnd, LaneJob};
+pub use dormand_prince::{run_lanes, run_lanes_with, LaneEnd, LaneJob, LaneKernel};
 
 /// W `f64`s, one per lane, with arithmetic and functions applied lane by lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -293,6 +295,10 @@ pub fn set_lane<const S: usize, const W: usize>(
 /// `emit = [..., "lanes"]` generates (for a model without tables, inputs, `sign` or a
 /// numeric velocity solve). Lane i of [`LaneSystem::state_rate_lanes`] is bit-identical to
 /// [`VariableMassSystem::state_rate`] of the system in lane i.
+///
+/// Its [`VariableMassSystem::mass`] of a state mass k returns the state's component 2N + k
+/// as it is (as generated code does): the lanes locate a state mass's event on that one
+/// component of the interpolant, and rely on it to give the scalar path's bits.
 pub trait LaneSystem<const N: usize, const S: usize, const W: usize>:
     VariableMassSystem<N, S>
 {

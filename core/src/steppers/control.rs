@@ -526,12 +526,13 @@ impl<Sys, const S: usize> Controlled<'_, Sys, S> {
 pub(crate) type Start<const S: usize> = (f64, SVector<f64, S>, SVector<f64, S>);
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    /// The controls the bounds are tried on: Hairer's defaults, no PI term, the largest β,
-    /// a safety of 1 and a factor range of one point.
-    fn controls() -> [AdaptiveControl; 4] {
+    /// The controls the bounds are tried on (here and by the lanes' controller): Hairer's
+    /// defaults, no PI term, the largest β with a safety of 1 and a narrower factor range,
+    /// and a factor range of one point.
+    pub(crate) fn controls() -> [AdaptiveControl; 4] {
         let default = AdaptiveControl::default();
         [
             default,
@@ -542,6 +543,7 @@ mod tests {
             AdaptiveControl {
                 beta: 0.199,
                 safety: 1.0,
+                max_factor: 3.0,
                 ..default
             },
             AdaptiveControl {
