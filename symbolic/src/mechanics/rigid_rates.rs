@@ -11,6 +11,7 @@
 //! ```text
 //! T = ½ m |w|² + ½ ωᵀ I ω
 //! ∂T/∂r_O = 0,   ∂T/∂η_k = ∂ω/∂η_k · h + E_k · (P × V)          (∂Rᵀ/∂η_k ṙ_O = −E_k × V)
+//! P × V = m (ω × c) × V
 //! ```
 //!
 //! Every projection onto an angle is E_k · (a body vector): for a body point a,
@@ -24,7 +25,7 @@
 //! ```text
 //! G   = P × V + Σ s_j Q_j a_j × u_j + I × w + κ c × w,   I = d(m c)/dt − Σ s_j Q_j a_j
 //! B   = Σ s_j Q_j u_j + κ w
-//! ṗ_r = ∂L₀/∂r_O + Q*_r + R B
+//! ṗ_r = ∂L₀/∂r_O + Q*_r + R B,   R (V + t) written ṙ_O + R t
 //! ṗ_η = ∂L₀/∂η + Q*_η + [∂ω/∂η_k · h]_k + Eᵀ G
 //! ```
 //!
@@ -52,6 +53,23 @@ struct BodyFlow {
     point: Vec<Id>,
     /// u_j in body axes.
     velocity: Vec<Id>,
+    /// How R u_j is written in ṗ_r.
+    world: Carried,
+}
+
+/// R u_j without the round trip R Rᵀ.
+enum Carried {
+    /// u_j = V + t: R u_j = ṙ_O + R t, with t (body axes) held here.
+    Material(Vec<Id>),
+    /// An absolute velocity, world components.
+    Absolute(Vec<Id>),
+}
+
+/// B of the module's comment as ṗ_r reads it: R B = along ṙ_O + R body + world.
+struct Push {
+    along: Id,
+    body: Vec<Id>,
+    world: Vec<Id>,
 }
 
 /// The body's motion in body axes, as functions of q and q̇.
@@ -60,10 +78,10 @@ struct Motion {
     origin: Vec<Id>,
     /// ω.
     omega: Vec<Id>,
+    /// ω × c.
+    turn: Vec<Id>,
     /// w = V + ω × c.
     centre: Vec<Id>,
-    /// P = m w.
-    momentum: Vec<Id>,
     /// h = I ω + c × P.
     angular: Vec<Id>,
 }
@@ -90,11 +108,18 @@ pub(crate) fn body_frame_rates(
     let rigid = model.bodies[0].rigid.clone()?;
     let mass = model.pool.sym(model.masses[body_mass].symbol);
     let pool = &mut model.pool;
-    let twist = P(pool).cross(&motion.momentum, &motion.origin);
+    // P × V = m (ω × c) × V exactly (w − V = ω × c): no cancellation when the body flies
+    // fast and turns slowly, as P × V written out would have.
+    let carried: Vec<Id> = (motion.turn.iter()).map(|x| pool.mul(&[mass, *x])).collect();
+    let twist = P(pool).cross(&carried, &motion.origin);
     let (turning, pushing) = if flows.is_empty() {
         let h = frozen_rate(pool, &motion.angular, &frozen);
-        let p = frozen_rate(pool, &motion.momentum, &frozen);
-        (h, p)
+        // P = m V + m ω × c, V free of the frozen symbols.
+        let along = frozen_rate(pool, &[mass], &frozen)[0];
+        let moment: Vec<Id> = (motion.turn.iter()).map(|x| pool.mul(&[mass, *x])).collect();
+        let body = frozen_rate(pool, &moment, &frozen);
+        let world = vec![pool.int(0); 3];
+        (h, Push { along, body, world })
     } else {
         // κ = ṁ − Σ s_j Q_j.
         let mut balance: Vec<Id> = flows.iter().map(|f| pool.neg(f.signed_rate)).collect();
@@ -107,7 +132,14 @@ pub(crate) fn body_frame_rates(
     let turning = P(pool).sum(&twist, &turning);
     let rest = rest_gradient(model);
     let pool = &mut model.pool;
-    let pushed = mat_vec(pool, &rigid.rotation, &pushing);
+    let turned = mat_vec(pool, &rigid.rotation, &pushing.body);
+    let pushed: Vec<Id> = (0..3)
+        .map(|i| {
+            let rate = pool.sym(model.coordinates[slots[i]].velocity);
+            let along = pool.mul(&[pushing.along, rate]);
+            pool.add(&[along, turned[i], pushing.world[i]])
+        })
+        .collect();
     let mut out = vec![pool.int(0); slots.len()];
     for (k, &slot) in slots.iter().enumerate() {
         let q = model.coordinates[slot].q;
@@ -155,8 +187,8 @@ fn motion(model: &mut Model, slots: &[usize]) -> Option<Motion> {
     Some(Motion {
         origin,
         omega,
+        turn,
         centre: centre_velocity,
-        momentum,
         angular,
     })
 }
@@ -178,27 +210,30 @@ fn body_flows(model: &mut Model, motion: &Motion, flow_rates: &[Id]) -> Option<V
         if moving {
             return None;
         }
-        let material = {
-            let turn = cross(pool, &motion.omega, &point);
-            P(pool).sum(&motion.origin, &turn)
-        };
+        let turn = cross(pool, &motion.omega, &point);
         let in_body = |pool: &mut ExprPool, world: &[Id]| -> Vec<Id> {
             let turned = mat_vec(pool, &back, world);
             turned.into_iter().map(|x| pool.reduce_trig(x)).collect()
         };
-        let velocity = match &flow.velocity {
-            FlowVelocityValue::WithBody => material,
+        let (velocity, world) = match &flow.velocity {
+            FlowVelocityValue::WithBody => {
+                let velocity = P(pool).sum(&motion.origin, &turn);
+                (velocity, Carried::Material(turn))
+            }
             FlowVelocityValue::Relative(v_r) => {
                 let relative = in_body(pool, v_r);
-                P(pool).sum(&material, &relative)
+                let extra = P(pool).sum(&turn, &relative);
+                let velocity = P(pool).sum(&motion.origin, &extra);
+                (velocity, Carried::Material(extra))
             }
-            FlowVelocityValue::Absolute(u) => in_body(pool, u),
+            FlowVelocityValue::Absolute(u) => (in_body(pool, u), Carried::Absolute(u.clone())),
         };
         let signed_rate = if flow.inflow { *rate } else { pool.neg(*rate) };
         flows.push(BodyFlow {
             signed_rate,
             point,
             velocity,
+            world,
         });
     }
     Some(flows)
@@ -213,15 +248,23 @@ fn flow_terms(
     frozen: &[(Symbol, Id)],
     flows: &[BodyFlow],
     kappa: Option<Id>,
-) -> (Vec<Id>, Vec<Id>) {
+) -> (Vec<Id>, Push) {
     let zero = vec![pool.int(0); 3];
-    let (mut turning, mut pushing) = (zero.clone(), zero);
+    let mut turning = zero.clone();
+    let mut along = Vec::new();
+    let (mut body, mut world) = (zero.clone(), zero);
     let moment: Vec<Id> = centre.iter().map(|c| pool.mul(&[mass, *c])).collect();
     let mut internal = frozen_rate(pool, &moment, frozen);
     for flow in flows {
         let carried = cross(pool, &flow.point, &flow.velocity);
         turning = P(pool).sum_scaled(&turning, flow.signed_rate, &carried);
-        pushing = P(pool).sum_scaled(&pushing, flow.signed_rate, &flow.velocity);
+        match &flow.world {
+            Carried::Material(extra) => {
+                along.push(flow.signed_rate);
+                body = P(pool).sum_scaled(&body, flow.signed_rate, extra);
+            }
+            Carried::Absolute(u) => world = P(pool).sum_scaled(&world, flow.signed_rate, u),
+        }
         let minus = pool.neg(flow.signed_rate);
         internal = P(pool).sum_scaled(&internal, minus, &flow.point);
     }
@@ -230,9 +273,11 @@ fn flow_terms(
     if let Some(kappa) = kappa {
         let moved = cross(pool, centre, &motion.centre);
         turning = P(pool).sum_scaled(&turning, kappa, &moved);
-        pushing = P(pool).sum_scaled(&pushing, kappa, &motion.centre);
+        along.push(kappa);
+        body = P(pool).sum_scaled(&body, kappa, &motion.turn);
     }
-    (turning, pushing)
+    let along = pool.add(&along);
+    (turning, Push { along, body, world })
 }
 
 /// ∂L₀/∂q_α for every coordinate, L₀ = L − T the terms of L without a velocity (every
