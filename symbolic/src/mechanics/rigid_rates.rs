@@ -20,11 +20,12 @@
 //! (docs/mechanics.md#flows-at-points) — eq. 14's d*p/dt + Σ φ̇ ∂*p/∂φ, with K cancelling
 //! the frozen quantities' rates — is then, with u_j = Rᵀ u the absolute velocity of flow j
 //! in body axes (V + ω × a_j + Rᵀ v_r,j for a relative velocity), s_j = −1 for an outflow and
-//! +1 for an inflow, and κ = ṁ − Σ s_j Q_j (zero when the mass law is the flows' balance):
+//! +1 for an inflow (ṁ = Σ s_j Q_j, which the derivation requires of a body with flows, so
+//! the ṁ ṙ_c · ∂r_c/∂q terms of K cancel):
 //!
 //! ```text
-//! G   = P × V + Σ s_j Q_j a_j × u_j + I × w + κ c × w,   I = d(m c)/dt − Σ s_j Q_j a_j
-//! B   = Σ s_j Q_j u_j + κ w
+//! G   = P × V + Σ s_j Q_j a_j × u_j + I × w,   I = d(m c)/dt − Σ s_j Q_j a_j
+//! B   = Σ s_j Q_j u_j
 //! ṗ_r = ∂L₀/∂r_O + Q*_r + R B,   R (V + t) written ṙ_O + R t
 //! ṗ_η = ∂L₀/∂η + Q*_η + [∂ω/∂η_k · h]_k + Eᵀ G
 //! ```
@@ -121,13 +122,7 @@ pub(crate) fn body_frame_rates(
         let world = vec![pool.int(0); 3];
         (h, Push { along, body, world })
     } else {
-        // κ = ṁ − Σ s_j Q_j.
-        let mut balance: Vec<Id> = flows.iter().map(|f| pool.neg(f.signed_rate)).collect();
-        balance.push(mass_rates[body_mass]);
-        let net = pool.add(&balance);
-        let kappa = pool.reduce_trig(net);
-        let kappa = (!pool.is_zero(kappa)).then_some(kappa);
-        flow_terms(pool, &motion, &rigid.centre, mass, &frozen, &flows, kappa)
+        flow_terms(pool, &motion, &rigid.centre, mass, &frozen, &flows)
     };
     let turning = P(pool).sum(&twist, &turning);
     let rest = rest_gradient(model);
@@ -247,7 +242,6 @@ fn flow_terms(
     mass: Id,
     frozen: &[(Symbol, Id)],
     flows: &[BodyFlow],
-    kappa: Option<Id>,
 ) -> (Vec<Id>, Push) {
     let zero = vec![pool.int(0); 3];
     let mut turning = zero.clone();
@@ -270,12 +264,6 @@ fn flow_terms(
     }
     let coupling = cross(pool, &internal, &motion.centre);
     turning = P(pool).sum(&turning, &coupling);
-    if let Some(kappa) = kappa {
-        let moved = cross(pool, centre, &motion.centre);
-        turning = P(pool).sum_scaled(&turning, kappa, &moved);
-        along.push(kappa);
-        body = P(pool).sum_scaled(&body, kappa, &motion.turn);
-    }
     let along = pool.add(&along);
     (turning, Push { along, body, world })
 }
