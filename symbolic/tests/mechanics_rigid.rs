@@ -239,7 +239,7 @@ fn body_frame_momentum_rates_equal_eq_14() {
         potential m*g*z + kappa*cos(b) + sigma*a^2
         torque r: [T1, T2, T3]";
     // Measured worst normwise relative differences: (1) 3.3e-15, (2) 3.9e-15; bound 1e-12
-    // (the brief's; a wrong sign in any one term gives order 1).
+    // (issue 22's tolerance for equivalences; a wrong sign in any one term gives order 1).
     for (name, source) in [("flows, zyx", flows), ("no flows, zxz", no_flows)] {
         let worst = body_frame_difference(source);
         assert!(worst <= 1e-12, "{name}: {worst:e}");
