@@ -105,44 +105,22 @@ pub(crate) fn body_frame_rates(
     let frozen: Vec<(Symbol, Id)> = (model.masses.iter().map(|m| m.symbol))
         .zip(mass_rates.iter().copied())
         .collect();
-    let body_mass = model.bodies[0].mass;
-    let rigid = model.bodies[0].rigid.clone()?;
-    let mass = model.pool.sym(model.masses[body_mass].symbol);
-    let pool = &mut model.pool;
-    // P × V = m (ω × c) × V exactly (w − V = ω × c): no cancellation when the body flies
-    // fast and turns slowly, as P × V written out would have.
-    let carried: Vec<Id> = (motion.turn.iter()).map(|x| pool.mul(&[mass, *x])).collect();
-    let twist = P(pool).cross(&carried, &motion.origin);
-    let (turning, pushing) = if flows.is_empty() {
-        let h = frozen_rate(pool, &motion.angular, &frozen);
-        // P = m V + m ω × c, V free of the frozen symbols.
-        let along = frozen_rate(pool, &[mass], &frozen)[0];
-        let moment: Vec<Id> = (motion.turn.iter()).map(|x| pool.mul(&[mass, *x])).collect();
-        let body = frozen_rate(pool, &moment, &frozen);
-        let world = vec![pool.int(0); 3];
-        (h, Push { along, body, world })
-    } else {
-        flow_terms(pool, &motion, &rigid.centre, mass, &frozen, &flows)
-    };
-    let turning = P(pool).sum(&twist, &turning);
+    let (turning, pushing) = body_vectors(model, &motion, &flows, &frozen)?;
     let rest = rest_gradient(model);
+    let rotation = model.bodies[0].rigid.as_ref()?.rotation.clone();
     let pool = &mut model.pool;
-    let turned = mat_vec(pool, &rigid.rotation, &pushing.body);
-    let pushed: Vec<Id> = (0..3)
-        .map(|i| {
-            let rate = pool.sym(model.coordinates[slots[i]].velocity);
-            let along = pool.mul(&[pushing.along, rate]);
-            pool.add(&[along, turned[i], pushing.world[i]])
-        })
-        .collect();
+    let turned = mat_vec(pool, &rotation, &pushing.body);
     let mut out = vec![pool.int(0); slots.len()];
     for (k, &slot) in slots.iter().enumerate() {
-        let q = model.coordinates[slot].q;
-        let v = model.coordinates[slot].velocity;
+        let (q, v) = (model.coordinates[slot].q, model.coordinates[slot].velocity);
         let mut terms = vec![rest[slot], forces.active[slot]];
         if k < 3 {
-            terms.push(pushed[k]);
+            // (R B)_k = along ṙ_O,k + (R body)_k + world_k.
+            let rate = pool.sym(v);
+            terms.push(pool.mul(&[pushing.along, rate]));
+            terms.extend([turned[k], pushing.world[k]]);
         } else {
+            // [∂ω/∂η_k · h] + E_k · G.
             let axis: Vec<Id> = motion.omega.iter().map(|w| pool.diff(*w, v)).collect();
             let explicit: Vec<Id> = motion.omega.iter().map(|w| pool.diff(*w, q)).collect();
             terms.push(dot(pool, &explicit, &motion.angular));
@@ -151,6 +129,36 @@ pub(crate) fn body_frame_rates(
         out[slot] = pool.add(&terms);
     }
     Some(out)
+}
+
+/// G and B of the module's comment.
+fn body_vectors(
+    model: &mut Model,
+    motion: &Motion,
+    flows: &[BodyFlow],
+    frozen: &[(Symbol, Id)],
+) -> Option<(Vec<Id>, Push)> {
+    let body_mass = model.bodies[0].mass;
+    let centre = model.bodies[0].rigid.as_ref()?.centre.clone();
+    let mass = model.pool.sym(model.masses[body_mass].symbol);
+    let pool = &mut model.pool;
+    // P × V = m (ω × c) × V exactly (w − V = ω × c): no cancellation when the body flies
+    // fast and turns slowly, as P × V written out would have.
+    let moment: Vec<Id> = (motion.turn.iter())
+        .map(|x| pool.mul(&[mass, *x]))
+        .collect();
+    let twist = Vectors(pool).cross(&moment, &motion.origin);
+    let (turning, pushing) = if flows.is_empty() {
+        let h = frozen_rate(pool, &motion.angular, frozen);
+        // P = m V + m ω × c, V free of the frozen symbols.
+        let along = frozen_rate(pool, &[mass], frozen)[0];
+        let body = frozen_rate(pool, &moment, frozen);
+        let world = vec![pool.int(0); 3];
+        (h, Push { along, body, world })
+    } else {
+        flow_terms(pool, motion, &centre, mass, frozen, flows)
+    };
+    Some((Vectors(pool).sum(&twist, &turning), pushing))
 }
 
 /// V, ω, w, P and h of the module's comment.
@@ -171,14 +179,14 @@ fn motion(model: &mut Model, slots: &[usize]) -> Option<Motion> {
         .collect();
     let origin = mat_vec(pool, &transpose(&rotation), &rates);
     let turn = cross(pool, &omega, &centre);
-    let centre_velocity = P(pool).sum(&origin, &turn);
+    let centre_velocity = Vectors(pool).sum(&origin, &turn);
     let momentum: Vec<Id> = centre_velocity
         .iter()
         .map(|w| pool.mul(&[mass, *w]))
         .collect();
     let spin = mat_vec(pool, &inertia, &omega);
     let lever = cross(pool, &centre, &momentum);
-    let angular = P(pool).sum(&spin, &lever);
+    let angular = Vectors(pool).sum(&spin, &lever);
     Some(Motion {
         origin,
         omega,
@@ -212,13 +220,13 @@ fn body_flows(model: &mut Model, motion: &Motion, flow_rates: &[Id]) -> Option<V
         };
         let (velocity, world) = match &flow.velocity {
             FlowVelocityValue::WithBody => {
-                let velocity = P(pool).sum(&motion.origin, &turn);
+                let velocity = Vectors(pool).sum(&motion.origin, &turn);
                 (velocity, Carried::Material(turn))
             }
             FlowVelocityValue::Relative(v_r) => {
                 let relative = in_body(pool, v_r);
-                let extra = P(pool).sum(&turn, &relative);
-                let velocity = P(pool).sum(&motion.origin, &extra);
+                let extra = Vectors(pool).sum(&turn, &relative);
+                let velocity = Vectors(pool).sum(&motion.origin, &extra);
                 (velocity, Carried::Material(extra))
             }
             FlowVelocityValue::Absolute(u) => (in_body(pool, u), Carried::Absolute(u.clone())),
@@ -251,19 +259,19 @@ fn flow_terms(
     let mut internal = frozen_rate(pool, &moment, frozen);
     for flow in flows {
         let carried = cross(pool, &flow.point, &flow.velocity);
-        turning = P(pool).sum_scaled(&turning, flow.signed_rate, &carried);
+        turning = Vectors(pool).sum_scaled(&turning, flow.signed_rate, &carried);
         match &flow.world {
             Carried::Material(extra) => {
                 along.push(flow.signed_rate);
-                body = P(pool).sum_scaled(&body, flow.signed_rate, extra);
+                body = Vectors(pool).sum_scaled(&body, flow.signed_rate, extra);
             }
-            Carried::Absolute(u) => world = P(pool).sum_scaled(&world, flow.signed_rate, u),
+            Carried::Absolute(u) => world = Vectors(pool).sum_scaled(&world, flow.signed_rate, u),
         }
         let minus = pool.neg(flow.signed_rate);
-        internal = P(pool).sum_scaled(&internal, minus, &flow.point);
+        internal = Vectors(pool).sum_scaled(&internal, minus, &flow.point);
     }
     let coupling = cross(pool, &internal, &motion.centre);
-    turning = P(pool).sum(&turning, &coupling);
+    turning = Vectors(pool).sum(&turning, &coupling);
     let along = pool.add(&along);
     (turning, Push { along, body, world })
 }
@@ -309,12 +317,15 @@ fn frozen_rate(pool: &mut ExprPool, x: &[Id], frozen: &[(Symbol, Id)]) -> Vec<Id
 }
 
 /// Vector sums on the pool.
-struct P<'a>(&'a mut ExprPool);
+struct Vectors<'a>(&'a mut ExprPool);
 
-impl P<'_> {
+impl Vectors<'_> {
     /// a + b.
     fn sum(&mut self, a: &[Id], b: &[Id]) -> Vec<Id> {
-        a.iter().zip(b).map(|(x, y)| self.0.add(&[*x, *y])).collect()
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| self.0.add(&[*x, *y]))
+            .collect()
     }
 
     /// a + s b.
