@@ -21,6 +21,7 @@
 //! ```sh
 //! VARMASS_COSTS=expansion cargo bench --profile dev -p varmass-benches --bench costs
 //! VARMASS_COSTS=expansion:rocket_6dof cargo bench --profile dev -p varmass-benches --bench costs
+//! VARMASS_COSTS=rocket_6dof cargo bench -p varmass-benches --bench costs   # the 6-dof row alone
 //! ```
 //!
 //! (the second: the emission rows whose name contains `rocket_6dof`, e.g. to profile one).
@@ -672,6 +673,11 @@ fn main() {
             .map(|rest| rest.trim_start_matches(':').to_string())
     }) {
         expansion_summary(&only);
+        return;
+    }
+    if std::env::var("VARMASS_COSTS").as_deref() == Ok("rocket_6dof") {
+        // The 6-dof row alone (a minute instead of the whole summary; writes no file).
+        rocket_6dof_row();
         return;
     }
     summary();

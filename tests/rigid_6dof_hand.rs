@@ -160,11 +160,11 @@ fn hand_written_and_generated_state_rates_agree() {
         "within 60°: {level:e}; within 80°: {steep:e}, × cos²θ {scaled:e}; \
          backward: hand {backward_hand:e}, generated {backward_generated:e}"
     );
-    // Measured: 1.6e-14 (normwise per block; 5.6e-14 while the generated q̇ came from an
-    // LDLᵀ of M); bound 3e-13, within the issue's 1e-12.
+    // Measured: 2.4e-14 (normwise per block; 1.6e-14 while ṗ was eq. 14 reduced, 5.6e-14
+    // while the generated q̇ came from an LDLᵀ of M); bound 3e-13, within the issue's 1e-12.
     assert!(level <= 3e-13, "relative gap within 60° of level {level:e}");
-    // Measured: 9.1e-15 (the plain gap reaches 2.7e-14 at θ near 80°; 1.4e-12 with the
-    // LDLᵀ); bound 3e-13.
+    // Measured: 1.3e-14 (the plain gap reaches 3.1e-14 at θ near 80°; 9.1e-15 and 2.7e-14
+    // with ṗ as eq. 14 reduced, 1.4e-12 with the LDLᵀ); bound 3e-13.
     assert!(scaled <= 3e-13, "relative gap × cos²θ {scaled:e}");
     // Measured: hand 4.5e-13, generated 1.1e-12 (M q̇ itself rounds: ψ̇ ~ 1/cos θ terms
     // cancel in p_ψ; 5.4e-13 with the LDLᵀ); bound 2e-12.

@@ -18,6 +18,7 @@ use super::linear::Matrix;
 use super::masses::{closed_laws, flow_rates, mass_rates};
 use super::model::{Coordinate, Mass, MassKind, Model};
 use super::outputs::Outputs;
+use super::rigid_rates::body_frame_rates;
 use super::rigid_solve::rigid_velocities;
 use crate::expr::{ExprPool, Id, Symbol};
 use crate::parse::Diagnostic;
@@ -305,7 +306,14 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
     let lagrangian = energies.lagrangian;
     let momenta = momenta(&mut model.pool, lagrangian, &velocities);
     require_regular(model, &momenta.mass_matrix)?;
-    let rates = momentum_rates(model, lagrangian, &forces, &momenta.momenta, &mass_rates);
+    let mut rates = momentum_rates(model, lagrangian, &forces, &momenta.momenta, &mass_rates);
+    if let Some(structured) = body_frame_rates(model, &forces, &mass_rates, &flow_rates) {
+        // The body-frame form of `rigid_rates.rs` where it takes fewer operations.
+        let pool = &model.pool;
+        if pool.operation_count(&structured) < pool.operation_count(&rates.total) {
+            rates.total = structured;
+        }
+    }
     let accelerations = accelerations(model, &momenta, &rates.frozen)?;
     let inverse_mass = accelerations.inverse_mass.as_ref();
     let hamiltonian = hamiltonian(model, lagrangian, &momenta, inverse_mass);

@@ -37,6 +37,7 @@ mod render;
 mod resolve;
 mod rigid;
 mod rigid_forces;
+mod rigid_rates;
 mod rigid_solve;
 mod rotation;
 mod stages;

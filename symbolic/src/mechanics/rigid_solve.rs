@@ -46,33 +46,13 @@ pub struct RigidVelocities {
 /// The closed form above when the model is a lone spatial rigid body in its own
 /// coordinates (see the module's comment), `None` otherwise.
 pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<RigidVelocities> {
-    let [body] = model.bodies.as_slice() else {
+    let slots = own_coordinates(model)?;
+    if !momenta.offset.iter().all(|b| model.pool.is_zero(*b)) {
         return None;
-    };
+    }
+    let body = &model.bodies[0];
     let rigid = body.rigid.as_ref()?;
-    if rigid.origin.len() != 3 || !momenta.offset.iter().all(|b| model.pool.is_zero(*b)) {
-        return None;
-    }
     let velocities: Vec<Symbol> = model.coordinates.iter().map(|c| c.velocity).collect();
-    let pool = &model.pool;
-    let moving_term = (model.terms.iter()).any(|t| pool.degree(t.value, &velocities) != Some(0));
-    // The origin's components are coordinates; ω is a function of the other three's rates.
-    let index_of = |e: &Id| {
-        let s = pool.as_symbol(*e)?;
-        model.coordinates.iter().position(|c| c.q == s)
-    };
-    let origin: Option<Vec<usize>> = rigid.origin.iter().map(index_of).collect();
-    let angles: Vec<usize> = (0..model.coordinates.len())
-        .filter(|i| (rigid.angular_velocity.iter()).any(|w| pool.contains(*w, velocities[*i])))
-        .collect();
-    let mut slots = origin?;
-    slots.extend(&angles);
-    let mut seen = slots.clone();
-    seen.sort_unstable();
-    seen.dedup();
-    if moving_term || angles.len() != 3 || seen.len() != 6 || model.coordinates.len() != 6 {
-        return None;
-    }
     let (rotation, omega, inertia, centre) = (
         rigid.rotation.clone(),
         rigid.angular_velocity.clone(),
@@ -104,6 +84,41 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
         velocities: out,
         guards,
     })
+}
+
+/// The slots of a lone spatial rigid body's own coordinates, the origin's three then the
+/// three angles (indices into the coordinates), when the model is that body alone: its
+/// position and angles are the coordinates themselves (each once, all of them), and no
+/// other term of L has a velocity in it, so p = ∂T_b/∂q̇ is the body's own momentum.
+pub(crate) fn own_coordinates(model: &Model) -> Option<Vec<usize>> {
+    let [body] = model.bodies.as_slice() else {
+        return None;
+    };
+    let rigid = body.rigid.as_ref()?;
+    if rigid.origin.len() != 3 {
+        return None;
+    }
+    let velocities: Vec<Symbol> = model.coordinates.iter().map(|c| c.velocity).collect();
+    let pool = &model.pool;
+    let moving_term = (model.terms.iter()).any(|t| pool.degree(t.value, &velocities) != Some(0));
+    // The origin's components are coordinates; ω is a function of the other three's rates.
+    let index_of = |e: &Id| {
+        let s = pool.as_symbol(*e)?;
+        model.coordinates.iter().position(|c| c.q == s)
+    };
+    let origin: Option<Vec<usize>> = rigid.origin.iter().map(index_of).collect();
+    let angles: Vec<usize> = (0..model.coordinates.len())
+        .filter(|i| (rigid.angular_velocity.iter()).any(|w| pool.contains(*w, velocities[*i])))
+        .collect();
+    let mut slots = origin?;
+    slots.extend(&angles);
+    let mut seen = slots.clone();
+    seen.sort_unstable();
+    seen.dedup();
+    if moving_term || angles.len() != 3 || seen.len() != 6 || model.coordinates.len() != 6 {
+        return None;
+    }
+    Some(slots)
 }
 
 /// E = ∂ω/∂η̇ and E⁻¹ = adj(E)/det E, reduced.
@@ -174,7 +189,7 @@ fn solve(
 }
 
 /// a × b.
-fn cross(pool: &mut ExprPool, a: &[Id], b: &[Id]) -> Vec<Id> {
+pub(super) fn cross(pool: &mut ExprPool, a: &[Id], b: &[Id]) -> Vec<Id> {
     (0..3)
         .map(|i| {
             let (j, k) = ((i + 1) % 3, (i + 2) % 3);
