@@ -10,6 +10,7 @@ mod expression;
 mod factor;
 mod inputs;
 mod lanes;
+mod lex;
 mod methods;
 mod signature;
 mod stops;
