@@ -110,12 +110,17 @@ impl ExprPool {
         let Some(c) = factors.first().and_then(|f| self.node(*f).number()) else {
             return (Number::ONE, t);
         };
+        // Split once per pool: splitting again would only look up the rest's node.
+        if let Some(&known) = self.splits.get(&t) {
+            return known;
+        }
         let rest: Vec<Id> = factors.iter().skip(1).copied().collect();
         let rest = match rest.as_slice() {
             [single] => *single,
             // Already sorted and collected: still canonical without the coefficient.
             _ => self.intern(Node::Mul(rest.into_boxed_slice())),
         };
+        self.splits.insert(t, (c, rest));
         (c, rest)
     }
 
