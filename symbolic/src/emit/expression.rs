@@ -30,12 +30,19 @@ fn symbol_name(pool: &ExprPool, s: Symbol) -> String {
     }
 }
 
-/// Rust source text parsed into tokens. The generated code is printed as text and lexed
+/// Rust source text turned into tokens. The generated code is printed as text and lexed
 /// once per block instead of being assembled from many small token streams: proc macros
 /// run unoptimized, where every `quote!` of a printed child clones its tokens into the
 /// parent (and, inside the compiler, every token is a call through the proc-macro bridge).
-/// The text always lexes; should it not, the expansion reports it instead of panicking.
+/// The text is read by [`lex`](super::lex::lex), which builds the tokens directly, and by
+/// `proc_macro2`'s general lexer only if it holds something `lex` does not read. The text
+/// always lexes; should it not, the expansion reports it instead of panicking.
 pub(crate) fn tokens(text: &str) -> TokenStream {
+    #[cfg(test)]
+    super::lex::tests::assert_same(text);
+    if let Some(tokens) = super::lex::lex(text) {
+        return tokens;
+    }
     text.parse().unwrap_or_else(|_| {
         let message = format!("varmass: internal error, generated code does not lex: {text}");
         quote!(::core::compile_error!(#message);)

@@ -10,6 +10,7 @@ mod expression;
 mod factor;
 mod inputs;
 mod lanes;
+mod lex;
 mod methods;
 mod signature;
 mod stops;
@@ -45,7 +46,16 @@ pub fn emit_system_for(
     target: &Target,
     outputs: Outputs,
 ) -> TokenStream {
-    let texts = outputs.derivation.then(|| derivation_texts(d));
+    // The doc comments' texts come from the derivation text's printing walk when there is
+    // one (the quantities do not change below: what follows adds nodes to the pool only).
+    let shown = documented_roots(d);
+    let (texts, shown_texts) = if outputs.derivation {
+        let (texts, shown_texts) = derivation_texts(d, &shown);
+        (Some(texts), shown_texts)
+    } else {
+        (None, d.pool.display_all(&shown))
+    };
+    let shown_texts = shown.iter().copied().zip(shown_texts).collect();
     let velocity_ids = d
         .coordinates
         .iter()
@@ -63,12 +73,6 @@ pub fn emit_system_for(
     let switches = crate::mechanics::switching_functions(d);
     let table_switches = crate::mechanics::table_switches(d);
     let time_tables = crate::mechanics::time_tables(d, &d.code_roots(outputs));
-    let shown = documented_roots(d);
-    let shown_texts = shown
-        .iter()
-        .copied()
-        .zip(d.pool.display_all(&shown))
-        .collect();
     let name = &target.name;
     let runtime = &target.runtime;
     let statics = (d.pool.table_count() > 0).then(|| tables::statics(&d.pool, runtime));
@@ -161,16 +165,17 @@ pub fn emit_system_for(
     }
 }
 
-/// The `DERIVATION` and `DERIVATION_LATEX` constants.
-fn derivation_texts(d: &mut Derivation) -> TokenStream {
-    let (text, latex) = d.to_text_and_latex();
-    quote! {
+/// The `DERIVATION` and `DERIVATION_LATEX` constants, and the DSL text of each of `shown`.
+fn derivation_texts(d: &mut Derivation, shown: &[Id]) -> (TokenStream, Vec<String>) {
+    let (text, latex, shown_texts) = d.to_text_and_latex_showing(shown);
+    let constants = quote! {
         /// The derivation of this system as text, in the order of the paper
         /// (L, p, H, forces, canonical equations, true rates).
         pub const DERIVATION: &'static str = #text;
         /// The derivation of this system as LaTeX (`align*` environments).
         pub const DERIVATION_LATEX: &'static str = #latex;
-    }
+    };
+    (constants, shown_texts)
 }
 
 /// A method's code when it is asked for, nothing otherwise.

@@ -48,6 +48,10 @@ pub struct ExprPool {
     /// them, and interning hashes the node each time); filled on first use, so the order
     /// in which nodes are created does not change.
     small_ints: [Option<Id>; 4],
+    /// The coefficient and rest of every term with a coefficient that a sum split (see
+    /// `split_coefficient`): every sum built splits each of its terms, and the
+    /// trigonometric reduction rebuilds sums of the same terms round after round.
+    pub(super) splits: FxHashMap<Id, (super::node::Number, Id)>,
     /// The model's tables and their derivatives (`table_call.rs`).
     pub(super) tables: Vec<super::table_call::PoolTable>,
     /// The model's inputs: each one's name and argument names (`input_call.rs`).
@@ -88,6 +92,7 @@ impl ExprPool {
             trig_images: FxHashMap::default(),
             expansions: Default::default(),
             small_ints: [None; 4],
+            splits: FxHashMap::default(),
             tables: Vec::new(),
             inputs: Vec::new(),
         }

@@ -19,34 +19,48 @@ impl ExprPool {
                 _ => flat.push(t),
             }
         }
-        // (rest, coefficient) of every non-constant term, in the order met.
-        let mut split: Vec<(Id, Number)> = Vec::with_capacity(flat.len());
+        // (rest, coefficient, term) of every non-constant term, in the order met.
+        let mut split: Vec<(Id, Number, Id)> = Vec::with_capacity(flat.len());
         for t in flat {
             if let Some(n) = self.node(t).number() {
                 constant = constant.add(n);
                 continue;
             }
             let (c, rest) = self.split_coefficient(t);
-            split.push((rest, c));
+            split.push((rest, c, t));
         }
         // Terms in structural order; the sort is stable, so like terms are summed in the
         // order met. (A sorted list instead of a map from rest to coefficient: no hashing.)
-        split.sort_by(|(r1, _), (r2, _)| self.structural_cmp(*r1, *r2));
-        let mut collected: Vec<(Id, Number)> = Vec::with_capacity(split.len());
-        for (rest, c) in split {
+        split.sort_by(|(r1, ..), (r2, ..)| self.structural_cmp(*r1, *r2));
+        // Each rest with its summed coefficient, and the term it came from when no like
+        // term joined it.
+        let mut collected: Vec<(Id, Number, Option<Id>)> = Vec::with_capacity(split.len());
+        for (rest, c, t) in split {
             match collected.last_mut() {
-                Some((last, sum)) if *last == rest => *sum = sum.add(c),
-                _ => collected.push((rest, Number::ZERO.add(c))),
+                Some((last, sum, alone)) if *last == rest => {
+                    *sum = sum.add(c);
+                    *alone = None;
+                }
+                _ => {
+                    let sum = Number::ZERO.add(c);
+                    collected.push((rest, sum, (sum == c).then_some(t)));
+                }
             }
         }
-        collected.retain(|(_, c)| !c.is_zero());
+        collected.retain(|(_, c, _)| !c.is_zero());
         let mut out = Vec::with_capacity(collected.len() + 1);
         let constant = constant.normalized();
         if !constant.is_zero() {
             out.push(self.number(constant));
         }
-        for (rest, c) in collected {
-            let term = self.scale(c, rest);
+        for (rest, c, alone) in collected {
+            // A term that no like term joined is its own `scale(c, rest)` (a canonical term
+            // is its coefficient's node before its other factors): scaling it again would
+            // only look up nodes that exist, so taking it changes no node and no order.
+            let term = match alone {
+                Some(t) => t,
+                None => self.scale(c, rest),
+            };
             out.push(term);
         }
         match out.as_slice() {
@@ -96,12 +110,17 @@ impl ExprPool {
         let Some(c) = factors.first().and_then(|f| self.node(*f).number()) else {
             return (Number::ONE, t);
         };
+        // Split once per pool: splitting again would only look up the rest's node.
+        if let Some(&known) = self.splits.get(&t) {
+            return known;
+        }
         let rest: Vec<Id> = factors.iter().skip(1).copied().collect();
         let rest = match rest.as_slice() {
             [single] => *single,
             // Already sorted and collected: still canonical without the coefficient.
             _ => self.intern(Node::Mul(rest.into_boxed_slice())),
         };
+        self.splits.insert(t, (c, rest));
         (c, rest)
     }
 

@@ -226,7 +226,8 @@ impl Derivation {
     /// every coordinate and parameter, and each line ends with its quantity's unit.
     pub fn to_text(&mut self) -> String {
         let sections = self.sections();
-        self.text_of(&sections)
+        let values = self.pool.display_all(&Self::values(&sections));
+        self.text_of(&sections, values)
     }
 
     /// The whole derivation as LaTeX (`align*` environments, one per section).
@@ -238,8 +239,23 @@ impl Derivation {
     /// [`to_text`](Self::to_text) and [`to_latex`](Self::to_latex) at once: the sections
     /// (with their substitutions into Hamilton form) are built once for both.
     pub fn to_text_and_latex(&mut self) -> (String, String) {
+        let (text, latex, _) = self.to_text_and_latex_showing(&[]);
+        (text, latex)
+    }
+
+    /// [`to_text_and_latex`](Self::to_text_and_latex), and the DSL text of each of `shown`
+    /// (the emitted doc comments) from the same printing walk: the doc comments show the
+    /// quantities the derivation text shows, so printing them apart would print every
+    /// shared subexpression twice.
+    pub fn to_text_and_latex_showing(&mut self, shown: &[Id]) -> (String, String, Vec<String>) {
         let sections = self.sections();
-        (self.text_of(&sections), self.latex_of(&sections))
+        let mut roots = Self::values(&sections);
+        let line_count = roots.len();
+        roots.extend(shown);
+        let mut printed = self.pool.display_all(&roots);
+        let shown_texts = printed.split_off(line_count);
+        let text = self.text_of(&sections, printed);
+        (text, self.latex_of(&sections), shown_texts)
     }
 
     /// The values of every line, in order.
@@ -248,9 +264,10 @@ impl Derivation {
         lines.map(|l| l.value).collect()
     }
 
-    fn text_of(&self, sections: &[Section]) -> String {
-        // One printing walk for every line: the lines share most of their subexpressions.
-        let mut values = self.pool.display_all(&Self::values(sections)).into_iter();
+    /// The text of `sections`, given the printed value of each line in order (printed in
+    /// one walk, [`ExprPool::display_all`]: the lines share most of their subexpressions).
+    fn text_of(&self, sections: &[Section], values: Vec<String>) -> String {
+        let mut values = values.into_iter();
         let mut out = self.units_heading();
         for section in sections {
             let _ = writeln!(out, "{}", section.heading);
