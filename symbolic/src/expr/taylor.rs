@@ -635,6 +635,12 @@ impl TaylorTape {
         prune::written(self)
     }
 
+    /// Every slot the instructions run at every order write: the others (the inputs aside)
+    /// hold constants, whose higher coefficients are 0.
+    pub(crate) fn series_written_slots(&self) -> Vec<usize> {
+        prune::written_in_series(self)
+    }
+
     /// The instructions run once at order 0.
     pub(crate) fn fixed_instructions(&self) -> &[Instr] {
         &self.fixed

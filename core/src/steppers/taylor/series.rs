@@ -17,6 +17,53 @@ pub const LEN: usize = super::MAX_ORDER + 1;
 /// Coefficient arrays of several subexpressions (rows of M, offsets, momenta).
 pub type Arrays<'a> = &'a [&'a [f64; LEN]];
 
+/// The working memory of generated `taylor_coefficients`: one coefficient array (a row) per
+/// subexpression, and M\[0\]'s factor when q̇ is solved order by order. The caller keeps it
+/// between expansions (the [`Taylor`](super::Taylor) stepper owns one), so an expansion
+/// neither allocates nor clears its rows: zeroing every row of a stack buffer of
+/// `LEN`-long arrays at each expansion was two thirds of the instructions of the 3-link
+/// pendulum's step. Generated code writes every row it reads at every order ≤ the
+/// expansion's before reading it, and zeroes the few rows whose higher coefficients must
+/// be 0 (time, held inputs, constants), so what a scratch held before (another system's
+/// rows included) never reaches a result (`tests/taylor_emitted.rs` runs on a scratch
+/// filled with NaN).
+#[derive(Clone, Debug, Default)]
+pub struct Scratch {
+    rows: Vec<[f64; LEN]>,
+    factor: Vec<f64>,
+}
+
+impl Scratch {
+    /// An empty scratch; the first expansion sizes it (the only allocation).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A scratch of `rows` rows and a factor of `factor` entries, every entry `value`: for
+    /// tests that what a scratch held never reaches a result.
+    #[doc(hidden)]
+    pub fn filled(rows: usize, factor: usize, value: f64) -> Self {
+        Self {
+            rows: vec![[value; LEN]; rows],
+            factor: vec![value; factor],
+        }
+    }
+
+    /// The first `F` rows and `factor` entries of the factor, grown (zeroed) if shorter.
+    pub fn parts<const F: usize>(&mut self, factor: usize) -> (&mut [[f64; LEN]; F], &mut [f64]) {
+        if self.rows.len() < F {
+            self.rows.resize(F, [0.0; LEN]);
+        }
+        if self.factor.len() < factor {
+            self.factor.resize(factor, 0.0);
+        }
+        let rows = self.rows.first_chunk_mut::<F>();
+        // `rows` holds at least F rows now.
+        let rows = rows.unwrap_or_else(|| unreachable!("the rows were grown to {F}"));
+        (rows, &mut self.factor[..factor])
+    }
+}
+
 /// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the
 /// range into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)). The sums of
 /// the recurrences are chains of k dependent additions: four independent chains let the
