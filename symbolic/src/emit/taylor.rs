@@ -186,8 +186,9 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
     });
     // The rows written at every order of an expansion before they are read: the series
     // instructions' results, the state, q̇ and the law masses. Every other row (time, held
-    // inputs, constants) is zeroed at each expansion, then its order 0 set: a higher
-    // coefficient read from it must be 0 whatever the scratch held.
+    // inputs, constants) is set at order 0 alone: zeroed when the scratch is new to this
+    // code, so that a higher coefficient read from it is 0 whatever the scratch held
+    // (`series::Scratch`).
     let written: Vec<Ident> = laws
         .series_fields()
         .into_iter()
@@ -259,10 +260,15 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
             }
             let order = coefficients.len().checked_sub(1)?.min(#len - 1);
             let this = self;
-            let (jet, factor) = scratch.parts::<#rows>(#factor_size);
+            /// This code's own type: the scratch knows whether this code used it last.
+            struct Owner;
+            let owner = ::core::any::TypeId::of::<Owner>();
+            let (jet, factor, fresh) = scratch.parts::<#rows>(#factor_size, owner);
             {
                 let [#(#fields),*] = &mut *jet;
-                #(*#zeroed = [0.0f64; #len];)*
+                if fresh {
+                    #(*#zeroed = [0.0f64; #len];)*
+                }
                 i0[0] = t;
                 i0[1] = 1.0;
                 #(#start)*
