@@ -17,8 +17,6 @@ use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, TaylorJet, TaylorTape};
 use varmass_symbolic::mechanics::Derivation;
 
-use super::cholesky::{cholesky_factor, cholesky_substitute};
-
 /// The three tapes and where their inputs and outputs go.
 #[derive(Debug)]
 pub(super) struct TaylorProgram {
@@ -195,7 +193,7 @@ impl TaylorProgram {
             scratch
                 .factor
                 .extend((0..n * n).map(|e| entry(e / n, e % n, 0)));
-            if !cholesky_factor(&mut scratch.factor, n) {
+            if !series::factor_inverted(&mut scratch.factor, n) {
                 return Err(SystemError::SingularMassMatrix);
             }
         }
@@ -211,7 +209,9 @@ impl TaylorProgram {
             let r = get(scratch, 1 + n + a, k) - self.velocities.output(jet, n * n + a, k);
             scratch.rhs.push(r - coupling);
         }
-        if !cholesky_substitute(&scratch.factor, &mut scratch.rhs, n) {
+        // The generated code's solve (`series::solve_velocities`), so the two agree to the bit.
+        series::substitute_inverted(&scratch.factor, &mut scratch.rhs, n);
+        if !scratch.rhs.iter().all(|x| x.is_finite()) {
             return Err(SystemError::SingularMassMatrix);
         }
         for a in 0..n {
