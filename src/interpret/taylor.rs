@@ -17,6 +17,8 @@ use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, TaylorJet, TaylorTape};
 use varmass_symbolic::mechanics::Derivation;
 
+use super::cholesky::{cholesky_factor, cholesky_substitute};
+
 /// The three tapes and where their inputs and outputs go.
 #[derive(Debug)]
 pub(super) struct TaylorProgram {
@@ -193,7 +195,7 @@ impl TaylorProgram {
             scratch
                 .factor
                 .extend((0..n * n).map(|e| entry(e / n, e % n, 0)));
-            if !series::factor_inverted(&mut scratch.factor, n) {
+            if !cholesky_factor(&mut scratch.factor, n) {
                 return Err(SystemError::SingularMassMatrix);
             }
         }
@@ -209,9 +211,7 @@ impl TaylorProgram {
             let r = get(scratch, 1 + n + a, k) - self.velocities.output(jet, n * n + a, k);
             scratch.rhs.push(r - coupling);
         }
-        // The generated code's solve (`series::solve_velocities`), so the two agree to the bit.
-        series::substitute_inverted(&scratch.factor, &mut scratch.rhs, n);
-        if !scratch.rhs.iter().all(|x| x.is_finite()) {
+        if !cholesky_substitute(&scratch.factor, &mut scratch.rhs, n) {
             return Err(SystemError::SingularMassMatrix);
         }
         for a in 0..n {

@@ -10,7 +10,7 @@ use core::any::TypeId;
 
 use nalgebra::{ComplexField, RealField};
 
-use crate::cholesky::factor as cholesky;
+use crate::cholesky::{factor as cholesky, substitute};
 use crate::math::{powf, sqrt};
 
 /// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
@@ -305,46 +305,8 @@ pub fn min_max(a: &[f64; LEN], b: &[f64; LEN], k: usize, larger: bool) -> f64 {
     }
 }
 
-/// M\[0\]'s factor for the series of q̇ (row-major `m`, n × n, in place): Cholesky's L
-/// ([`crate::cholesky::factor`]) with each diagonal entry replaced by its reciprocal, for
-/// [`substitute_inverted`]. `false` when M is not positive definite.
-pub fn factor_inverted(m: &mut [f64], n: usize) -> bool {
-    if !cholesky(m, n) {
-        return false;
-    }
-    for i in 0..n {
-        m[i * n + i] = 1.0 / m[i * n + i];
-    }
-    true
-}
-
-/// Solves L Lᵀ x = b in place (x into `b`) with the factor of [`factor_inverted`]: the
-/// substitutions of `crate::cholesky::substitute`, multiplying by the stored reciprocals
-/// where it divides. Not that function on purpose: the solve of every order lies on the
-/// chain every later order waits for, and its 2n dependent divisions were a fifth of the
-/// 3-link pendulum's expansion (perf; a product's latency is a third to a fifth of a
-/// division's). The run-time tapes call it too, so the two stay bit-identical.
-#[inline(always)]
-pub fn substitute_inverted(l: &[f64], b: &mut [f64], n: usize) {
-    for i in 0..n {
-        let mut value = b[i];
-        for k in 0..i {
-            value -= l[i * n + k] * b[k];
-        }
-        b[i] = value * l[i * n + i];
-    }
-    for i in (0..n).rev() {
-        let mut value = b[i];
-        for k in i + 1..n {
-            value -= l[k * n + i] * b[k];
-        }
-        b[i] = value * l[i * n + i];
-    }
-}
-
 /// Coefficient k of q̇ from M q̇ = p − b, n coordinates: M\[0\] q̇\[k\] = p\[k\] − b\[k\] −
-/// Σⱼ₌₁ᵏ M\[j\] q̇\[k−j\], with M\[0\] factored ([`factor_inverted`], row-major in
-/// `factor`) at k = 0.
+/// Σⱼ₌₁ᵏ M\[j\] q̇\[k−j\], with M\[0\] factored (Cholesky, row-major in `factor`) at k = 0.
 /// `false` when M\[0\] is not positive definite or a result is not finite.
 #[inline(always)]
 pub fn solve_velocities(
@@ -358,7 +320,7 @@ pub fn solve_velocities(
         for (e, f) in factor.iter_mut().enumerate().take(n * n) {
             *f = matrix[e][0];
         }
-        if !factor_inverted(factor, n) {
+        if !cholesky(factor, n) {
             return false;
         }
     }
@@ -373,7 +335,7 @@ pub fn solve_velocities(
         });
         rhs[a] = (momenta[a][k] - offset[a][k]) - coupling;
     }
-    substitute_inverted(factor, &mut rhs, n);
+    substitute(factor, &mut rhs, n);
     for (a, v) in velocities.iter_mut().enumerate().take(n) {
         v[k] = rhs[a];
     }
