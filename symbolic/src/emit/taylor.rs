@@ -12,7 +12,7 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::expr::{Func, Id, Instr, Op, Symbol, TaylorTape};
+use crate::expr::{Func, Instr, Op, Symbol, TaylorTape};
 use crate::mechanics::Derivation;
 
 /// The three stages compiled over one list of inputs: t, q, p, q̇, every mass.
@@ -28,36 +28,23 @@ struct Stages {
 
 fn stages(d: &Derivation) -> Stages {
     let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
-    let laws = d.pool.compile_taylor(&stages.laws, &inputs);
-    let constants = constant_laws(d, &laws, &stages.law_masses, &stages.laws);
-    let roots: [&[Id]; 2] = [&stages.velocities, &stages.rates];
-    let mut later = d
-        .pool
-        .compile_taylor_stages(&roots, &inputs, &constants)
-        .into_iter();
+    let symbols: Vec<Symbol> = stages
+        .law_masses
+        .iter()
+        .map(|m| d.masses[*m].symbol)
+        .collect();
+    let later = [&stages.velocities[..], &stages.rates[..]];
+    let [laws, velocities, rates] =
+        d.pool
+            .compile_taylor_rate(&inputs, (&stages.laws, &symbols), later);
     Stages {
         inputs: inputs.len(),
-        law_masses: stages.law_masses,
-        velocities: later.next().unwrap_or_default(),
-        numeric: stages.numeric,
-        rates: later.next().unwrap_or_default(),
         laws,
+        law_masses: stages.law_masses,
+        velocities,
+        numeric: stages.numeric,
+        rates,
     }
-}
-
-/// The masses whose law depends on no input, each with its law: the later stages compile
-/// them as the constants they are (see `ExprPool::compile_taylor_substituting`). The
-/// interpreter's `TaylorProgram` makes the same choice, so the two stay bit-identical.
-fn constant_laws(
-    d: &Derivation,
-    laws: &TaylorTape,
-    law_masses: &[usize],
-    law_roots: &[Id],
-) -> Vec<(Symbol, Id)> {
-    (0..law_masses.len())
-        .filter(|i| laws.output_is_constant(*i))
-        .map(|i| (d.masses[law_masses[i]].symbol, law_roots[i]))
-        .collect()
 }
 
 /// Names the arrays of one tape: its input slots are the shared `i<n>`, the rest
@@ -399,6 +386,14 @@ fn op(
     let ts = quote!(#rt::steppers::taylor::series);
     let w = names.of(instr.out);
     let n = |s: usize| names.of(s);
+    // `w[k] = series::f(operands…, [w,] k)`: the recurrences whose only result is w, some
+    // reading w's own lower coefficients.
+    let call = |f: &str, operands: &[usize], own: bool| {
+        let f = Ident::new(f, Span::call_site());
+        let operands = operands.iter().map(|s| n(*s));
+        let own = own.then(|| quote!(&*#w,));
+        quote!(#w[#k] = #ts::#f(#(&*#operands,)* #own #k);)
+    };
     match instr.op {
         Op::Const(c) => {
             let c = number(c);
@@ -427,34 +422,13 @@ fn op(
             let (a, scale, offset) = (n(a), number(scale), number(offset));
             quote!(#w[#k] = if #k == 0 { #offset + #scale * #a[0] } else { #scale * #a[#k] };)
         }
-        Op::Mul(a, b) => {
-            let (a, b) = (n(a), n(b));
-            quote!(#w[#k] = #ts::mul(&*#a, &*#b, #k);)
-        }
-        Op::Square(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::square(&*#a, #k);)
-        }
-        Op::Recip(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::recip(&*#a, &*#w, #k);)
-        }
-        Op::Div(a, den) => {
-            let (a, den) = (n(a), n(den));
-            quote!(#w[#k] = #ts::div(&*#a, &*#den, &*#w, #k);)
-        }
-        Op::Sqrt(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::sqrt_of(&*#a, &*#w, #k);)
-        }
-        Op::Pow(a, e) => {
-            let (a, e) = (n(a), n(e));
-            quote!(#w[#k] = #ts::pow(&*#a, &*#e, &*#w, #k);)
-        }
-        Op::Exp(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::exp(&*#a, &*#w, #k);)
-        }
+        Op::Mul(a, b) => call("mul", &[a, b], false),
+        Op::Square(a) => call("square", &[a], false),
+        Op::Recip(a) => call("recip", &[a], true),
+        Op::Div(a, den) => call("div", &[a, den], true),
+        Op::Sqrt(a) => call("sqrt_of", &[a], true),
+        Op::Pow(a, e) => call("pow", &[a, e], true),
+        Op::Exp(a) => call("exp", &[a], true),
         Op::SinCos { a, cos } => {
             let (a, c) = (n(a), n(cos));
             quote!(#ts::sin_cos(&*#a, &mut *#w, &mut *#c, #k, false);)
@@ -482,14 +456,8 @@ fn op(
             let (y, x, den) = (n(y), n(x), n(den));
             quote!(#w[#k] = #ts::atan2(&*#y, &*#x, &*#den, &*#w, #k);)
         }
-        Op::Abs(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::abs(&*#a, #k);)
-        }
-        Op::Sign(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::sign(&*#a, #k);)
-        }
+        Op::Abs(a) => call("abs", &[a], false),
+        Op::Sign(a) => call("sign", &[a], false),
         Op::Min(a, b) | Op::Max(a, b) => {
             let (a, b, larger) = (n(a), n(b), matches!(instr.op, Op::Max(..)));
             quote!(#w[#k] = #ts::min_max(&*#a, &*#b, #k, #larger);)

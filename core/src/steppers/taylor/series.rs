@@ -88,7 +88,10 @@ impl Scratch {
 /// processor overlap them (heyoka sums its recurrences pairwise for the same reason), and
 /// the error bound shrinks with the depth. The tapes' copy
 /// (`varmass_symbolic::expr::taylor::recurrence::sum`) must add in this same order:
-/// `tests/taylor_emitted.rs` holds the two bit-identical.
+/// `tests/taylor_emitted.rs` holds the two bit-identical. Two copies on purpose: the
+/// symbolic crate does not depend on this one (generated code needs the core alone, the
+/// macro the symbolic crate alone), and a crate of its own for ten lines would cost every
+/// build a crate more.
 #[inline(always)]
 pub fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
     let mut s = [0.0f64; 4];
