@@ -1,9 +1,10 @@
-//! `taylor_coefficients(t, state, coefficients)` (`emit = [..., "taylor"]`): the Taylor
-//! recurrences of the state rate as straight-line Rust, one statement per instruction of the
-//! [`TaylorTape`]s of the three stages (the law masses; q̇, in closed form or solved order by
-//! order; ṗ and ṁ of the state masses, over the slots of q̇'s stage), inside one loop over
-//! the order k. Every
-//! subexpression is a stack array of its coefficients, shared subexpressions computed once;
+//! `taylor_coefficients(t, state, coefficients, scratch)` (`emit = [..., "taylor"]`): the
+//! Taylor recurrences of the state rate as straight-line Rust, one statement per instruction
+//! of the [`TaylorTape`]s of the three stages (the law masses; q̇, in closed form or solved
+//! order by order; ṗ and ṁ of the state masses, over the slots of q̇'s stage), inside one
+//! loop over the order k. Every subexpression is a row of coefficients of the caller's
+//! scratch (`series::Scratch`, kept between expansions, never cleared: see there why it
+//! need not be), bound to a local by name, shared subexpressions computed once;
 //! each statement calls the runtime's recurrence for its operation
 //! (`steppers::taylor::series`), so the formulas live in one place at run time and generated
 //! code stays small. The stages and the loop are those of `varmass::interpret`'s Taylor
