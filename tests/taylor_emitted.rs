@@ -5,6 +5,7 @@
 //! coordinates, abs, sqrt and the trigonometric pairs), and order 1 equal to the generated
 //! state rate.
 
+use varmass::core::steppers::taylor::series::Scratch;
 use varmass::interpret::Program;
 use varmass::prelude::*;
 use varmass::symbolic::mechanics::{derive, Parameters};
@@ -73,9 +74,32 @@ where
     let y0 = SVector::<f64, S>::from_column_slice(&state);
     let mut generated = [SVector::<f64, S>::zeros(); ORDER + 1];
     system
-        .taylor_coefficients(t, &y0, &mut generated)
+        .taylor_coefficients(t, &y0, &mut generated, &mut Scratch::new())
         .expect("emitted")
         .unwrap();
+    // What a scratch held never reaches the result: filled with NaN (more rows than any of
+    // these systems has), it gives the same bits, so every row read was written first or
+    // zeroed.
+    let mut poisoned = [SVector::<f64, S>::zeros(); ORDER + 1];
+    system
+        .taylor_coefficients(
+            t,
+            &y0,
+            &mut poisoned,
+            &mut Scratch::filled(4096, 64, f64::NAN),
+        )
+        .expect("emitted")
+        .unwrap();
+    for (k, (a, b)) in generated.iter().zip(&poisoned).enumerate() {
+        let same = a
+            .iter()
+            .zip(b.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits());
+        assert!(
+            same,
+            "{file}: order {k} read a row before writing it: {a} vs {b}"
+        );
+    }
     // Order 1 is the generated state rate (other generated code): equal to rounding.
     let rate = system.state_rate(t, &y0).unwrap();
     assert!(
@@ -206,7 +230,9 @@ fn a_system_without_taylor_emitted_has_none() {
     };
     let y0 = SVector::<f64, 2>::new(1.2, 5.2);
     let mut c = [SVector::<f64, 2>::zeros(); 3];
-    assert!(plain.taylor_coefficients(0.0, &y0, &mut c).is_none());
+    assert!(plain
+        .taylor_coefficients(0.0, &y0, &mut c, &mut Scratch::new())
+        .is_none());
     match Taylor::new(&plain, 0.0, y0, TaylorControl::default()) {
         Err(error) => assert!(matches!(
             error.kind,

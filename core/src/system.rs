@@ -366,12 +366,15 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// [`Taylor`](crate::steppers::Taylor) stepper integrates with. `None` when the system
     /// does not provide them, the default (generated code provides them with
     /// `emit = [..., "taylor"]`; a run-time model always does), and the stepper then refuses
-    /// the system at construction.
+    /// the system at construction. `scratch` is the expansion's working memory, kept by the
+    /// caller between calls so that an expansion neither allocates nor clears it (what it
+    /// held before never reaches the result).
     fn taylor_coefficients(
         &self,
         _t: f64,
         _state: &SVector<f64, S>,
         _coefficients: &mut [SVector<f64, S>],
+        _scratch: &mut crate::steppers::taylor::series::Scratch,
     ) -> Option<Result<(), SystemError>> {
         None
     }

@@ -293,6 +293,8 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         t: f64,
         state: &SVector<f64, S>,
         coefficients: &mut [SVector<f64, S>],
+        // The tapes keep their own jet (`TaylorProgram`'s scratch).
+        _: &mut varmass_core::steppers::taylor::series::Scratch,
     ) -> Option<Result<(), SystemError>> {
         let order = coefficients.len().checked_sub(1)?;
         Some(

@@ -14,7 +14,7 @@ use std::cell::RefCell;
 
 use varmass_core::steppers::taylor::series;
 use varmass_core::SystemError;
-use varmass_symbolic::expr::{Id, Symbol, TaylorJet, TaylorTape};
+use varmass_symbolic::expr::{Symbol, TaylorJet, TaylorTape};
 use varmass_symbolic::mechanics::Derivation;
 
 use super::cholesky::{cholesky_factor, cholesky_substitute};
@@ -57,28 +57,25 @@ impl TaylorProgram {
     /// Compiles the stages of `d` with the parameter environment `env`.
     pub(super) fn new(d: &Derivation, env: &[f64]) -> Self {
         let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
-        let laws = d.pool.compile_taylor(&stages.laws, &inputs);
-        // Masses whose law depends on no input are compiled as the constants they are in
-        // the later stages, as the emitted code does (`emit/taylor.rs`'s `constant_laws`).
-        let constants: Vec<(Symbol, Id)> = (0..stages.law_masses.len())
-            .filter(|i| laws.output_is_constant(*i))
-            .map(|i| (d.masses[stages.law_masses[i]].symbol, stages.laws[i]))
+        let symbols: Vec<Symbol> = stages
+            .law_masses
+            .iter()
+            .map(|m| d.masses[*m].symbol)
             .collect();
-        // The rates over q̇'s slots: what q̇ computed is not computed again.
-        let roots: [&[Id]; 2] = [&stages.velocities, &stages.rates];
-        let mut later = d
-            .pool
-            .compile_taylor_stages(&roots, &inputs, &constants)
-            .into_iter();
+        // The emitted method's stages (`ExprPool::compile_taylor_rate`): the same choices.
+        let later = [&stages.velocities[..], &stages.rates[..]];
+        let [laws, velocities, rates] =
+            d.pool
+                .compile_taylor_rate(&inputs, (&stages.laws, &symbols), later);
         Self {
             n: d.coordinates.len(),
             masses: d.masses.len(),
             state_masses: d.state_mass_count(),
             held: d.held().len(),
             law_masses: stages.law_masses,
-            velocities: later.next().unwrap_or_default(),
+            velocities,
             numeric: stages.numeric,
-            rates: later.next().unwrap_or_default(),
+            rates,
             laws,
             env: env.to_vec(),
             scratch: RefCell::new(Scratch::default()),

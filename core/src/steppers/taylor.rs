@@ -131,6 +131,8 @@ pub struct Taylor<'a, Sys, const N: usize, const S: usize> {
     /// (`[1]`): fixed by the tolerances, so computed once (a logarithm and an exponential
     /// per step were a tenth of the sled's step).
     rules: [(usize, f64); 2],
+    /// The expansions' working memory, kept from step to step.
+    scratch: series::Scratch,
 }
 
 impl<'a, Sys, const N: usize, const S: usize> Taylor<'a, Sys, N, S>
@@ -150,7 +152,8 @@ where
         let control = control.validated().map_err(|e| e.at(time, &state))?;
         let progress = Progress::new(system, time, state)?;
         let mut coefficients = [SVector::zeros(); MAX_ORDER + 1];
-        match system.taylor_coefficients(time, &state, &mut coefficients[..2]) {
+        let mut scratch = series::Scratch::new();
+        match system.taylor_coefficients(time, &state, &mut coefficients[..2], &mut scratch) {
             None => {
                 return Err(StepError::invalid_configuration(
                     time,
@@ -178,6 +181,7 @@ where
                 } => [rule(absolute_tolerance), rule(relative_tolerance)],
                 TaylorControl::Fixed { .. } => [(2, 0.0); 2],
             },
+            scratch,
         })
     }
 
@@ -233,9 +237,12 @@ where
     fn expand(&mut self, order: usize) -> Result<(), StepError<S>> {
         let (t0, y0) = (self.progress.time(), *self.progress.state());
         self.progress.statistics.rate_evaluations += 1;
-        let result = self
-            .system
-            .taylor_coefficients(t0, &y0, &mut self.coefficients[..=order]);
+        let result = self.system.taylor_coefficients(
+            t0,
+            &y0,
+            &mut self.coefficients[..=order],
+            &mut self.scratch,
+        );
         match result {
             Some(Ok(())) => {}
             Some(Err(error)) => return Err(StepError::from_system(self.system, error, t0, &y0)),

@@ -52,6 +52,7 @@ impl VariableMassSystem<1, 2> for Oscillator {
         _: f64,
         state: &SVector<f64, 2>,
         c: &mut [SVector<f64, 2>],
+        _: &mut varmass_core::steppers::taylor::series::Scratch,
     ) -> Option<Result<(), SystemError>> {
         super::taylor::oscillator(self.mass, self.stiffness, state, c);
         Some(Ok(()))
@@ -120,6 +121,7 @@ impl VariableMassSystem<2, 4> for Kepler {
         _: f64,
         state: &SVector<f64, 4>,
         c: &mut [SVector<f64, 4>],
+        _: &mut varmass_core::steppers::taylor::series::Scratch,
     ) -> Option<Result<(), SystemError>> {
         if state[0] == 0.0 {
             return Some(Err(SystemError::SingularMassMatrix));
@@ -198,6 +200,7 @@ impl VariableMassSystem<1, 2> for Sled {
         _: f64,
         state: &SVector<f64, 2>,
         c: &mut [SVector<f64, 2>],
+        _: &mut varmass_core::steppers::taylor::series::Scratch,
     ) -> Option<Result<(), SystemError>> {
         let parameters = (self.initial_mass, self.accretion, self.drive());
         super::taylor::sled(parameters, state, c);

@@ -1,9 +1,10 @@
-//! `taylor_coefficients(t, state, coefficients)` (`emit = [..., "taylor"]`): the Taylor
-//! recurrences of the state rate as straight-line Rust, one statement per instruction of the
-//! [`TaylorTape`]s of the three stages (the law masses; q̇, in closed form or solved order by
-//! order; ṗ and ṁ of the state masses, over the slots of q̇'s stage), inside one loop over
-//! the order k. Every
-//! subexpression is a stack array of its coefficients, shared subexpressions computed once;
+//! `taylor_coefficients(t, state, coefficients, scratch)` (`emit = [..., "taylor"]`): the
+//! Taylor recurrences of the state rate as straight-line Rust, one statement per instruction
+//! of the [`TaylorTape`]s of the three stages (the law masses; q̇, in closed form or solved
+//! order by order; ṗ and ṁ of the state masses, over the slots of q̇'s stage), inside one
+//! loop over the order k. Every subexpression is a row of coefficients of the caller's
+//! scratch (`series::Scratch`, kept between expansions, never cleared: see there why it
+//! need not be), bound to a local by name, shared subexpressions computed once;
 //! each statement calls the runtime's recurrence for its operation
 //! (`steppers::taylor::series`), so the formulas live in one place at run time and generated
 //! code stays small. The stages and the loop are those of `varmass::interpret`'s Taylor
@@ -12,7 +13,7 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::expr::{Func, Id, Instr, Op, Symbol, TaylorTape};
+use crate::expr::{Func, Instr, Op, Symbol, TaylorTape};
 use crate::mechanics::Derivation;
 
 /// The three stages compiled over one list of inputs: t, q, p, q̇, every mass.
@@ -28,36 +29,23 @@ struct Stages {
 
 fn stages(d: &Derivation) -> Stages {
     let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
-    let laws = d.pool.compile_taylor(&stages.laws, &inputs);
-    let constants = constant_laws(d, &laws, &stages.law_masses, &stages.laws);
-    let roots: [&[Id]; 2] = [&stages.velocities, &stages.rates];
-    let mut later = d
-        .pool
-        .compile_taylor_stages(&roots, &inputs, &constants)
-        .into_iter();
+    let symbols: Vec<Symbol> = stages
+        .law_masses
+        .iter()
+        .map(|m| d.masses[*m].symbol)
+        .collect();
+    let later = [&stages.velocities[..], &stages.rates[..]];
+    let [laws, velocities, rates] =
+        d.pool
+            .compile_taylor_rate(&inputs, (&stages.laws, &symbols), later);
     Stages {
         inputs: inputs.len(),
-        law_masses: stages.law_masses,
-        velocities: later.next().unwrap_or_default(),
-        numeric: stages.numeric,
-        rates: later.next().unwrap_or_default(),
         laws,
+        law_masses: stages.law_masses,
+        velocities,
+        numeric: stages.numeric,
+        rates,
     }
-}
-
-/// The masses whose law depends on no input, each with its law: the later stages compile
-/// them as the constants they are (see `ExprPool::compile_taylor_substituting`). The
-/// interpreter's `TaylorProgram` makes the same choice, so the two stay bit-identical.
-fn constant_laws(
-    d: &Derivation,
-    laws: &TaylorTape,
-    law_masses: &[usize],
-    law_roots: &[Id],
-) -> Vec<(Symbol, Id)> {
-    (0..law_masses.len())
-        .filter(|i| laws.output_is_constant(*i))
-        .map(|i| (d.masses[law_masses[i]].symbol, law_roots[i]))
-        .collect()
 }
 
 /// Names the arrays of one tape: its input slots are the shared `i<n>`, the rest
@@ -76,10 +64,10 @@ impl Names<'_> {
         }
     }
 
-    /// `slot`'s coefficient array, `jet.<field>`.
+    /// `slot`'s coefficient array: the local bound to its row of the jet.
     fn of(&self, slot: usize) -> TokenStream {
         let field = self.field(slot);
-        quote!(jet.#field)
+        quote!(#field)
     }
 
     fn output(&self, i: usize) -> TokenStream {
@@ -96,6 +84,17 @@ impl Names<'_> {
         let inputs = self.tape.input_slots();
         self.tape
             .written_slots()
+            .into_iter()
+            .filter(|s| !inputs.contains(s))
+            .map(|s| self.field(s))
+            .collect()
+    }
+
+    /// The fields of the slots written at every order (inputs excluded).
+    fn series_fields(&self) -> Vec<Ident> {
+        let inputs = self.tape.input_slots();
+        self.tape
+            .series_written_slots()
             .into_iter()
             .filter(|s| !inputs.contains(s))
             .map(|s| self.field(s))
@@ -140,18 +139,20 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
     let field = |i: usize| format_ident!("i{}", i);
     let input = |i: usize| {
         let f = field(i);
-        quote!(jet.#f)
+        quote!(#f)
     };
-    let state_input = |j: usize| {
-        input(if j < 2 * n {
+    // The input of state component j.
+    let state_index = |j: usize| {
+        if j < 2 * n {
             1 + j
         } else if j < 2 * n + k_masses {
             1 + 3 * n + (j - 2 * n)
         } else {
             // A held input, after every mass among the tape's inputs.
             1 + 3 * n + masses + (j - 2 * n - k_masses)
-        })
+        }
     };
+    let state_input = |j: usize| input(state_index(j));
     let fields: Vec<Ident> = (0..st.inputs)
         .map(field)
         .chain(laws.fields())
@@ -171,15 +172,23 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
         let (to, from) = (input(1 + 3 * n + mass), laws.output(i));
         quote!(#to[k] = #from[k];)
     });
+    // The rows written at every order of an expansion before they are read: the series
+    // instructions' results, the state, q̇ and the law masses. Every other row (time, held
+    // inputs, constants) is set at order 0 alone: zeroed when the scratch is new to this
+    // code, so that a higher coefficient read from it is 0 whatever the scratch held
+    // (`series::Scratch`).
+    let written: Vec<Ident> = laws
+        .series_fields()
+        .into_iter()
+        .chain(velocities.series_fields())
+        .chain(rates.series_fields())
+        .chain((0..2 * n + k_masses).map(|j| field(state_index(j))))
+        .chain((0..n).map(|a| field(1 + 2 * n + a)))
+        .chain(st.law_masses.iter().map(|mass| field(1 + 3 * n + mass)))
+        .collect();
+    let zeroed = fields.iter().filter(|f| !written.contains(f));
     let (solve, factor_size) = velocity_solve(&st, &velocities, n, runtime);
-    // M[0]'s Cholesky factor when q̇ is solved order by order.
-    let (factor, factor_zero) = match factor_size {
-        Some(size) => (
-            quote!(factor: [f64; #size],),
-            quote!(factor: [0.0f64; #size],),
-        ),
-        None => (TokenStream::new(), TokenStream::new()),
-    };
+    let factor_size = factor_size.unwrap_or_else(|| Literal::usize_unsuffixed(0));
     // A held input's higher coefficients stay 0: it is constant between samples.
     let next = (0..2 * n + k_masses).map(|j| {
         let to = state_input(j);
@@ -196,6 +205,7 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
     });
     let orders = (0..ORDERS).map(Literal::usize_unsuffixed);
     let orders_len = Literal::usize_unsuffixed(ORDERS);
+    let rows = Literal::usize_unsuffixed(fields.len());
     let system = quote!(#runtime::SystemError);
     let vector = quote!(#runtime::nalgebra::SVector<f64, #s_lit>);
     quote! {
@@ -208,20 +218,21 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
             t: f64,
             state: &#vector,
             coefficients: &mut [#vector],
+            scratch: &mut #ts::Scratch,
         ) -> ::core::option::Option<::core::result::Result<(), #system>> {
             const _: () = assert!(#len == #orders_len, "one instance per order");
-            struct Jet {
-                #(#fields: [f64; #len],)*
-                #factor
-            }
+            /// One row of coefficients per subexpression, bound by name below.
+            type Jet = [[f64; #len]; #rows];
             /// Order `K` of every stage; `Some` ends the expansion with an error.
             #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
             fn order_k<const K: usize>(
                 this: &#name,
                 jet: &mut Jet,
+                factor: &mut [f64],
                 state: &#vector,
                 last: bool,
             ) -> ::core::option::Option<::core::result::Result<(), #system>> {
+                let [#(#fields),*] = jet;
                 let k = K;
                 #law_series
                 #(#law_copies)*
@@ -237,24 +248,31 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
             }
             let order = coefficients.len().checked_sub(1)?.min(#len - 1);
             let this = self;
-            let mut jet = Jet {
-                #(#fields: [0.0f64; #len],)*
-                #factor_zero
-            };
-            jet.i0[0] = t;
-            jet.i0[1] = 1.0;
-            #(#start)*
-            #(#fixed)*
+            /// This code's own type: the scratch knows whether this code used it last.
+            struct Owner;
+            let owner = ::core::any::TypeId::of::<Owner>();
+            let (jet, factor, fresh) = scratch.parts::<#rows>(#factor_size, owner);
+            {
+                let [#(#fields),*] = &mut *jet;
+                if fresh {
+                    #(*#zeroed = [0.0f64; #len];)*
+                }
+                i0[0] = t;
+                i0[1] = 1.0;
+                #(#start)*
+                #(#fixed)*
+            }
             for k in 0..=order {
                 let last = k == order;
                 let failed = match k {
-                    #(#orders => order_k::<#orders>(this, &mut jet, state, last),)*
+                    #(#orders => order_k::<#orders>(this, jet, factor, state, last),)*
                     _ => None,
                 };
                 if failed.is_some() {
                     return failed;
                 }
             }
+            let [#(#fields),*] = &*jet;
             for (k, c) in coefficients.iter_mut().enumerate().take(order + 1) {
                 #(#out)*
             }
@@ -264,8 +282,8 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
 }
 
 /// Coefficient k of q̇ into its inputs: copied from the closed form (a non-finite value at
-/// order 0 is a singular M), or solved with M\[0\]'s factor, the jet's field `factor` of
-/// the size returned.
+/// order 0 is a singular M), or solved with M\[0\]'s factor, the scratch's `factor` of the
+/// size returned.
 fn velocity_solve(
     st: &Stages,
     names: &Names,
@@ -274,7 +292,7 @@ fn velocity_solve(
 ) -> (TokenStream, Option<Literal>) {
     let velocity = |a: usize| {
         let f = format_ident!("i{}", 1 + 2 * n + a);
-        quote!(jet.#f)
+        quote!(#f)
     };
     let singular = quote!(return Some(Err(#runtime::SystemError::SingularMassMatrix)););
     if !st.numeric {
@@ -293,16 +311,16 @@ fn velocity_solve(
     let offset = (0..n).map(|a| names.output(n * n + a));
     let momenta = (0..n).map(|a| {
         let f = format_ident!("i{}", 1 + n + a);
-        quote!(jet.#f)
+        quote!(#f)
     });
     let velocities = (0..n).map(velocity);
     let size = Literal::usize_unsuffixed(n * n);
     let solve = quote! {
         if !#runtime::steppers::taylor::series::solve_velocities(
             #n,
-            (&[#(&#matrix),*], &[#(&#offset),*], &[#(&#momenta),*]),
-            &mut [#(&mut #velocities),*],
-            &mut jet.factor,
+            (&[#(&*#matrix),*], &[#(&*#offset),*], &[#(&*#momenta),*]),
+            &mut [#(&mut *#velocities),*],
+            factor,
             k,
         ) {
             #singular
@@ -369,6 +387,14 @@ fn op(
     let ts = quote!(#rt::steppers::taylor::series);
     let w = names.of(instr.out);
     let n = |s: usize| names.of(s);
+    // `w[k] = series::f(operands…, [w,] k)`: the recurrences whose only result is w, some
+    // reading w's own lower coefficients.
+    let call = |f: &str, operands: &[usize], own: bool| {
+        let f = Ident::new(f, Span::call_site());
+        let operands = operands.iter().map(|s| n(*s));
+        let own = own.then(|| quote!(&*#w,));
+        quote!(#w[#k] = #ts::#f(#(&*#operands,)* #own #k);)
+    };
     match instr.op {
         Op::Const(c) => {
             let c = number(c);
@@ -397,51 +423,30 @@ fn op(
             let (a, scale, offset) = (n(a), number(scale), number(offset));
             quote!(#w[#k] = if #k == 0 { #offset + #scale * #a[0] } else { #scale * #a[#k] };)
         }
-        Op::Mul(a, b) => {
-            let (a, b) = (n(a), n(b));
-            quote!(#w[#k] = #ts::mul(&#a, &#b, #k);)
-        }
-        Op::Square(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::square(&#a, #k);)
-        }
-        Op::Recip(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::recip(&#a, &#w, #k);)
-        }
-        Op::Div(a, den) => {
-            let (a, den) = (n(a), n(den));
-            quote!(#w[#k] = #ts::div(&#a, &#den, &#w, #k);)
-        }
-        Op::Sqrt(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::sqrt_of(&#a, &#w, #k);)
-        }
-        Op::Pow(a, e) => {
-            let (a, e) = (n(a), n(e));
-            quote!(#w[#k] = #ts::pow(&#a, &#e, &#w, #k);)
-        }
-        Op::Exp(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::exp(&#a, &#w, #k);)
-        }
+        Op::Mul(a, b) => call("mul", &[a, b], false),
+        Op::Square(a) => call("square", &[a], false),
+        Op::Recip(a) => call("recip", &[a], true),
+        Op::Div(a, den) => call("div", &[a, den], true),
+        Op::Sqrt(a) => call("sqrt_of", &[a], true),
+        Op::Pow(a, e) => call("pow", &[a, e], true),
+        Op::Exp(a) => call("exp", &[a], true),
         Op::SinCos { a, cos } => {
             let (a, c) = (n(a), n(cos));
-            quote!(#ts::sin_cos(&#a, &mut #w, &mut #c, #k, false);)
+            quote!(#ts::sin_cos(&*#a, &mut *#w, &mut *#c, #k, false);)
         }
         Op::SinhCosh { a, cosh } => {
             let (a, c) = (n(a), n(cosh));
-            quote!(#ts::sin_cos(&#a, &mut #w, &mut #c, #k, true);)
+            quote!(#ts::sin_cos(&*#a, &mut *#w, &mut *#c, #k, true);)
         }
         Op::Tan { a, v, f, .. } => {
             let (a, v, hyperbolic) = (n(a), n(v), f == Func::Tanh);
-            quote!(#ts::tan(&#a, &mut #w, &mut #v, #k, #hyperbolic);)
+            quote!(#ts::tan(&*#a, &mut *#w, &mut *#v, #k, #hyperbolic);)
         }
         Op::Quotient { a, d: den, sign, f } => {
             let (a, den, sign) = (n(a), n(den), number(sign));
             let at_zero = value(f, quote!(#a[0]), rt);
             quote! {
-                #w[#k] = #ts::quotient(&#a, &#den, &#w, #k, (#sign, if #k == 0 { #at_zero } else { 0.0 }));
+                #w[#k] = #ts::quotient(&*#a, &*#den, &*#w, #k, (#sign, if #k == 0 { #at_zero } else { 0.0 }));
             }
         }
         Op::Atan2 { y, x, d: den } if den == usize::MAX => {
@@ -450,19 +455,13 @@ fn op(
         }
         Op::Atan2 { y, x, d: den } => {
             let (y, x, den) = (n(y), n(x), n(den));
-            quote!(#w[#k] = #ts::atan2(&#y, &#x, &#den, &#w, #k);)
+            quote!(#w[#k] = #ts::atan2(&*#y, &*#x, &*#den, &*#w, #k);)
         }
-        Op::Abs(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::abs(&#a, #k);)
-        }
-        Op::Sign(a) => {
-            let a = n(a);
-            quote!(#w[#k] = #ts::sign(&#a, #k);)
-        }
+        Op::Abs(a) => call("abs", &[a], false),
+        Op::Sign(a) => call("sign", &[a], false),
         Op::Min(a, b) | Op::Max(a, b) => {
             let (a, b, larger) = (n(a), n(b), matches!(instr.op, Op::Max(..)));
-            quote!(#w[#k] = #ts::min_max(&#a, &#b, #k, #larger);)
+            quote!(#w[#k] = #ts::min_max(&*#a, &*#b, #k, #larger);)
         }
         Op::Table {
             a,

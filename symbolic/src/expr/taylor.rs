@@ -223,6 +223,30 @@ impl ExprPool {
         tapes.into_iter().next().unwrap_or_default()
     }
 
+    /// The tapes of the state rate's three stages (`mechanics::RateStages`): the laws
+    /// `laws` of the masses `law_symbols`, then `[q̇, rates]` over one set of slots
+    /// ([`compile_taylor_stages`](Self::compile_taylor_stages)), in which a mass whose law
+    /// depends on no input is compiled as the constant it is. The emitted Taylor method
+    /// and the interpreter's Taylor program both compile here, so they make the same
+    /// choices and stay bit-identical. Returns `[laws, velocities, rates]`.
+    pub fn compile_taylor_rate(
+        &self,
+        inputs: &[Symbol],
+        (laws, law_symbols): (&[Id], &[Symbol]),
+        later: [&[Id]; 2],
+    ) -> [TaylorTape; 3] {
+        let law_tape = self.compile_taylor(laws, inputs);
+        let constants: Vec<(Symbol, Id)> = (0..laws.len().min(law_symbols.len()))
+            .filter(|i| law_tape.output_is_constant(*i))
+            .map(|i| (law_symbols[i], laws[i]))
+            .collect();
+        let mut tapes = self
+            .compile_taylor_stages(&later, inputs, &constants)
+            .into_iter();
+        let velocities = tapes.next().unwrap_or_default();
+        [law_tape, velocities, tapes.next().unwrap_or_default()]
+    }
+
     /// The tapes of stages run one after the other over one set of slots (one
     /// [`TaylorJet`] serves them all): a subexpression of a later stage's roots that an
     /// earlier stage computed is read from its slot, not recomputed (q̇'s 1/r² or
@@ -633,6 +657,12 @@ impl TaylorTape {
     /// Every slot an instruction of this tape writes.
     pub(crate) fn written_slots(&self) -> Vec<usize> {
         prune::written(self)
+    }
+
+    /// Every slot the instructions run at every order write: the others (the inputs aside)
+    /// hold constants, whose higher coefficients are 0.
+    pub(crate) fn series_written_slots(&self) -> Vec<usize> {
+        prune::written_in_series(self)
     }
 
     /// The instructions run once at order 0.

@@ -6,6 +6,8 @@
 //! appendix A), each named beside the identity it comes from; `tests/taylor_emitted.rs`
 //! holds the two to the same coefficients.
 
+use core::any::TypeId;
+
 use nalgebra::{ComplexField, RealField};
 
 use crate::cholesky::{factor as cholesky, substitute};
@@ -17,13 +19,79 @@ pub const LEN: usize = super::MAX_ORDER + 1;
 /// Coefficient arrays of several subexpressions (rows of M, offsets, momenta).
 pub type Arrays<'a> = &'a [&'a [f64; LEN]];
 
+/// The working memory of generated `taylor_coefficients`: one coefficient array (a row) per
+/// subexpression, and M\[0\]'s factor when q̇ is solved order by order. The caller keeps it
+/// between expansions (the [`Taylor`](super::Taylor) stepper owns one), so that an
+/// expansion neither allocates nor clears its rows: zeroing every row of a stack buffer of
+/// `LEN`-long arrays at each expansion was two thirds of the instructions of the 3-link
+/// pendulum's step.
+///
+/// Why no row needs clearing: generated code writes every row it reads at orders
+/// 0 ..= k before reading it at order k, except the rows set at order 0 alone (time, held
+/// inputs, constants), whose higher coefficients must read 0. Those it zeroes when the
+/// scratch is new to it ([`Scratch::parts`] says so: the scratch remembers which
+/// generated code used it last), and nothing writes their higher coefficients afterwards.
+/// So what a scratch held before, another system's rows included, never reaches a result
+/// (`tests/taylor_emitted.rs` and `tests/taylor_tables.rs` run on scratches filled with
+/// NaN, reused).
+#[derive(Clone, Debug, Default)]
+pub struct Scratch {
+    rows: Vec<[f64; LEN]>,
+    factor: Vec<f64>,
+    /// The generated code that used the rows last (a type of its own, local to it).
+    owner: Option<TypeId>,
+}
+
+impl Scratch {
+    /// An empty scratch; the first expansion sizes it (the only allocation).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A scratch of `rows` rows and a factor of `factor` entries, every entry `value`: for
+    /// tests that what a scratch held never reaches a result.
+    #[doc(hidden)]
+    pub fn filled(rows: usize, factor: usize, value: f64) -> Self {
+        Self {
+            rows: vec![[value; LEN]; rows],
+            factor: vec![value; factor],
+            owner: None,
+        }
+    }
+
+    /// The first `F` rows and `factor` entries of the factor, grown if shorter, for the
+    /// generated code `owner`; `true` when that code did not use them last (its rows set
+    /// at order 0 alone must then be zeroed).
+    pub fn parts<const F: usize>(
+        &mut self,
+        factor: usize,
+        owner: TypeId,
+    ) -> (&mut [[f64; LEN]; F], &mut [f64], bool) {
+        let fresh = self.owner != Some(owner) || self.rows.len() < F;
+        if self.rows.len() < F {
+            self.rows.resize(F, [0.0; LEN]);
+        }
+        if self.factor.len() < factor {
+            self.factor.resize(factor, 0.0);
+        }
+        self.owner = Some(owner);
+        let rows = self.rows.first_chunk_mut::<F>();
+        // `rows` holds at least F rows now.
+        let rows = rows.unwrap_or_else(|| unreachable!("the rows were grown to {F}"));
+        (rows, &mut self.factor[..factor], fresh)
+    }
+}
+
 /// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the
 /// range into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)). The sums of
 /// the recurrences are chains of k dependent additions: four independent chains let the
 /// processor overlap them (heyoka sums its recurrences pairwise for the same reason), and
 /// the error bound shrinks with the depth. The tapes' copy
 /// (`varmass_symbolic::expr::taylor::recurrence::sum`) must add in this same order:
-/// `tests/taylor_emitted.rs` holds the two bit-identical.
+/// `tests/taylor_emitted.rs` holds the two bit-identical. Two copies on purpose: the
+/// symbolic crate does not depend on this one (generated code needs the core alone, the
+/// macro the symbolic crate alone), and a crate of its own for ten lines would cost every
+/// build a crate more.
 #[inline(always)]
 pub fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
     let mut s = [0.0f64; 4];

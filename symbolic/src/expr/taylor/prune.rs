@@ -6,7 +6,7 @@
 use super::{Instr, Op, TaylorTape};
 
 /// The slots `instr` writes (its result and any companion slots).
-fn writes(instr: &Instr) -> Vec<usize> {
+pub(super) fn writes(instr: &Instr) -> Vec<usize> {
     match instr.op {
         Op::SinCos { cos: other, .. } | Op::SinhCosh { cosh: other, .. } => {
             vec![instr.out, other]
@@ -94,4 +94,9 @@ pub(super) fn written(tape: &TaylorTape) -> Vec<usize> {
         .chain(&tape.series)
         .flat_map(writes)
         .collect()
+}
+
+/// Every slot some instruction run at every order writes.
+pub(super) fn written_in_series(tape: &TaylorTape) -> Vec<usize> {
+    tape.series.iter().flat_map(writes).collect()
 }

@@ -17,7 +17,8 @@ use varmass_table::{series_coefficient, Local, Table};
 /// reason). The generated code's copy (`varmass_core::steppers::taylor::series::sum`) adds
 /// in this same order: `tests/taylor_emitted.rs` holds the two bit-identical. A copy on
 /// purpose: `varmass-symbolic` does not depend on `varmass-core` (generated code needs only
-/// the core), and the generated code's copy is `#[inline(always)]` for its hot loops.
+/// the core), the generated code's copy is `#[inline(always)]` for its hot loops, and a
+/// crate of its own for ten lines would cost every build a crate more.
 pub(super) fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
     let mut s = [0.0f64; 4];
     let mut j = start;
