@@ -58,8 +58,14 @@ fn a_condition_just_before_a_switch_stops_before_it() {
             let solution = fly();
             assert_eq!(solution.stop, StopReason::EventFound { index: 0 }, "{name}");
             let x = solution.states.last().unwrap()[0];
-            eprintln!("{name} at {tolerance:e}: x − threshold = {:e}", x - threshold);
-            assert!((x - threshold).abs() <= 2e-12, "{name} at {tolerance:e}: {x}");
+            eprintln!(
+                "{name} at {tolerance:e}: x − threshold = {:e}",
+                x - threshold
+            );
+            assert!(
+                (x - threshold).abs() <= 2e-12,
+                "{name} at {tolerance:e}: {x}"
+            );
         }
     }
 }

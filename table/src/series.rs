@@ -57,17 +57,31 @@ impl Table {
     /// where `outside zero` meets a last value that is not zero, the table jumps at its last
     /// knot, and the series of a step leaving it is the value after the jump (a step
     /// arriving there ended at the knot: it is a stop time). Below the first knot, likewise
-    /// the constant before the data. On an interior knot, the piece starting there.
+    /// the constant before the data — except where the table jumps there, within the
+    /// lookups' rounding band below it, where the value is the data's ([`Table::data_edges`])
+    /// and the series the first piece's. On an interior knot, the piece starting there.
     ///
     /// A falling argument needs the piece *below* a knot: the stop times of a falling
     /// argument are moved until it lies strictly below the knot
     /// (`varmass_core::table::next_knot_time`), and a table of the
     /// state is restarted past a knot it crosses, so an argument falls exactly on a knot only
-    /// when a run *starts* there (docs/tables.md#taylor-series).
+    /// when a run *starts* there (docs/tables.md#taylor-series). Under `outside error` the
+    /// last knot itself belongs to the last piece: there is no constant after it, and a
+    /// run starting there with a falling argument (the only way on into the data) must not
+    /// fail.
     pub fn local_at(&self, x: f64, cursor: &mut Cursor) -> Result<Local, LookupError> {
         let value = self.value_at(x, cursor)?;
         let (first, last) = self.curve().domain();
-        if !(first <= x && x < last) {
+        // Under `outside error` nothing lies after the last knot: a run standing on it
+        // reads the last piece, so that an argument falling from it into the data has its
+        // series (a rising one is stopped past it, `next_knot_time`, where this errs).
+        // Where the table jumps at its first knot, a switch on the state restarts a run
+        // entering the data at the edge of the lookups' rounding band below it
+        // (`varmass_core::table::knot_bracket`): from there on the value is the data's.
+        let from_first = first <= x || self.jumps_at(first) && self.snapped(x) >= first;
+        let to_last = x < last || x == last && self.outside() == Outside::Error;
+        let on_data = from_first && to_last;
+        if !on_data {
             let constant = match self.outside() {
                 Outside::Zero => 0.0,
                 // The end's value: the value at `x`, on or beyond the end.
