@@ -231,7 +231,11 @@ fn a_step_arriving_at_a_jump_reads_the_value_before_it() {
     // and Dormand–Prince ≤ 4.4e-15 (x, v); bound 2e-14 (before: 1.7e-2 short on the ramp
     // by RK4, 1.1e-2 long on the box).
     let h = 0.3;
-    assert_near(fixed_ends(&RampThenOne { m0: 1.0 }, 3.0, h), [8.0 / 3.0, 1.5], 2e-14);
+    assert_near(
+        fixed_ends(&RampThenOne { m0: 1.0 }, 3.0, h),
+        [8.0 / 3.0, 1.5],
+        2e-14,
+    );
     assert_near(fixed_ends(&Box { m0: 1.0 }, 3.0, h), [1.5, 1.0], 2e-14);
     let falling = FallingBox { m0: 1.0, c: 3.0 };
     assert_near(fixed_ends(&falling, 3.0, h), [1.5, 1.0], 2e-14);
@@ -244,7 +248,11 @@ fn adaptive_runs_through_jumps_meet_the_closed_form_to_rounding() {
     // Dormand–Prince, with 36 rejected steps).
     assert_near(ends(&RampThenOne { m0: 1.0 }, 3.0), [8.0 / 3.0, 1.5], 2e-14);
     assert_near(ends(&Box { m0: 1.0 }, 3.0), [1.5, 1.0], 2e-14);
-    assert_near(ends(&FallingBox { m0: 1.0, c: 3.0 }, 3.0), [1.5, 1.0], 2e-14);
+    assert_near(
+        ends(&FallingBox { m0: 1.0, c: 3.0 }, 3.0),
+        [1.5, 1.0],
+        2e-14,
+    );
 }
 
 #[test]

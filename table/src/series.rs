@@ -57,9 +57,12 @@ impl Table {
     /// where `outside zero` meets a last value that is not zero, the table jumps at its last
     /// knot, and the series of a step leaving it is the value after the jump (a step
     /// arriving there ended at the knot: it is a stop time). Below the first knot, likewise
-    /// the constant before the data — except where the table jumps there, within the
-    /// lookups' rounding band below it, where the value is the data's ([`Table::data_edges`])
-    /// and the series the first piece's. On an interior knot, the piece starting there.
+    /// the constant before the data. Except where the table jumps at an end: within the
+    /// lookups' rounding band beyond it, the value is the data's ([`Table::data_edges`]),
+    /// and so is the series (the end piece's), since a switch on the state lets a run
+    /// entering the data restart there; a run on a table of t leaving the data stands there
+    /// only for the tiny step between a jump's two stop times (`next_knot_time`). On an
+    /// interior knot, the piece starting there.
     ///
     /// A falling argument needs the piece *below* a knot: the stop times of a falling
     /// argument are moved until it lies strictly below the knot
@@ -75,11 +78,13 @@ impl Table {
         // Under `outside error` nothing lies after the last knot: a run standing on it
         // reads the last piece, so that an argument falling from it into the data has its
         // series (a rising one is stopped past it, `next_knot_time`, where this errs).
-        // Where the table jumps at its first knot, a switch on the state restarts a run
-        // entering the data at the edge of the lookups' rounding band below it
-        // (`varmass_core::table::knot_bracket`): from there on the value is the data's.
-        let from_first = first <= x || self.jumps_at(first) && self.snapped(x) >= first;
-        let to_last = x < last || x == last && self.outside() == Outside::Error;
+        // Where the table jumps at an end, the lookups read the data within their rounding
+        // band beyond it, and a switch on the state restarts a run entering the data at
+        // the band's edge (`varmass_core::table::knot_bracket`): the series must read what
+        // the lookups read there.
+        let in_band = |end: f64| self.jumps_at(end) && (first..=last).contains(&self.snapped(x));
+        let from_first = first <= x || in_band(first);
+        let to_last = x < last || x == last && self.outside() == Outside::Error || in_band(last);
         let on_data = from_first && to_last;
         if !on_data {
             let constant = match self.outside() {
