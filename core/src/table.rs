@@ -234,8 +234,8 @@ pub fn knot_bracket(table: &Table, x: f64) -> f64 {
     let knots = table.knots();
     let above = match knots.partition_point(|&k| k <= x) {
         // Only at the ends is the band looked at: interior brackets cost one search.
-        0 if x >= Ends::of(table).from_first => 1,
-        n if n == knots.len() && x < Ends::of(table).past_last => n - 1,
+        0 if x >= Edge::FromFirst.of(table) => 1,
+        n if n == knots.len() && x < Edge::PastLast.of(table) => n - 1,
         above => above,
     };
     above as f64 - 1.0
@@ -261,18 +261,17 @@ pub fn knot_gap(table: &Table, x: f64, bracket: f64) -> f64 {
     }
     let knots = table.knots();
     let last = knots.len() as f64 - 1.0;
-    let at_end = bracket <= 0.0 || bracket >= last - 1.0;
-    let ends = at_end.then(|| Ends::of(table));
     let knot = |at: f64| (at >= 0.0 && at <= last).then(|| knots[at as usize]);
-    // The bracket's lower edge (the first argument reading it) and upper edge (the last).
-    let lower = match &ends {
-        Some(ends) if bracket == 0.0 => Some(ends.from_first),
-        Some(ends) if bracket == last => Some(ends.past_last),
+    // The bracket's lower edge (the first argument reading it) and upper edge (the last);
+    // the ends' bands are looked at only in the brackets next to them.
+    let lower = match bracket {
+        _ if bracket == 0.0 => Some(Edge::FromFirst.of(table)),
+        _ if bracket == last => Some(Edge::PastLast.of(table)),
         _ => knot(bracket),
     };
-    let upper = match &ends {
-        Some(ends) if bracket == -1.0 => Some(ends.below_first),
-        Some(ends) if bracket + 1.0 == last => Some(ends.to_last),
+    let upper = match bracket {
+        _ if bracket == -1.0 => Some(Edge::BelowFirst.of(table)),
+        _ if bracket + 1.0 == last => Some(Edge::ToLast.of(table)),
         _ => knot(bracket + 1.0),
     };
     let below = lower.map_or(f64::INFINITY, |k| x - k);
@@ -280,36 +279,35 @@ pub fn knot_gap(table: &Table, x: f64, bracket: f64) -> f64 {
     below.min(above)
 }
 
-/// The edges of the brackets at a table's ends: the knots themselves, or where the table
-/// jumps, the edges of the band of arguments the lookups snap onto the end.
-struct Ends {
+/// An edge of the brackets at a table's ends: the knot itself, or where the table jumps
+/// there, the edge of the band of arguments the lookups snap onto it.
+#[derive(Clone, Copy)]
+enum Edge {
     /// The last argument reading below the first knot.
-    below_first: f64,
+    BelowFirst,
     /// The first argument reading the data.
-    from_first: f64,
+    FromFirst,
     /// The last argument reading the data.
-    to_last: f64,
+    ToLast,
     /// The first argument reading past the last knot.
-    past_last: f64,
+    PastLast,
 }
 
-impl Ends {
-    fn of(table: &Table) -> Self {
+impl Edge {
+    fn of(self, table: &Table) -> f64 {
         let (first, last) = table.domain();
-        let (from_first, to_last) = table.data_edges();
-        let (from_first, below_first) = match table.jumps_at(first) {
-            true => (from_first, from_first.next_down()),
-            false => (first, first),
+        let end = match self {
+            Edge::BelowFirst | Edge::FromFirst => first,
+            Edge::ToLast | Edge::PastLast => last,
         };
-        let (to_last, past_last) = match table.jumps_at(last) {
-            true => (to_last, to_last.next_up()),
-            false => (last, last),
-        };
-        Self {
-            below_first,
-            from_first,
-            to_last,
-            past_last,
+        if !table.jumps_at(end) {
+            return end;
+        }
+        let edge = table.data_edge(end);
+        match self {
+            Edge::BelowFirst => edge.next_down(),
+            Edge::PastLast => edge.next_up(),
+            Edge::FromFirst | Edge::ToLast => edge,
         }
     }
 }

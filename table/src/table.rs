@@ -223,32 +223,34 @@ impl Table {
     /// the edge, so that it says which side a lookup reads.
     pub fn data_edges(&self) -> (f64, f64) {
         let (first, last) = self.curve.domain();
+        (self.data_edge(first), self.data_edge(last))
+    }
+
+    /// The farthest argument beyond `end` (the first or the last knot) that a lookup snaps
+    /// onto it ([`Table::data_edges`]); `end` itself for any other argument.
+    pub fn data_edge(&self, end: f64) -> f64 {
+        let (first, last) = self.curve.domain();
+        let (outward, inward): (fn(f64) -> f64, fn(f64) -> f64) = match end {
+            _ if end == first => (f64::next_down, f64::next_up),
+            _ if end == last => (f64::next_up, f64::next_down),
+            _ => return end,
+        };
         let on_data = |x: f64| {
             let x = self.snap(x);
             first <= x && x <= last
         };
-        // The band's edge end ± band, rounded, then moved by ulps onto the last argument on
-        // the data (x − end is exact this close to the end: a step or two at most).
-        let edge = |end: f64, outward: fn(f64) -> f64, inward: fn(f64) -> f64| {
-            let band = self.band(end);
-            let mut x = if outward(end) > end {
-                end + band
-            } else {
-                end - band
-            };
-            for _ in 0..4 {
-                if !on_data(x) {
-                    x = inward(x);
-                } else if on_data(outward(x)) {
-                    x = outward(x);
-                }
+        // The band's edge end ± band, rounded, then moved by ulps onto the last argument
+        // on the data (x − end is exact this close to the end: a step or two at most).
+        let band = self.band(end);
+        let mut x = if end == first { end - band } else { end + band };
+        for _ in 0..4 {
+            if !on_data(x) {
+                x = inward(x);
+            } else if on_data(outward(x)) {
+                x = outward(x);
             }
-            x
-        };
-        (
-            edge(first, f64::next_down, f64::next_up),
-            edge(last, f64::next_up, f64::next_down),
-        )
+        }
+        x
     }
 
     /// A cursor on the table's own hint.
