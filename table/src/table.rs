@@ -230,11 +230,12 @@ impl Table {
     /// onto it ([`Table::data_edges`]); `end` itself for any other argument.
     pub fn data_edge(&self, end: f64) -> f64 {
         let (first, last) = self.curve.domain();
-        let (outward, inward): (fn(f64) -> f64, fn(f64) -> f64) = match end {
-            _ if end == first => (f64::next_down, f64::next_up),
-            _ if end == last => (f64::next_up, f64::next_down),
+        let step: [fn(f64) -> f64; 2] = match end {
+            _ if end == first => [f64::next_down, f64::next_up],
+            _ if end == last => [f64::next_up, f64::next_down],
             _ => return end,
         };
+        let [outward, inward] = step;
         let on_data = |x: f64| {
             let x = self.snap(x);
             first <= x && x <= last
