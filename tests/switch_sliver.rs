@@ -14,6 +14,9 @@ force b: [abs(x - 1)]"
 )]
 struct Pushed {}
 
+/// A run by one stepper, named.
+type Flight<'a> = (&'static str, Box<dyn FnMut() -> Solution<1, 2> + 'a>);
+
 /// Both tolerances at `tolerance`, with `defaults` (the method's own factors).
 fn control(tolerance: f64, defaults: AdaptiveControl) -> StepControl {
     StepControl::Adaptive(AdaptiveControl {
@@ -36,7 +39,7 @@ fn a_condition_just_before_a_switch_stops_before_it() {
     let threshold = 1.0 - 1e-11;
     let start = SVector::from([0.0, 1.0]);
     for tolerance in [1e-1, 1e-3, 1e-6] {
-        let steppers: [(&str, Box<dyn FnMut() -> Solution<1, 2>>); 2] = [
+        let steppers: [Flight; 2] = [
             (
                 "Dormand–Prince",
                 Box::new(|| {

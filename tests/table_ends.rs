@@ -13,14 +13,27 @@
 //!   0.187 833…. On `ramp_below.csv` the argument crosses the knot 0.3 falling; on
 //!   `ramp_to_one.csv` the run *starts* on the last knot (s = 1) and falls into the data.
 //!
+//! - Ramp then one: G = t on [0, 1], 1 on [1, 2], 0 after (`tests/data/ramp_then_one.csv`,
+//!   `outside zero`): v = t²/2, x = t³/6 to t = 1 (½, 1/6); v = ½ + (t − 1),
+//!   x = 1/6 + ½(t − 1) + ½(t − 1)² to t = 2 (3/2, 7/6); then x(3) = 7/6 + 3/2 = 8/3,
+//!   v(3) = 3/2. The table jumps at its last knot only.
+//! - The box read falling, G(3 − t): the argument enters the data through the last knot at
+//!   t = 1 and leaves through the first at t = 2, so x(3) = 1.5, v(3) = 1 as rising.
+//!
 //! Measured before the fix (review of 2026-11-26): Taylor v = 1.1287 on the box (the step
 //! leaving the last knot read the value before the jump for its whole series), 0.2284 and
 //! 0.2619 on the falling ramps (the piece above the knot); Dormand–Prince v − 1 = 3.4e-10
-//! at tolerance 1e-12 (the restart's first stage read the value before the jump).
+//! at tolerance 1e-12 (the restart's first stage read the value before the jump). Second
+//! review: the step *arriving* at a jump read the value after it at its last stage (c = 1):
+//! ramp then one by RK4 at step 0.3 v(3) = 1.48333 (b₄·h = 0.1/6 short), Dormand–Prince at
+//! step 0.3 1.48690, at tolerance 1e-12 1.5e-11 off; the box x = 1.51667 by RK4. And
+//! Taylor failed at t = 0 on `ramp_to_one.csv` under `outside error` (the last knot read
+//! as outside the data).
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{
-    AdaptiveControl, Dop853, DormandPrince, StepControl, Taylor, TaylorControl,
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, FixedStep, StepControl, Taylor,
+    TaylorControl,
 };
 use varmass::core::{run, RunConfig, Solution, VariableMassSystem};
 use varmass::prelude::variable_mass_system;
@@ -69,6 +82,65 @@ struct FallingFromTheLastKnot {
     c: f64,
 }
 
+#[variable_mass_system(
+    r#"
+    coordinates x
+    table G(t) = "tests/data/ramp_then_one.csv", outside zero
+    mass m = m0
+    body b: mass m, position [x]
+    force b: [m0*G(t)]
+"#,
+    emit = ["taylor"]
+)]
+struct RampThenOne {
+    m0: f64,
+}
+
+#[variable_mass_system(
+    r#"
+    coordinates x
+    table G(s) = "tests/data/box_1_2.csv", outside zero
+    mass m = m0
+    body b: mass m, position [x]
+    force b: [m0*G(c - t)]
+"#,
+    emit = ["taylor"]
+)]
+struct FallingBox {
+    m0: f64,
+    c: f64,
+}
+
+#[variable_mass_system(
+    r#"
+    coordinates x
+    table F(s) = "tests/data/ramp_to_one.csv", outside zero
+    mass m = m0
+    body b: mass m, position [x]
+    force b: [m0*F(c - t)]
+"#,
+    emit = ["taylor"]
+)]
+struct FallingFromAJump {
+    m0: f64,
+    c: f64,
+}
+
+#[variable_mass_system(
+    r#"
+    coordinates x
+    table F(s) = "tests/data/ramp_to_one.csv", outside error
+    mass m = m0
+    body b: mass m, position [x]
+    force b: [m0*F(c - t)]
+"#,
+    emit = ["taylor"]
+)]
+struct FallingFromTheEndOfTheData {
+    m0: f64,
+    c: f64,
+}
+
 const TOLERANCE: f64 = 1e-12;
 
 fn adaptive(base: AdaptiveControl) -> StepControl {
@@ -99,7 +171,28 @@ fn ends<Sys: VariableMassSystem<1, 2>>(system: &Sys, end: f64) -> [(&'static str
     ]
 }
 
-fn assert_near(found: [(&str, [f64; 2]); 3], expected: [f64; 2], bound: f64) {
+/// (x, v) at `end` by RK4 and Dormand–Prince at the fixed step `step`, from rest at x = 0.
+fn fixed_ends<Sys: VariableMassSystem<1, 2>>(
+    system: &Sys,
+    end: f64,
+    step: f64,
+) -> [(&'static str, [f64; 2]); 2] {
+    let start = SVector::from([0.0, 0.0]);
+    let config = RunConfig::until(end);
+    let last = |solution: Solution<1, 2>| {
+        let (_, state) = solution.last().unwrap();
+        [state[0], state[1]]
+    };
+    let mut rk4 = ClassicalRk4::new(system, 0.0, start, FixedStep { step }).unwrap();
+    let control = StepControl::Fixed(FixedStep { step });
+    let mut dp = DormandPrince::new(system, 0.0, start, control).unwrap();
+    [
+        ("rk4", last(run(&mut rk4, &config, &[]).unwrap())),
+        ("dormand-prince", last(run(&mut dp, &config, &[]).unwrap())),
+    ]
+}
+
+fn assert_near<const M: usize>(found: [(&str, [f64; 2]); M], expected: [f64; 2], bound: f64) {
     for (method, state) in found {
         for (value, exact) in state.iter().zip(expected) {
             let error = (value - exact).abs() / exact.abs();
@@ -110,9 +203,10 @@ fn assert_near(found: [(&str, [f64; 2]); 3], expected: [f64; 2], bound: f64) {
 
 #[test]
 fn a_run_leaving_a_jump_at_the_last_knot_reads_the_value_after_it() {
-    // Measured: Taylor 2.2e-15 (x, v), DOP853 2.5e-12, Dormand–Prince 1.1e-11; bound 5e-11
-    // (×5 the worst; before: Taylor 0.13, Dormand–Prince 3.4e-10).
-    assert_near(ends(&Box { m0: 1.0 }, 3.0), [1.5, 1.0], 5e-11);
+    // Measured: ≤ 3.8e-15 (x, v) by every method; bound 2e-14 (before: Taylor 0.13,
+    // Dormand–Prince 3.4e-10; after the first fix, with one stop past the jump only,
+    // DOP853 2.5e-12 and Dormand–Prince 1.1e-11).
+    assert_near(ends(&Box { m0: 1.0 }, 3.0), [1.5, 1.0], 2e-14);
 }
 
 #[test]
@@ -128,4 +222,47 @@ fn a_run_starting_on_a_knot_with_a_falling_argument_reads_the_piece_below() {
     // data read for the first step).
     let found = ends(&FallingFromTheLastKnot { m0: 1.0, c: 1.0 }, 1.0);
     assert_near(found, [0.187_833_333_333_333_3, 0.245], 1e-13);
+}
+
+#[test]
+fn a_step_arriving_at_a_jump_reads_the_value_before_it() {
+    // Both ends of a box and the last of the ramp, rising and falling, by fixed steps that
+    // do not divide the knots (the steps arriving at 1 and 2 are 0.1 long). Measured: RK4
+    // and Dormand–Prince ≤ 4.4e-15 (x, v); bound 2e-14 (before: 1.7e-2 short on the ramp
+    // by RK4, 1.1e-2 long on the box).
+    let h = 0.3;
+    assert_near(
+        fixed_ends(&RampThenOne { m0: 1.0 }, 3.0, h),
+        [8.0 / 3.0, 1.5],
+        2e-14,
+    );
+    assert_near(fixed_ends(&Box { m0: 1.0 }, 3.0, h), [1.5, 1.0], 2e-14);
+    let falling = FallingBox { m0: 1.0, c: 3.0 };
+    assert_near(fixed_ends(&falling, 3.0, h), [1.5, 1.0], 2e-14);
+}
+
+#[test]
+fn adaptive_runs_through_jumps_meet_the_closed_form_to_rounding() {
+    // Measured: ≤ 4.2e-15 by Taylor, DOP853 and Dormand–Prince at tolerance 1e-12, on the
+    // three models; bound 2e-14 (before: 1.1e-11 on the box, 1e-11 on the ramp by
+    // Dormand–Prince, with 36 rejected steps).
+    assert_near(ends(&RampThenOne { m0: 1.0 }, 3.0), [8.0 / 3.0, 1.5], 2e-14);
+    assert_near(ends(&Box { m0: 1.0 }, 3.0), [1.5, 1.0], 2e-14);
+    assert_near(
+        ends(&FallingBox { m0: 1.0, c: 3.0 }, 3.0),
+        [1.5, 1.0],
+        2e-14,
+    );
+}
+
+#[test]
+fn a_run_starting_on_the_last_knot_falls_into_the_data_under_every_rule() {
+    // `hold` above; `zero` jumps at the knot (F = 0.7 there, 0 after), and `error` has
+    // nothing after it: both read the data falling. Measured ≤ 9.1e-16; bound 1e-13
+    // (before: Taylor failed at t = 0 under `error`).
+    let expected = [0.187_833_333_333_333_3, 0.245];
+    let zero = FallingFromAJump { m0: 1.0, c: 1.0 };
+    assert_near(ends(&zero, 1.0), expected, 1e-13);
+    let error = FallingFromTheEndOfTheData { m0: 1.0, c: 1.0 };
+    assert_near(ends(&error, 1.0), expected, 1e-13);
 }

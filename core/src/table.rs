@@ -43,76 +43,174 @@ pub fn local_or_nan(table: &Table, x: f64) -> Local {
 /// for a derivative table in the state rate; the Taylor series' piece,
 /// `Table::local_at`), not the one it leaves: a rising argument on or past the knot
 /// (computed as (knot − offset)/slope, a quarter of the M1670's knots at ignition times up
-/// to 3 s landed an ulp short), a falling one strictly below it. At an end where the table
-/// jumps ([`Table::jumps_at`]) the argument is moved beyond the lookups' rounding slack, so
-/// that the restart reads the value after the jump. A knot counts as crossed only once the
-/// argument has reached it so: a run *starting* with a falling argument on a knot gets a
-/// stop time a few roundings later, where it lies below (a Taylor series there would read
-/// the piece above for its whole first step).
+/// to 3 s landed an ulp short), a falling one strictly below it. A knot counts as crossed
+/// only once the argument has reached it so: a run *starting* with a falling argument on a
+/// knot gets a stop time a few roundings later, where it lies below (a Taylor series there
+/// would read the piece above for its whole first step).
+///
+/// **Where the table jumps at an end** ([`Table::jumps_at`]) the knot has two stop times
+/// (docs/tables.md#outside-the-data): T₁, a few roundings of t before the last time at which
+/// the lookup (its argument snapped, [`Table::snapped`]) still reads the side the argument
+/// comes from, and T₂, the first at which the run restarting reads the side it enters (the
+/// value after the jump; entering the data, the raw argument on the data, for a Taylor
+/// series' piece). `after` before T₁ gives T₁: the step arriving there reads the old side
+/// at every stage, its last (t + h, rounded) included; from T₁ on it gives T₂, and the
+/// tiny step between them errs by (T₂ − T₁)·jump, a few roundings. Before (review of
+/// 2026-11-26) only T₂ was a stop, and the arriving step's last stage read the value after
+/// the jump: a unit mass pushed by 1 on [1, 2] ended 0.1/6 short by RK4 at step 0.3.
 pub fn next_knot_time(table: &Table, slope: f64, offset: f64, after: f64) -> f64 {
     if !(slope.is_finite() && offset.is_finite()) || slope == 0.0 {
         return f64::INFINITY;
     }
     let knots = table.knots();
+    let crossing = |knot: f64| Crossing::new(table, knot, slope);
     let argument = |t: f64| slope * t + offset;
-    let reached = |knot: f64, t: f64| {
-        // The end the argument leaves the data by, if the table jumps there.
-        let leaving = match slope > 0.0 {
-            true => knots.last() == Some(&knot),
-            false => knots.first() == Some(&knot),
-        };
-        let jumps = leaving && table.jumps_at(knot);
-        let x = if jumps {
-            table.snapped(argument(t))
-        } else {
-            argument(t)
-        };
-        match (slope > 0.0, jumps) {
-            (true, false) => x >= knot,
-            (true, true) => x > knot,
-            (false, _) => x < knot,
-        }
-    };
     // The first knot along the argument's travel it has not reached at `after` (one it
     // sits on counts as not reached when falling: it still reads the piece above).
+    let reached_at_after = |&k: &f64| crossing(k).entered(table, argument(after));
     let found = if slope > 0.0 {
-        knots.get(knots.partition_point(|&k| reached(k, after)))
+        knots.get(knots.partition_point(reached_at_after))
     } else {
         knots
-            .partition_point(|&k| !reached(k, after))
+            .partition_point(|k| !reached_at_after(k))
             .checked_sub(1)
             .and_then(|k| knots.get(k))
     };
-    found.map_or(f64::INFINITY, |&knot| {
-        // An ulp of the argument, in time: how far t must move for it to change.
-        let scale = f64::EPSILON * knot.abs().max(offset.abs()) / slope.abs();
-        let start = ((knot - offset) / slope).max(after);
-        let time = moved_until(start, scale, |t| reached(knot, t));
-        if time > after {
-            time
-        } else {
-            after.next_up()
+    let Some(&knot) = found else {
+        return f64::INFINITY;
+    };
+    let crossing = crossing(knot);
+    // An ulp of the argument, in time: how far t must move for it to change.
+    let scale = f64::EPSILON * knot.abs().max(offset.abs()) / slope.abs();
+    let start = ((knot - offset) / slope).max(after);
+    let entered = moved_until(start, scale, |t| crossing.entered(table, argument(t)));
+    let entered = if entered > after {
+        entered
+    } else {
+        after.next_up()
+    };
+    if crossing.jumps {
+        let left = |t: f64| crossing.left(table, argument(t));
+        let left = last_holding(moved_down_until(entered, scale, left), entered, left);
+        // Stage times t + c·h of a step landed here round by an ulp or two of t, and the
+        // argument by an ulp or two of itself: a margin of four of the larger.
+        let margin = 4.0 * (f64::EPSILON * left.abs()).max(scale);
+        let arrival = left - margin;
+        if crossing.left(table, argument(left)) && arrival > after {
+            return arrival;
         }
-    })
+    }
+    entered
+}
+
+/// A knot of a table of t as the argument travels through it.
+#[derive(Clone, Copy)]
+struct Crossing {
+    knot: f64,
+    rising: bool,
+    /// The table jumps at the knot (an end under `outside zero`, [`Table::jumps_at`]).
+    jumps: bool,
+    /// The argument leaves the data there (the last knot rising, the first falling).
+    leaving: bool,
+}
+
+impl Crossing {
+    fn new(table: &Table, knot: f64, slope: f64) -> Self {
+        let knots = table.knots();
+        let rising = slope > 0.0;
+        let leaving = match rising {
+            true => knots.last() == Some(&knot),
+            false => knots.first() == Some(&knot),
+        };
+        Self {
+            knot,
+            rising,
+            jumps: table.jumps_at(knot),
+            leaving,
+        }
+    }
+
+    /// Whether a run restarting at argument `x` reads the side of the knot the argument
+    /// enters: a rising argument on or past the knot, a falling one strictly below (the
+    /// piece below, for a Taylor series); leaving the data where it jumps, the argument
+    /// beyond the lookups' rounding band, so that the value after the jump is read.
+    ///
+    /// Under `outside error` a rising argument leaves the last knot only once strictly past
+    /// it: a run standing on it reads the last piece (`Table::local_at`), and one going on
+    /// must fail where it leaves the data, not a Taylor step later.
+    fn entered(&self, table: &Table, x: f64) -> bool {
+        let x = match self.leaving && self.jumps {
+            true => table.snapped(x),
+            false => x,
+        };
+        let strictly = self.leaving && (self.jumps || table.outside() == Outside::Error);
+        match (self.rising, strictly) {
+            (true, false) => x >= self.knot,
+            (true, true) => x > self.knot,
+            (false, _) => x < self.knot,
+        }
+    }
+
+    /// Whether a lookup at argument `x` still reads the side of a jumping end the argument
+    /// comes from: the data's value leaving them (within the rounding band beyond the end
+    /// included), the value outside entering them (beyond the band).
+    fn left(&self, table: &Table, x: f64) -> bool {
+        let (first, last) = table.domain();
+        let snapped = table.snapped(x);
+        let on_data = first <= snapped && snapped <= last;
+        on_data == self.leaving
+    }
 }
 
 /// `t`, or the first time after it (up by ulps, then by steps doubling from `scale`: at most
 /// ~70 tries) at which `reached` holds; `t` if none is found.
 fn moved_until(t: f64, scale: f64, reached: impl Fn(f64) -> bool) -> f64 {
+    moved(t, scale, reached, true)
+}
+
+/// `t`, or a time before it (down as [`moved_until`] goes up) at which `holds` holds; `t`
+/// if none is found.
+fn moved_down_until(t: f64, scale: f64, holds: impl Fn(f64) -> bool) -> f64 {
+    moved(t, scale, holds, false)
+}
+
+/// The last time from `holds` up to `fails` at which `holds` (monotone: true, then false) holds,
+/// by bisection to the ulp (`holds` itself if it does not hold there).
+fn last_holding(mut holds: f64, mut fails: f64, test: impl Fn(f64) -> bool) -> f64 {
+    if !test(holds) {
+        return holds;
+    }
+    for _ in 0..128 {
+        let middle = holds + 0.5 * (fails - holds);
+        if middle <= holds || middle >= fails {
+            break;
+        }
+        match test(middle) {
+            true => holds = middle,
+            false => fails = middle,
+        }
+    }
+    holds
+}
+
+/// [`moved_until`] upwards or downwards.
+fn moved(t: f64, scale: f64, reached: impl Fn(f64) -> bool, up: bool) -> f64 {
     if reached(t) {
         return t;
     }
+    let next = |t: f64| if up { t.next_up() } else { t.next_down() };
     let mut moved = t;
     for _ in 0..8 {
-        moved = moved.next_up();
+        moved = next(moved);
         if reached(moved) {
             return moved;
         }
     }
-    let mut step = (moved - t).max(scale);
+    let sign = if up { 1.0 } else { -1.0 };
+    let mut step = (moved - t).abs().max(scale);
     for _ in 0..60 {
-        if reached(t + step) {
-            return t + step;
+        if reached(t + sign * step) {
+            return t + sign * step;
         }
         step *= 2.0;
     }
@@ -123,11 +221,23 @@ fn moved_until(t: f64, scale: f64, reached: impl Fn(f64) -> bool) -> f64 {
 /// ([`VariableMassSystem::switch_anchors`](crate::VariableMassSystem::switch_anchors)):
 /// j when kⱼ ≤ x < kⱼ₊₁ for the knots k₀ < … < kₙ₋₁, −1 below the first knot, n − 1 from
 /// the last on (NaN for a NaN `x`). One binary search; exact as an `f64` below 2⁵³ knots.
+///
+/// Where the table jumps at an end ([`Table::jumps_at`]) the bracket's edge there is the
+/// edge of the lookups' rounding band instead ([`Table::data_edges`]): the data's value
+/// holds from the first edge to the last, so that the bracket says which side of the jump
+/// a lookup reads (before the review of 2026-11-26, a crossing that left the argument an
+/// ulp past the last knot read the value before the jump for the rest of the run).
 pub fn knot_bracket(table: &Table, x: f64) -> f64 {
     if x.is_nan() {
         return f64::NAN;
     }
-    let above = table.knots().partition_point(|&k| k <= x);
+    let knots = table.knots();
+    let above = match knots.partition_point(|&k| k <= x) {
+        // Only at the ends is the band looked at: interior brackets cost one search.
+        0 if x >= Edge::FromFirst.of(table) => 1,
+        n if n == knots.len() && x < Edge::PastLast.of(table) => n - 1,
+        above => above,
+    };
     above as f64 - 1.0
 }
 
@@ -138,6 +248,11 @@ pub fn knot_bracket(table: &Table, x: f64) -> f64 {
 /// negative anywhere outside: however many knots a step passes, the sign changes, and the
 /// first zero along the step is the first knot crossed. Two knots read, no search, so a
 /// table of 1 000 knots costs what one of 2 does.
+///
+/// At an end where the table jumps, the distance is to the edge of the rounding band the
+/// bracket's side reads ([`knot_bracket`]): zero at the last argument that still reads the
+/// side the bracket holds, so that g = 0 is the side before the switch, as the run's
+/// crossings take it.
 pub fn knot_gap(table: &Table, x: f64, bracket: f64) -> f64 {
     // A NaN argument or anchor must not read as "far inside" (+∞), which would silence the
     // switch: NaN reaches the run's non-finite checks instead.
@@ -145,11 +260,54 @@ pub fn knot_gap(table: &Table, x: f64, bracket: f64) -> f64 {
         return f64::NAN;
     }
     let knots = table.knots();
-    let index = |offset: f64| {
-        let at = bracket + offset;
-        (at >= 0.0 && at < knots.len() as f64).then(|| knots[at as usize])
+    let last = knots.len() as f64 - 1.0;
+    let knot = |at: f64| (at >= 0.0 && at <= last).then(|| knots[at as usize]);
+    // The bracket's lower edge (the first argument reading it) and upper edge (the last);
+    // the ends' bands are looked at only in the brackets next to them.
+    let lower = match bracket {
+        _ if bracket == 0.0 => Some(Edge::FromFirst.of(table)),
+        _ if bracket == last => Some(Edge::PastLast.of(table)),
+        _ => knot(bracket),
     };
-    let below = index(0.0).map_or(f64::INFINITY, |k| x - k);
-    let above = index(1.0).map_or(f64::INFINITY, |k| k - x);
+    let upper = match bracket {
+        _ if bracket == -1.0 => Some(Edge::BelowFirst.of(table)),
+        _ if bracket + 1.0 == last => Some(Edge::ToLast.of(table)),
+        _ => knot(bracket + 1.0),
+    };
+    let below = lower.map_or(f64::INFINITY, |k| x - k);
+    let above = upper.map_or(f64::INFINITY, |k| k - x);
     below.min(above)
+}
+
+/// An edge of the brackets at a table's ends: the knot itself, or where the table jumps
+/// there, the edge of the band of arguments the lookups snap onto it.
+#[derive(Clone, Copy)]
+enum Edge {
+    /// The last argument reading below the first knot.
+    BelowFirst,
+    /// The first argument reading the data.
+    FromFirst,
+    /// The last argument reading the data.
+    ToLast,
+    /// The first argument reading past the last knot.
+    PastLast,
+}
+
+impl Edge {
+    fn of(self, table: &Table) -> f64 {
+        let (first, last) = table.domain();
+        let end = match self {
+            Edge::BelowFirst | Edge::FromFirst => first,
+            Edge::ToLast | Edge::PastLast => last,
+        };
+        if !table.jumps_at(end) {
+            return end;
+        }
+        let edge = table.data_edge(end);
+        match self {
+            Edge::BelowFirst => edge.next_down(),
+            Edge::PastLast => edge.next_up(),
+            Edge::FromFirst | Edge::ToLast => edge,
+        }
+    }
 }

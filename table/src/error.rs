@@ -78,6 +78,15 @@ pub enum ReadErrorKind {
         /// This point.
         to: (f64, f64),
     },
+    /// The distance between two arguments overflows (knots near ±1.8e308 of opposite
+    /// signs): the interpolant would read zero everywhere.
+    #[error("the distance from ({:?}, {:?}) to ({:?}, {:?}) is not finite", from.0, from.1, to.0, to.1)]
+    SpacingNotFinite {
+        /// The earlier point (argument, value): the previous one, or the first.
+        from: (f64, f64),
+        /// This point.
+        to: (f64, f64),
+    },
     /// Fewer than two points: no interval to interpolate on.
     #[error("{found} point(s); a table needs at least two")]
     TooFewPoints {

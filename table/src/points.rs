@@ -41,6 +41,16 @@ pub enum InvalidPoints {
         /// The point's index.
         index: usize,
     },
+    /// The distance from the previous point's argument (or the first point's) overflows
+    /// (knots near ±1.8e308 of opposite signs): the interpolant there would divide by ∞ and
+    /// read zero everywhere.
+    #[error("the distance from point {from} to point {index} is not finite")]
+    SpacingNotFinite {
+        /// The earlier point's index (the previous one, or the first).
+        from: usize,
+        /// The point's index.
+        index: usize,
+    },
     /// An argument does not increase on the previous one.
     #[error("the argument of point {index} does not increase on the previous one")]
     NotIncreasing {
@@ -69,6 +79,9 @@ impl Points {
             }
             if index > 0 && arguments[index - 1] >= *x {
                 return Err(InvalidPoints::NotIncreasing { index });
+            }
+            if let Some(from) = overflowing_spacing(&arguments, index) {
+                return Err(InvalidPoints::SpacingNotFinite { from, index });
             }
             if index > 0 && !((y - values[index - 1]) / (x - arguments[index - 1])).is_finite() {
                 return Err(InvalidPoints::SlopeNotFinite { index });
@@ -121,4 +134,16 @@ impl Points {
             .map(|i| 0.5 * (y[i] + y[i - 1]) * (x[i] - x[i - 1]))
             .sum()
     }
+}
+
+/// The earlier point whose distance to point `index` overflows, if one does: the previous
+/// point, or else the first (a span wider than f64 makes the lookups' slack infinite,
+/// docs/tables.md#outside-the-data). 1/∞ = 0 would pass the slope check and the
+/// interpolant would read zero.
+fn overflowing_spacing(arguments: &[f64], index: usize) -> Option<usize> {
+    let x = arguments[index];
+    [index.checked_sub(1), Some(0)]
+        .into_iter()
+        .flatten()
+        .find(|&from| from < index && !(x - arguments[from]).is_finite())
 }

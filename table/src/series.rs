@@ -57,17 +57,36 @@ impl Table {
     /// where `outside zero` meets a last value that is not zero, the table jumps at its last
     /// knot, and the series of a step leaving it is the value after the jump (a step
     /// arriving there ended at the knot: it is a stop time). Below the first knot, likewise
-    /// the constant before the data. On an interior knot, the piece starting there.
+    /// the constant before the data. Except where the table jumps at an end: within the
+    /// lookups' rounding band beyond it, the value is the data's ([`Table::data_edges`]),
+    /// and so is the series (the end piece's), since a switch on the state lets a run
+    /// entering the data restart there; a run on a table of t leaving the data stands there
+    /// only for the tiny step between a jump's two stop times (`next_knot_time`). On an
+    /// interior knot, the piece starting there.
     ///
     /// A falling argument needs the piece *below* a knot: the stop times of a falling
     /// argument are moved until it lies strictly below the knot
     /// (`varmass_core::table::next_knot_time`), and a table of the
     /// state is restarted past a knot it crosses, so an argument falls exactly on a knot only
-    /// when a run *starts* there (docs/tables.md#taylor-series).
+    /// when a run *starts* there (docs/tables.md#taylor-series). Under `outside error` the
+    /// last knot itself belongs to the last piece: there is no constant after it, and a
+    /// run starting there with a falling argument (the only way on into the data) must not
+    /// fail.
     pub fn local_at(&self, x: f64, cursor: &mut Cursor) -> Result<Local, LookupError> {
         let value = self.value_at(x, cursor)?;
         let (first, last) = self.curve().domain();
-        if !(first <= x && x < last) {
+        // Under `outside error` nothing lies after the last knot: a run standing on it
+        // reads the last piece, so that an argument falling from it into the data has its
+        // series (a rising one is stopped past it, `next_knot_time`, where this errs).
+        // Where the table jumps at an end, the lookups read the data within their rounding
+        // band beyond it, and a switch on the state restarts a run entering the data at
+        // the band's edge (`varmass_core::table::knot_bracket`): the series must read what
+        // the lookups read there.
+        let in_band = |end: f64| self.jumps_at(end) && (first..=last).contains(&self.snapped(x));
+        let from_first = first <= x || in_band(first);
+        let to_last = x < last || x == last && self.outside() == Outside::Error || in_band(last);
+        let on_data = from_first && to_last;
+        if !on_data {
             let constant = match self.outside() {
                 Outside::Zero => 0.0,
                 // The end's value: the value at `x`, on or beyond the end.

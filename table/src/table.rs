@@ -180,15 +180,21 @@ impl Table {
             return x;
         }
         let end = if x > last { last } else { first };
-        let ulps = ROUNDING_ULPS * f64::EPSILON * first.abs().max(last.abs());
-        let rounding = match self.jumps_at(end) {
-            true => ulps,
-            false => ulps.max(END_SLACK * (last - first)),
-        };
-        if (x - end).abs() <= rounding {
+        if (x - end).abs() <= self.band(end) {
             end
         } else {
             x
+        }
+    }
+
+    /// How far beyond `end` (its first or last knot) an argument is snapped onto it.
+    #[inline]
+    fn band(&self, end: f64) -> f64 {
+        let (first, last) = self.curve.domain();
+        let ulps = ROUNDING_ULPS * f64::EPSILON * first.abs().max(last.abs());
+        match self.jumps_at(end) {
+            true => ulps,
+            false => ulps.max(END_SLACK * (last - first)),
         }
     }
 
@@ -208,6 +214,44 @@ impl Table {
         let near = self.curve.value_on(interval, end).abs();
         let far = self.curve.value_on(interval, other).abs();
         self.outside == Outside::Zero && near > 1e-10 * near.max(far)
+    }
+
+    /// The first and the last argument a lookup reads the data at: the ends, widened by
+    /// the band of arguments within rounding beyond them that are snapped onto them (see
+    /// [`END_SLACK`]; only the knot's roundings where the table jumps). Where the table
+    /// jumps at an end, this is where its value jumps: a switch at that knot is placed on
+    /// the edge, so that it says which side a lookup reads.
+    pub fn data_edges(&self) -> (f64, f64) {
+        let (first, last) = self.curve.domain();
+        (self.data_edge(first), self.data_edge(last))
+    }
+
+    /// The farthest argument beyond `end` (the first or the last knot) that a lookup snaps
+    /// onto it ([`Table::data_edges`]); `end` itself for any other argument.
+    pub fn data_edge(&self, end: f64) -> f64 {
+        let (first, last) = self.curve.domain();
+        let step: [fn(f64) -> f64; 2] = match end {
+            _ if end == first => [f64::next_down, f64::next_up],
+            _ if end == last => [f64::next_up, f64::next_down],
+            _ => return end,
+        };
+        let [outward, inward] = step;
+        let on_data = |x: f64| {
+            let x = self.snap(x);
+            first <= x && x <= last
+        };
+        // The band's edge end ± band, rounded, then moved by ulps onto the last argument
+        // on the data (x − end is exact this close to the end: a step or two at most).
+        let band = self.band(end);
+        let mut x = if end == first { end - band } else { end + band };
+        for _ in 0..4 {
+            if !on_data(x) {
+                x = inward(x);
+            } else if on_data(outward(x)) {
+                x = outward(x);
+            }
+        }
+        x
     }
 
     /// A cursor on the table's own hint.

@@ -161,6 +161,13 @@ impl PointsBuilder {
                 };
                 error_at(lines[index], 1, kind)
             }
+            InvalidPoints::SpacingNotFinite { from, index } => {
+                let kind = ReadErrorKind::SpacingNotFinite {
+                    from: (arguments[from], values[from]),
+                    to: (arguments[index], values[index]),
+                };
+                error_at(lines[index], 1, kind)
+            }
             _ => error_at(last_line, 1, ReadErrorKind::TooFewPoints { found }),
         })
     }

@@ -327,12 +327,32 @@ fn explain(
                 w("--max-seconds")
             ),
         ),
-        StepErrorKind::NonFiniteState | StepErrorKind::EnergyBudgetExceeded { .. } => (
+        // Only a fixed step can step past the stability limit: an adaptive run that meets a
+        // non-finite state met it in the equations (a Taylor series of a table outside its
+        // data is NaN, for one).
+        StepErrorKind::NonFiniteState | StepErrorKind::EnergyBudgetExceeded { .. }
+            if matches!(plan.steps, Steps::Fixed(_)) =>
+        {
+            (
+                what,
+                format!(
+                    "a fixed step past the stability limit does this: use a smaller {step} or \
+                     an adaptive method ({tol})"
+                ),
+            )
+        }
+        StepErrorKind::NonFiniteState => (
             what,
             format!(
-                "a fixed step past the stability limit does this: use a smaller {step} or an \
-                 adaptive method ({tol})"
+                "the equations have no finite value here (a division by zero, a root of a \
+                 negative number, a table read outside its data): stop before this time \
+                 ({stop_when}, {until}), or correct the parameters ({})",
+                w("--set")
             ),
+        ),
+        StepErrorKind::EnergyBudgetExceeded { .. } => (
+            what,
+            format!("tighten {tol}, or stop before this time ({stop_when}, {until})"),
         ),
         StepErrorKind::StepSizeUnderflow { .. } => (
             what,

@@ -1,0 +1,147 @@
+//! Tables of the state where they jump at an end (docs/tables.md#knots-are-switches): the
+//! switch at such a knot lies on the edge of the band of arguments a lookup snaps onto the
+//! end, so that the crossing leaves the argument on the side the lookups read next. Each
+//! model is a unit mass pushed by a table of its own position, x'' = G(x), `outside zero`.
+//!
+//! References (by hand):
+//! - Box: G = 1 on [1, 2] (`tests/data/box_1_2.csv`), x(0) = 0, x'(0) = 1: coasting to
+//!   x = 1 at t = 1, then x = 1 + τ + τ²/2 reaches 2 at τ = √3 − 1 with v = √3, so at
+//!   t = 3: v = √3, x = 2 + √3 (3 − √3) = 3√3 − 1.
+//! - Ramp then one: G = x on [0, 1], 1 on [1, 2] (`tests/data/ramp_then_one.csv`), x(0) = 0,
+//!   x'(0) = 1: x = sinh t to x = 1 at t₁ = asinh 1 (v = √2), then v² = 2 + 2(x − 1)
+//!   reaches 4 at x = 2 after τ = 2 − √2; v(3) = 2, x(3) = 2 + 2 (3 − t₁ − 2 + √2).
+//! - The box from above: x(0) = 3, x'(0) = −1: x = 2 at t = 1, then x'' = 1 turns the
+//!   mass round at x = 1.5 (t = 2) and it leaves through x = 2 at t = 3 with v = 1: at
+//!   t = 4, x = 3, v = 1. It enters and leaves through the same jumping end.
+//!
+//! Measured before the fix (review of 2026-11-26): the ramp by Dormand–Prince at tolerance
+//! 1e-12 v = 2.000000000288 (the crossing left x an ulp past the knot, inside the band that
+//! still reads the value before the jump); the box by RK4 at step 0.01 9.6e-4 off, by
+//! Dormand–Prince 7.6e-4 (a redone step's last stage snapped onto the first knot).
+
+use varmass::core::nalgebra::SVector;
+use varmass::core::steppers::{
+    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, FixedStep, StepControl, Taylor,
+    TaylorControl,
+};
+use varmass::core::{run, RunConfig, Solution, VariableMassSystem};
+use varmass::prelude::variable_mass_system;
+
+#[variable_mass_system(
+    r#"
+    coordinates x
+    table G(s) = "tests/data/box_1_2.csv", outside zero
+    mass m = m0
+    body b: mass m, position [x]
+    force b: [m0*G(x)]
+"#,
+    emit = ["taylor"]
+)]
+struct Box {
+    m0: f64,
+}
+
+#[variable_mass_system(
+    r#"
+    coordinates x
+    table G(s) = "tests/data/ramp_then_one.csv", outside zero
+    mass m = m0
+    body b: mass m, position [x]
+    force b: [m0*G(x)]
+"#,
+    emit = ["taylor"]
+)]
+struct RampThenOne {
+    m0: f64,
+}
+
+const TOLERANCE: f64 = 1e-12;
+const STEP: f64 = 0.01;
+
+/// (x, v) at `end` from `start` by RK4 and Dormand–Prince at the fixed step [`STEP`], and
+/// by Taylor, DOP853 and Dormand–Prince at [`TOLERANCE`].
+fn ends<Sys: VariableMassSystem<1, 2>>(
+    system: &Sys,
+    start: [f64; 2],
+    end: f64,
+) -> Vec<(&'static str, [f64; 2])> {
+    let start = SVector::from(start);
+    let config = RunConfig::until(end);
+    let last = |solution: Solution<1, 2>| {
+        let (_, state) = solution.last().unwrap();
+        [state[0], state[1]]
+    };
+    let adaptive = |base: AdaptiveControl| {
+        StepControl::Adaptive(AdaptiveControl {
+            relative_tolerance: TOLERANCE,
+            absolute_tolerance: TOLERANCE,
+            ..base
+        })
+    };
+    let fixed = FixedStep { step: STEP };
+    let mut rk4 = ClassicalRk4::new(system, 0.0, start, fixed).unwrap();
+    let mut dp_fixed = DormandPrince::new(system, 0.0, start, StepControl::Fixed(fixed)).unwrap();
+    let control = TaylorControl::adaptive(TOLERANCE, TOLERANCE);
+    let mut taylor = Taylor::new(system, 0.0, start, control).unwrap();
+    let mut dop853 = Dop853::new(system, 0.0, start, adaptive(AdaptiveControl::dop853())).unwrap();
+    let mut dp =
+        DormandPrince::new(system, 0.0, start, adaptive(AdaptiveControl::default())).unwrap();
+    vec![
+        ("rk4 fixed", last(run(&mut rk4, &config, &[]).unwrap())),
+        (
+            "dormand-prince fixed",
+            last(run(&mut dp_fixed, &config, &[]).unwrap()),
+        ),
+        ("taylor", last(run(&mut taylor, &config, &[]).unwrap())),
+        ("dop853", last(run(&mut dop853, &config, &[]).unwrap())),
+        ("dormand-prince", last(run(&mut dp, &config, &[]).unwrap())),
+    ]
+}
+
+/// Asserts each method's (x, v) within its bound, relative.
+fn assert_near(found: &[(&str, [f64; 2])], expected: [f64; 2], bound: impl Fn(&str) -> f64) {
+    for (method, state) in found {
+        for (value, exact) in state.iter().zip(expected) {
+            let error = (value - exact).abs() / exact.abs();
+            assert!(
+                error <= bound(method),
+                "{method}: {value} vs {exact} ({error:e})"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_box_of_the_state_entered_and_left_by_its_jumping_ends() {
+    // G = 1 is constant on the data: every method is exact there but for rounding.
+    // Measured: ≤ 1.2e-14 (x, v, every method); bound 8e-14 (before: RK4 9.6e-4,
+    // Dormand–Prince fixed 7.6e-4).
+    let three = 3f64.sqrt();
+    let found = ends(&Box { m0: 1.0 }, [0.0, 1.0], 3.0);
+    assert_near(&found, [3.0 * three - 1.0, three], |_| 8e-14);
+}
+
+#[test]
+fn a_box_of_the_state_entered_and_left_through_the_same_jumping_end() {
+    // Measured: ≤ 1.6e-14 (every method); bound 8e-14 (before the series read the band
+    // above the last knot as the data's, Taylor was 12 % off).
+    let found = ends(&Box { m0: 1.0 }, [3.0, -1.0], 4.0);
+    assert_near(&found, [3.0, 1.0], |_| 8e-14);
+}
+
+#[test]
+fn a_ramp_of_the_state_left_by_its_jumping_end() {
+    // x = sinh t on the ramp: the fixed steps err by their truncation there, the adaptive
+    // runs by their tolerance. Measured (x, v): RK4 2.9e-11, Dormand–Prince fixed 4.2e-14,
+    // at 1e-12 Dormand–Prince 1.1e-13 and DOP853 5.2e-14, Taylor 6.7e-16; bounds ×5
+    // (before: Dormand–Prince at 1e-12 v 1.4e-10 off, 290× the tolerance).
+    let t1 = 1f64.asinh();
+    let found = ends(&RampThenOne { m0: 1.0 }, [0.0, 1.0], 3.0);
+    let x3 = 2.0 + 2.0 * (3.0 - t1 - 2.0 + 2f64.sqrt());
+    let bound = |method: &str| match method {
+        "rk4 fixed" => 1.5e-10,
+        "taylor" => 5e-15,
+        _ => 6e-13,
+    };
+    assert_near(&found, [x3, 2.0], bound);
+}
