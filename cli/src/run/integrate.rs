@@ -11,6 +11,7 @@ use varmass::core::{
 use varmass::interpret::{Program, TapeSystem};
 
 use super::names::{evaluate, Observable};
+use super::output::Points;
 use super::plan::{Plan, Steps};
 use super::watch::Watched;
 use crate::error::CliError;
@@ -18,7 +19,7 @@ use crate::error::CliError;
 /// What a run produced, sizes erased.
 pub struct Outcome {
     /// The output times and states `[q, p, m_s]`.
-    pub points: Vec<(f64, Vec<f64>)>,
+    pub points: Points,
     /// The index of the `--stop-when` condition that ended the run, if one did.
     pub stopped_by: Option<usize>,
     /// The stepper's work.
@@ -138,8 +139,6 @@ pub(crate) fn step(steps: Steps) -> f64 {
     }
 }
 
-type Points = Vec<(f64, Vec<f64>)>;
-
 /// A failed run: the points up to the failure, the work done and the error.
 type Failed<const S: usize> = (Points, Statistics, StepError<S>);
 
@@ -184,7 +183,8 @@ where
         false => Watched::quiet(stepper, plan.from, plan.until),
     };
     let mut stepper = watched.with_time_limit(plan.max_seconds);
-    let mut points = vec![(plan.from, start.as_slice().to_vec())];
+    let mut points = Points::new(S, 64);
+    points.push(plan.from, start.as_slice());
     let targets = output_times(plan);
     for (interval, target) in targets.into_iter().enumerate() {
         // --max-steps bounds the whole run, over every output interval.
@@ -200,10 +200,13 @@ where
             Ok(solution) => (solution, None),
             Err(failure) => (*failure.partial, Some(failure.error)),
         };
-        let fresh = solution.times.iter().zip(&solution.states).skip(1);
-        match plan.every {
-            None => points.extend(fresh.map(|(t, s)| (*t, s.as_slice().to_vec()))),
-            Some(_) => points.extend(fresh.last().map(|(t, s)| (*t, s.as_slice().to_vec()))),
+        let mut fresh = solution.times.iter().zip(&solution.states).skip(1);
+        let kept: &mut dyn Iterator<Item = _> = match plan.every {
+            None => &mut fresh,
+            Some(_) => &mut fresh.last().into_iter(),
+        };
+        for (t, s) in kept {
+            points.push(*t, s.as_slice());
         }
         if let Some(error) = failure {
             return Err((points, *stepper.statistics(), error));
