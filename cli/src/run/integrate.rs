@@ -60,7 +60,10 @@ pub fn integrate<const N: usize, const S: usize>(
     let driven = with_stepper!(plan.method, plan.steps, drive_with);
     let (points, stopped_by, statistics, failure) = match driven {
         Ok((points, stopped_by, statistics)) => (points, stopped_by, statistics, None),
-        Err((points, statistics, error)) => (points, None, statistics, Some(fail(error))),
+        Err(failed) => {
+            let (points, statistics, error) = *failed;
+            (points, None, statistics, Some(fail(error)))
+        }
     };
     Ok(Outcome {
         points,
@@ -140,7 +143,8 @@ pub(crate) fn step(steps: Steps) -> f64 {
 }
 
 /// A failed run: the points up to the failure, the work done and the error.
-type Failed<const S: usize> = (Points, Statistics, StepError<S>);
+/// (Boxed: a failure is rare, and the success path should not carry its size.)
+type Failed<const S: usize> = Box<(Points, Statistics, StepError<S>)>;
 
 /// An event function g(t, state) borrowing the program.
 type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
@@ -209,7 +213,7 @@ where
             points.push(*t, s.as_slice());
         }
         if let Some(error) = failure {
-            return Err((points, *stepper.statistics(), error));
+            return Err(Box::new((points, *stepper.statistics(), error)));
         }
         if let StopReason::EventFound { index } = solution.stop {
             return Ok((points, Some(index), *stepper.statistics()));
