@@ -107,7 +107,7 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
     };
     let summary = summary(&flown, &changes, &ends, stopped_by.as_deref());
     Ok(SceneRun {
-        table: Table { names, rows },
+        table: Table::from_rows(names, rows),
         summary,
         csv,
         changes,
@@ -132,7 +132,13 @@ fn rows(
     while start < flown.points.len() {
         let k = flown.phase[start];
         let end = start + flown.phase[start..].iter().take_while(|p| **p == k).count();
-        let recorded = output::table(&flown.programs[k], &phases[k].1, &flown.points[start..end]);
+        let recorded = output::table(
+            &flown.programs[k],
+            &phases[k].1,
+            flown.points[start..end]
+                .iter()
+                .map(|(t, s)| (*t, s.as_slice())),
+        );
         let (part, complete) = match recorded {
             Ok(part) => (part, true),
             Err(partial) => {
@@ -141,7 +147,7 @@ fn rows(
                 (part, false)
             }
         };
-        for (i, (t, values)) in part.rows.into_iter().enumerate() {
+        for (i, (t, values)) in part.rows().enumerate() {
             let mut row = vec![(k + 1) as f64];
             row.extend(values);
             if energy {

@@ -48,9 +48,14 @@ fn sled(theta_degrees: f64) -> [(&'static str, f64); 5] {
 
 /// Every recorded value and the end state, bit for bit.
 fn bits(done: &Completed) -> Vec<u64> {
-    let rows = done.table.rows.iter();
-    let values = rows.flat_map(|(t, row)| std::iter::once(t).chain(row));
-    values.chain(&done.end.1).map(|v| v.to_bits()).collect()
+    let values = done
+        .table
+        .rows()
+        .flat_map(|(t, row)| std::iter::once(t).chain(row));
+    values
+        .chain(done.end.1.iter().copied())
+        .map(f64::to_bits)
+        .collect()
 }
 
 fn run(compiled: &mut Compiled, parameters: &[(&str, f64)]) -> Result<Completed, CliError> {
@@ -78,6 +83,31 @@ fn a_reused_model_runs_as_one_made_anew() {
         steep.end.0
     );
     assert_eq!(steep.stopped_by, Some(0));
+}
+
+#[test]
+fn the_summary_made_when_shown_is_the_tools_text() {
+    let done = run(&mut compiled(), &sled(30.0)).expect("runs");
+    // The table (x and x', recorded by default) gives the end's values; the text is the
+    // tool's summary as it has always been written.
+    assert_eq!(done.table.names, ["x", "x'"]);
+    let (t, row) = done.table.last().expect("a row");
+    let s = &done.statistics;
+    let expected = format!(
+        "stopped at t = {t} (--stop-when 'x = 50')\nstate:\n  x = {}\n  x' = {}\n  p_x = {}\n\
+         steps: {} accepted, {} rejected; {} rate evaluations, {} Jacobians, {} Newton \
+         iterations\n",
+        row[0],
+        row[1],
+        done.end.1[1],
+        s.accepted_steps,
+        s.rejected_steps,
+        s.rate_evaluations,
+        s.jacobian_evaluations,
+        s.newton_iterations
+    );
+    assert_eq!(done.summary.to_string(), expected);
+    assert_eq!((t, row[0]), (done.end.0, done.end.1[0]));
 }
 
 #[test]
@@ -133,7 +163,7 @@ fn an_exact_size_runs_as_the_bare_interpreter() {
     let mut stepper = Dop853::new(&system, 0.0, SVector::zeros(), control).expect("starts");
     let at_50 = Event::state_reaches(0, 50.0, Direction::Either);
     let bare = core_run(&mut stepper, &RunConfig::until(100.0), &[at_50]).expect("runs");
-    let times: Vec<u64> = done.table.rows.iter().map(|(t, _)| t.to_bits()).collect();
+    let times: Vec<u64> = done.table.times().iter().map(|t| t.to_bits()).collect();
     let bare_times: Vec<u64> = bare.times.iter().map(|t| t.to_bits()).collect();
     assert_eq!(times, bare_times);
     let (_, end) = bare.last().expect("a point");
@@ -228,9 +258,9 @@ fn a_failed_recording_hands_back_the_rows_before_it() {
         failed.error
     );
     let table = failed.table.expect("the rows before the failure");
-    let times: Vec<f64> = table.rows.iter().map(|(t, _)| *t).collect();
+    let times = table.times();
     assert_eq!(times, [0.0, 0.25, 0.5, 0.75, 1.0]);
     // V(1) = m0 g y(1) + h(1) = 2·10·(−5) + 3, y exact to rounding (quadratic in t).
-    let v_1 = table.rows[4].1[0];
+    let v_1 = table.column(0)[4];
     assert!((v_1 + 97.0).abs() <= 1e-12, "{v_1}");
 }

@@ -26,6 +26,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
     m.add_class::<model::NativeModel>()?;
     m.add_class::<run::RunFlags>()?;
+    m.add_class::<run::Details>()?;
     m.add_class::<ensemble::NativeEnsemble>()?;
     m.add_class::<ensemble::NativePartial>()?;
     Ok(())

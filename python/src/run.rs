@@ -5,11 +5,11 @@
 
 use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBytes, PyDict, PyFloat, PyString};
 use varmass::core::Statistics;
 use varmass_cli::args::{Cli, Command, RunArgs};
 use varmass_cli::error::CliError;
-use varmass_cli::run::{Completed, Failed, Table};
+use varmass_cli::run::{Failed, Summary, Table};
 
 use crate::errors::{to_py, value_error};
 use crate::model::NativeModel;
@@ -54,16 +54,64 @@ pub fn parse(
     Ok(RunFlags { args })
 }
 
+/// What [`run`] gives: the recorded names, their data (as [`columns`] gives them), the
+/// end time, the index of the `stop_when` condition that ended the run (or `None`) and the
+/// rest of the run ([`Details`]), read when asked.
+type Ran<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyBytes>,
+    f64,
+    Option<usize>,
+    Details,
+);
+
 /// Runs `model` with the parameter values `set` and the parsed `flags` (the tool's `run`
-/// without its files, on the model compiled once); returns the recorded columns, the end,
-/// the statistics and the summary the tool prints.
+/// without its files, on the model compiled once); returns what [`Ran`] lists. `set` is
+/// the pairs `_checks.unique_values` gives, or the user's own `dict` when it is plain
+/// (see [`plain`]); `None` when it is a `dict` that is not: `Model.run` then checks it
+/// in Python, with its messages, and calls again with the pairs.
 #[pyfunction]
 pub fn run<'py>(
     py: Python<'py>,
     model: &NativeModel,
+    set: &Bound<'py, PyAny>,
+    flags: &RunFlags,
+) -> PyResult<Option<Ran<'py>>> {
+    let set = match set.cast_exact::<PyDict>() {
+        Ok(dict) => match plain(dict) {
+            Some(pairs) => pairs,
+            None => return Ok(None),
+        },
+        Err(_) => set.extract::<Vec<(String, f64)>>()?,
+    };
+    run_checked(py, model, set, flags).map(Some)
+}
+
+/// The pairs of `set` when each key is a `str` as written (beginning and ending with an
+/// ASCII letter, digit or `_`: nothing Python's `strip` would take off) and each value a
+/// finite `float`, exactly the pairs `_checks.unique_values` gives such a
+/// dict (a sweep's `set`): checked here at a fraction of the Python loop's cost. `None`
+/// for anything else.
+fn plain(set: &Bound<'_, PyDict>) -> Option<Vec<(String, f64)>> {
+    let mut pairs = Vec::with_capacity(set.len());
+    for (key, value) in set.iter() {
+        let name = key.cast_exact::<PyString>().ok()?.to_cow().ok()?;
+        let value = value.cast_exact::<PyFloat>().ok()?.value();
+        let word = |c: char| c.is_ascii_alphanumeric() || c == '_';
+        if !name.starts_with(word) || !name.ends_with(word) || !value.is_finite() {
+            return None;
+        }
+        pairs.push((name.into_owned(), value));
+    }
+    Some(pairs)
+}
+
+fn run_checked<'py>(
+    py: Python<'py>,
+    model: &NativeModel,
     set: Vec<(String, f64)>,
     flags: &RunFlags,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Ran<'py>> {
     let args = &flags.args;
     if let Some((name, value)) = set.iter().find(|(_, v)| !v.is_finite()) {
         return Err(value_error(format!(
@@ -76,11 +124,47 @@ pub fn run<'py>(
             model.lock().run(&values, args)
         })
         .map_err(|failed| failure(py, failed))?;
-    result(py, &done)
+    let table = &done.table;
+    let names = table.names.as_slice().into_pyobject(py)?.into_any();
+    let data = table_block(py, table)?;
+    let details = Details {
+        end_state: done.end.1,
+        statistics: done.statistics,
+        summary: done.summary,
+    };
+    Ok((names, data, done.end.0, done.stopped_by, details))
+}
+
+/// The end state, the statistics and the summary of a run, made into Python objects (the
+/// summary into text) only when `Solution` is asked for them: most runs of a sweep never
+/// are.
+#[pyclass(module = "varmass._native", frozen)]
+pub struct Details {
+    end_state: Vec<f64>,
+    statistics: Statistics,
+    summary: Summary,
+}
+
+#[pymethods]
+impl Details {
+    /// The state `[q, p, m_s]` where the run ended.
+    fn end_state(&self) -> Vec<f64> {
+        self.end_state.clone()
+    }
+
+    /// The stepper's work by name.
+    fn statistics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        statistics(py, &self.statistics)
+    }
+
+    /// The summary the tool prints.
+    fn summary(&self) -> String {
+        self.summary.to_string()
+    }
 }
 
 /// The exception of a failed run; a `RunError` carries the points recorded up to the
-/// failure as `_partial` (names, times and columns, as [`result`] gives them), which
+/// failure as `_partial` (names, times and columns, as [`columns`] gives them), which
 /// `Model.run` turns into `RunError.points`.
 fn failure(py: Python<'_>, failed: Failed) -> PyErr {
     let error = to_py(py, failed.error);
@@ -98,30 +182,41 @@ fn failure(py: Python<'_>, failed: Failed) -> PyErr {
 pub fn columns<'py>(py: Python<'py>, table: &Table) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     out.set_item(intern!(py, "names"), &table.names)?;
-    let rows = &table.rows;
-    let mut data: Vec<u8> = Vec::with_capacity(8 * rows.len() * (table.names.len() + 1));
-    data.extend(rows.iter().flat_map(|(t, _)| t.to_le_bytes()));
-    for k in 0..table.names.len() {
-        data.extend(rows.iter().flat_map(|(_, v)| v[k].to_le_bytes()));
-    }
-    out.set_item(intern!(py, "data"), PyBytes::new(py, &data))?;
+    out.set_item(intern!(py, "data"), table_block(py, table)?)?;
     Ok(out)
+}
+
+/// The times of `table`, then each column in turn, as one block of little-endian bytes.
+fn table_block<'py>(py: Python<'py>, table: &Table) -> PyResult<Bound<'py, PyBytes>> {
+    let columns = (0..table.names.len()).map(|k| table.column(k));
+    block(
+        py,
+        table.len(),
+        std::iter::once(table.times()).chain(columns),
+    )
+}
+
+/// The columns `columns`, each `len` long, one after the other as one block of little-endian
+/// bytes, written straight into the Python object (one copy of each column).
+fn block<'a, 'py>(
+    py: Python<'py>,
+    len: usize,
+    columns: impl Iterator<Item = &'a [f64]> + Clone,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let size = 8 * len * columns.clone().count();
+    PyBytes::new_with(py, size, |out| {
+        let values = columns.flat_map(|c| c.iter());
+        for (chunk, v) in out.chunks_exact_mut(8).zip(values) {
+            chunk.copy_from_slice(&v.to_le_bytes());
+        }
+        Ok(())
+    })
 }
 
 /// The little-endian bytes of `values`.
 pub fn bytes<'py>(py: Python<'py>, values: impl Iterator<Item = f64>) -> Bound<'py, PyBytes> {
     let raw: Vec<u8> = values.flat_map(f64::to_le_bytes).collect();
     PyBytes::new(py, &raw)
-}
-
-fn result<'py>(py: Python<'py>, done: &Completed) -> PyResult<Bound<'py, PyDict>> {
-    let out = columns(py, &done.table)?;
-    out.set_item(intern!(py, "end_time"), done.end.0)?;
-    out.set_item(intern!(py, "end_state"), &done.end.1)?;
-    out.set_item(intern!(py, "stopped_by"), done.stopped_by)?;
-    out.set_item(intern!(py, "statistics"), statistics(py, &done.statistics)?)?;
-    out.set_item(intern!(py, "summary"), &done.summary)?;
-    Ok(out)
 }
 
 /// The stepper's work by name.

@@ -169,7 +169,10 @@ class Model:
         the file of a file table; the statement's options (interpolation, ``outside``) hold
         (docs/tables.md#runtime-tables). The GIL is released while it runs.
         """
-        parameters = _checks.unique_values("set", set)
+        # A dict goes to the extension as it is (checked there if plain, else below, after
+        # the other arguments); anything else is checked first, as always.
+        plain = type(set) is dict
+        parameters = set if plain else _checks.unique_values("set", set)
         key = _checks.plain_key(
             init, until, from_, stop_when, method, tol, step, record, every, inputs, tables
         )
@@ -196,12 +199,16 @@ class Model:
                 parsed = (key, flags, parsed[2])
             parsed += (_checks.names("stop_when", stop_when),)
             self._parsed = parsed
+        native = self._native()
         try:
-            raw = _native.run(self._native(), parameters, parsed[2])
+            # The extension refuses (None) a dict it cannot take as it is.
+            raw = _native.run(native, parameters, parsed[2])
+            if raw is None:  # a dict that is not plain
+                raw = _native.run(native, _checks.unique_values("set", set), parsed[2])
         except RunError as error:
             error.points = _partial_points(error)
             raise
-        return Solution(raw, parsed[3])
+        return Solution._of_run(raw, parsed[3])
 
     def ensemble(
         self,

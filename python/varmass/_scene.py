@@ -61,7 +61,7 @@ class Scene:
             error.points = _partial_points(error)
             raise
         changes = [PhaseChange(*change) for change in raw["changes"]]
-        return Solution(raw, None, changes=changes)
+        return Solution._of_scene(raw, changes)
 
     def __repr__(self) -> str:
         return f"<varmass.Scene {self._path}>"

@@ -21,6 +21,27 @@ def table(raw: dict):
     return data[0], dict(zip(names, data[1:]))
 
 
+class _Given:
+    """A scene's end state, statistics and summary, made by the extension at once (a run's
+    come from ``_native.Details``, made when read)."""
+
+    def __init__(self, raw: dict):
+        self._raw = raw
+
+    def end_state(self):
+        return self._raw["end_state"]
+
+    def statistics(self):
+        return self._raw["statistics"]
+
+    def summary(self):
+        return self._raw["summary"]
+
+
+#: Little-endian f64, made once (``np.frombuffer`` would parse ``"<f8"`` at every call).
+_F8 = np.dtype("<f8")
+
+
 class Solution:
     """The quantities a run recorded, one NumPy array per name, at every output time.
 
@@ -33,35 +54,84 @@ class Solution:
     phase (:class:`varmass.PhaseChange`); a run's ``changes`` is empty.
     """
 
-    def __init__(self, raw: dict, stop_when: Optional[List[str]], changes=()):
-        self.t: np.ndarray
-        self._columns: Dict[str, np.ndarray]
-        self.t, self._columns = table(raw)
-        self.names: List[str] = raw["names"]
-        self.end_time: float = raw["end_time"]
-        self.end_state: List[float] = raw["end_state"]
-        # A run gives the index of its condition; a scene the condition itself.
-        stopped_by = raw["stopped_by"]
-        if stop_when is not None and stopped_by is not None:
-            stopped_by = stop_when[stopped_by]
+    def __init__(self, names, data: bytes, end_time, stopped_by, details, changes=()):
+        # One array of the times and every column (rows), each column a view of it.
+        self._data = np.frombuffer(data, dtype=_F8).reshape(len(names) + 1, -1)
+        self.t: np.ndarray = self._data[0]
+        self.names: List[str] = names
+        self.end_time: float = end_time
         self.stopped_by: Optional[str] = stopped_by
-        self.changes: list = list(changes)
-        self.statistics: Dict[str, object] = raw["statistics"]
-        self.summary: str = raw["summary"]
+        self.changes: list = list(changes) if changes else []
+        # The end state, the statistics and the summary, read when first asked for.
+        self._details = details
+        self._cache: Dict[str, object] = {}
+
+    @classmethod
+    def _of_run(cls, ran, stop_when: List[str]) -> "Solution":
+        """The solution of ``_native.run``'s result; ``stop_when`` the conditions by
+        index."""
+        names, data, end_time, stopped_by, details = ran
+        if stopped_by is not None:
+            stopped_by = stop_when[stopped_by]
+        return cls(names, data, end_time, stopped_by, details)
+
+    @classmethod
+    def _of_scene(cls, raw: dict, changes) -> "Solution":
+        """The solution of ``_native.run_scene``'s result (a dict)."""
+        return cls(
+            raw["names"], raw["data"], raw["end_time"], raw["stopped_by"], _Given(raw), changes
+        )
+
+    def __reduce__(self):
+        # Pickled (a Dask task's result) with its details made: the extension's are not.
+        given = {name: self._detail(name) for name in ("end_state", "statistics", "summary")}
+        data = self._data.tobytes()
+        args = (self.names, data, self.end_time, self.stopped_by, _Given(given), self.changes)
+        return (Solution, args)
+
+    def _detail(self, name: str):
+        try:
+            return self._cache[name]
+        except KeyError:
+            value = self._cache[name] = getattr(self._details, name)()
+            return value
+
+    @property
+    def end_state(self) -> List[float]:
+        """The state ``[q, p, m_s]`` where the run ended."""
+        return self._detail("end_state")
+
+    @property
+    def statistics(self) -> Dict[str, object]:
+        """The stepper's work: accepted and rejected steps, rate and Jacobian evaluations,
+        Newton iterations, whether stiffness was detected."""
+        return self._detail("statistics")
+
+    @property
+    def summary(self) -> str:
+        """What ``varmass run`` prints after a run."""
+        return self._detail("summary")
+
+    def _column(self, name: str) -> np.ndarray:
+        """The column ``name`` (a view), or ``None``."""
+        try:
+            return self._data[self.names.index(name) + 1]
+        except ValueError:
+            return None
 
     def __getitem__(self, name: str) -> np.ndarray:
         if name == "t":
             return self.t
-        try:
-            return self._columns[name]
-        except KeyError:
+        column = self._column(name)
+        if column is None:
             raise KeyError(
                 f"{name!r} was not recorded; recorded: t, {', '.join(self.names)} "
                 "(ask for more with record=[...])"
-            ) from None
+            )
+        return column
 
     def __contains__(self, name: object) -> bool:
-        return name == "t" or name in self._columns
+        return name == "t" or name in self.names
 
     def __len__(self) -> int:
         return len(self.t)
@@ -72,7 +142,7 @@ class Solution:
     @property
     def end(self) -> Dict[str, float]:
         """The recorded quantities at the end of the run."""
-        return {n: float(c[-1]) for n, c in self._columns.items()}
+        return {n: float(c[-1]) for n, c in zip(self.names, self._data[1:])}
 
     def to_pandas(self):
         """A DataFrame with a column ``t`` and one per recorded name (needs pandas)."""

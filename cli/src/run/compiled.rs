@@ -17,7 +17,7 @@ use varmass::interpret::Program;
 
 use super::dispatch::dispatch;
 use super::integrate::Outcome;
-use super::output::{self, Table};
+use super::output::{self, Summary, Table};
 use super::plan::{self, Plan};
 use crate::args::{RunArgs, Words};
 use crate::error::CliError;
@@ -269,13 +269,13 @@ impl Compiled {
             |outcome, plan| {
                 let program = &outcome.program;
                 // A member wants the end: rows before an unrecordable point are of no use.
-                let mut table = output::table(program, &plan.record, &outcome.points)
+                let table = output::table(program, &plan.record, outcome.points.iter())
                     .map_err(|partial| partial.with_run_failure(outcome.failure.take()).1)?;
                 if let Some(error) = outcome.failure.take() {
                     return Err(error);
                 }
                 let no_point = || CliError::Run("the run returned no point".to_string());
-                table.rows.pop().ok_or_else(no_point)
+                table.last().ok_or_else(no_point)
             },
         )?
     }
@@ -299,7 +299,7 @@ fn typed(parameters: &[(&str, f64)]) -> Result<Vec<(String, f64)>, CliError> {
 /// What a finished run gives a library caller.
 fn completed(outcome: &mut Outcome, plan: &Plan, args: &RunArgs) -> Result<Completed, Failed> {
     let program = &outcome.program;
-    let table = match output::table(program, &plan.record, &outcome.points) {
+    let table = match output::table(program, &plan.record, outcome.points.iter()) {
         Ok(table) => table,
         Err(partial) => {
             // The rows before the point that could not be recorded go with the error.
@@ -312,19 +312,17 @@ fn completed(outcome: &mut Outcome, plan: &Plan, args: &RunArgs) -> Result<Compl
         let table = Some(table);
         return Err(Failed { error, table });
     }
+    let end = outcome.points.last().map(|(t, s)| (t, s.to_vec()));
     let end =
-        outcome.points.last().cloned().ok_or_else(|| {
-            Failed::before(CliError::Run("the run returned no point".to_string()))
-        })?;
+        end.ok_or_else(|| Failed::before(CliError::Run("the run returned no point".to_string())))?;
     let stopped_by = outcome
         .stopped_by
-        .and_then(|index| args.stop_when.get(index))
-        .map(|c| format!("'{c}'"));
-    let summary = output::summary(
+        .and_then(|index| args.stop_when.get(index));
+    let summary = Summary::new(
         program,
         end.0,
         &end.1,
-        stopped_by.as_deref(),
+        stopped_by.map(String::as_str),
         &outcome.statistics,
     );
     Ok(Completed {
@@ -347,8 +345,8 @@ pub struct Completed {
     pub stopped_by: Option<usize>,
     /// The stepper's work.
     pub statistics: varmass::core::Statistics,
-    /// The summary the tool prints.
-    pub summary: String,
+    /// The summary the tool prints (its text made when shown: `summary.to_string()`).
+    pub summary: Summary,
 }
 
 /// A run of [`Compiled::run`] that failed: the error, and the points recorded up to the

@@ -71,9 +71,7 @@ fn padded<const N: usize, const S: usize>(
     len: usize,
 ) -> Result<Outcome, CliError> {
     let mut outcome = integrate::<N, S>(program, &padded_plan(plan, len, S))?;
-    for (_, state) in &mut outcome.points {
-        state.truncate(len);
-    }
+    outcome.points = std::mem::take(&mut outcome.points).narrowed(len);
     Ok(outcome)
 }
 

@@ -11,6 +11,7 @@ use varmass::core::{
 use varmass::interpret::{Program, TapeSystem};
 
 use super::names::{evaluate, shown, Observable};
+use super::output::Points;
 use super::plan::{Plan, Steps};
 use super::watch::Watched;
 use crate::error::CliError;
@@ -18,7 +19,7 @@ use crate::error::CliError;
 /// What a run produced, sizes erased.
 pub struct Outcome {
     /// The output times and states `[q, p, m_s]`.
-    pub points: Vec<(f64, Vec<f64>)>,
+    pub points: Points,
     /// The index of the `--stop-when` condition that ended the run, if one did.
     pub stopped_by: Option<usize>,
     /// The stepper's work.
@@ -59,7 +60,10 @@ pub fn integrate<const N: usize, const S: usize>(
     let driven = with_stepper!(plan.method, plan.steps, drive_with);
     let (points, stopped_by, statistics, failure) = match driven {
         Ok((points, stopped_by, statistics)) => (points, stopped_by, statistics, None),
-        Err((points, statistics, error)) => (points, None, statistics, Some(fail(error))),
+        Err(failed) => {
+            let (points, statistics, error) = *failed;
+            (points, None, statistics, Some(fail(error)))
+        }
     };
     Ok(Outcome {
         points,
@@ -138,10 +142,9 @@ pub(crate) fn step(steps: Steps) -> f64 {
     }
 }
 
-type Points = Vec<(f64, Vec<f64>)>;
-
 /// A failed run: the points up to the failure, the work done and the error.
-type Failed<const S: usize> = (Points, Statistics, StepError<S>);
+/// (Boxed: a failure is rare, and the success path should not carry its size.)
+type Failed<const S: usize> = Box<(Points, Statistics, StepError<S>)>;
 
 /// An event function g(t, state) borrowing the program.
 type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
@@ -184,7 +187,8 @@ where
         false => Watched::quiet(stepper, plan.from, plan.until),
     };
     let mut stepper = watched.with_time_limit(plan.max_seconds);
-    let mut points = vec![(plan.from, start.as_slice().to_vec())];
+    let mut points = Points::new(S, 64);
+    points.push(plan.from, start.as_slice());
     let targets = output_times(plan);
     for (interval, target) in targets.into_iter().enumerate() {
         // --max-steps bounds the whole run, over every output interval.
@@ -200,13 +204,16 @@ where
             Ok(solution) => (solution, None),
             Err(failure) => (*failure.partial, Some(failure.error)),
         };
-        let fresh = solution.times.iter().zip(&solution.states).skip(1);
-        match plan.every {
-            None => points.extend(fresh.map(|(t, s)| (*t, s.as_slice().to_vec()))),
-            Some(_) => points.extend(fresh.last().map(|(t, s)| (*t, s.as_slice().to_vec()))),
+        let mut fresh = solution.times.iter().zip(&solution.states).skip(1);
+        let kept: &mut dyn Iterator<Item = _> = match plan.every {
+            None => &mut fresh,
+            Some(_) => &mut fresh.last().into_iter(),
+        };
+        for (t, s) in kept {
+            points.push(*t, s.as_slice());
         }
         if let Some(error) = failure {
-            return Err((points, *stepper.statistics(), error));
+            return Err(Box::new((points, *stepper.statistics(), error)));
         }
         if let StopReason::EventFound { index } = solution.stop {
             return Ok((points, Some(index), *stepper.statistics()));

@@ -48,7 +48,7 @@ fn finish(
     plan: &plan::Plan,
 ) -> Result<String, CliError> {
     let program = &outcome.program;
-    let (table, failure) = match output::table(program, &plan.record, &outcome.points) {
+    let (table, failure) = match output::table(program, &plan.record, outcome.points.iter()) {
         Ok(table) => (table, outcome.failure.take()),
         Err(partial) => {
             let (table, error) = partial.with_run_failure(outcome.failure.take());
@@ -72,13 +72,12 @@ fn finish(
         .ok_or_else(|| CliError::Run("the run returned no point".to_string()))?;
     let stopped_by = outcome
         .stopped_by
-        .and_then(|index| args.stop_when.get(index))
-        .map(|c| format!("'{c}'"));
+        .and_then(|index| args.stop_when.get(index));
     Ok(output::summary(
         program,
-        *time,
+        time,
         state,
-        stopped_by.as_deref(),
+        stopped_by.map(String::as_str),
         &outcome.statistics,
     ))
 }
@@ -171,5 +170,5 @@ fn program_error(
     }
 }
 
-pub use output::Table;
+pub use output::{Summary, Table};
 pub use plan::DEFAULT_TOLERANCE;

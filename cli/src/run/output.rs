@@ -1,6 +1,6 @@
 //! What a run prints and writes: the summary, the recorded table and its CSV.
 
-use std::fmt::Write;
+use std::fmt::{self, Write};
 use std::path::Path;
 
 use varmass::core::Statistics;
@@ -9,12 +9,152 @@ use varmass::interpret::Program;
 use super::record::Recorded;
 use crate::error::CliError;
 
-/// The recorded quantities: names, and one row of values per output time.
+/// The recorded quantities: names, and the value of each at every output time, stored by
+/// column (the times, then one `Vec` per name): recording a point allocates nothing, and a
+/// library caller hands each column on whole (the Python package's NumPy arrays).
 pub struct Table {
     /// The column names (without `t`).
     pub names: Vec<String>,
-    /// (t, values) per output time.
-    pub rows: Vec<(f64, Vec<f64>)>,
+    /// The output times.
+    times: Vec<f64>,
+    /// One column per name, each as long as `times`.
+    columns: Vec<Vec<f64>>,
+}
+
+impl Table {
+    /// An empty table of the columns `names`, with room for `capacity` rows.
+    pub fn new(names: Vec<String>, capacity: usize) -> Self {
+        let columns = names.iter().map(|_| Vec::with_capacity(capacity)).collect();
+        Self {
+            names,
+            times: Vec::with_capacity(capacity),
+            columns,
+        }
+    }
+
+    /// The table of `rows`, `(t, values)` with one value per name.
+    pub fn from_rows(names: Vec<String>, rows: impl IntoIterator<Item = (f64, Vec<f64>)>) -> Self {
+        let mut table = Self::new(names, 0);
+        for (t, values) in rows {
+            table.push(t, &values);
+        }
+        table
+    }
+
+    /// Adds the row `values` (one per name) at the time `t`.
+    pub fn push(&mut self, t: f64, values: &[f64]) {
+        debug_assert_eq!(values.len(), self.columns.len(), "one value per column");
+        self.times.push(t);
+        for (column, value) in self.columns.iter_mut().zip(values) {
+            column.push(*value);
+        }
+    }
+
+    /// The number of rows.
+    pub fn len(&self) -> usize {
+        self.times.len()
+    }
+
+    /// Whether the table has no row.
+    pub fn is_empty(&self) -> bool {
+        self.times.is_empty()
+    }
+
+    /// The output times.
+    pub fn times(&self) -> &[f64] {
+        &self.times
+    }
+
+    /// The values of the `k`-th name at every output time.
+    pub fn column(&self, k: usize) -> &[f64] {
+        &self.columns[k]
+    }
+
+    /// The row `i`: its time and one value per name.
+    pub fn row(&self, i: usize) -> (f64, Vec<f64>) {
+        (self.times[i], self.columns.iter().map(|c| c[i]).collect())
+    }
+
+    /// Each row in turn, as [`Table::row`] gives it.
+    pub fn rows(&self) -> impl Iterator<Item = (f64, Vec<f64>)> + '_ {
+        (0..self.len()).map(|i| self.row(i))
+    }
+
+    /// The last row, if any.
+    pub fn last(&self) -> Option<(f64, Vec<f64>)> {
+        self.len().checked_sub(1).map(|i| self.row(i))
+    }
+}
+
+/// A run's points: each output time and the state `[q, p, m_s]` there, the states one after
+/// the other in one `Vec` (a point allocates nothing).
+#[derive(Clone, Debug, Default)]
+pub struct Points {
+    /// The length of a state.
+    width: usize,
+    times: Vec<f64>,
+    /// `width` values per point.
+    states: Vec<f64>,
+}
+
+impl Points {
+    /// No point yet, of states `width` long, with room for `capacity` points.
+    pub fn new(width: usize, capacity: usize) -> Self {
+        Self {
+            width,
+            times: Vec::with_capacity(capacity),
+            states: Vec::with_capacity(capacity * width),
+        }
+    }
+
+    /// Adds the point `state` (`width` long) at `t`.
+    pub fn push(&mut self, t: f64, state: &[f64]) {
+        debug_assert_eq!(state.len(), self.width, "a state of the points' width");
+        self.times.push(t);
+        self.states.extend_from_slice(state);
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.times.len()
+    }
+
+    /// The point `i`: its time and state.
+    pub fn get(&self, i: usize) -> (f64, &[f64]) {
+        (
+            self.times[i],
+            &self.states[i * self.width..(i + 1) * self.width],
+        )
+    }
+
+    /// Each point in turn.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = (f64, &[f64])> + '_ {
+        (0..self.len()).map(|i| self.get(i))
+    }
+
+    /// The last point, if any.
+    pub fn last(&self) -> Option<(f64, &[f64])> {
+        self.len().checked_sub(1).map(|i| self.get(i))
+    }
+
+    /// The points with each state cut to its first `width` entries (a padded run's
+    /// points, given back as the model's own).
+    pub fn narrowed(self, width: usize) -> Self {
+        if width >= self.width {
+            return self;
+        }
+        let states = self
+            .states
+            .chunks_exact(self.width)
+            .flat_map(|state| &state[..width])
+            .copied()
+            .collect();
+        Self {
+            width,
+            times: self.times,
+            states,
+        }
+    }
 }
 
 /// A recording that stopped at a point whose quantity cannot be had: the rows before that
@@ -46,33 +186,30 @@ impl Partial {
 
 /// Evaluates `record` at every point; a quantity that cannot be had ends the recording with
 /// its time, the rows before it kept in the [`Partial`].
-pub fn table(
+pub fn table<'a>(
     program: &Program,
     record: &[(String, Recorded)],
-    points: &[(f64, Vec<f64>)],
+    points: impl ExactSizeIterator<Item = (f64, &'a [f64])>,
 ) -> Result<Table, Partial> {
     let names = record.iter().map(|(n, _)| n.clone()).collect();
-    let mut table = Table {
-        names,
-        rows: Vec::with_capacity(points.len()),
-    };
+    let mut table = Table::new(names, points.len());
+    // One row's values, reused from point to point.
+    let mut values = vec![0.0; record.len()];
     for (t, state) in points {
-        let values = record
-            .iter()
-            .map(|(name, o)| {
-                o.value(program, *t, state).map_err(|e| {
-                    CliError::Run(format!(
+        for ((name, o), value) in record.iter().zip(&mut values) {
+            match o.value(program, t, state) {
+                Ok(v) => *value = v,
+                Err(e) => {
+                    let error = CliError::Run(format!(
                         "cannot record `{name}` at t = {t}: {e}; the points before this time \
                          are recorded; record other quantities, or stop the run before this \
                          time"
-                    ))
-                })
-            })
-            .collect::<Result<Vec<f64>, CliError>>();
-        match values {
-            Ok(values) => table.rows.push((*t, values)),
-            Err(error) => return Err(Partial { table, error }),
+                    ));
+                    return Err(Partial { table, error });
+                }
+            }
         }
+        table.push(t, &values);
     }
     Ok(table)
 }
@@ -82,10 +219,10 @@ pub fn table(
 pub fn write_csv(table: &Table, path: &Path) -> Result<(), CliError> {
     let names: Vec<String> = table.names.iter().map(|n| csv_field(n)).collect();
     let mut text = format!("t,{}\n", names.join(","));
-    for (t, values) in &table.rows {
-        let _ = write!(text, "{t}");
-        for v in values {
-            let _ = write!(text, ",{v}");
+    for i in 0..table.len() {
+        let _ = write!(text, "{}", table.times[i]);
+        for column in &table.columns {
+            let _ = write!(text, ",{}", column[i]);
         }
         text.push('\n');
     }
@@ -108,28 +245,109 @@ fn csv_field(name: &str) -> String {
 /// The state by name: coordinates, velocities (when they can be had), momenta and state
 /// masses, one per line.
 pub fn state_lines(program: &Program, time: f64, state: &[f64]) -> String {
-    let n = program.coordinate_count();
-    let mut velocities = vec![f64::NAN; n];
-    let have_velocities = program.velocities(time, state, &mut velocities).is_ok();
     let mut out = String::new();
-    for (a, x) in program.coordinate_names().enumerate() {
-        let _ = write!(out, "\n  {x} = {}", state[a]);
-        if have_velocities {
-            let _ = write!(out, "\n  {x}' = {}", velocities[a]);
-        }
-        let _ = write!(out, "\n  p_{x} = {}", state[n + a]);
-    }
-    for (k, m) in program
-        .mass_names()
-        .take(program.state_mass_count())
-        .enumerate()
-    {
-        let _ = write!(out, "\n  {m} = {}", state[2 * n + k]);
-    }
+    let _ = EndState::new(program, time, state).write(&mut out);
     out
 }
 
-/// The summary printed after a run.
+/// The state where a run ended, with what [`state_lines`] shows of it: the names, and the
+/// velocities (`None` where they cannot be had).
+#[derive(Clone, Debug)]
+struct EndState {
+    state: Vec<f64>,
+    velocities: Option<Vec<f64>>,
+    coordinates: Vec<String>,
+    state_masses: Vec<String>,
+}
+
+impl EndState {
+    fn new(program: &Program, time: f64, state: &[f64]) -> Self {
+        let mut velocities = vec![f64::NAN; program.coordinate_count()];
+        let have_velocities = program.velocities(time, state, &mut velocities).is_ok();
+        Self {
+            state: state.to_vec(),
+            velocities: have_velocities.then_some(velocities),
+            coordinates: program.coordinate_names().map(str::to_string).collect(),
+            state_masses: program
+                .mass_names()
+                .take(program.state_mass_count())
+                .map(str::to_string)
+                .collect(),
+        }
+    }
+
+    fn write(&self, out: &mut impl Write) -> fmt::Result {
+        let (n, state) = (self.coordinates.len(), &self.state);
+        for (a, x) in self.coordinates.iter().enumerate() {
+            write!(out, "\n  {x} = {}", state[a])?;
+            if let Some(velocities) = &self.velocities {
+                write!(out, "\n  {x}' = {}", velocities[a])?;
+            }
+            write!(out, "\n  p_{x} = {}", state[n + a])?;
+        }
+        for (k, m) in self.state_masses.iter().enumerate() {
+            write!(out, "\n  {m} = {}", state[2 * n + k])?;
+        }
+        Ok(())
+    }
+}
+
+/// The summary printed after a run: what it is made of, its text written only when shown
+/// (`to_string()`, `{}`) — a library caller that runs many times and reads the summary
+/// rarely (the Python package's `Solution.summary`) does not pay for the text of each run.
+#[derive(Clone, Debug)]
+pub struct Summary {
+    time: f64,
+    end: EndState,
+    /// The condition that stopped the run, as written (quoted in the text).
+    stopped_by: Option<String>,
+    statistics: Statistics,
+}
+
+impl Summary {
+    /// The summary of a run that ended at `time` in `state`, stopped by the `--stop-when`
+    /// condition `stopped_by` (or at `--until`), having done the work `statistics`.
+    pub fn new(
+        program: &Program,
+        time: f64,
+        state: &[f64],
+        stopped_by: Option<&str>,
+        statistics: &Statistics,
+    ) -> Self {
+        Self {
+            time,
+            end: EndState::new(program, time, state),
+            stopped_by: stopped_by.map(str::to_string),
+            statistics: *statistics,
+        }
+    }
+}
+
+impl fmt::Display for Summary {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let time = self.time;
+        match &self.stopped_by {
+            Some(condition) => write!(out, "stopped at t = {time} (--stop-when '{condition}')")?,
+            None => write!(out, "stopped at t = {time} (reached --until)")?,
+        }
+        out.write_str("\nstate:")?;
+        self.end.write(out)?;
+        let s = &self.statistics;
+        writeln!(
+            out,
+            "\nsteps: {} accepted, {} rejected; {} rate evaluations, {} Jacobians, {} Newton \
+             iterations",
+            s.accepted_steps,
+            s.rejected_steps,
+            s.rate_evaluations,
+            s.jacobian_evaluations,
+            s.newton_iterations
+        )
+    }
+}
+
+/// The summary printed after a run, as text ([`Summary`]); `stopped_by` is the condition
+/// as written.
 pub fn summary(
     program: &Program,
     time: f64,
@@ -137,20 +355,5 @@ pub fn summary(
     stopped_by: Option<&str>,
     statistics: &Statistics,
 ) -> String {
-    let why = match stopped_by {
-        Some(condition) => format!("--stop-when {condition}"),
-        None => "reached --until".to_string(),
-    };
-    let mut out = format!("stopped at t = {time} ({why})\nstate:");
-    out.push_str(&state_lines(program, time, state));
-    let _ = write!(
-        out,
-        "\nsteps: {} accepted, {} rejected; {} rate evaluations, {} Jacobians, {} Newton iterations\n",
-        statistics.accepted_steps,
-        statistics.rejected_steps,
-        statistics.rate_evaluations,
-        statistics.jacobian_evaluations,
-        statistics.newton_iterations
-    );
-    out
+    Summary::new(program, time, state, stopped_by, statistics).to_string()
 }

@@ -52,9 +52,15 @@ fn draw<DB: DrawingBackend>(
     area.fill(&WHITE).map_err(error)?;
     let area = area.titled(title, ("sans-serif", 22)).map_err(error)?;
     let panels = area.split_evenly((table.names.len().max(1), 1));
-    let (t0, t1) = bounds(table.rows.iter().map(|(t, _)| *t));
+    let (t0, t1) = bounds(table.times().iter().copied());
     for (column, (name, panel)) in table.names.iter().zip(&panels).enumerate() {
-        let values = || table.rows.iter().map(move |(t, v)| (*t, v[column]));
+        let values = || {
+            table
+                .times()
+                .iter()
+                .copied()
+                .zip(table.column(column).iter().copied())
+        };
         let (lo, hi) = bounds(values().map(|(_, v)| v));
         let mut chart = ChartBuilder::on(panel)
             .margin(12)

@@ -15,8 +15,9 @@
 //!   program's velocities from `[x, p]`), as a run recording x and x' must.
 //! * `tool-sled REPEATS`: the same sled run through the command line tool's code as the
 //!   Python package reaches it (`varmass_cli::run::Compiled::run`: the tool's checks, kept
-//!   plan, run, recorded x and x' at every point and summary), from Rust: Python's `run`
-//!   less this is the boundary's cost, this less `sled` the tool's own work.
+//!   plan, run, recorded x and x' at every point and the summary's values, its text not
+//!   made), from Rust: Python's `run` less this is the boundary's cost, this less `sled`
+//!   the tool's own work.
 //!
 //! `cargo run --release --manifest-path python/bench/reference/Cargo.toml -- sled 200`
 
@@ -158,7 +159,7 @@ fn tool_sled(count: u64) -> f64 {
     for _ in 0..count {
         let start = Instant::now();
         let done = compiled.run(&SLED_VALUES, &args);
-        std::hint::black_box(done.ok().expect("runs").table.rows.len());
+        std::hint::black_box(done.ok().expect("runs").table.len());
         fastest = fastest.min(start.elapsed().as_secs_f64());
     }
     fastest
