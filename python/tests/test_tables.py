@@ -193,6 +193,7 @@ BASE = dict(set={"u_e": 1000.0, "g": 9.8}, init={"y": 0, "m": 20}, until=1)
         ({"F": (["a", "b"], [1.0, 2.0])}, TypeError, "must be numbers"),
         ({"F": 3.0}, TypeError, r"tables\['F'\] must be a path"),
         ({1: M1670}, TypeError, "tables names must be strings"),
+        ({"F=x": M1670}, ValueError, r"tables: 'F=x' is not a table name"),
         ([("F", M1670)], TypeError, "tables must be a mapping"),
     ],
 )

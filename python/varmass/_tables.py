@@ -108,6 +108,9 @@ def table_options(tables: Optional[Mapping]) -> List[str]:
     for name, given in tables.items():
         if not isinstance(name, str):
             raise TypeError(f"tables names must be strings, not {type(name).__name__}")
+        if "=" in name:
+            # The tool would split `F=x=path` at its first `=` and read the file `x=path`.
+            raise ValueError(f"tables: {name!r} is not a table name (a name has no `=`)")
         options.append(f"{name}={data(f'tables[{name!r}]', name.strip(), given)}")
     return options
 
