@@ -52,7 +52,7 @@ pub struct LaneJob<'e, Sys, const S: usize> {
     pub time: f64,
     /// The initial state `[q, p, m_s]`.
     pub state: SVector<f64, S>,
-    /// The events watched; the first [`EventAction::Stop`] hit ends the run.
+    /// The events watched; the first [`EventAction::Stop`](crate::events::EventAction::Stop) hit ends the run.
     pub events: &'e [Event<'e, S>],
 }
 
