@@ -14,7 +14,7 @@ use std::cell::RefCell;
 
 use varmass_core::steppers::taylor::series;
 use varmass_core::SystemError;
-use varmass_symbolic::expr::{Symbol, TaylorJet, TaylorTape};
+use varmass_symbolic::expr::{TaylorJet, TaylorTape};
 use varmass_symbolic::mechanics::Derivation;
 
 use super::cholesky::{cholesky_factor, cholesky_substitute};
@@ -56,27 +56,18 @@ struct Scratch {
 impl TaylorProgram {
     /// Compiles the stages of `d` with the parameter environment `env`.
     pub(super) fn new(d: &Derivation, env: &[f64]) -> Self {
-        let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
-        let symbols: Vec<Symbol> = stages
-            .law_masses
-            .iter()
-            .map(|m| d.masses[*m].symbol)
-            .collect();
-        // The emitted method's stages (`ExprPool::compile_taylor_rate`): the same choices.
-        let later = [&stages.velocities[..], &stages.rates[..]];
-        let [laws, velocities, rates] =
-            d.pool
-                .compile_taylor_rate(&inputs, (&stages.laws, &symbols), later);
+        // The emitted method's stages (`Derivation::taylor_stages`): the same choices.
+        let stages = d.taylor_stages();
         Self {
             n: d.coordinates.len(),
             masses: d.masses.len(),
             state_masses: d.state_mass_count(),
             held: d.held().len(),
             law_masses: stages.law_masses,
-            velocities,
+            velocities: stages.velocities,
             numeric: stages.numeric,
-            rates,
-            laws,
+            rates: stages.rates,
+            laws: stages.laws,
             env: env.to_vec(),
             scratch: RefCell::new(Scratch::default()),
         }

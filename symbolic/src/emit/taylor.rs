@@ -13,40 +13,8 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::expr::{Func, Instr, Op, Symbol, TaylorTape};
-use crate::mechanics::Derivation;
-
-/// The three stages compiled over one list of inputs: t, q, p, q̇, every mass.
-struct Stages {
-    inputs: usize,
-    laws: TaylorTape,
-    /// Mass index of each law output.
-    law_masses: Vec<usize>,
-    velocities: TaylorTape,
-    numeric: bool,
-    rates: TaylorTape,
-}
-
-fn stages(d: &Derivation) -> Stages {
-    let (inputs, stages) = (d.taylor_inputs(), d.rate_stages());
-    let symbols: Vec<Symbol> = stages
-        .law_masses
-        .iter()
-        .map(|m| d.masses[*m].symbol)
-        .collect();
-    let later = [&stages.velocities[..], &stages.rates[..]];
-    let [laws, velocities, rates] =
-        d.pool
-            .compile_taylor_rate(&inputs, (&stages.laws, &symbols), later);
-    Stages {
-        inputs: inputs.len(),
-        laws,
-        law_masses: stages.law_masses,
-        velocities,
-        numeric: stages.numeric,
-        rates,
-    }
-}
+use crate::expr::{Func, Instr, Op, TaylorTape};
+use crate::mechanics::{Derivation, TaylorStages};
 
 /// Names the arrays of one tape: its input slots are the shared `i<n>`, the rest
 /// `<prefix><slot>`.
@@ -115,7 +83,7 @@ const ORDERS: usize = 33;
 /// function per order for the same reason); the arithmetic, and so every bit of the result,
 /// is that of the loop over a run-time k (`tests/taylor_emitted.rs`).
 pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident) -> TokenStream {
-    let st = stages(d);
+    let st = d.taylor_stages();
     let n = d.coordinates.len();
     let s = d.state_len();
     let (k_masses, masses) = (d.state_mass_count(), d.masses.len());
@@ -285,7 +253,7 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
 /// order 0 is a singular M), or solved with M\[0\]'s factor, the scratch's `factor` of the
 /// size returned.
 fn velocity_solve(
-    st: &Stages,
+    st: &TaylorStages,
     names: &Names,
     n: usize,
     runtime: &TokenStream,

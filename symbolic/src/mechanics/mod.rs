@@ -60,7 +60,7 @@ pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
 pub use rigid_solve::RigidVelocities;
-pub use stages::RateStages;
+pub use stages::{RateStages, TaylorStages};
 pub use stops::{time_tables, TimeTable};
 pub use switches::{switching_functions, table_switches, TableSwitch};
 pub(crate) use tables::check_smooth_enough;

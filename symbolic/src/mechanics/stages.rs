@@ -6,7 +6,7 @@
 //! written once.
 
 use super::{Derivation, MassKind, VelocitySolve};
-use crate::expr::{Id, Symbol};
+use crate::expr::{Id, Symbol, TaylorTape};
 
 /// The roots of the three stages of the state rate.
 #[derive(Clone, Debug, PartialEq)]
@@ -24,7 +24,45 @@ pub struct RateStages {
     pub rates: Vec<Id>,
 }
 
+/// The three stages compiled as Taylor tapes over one list of inputs
+/// ([`Derivation::taylor_inputs`]): what the emitted `taylor_coefficients` and the
+/// interpreter's Taylor program both run, so their choices are made once.
+#[derive(Clone, Debug)]
+pub struct TaylorStages {
+    /// How many inputs the tapes share.
+    pub inputs: usize,
+    /// The law masses' stage.
+    pub laws: TaylorTape,
+    /// Mass index of each law output.
+    pub law_masses: Vec<usize>,
+    /// q̇'s stage (closed form, or M and c when `numeric`).
+    pub velocities: TaylorTape,
+    /// Whether q̇ is solved numerically, order by order.
+    pub numeric: bool,
+    /// ṗ and the state masses' ṁ.
+    pub rates: TaylorTape,
+}
+
 impl Derivation {
+    /// The state rate's stages compiled as Taylor tapes ([`ExprPool::compile_taylor_rate`](crate::expr::ExprPool::compile_taylor_rate)).
+    pub fn taylor_stages(&self) -> TaylorStages {
+        let (inputs, stages) = (self.taylor_inputs(), self.rate_stages());
+        let symbols: Vec<Symbol> = (stages.law_masses.iter())
+            .map(|m| self.masses[*m].symbol)
+            .collect();
+        let later = [&stages.velocities[..], &stages.rates[..]];
+        let [laws, velocities, rates] =
+            (self.pool).compile_taylor_rate(&inputs, (&stages.laws, &symbols), later);
+        TaylorStages {
+            inputs: inputs.len(),
+            laws,
+            law_masses: stages.law_masses,
+            velocities,
+            numeric: stages.numeric,
+            rates,
+        }
+    }
+
     /// The roots of the state rate's stages (see the module's documentation).
     pub fn rate_stages(&self) -> RateStages {
         let mut law_masses = Vec::new();
