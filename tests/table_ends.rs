@@ -30,13 +30,13 @@
 //! Taylor failed at t = 0 on `ramp_to_one.csv` under `outside error` (the last knot read
 //! as outside the data).
 
-use varmass::core::nalgebra::SVector;
-use varmass::core::steppers::{
-    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, FixedStep, StepControl, Taylor,
-    TaylorControl,
-};
-use varmass::core::{run, RunConfig, Solution, VariableMassSystem};
+use varmass::core::VariableMassSystem;
 use varmass::prelude::variable_mass_system;
+
+#[path = "table_support/ends.rs"]
+mod support;
+
+use support::End;
 
 #[variable_mass_system(
     r#"
@@ -141,64 +141,19 @@ struct FallingFromTheEndOfTheData {
     c: f64,
 }
 
-const TOLERANCE: f64 = 1e-12;
-
-fn adaptive(base: AdaptiveControl) -> StepControl {
-    StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: TOLERANCE,
-        absolute_tolerance: TOLERANCE,
-        ..base
-    })
+/// (x, v) at `end` from rest at x = 0 by Taylor, DOP853 and Dormand–Prince.
+fn ends<Sys: VariableMassSystem<1, 2>>(system: &Sys, end: f64) -> [End; 3] {
+    support::adaptive_ends(system, [0.0, 0.0], end)
 }
 
-/// (x, v) at `end` by Taylor, DOP853 and Dormand–Prince, from rest at x = 0.
-fn ends<Sys: VariableMassSystem<1, 2>>(system: &Sys, end: f64) -> [(&'static str, [f64; 2]); 3] {
-    let start = SVector::from([0.0, 0.0]);
-    let config = RunConfig::until(end);
-    let last = |solution: Solution<1, 2>| {
-        let (_, state) = solution.last().unwrap();
-        [state[0], state[1]]
-    };
-    let control = TaylorControl::adaptive(TOLERANCE, TOLERANCE);
-    let mut taylor = Taylor::new(system, 0.0, start, control).unwrap();
-    let mut dop853 = Dop853::new(system, 0.0, start, adaptive(AdaptiveControl::dop853())).unwrap();
-    let mut dp =
-        DormandPrince::new(system, 0.0, start, adaptive(AdaptiveControl::default())).unwrap();
-    [
-        ("taylor", last(run(&mut taylor, &config, &[]).unwrap())),
-        ("dop853", last(run(&mut dop853, &config, &[]).unwrap())),
-        ("dormand-prince", last(run(&mut dp, &config, &[]).unwrap())),
-    ]
+/// (x, v) at `end` from rest at x = 0 by RK4 and Dormand–Prince at the fixed step `step`.
+fn fixed_ends<Sys: VariableMassSystem<1, 2>>(system: &Sys, end: f64, step: f64) -> [End; 2] {
+    support::fixed_ends(system, [0.0, 0.0], end, step)
 }
 
-/// (x, v) at `end` by RK4 and Dormand–Prince at the fixed step `step`, from rest at x = 0.
-fn fixed_ends<Sys: VariableMassSystem<1, 2>>(
-    system: &Sys,
-    end: f64,
-    step: f64,
-) -> [(&'static str, [f64; 2]); 2] {
-    let start = SVector::from([0.0, 0.0]);
-    let config = RunConfig::until(end);
-    let last = |solution: Solution<1, 2>| {
-        let (_, state) = solution.last().unwrap();
-        [state[0], state[1]]
-    };
-    let mut rk4 = ClassicalRk4::new(system, 0.0, start, FixedStep { step }).unwrap();
-    let control = StepControl::Fixed(FixedStep { step });
-    let mut dp = DormandPrince::new(system, 0.0, start, control).unwrap();
-    [
-        ("rk4", last(run(&mut rk4, &config, &[]).unwrap())),
-        ("dormand-prince", last(run(&mut dp, &config, &[]).unwrap())),
-    ]
-}
-
-fn assert_near<const M: usize>(found: [(&str, [f64; 2]); M], expected: [f64; 2], bound: f64) {
-    for (method, state) in found {
-        for (value, exact) in state.iter().zip(expected) {
-            let error = (value - exact).abs() / exact.abs();
-            assert!(error <= bound, "{method}: {value} vs {exact} ({error:e})");
-        }
-    }
+/// Asserts every method's (x, v) within `bound` of `expected`, relative.
+fn assert_near<const M: usize>(found: [End; M], expected: [f64; 2], bound: f64) {
+    support::assert_near(&found, expected, |_| bound);
 }
 
 #[test]

@@ -19,13 +19,13 @@
 //! still reads the value before the jump); the box by RK4 at step 0.01 9.6e-4 off, by
 //! Dormand–Prince 7.6e-4 (a redone step's last stage snapped onto the first knot).
 
-use varmass::core::nalgebra::SVector;
-use varmass::core::steppers::{
-    AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, FixedStep, StepControl, Taylor,
-    TaylorControl,
-};
-use varmass::core::{run, RunConfig, Solution, VariableMassSystem};
+use varmass::core::VariableMassSystem;
 use varmass::prelude::variable_mass_system;
+
+#[path = "table_support/ends.rs"]
+mod support;
+
+use support::{assert_near, End};
 
 #[variable_mass_system(
     r#"
@@ -55,60 +55,14 @@ struct RampThenOne {
     m0: f64,
 }
 
-const TOLERANCE: f64 = 1e-12;
 const STEP: f64 = 0.01;
 
 /// (x, v) at `end` from `start` by RK4 and Dormand–Prince at the fixed step [`STEP`], and
-/// by Taylor, DOP853 and Dormand–Prince at [`TOLERANCE`].
-fn ends<Sys: VariableMassSystem<1, 2>>(
-    system: &Sys,
-    start: [f64; 2],
-    end: f64,
-) -> Vec<(&'static str, [f64; 2])> {
-    let start = SVector::from(start);
-    let config = RunConfig::until(end);
-    let last = |solution: Solution<1, 2>| {
-        let (_, state) = solution.last().unwrap();
-        [state[0], state[1]]
-    };
-    let adaptive = |base: AdaptiveControl| {
-        StepControl::Adaptive(AdaptiveControl {
-            relative_tolerance: TOLERANCE,
-            absolute_tolerance: TOLERANCE,
-            ..base
-        })
-    };
-    let fixed = FixedStep { step: STEP };
-    let mut rk4 = ClassicalRk4::new(system, 0.0, start, fixed).unwrap();
-    let mut dp_fixed = DormandPrince::new(system, 0.0, start, StepControl::Fixed(fixed)).unwrap();
-    let control = TaylorControl::adaptive(TOLERANCE, TOLERANCE);
-    let mut taylor = Taylor::new(system, 0.0, start, control).unwrap();
-    let mut dop853 = Dop853::new(system, 0.0, start, adaptive(AdaptiveControl::dop853())).unwrap();
-    let mut dp =
-        DormandPrince::new(system, 0.0, start, adaptive(AdaptiveControl::default())).unwrap();
-    vec![
-        ("rk4 fixed", last(run(&mut rk4, &config, &[]).unwrap())),
-        (
-            "dormand-prince fixed",
-            last(run(&mut dp_fixed, &config, &[]).unwrap()),
-        ),
-        ("taylor", last(run(&mut taylor, &config, &[]).unwrap())),
-        ("dop853", last(run(&mut dop853, &config, &[]).unwrap())),
-        ("dormand-prince", last(run(&mut dp, &config, &[]).unwrap())),
-    ]
-}
-
-/// Asserts each method's (x, v) within its bound, relative.
-fn assert_near(found: &[(&str, [f64; 2])], expected: [f64; 2], bound: impl Fn(&str) -> f64) {
-    for (method, state) in found {
-        for (value, exact) in state.iter().zip(expected) {
-            let error = (value - exact).abs() / exact.abs();
-            assert!(
-                error <= bound(method),
-                "{method}: {value} vs {exact} ({error:e})"
-            );
-        }
-    }
+/// by Taylor, DOP853 and Dormand–Prince at the support's tolerance (1e-12).
+fn ends<Sys: VariableMassSystem<1, 2>>(system: &Sys, start: [f64; 2], end: f64) -> Vec<End> {
+    let mut found = support::fixed_ends(system, start, end, STEP).to_vec();
+    found.extend(support::adaptive_ends(system, start, end));
+    found
 }
 
 #[test]
