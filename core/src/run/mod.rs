@@ -265,17 +265,12 @@ where
         }
         let time = stepper.time();
         let crossing = match &mut switch_watch {
+            // The end first: a switch landed on at the end is not crossed past it.
+            _ if time >= config.end_time => {
+                return reach_end(stepper, recorder, &previous, needs);
+            }
             Some(switch_watch) if switch_watch.landed(time) => {
                 switch_watch.cross_from(stepper.system(), &previous)?
-            }
-            _ if time >= config.end_time => {
-                // An end on a sample time samples the inputs due there too, so that a run
-                // continuing this one starts from the value held there.
-                if let Some(sampled) = sample(stepper, time, previous.state, Sampling::Due)? {
-                    let point = Point::at(stepper.system(), time, sampled, needs)?;
-                    recorder.push(stepper.system(), &point)?;
-                }
-                return Ok(StopReason::ReachedEnd);
             }
             _ => Crossing::None,
         };
@@ -405,11 +400,29 @@ type Watches<'r, 'w, 'e, 'a, const N: usize, const S: usize> = (
     Option<&'w mut SwitchWatch>,
 );
 
+/// Ends a run at `end`, a point on the run's end time: an end on a sample time samples the
+/// inputs due there too, so that a run continuing this one starts from the value held there.
+fn reach_end<St, const N: usize, const S: usize>(
+    stepper: &mut St,
+    recorder: &mut Recorder<N, S>,
+    end: &Point<S>,
+    needs: Needs,
+) -> Result<StopReason, StepError<S>>
+where
+    St: Stepper<N, S>,
+{
+    if let Some(sampled) = sample(stepper, end.time, end.state, Sampling::Due)? {
+        let point = Point::at(stepper.system(), end.time, sampled, needs)?;
+        recorder.push(stepper.system(), &point)?;
+    }
+    Ok(StopReason::ReachedEnd)
+}
+
 /// How [`cross_past`] ended.
 enum Crossed<const S: usize> {
     /// The stepper restarted at this point past the switch.
     Past(Point<S>),
-    /// A stopping event in the sliver before the switch.
+    /// A stopping event in the sliver before the switch, or the run's end within it.
     Stopped(StopReason),
 }
 
@@ -417,7 +430,9 @@ enum Crossed<const S: usize> {
 /// bracket reached by one Euler step ([`SwitchWatch::cross_from`]): that sliver is recorded
 /// as any step is — its events located on the Euler line, its energy added, the point past
 /// the switch appended — and the stepper restarts there. A stopping event in the sliver
-/// ends the run at its hit (docs/mechanics.md#switches).
+/// ends the run at its hit (docs/mechanics.md#switches). A sliver that reaches the run's end
+/// time (a switch within a few roundings of `--until`) ends the run there, on the sliver's
+/// line: it is not crossed past the end.
 fn cross_past<St, const N: usize, const S: usize>(
     stepper: &mut St,
     sliver: (&mut Recorder<N, S>, &mut EventWatch<'_, '_, S>, &RunConfig),
@@ -429,14 +444,30 @@ where
     St: Stepper<N, S>,
 {
     let system = stepper.system();
-    let past = Point::at(system, time, state, needs)?;
     let width = time - previous.time;
     let line = |at: f64| match width > 0.0 {
         true => previous.state + (state - previous.state) * ((at - previous.time) / width),
         false => state,
     };
-    if let Some(stop) = record_step(system, sliver, (previous, &past), &line)? {
+    let end_time = sliver.2.end_time;
+    let ends = time >= end_time;
+    let past = match ends {
+        true => Point::at(system, end_time, line(end_time), needs)?,
+        false => Point::at(system, time, state, needs)?,
+    };
+    let recorder = &mut *sliver.0;
+    if let Some(stop) = record_step(
+        system,
+        (recorder, sliver.1, sliver.2),
+        (previous, &past),
+        &line,
+    )? {
         return Ok(Crossed::Stopped(stop));
+    }
+    if ends {
+        return Ok(Crossed::Stopped(reach_end(
+            stepper, sliver.0, &past, needs,
+        )?));
     }
     stepper.restart(time, state)?;
     Ok(Crossed::Past(past))
