@@ -18,6 +18,7 @@ use varmass::core::{Carry, Statistics};
 
 use crate::args::RunArgs;
 use crate::error::CliError;
+use crate::run::names::shown;
 use crate::run::output::{self, Table};
 use crate::run::plot;
 use crate::run::record::Recorded;
@@ -217,7 +218,8 @@ fn summary(
         None => "reached until".to_string(),
     };
     let mut out = format!(
-        "stopped at t = {time} in phase {} of {phases} ({why})\n",
+        "stopped at t = {} in phase {} of {phases} ({why})\n",
+        shown(*time),
         last + 1,
     );
     if *last + 1 < phases && flown.failure.is_none() {
@@ -232,7 +234,10 @@ fn summary(
         let _ = writeln!(
             out,
             "phase {} began at t = {} ({}); kinetic energy removed: {}",
-            change.phase, change.time, change.rule, change.kinetic_energy_removed
+            change.phase,
+            shown(change.time),
+            change.rule,
+            shown(change.kinetic_energy_removed)
         );
     }
     out.push_str("state:");

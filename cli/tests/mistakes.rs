@@ -412,3 +412,77 @@ fn an_end_time_that_is_not_a_number_is_named_as_given() {
     let stderr = rocket_until("inf", &[], 2);
     assert!(stderr.contains("--until inf must be finite"), "{stderr}");
 }
+
+/// A start time that is not a number is named as `--from`'s (before, the message blamed
+/// `--until 1`); a span below the smallest normal f64 is refused before any step (before,
+/// exit 1 with "the step size 0e0 underflowed"); a step so small that the count of steps
+/// overflows says so in words, not "needs inf steps".
+#[test]
+fn a_start_time_or_a_span_that_cannot_be_stepped_is_named_as_given() {
+    let stderr = rocket(&["--from", "nan"], 2);
+    assert!(
+        stderr.contains("--from NaN: the start time must be finite"),
+        "{stderr}"
+    );
+    let stderr = rocket_until("1e-320", &[], 2);
+    assert!(
+        stderr.contains("spans 1e-320, below the smallest normal f64"),
+        "{stderr}"
+    );
+    let stderr = rocket(&["--method", "rk4", "--step", "1e-320"], 2);
+    assert!(
+        stderr.contains("--step 1e-320 needs over 1.8e308 steps"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("the usable steps are 5.000e-8 to 0.5"),
+        "{stderr}"
+    );
+}
+
+/// The end state is written as a user writes numbers: a rocket run for 10⁻³⁰⁰ s has
+/// p_y = (μ u_e − m g) t = 9·10⁻³⁰⁰, written with its exponent (before, with 300 digits).
+#[test]
+fn the_end_state_is_written_with_exponents_where_a_number_needs_one() {
+    let file = model("rocket.vms");
+    let (stdout, _) = varmass(
+        &[
+            "run", &file, "--set", "mu=1", "--set", "u_e=10", "--set", "g=1", "--init", "y=0",
+            "--init", "m=1", "--until", "1e-300",
+        ],
+        0,
+    );
+    assert!(stdout.contains("stopped at t = 1e-300"), "{stdout}");
+    let p = stdout
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("p_y = "))
+        .expect("p_y in the state");
+    let value: f64 = p.parse().expect("a number");
+    assert!(
+        p.contains("e-300") && (value - 9e-300).abs() <= 1e-314,
+        "{stdout}"
+    );
+}
+
+/// A recorded expression that calls a table is refused naming the table (before: "`a` with
+/// 1 argument(s) is not a function of the DSL"); the list of what a model has names
+/// `mdot_m` once.
+#[test]
+fn a_recorded_table_call_is_named_and_the_names_are_listed_once() {
+    let file = data("hover_table.vms");
+    let args = [
+        "run", &file, "--set", "g=9.81", "--set", "u_e=2000", "--init", "y=0", "--init", "m=50",
+        "--until", "1", "--record",
+    ];
+    let mut with_table = args.to_vec();
+    with_table.push("thrust=m*a(t)");
+    let (_, stderr) = varmass(&with_table, 2);
+    assert!(
+        stderr.contains("`a` is a table of the model: a recorded expression cannot read a table"),
+        "{stderr}"
+    );
+    let mut unknown = args.to_vec();
+    unknown.push("zzz");
+    let (_, stderr) = varmass(&unknown, 2);
+    assert_eq!(stderr.matches("mdot_m").count(), 1, "{stderr}");
+}

@@ -6,6 +6,7 @@ use std::path::Path;
 use varmass::core::Statistics;
 use varmass::interpret::Program;
 
+use super::names::shown;
 use super::record::Recorded;
 use crate::error::CliError;
 
@@ -279,14 +280,14 @@ impl EndState {
     fn write(&self, out: &mut impl Write) -> fmt::Result {
         let (n, state) = (self.coordinates.len(), &self.state);
         for (a, x) in self.coordinates.iter().enumerate() {
-            write!(out, "\n  {x} = {}", state[a])?;
+            write!(out, "\n  {x} = {}", shown(state[a]))?;
             if let Some(velocities) = &self.velocities {
-                write!(out, "\n  {x}' = {}", velocities[a])?;
+                write!(out, "\n  {x}' = {}", shown(velocities[a]))?;
             }
-            write!(out, "\n  p_{x} = {}", state[n + a])?;
+            write!(out, "\n  p_{x} = {}", shown(state[n + a]))?;
         }
         for (k, m) in self.state_masses.iter().enumerate() {
-            write!(out, "\n  {m} = {}", state[2 * n + k])?;
+            write!(out, "\n  {m} = {}", shown(state[2 * n + k]))?;
         }
         Ok(())
     }
@@ -325,7 +326,7 @@ impl Summary {
 
 impl fmt::Display for Summary {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let time = self.time;
+        let time = shown(self.time);
         match &self.stopped_by {
             Some(condition) => write!(out, "stopped at t = {time} (--stop-when '{condition}')")?,
             None => write!(out, "stopped at t = {time} (reached --until)")?,

@@ -144,13 +144,30 @@ pub fn plan_with(
             args.words.given("--until", "T")
         )));
     };
-    if !from.is_finite() || !until.is_finite() || until < from {
+    if !from.is_finite() {
+        return Err(CliError::Input(format!(
+            "{}: the start time must be finite",
+            args.words.given("--from", &shown(from))
+        )));
+    }
+    if !until.is_finite() || until < from {
         return Err(CliError::Input(format!(
             "{} must be finite and not before the start time {} ({}): a run goes forward in \
              time",
             args.words.given("--until", &shown(until)),
             shown(from),
             w("--from")
+        )));
+    }
+    let span = until - from;
+    if span > 0.0 && span < f64::MIN_POSITIVE {
+        return Err(CliError::Input(format!(
+            "the run from t = {} to {} spans {}, below the smallest normal f64 ({:e}): steps \
+             within it underflow (give a span of at least that, or none)",
+            shown(from),
+            args.words.given("--until", &shown(until)),
+            shown(span),
+            f64::MIN_POSITIVE
         )));
     }
     let known = observables(program);
@@ -348,17 +365,28 @@ fn every(dt: f64, args: &RunArgs, until: f64) -> Result<f64, CliError> {
     if times > args.max_steps as f64 {
         let words = args.words;
         return Err(CliError::Input(format!(
-            "{} asks for {times:.3e} output times from t = {} to {}, more than {}; the usable \
-             spacings are {:.3e} to {span} (or raise {})",
+            "{} asks for {} output times from t = {} to {}, more than {}; the usable \
+             spacings are {:.3e} to {} (or raise {})",
             words.given("--every", &shown(dt)),
+            count(times),
             shown(args.from),
             words.given("--until", &shown(until)),
             words.given("--max-steps", &args.max_steps.to_string()),
             span / args.max_steps as f64,
+            shown(span),
             words.setting("--max-steps")
         )));
     }
     Ok(dt)
+}
+
+/// A count of steps or output times as a message gives it: past f64's range (a subnormal
+/// step) it is "over 1.8e308", not "inf".
+fn count(n: f64) -> String {
+    match n.is_finite() {
+        true => format!("{n:.3e}"),
+        false => format!("over {:.1e}", f64::MAX),
+    }
 }
 
 /// A `--tol` within [`MIN_TOLERANCE`, `MAX_TOLERANCE`].
@@ -391,13 +419,15 @@ fn fixed_step(h: f64, args: &RunArgs, until: f64) -> Result<f64, CliError> {
     if needed > limit {
         let words = args.words;
         return Err(CliError::Input(format!(
-            "{} needs {needed:.3e} steps from t = {} to {}, more than {}; the usable steps \
-             are {:.3e} to {span} (or raise {})",
+            "{} needs {} steps from t = {} to {}, more than {}; the usable steps are {:.3e} \
+             to {} (or raise {})",
             words.given("--step", &shown(h)),
+            count(needed),
             shown(args.from),
             words.given("--until", &shown(until)),
             words.given("--max-steps", &args.max_steps.to_string()),
             span / limit,
+            shown(span),
             words.setting("--max-steps")
         )));
     }

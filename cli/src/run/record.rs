@@ -55,6 +55,9 @@ pub struct Scope<'a> {
     pub masses: Vec<String>,
     /// The model's `let` definitions, in order.
     pub lets: Vec<(String, ExprNode)>,
+    /// The model's tables' names (a recorded expression cannot call them: named in the
+    /// message).
+    pub tables: Vec<String>,
 }
 
 impl<'a> Scope<'a> {
@@ -73,11 +76,20 @@ impl<'a> Scope<'a> {
                 _ => None,
             })
             .collect();
+        let tables = ast
+            .statements
+            .iter()
+            .filter_map(|s| match &s.kind {
+                StatementKind::Table(table) => Some(table.name.node.clone()),
+                _ => None,
+            })
+            .collect();
         Self {
             quantities,
             parameters,
             masses: program.mass_names().map(str::to_string).collect(),
             lets,
+            tables,
         }
     }
 
@@ -88,6 +100,9 @@ impl<'a> Scope<'a> {
         names.extend(self.lets.iter().map(|(n, _)| n.clone()));
         names.extend(self.parameters.iter().map(|(n, _)| n.clone()));
         names.push("t".to_string());
+        // `mdot_<mass>` is a registry quantity too where the model derives it: named once.
+        let mut seen = std::collections::HashSet::new();
+        names.retain(|n| seen.insert(n.clone()));
         names.into_iter().map(|n| (n, ())).collect()
     }
 }
@@ -169,6 +184,13 @@ fn resolve_term(node: &ExprNode, scope: &Scope<'_>, depth: usize) -> Result<Term
         }
         Expr::Neg(a) => Term::Neg(resolve_box(a)?),
         Expr::Binary { op, lhs, rhs } => Term::Binary(*op, resolve_box(lhs)?, resolve_box(rhs)?),
+        Expr::Call { func, .. } if scope.tables.contains(&func.node) => {
+            return Err(CliError::Input(format!(
+                "`{}` is a table of the model: a recorded expression cannot read a table (record \
+                 the quantities it feeds instead, such as Q_x, R1_x or x'')",
+                func.node
+            )));
+        }
         Expr::Call { func, args } => {
             let f = Func::from_name(&func.node)
                 .filter(|f| f.arity() == args.len())
