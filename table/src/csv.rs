@@ -6,7 +6,7 @@ use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
 use crate::points::Points;
-use crate::text::{comma_fields, error_at, header_and_data, number, PointsBuilder};
+use crate::text::{comma_fields, error_at, number, read_table, PointsBuilder};
 
 /// A table read from CSV: the names its header gives the columns, and the points.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,22 +25,30 @@ const PAIR: &str = "2 fields (argument, value)";
 impl CsvTable {
     /// Reads `text`.
     pub fn parse(text: &str) -> Result<Self, ReadError> {
-        let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
-        let names = two_fields(header_line, header)?;
-        if names.iter().all(|(_, name)| name.parse::<f64>().is_ok()) {
-            return Err(error_at(header_line, 1, ReadErrorKind::HeaderIsData));
-        }
-        let points = PointsBuilder::read(header_line, lines, |points, line, content| {
-            let [argument, value] = two_fields(line, content)?;
-            let (x, y) = (number(line, argument)?, number(line, value)?);
-            points.push(line, argument.0, x, y)
-        })?;
+        let ([argument, value], points) =
+            read_table(text, without_comment, HEADER, column_names, point_row)?;
         Ok(Self {
-            argument: names[0].1.to_string(),
-            value: names[1].1.to_string(),
+            argument,
+            value,
             points,
         })
     }
+}
+
+/// The names the header line gives the columns; a header of two numbers is data.
+fn column_names(line: usize, text: &str) -> Result<[String; 2], ReadError> {
+    let names = two_fields(line, text)?;
+    if names.iter().all(|(_, name)| name.parse::<f64>().is_ok()) {
+        return Err(error_at(line, 1, ReadErrorKind::HeaderIsData));
+    }
+    Ok(names.map(|(_, name)| name.to_string()))
+}
+
+/// Puts in the points a data line: `argument, value`.
+fn point_row(points: &mut PointsBuilder, line: usize, text: &str) -> Result<(), ReadError> {
+    let [argument, value] = two_fields(line, text)?;
+    let (x, y) = (number(line, argument)?, number(line, value)?);
+    points.push(line, argument.0, x, y)
 }
 
 /// The line, or nothing if it is a `#` comment.

@@ -7,7 +7,7 @@ use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
 use crate::points::Points;
-use crate::text::{error_at, header_and_data, number, whitespace_fields, PointsBuilder};
+use crate::text::{error_at, number, read_table, whitespace_fields, PointsBuilder};
 
 /// One motor of a RASP `.eng` file: its header and its thrust curve.
 #[derive(Clone, Debug, PartialEq)]
@@ -36,9 +36,7 @@ const PAIR: &str = "2 fields (time thrust)";
 impl Motor {
     /// Reads the first (and only) motor of `text`.
     pub fn parse(text: &str) -> Result<Self, ReadError> {
-        let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
-        let motor = parse_header(header_line, header)?;
-        let thrust = PointsBuilder::read(header_line, lines, thrust_row)?;
+        let (motor, thrust) = read_table(text, without_comment, HEADER, parse_header, thrust_row)?;
         Ok(motor(thrust))
     }
 

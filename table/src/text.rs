@@ -42,24 +42,30 @@ pub(crate) fn comma_fields(line: &str) -> Vec<Field<'_>> {
     fields
 }
 
-/// The lines of `text` that hold data, numbered from 1 (`data` gives a line's data: the
-/// line without its comment), blank ones skipped; the first is the header, which must be
-/// there (else [`ReadErrorKind::MissingHeader`] names `expected`).
-pub(crate) fn header_and_data<'t>(
+/// Reads a table file: its header, the first line that holds data (read by `header`; if
+/// there is none, [`ReadErrorKind::MissingHeader`] names `expected`), then its points, each
+/// data line put in by `row` (which checks it, and may put in more than one point). Lines are
+/// numbered from 1; `data` gives a line's data (the line without its comment), and blank
+/// ones are skipped.
+pub(crate) fn read_table<'t, H>(
     text: &'t str,
     data: fn(&str) -> &str,
     expected: &'static str,
-) -> Result<(Line<'t>, impl Iterator<Item = Line<'t>>), ReadError> {
+    header: impl FnOnce(usize, &'t str) -> Result<H, ReadError>,
+    row: impl FnMut(&mut PointsBuilder, usize, &'t str) -> Result<(), ReadError>,
+) -> Result<(H, Points), ReadError> {
     let mut lines = text
         .lines()
         .enumerate()
         .map(move |(index, line)| (index + 1, data(line)))
         .filter(|(_, line)| !line.trim().is_empty());
     let missing = ReadErrorKind::MissingHeader { expected };
-    let header = lines
-        .next()
-        .ok_or(error_at(text.lines().count().max(1), 1, missing))?;
-    Ok((header, lines))
+    let (header_line, header_text) =
+        lines
+            .next()
+            .ok_or(error_at(text.lines().count().max(1), 1, missing))?;
+    let header = header(header_line, header_text)?;
+    Ok((header, PointsBuilder::read(header_line, lines, row)?))
 }
 
 /// A line's number (from 1) and its text.
@@ -132,7 +138,7 @@ impl PointsBuilder {
 
     /// The points of the data `lines` after the header at `header_line`, each line put in
     /// by `row` (which checks it, and may put in more than one point).
-    pub(crate) fn read<'t>(
+    fn read<'t>(
         header_line: usize,
         lines: impl Iterator<Item = Line<'t>>,
         mut row: impl FnMut(&mut Self, usize, &'t str) -> Result<(), ReadError>,
