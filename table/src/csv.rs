@@ -5,6 +5,7 @@
 use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
+use crate::interpolant::Interpolation;
 use crate::points::Points;
 use crate::text::{comma_fields, error_at, header_and_data, number, PointsBuilder};
 
@@ -23,18 +24,30 @@ const HEADER: &str = "argument, value";
 const PAIR: &str = "2 fields (argument, value)";
 
 impl CsvTable {
-    /// Reads `text`.
+    /// Reads `text` (for a linear table: [`CsvTable::parse_for`]).
     pub fn parse(text: &str) -> Result<Self, ReadError> {
+        Self::parse_for(text, Interpolation::Linear)
+    }
+
+    /// Reads `text` for a table interpolated by `interpolation`: data whose interpolant
+    /// overflows are refused at the line that ends the piece
+    /// ([`ReadErrorKind::InterpolantNotFinite`]).
+    pub fn parse_for(text: &str, interpolation: Interpolation) -> Result<Self, ReadError> {
         let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
         let names = two_fields(header_line, header)?;
         if names.iter().all(|(_, name)| name.parse::<f64>().is_ok()) {
             return Err(error_at(header_line, 1, ReadErrorKind::HeaderIsData));
         }
-        let points = PointsBuilder::read(header_line, lines, |points, line, content| {
-            let [argument, value] = two_fields(line, content)?;
-            let (x, y) = (number(line, argument)?, number(line, value)?);
-            points.push(line, argument.0, x, y)
-        })?;
+        let points = PointsBuilder::read(
+            header_line,
+            lines,
+            interpolation,
+            |points, line, content| {
+                let [argument, value] = two_fields(line, content)?;
+                let (x, y) = (number(line, argument)?, number(line, value)?);
+                points.push(line, argument.0, x, y)
+            },
+        )?;
         Ok(Self {
             argument: names[0].1.to_string(),
             value: names[1].1.to_string(),

@@ -6,6 +6,7 @@
 use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
+use crate::interpolant::Interpolation;
 use crate::points::Points;
 use crate::text::{error_at, header_and_data, number, whitespace_fields, PointsBuilder};
 
@@ -34,11 +35,18 @@ const HEADER: &str = "name diameter_mm length_mm delays propellant_kg total_kg m
 const PAIR: &str = "2 fields (time thrust)";
 
 impl Motor {
-    /// Reads the first (and only) motor of `text`.
+    /// Reads the first (and only) motor of `text` (for a linear table: [`Motor::parse_for`]).
     pub fn parse(text: &str) -> Result<Self, ReadError> {
+        Self::parse_for(text, Interpolation::Linear)
+    }
+
+    /// Reads the motor of `text` for a thrust table interpolated by `interpolation`: a curve
+    /// whose interpolant overflows is refused at the line that ends the piece
+    /// ([`ReadErrorKind::InterpolantNotFinite`](crate::ReadErrorKind)).
+    pub fn parse_for(text: &str, interpolation: Interpolation) -> Result<Self, ReadError> {
         let ((header_line, header), lines) = header_and_data(text, without_comment, HEADER)?;
         let motor = parse_header(header_line, header)?;
-        let thrust = PointsBuilder::read(header_line, lines, thrust_row)?;
+        let thrust = PointsBuilder::read(header_line, lines, interpolation, thrust_row)?;
         Ok(motor(thrust))
     }
 

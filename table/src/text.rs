@@ -5,6 +5,7 @@ use alloc::string::ToString;
 use alloc::vec::Vec;
 
 use crate::error::{ReadError, ReadErrorKind};
+use crate::interpolant::Interpolation;
 use crate::points::{InvalidPoints, Points};
 
 /// A field of a line: its 1-based column (in characters) and its text.
@@ -131,10 +132,12 @@ impl PointsBuilder {
     }
 
     /// The points of the data `lines` after the header at `header_line`, each line put in
-    /// by `row` (which checks it, and may put in more than one point).
+    /// by `row` (which checks it, and may put in more than one point), checked to give a
+    /// finite interpolant by `interpolation` ([`Interpolation::checked`]).
     pub(crate) fn read<'t>(
         header_line: usize,
         lines: impl Iterator<Item = Line<'t>>,
+        interpolation: Interpolation,
         mut row: impl FnMut(&mut Self, usize, &'t str) -> Result<(), ReadError>,
     ) -> Result<Points, ReadError> {
         let mut points = Self::default();
@@ -143,7 +146,22 @@ impl PointsBuilder {
             row(&mut points, line, content)?;
             last_line = line;
         }
-        points.finish(last_line)
+        let lines = points.lines.clone();
+        let points = points.finish(last_line)?;
+        match interpolation.checked(&points) {
+            Err(InvalidPoints::InterpolantNotFinite { index }) => {
+                let (x, y) = (points.arguments(), points.values());
+                let kind = ReadErrorKind::InterpolantNotFinite {
+                    interpolation: interpolation.name(),
+                    from_line: lines[index - 1],
+                    from: (x[index - 1], y[index - 1]),
+                    to: (x[index], y[index]),
+                };
+                Err(error_at(lines[index], 1, kind))
+            }
+            // `checked` refuses nothing else: the points were checked by `finish`.
+            _ => Ok(points),
+        }
     }
 
     /// The points; `last_line` is where a too-short file is reported.
