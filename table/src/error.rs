@@ -92,7 +92,7 @@ pub enum ReadErrorKind {
     /// 3·δ/h; [`InvalidPoints::InterpolantNotFinite`](crate::InvalidPoints)).
     #[error(
         "the {interpolation} interpolant from ({:?}, {:?}) (line {from_line}) to ({:?}, {:?}) \
-         is not finite; values this near the largest number overflow its cubics",
+         is not finite (its values or slopes overflow between the points)",
         from.0, from.1, to.0, to.1
     )]
     InterpolantNotFinite {

@@ -43,8 +43,8 @@ fn a_pchip_or_spline_table_whose_cubics_overflow_is_refused_at_its_line() {
             error.to_string(),
             format!(
                 "line 5, column 1: the {name} interpolant from (0.0, 0.0) (line 4) to \
-                 (1.0, 1.5e308) is not finite; values this near the largest number overflow \
-                 its cubics"
+                 (1.0, 1.5e308) is not finite (its values or slopes overflow between the \
+                 points)"
             )
         );
         // The same points given as numbers: the typed error names the piece's right end.
