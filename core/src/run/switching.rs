@@ -8,7 +8,10 @@
 //! (a *redo*). Landed there, it crosses the bracket (usually a few roundings of t wide; an
 //! Euler step spans at most 10⁶ of them, about 9·10⁻¹⁰·max(|t|, 1)) by
 //! one Euler step with the rate before the switch and restarts the stepper at `far`,
-//! forgetting the FSAL rate and the controller's memory. A crossing located within the
+//! forgetting the FSAL rate and the controller's memory. Where that step does not change g's
+//! sign (g reads an argument that moves by a rounding of itself only over many roundings of
+//! t, a table of a·x + c with |a·ẋ| ≪ 1), the shortest step within a million roundings that
+//! does is taken instead (`across_shortest`). A crossing located within the
 //! bracket of the step's start is crossed at once. When the interpolant across the jump put
 //! `near` too early (a state-dependent switch), the landing finds no change of sign across
 //! the bracket and the run simply goes on from `near`: the next crossing step is shorter.
