@@ -96,3 +96,36 @@ fn a_box_of_the_state_jumping_at_both_ends_meets_its_closed_form() {
         assert!(error <= 2e-14, "{method:?}: {v} ({error:e})");
     }
 }
+
+#[test]
+fn a_box_of_a_slowly_varying_argument_of_the_state_is_switched_where_the_lookup_jumps() {
+    // G(a·x + c) = 1 for x between (1 − c)/a and (2 − c)/a, a length 1/|a|, entered at
+    // x = 0.5 from x(0) = 0, x'(0) = 1: after it v = √(1 + 2/|a|) (energy; the derivation in
+    // tests/table_state_ends.rs). Measured (v, rk4 and dormand-prince at step 0.01, taylor
+    // at 1e-12): a = ±0.01 ≤ 7.8e-15, a = 100 ≤ 8.8e-16; bound 5e-14 (before the fix, by
+    // RK4 5.5e-5 and Dormand–Prince 2.5e-4 at a = ±0.01: the crossing, located to a rounding
+    // of t, had not moved s by an ulp, and the step crossed the box blindly).
+    let cases = [
+        ("0.01", "0.995", "16"),
+        ("-0.01", "2.005", "16"),
+        ("100", "0.5", "2"),
+    ];
+    for (a, c, until) in cases {
+        let leaving = (1.0 + 2.0 / a.parse::<f64>().unwrap().abs()).sqrt();
+        for method in [
+            ["rk4", "--step", "0.01"],
+            ["dormand-prince", "--step", "0.01"],
+            ["taylor", "--tol", "1e-12"],
+        ] {
+            let set = [format!("a={a}"), format!("c={c}")];
+            let args = [
+                "--set", &set[0], "--set", &set[1], "--init", "x=0", "--init", "x'=1", "--until",
+                until, "--method",
+            ];
+            let (stdout, _) = run("affine_box.vms", &[&args[..], &method[..]].concat(), 0);
+            let v = printed(&stdout, "x'");
+            let error = (v - leaving).abs() / leaving;
+            assert!(error <= 5e-14, "a = {a}, {method:?}: v = {v} ({error:e})");
+        }
+    }
+}

@@ -225,6 +225,28 @@ fn files_are_read_relative_to_the_model_and_their_errors_carry_the_line() {
 }
 
 #[test]
+fn a_pchip_or_spline_table_whose_interpolant_overflows_is_a_diagnostic_at_its_file() {
+    // peaks.csv: 0, 1.5e308, 0, 1.5e308 at t = 0…3. The chords' slopes are finite, so a
+    // linear table is taken; the cubics' coefficients hold 2·1.5e308 on the first piece
+    // (lines 2–3 of the file), so pchip and spline are refused there, at the file's name
+    // (before, they were taken and the run failed at t = 0 with "non-finite state").
+    assert!(
+        derive("coordinates y\ntable F(t) = \"peaks.csv\"\nkinetic y'^2\nforce y: F(t)").is_ok()
+    );
+    for interpolation in ["pchip", "spline"] {
+        error(
+            &format!("coordinates y\ntable F(t) = \"peaks.csv\", {interpolation}\nkinetic y'^2"),
+            &format!(
+                "peaks.csv:3:1: the {interpolation} interpolant from (0.0, 0.0) (line 2) to \
+                 (1.0, 1.5e308) is not finite"
+            ),
+            2,
+            14,
+        );
+    }
+}
+
+#[test]
 fn a_table_is_a_function_and_its_name_is_taken() {
     error(
         "coordinates y\ntable F(t) = \"ramp.csv\"\nkinetic y'^2\nforce y: F",

@@ -5,6 +5,7 @@
 use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
+use crate::interpolant::Interpolation;
 use crate::points::Points;
 use crate::text::{comma_fields, error_at, number, read_table, PointsBuilder};
 
@@ -23,10 +24,23 @@ const HEADER: &str = "argument, value";
 const PAIR: &str = "2 fields (argument, value)";
 
 impl CsvTable {
-    /// Reads `text`.
+    /// Reads `text` (for a linear table: [`CsvTable::parse_for`]).
     pub fn parse(text: &str) -> Result<Self, ReadError> {
-        let ([argument, value], points) =
-            read_table(text, without_comment, HEADER, column_names, point_row)?;
+        Self::parse_for(text, Interpolation::Linear)
+    }
+
+    /// Reads `text` for a table interpolated by `interpolation`: data whose interpolant
+    /// overflows are refused at the line that ends the piece
+    /// ([`ReadErrorKind::InterpolantNotFinite`]).
+    pub fn parse_for(text: &str, interpolation: Interpolation) -> Result<Self, ReadError> {
+        let ([argument, value], points) = read_table(
+            text,
+            without_comment,
+            interpolation,
+            HEADER,
+            column_names,
+            point_row,
+        )?;
         Ok(Self {
             argument,
             value,

@@ -71,7 +71,7 @@ pub enum ReadErrorKind {
     SecondMotor,
     /// The slope between two points overflows (values near ±1.8e308, or arguments a
     /// subnormal apart): the interpolant there would be ±∞ or NaN.
-    #[error("the slope from ({}, {}) to ({}, {}) is not finite", from.0, from.1, to.0, to.1)]
+    #[error("the slope from ({:?}, {:?}) to ({:?}, {:?}) is not finite", from.0, from.1, to.0, to.1)]
     SlopeNotFinite {
         /// The previous point (argument, value).
         from: (f64, f64),
@@ -83,6 +83,24 @@ pub enum ReadErrorKind {
     #[error("the distance from ({:?}, {:?}) to ({:?}, {:?}) is not finite", from.0, from.1, to.0, to.1)]
     SpacingNotFinite {
         /// The earlier point (argument, value): the previous one, or the first.
+        from: (f64, f64),
+        /// This point.
+        to: (f64, f64),
+    },
+    /// The interpolant between two points overflows though their slope does not (a
+    /// `pchip` or `spline` table of values near ±1.8e308: its cubic coefficients reach
+    /// 3·δ/h; [`InvalidPoints::InterpolantNotFinite`](crate::InvalidPoints)).
+    #[error(
+        "the {interpolation} interpolant from ({:?}, {:?}) (line {from_line}) to ({:?}, {:?}) \
+         is not finite (its values or slopes overflow between the points)",
+        from.0, from.1, to.0, to.1
+    )]
+    InterpolantNotFinite {
+        /// The interpolation's name (`pchip`, `spline`, `linear`).
+        interpolation: &'static str,
+        /// The line of the previous point.
+        from_line: usize,
+        /// The previous point (argument, value).
         from: (f64, f64),
         /// This point.
         to: (f64, f64),

@@ -6,7 +6,7 @@
 use alloc::vec::Vec;
 
 use crate::piecewise::Piecewise;
-use crate::points::Points;
+use crate::points::{InvalidPoints, Points};
 
 /// How a table interpolates between its points.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -31,6 +31,92 @@ impl Interpolation {
             Self::Spline => hermite(points, &natural_spline_slopes(points)),
         }
     }
+
+    /// [`Interpolation::interpolate`], refused where a piece overflows
+    /// ([`InvalidPoints::InterpolantNotFinite`] naming its right end): `Points` checks the
+    /// chords' slopes, but a cubic's coefficients are up to 3·δ/h (δ the chord's rise), so
+    /// values near 1.8e308 with finite slopes can give an interpolant (or its derivative
+    /// table) that is ±∞ or NaN between them (before, such a pchip or spline table was taken and the run failed at
+    /// its first step with "the state became non-finite").
+    pub fn checked(self, points: &Points) -> Result<Piecewise, InvalidPoints> {
+        let curve = self.interpolate(points);
+        match overflowing_piece(&curve) {
+            Some(piece) => Err(InvalidPoints::InterpolantNotFinite { index: piece + 1 }),
+            None => Ok(curve),
+        }
+    }
+
+    /// The interpolation's name in the DSL and the tool: `linear`, `pchip` or `spline`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Linear => "linear",
+            Self::Pchip => "pchip",
+            Self::Spline => "spline",
+        }
+    }
+}
+
+/// Whether `curve` or one of its derivative tables may overflow where it is evaluated
+/// (its interval from the first knot given, as in [`Interpolation::checked`]).
+fn overflowing_piece(curve: &Piecewise) -> Option<usize> {
+    let mut table = curve.clone();
+    loop {
+        if let Some(piece) = (0..table.intervals()).find(|&piece| overflows(&table, piece)) {
+            return Some(piece);
+        }
+        if table.degree() == 0 {
+            return None;
+        }
+        table = table.derivative();
+    }
+}
+
+/// Whether piece `piece` of `curve` may overflow where it is evaluated, as
+/// [`Piecewise::value_on`] sums c₀ + c₁s + c₂s² + c₃s³ for s in [0, h]: some sᵏ or cₖhᵏ is
+/// not finite, or a partial sum Σₖ≤ⱼ cₖsᵏ may exceed the largest f64. Each partial sum is
+/// bounded by its Bernstein coefficients on [0, h] (their largest magnitude; exact for a
+/// line, whose are its two end values), computed on the coefficients scaled by 1/8 so that
+/// the check itself does not overflow.
+fn overflows(curve: &Piecewise, piece: usize) -> bool {
+    let knots = curve.knots();
+    let width = knots[piece + 1] - knots[piece];
+    let per_piece = curve.degree() + 1;
+    let coefficients = &curve.coefficients()[piece * per_piece..][..per_piece];
+    // bₖ = cₖ hᵏ / 8: the piece in u = s/h ∈ [0, 1], scaled.
+    let mut scaled = [0.0; 8];
+    let mut power = 1.0;
+    for (k, &c) in coefficients.iter().enumerate() {
+        if k > 0 {
+            power *= width;
+        }
+        scaled[k.min(7)] = c / 8.0 * power;
+        if !(power.is_finite() && (c * power).is_finite()) {
+            return true;
+        }
+    }
+    let degree = per_piece.min(8) - 1;
+    (1..=degree).any(|j| bernstein_bound(&scaled[..=j]) > f64::MAX / 8.0)
+}
+
+/// max |βᵢ| over the Bernstein coefficients βᵢ = Σₖ≤ᵢ C(i,k)/C(j,k)·bₖ of Σₖ≤ⱼ bₖuᵏ on
+/// [0, 1]: a bound on its magnitude there (the convex hull property).
+fn bernstein_bound(b: &[f64]) -> f64 {
+    let j = b.len() - 1;
+    let binomial =
+        |n: usize, k: usize| (0..k).fold(1.0, |c, m| c * (n - m) as f64 / (m + 1) as f64);
+    (0..=j)
+        .map(|i| {
+            abs((0..=i)
+                .map(|k| binomial(i, k) / binomial(j, k) * b[k])
+                .sum::<f64>())
+        })
+        .fold(0.0, |largest: f64, beta| {
+            if beta > largest || beta.is_nan() {
+                beta
+            } else {
+                largest
+            }
+        })
 }
 
 /// yᵢ + mᵢ (x − xᵢ) with mᵢ the slope of the chord.

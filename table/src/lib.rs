@@ -5,6 +5,9 @@
 //!   header's masses included, the curve starting from (0 s, 0 N)) and [`CsvTable::parse`] for
 //!   a two-column CSV with a header. Malformed text is a [`ReadError`] with its line and
 //!   column; the data are [`Points`]: knots strictly increasing, values finite, two or more.
+//!   [`CsvTable::parse_for`] and [`Motor::parse_for`] read for an interpolation, refusing
+//!   data whose interpolant overflows at the line that ends the piece
+//!   ([`Interpolation::checked`], [`Table::checked`] for points built in code).
 //! * Interpolants ([`Interpolation`]): `linear`, `pchip` and `spline` (natural cubic), the
 //!   cubics as SciPy computes them. Each is a [`Piecewise`] polynomial whose
 //!   [`derivative`](Piecewise::derivative) is again one, so the derivation can differentiate

@@ -51,6 +51,16 @@ pub enum InvalidPoints {
         /// The point's index.
         index: usize,
     },
+    /// The interpolant's piece from the previous point to this one overflows, though the
+    /// slope between them does not: its cubic coefficients (3·δ/h, …) or their sum over the
+    /// interval, or its derivative's, are not finite (values near ±1.8e308; pchip and
+    /// spline tables, [`Interpolation::checked`](crate::Interpolation::checked)). Lookups
+    /// there would be ±∞ or NaN.
+    #[error("the interpolant from point {} to point {index} is not finite", index - 1)]
+    InterpolantNotFinite {
+        /// The point's index (the piece's right end).
+        index: usize,
+    },
     /// An argument does not increase on the previous one.
     #[error("the argument of point {index} does not increase on the previous one")]
     NotIncreasing {

@@ -6,6 +6,7 @@
 use alloc::string::{String, ToString};
 
 use crate::error::{ReadError, ReadErrorKind};
+use crate::interpolant::Interpolation;
 use crate::points::Points;
 use crate::text::{error_at, number, read_table, whitespace_fields, PointsBuilder};
 
@@ -34,9 +35,23 @@ const HEADER: &str = "name diameter_mm length_mm delays propellant_kg total_kg m
 const PAIR: &str = "2 fields (time thrust)";
 
 impl Motor {
-    /// Reads the first (and only) motor of `text`.
+    /// Reads the first (and only) motor of `text` (for a linear table: [`Motor::parse_for`]).
     pub fn parse(text: &str) -> Result<Self, ReadError> {
-        let (motor, thrust) = read_table(text, without_comment, HEADER, parse_header, thrust_row)?;
+        Self::parse_for(text, Interpolation::Linear)
+    }
+
+    /// Reads the motor of `text` for a thrust table interpolated by `interpolation`: a curve
+    /// whose interpolant overflows is refused at the line that ends the piece
+    /// ([`ReadErrorKind::InterpolantNotFinite`](crate::ReadErrorKind)).
+    pub fn parse_for(text: &str, interpolation: Interpolation) -> Result<Self, ReadError> {
+        let (motor, thrust) = read_table(
+            text,
+            without_comment,
+            interpolation,
+            HEADER,
+            parse_header,
+            thrust_row,
+        )?;
         Ok(motor(thrust))
     }
 

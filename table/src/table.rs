@@ -5,7 +5,7 @@ use core::sync::atomic::{AtomicUsize, Ordering};
 use crate::error::LookupError;
 use crate::interpolant::Interpolation;
 use crate::piecewise::Piecewise;
-use crate::points::Points;
+use crate::points::{InvalidPoints, Points};
 
 /// What a table gives for an argument outside its data.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -61,6 +61,20 @@ impl Table {
     /// The table interpolating `points`.
     pub fn new(points: &Points, interpolation: Interpolation, outside: Outside) -> Self {
         Self::from_piecewise(interpolation.interpolate(points), outside)
+    }
+
+    /// [`Table::new`], refused where the interpolant overflows ([`Interpolation::checked`]):
+    /// for points that were not read by [`CsvTable::parse_for`](crate::CsvTable::parse_for)
+    /// or [`Motor::parse_for`](crate::Motor::parse_for), which check it with the line.
+    pub fn checked(
+        points: &Points,
+        interpolation: Interpolation,
+        outside: Outside,
+    ) -> Result<Self, InvalidPoints> {
+        Ok(Self::from_piecewise(
+            interpolation.checked(points)?,
+            outside,
+        ))
     }
 
     /// The table of an interpolant already built (e.g. over static arrays the macro emitted).

@@ -5,6 +5,7 @@ use alloc::string::ToString;
 use alloc::vec::Vec;
 
 use crate::error::{ReadError, ReadErrorKind};
+use crate::interpolant::Interpolation;
 use crate::points::{InvalidPoints, Points};
 
 /// A field of a line: its 1-based column (in characters) and its text.
@@ -46,10 +47,12 @@ pub(crate) fn comma_fields(line: &str) -> Vec<Field<'_>> {
 /// there is none, [`ReadErrorKind::MissingHeader`] names `expected`), then its points, each
 /// data line put in by `row` (which checks it, and may put in more than one point). Lines are
 /// numbered from 1; `data` gives a line's data (the line without its comment), and blank
-/// ones are skipped.
+/// ones are skipped. Points whose interpolant by `interpolation` overflows are refused at
+/// the line that ends the piece ([`ReadErrorKind::InterpolantNotFinite`]).
 pub(crate) fn read_table<'t, H>(
     text: &'t str,
     data: fn(&str) -> &str,
+    interpolation: Interpolation,
     expected: &'static str,
     header: impl FnOnce(usize, &'t str) -> Result<H, ReadError>,
     row: impl FnMut(&mut PointsBuilder, usize, &'t str) -> Result<(), ReadError>,
@@ -65,7 +68,8 @@ pub(crate) fn read_table<'t, H>(
             .next()
             .ok_or(error_at(text.lines().count().max(1), 1, missing))?;
     let header = header(header_line, header_text)?;
-    Ok((header, PointsBuilder::read(header_line, lines, row)?))
+    let points = PointsBuilder::read(header_line, lines, interpolation, row)?;
+    Ok((header, points))
 }
 
 /// A line's number (from 1) and its text.
@@ -137,10 +141,12 @@ impl PointsBuilder {
     }
 
     /// The points of the data `lines` after the header at `header_line`, each line put in
-    /// by `row` (which checks it, and may put in more than one point).
+    /// by `row` (which checks it, and may put in more than one point), checked to give a
+    /// finite interpolant by `interpolation` ([`Interpolation::checked`]).
     fn read<'t>(
         header_line: usize,
         lines: impl Iterator<Item = Line<'t>>,
+        interpolation: Interpolation,
         mut row: impl FnMut(&mut Self, usize, &'t str) -> Result<(), ReadError>,
     ) -> Result<Points, ReadError> {
         let mut points = Self::default();
@@ -149,7 +155,22 @@ impl PointsBuilder {
             row(&mut points, line, content)?;
             last_line = line;
         }
-        points.finish(last_line)
+        let lines = points.lines.clone();
+        let points = points.finish(last_line)?;
+        match interpolation.checked(&points) {
+            Err(InvalidPoints::InterpolantNotFinite { index }) => {
+                let (x, y) = (points.arguments(), points.values());
+                let kind = ReadErrorKind::InterpolantNotFinite {
+                    interpolation: interpolation.name(),
+                    from_line: lines[index - 1],
+                    from: (x[index - 1], y[index - 1]),
+                    to: (x[index], y[index]),
+                };
+                Err(error_at(lines[index], 1, kind))
+            }
+            // `checked` refuses nothing else: the points were checked by `finish`.
+            _ => Ok(points),
+        }
     }
 
     /// The points; `last_line` is where a too-short file is reported.

@@ -8,7 +8,10 @@
 //! (a *redo*). Landed there, it crosses the bracket (usually a few roundings of t wide; an
 //! Euler step spans at most 10⁶ of them, about 9·10⁻¹⁰·max(|t|, 1)) by
 //! one Euler step with the rate before the switch and restarts the stepper at `far`,
-//! forgetting the FSAL rate and the controller's memory. A crossing located within the
+//! forgetting the FSAL rate and the controller's memory. Where that step does not change g's
+//! sign (g reads an argument that moves by a rounding of itself only over many roundings of
+//! t, a table of a·x + c with |a·ẋ| ≪ 1), the shortest step within a million roundings that
+//! does is taken instead (`across_shortest`). A crossing located within the
 //! bracket of the step's start is crossed at once. When the interpolant across the jump put
 //! `near` too early (a state-dependent switch), the landing finds no change of sign across
 //! the bracket and the run simply goes on from `near`: the next crossing step is shorter.
@@ -209,9 +212,13 @@ impl SwitchWatch {
                 self.pending = Some((near, far));
                 match self.cross_from(system, start) {
                     Ok(Crossing::None) => {
-                        // The interpolant across the jump misplaced the crossing: let the
-                        // step stand (rare; the next crossing step is shorter).
+                        // The interpolant across the jump misplaced the crossing and the
+                        // tangent finds none near: let the step stand (rare), re-anchored at
+                        // its end so that the switch watches the bracket the run is in
+                        // (kept on the old one, its g would keep the sign it changed to
+                        // and never change again).
                         self.keep(&after);
+                        self.anchor(system, end.time, &end.state)?;
                         Ok(Crossing::None)
                     }
                     other => other,
@@ -280,7 +287,9 @@ impl SwitchWatch {
     /// against the chatter limit. When the interpolant across the jump put the bracket too
     /// early (a switch on the state), the crossing is still ahead: the root of g along the
     /// tangent of the motion gives it, crossed the same way when it is within a million
-    /// roundings, else landed on again by a redo to 0.9 of the way there.
+    /// roundings, else landed on again by a redo to 0.9 of the way there. A crossing within
+    /// reach is crossed by the shortest step over which g changes sign, which may be many
+    /// roundings of t when g's own argument moves slowly ([`Self::across_shortest`]).
     pub(crate) fn cross_from<Sys, const N: usize, const S: usize>(
         &mut self,
         system: &Sys,
@@ -311,17 +320,49 @@ impl SwitchWatch {
                 return Ok(crossing);
             }
         }
-        let Some(ahead) = self.tangent_root(system, point, &rate, &before)? else {
-            return Ok(Crossing::None);
-        };
-        if ahead <= small {
-            return Ok(self
-                .across(system, point, &rate, ahead + rounding)?
-                .unwrap_or(Crossing::None));
+        let ahead = self.tangent_root(system, point, &rate, &before)?;
+        if let Some(ahead) = ahead.filter(|&ahead| ahead > small) {
+            let near = point.time + 0.9 * ahead;
+            self.pending = Some((near, near));
+            return Ok(Crossing::Redo { near });
         }
-        let near = point.time + 0.9 * ahead;
-        self.pending = Some((near, near));
-        Ok(Crossing::Redo { near })
+        let from = ahead.unwrap_or(0.0);
+        Ok(self
+            .across_shortest(system, point, &rate, from, (rounding, small))?
+            .unwrap_or(Crossing::None))
+    }
+
+    /// The first of the Euler steps `from + rounding · 2ᵏ` (k = 0, 1, …, up to `from +
+    /// small`) from `point` over which some switch changes sign.
+    ///
+    /// A switch changes only by the roundings of what it reads, not of t: the knots of a
+    /// table of the state read its argument s, which a step of a few roundings of t moves by
+    /// a few roundings of s only when |ds/dt| ≳ 1. For s = a·x + c with |a·ẋ| ≪ 1 the
+    /// bracket located in t (or the tangent's root plus a rounding of t) moves s by less
+    /// than an ulp, and g, which sits on the last argument of its side (zero there,
+    /// `core::table::knot_gap`), does not change: the step must be as long as s needs.
+    /// Before (review of 2026-11-26) the run then let the step that crossed the box of
+    /// G(0.01·x + 0.995) stand, the jump read at its later stages only (5.5e-5 off by RK4 at
+    /// step 0.01), and the switch, never re-anchored, missed the exit.
+    fn across_shortest<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        point: &Point<S>,
+        rate: &SVector<f64, S>,
+        from: f64,
+        (rounding, small): (f64, f64),
+    ) -> Result<Option<Crossing<S>>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let mut extra = rounding;
+        while extra <= small {
+            if let Some(crossing) = self.across(system, point, rate, from + extra)? {
+                return Ok(Some(crossing));
+            }
+            extra *= 2.0;
+        }
+        Ok(None)
     }
 
     /// The Euler step of `step` from `point` along `rate`, if some switch changes sign over

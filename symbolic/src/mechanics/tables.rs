@@ -69,8 +69,10 @@ pub fn read_points(decl: &TableDecl, base: &Path) -> Result<(Points, PathBuf), D
         )
     })?;
     let points = match extension {
-        "eng" => Motor::parse(&text).map(|m| m.thrust),
-        _ => CsvTable::parse(&text).map(|c| c.points),
+        // Read for the table's interpolation: data whose pchip or spline overflows are
+        // refused at their line (varmass-table's `InterpolantNotFinite`).
+        "eng" => Motor::parse_for(&text, decl.interpolation).map(|m| m.thrust),
+        _ => CsvTable::parse_for(&text, decl.interpolation).map(|c| c.points),
     };
     let points =
         points.map_err(|e| at(format!("{written}:{}:{}: {}", e.line, e.column, e.kind)))?;
