@@ -381,7 +381,7 @@ fn op(
         }
         Op::Add { start, len } => {
             let terms = names.tape.operand_slots(start, len).iter().map(|s| n(*s));
-            quote!(#w[#k] = 0.0 #(+ #terms[#k])*;)
+            quote!(#w[#k] = -0.0 #(+ #terms[#k])*;)
         }
         Op::Scale(c, a) => {
             let (c, a) = (n(c), n(a));
