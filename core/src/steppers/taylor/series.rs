@@ -13,6 +13,10 @@ use nalgebra::{ComplexField, RealField};
 use crate::cholesky::{factor as cholesky, substitute};
 use crate::math::{powf, sqrt};
 
+/// The recurrences' sums, in four chains: one function for generated code and the tapes
+/// (`varmass-table` is the crate both depend on).
+pub use varmass_table::sum;
+
 /// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
 pub const LEN: usize = super::MAX_ORDER + 1;
 
@@ -80,38 +84,6 @@ impl Scratch {
         let rows = rows.unwrap_or_else(|| unreachable!("the rows were grown to {F}"));
         (rows, &mut self.factor[..factor], fresh)
     }
-}
-
-/// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the range
-/// into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)). The partial sums
-/// start at −0, the identity of addition (x + (−0) = x for every x, −0 included; not so +0:
-/// −0 + 0 = +0), so the compiler drops the first addition of each: 9 % of the 3-link
-/// pendulum's instructions at 1e-9 (callgrind). The sums of the recurrences are chains of k
-/// dependent additions: four independent chains let the processor overlap them (heyoka sums
-/// its recurrences pairwise for the same reason), and the error bound shrinks with the
-/// depth. The tapes' copy (`varmass_symbolic::expr::taylor::recurrence::sum`) must add in
-/// this same order: `tests/taylor_emitted.rs` holds the two bit-identical. Two copies on
-/// purpose: the symbolic crate does not depend on this one (generated code needs the core
-/// alone, the macro the symbolic crate alone), and a crate of its own for ten lines would
-/// cost every build a crate more.
-#[inline(always)]
-pub fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
-    let mut s = [-0.0f64; 4];
-    let mut j = start;
-    while j + 4 <= end {
-        s[0] += term(j);
-        s[1] += term(j + 1);
-        s[2] += term(j + 2);
-        s[3] += term(j + 3);
-        j += 4;
-    }
-    let mut i = 0;
-    while j < end {
-        s[i] += term(j);
-        i += 1;
-        j += 1;
-    }
-    (s[0] + s[1]) + (s[2] + s[3])
 }
 
 /// w = a b.
