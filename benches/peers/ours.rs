@@ -3,9 +3,9 @@
 //! emitted recurrences, and DOP853, on the sled to 50 m, Kepler e = 0.5 over three orbits
 //! and the planar 3-link pendulum over 10 s, swept over tolerances. One line per point,
 //! tab-separated: problem, method, tolerance, achieved error, fastest seconds per run,
-//! steps, the final state's components. Each point's stepper is made once and restarted
-//! before every run, as the script resets heyoka's integrator: what is timed is the
-//! integration alone, on both sides.
+//! steps, the final state's components. Each point's Taylor stepper is made once and
+//! restarted before every run, as the script resets heyoka's integrator: what is timed is
+//! the integration alone, on both sides (DOP853, which allocates nothing, is made afresh).
 //!
 //! ```sh
 //! cargo bench -p varmass-benches --bench peers            # the sweep
@@ -72,10 +72,12 @@ fn integrate<St: Stepper<N, S>, const N: usize, const S: usize>(
     (*stepper.state(), *stepper.statistics())
 }
 
-/// One run of `stepper` from `y0` at t = 0 to `end`, timed as heyoka's runs are: the
-/// stepper was made once, before the timing, and each run restarts it (heyoka's script
-/// makes its integrator once and resets its time and state before each run). The final
-/// state and the steps of this run.
+/// One run of `stepper` from `y0` at t = 0 to `end`, restarted there first. The Taylor
+/// stepper is timed as heyoka's runs are: made once, before the timing, and restarted by
+/// each run (heyoka's script makes its integrator once and resets its time and state), so
+/// that its scratch is sized once; its steps depend on the state alone, so a restarted
+/// run is the run a new stepper takes (same steps, same final state). The final state and
+/// the steps of this run.
 fn rerun<St: Stepper<N, S>, const N: usize, const S: usize>(
     stepper: &mut St,
     (y0, end): (SVector<f64, S>, f64),
@@ -107,9 +109,12 @@ fn run<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
             absolute_tolerance: tolerance,
             ..AdaptiveControl::dop853()
         });
-        let stepper = Dop853::new(system, 0.0, y0, control).unwrap();
-        let mut stepper = stepper.without_dense_output();
-        timing.fastest(|| rerun(&mut stepper, start))
+        // Made afresh for every run (it allocates nothing): a restarted DOP853 would start
+        // from the last run's final step, not from its initial step guess.
+        timing.fastest(|| {
+            let stepper = Dop853::new(system, 0.0, y0, control).unwrap();
+            rerun(&mut stepper.without_dense_output(), start)
+        })
     }
 }
 
