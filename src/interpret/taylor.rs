@@ -192,7 +192,7 @@ impl TaylorProgram {
         // The sum over j in four chains, as the generated code's `series::solve_velocities`.
         for a in 0..n {
             let coupling = series::sum(1, k + 1, |j| {
-                (0..n).fold(0.0, |total, b| {
+                (0..n).fold(-0.0, |total, b| {
                     total + entry(a, b, j) * get(scratch, first_velocity + b, k - j)
                 })
             });

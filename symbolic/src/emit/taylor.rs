@@ -49,20 +49,18 @@ impl Names<'_> {
 
     /// The fields of the slots this tape's instructions write (inputs excluded).
     fn fields(&self) -> Vec<Ident> {
-        let inputs = self.tape.input_slots();
-        self.tape
-            .written_slots()
-            .into_iter()
-            .filter(|s| !inputs.contains(s))
-            .map(|s| self.field(s))
-            .collect()
+        self.fields_of(self.tape.written_slots())
     }
 
     /// The fields of the slots written at every order (inputs excluded).
     fn series_fields(&self) -> Vec<Ident> {
+        self.fields_of(self.tape.series_written_slots())
+    }
+
+    /// The fields of `slots`, inputs left out (they are the shared `i<n>`, declared once).
+    fn fields_of(&self, slots: Vec<usize>) -> Vec<Ident> {
         let inputs = self.tape.input_slots();
-        self.tape
-            .series_written_slots()
+        slots
             .into_iter()
             .filter(|s| !inputs.contains(s))
             .map(|s| self.field(s))
@@ -381,7 +379,7 @@ fn op(
         }
         Op::Add { start, len } => {
             let terms = names.tape.operand_slots(start, len).iter().map(|s| n(*s));
-            quote!(#w[#k] = 0.0 #(+ #terms[#k])*;)
+            quote!(#w[#k] = -0.0 #(+ #terms[#k])*;)
         }
         Op::Scale(c, a) => {
             let (c, a) = (n(c), n(a));

@@ -195,6 +195,9 @@ struct Compiler<'p> {
     /// Pair slots already made for an argument slot: (sin, cos) and (sinh, cosh).
     sin_cos: FxHashMap<usize, (usize, usize)>,
     sinh_cosh: FxHashMap<usize, (usize, usize)>,
+    /// The slot of each product, square, scaling, quotient and reciprocal already made
+    /// ([`Compiler::emit`]).
+    made: FxHashMap<(u8, usize, usize), usize>,
     /// Symbols compiled through an expression in place of their input slot.
     substitutions: &'p [(Symbol, Id)],
     /// The tables `Op::Table` reads (every tape of the stages gets them all).
@@ -271,6 +274,7 @@ impl ExprPool {
             reciprocal_of: FxHashMap::default(),
             sin_cos: FxHashMap::default(),
             sinh_cosh: FxHashMap::default(),
+            made: FxHashMap::default(),
             substitutions,
             tables: Vec::new(),
         };
@@ -341,10 +345,28 @@ impl Compiler<'_> {
         self.is_series.get(slot).copied().unwrap_or(false)
     }
 
-    /// Appends `op` writing a new slot, a series slot when any of `reads` is one.
+    /// Appends `op` writing a new slot, a series slot when any of `reads` is one; an
+    /// operation on slots alone that was made before is not made again. The pool shares
+    /// equal nodes, but not the parts of products it keeps apart: the 3-link pendulum's ṗ
+    /// holds q̇₁ q̇₂ sin(a₁ − a₂) times four different constants (m₁l², m₂l², …), four
+    /// chains of the same two Cauchy products, ten of its sixteen products.
     fn emit(&mut self, op: Op, reads: &[usize]) -> usize {
+        let key = match op {
+            Op::Mul(a, b) => Some((0, a, b)),
+            Op::Scale(c, a) => Some((1, c, a)),
+            Op::Div(a, d) => Some((2, a, d)),
+            Op::Square(a) => Some((3, a, a)),
+            Op::Recip(a) => Some((4, a, a)),
+            _ => None,
+        };
+        if let Some(made) = key.and_then(|key| self.made.get(&key)) {
+            return *made;
+        }
         let series = reads.iter().any(|s| self.series(*s));
         let out = self.new_slot(series);
+        if let Some(key) = key {
+            self.made.insert(key, out);
+        }
         let list = if series {
             &mut self.series
         } else {

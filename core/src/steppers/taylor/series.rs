@@ -13,6 +13,10 @@ use nalgebra::{ComplexField, RealField};
 use crate::cholesky::{factor as cholesky, substitute};
 use crate::math::{powf, sqrt};
 
+/// The recurrences' sums, in four chains: one function for generated code and the tapes
+/// (`varmass-table` is the crate both depend on).
+pub use varmass_table::sum;
+
 /// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
 pub const LEN: usize = super::MAX_ORDER + 1;
 
@@ -82,36 +86,6 @@ impl Scratch {
     }
 }
 
-/// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the
-/// range into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)). The sums of
-/// the recurrences are chains of k dependent additions: four independent chains let the
-/// processor overlap them (heyoka sums its recurrences pairwise for the same reason), and
-/// the error bound shrinks with the depth. The tapes' copy
-/// (`varmass_symbolic::expr::taylor::recurrence::sum`) must add in this same order:
-/// `tests/taylor_emitted.rs` holds the two bit-identical. Two copies on purpose: the
-/// symbolic crate does not depend on this one (generated code needs the core alone, the
-/// macro the symbolic crate alone), and a crate of its own for ten lines would cost every
-/// build a crate more.
-#[inline(always)]
-pub fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
-    let mut s = [0.0f64; 4];
-    let mut j = start;
-    while j + 4 <= end {
-        s[0] += term(j);
-        s[1] += term(j + 1);
-        s[2] += term(j + 2);
-        s[3] += term(j + 3);
-        j += 4;
-    }
-    let mut i = 0;
-    while j < end {
-        s[i] += term(j);
-        i += 1;
-        j += 1;
-    }
-    (s[0] + s[1]) + (s[2] + s[3])
-}
-
 /// w = a b.
 #[inline(always)]
 pub fn mul(a: &[f64; LEN], b: &[f64; LEN], k: usize) -> f64 {
@@ -127,7 +101,7 @@ pub fn square(a: &[f64; LEN], k: usize) -> f64 {
     let middle = if k.is_multiple_of(2) {
         a[k / 2] * a[k / 2]
     } else {
-        0.0
+        -0.0
     };
     2.0 * cross + middle
 }
@@ -332,7 +306,7 @@ pub fn solve_velocities(
     for a in 0..n.min(16) {
         // Σⱼ₌₁ᵏ (Σ_b M[j]_ab q̇_b[k−j]): the sum over j in four chains, as the tapes add it.
         let coupling = sum(1, k + 1, |j| {
-            (0..n).fold(0.0, |total, b| {
+            (0..n).fold(-0.0, |total, b| {
                 total + matrix[a * n + b][j] * velocities[b][k - j]
             })
         });

@@ -9,34 +9,7 @@ use super::super::func::{max, min, sign};
 use super::super::tape::power;
 use super::{Instr, Op, TaylorJet};
 use std::sync::Arc;
-use varmass_table::{series_coefficient, Local, Table};
-
-/// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the
-/// range into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)): four
-/// independent chains of additions instead of one (heyoka sums pairwise for the same
-/// reason). The generated code's copy (`varmass_core::steppers::taylor::series::sum`) adds
-/// in this same order: `tests/taylor_emitted.rs` holds the two bit-identical. A copy on
-/// purpose: `varmass-symbolic` does not depend on `varmass-core` (generated code needs only
-/// the core), the generated code's copy is `#[inline(always)]` for its hot loops, and a
-/// crate of its own for ten lines would cost every build a crate more.
-pub(super) fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
-    let mut s = [0.0f64; 4];
-    let mut j = start;
-    while j + 4 <= end {
-        s[0] += term(j);
-        s[1] += term(j + 1);
-        s[2] += term(j + 2);
-        s[3] += term(j + 3);
-        j += 4;
-    }
-    let mut i = 0;
-    while j < end {
-        s[i] += term(j);
-        i += 1;
-        j += 1;
-    }
-    (s[0] + s[1]) + (s[2] + s[3])
-}
+use varmass_table::{series_coefficient, sum, Local, Table};
 
 /// Coefficient `k` of the slots `instr` writes (k = 0: the value).
 pub(super) fn run(
@@ -110,7 +83,7 @@ fn coefficient(op: Op, operands: &[usize], jet: &TaylorJet, out: usize, k: usize
             let middle = if k.is_multiple_of(2) {
                 at(a, k / 2).powi(2)
             } else {
-                0.0
+                -0.0
             };
             2.0 * cross + middle
         }

@@ -232,3 +232,36 @@ fn stages_share_their_slots_and_substitutions_make_constants() {
     assert_eq!(b.run(&substituted), expected);
     assert!(!substituted.output_is_constant(0));
 }
+
+/// Products whose series factors are the same but whose constants differ share their
+/// Cauchy products: 2·x·y·sin x + c·x·y·sin x + x·y·sin x is two products (x y, then times
+/// sin x), three scalings and a sum, not six products (the 3-link pendulum's ṗ holds such
+/// terms). The coefficients are the sum's, term by term.
+#[test]
+fn products_of_the_same_series_factors_are_made_once() {
+    let mut b = Bench::new(0.4, 0.7);
+    let (x, y, c) = (b.pool.sym(b.x), b.pool.sym(b.y), b.pool.sym(b.c));
+    let sin = b.pool.call(Func::Sin, &[x]);
+    let two = b.pool.int(2);
+    let terms = [
+        b.pool.mul(&[two, x, y, sin]),
+        b.pool.mul(&[c, x, y, sin]),
+        b.pool.mul(&[x, y, sin]),
+    ];
+    let root = b.pool.add(&terms);
+    let tape = b.pool.compile_taylor(&[root], &[b.x, b.y]);
+    let products = tape
+        .series_instructions()
+        .iter()
+        .filter(|i| matches!(i.op, super::Op::Mul(..)))
+        .count();
+    assert_eq!(products, 2);
+    // The sin/cos pair, two products, two scalings (the term without a constant is the
+    // product itself) and the sum.
+    assert_eq!(tape.series_instructions().len(), 6);
+    let product = mul(&mul(&b.xs, &b.ys), &reference(Func::Sin, &[b.xs.clone()]));
+    let expected: Series = product.iter().map(|p| (2.0 + 1.7 + 1.0) * p).collect();
+    let error = relative_difference(&b.taylor(root), &expected);
+    // Measured 0 to a few ulps.
+    assert!(error < 1e-14, "shared products: {error:e}");
+}
