@@ -341,6 +341,9 @@ fn the_example_models_take_the_cheapest_momentum_rate() {
             d.pool.operation_count(&eq14),
         );
         eprintln!("{file}: ṗ {derived} operations, eq. 14 reduced {reduced}");
-        assert!(derived < reduced, "{file}: {derived} ≥ {reduced} operations");
+        assert!(
+            derived < reduced,
+            "{file}: {derived} ≥ {reduced} operations"
+        );
     }
 }
