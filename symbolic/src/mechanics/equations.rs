@@ -100,7 +100,7 @@ pub(crate) fn momentum_rates(
 /// 6-dof rocket's expansion), and the body-frame form is built to avoid what it undoes:
 /// when `structured` already takes fewer operations than the rows as derived, it is taken
 /// without reducing them. The reduction could in principle bring the rows below it; in
-/// every spatial model of the repository and its tests it does not (the rocket: 1312
+/// the spatial models of the repository and of its tests it does not (the rocket: 1312
 /// operations derived, 364 reduced, 227 in body axes; `mechanics_rigid.rs` holds its two
 /// models to this), and the rows are reduced and compared whenever the body form is not
 /// the cheaper one at once (a torque-free sphere: 5 derived, 43 in body axes).
