@@ -9,7 +9,8 @@
 
 use super::checks::{run_checks, CheckScope};
 use super::equations::{
-    accelerations, hamiltonian, momentum_rates, power, Accelerations, Hamiltonian, MomentumRates,
+    accelerations, cheapest_rates, hamiltonian, momentum_rates, power, Accelerations, Hamiltonian,
+    MomentumRates,
 };
 use super::forces::{generalized_forces, GeneralizedForces};
 use super::jacobian::jacobian_parts;
@@ -307,13 +308,9 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
     let momenta = momenta(&mut model.pool, lagrangian, &velocities);
     require_regular(model, &momenta.mass_matrix)?;
     let mut rates = momentum_rates(model, lagrangian, &forces, &momenta.momenta, &mass_rates);
-    if let Some(structured) = body_frame_rates(model, &forces, &mass_rates, &flow_rates) {
-        // The body-frame form of `rigid_rates.rs` where it takes fewer operations.
-        let pool = &model.pool;
-        if pool.operation_count(&structured) < pool.operation_count(&rates.total) {
-            rates.total = structured;
-        }
-    }
+    // ṗ of a lone spatial rigid body in body axes where it takes fewer operations.
+    let structured = body_frame_rates(model, &forces, &mass_rates, &flow_rates);
+    rates.total = cheapest_rates(&mut model.pool, &rates.total, structured);
     let accelerations = accelerations(model, &momenta, &rates.frozen)?;
     let inverse_mass = accelerations.inverse_mass.as_ref();
     let hamiltonian = hamiltonian(model, lagrangian, &momenta, inverse_mass);
