@@ -17,6 +17,7 @@ Setup, from the repository root:
     python3 -m venv target/venv-heyoka
     target/venv-heyoka/bin/pip install heyoka numpy mpmath
     target/venv-heyoka/bin/python benches/peers/heyoka.py [--rounds 3]
+    target/venv-heyoka/bin/python benches/peers/heyoka.py --kepler-floor  # heyoka alone
 
 Problems: the paper's sled to 50 m (m = m0 + c x; error |v − v(x)|/v(x) against the closed
 form), Kepler e = 0.5 over three orbits (error: position over a, velocity over √(k/a)), the
@@ -238,10 +239,27 @@ def at_error(points, target):
     return None
 
 
+def kepler_floor():
+    """heyoka's Kepler errors from 1e-14 to 1e-18 (issue 25's ≤ 5e-15; ours in
+    `tests/kepler_floor.rs`): below 1e-14 they wander with rounding, as ours do."""
+    problem = kepler()
+    for tol in [10.0**-k for k in range(14, 19)]:
+        ta = hy.taylor_adaptive(list(zip(problem["vars"], problem["rhs"])), problem["start"],
+                                tol=tol)
+        ta.propagate_until(problem["end"])
+        print(f"kepler heyoka {tol:.0e}: order {ta.order}, error {problem['error'](ta.state):.1e}"
+              f" (nominal orbit {problem['nominal'](ta.state):.1e})")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--kepler-floor", action="store_true",
+                        help="print heyoka's Kepler errors at 1e-14 … 1e-18 and stop")
     args = parser.parse_args()
+    if args.kepler_floor:
+        kepler_floor()
+        return
     rates = {(r[0], r[1]): r[2:] for r in ours("rates")}
     reference = np.array([float(x) for x in rates[("pendulum3", "reference")]])
     problems = {"sled": sled(), "kepler": kepler(), "pendulum3": pendulum3(reference)}
