@@ -14,8 +14,8 @@
 //! which is how the head gets the Taylor coefficients c₁ = f(y) and c₂ = ½ d f/dt from one
 //! evaluation of the state rate's code (t + ε as the time).
 //!
-//! What has a form here: + − × ÷ (with `f64` on either side), negation, `sqrt`, `cbrt` and
-//! `powi`. Generated code needing anything else (sin, exp, ln, tables …) does not compile
+//! What has a form here: + − × ÷ (with an `f64` or, for duals, a [`Dd`] on either side),
+//! negation, `sqrt`, `cbrt` and `powi`. Generated code needing anything else (sin, exp, ln, tables …) does not compile
 //! for the head: the macro refuses it with a message naming the function.
 
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -405,6 +405,78 @@ impl Div<Dual> for f64 {
     fn div(self, o: Dual) -> Dual {
         let q = self / o.v;
         Dual::new(q, -(q * o.d) / o.v)
+    }
+}
+
+impl Add<Dd> for Dual {
+    type Output = Dual;
+    #[inline(always)]
+    fn add(self, o: Dd) -> Dual {
+        Dual::new(self.v + o, self.d)
+    }
+}
+
+impl Sub<Dd> for Dual {
+    type Output = Dual;
+    #[inline(always)]
+    fn sub(self, o: Dd) -> Dual {
+        Dual::new(self.v - o, self.d)
+    }
+}
+
+impl Mul<Dd> for Dual {
+    type Output = Dual;
+    #[inline(always)]
+    fn mul(self, o: Dd) -> Dual {
+        Dual::new(self.v * o, self.d * o)
+    }
+}
+
+impl Div<Dd> for Dual {
+    type Output = Dual;
+    #[inline(always)]
+    fn div(self, o: Dd) -> Dual {
+        Dual::new(self.v / o, self.d / o)
+    }
+}
+
+impl Add<Dual> for Dd {
+    type Output = Dual;
+    #[inline(always)]
+    fn add(self, o: Dual) -> Dual {
+        o + self
+    }
+}
+
+impl Sub<Dual> for Dd {
+    type Output = Dual;
+    #[inline(always)]
+    fn sub(self, o: Dual) -> Dual {
+        Dual::new(self - o.v, -o.d)
+    }
+}
+
+impl Mul<Dual> for Dd {
+    type Output = Dual;
+    #[inline(always)]
+    fn mul(self, o: Dual) -> Dual {
+        o * self
+    }
+}
+
+impl Div<Dual> for Dd {
+    type Output = Dual;
+    #[inline(always)]
+    fn div(self, o: Dual) -> Dual {
+        let q = self / o.v;
+        Dual::new(q, -(q * o.d) / o.v)
+    }
+}
+
+impl From<Dd> for Dual {
+    #[inline(always)]
+    fn from(x: Dd) -> Self {
+        Dual::new(x, Dd::ZERO)
     }
 }
 

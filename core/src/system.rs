@@ -378,4 +378,18 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     ) -> Option<Result<(), SystemError>> {
         None
     }
+
+    /// The state rate evaluated over [`Dual`](crate::dd::Dual) double-double numbers: at
+    /// `t + ε` and `state = y + ε ẏ` it gives f(t, y) + ε (∂f/∂y ẏ + ∂f/∂t), which the
+    /// [`Taylor`](crate::steppers::Taylor) stepper's head
+    /// ([`with_head`](crate::steppers::Taylor::with_head)) turns into the first two Taylor
+    /// coefficients in double-double. `None` when the system has no head, the default
+    /// (generated code has one with `emit = [..., "taylor", "head"]`).
+    fn taylor_head(
+        &self,
+        _t: crate::dd::Dual,
+        _state: &[crate::dd::Dual; S],
+    ) -> Option<[crate::dd::Dual; S]> {
+        None
+    }
 }

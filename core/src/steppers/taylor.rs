@@ -40,11 +40,14 @@
 //! Piecewise functions (abs, sign, min, max) are expanded on the branch of the step's start:
 //! their switches must be located by events, so that no step straddles one.
 
+#[path = "taylor/head.rs"]
+mod head;
 #[path = "taylor/series.rs"]
 pub mod series;
 
 use nalgebra::SVector;
 
+use crate::dd::Dual;
 use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::{ceil, exp, ln, powf};
 use crate::stepper::{Progress, ProgressMut, Restarting, StepOutcome, Stepper};
@@ -139,6 +142,8 @@ pub struct Taylor<'a, Sys, const N: usize, const S: usize> {
     rules: [(usize, f64); 2],
     /// The expansions' working memory, kept from step to step.
     scratch: series::Scratch,
+    /// Whether c₁ and c₂ come from the system's double-double head ([`Taylor::with_head`]).
+    head: bool,
 }
 
 impl<'a, Sys, const N: usize, const S: usize> Taylor<'a, Sys, N, S>
@@ -188,7 +193,35 @@ where
                 TaylorControl::Fixed { .. } => [(2, 0.0); 2],
             },
             scratch,
+            head: false,
         })
+    }
+
+    /// The stepper with its head: c₁ and c₂ from the system's state rate evaluated in
+    /// double-double dual numbers ([`VariableMassSystem::taylor_head`], emitted with
+    /// `emit = [..., "taylor", "head"]`) at the state and its compensation y_hi + y_lo,
+    /// and the increment c₁h + c₂h² + Σₖ≥₃ cₖhᵏ added in double-double (see the module
+    /// docs: what it buys and costs). An
+    /// [`InvalidConfiguration`](StepErrorKind::InvalidConfiguration) error when the
+    /// system has no head.
+    pub fn with_head(mut self) -> Result<Self, StepError<S>> {
+        let (t, y) = (self.progress.time(), *self.progress.state());
+        let probe = core::array::from_fn(|i| Dual::from(y[i]));
+        if self.system.taylor_head(Dual::from(t), &probe).is_none() {
+            return Err(StepError::invalid_configuration(
+                t,
+                y,
+                "the system has no double-double head (generate it with \
+                 emit = [..., \"taylor\", \"head\"])",
+            ));
+        }
+        self.head = true;
+        Ok(self)
+    }
+
+    /// Whether the stepper uses the system's double-double head.
+    pub fn has_head(&self) -> bool {
+        self.head
     }
 
     /// The order of the last step (0 before the first).
@@ -372,8 +405,11 @@ where
         // The step the clock takes: the series is summed at the time stored with the state.
         let h = if reaches_stop { h } else { (t0 + h) - t0 };
         let y0 = *self.progress.state();
-        let (state, dropped) =
-            compensated_sum(&y0, &self.coefficients[..=order], h, &self.compensation);
+        let (state, dropped) = if self.head {
+            self.head_sum(order, h)?
+        } else {
+            compensated_sum(&y0, &self.coefficients[..=order], h, &self.compensation)
+        };
         let outcome = self.progress.accept(self.system, h, reaches_stop, state)?;
         self.compensation = dropped;
         self.order = order;
