@@ -392,4 +392,11 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     ) -> Option<[crate::dd::Dual; S]> {
         None
     }
+
+    /// The state rate f(t, y) in double-double alone: the head's first evaluation (c₁),
+    /// which needs no derivative part. Generated with
+    /// [`taylor_head`](VariableMassSystem::taylor_head); `None` by default.
+    fn taylor_head_rate(&self, _t: f64, _state: &[crate::dd::Dd; S]) -> Option<[crate::dd::Dd; S]> {
+        None
+    }
 }

@@ -96,10 +96,13 @@ pub(crate) fn head_items(emitter: &Emitter<'_>, taylor: bool) -> (TokenStream, T
         .iter()
         .map(|(p, _)| Ident::new(p, Span::call_site()))
         .collect();
-    let body = emitter.body(Input::State, &roots, |outs| {
-        let outs = outs.into_iter().map(|o| quote!(#dual::from(#o)));
-        quote!([#(#outs),*])
-    });
+    let body = |number: &TokenStream| {
+        emitter.body(Input::State, &roots, |outs| {
+            let outs = outs.into_iter().map(|o| quote!(#number::from(#o)));
+            quote!([#(#outs),*])
+        })
+    };
+    let (dual_body, dd_body) = (body(&dual), body(&dd));
     let doc = format!("The parameters of a `{name}` in double-double (`emit = [..., \"head\"]`).");
     let method = quote! {
         /// The state rate over double-double dual numbers (`emit = [..., "head"]`).
@@ -113,6 +116,19 @@ pub(crate) fn head_items(emitter: &Emitter<'_>, taylor: bool) -> (TokenStream, T
                 #(#fields: #dd::from(self.#fields),)*
             };
             ::core::option::Option::Some(parameters.state_rate(t, state))
+        }
+
+        /// The state rate in double-double (`emit = [..., "head"]`).
+        #[inline]
+        fn taylor_head_rate(
+            &self,
+            t: f64,
+            state: &[#dd; #s_lit],
+        ) -> ::core::option::Option<[#dd; #s_lit]> {
+            let parameters = #head_name {
+                #(#fields: #dd::from(self.#fields),)*
+            };
+            ::core::option::Option::Some(parameters.rate(#dd::from(t), state))
         }
     };
     let items = quote! {
@@ -129,7 +145,13 @@ pub(crate) fn head_items(emitter: &Emitter<'_>, taylor: bool) -> (TokenStream, T
             /// what depends on them alone, such as 1/m, is not rounded to double).
             #[inline]
             fn state_rate(&self, t: #dual, state: &[#dual; #s_lit]) -> [#dual; #s_lit] {
-                #body
+                #dual_body
+            }
+
+            /// The same in double-double: the rate alone, for c₁.
+            #[inline]
+            fn rate(&self, t: #dd, state: &[#dd; #s_lit]) -> [#dd; #s_lit] {
+                #dd_body
             }
         }
     };

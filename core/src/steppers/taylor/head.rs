@@ -20,33 +20,30 @@ where
     Sys: VariableMassSystem<N, S>,
 {
     /// c₁ and c₂ in double-double at (t₀, y_hi + y_lo), y_lo the compensation: the head
-    /// evaluated twice, at y + 0 ε for c₁ = f(y), then at y + ε c₁ with the time t₀ + ε
-    /// for c₂ = ½ d f/dt (its derivative part). One evaluation along the double
-    /// expansion's c₁ instead would leave ½ J (c₁ − fl(c₁)) in c₂, an error of the size of
-    /// c₂'s own rounding: tried, Kepler ended 7.6e-15 off at tolerance 1e-15 (5.2e-16 with
-    /// two evaluations, `tests/kepler_floor.rs`).
+    /// evaluated twice, in double-double for c₁ = f(y) (`taylor_head_rate`), then over
+    /// dual numbers at y + ε c₁ with the time t₀ + ε for c₂ = ½ d f/dt (its derivative
+    /// part). One evaluation along the double expansion's c₁ instead would leave
+    /// ½ J (c₁ − fl(c₁)) in c₂, an error of the size of c₂'s own rounding: tried, Kepler
+    /// ended 7.6e-15 off at tolerance 1e-15 (5.2e-16 with two evaluations,
+    /// `tests/kepler_floor.rs`).
     fn head_coefficients(&mut self) -> Result<([Dd; S], [Dd; S]), StepError<S>> {
         let (t0, y0) = (self.progress.time(), *self.progress.state());
         let y: [Dd; S] = core::array::from_fn(|i| Dd::from((y0[i], self.compensation[i])));
-        let unusable = |kind| StepError::new(t0, y0, kind);
-        let at = |derivative: &[Dd; S], time_rate: f64| {
-            let state = core::array::from_fn(|i| Dual::new(y[i], derivative[i]));
-            let time = Dual::new(Dd::new(t0), Dd::new(time_rate));
-            self.system.taylor_head(time, &state)
+        let missing = || {
+            let reason = "the system stopped providing its double-double head";
+            StepError::invalid_configuration(t0, y0, reason)
         };
-        let missing = "the system stopped providing its double-double head";
-        let rate = at(&[Dd::ZERO; S], 0.0)
-            .ok_or_else(|| StepError::invalid_configuration(t0, y0, missing))?;
-        let c1 = rate.map(|r| r.v);
-        let derivative =
-            at(&c1, 1.0).ok_or_else(|| StepError::invalid_configuration(t0, y0, missing))?;
+        let c1 = self.system.taylor_head_rate(t0, &y).ok_or_else(missing)?;
+        let along: [Dual; S] = core::array::from_fn(|i| Dual::new(y[i], c1[i]));
+        let time = Dual::new(Dd::new(t0), Dd::new(1.0));
+        let derivative = self.system.taylor_head(time, &along).ok_or_else(missing)?;
         let c2 = derivative.map(|r| r.d * 0.5);
         self.progress.statistics.rate_evaluations += 2;
         let finite = c1.iter().chain(&c2).all(|c| c.is_finite());
         if finite {
             Ok((c1, c2))
         } else {
-            Err(unusable(StepErrorKind::NonFiniteState))
+            Err(StepError::new(t0, y0, StepErrorKind::NonFiniteState))
         }
     }
 
