@@ -1,6 +1,7 @@
 //! The benchmark systems as users write them: DSL in the `#[variable_mass_system]` macro.
 //! Each has a twin written by hand in `hand.rs` and a reference solution in `problems.rs`.
-//! The sled, the rocket and Kepler also emit the Taylor recurrences, for the Taylor stepper.
+//! The sled, the rocket and Kepler also emit the Taylor recurrences, for the Taylor stepper
+//! (Kepler its double-double head too).
 
 use varmass::prelude::*;
 
@@ -51,7 +52,7 @@ pub struct Rocket {
     body planet: mass m, position [r*cos(th), r*sin(th)]
     potential -k*m/r
 ",
-    emit = ["hamiltonian", "power", "jacobian", "derivation", "taylor"]
+    emit = ["hamiltonian", "power", "jacobian", "derivation", "taylor", "head"]
 )]
 #[derive(Clone, Copy, Debug)]
 pub struct Kepler {

@@ -1,8 +1,10 @@
 //! Our side of the comparison with heyoka (`benches/peers/heyoka.py` runs this binary and
 //! heyoka in one interleaved session and writes the table): the Taylor stepper on the
 //! emitted recurrences, and DOP853, on the sled to 50 m, Kepler e = 0.5 over three orbits
-//! and the planar 3-link pendulum over 10 s, swept over tolerances. One line per point,
-//! tab-separated: problem, method, tolerance, achieved error, fastest seconds per run,
+//! and the planar 3-link pendulum over 10 s, swept over tolerances; on Kepler also the
+//! Taylor stepper with its double-double head (`taylor-head`: `emit = [..., "head"]`,
+//! `Taylor::with_head`; the other two problems call sin and cos, which have no head yet).
+//! One line per point, tab-separated: problem, method, tolerance, achieved error, fastest seconds per run,
 //! steps, the final state's components. Each point's Taylor stepper is made once and
 //! restarted before every run, as the script resets heyoka's integrator: what is timed is
 //! the integration alone, on both sides (DOP853, which allocates nothing, is made afresh).
@@ -99,9 +101,12 @@ fn run<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
     timing: Timing,
 ) -> (Duration, (SVector<f64, S>, usize)) {
     let y0 = start.0;
-    if method == "taylor" {
+    if method == "taylor" || method == "taylor-head" {
         let control = TaylorControl::adaptive(tolerance, tolerance);
         let mut stepper = Taylor::new(system, 0.0, y0, control).unwrap();
+        if method == "taylor-head" {
+            stepper = stepper.with_head().expect("the system has a head");
+        }
         timing.fastest(|| rerun(&mut stepper, start))
     } else {
         let control = StepControl::Adaptive(AdaptiveControl {
@@ -146,14 +151,18 @@ fn pendulum_reference(step: f64) -> SVector<f64, 6> {
     .0
 }
 
+/// The methods every problem is swept with, and the tightest tolerance 10⁻ᵏ of each:
+/// DOP853 refuses a relative tolerance below 100 machine epsilons (2.2e-14).
+const METHODS: [(&str, i32); 2] = [("taylor", 16), ("dop853", 13)];
+
 fn sweep<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
     name: &str,
     system: &Sys,
     start: (SVector<f64, S>, f64),
+    methods: &[(&str, i32)],
     error: impl Fn(&SVector<f64, S>) -> f64,
 ) {
-    // DOP853 refuses a relative tolerance below 100 machine epsilons (2.2e-14).
-    for (method, tightest) in [("taylor", 16), ("dop853", 13)] {
+    for &(method, tightest) in methods {
         for k in 6..=tightest {
             let tolerance = 10f64.powi(-k);
             let (elapsed, (state, steps)) = run(system, start, (method, tolerance), Timing::Sweep);
@@ -182,7 +191,10 @@ fn only(args: &[String]) {
         _ => None,
     };
     let Some((problem, method, tolerance, runs)) = parsed else {
-        eprintln!("usage: only <sled|kepler|pendulum3> <taylor|dop853> <tolerance> <runs>");
+        eprintln!(
+            "usage: only <sled|kepler|pendulum3> <taylor|taylor-head|dop853> <tolerance> <runs> \
+             (taylor-head on kepler only)"
+        );
         std::process::exit(2);
     };
     let point = (method, tolerance);
@@ -258,12 +270,17 @@ fn main() {
         return;
     }
     let start = (sled.initial_state(), sled.end_time());
-    sweep("sled", sled.system(), start, |y| sled.error(start.1, y));
+    sweep("sled", sled.system(), start, &METHODS, |y| {
+        sled.error(start.1, y)
+    });
     let start = (kepler.initial_state(), kepler.end_time());
-    sweep("kepler", kepler.system(), start, |y| {
+    let with_head = [METHODS[0], ("taylor-head", 16), METHODS[1]];
+    sweep("kepler", kepler.system(), start, &with_head, |y| {
         kepler.error(start.1, y)
     });
     let reference = pendulum_reference(1.0 / 200.0);
     let start = (pendulum_start(), PENDULUM_END);
-    sweep("pendulum3", &PENDULUM, start, |y| (y - reference).amax());
+    sweep("pendulum3", &PENDULUM, start, &METHODS, |y| {
+        (y - reference).amax()
+    });
 }

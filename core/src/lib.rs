@@ -98,6 +98,7 @@
 extern crate alloc;
 
 pub mod cholesky;
+pub mod dd;
 pub mod error;
 pub mod input;
 pub mod lanes;

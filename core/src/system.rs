@@ -378,4 +378,25 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     ) -> Option<Result<(), SystemError>> {
         None
     }
+
+    /// The state rate evaluated over [`Dual`](crate::dd::Dual) double-double numbers: at
+    /// `t + ε` and `state = y + ε ẏ` it gives f(t, y) + ε (∂f/∂y ẏ + ∂f/∂t), which the
+    /// [`Taylor`](crate::steppers::Taylor) stepper's head
+    /// ([`with_head`](crate::steppers::Taylor::with_head)) turns into the first two Taylor
+    /// coefficients in double-double. `None` when the system has no head, the default
+    /// (generated code has one with `emit = [..., "taylor", "head"]`).
+    fn taylor_head(
+        &self,
+        _t: crate::dd::Dual,
+        _state: &[crate::dd::Dual; S],
+    ) -> Option<[crate::dd::Dual; S]> {
+        None
+    }
+
+    /// The state rate f(t, y) in double-double alone: the head's first evaluation (c₁),
+    /// which needs no derivative part. Generated with
+    /// [`taylor_head`](VariableMassSystem::taylor_head); `None` by default.
+    fn taylor_head_rate(&self, _t: f64, _state: &[crate::dd::Dd; S]) -> Option<[crate::dd::Dd; S]> {
+        None
+    }
 }

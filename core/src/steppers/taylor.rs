@@ -27,18 +27,40 @@
 //! stored beside it. Over 400 steps of Kepler at order 30 the two together cut the error
 //! against the nominal orbit from 7.6e-14 to a few 1e-14 (`tests/taylor_rounding.rs`, whose
 //! reference is the orbit through the start as stored: the start's own rounding moves the
-//! end point by 8e-15). What is left is each step's rate rounded in double.
+//! end point by 8e-15). What is left is the rounding of the first two coefficients, the
+//! rate c₁ = f(y) and c₂ = ½ f′(y) f(y), to a few ulps at every step: over 16 starts near
+//! Kepler's (e ≈ 0.5, three orbits, tolerance 1e-16) 1.3e-14 rms, against 1.2e-16 were c₁
+//! and c₂ computed in double-double, 9e-17 for truncation, 1.0e-14 with a double-double
+//! state and sum, 1.2e-14 with the carried part fed into the next c₁ (`tests/kepler_floor.rs`).
+//! No summation removes it, and tolerances below 1e-16 (accepted: the order grows to 22 at
+//! 1e-18) do not lower it.
+//!
+//! The head ([`Taylor::with_head`], opt-in) removes it: c₁ and c₂ come from the system's
+//! state rate evaluated over double-double dual numbers ([`crate::dd`];
+//! [`VariableMassSystem::taylor_head`], emitted with `emit = [..., "taylor", "head"]` for
+//! models whose state rate is arithmetic, √, ∛ and integer powers) at y_hi + y_lo, the
+//! state and its compensation, and the increment c₁h + c₂h² + Σₖ≥₃ cₖhᵏ is added in
+//! double-double (the tail Σₖ≥₃ in double: multiplied by h³ and more, its rounding is far
+//! below the state's ulp); the state keeps the sum's high part and the compensation its low
+//! part. Order and steps are unchanged (the coefficients from c₃ on, and the step rule,
+//! are the double expansion's). Kepler at tolerance 1e-16: 2.4e-16 against the exact
+//! orbit through the stored start, 1.7e-14 without (`tests/kepler_floor.rs`). Run-time
+//! models (the interpreter's tapes, `varmass run --method taylor`) have no head: their
+//! tapes evaluate in `f64` only, so they keep the double floor.
 //!
 //! The statistics count one rate evaluation per expansion (the work of an expansion to
 //! order p is about p²/2 products per subexpression, against one evaluation's one).
 //! Piecewise functions (abs, sign, min, max) are expanded on the branch of the step's start:
 //! their switches must be located by events, so that no step straddles one.
 
+#[path = "taylor/head.rs"]
+mod head;
 #[path = "taylor/series.rs"]
 pub mod series;
 
 use nalgebra::SVector;
 
+use crate::dd::Dual;
 use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::{ceil, exp, ln, powf};
 use crate::stepper::{Progress, ProgressMut, Restarting, StepOutcome, Stepper};
@@ -133,6 +155,8 @@ pub struct Taylor<'a, Sys, const N: usize, const S: usize> {
     rules: [(usize, f64); 2],
     /// The expansions' working memory, kept from step to step.
     scratch: series::Scratch,
+    /// Whether c₁ and c₂ come from the system's double-double head ([`Taylor::with_head`]).
+    head: bool,
 }
 
 impl<'a, Sys, const N: usize, const S: usize> Taylor<'a, Sys, N, S>
@@ -182,7 +206,35 @@ where
                 TaylorControl::Fixed { .. } => [(2, 0.0); 2],
             },
             scratch,
+            head: false,
         })
+    }
+
+    /// The stepper with its head: c₁ and c₂ from the system's state rate evaluated in
+    /// double-double dual numbers ([`VariableMassSystem::taylor_head`], emitted with
+    /// `emit = [..., "taylor", "head"]`) at the state and its compensation y_hi + y_lo,
+    /// and the increment c₁h + c₂h² + Σₖ≥₃ cₖhᵏ added in double-double (see the module
+    /// docs: what it buys and costs). An
+    /// [`InvalidConfiguration`](StepErrorKind::InvalidConfiguration) error when the
+    /// system has no head.
+    pub fn with_head(mut self) -> Result<Self, StepError<S>> {
+        let (t, y) = (self.progress.time(), *self.progress.state());
+        let probe = core::array::from_fn(|i| Dual::from(y[i]));
+        if self.system.taylor_head(Dual::from(t), &probe).is_none() {
+            return Err(StepError::invalid_configuration(
+                t,
+                y,
+                "the system has no double-double head (generate it with \
+                 emit = [..., \"taylor\", \"head\"])",
+            ));
+        }
+        self.head = true;
+        Ok(self)
+    }
+
+    /// Whether the stepper uses the system's double-double head.
+    pub fn has_head(&self) -> bool {
+        self.head
     }
 
     /// The order of the last step (0 before the first).
@@ -366,8 +418,11 @@ where
         // The step the clock takes: the series is summed at the time stored with the state.
         let h = if reaches_stop { h } else { (t0 + h) - t0 };
         let y0 = *self.progress.state();
-        let (state, dropped) =
-            compensated_sum(&y0, &self.coefficients[..=order], h, &self.compensation);
+        let (state, dropped) = if self.head {
+            self.head_sum(order, h)?
+        } else {
+            compensated_sum(&y0, &self.coefficients[..=order], h, &self.compensation)
+        };
         let outcome = self.progress.accept(self.system, h, reaches_stop, state)?;
         self.compensation = dropped;
         self.order = order;

@@ -19,7 +19,7 @@ use crate::mechanics::VelocitySolve;
 
 impl Emitter<'_> {
     /// The roots of `state_rate`: q̇, the true ṗ, the state masses' rates.
-    fn state_rate_roots(&self) -> Vec<Id> {
+    pub(super) fn state_rate_roots(&self) -> Vec<Id> {
         let k = self.d.state_mass_count();
         let mut roots = self.velocity_ids.clone();
         roots.extend(&self.d.momentum_rate);

@@ -8,6 +8,7 @@
 
 mod expression;
 mod factor;
+mod head;
 mod inputs;
 mod lanes;
 mod lex;
@@ -94,6 +95,10 @@ pub fn emit_system_for(
     let coordinates = d.coordinates.iter().map(|c| c.name.as_str());
     let masses = d.masses.iter().map(|m| m.name.as_str());
     let parameters = d.parameters.iter().map(|(p, _)| p.as_str());
+    let head = match outputs.head {
+        true => head::head_items(&emitter, outputs.taylor),
+        false => Default::default(),
+    };
     let methods = [
         emitter.mass(),
         emitter.mass_rate(),
@@ -114,11 +119,13 @@ pub fn emit_system_for(
         optional(outputs.jacobian, || emitter.jacobian()),
         emitter.switching_functions(&switches, &table_switches),
         optional(outputs.taylor, || taylor::taylor_method(d, runtime, name)),
+        head.0,
         emitter.flow_rates(),
         emitter.stop_times(&time_tables),
         emitter.sample(),
     ];
     let lanes = optional(outputs.lanes, || lanes::lanes_impl(&emitter));
+    let head_struct = head.1;
     let units_doc = d.units_line().map(|line| {
         let line = format!("Units: {line}.");
         quote!(#[doc = ""] #[doc = #line])
@@ -162,6 +169,7 @@ pub fn emit_system_for(
         #inputs_trait
         #trait_impl
         #lanes
+        #head_struct
     }
 }
 

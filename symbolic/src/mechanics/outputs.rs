@@ -24,6 +24,9 @@ pub struct Outputs {
     /// The state rate over SIMD lanes (`LaneSystem`, for ensembles run in lanes). Opt-in
     /// as the Taylor recurrences are: it repeats the state rate's code.
     pub lanes: bool,
+    /// The state rate over double-double dual numbers (`taylor_head`, for the Taylor
+    /// stepper's head, `Taylor::with_head`). Opt-in, with `taylor`.
+    pub head: bool,
 }
 
 /// The name of an output that does not exist.
@@ -37,7 +40,7 @@ pub struct UnknownOutput {
 }
 
 impl Outputs {
-    /// Every output but the opt-in Taylor recurrences and lanes.
+    /// Every output but the opt-in Taylor recurrences, head and lanes.
     pub const FULL: Outputs = Outputs {
         hamiltonian: true,
         power: true,
@@ -45,6 +48,7 @@ impl Outputs {
         derivation: true,
         taylor: false,
         lanes: false,
+        head: false,
     };
 
     /// Only what the steppers need.
@@ -55,16 +59,18 @@ impl Outputs {
         derivation: false,
         taylor: false,
         lanes: false,
+        head: false,
     };
 
     /// The names of the optional outputs, as [`Outputs::from_names`] reads them.
-    pub const NAMES: [&'static str; 6] = [
+    pub const NAMES: [&'static str; 7] = [
         "hamiltonian",
         "power",
         "jacobian",
         "derivation",
         "taylor",
         "lanes",
+        "head",
     ];
 
     /// The outputs named (the others left out): `[]` is [`Outputs::MINIMAL`].
@@ -86,6 +92,7 @@ impl Outputs {
                 "derivation" => outputs.derivation = true,
                 "taylor" => outputs.taylor = true,
                 "lanes" => outputs.lanes = true,
+                "head" => outputs.head = true,
                 other => unknown.push(UnknownOutput {
                     name: other.to_string(),
                     index,
