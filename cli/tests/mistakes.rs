@@ -486,3 +486,30 @@ fn a_recorded_table_call_is_named_and_the_names_are_listed_once() {
     let (_, stderr) = varmass(&unknown, 2);
     assert_eq!(stderr.matches("mdot_m").count(), 1, "{stderr}");
 }
+
+/// `--record ''` names nothing (before: accepted, no column added), and a column named twice
+/// or named `t` (before: two columns of one name in the CSV) is refused naming the entry.
+#[test]
+fn a_record_that_names_nothing_or_a_column_twice_is_refused() {
+    let stderr = rocket(&["--record", ""], 2);
+    assert!(stderr.contains("--record names no quantity"), "{stderr}");
+    let stderr = rocket(&["--record", "y,y"], 2);
+    assert!(
+        stderr.contains(
+            "--record `y`: the column `y` cannot be recorded again: it is recorded already"
+        ),
+        "{stderr}"
+    );
+    let stderr = rocket(&["--record", "y,t"], 2);
+    assert!(
+        stderr.contains(
+            "the column `t` cannot be recorded again: the time is always the first column"
+        ),
+        "{stderr}"
+    );
+    let stderr = rocket(&["--record", "y, e=y'*2, e=y"], 2);
+    assert!(
+        stderr.contains("--record `e=y`: the column `e`"),
+        "{stderr}"
+    );
+}

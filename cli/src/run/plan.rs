@@ -10,7 +10,7 @@ use varmass::symbolic::parse::ast::SystemAst;
 use super::names::{
     assignment, evaluate, named, observables, resolve, shown, velocity_state, Observable,
 };
-use super::record::{entries, recorded, Recorded, Scope};
+use super::record::{columns, Recorded, Scope};
 use crate::args::{Method, RunArgs, Words};
 use crate::error::CliError;
 
@@ -193,10 +193,7 @@ pub fn plan_with(
             .collect(),
         false => {
             let scope = Scope::new(program, ast, &known, &parameters);
-            entries(&args.record)
-                .iter()
-                .map(|entry| recorded(entry, &scope, args.words))
-                .collect::<Result<_, _>>()?
+            columns(&args.record, &scope, args.words)?
         }
     };
     let every = args.every.map(|dt| every(dt, args, until)).transpose()?;

@@ -107,6 +107,41 @@ impl<'a> Scope<'a> {
     }
 }
 
+/// The recorded columns of `values` (`--record`, a scene's `record`), each entry resolved by
+/// [`recorded`]. Values that name nothing (`--record ''`) are refused, and so is a column
+/// named twice or named `t` (the time is always the first column): a CSV with two columns
+/// of one name is read wrongly by most tools.
+pub fn columns(
+    values: &[String],
+    scope: &Scope<'_>,
+    words: Words,
+) -> Result<Vec<(String, Recorded)>, CliError> {
+    let setting = words.setting("--record");
+    let list = entries(values);
+    if list.is_empty() && !values.is_empty() {
+        return Err(CliError::Input(format!(
+            "{setting} names no quantity: give NAME[, NAME …], or leave it out for the default \
+             columns"
+        )));
+    }
+    let mut columns: Vec<(String, Recorded)> = Vec::with_capacity(list.len());
+    for entry in &list {
+        let (name, what) = recorded(entry, scope, words)?;
+        let why = match name.as_str() {
+            "t" => "the time is always the first column",
+            _ if columns.iter().any(|(n, _)| *n == name) => "it is recorded already",
+            _ => {
+                columns.push((name, what));
+                continue;
+            }
+        };
+        return Err(CliError::Input(format!(
+            "{setting} `{entry}`: the column `{name}` cannot be recorded again: {why}"
+        )));
+    }
+    Ok(columns)
+}
+
 /// Splits `--record` values at the commas outside parentheses (an expression may call
 /// `atan2(y, x)`), trimmed, empty entries dropped.
 pub fn entries(values: &[String]) -> Vec<String> {

@@ -16,7 +16,7 @@ use crate::error::CliError;
 use crate::model::{load, LoadedModel};
 use crate::run::names::{observables, resolve, Observable};
 use crate::run::plan::{condition, not_yet_true, Plan};
-use crate::run::record::{entries, recorded, Recorded, Scope};
+use crate::run::record::{columns, Recorded, Scope};
 
 /// The recorded column that holds the energy-budget residual.
 pub const ENERGY_RESIDUAL: &str = "energy_residual";
@@ -362,10 +362,7 @@ fn record(
 ) -> Result<Vec<(String, Recorded)>, CliError> {
     let known = observables(program);
     let scope = Scope::new(program, selected, &known, parameters);
-    entries(record_entries)
-        .iter()
-        .map(|entry| recorded(entry, &scope, Words::Scene))
-        .collect()
+    columns(record_entries, &scope, Words::Scene)
 }
 
 /// The condition `text` (the scene's `key`) ending `phase`: `t` or one of its quantities
