@@ -15,7 +15,10 @@ use std::path::PathBuf;
 use proc_macro2::{Ident, Span};
 use quote::quote;
 use varmass_symbolic::emit::{emit_system, Target};
-use varmass_symbolic::mechanics::{derive_source, Parameters, VelocitySolve};
+use varmass_symbolic::{
+    derive_source,
+    mechanics::{Parameters, VelocitySolve},
+};
 
 const PARAMETERS: [&str; 4] = ["m0", "c", "l", "g"];
 

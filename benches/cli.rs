@@ -15,7 +15,7 @@ use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{AdaptiveControl, DormandPrince, StepControl};
 use varmass::core::{run, Direction, Event, RunConfig, VariableMassSystem};
 use varmass::interpret::{Program, TapeSystem};
-use varmass::symbolic::mechanics::{derive_source, Parameters};
+use varmass::symbolic::{derive_source, mechanics::Parameters};
 
 use common::generated::Sled;
 use common::timing::fastest;

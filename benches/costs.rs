@@ -33,8 +33,11 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion};
 use varmass::core::nalgebra::SVector;
 use varmass::core::VariableMassSystem;
-use varmass_symbolic::mechanics::{derive, derive_source, Outputs, Parameters, VelocitySolve};
 use varmass_symbolic::parse::parse_system;
+use varmass_symbolic::{
+    derive, derive_source,
+    mechanics::{Outputs, Parameters, VelocitySolve},
+};
 
 use common::adjugate::closed_velocities;
 use common::chain::chain_source;

@@ -36,6 +36,7 @@ use varmass::core::steppers::{
     ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Taylor, TaylorControl,
     Variational, VariationalConfig,
 };
+use varmass::core::tolerance::{Floor, Tolerance};
 use varmass::core::{Statistics, StepOutcome, Stepper, VariableMassSystem};
 
 use common::diffsol_peer::{run_diffsol, DiffsolMethod};
@@ -145,7 +146,8 @@ impl Method {
             | Method::PeerDopri5
             | Method::Dop853
             | Method::PeerDop853 => (3..=13).map(|k| 10f64.powi(-k)).collect(),
-            Method::Taylor => (3..=16).map(|k| 10f64.powi(-k)).collect(),
+            // Down to the method's floor, `Floor::Taylor`.
+            Method::Taylor => (3..=15).map(|k| 10f64.powi(-k)).collect(),
             Method::Sdirk4
             | Method::Esdirk43
             | Method::PeerDiffsolBdf
@@ -360,11 +362,12 @@ where
                 end,
             )
         }
-        Method::Taylor => integrate(
-            Taylor::new(system, 0.0, y0, TaylorControl::adaptive(setting, setting))
-                .map_err(started)?,
-            end,
-        ),
+        Method::Taylor => {
+            let tolerance =
+                Tolerance::for_floor(setting, setting, Floor::Taylor).map_err(|e| e.to_string())?;
+            let control = TaylorControl::adaptive(tolerance);
+            integrate(Taylor::new(system, 0.0, y0, control).map_err(started)?, end)
+        }
         Method::PeerDopri5 => run_peer_dopri5(system, y0, end, setting),
         Method::PeerDop853 => run_peer_dop853(system, y0, end, setting),
         Method::Dop853 => {

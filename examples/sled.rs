@@ -1,6 +1,8 @@
 //! The paper's sled (Zhang Jiuzhu 2015, §4): a sled starts from rest on a slope, scoops up
-//! snow at rest (m = m0 + c x) and slides to x = 50 m. Every stepper is run and compared with
-//! the closed form of eq. 24.
+//! snow at rest (m = m0 + c x) and slides to x = 50 m. Five of the nine steppers are run
+//! and compared with the closed form of eq. 24 (every stepper but ESDIRK4(3), on this sled
+//! and two other problems: `cargo bench -p varmass-benches --bench work_precision`,
+//! docs/bench/steppers.md).
 //!
 //! The system is the model file `models/sled.vms`, in body form: the impact force R2 is
 //! derived from the inflow, not written by hand, and the paper's results (eqs. 20–24) are
@@ -115,7 +117,8 @@ where
     })
 }
 
-/// Every stepper, each at a setting that keeps the example quick in release mode.
+/// Five of the nine steppers (the fixed-step ones and Dormand–Prince at two tolerances), each
+/// at a setting that keeps the example quick in release mode.
 fn all_methods(sled: &Sled) -> Result<Vec<Outcome>, StepError<2>> {
     let start = SVector::<f64, 2>::zeros();
     let adaptive = |tolerance: f64| {

@@ -6,8 +6,11 @@
 use std::collections::HashMap;
 use std::process::ExitCode;
 
-use varmass::symbolic::mechanics::{derive, Derivation, Parameters};
 use varmass::symbolic::parse::{parse_system, select_tags};
+use varmass::symbolic::{
+    derive,
+    mechanics::{Derivation, Parameters},
+};
 
 /// The paper's sled, body form, with the paper's results stated as checks.
 const SLED: &str = include_str!("../models/sled.vms");

@@ -68,8 +68,15 @@ pub mod prelude {
         AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler, FixedStep,
         ImplicitMidpoint, Sdirk4, StepControl, Taylor, TaylorControl, Variational,
     };
+    pub use varmass_core::tolerance::{Floor, Tolerance};
     pub use varmass_core::{
         run, Direction, Event, RunConfig, RunError, Solution, StepError, StepErrorKind, Stepper,
         StopReason, Switching, SystemError, VariableMassSystem,
     };
 }
+
+/// The README's Rust examples, compiled and run by `cargo test --doc -p varmass`, so that
+/// the manual's code cannot drift from the library.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -292,3 +292,41 @@ fn an_implicit_step_too_long_for_newton_is_a_typed_error() {
     );
     assert_eq!((error.time, error.state), (0.0, start));
 }
+
+#[variable_mass_system(
+    r#"
+    coordinates y
+    mass m = m0
+    body b: mass m, position [y]
+    potential m*g*y + c*acos(a)
+"#
+)]
+struct NanEnergy {
+    m0: f64,
+    g: f64,
+    c: f64,
+    a: f64,
+}
+
+#[test]
+fn a_nan_energy_residual_fails_the_guard() {
+    // A free fall whose potential carries the constant c·acos(a): it has no gradient, so
+    // the motion (ẏ = −g t) is finite, but with a = 2 the Hamiltonian, and so the budget's
+    // residual ∫P dt − (H − H₀), is NaN. The guard compared |residual| > tolerance·scale,
+    // false for NaN: the run ended "within budget". Expectation: EnergyBudgetExceeded with
+    // the NaN residual at the first point checked, not a run that passes.
+    let system = NanEnergy {
+        m0: 1.0,
+        g: 9.81,
+        c: 1.0,
+        a: 2.0,
+    };
+    let start = SVector::<f64, 2>::new(0.0, 0.0);
+    let mut stepper = ClassicalRk4::new(&system, 0.0, start, FixedStep { step: 0.1 }).unwrap();
+    let guarded = RunConfig::until(1.0).guarding_energy(0.1);
+    let error = run(&mut stepper, &guarded, &[]).unwrap_err().error;
+    let StepErrorKind::EnergyBudgetExceeded { residual, .. } = error.kind else {
+        panic!("expected the energy guard, got {error:?}");
+    };
+    assert!(residual.is_nan() && error.time <= 0.1, "{error:?}");
+}

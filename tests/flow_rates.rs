@@ -145,7 +145,7 @@ fn adaptive_runs_and_observations_refuse_the_negative_rate_too() {
 #[test]
 fn the_interpreter_refuses_the_same_point() {
     use varmass::interpret::{Program, TapeSystem};
-    use varmass::symbolic::mechanics::{derive_source, Parameters};
+    use varmass::symbolic::{derive_source, mechanics::Parameters};
     let derivation = derive_source(EmptyingCart::SOURCE, Parameters::Inferred).expect("derives");
     let program = Program::new(derivation, &[("mu", 1.0), ("k", 1.0)]).expect("fits");
     let system = TapeSystem::<1, 3>::new(program).expect("sizes");

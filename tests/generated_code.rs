@@ -2,8 +2,9 @@
 //! and its Jacobian and power agree with finite differences, at random states.
 
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{
-    derive_source, Derivation, MassKind, Parameters, VelocitySolve,
+use varmass::symbolic::{
+    derive_source,
+    mechanics::{Derivation, MassKind, Parameters, VelocitySolve},
 };
 
 #[variable_mass_system(

@@ -12,6 +12,7 @@ use varmass::core::nalgebra::{SVector, Vector3, Vector4};
 use varmass::core::steppers::{
     AdaptiveControl, Dop853, DormandPrince, Sdirk4, StepControl, Taylor, TaylorControl,
 };
+use varmass::core::tolerance::{Floor, Tolerance};
 use varmass::core::{run, RunConfig, Solution, VariableMassSystem};
 use varmass::prelude::variable_mass_system;
 
@@ -309,7 +310,8 @@ struct ReferenceTaylor {
 fn the_taylor_stepper_runs_a_held_controller() {
     // The held value is a constant series: the Taylor run equals the loop of Taylor runs
     // with u a parameter.
-    let taylor = TaylorControl::adaptive(1e-14, 1e-14);
+    let taylor =
+        TaylorControl::adaptive(Tolerance::for_floor(1e-14, 1e-14, Floor::Taylor).unwrap());
     let mut state = Vector3::new(0.0, 0.0, M0);
     let end = 1.0;
     let samples = 100;

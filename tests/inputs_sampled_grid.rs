@@ -309,7 +309,7 @@ fn a_sample_that_is_not_a_number_is_a_typed_error_naming_the_input() {
     assert!(
         matches!(
             failure.error.kind,
-            StepErrorKind::SampledInputNotFinite { input: "u", value } if value.is_nan()
+            StepErrorKind::System(varmass::core::SystemError::SampledInputNotFinite { input: "u", value }) if value.is_nan()
         ),
         "{:?}",
         failure.error.kind

@@ -6,7 +6,7 @@
 use proptest::prelude::*;
 use varmass::interpret::{Program, TapeSystem};
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive_source, Parameters};
+use varmass::symbolic::{derive_source, mechanics::Parameters};
 
 /// The paper's sled: a mass law m(x).
 #[variable_mass_system(

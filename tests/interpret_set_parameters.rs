@@ -7,8 +7,11 @@
 use std::path::Path;
 
 use varmass::interpret::{Program, ProgramError};
-use varmass::symbolic::mechanics::{derive_in, Derivation, Outputs, Parameters};
 use varmass::symbolic::parse::parse_system;
+use varmass::symbolic::{
+    derive_in,
+    mechanics::{Derivation, Outputs, Parameters},
+};
 
 /// A leaking rocket on a thrust table of t, lit at t0: a state mass, a table of t whose
 /// argument t − t0 is made of a parameter, and parameters in every stage.

@@ -3,8 +3,11 @@
 
 use std::path::PathBuf;
 
-use varmass::symbolic::mechanics::{derive_in, Outputs, Parameters};
 use varmass::symbolic::parse::{known_tags, parse_system, select_tags};
+use varmass::symbolic::{
+    derive_in,
+    mechanics::{Outputs, Parameters},
+};
 
 fn models() -> Vec<(PathBuf, String)> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models");

@@ -87,8 +87,11 @@ fn the_two_stage_rocket_reaches_its_closed_form_speed() {
     assert!(phased.phase.windows(2).all(|w| w[0] <= w[1]));
 }
 
-/// Capture keeps p: the same change as a capture (p continuous) would give the 23 % error of
-/// the `sign` law: v(50 s⁺) = v(50 s)·500/300.
+/// Capture keeps p: stage 1 burns to 500 kg at t = 50 s, captures 100 kg arriving at rest
+/// (a plastic impact, m → 600 kg at the same momentum, so v(50 s⁺) = v(50 s)·500/600), then
+/// stage 2 burns 2 kg/s for 100 s to 400 kg: v(150 s) = v(50 s)·500/600 + 3000 ln(600/400)
+/// − 9.81·100, v(50 s) = 2500 ln 2 − 9.81·50. The impact removes ½·500·v² − ½·600·(5v/6)²
+/// = ½·500·v²/6 of kinetic energy.
 #[test]
 fn capture_keeps_the_momentum() {
     let phases = [
@@ -101,7 +104,7 @@ fn capture_keeps_the_momentum() {
         Phase {
             system: STAGE_2,
             carry: Carry::Capture,
-            state_masses: &[(0, 300.0)],
+            state_masses: &[(0, 600.0)],
             until: None,
         },
     ];
@@ -115,10 +118,28 @@ fn capture_keeps_the_momentum() {
     .expect("the flight runs");
     let (_, state) = phased.solution.last().expect("points");
     let v_50 = 2500.0 * 2f64.ln() - 9.81 * 50.0;
-    let exact = v_50 * 500.0 / 300.0 + 3000.0 * 3f64.ln() - 9.81 * 100.0;
-    assert!((exact - 4385.450118337434).abs() < 1e-9);
+    let exact = v_50 * 500.0 / 600.0 + 3000.0 * 1.5f64.ln() - 9.81 * 100.0;
     let error = (state[1] / state[2] - exact).abs() / exact;
+    // Measured at tolerance 1e-13 as the separation above; bound 1e-12.
     assert!(error <= 1e-12, "{error:e}");
+    let removed = 0.5 * 500.0 * v_50 * v_50 / 6.0;
+    let removed_error = (phased.changes[0].kinetic_energy_removed - removed).abs() / removed;
+    assert!(removed_error <= 1e-12, "{removed_error:e}");
+}
+
+/// A capture that shrinks the mass (500 kg → 300 kg at the same p, raising v by 5/3) or a
+/// separation that grows it (500 kg → 700 kg at the same v) would create kinetic energy:
+/// the "kinetic energy removed" is ½ p² (1/500 − 1/300) < 0 and ½ v² (500 − 700) < 0, and
+/// both ran with exit 0 before. Refused at the change (t = 50 s) with the typed
+/// configuration error.
+#[test]
+fn a_capture_that_loses_mass_or_a_separation_that_gains_it_is_refused() {
+    let end = || Event::mass_reaches(0, 100.0);
+    let mut capture = two_stages(&[(0, 300.0)], end());
+    capture[1].carry = Carry::Capture;
+    refused_at_the_change(&capture, varmass::core::phases::MASS_AGAINST_CARRY);
+    let separation = two_stages(&[(0, 700.0)], end());
+    refused_at_the_change(&separation, varmass::core::phases::MASS_AGAINST_CARRY);
 }
 
 #[variable_mass_system(file = "models/rocket.vms")]

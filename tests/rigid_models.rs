@@ -44,10 +44,11 @@ where
     Sys: VariableMassSystem<N, S>,
 {
     let start = system.momentum_state(0.0, &velocity_state);
-    // Dormand–Prince rather than DOP853: the residual integrates the power by Simpson's rule
-    // per step, whose O(h⁵) error dominates at DOP853's longer steps (measured: the residual
-    // then falls only ~15× per 100× of tolerance); at Dormand–Prince's it falls ~50×, as
-    // the state's error does.
+    // Dormand–Prince rather than DOP853: chosen when the residual integrated the power by
+    // Simpson's rule per step, whose O(h⁵) error dominated at DOP853's longer steps (the
+    // residual then fell only ~15× per 100× of tolerance); the quadrature along the dense
+    // output that replaced it (run/energy.rs) no longer limits DOP853, and the bounds below
+    // were measured with Dormand–Prince.
     let control = StepControl::Adaptive(AdaptiveControl {
         relative_tolerance: 1e-12,
         absolute_tolerance: 1e-12,

@@ -4,7 +4,7 @@
 
 use varmass::interpret::{Program, Quantity, TapeSystem};
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive_source, Parameters};
+use varmass::symbolic::{derive_source, mechanics::Parameters};
 
 /// The program of `source` with its parameters.
 fn program(source: &str, parameters: &[(&str, f64)]) -> Program {

@@ -7,7 +7,7 @@
 use varmass::core::nalgebra::{Matrix3, Vector3};
 use varmass::interpret::{Program, Quantity};
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive_source, Parameters};
+use varmass::symbolic::{derive_source, mechanics::Parameters};
 
 fn program(source: &str, parameters: &[(&str, f64)]) -> Program {
     let derivation = derive_source(source, Parameters::Inferred).unwrap_or_else(|errors| {

@@ -4,9 +4,9 @@
 
 use quote::format_ident;
 use varmass::symbolic::emit::{emit_system, Target};
-use varmass::symbolic::mechanics::{derive, Parameters};
 use varmass::symbolic::parse::ast::SystemAst;
 use varmass::symbolic::parse::{parse_system, select_tags};
+use varmass::symbolic::{derive, mechanics::Parameters};
 
 fn fields(names: &[&str]) -> Parameters {
     Parameters::Declared(names.iter().map(|s| s.to_string()).collect())

@@ -236,12 +236,103 @@ fn esdirk_running_out_of_propellant_ends_in_the_event_or_a_typed_error() {
     assert!(
         matches!(
             error.kind,
-            StepErrorKind::NonPositiveMass { index: 0, .. }
-                | StepErrorKind::SingularMassMatrix
+            StepErrorKind::System(varmass::core::SystemError::NonPositiveMass { index: 0, .. })
+                | StepErrorKind::System(varmass::core::SystemError::SingularMassMatrix)
                 | StepErrorKind::NewtonDivergence { .. }
                 | StepErrorKind::StepSizeUnderflow { .. }
         ),
         "{error:?}"
     );
     assert!(error.state.iter().all(|x| !x.is_nan()), "{:?}", error.state);
+}
+
+/// The phases of a scene: the stiff spring (k = 1e8) until t = 2, then the soft one
+/// (k = 1e2, measured silent above) from there to `END`.
+fn stiff_then_soft() -> [Pendulum; 2] {
+    [pendulum(1e8), pendulum(1e2)]
+}
+
+/// The stiffness verdict of Dormand–Prince on the soft spring alone, from the state the
+/// stiff phase ends in: what the second phase would report by itself.
+fn soft_alone(from: f64, state: SVector<f64, 5>) -> varmass::core::Statistics {
+    let soft = pendulum(1e2);
+    let control = tolerance(1e-9, AdaptiveControl::default());
+    let mut stepper = DormandPrince::new(&soft, from, state, control).unwrap();
+    run(&mut stepper, &RunConfig::until(END), &[])
+        .unwrap()
+        .statistics
+}
+
+/// A phased run adds up its phases' work with `Statistics::combine`: the stiffness found
+/// in the first phase (about 15 000 stability-limited steps over 2 s, so the test, run
+/// every 1000 steps, decides) is still reported after a second phase that finds none.
+#[test]
+fn the_stiffness_flag_survives_a_phased_run() {
+    use varmass::core::{run_phases, Carry, EventAction, Phase};
+    let [stiff, soft] = stiff_then_soft();
+    let at_two = |t: f64, _: &SVector<f64, 5>| t - 2.0;
+    let phases = [
+        Phase {
+            system: stiff,
+            carry: Carry::Separation,
+            state_masses: &[],
+            until: Some(Event::function(
+                &at_two,
+                Direction::Rising,
+                EventAction::Stop,
+            )),
+        },
+        Phase {
+            system: soft,
+            carry: Carry::Separation,
+            state_masses: &[],
+            until: None,
+        },
+    ];
+    let control = tolerance(1e-9, AdaptiveControl::default());
+    let phased = run_phases(
+        &phases,
+        (0.0, start(&phases[0].system)),
+        |system, t, state| DormandPrince::new(system, t, state, control),
+        &RunConfig::until(END),
+    )
+    .unwrap();
+    let change = phased.changes[0];
+    assert!((change.time - 2.0).abs() < 1e-12, "{change:?}");
+    let entered = phased.phase.iter().position(|&p| p == 1).unwrap();
+    let second = soft_alone(
+        phased.solution.times[entered],
+        phased.solution.states[entered],
+    );
+    assert!(!second.stiffness_detected, "{second:?}");
+    let all = phased.solution.statistics;
+    assert!(all.stiffness_detected, "{all:?}");
+}
+
+/// A recording made phase by phase (`observe`, then `Recording::append`) keeps the verdict
+/// of a later phase: `append` used to add the counts and drop the later phase's flag. The
+/// soft spring from its rest to t = 2, then the stiff one from its own rest (the state
+/// need not be continuous for the bookkeeping) to `END`.
+#[test]
+fn the_stiffness_flag_survives_an_appended_recording() {
+    use varmass::core::observe::{observe, Observable};
+    let [stiff, soft] = stiff_then_soft();
+    let x = |_: f64, s: &SVector<f64, 5>| s[0];
+    let observables = [Observable::function("r", &x)];
+    let control = tolerance(1e-9, AdaptiveControl::default());
+    let mut first = DormandPrince::new(&soft, 0.0, start(&soft), control).unwrap();
+    let mut recording = observe(&mut first, &[2.0], &observables).unwrap();
+    let soft_work = recording.statistics;
+    assert!(!soft_work.stiffness_detected, "{soft_work:?}");
+    let mut second = DormandPrince::new(&stiff, 2.0, start(&stiff), control).unwrap();
+    let later = observe(&mut second, &[END], &observables).unwrap();
+    let stiff_work = later.statistics;
+    assert!(stiff_work.stiffness_detected, "{stiff_work:?}");
+    recording.append(later);
+    let all = recording.statistics;
+    assert!(all.stiffness_detected, "{all:?}");
+    assert_eq!(
+        all.accepted_steps,
+        stiff_work.accepted_steps + soft_work.accepted_steps
+    );
 }

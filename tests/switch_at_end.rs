@@ -53,8 +53,13 @@ fn fly(method: &str, system: &Kinked, end: f64) -> Result<Solution<1, 2>, RunErr
             &[],
         ),
         _ => run(
-            &mut Taylor::new(system, 0.0, start, TaylorControl::adaptive(1e-14, 1e-14))
-                .expect("a valid start"),
+            &mut Taylor::new(
+                system,
+                0.0,
+                start,
+                TaylorControl::adaptive(Tolerance::for_floor(1e-14, 1e-14, Floor::Taylor).unwrap()),
+            )
+            .expect("a valid start"),
             &config,
             &[],
         ),

@@ -4,7 +4,7 @@
 use varmass::core::steppers::{AdaptiveControl, StepControl};
 use varmass::interpret::{Program, TapeSystem};
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive_source, Parameters};
+use varmass::symbolic::{derive_source, mechanics::Parameters};
 
 /// Both tolerances at `tolerance`, with `defaults` (the method's own factors).
 fn control(tolerance: f64, defaults: AdaptiveControl) -> StepControl {

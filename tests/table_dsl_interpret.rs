@@ -8,8 +8,11 @@ use proptest::prelude::*;
 use std::path::Path;
 use varmass::interpret::{Program, TapeSystem};
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive_in, Outputs, Parameters};
 use varmass::symbolic::parse::parse_system;
+use varmass::symbolic::{
+    derive_in,
+    mechanics::{Outputs, Parameters},
+};
 use varmass_table::{CsvTable, Cursor, Interpolation, Outside, Table};
 
 #[variable_mass_system(

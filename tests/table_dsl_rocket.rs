@@ -164,7 +164,9 @@ fn past_the_data_without_outside_the_run_ends_with_a_typed_error() {
         .error;
     // The run lands on burnout (the last knot, a stop time) and restarts there; the first
     // step past it asks F after the data.
-    let StepErrorKind::TableOutside { table, argument } = error.kind else {
+    let StepErrorKind::System(varmass::core::SystemError::TableOutside { table, argument }) =
+        error.kind
+    else {
         panic!("expected TableOutside, got {error}");
     };
     assert_eq!(table, "F");

@@ -4,7 +4,7 @@
 //! `tests/table_ends.rs` and `tests/table_state_ends.rs` rest on, checked argument by
 //! argument. The table is the box G = 1 on [1, 2] (`tests/data/box_1_2.csv`), 0 outside.
 
-use varmass::core::table::{knot_bracket, knot_gap, next_knot_time, Table};
+use varmass::core::table::{knot_bracket_read, knot_gap_read, next_knot_time, Table};
 use varmass_table::{CsvTable, Interpolation, Outside};
 
 fn boxed() -> Table {
@@ -106,13 +106,13 @@ fn a_jump_of_a_table_of_the_state_is_switched_where_the_lookup_jumps() {
             x = x.next_down();
         }
         for _ in 0..80 {
-            let bracket = knot_bracket(&table, x);
+            let bracket = knot_bracket_read(&[&table], x);
             let reads = table.value(x).unwrap();
             assert_eq!(reads == 1.0, bracket == 0.0, "{x}: bracket {bracket}");
-            let gap = knot_gap(&table, x, bracket);
+            let gap = knot_gap_read(&[&table], x, bracket);
             assert!(gap >= 0.0, "{x}: gap {gap}");
-            let last_of_its_side = knot_bracket(&table, x.next_up()) != bracket
-                || knot_bracket(&table, x.next_down()) != bracket;
+            let last_of_its_side = knot_bracket_read(&[&table], x.next_up()) != bracket
+                || knot_bracket_read(&[&table], x.next_down()) != bracket;
             assert_eq!(gap == 0.0, last_of_its_side, "{x}: gap {gap}");
             x = x.next_up();
         }

@@ -18,8 +18,11 @@ use varmass::core::steppers::{AdaptiveControl, Dop853, DormandPrince, StepContro
 use varmass::core::{run, RunConfig, Stepper, VariableMassSystem};
 use varmass::interpret::{Program, TapeSystem};
 use varmass::prelude::variable_mass_system;
-use varmass::symbolic::mechanics::{derive_in, Outputs, Parameters};
 use varmass::symbolic::parse::parse_system;
+use varmass::symbolic::{
+    derive_in,
+    mechanics::{Outputs, Parameters},
+};
 use varmass_table::{CsvTable, Interpolation, Piecewise};
 
 #[variable_mass_system(

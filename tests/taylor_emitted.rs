@@ -8,8 +8,8 @@
 use varmass::core::steppers::taylor::series::Scratch;
 use varmass::interpret::Program;
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive, Parameters};
 use varmass::symbolic::parse::{parse_system, select_tags};
+use varmass::symbolic::{derive, mechanics::Parameters};
 
 #[variable_mass_system(file = "models/sled.vms", with = ["impact"], emit = ["taylor"])]
 struct Sled {

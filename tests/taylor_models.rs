@@ -15,8 +15,11 @@ use std::collections::HashMap;
 use series::{add, constant, evaluate, scale, solve, Series, ORDER};
 use varmass::interpret::Program;
 use varmass::symbolic::expr::{Id, Symbol};
-use varmass::symbolic::mechanics::{derive, Derivation, MassKind, Parameters, VelocitySolve};
 use varmass::symbolic::parse::{parse_system, select_tags};
+use varmass::symbolic::{
+    derive,
+    mechanics::{Derivation, MassKind, Parameters, VelocitySolve},
+};
 
 /// A model, its tags, parameter values and an expansion point.
 struct Case {

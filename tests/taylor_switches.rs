@@ -7,7 +7,7 @@
 use varmass::core::steppers::{Taylor, TaylorControl};
 use varmass::interpret::{Program, TapeSystem};
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive_source, Parameters};
+use varmass::symbolic::{derive_source, mechanics::Parameters};
 
 /// The model, one file for the macro and the interpreter.
 const SWITCHED_OFF: &str = include_str!("data/switched_off.vms");
@@ -45,7 +45,8 @@ fn apex_by_hand() -> (f64, f64) {
 /// coast, the apex an event on p = 0 falling).
 fn apex_error<Sys: VariableMassSystem<1, 3>>(system: &Sys, config: &RunConfig) -> (f64, f64) {
     let start = SVector::from([0.0, 0.0, M0]);
-    let control = TaylorControl::adaptive(TOLERANCE, TOLERANCE);
+    let control =
+        TaylorControl::adaptive(Tolerance::for_floor(TOLERANCE, TOLERANCE, Floor::Taylor).unwrap());
     let mut stepper = Taylor::new(system, 0.0, start, control).expect("a valid start");
     let apex = Event::state_reaches(1, 0.0, Direction::Falling);
     let solution = run(&mut stepper, config, &[apex]).expect("the flight runs");

@@ -10,8 +10,11 @@ use varmass::core::steppers::{AdaptiveControl, Dop853, StepControl, Taylor, Tayl
 use varmass::core::table::Tabulated;
 use varmass::interpret::Program;
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive_in, Outputs, Parameters};
 use varmass::symbolic::parse::parse_system;
+use varmass::symbolic::{
+    derive_in,
+    mechanics::{Outputs, Parameters},
+};
 use varmass_table::{Interpolation, Motor};
 
 #[variable_mass_system(file = "models/motor_rocket.vms", emit = ["taylor"])]
@@ -123,7 +126,8 @@ fn generated_table_series_equal_the_tapes_to_the_bit() {
 fn the_taylor_rocket_lands_on_the_knots_and_meets_the_closed_form() {
     let u_e = motor().exhaust_speed();
     let system = MotorRocket { u_e, g: G };
-    let control = TaylorControl::adaptive(1e-12, 1e-12);
+    let control =
+        TaylorControl::adaptive(Tolerance::for_floor(1e-12, 1e-12, Floor::Taylor).unwrap());
     let mut stepper = Taylor::new(&system, 0.0, start(), control).unwrap();
     let solution = run(&mut stepper, &RunConfig::until(END), &[]).unwrap();
     let impulse = Interpolation::Linear
@@ -158,7 +162,8 @@ fn the_taylor_drag_rocket_agrees_with_dop853() {
         k_d: K_D,
     };
     let start = SVector::from([0.0, M0 * 1.0, M0]);
-    let control = TaylorControl::adaptive(1e-12, 1e-12);
+    let control =
+        TaylorControl::adaptive(Tolerance::for_floor(1e-12, 1e-12, Floor::Taylor).unwrap());
     let mut taylor = Taylor::new(&system, 0.0, start, control).unwrap();
     let by_taylor = run(&mut taylor, &RunConfig::until(END), &[]).unwrap();
     let dop = StepControl::Adaptive(AdaptiveControl {

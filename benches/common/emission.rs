@@ -5,8 +5,11 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 use varmass_symbolic::emit::{emit_system_for, Target};
-use varmass_symbolic::mechanics::{derive_for, Outputs, Parameters};
 use varmass_symbolic::parse::{parse_system, select_tags};
+use varmass_symbolic::{
+    derive_for,
+    mechanics::{Outputs, Parameters},
+};
 
 /// A system to expand: a name, its DSL text and the tags it is built with.
 pub struct Subject {

@@ -4,7 +4,7 @@
 //! expression DAG.
 
 use varmass::interpret::{Evaluation, Program};
-use varmass::symbolic::mechanics::{derive_source, Parameters};
+use varmass::symbolic::{derive_source, mechanics::Parameters};
 
 /// How each stage is evaluated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -10,7 +10,10 @@ use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{ClassicalRk4, FixedStep};
 use varmass::core::{StepOutcome, Stepper, VariableMassSystem};
 use varmass_symbolic::emit::{emit_system, Target};
-use varmass_symbolic::mechanics::{derive_source, Derivation, Parameters};
+use varmass_symbolic::{
+    derive_source,
+    mechanics::{Derivation, Parameters},
+};
 
 use super::generated::{Kepler, Rocket, Sled};
 use super::interpreted::Interpreted;

@@ -90,7 +90,8 @@ pub struct RunArgs {
     #[arg(long, value_enum, default_value_t = Method::DormandPrince)]
     pub method: Method,
     /// Relative and absolute tolerance of the adaptive steppers (dormand-prince, dop853,
-    /// sdirk4, esdirk43, taylor), from 100 machine epsilons (2.2e-14, what f64 can honour) to 0.1.
+    /// sdirk4, esdirk43, taylor), from the method's floor (100 machine epsilons, 2.2e-14;
+    /// taylor 1e-15) to 0.1.
     #[arg(
         long,
         value_name = "TOL",
@@ -108,9 +109,10 @@ pub struct RunArgs {
     /// A wall-clock limit in seconds: the run fails, with its state, once it has taken longer.
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub max_seconds: Option<f64>,
-    /// The quantities to record, comma-separated: x, x', x'', p_x, m, mdot_m, H, power, Q_x,
-    /// R1_x, R2_x, pdot_x, a `let` name, or NAME=EXPRESSION of these and the parameters
-    /// (`--record "E=1/2*m*x'^2"`); default: coordinates, velocities and state masses.
+    /// The quantities to record, comma-separated: x, x', m, H, L, T, V, power, x'', p_x, Q_x,
+    /// R1_x, R2_x, dp_x, pdot_x, mdot_m (for a coordinate x and a mass m), a `let` name, or
+    /// NAME=EXPRESSION of these and the parameters (`--record "E=1/2*m*x'^2"`); default:
+    /// coordinates, velocities and state masses.
     #[arg(long, value_name = "NAMES")]
     pub record: Vec<String>,
     /// Record every DT seconds instead of at every accepted step.
@@ -129,8 +131,8 @@ pub struct RunArgs {
 }
 
 /// Where a run's settings were written, so that a message names what its user wrote: the
-/// flags of `varmass run`, or the keys of a scene file (docs/scenes.md), whose user never
-/// typed a flag.
+/// flags of `varmass run`, the keys of a scene file (docs/scenes.md), or the keywords of
+/// the Python package's `Model.run`, whose users never typed a flag.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Words {
     /// Command-line flags (`--set`, `--stop-when`, …).
@@ -138,24 +140,38 @@ pub enum Words {
     Flags,
     /// A scene file's keys (`set`, `stop_when`, …).
     Scene,
+    /// Python's keywords (`set=`, `stop_when=`, `from_=`, …).
+    Python,
 }
 
 impl Words {
     /// The setting `flag` (a `varmass run` flag, `--max-steps`) as its user wrote it: the
-    /// flag, or the scene file's key (`max_steps`: the keys are the flags' names with `_`).
+    /// flag, the scene file's key (`max_steps`: the keys are the flags' names with `_`) or
+    /// Python's keyword.
     pub fn setting(self, flag: &str) -> String {
         match self {
             Words::Flags => flag.to_string(),
             Words::Scene => format!("`{}`", key(flag)),
+            Words::Python => format!("`{}`", keyword(flag)),
         }
     }
 
-    /// The setting `flag` given `value`, as its user wrote it: `--tol 0.5`, or the scene
-    /// file's `tol = 0.5`.
+    /// The setting `flag` given `value`, as its user wrote it: `--tol 0.5`, the scene
+    /// file's `tol = 0.5`, or Python's `tol=0.5`.
     pub fn given(self, flag: &str, value: &str) -> String {
         match self {
             Words::Flags => format!("{flag} {value}"),
             Words::Scene => format!("`{} = {value}`", key(flag)),
+            Words::Python => format!("`{}={value}`", keyword(flag)),
+        }
+    }
+
+    /// A name (a method's, a tag) as a value of this user's settings: as typed on the
+    /// command line, quoted in a scene file or in Python.
+    pub fn name(self, name: &str) -> String {
+        match self {
+            Words::Flags => name.to_string(),
+            Words::Scene | Words::Python => format!("\"{name}\""),
         }
     }
 
@@ -164,14 +180,38 @@ impl Words {
         match self {
             Words::Flags => format!("--stop-when '{condition}'"),
             Words::Scene => format!("`stop_when = \"{condition}\"`"),
+            Words::Python => format!("`stop_when=\"{condition}\"`"),
         }
     }
 
-    /// How to give the parameter `name` a value.
-    pub fn give_parameter(self, name: &str) -> String {
+    /// How to give the parameters `names` values.
+    pub fn give_parameters(self, names: &[String]) -> String {
+        let each = |f: &dyn Fn(&String) -> String| names.iter().map(f).collect::<Vec<_>>();
         match self {
-            Words::Flags => format!("--set {name}=VALUE"),
-            Words::Scene => format!("`{name} = VALUE` under `[set]`"),
+            Words::Flags => each(&|n| format!("--set {n}=VALUE")).join(" "),
+            Words::Scene => each(&|n| format!("`{n} = VALUE` under `[set]`")).join(", "),
+            Words::Python => format!(
+                "`set={{{}}}`",
+                each(&|n| format!("\"{n}\": VALUE")).join(", ")
+            ),
+        }
+    }
+
+    /// How to give the input `name` a law.
+    pub fn give_input(self, name: &str) -> String {
+        match self {
+            Words::Flags => format!("--input '{name}=EXPRESSION'"),
+            Words::Scene => format!("`{name} = \"EXPRESSION\"` under `[input]`"),
+            Words::Python => format!("`inputs={{\"{name}\": \"EXPRESSION\"}}`"),
+        }
+    }
+
+    /// How to add the statements tagged `tag` to the run.
+    pub fn add_tag(self, tag: &str) -> String {
+        match self {
+            Words::Flags => format!("`--with {tag}`"),
+            Words::Scene => format!("\"{tag}\" to `with`"),
+            Words::Python => format!("\"{tag}\" to the model's `with_`"),
         }
     }
 }
@@ -179,6 +219,18 @@ impl Words {
 /// The scene file's key for the flag `flag`: its name with `_` (`--max-steps` → `max_steps`).
 fn key(flag: &str) -> String {
     flag.trim_start_matches('-').replace('-', "_")
+}
+
+/// Python's keyword for the flag `flag` (`Model.run`'s, `Model.from_file`'s `with_`): the
+/// scene key, but where Python spells it otherwise.
+fn keyword(flag: &str) -> String {
+    match flag {
+        "--from" => "from_".to_string(),
+        "--with" => "with_".to_string(),
+        "--input" => "inputs".to_string(),
+        "--table" => "tables".to_string(),
+        other => key(other),
+    }
 }
 
 /// The core's steppers.
@@ -190,7 +242,7 @@ pub enum Method {
     Dop853,
     /// SDIRK4, L-stable implicit, adaptive (`--tol`) or fixed (`--step`): for stiff models.
     Sdirk4,
-    /// ESDIRK4(3)6L[2]SA, L-stable implicit with an explicit first stage, adaptive (`--tol`)
+    /// `ESDIRK4(3)6L[2]SA`, L-stable implicit with an explicit first stage, adaptive (`--tol`)
     /// or fixed (`--step`); its error runs above the tolerance: ask two orders tighter.
     Esdirk43,
     /// Classical Runge–Kutta 4, fixed step.
@@ -205,4 +257,16 @@ pub enum Method {
     /// (`--tol`, Jorba & Zou), or order 20 with a fixed `--step`: for the tightest
     /// tolerances.
     Taylor,
+}
+
+impl Method {
+    /// Every method's name as `--method` and a scene's `method` take it, in the enum's
+    /// order: the one list of them, which Python's `varmass.METHODS` reads too.
+    pub fn names() -> Vec<String> {
+        Method::value_variants()
+            .iter()
+            .filter_map(ValueEnum::to_possible_value)
+            .map(|v| v.get_name().to_string())
+            .collect()
+    }
 }

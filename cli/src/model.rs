@@ -4,10 +4,14 @@
 
 use std::path::{Path, PathBuf};
 
-use varmass::symbolic::mechanics::{derive_in, derive_with_laws, Derivation, Outputs, Parameters};
+use varmass::symbolic::compose::{compose, Composition};
 use varmass::symbolic::parse::ast::{ExprNode, StatementKind, SystemAst};
 use varmass::symbolic::parse::{parse_system, select_tags};
 use varmass::symbolic::Diagnostic;
+use varmass::symbolic::{
+    derive_in, derive_with_laws,
+    mechanics::{Derivation, Outputs, Parameters},
+};
 
 use crate::args::ModelArgs;
 use crate::error::CliError;
@@ -19,9 +23,6 @@ pub struct LoadedModel {
     pub base: PathBuf,
     /// The derivation (parameters inferred: every free name is one).
     pub derivation: Derivation,
-    /// Each selected flow as the user knows it (`outflow `rocket``), in the derivation's
-    /// flow order (statement order).
-    pub flows: Vec<String>,
     /// The whole model, every tag included: where a parameter of a tag not asked for is
     /// found.
     pub ast: SystemAst,
@@ -34,6 +35,9 @@ pub struct LoadedModel {
     /// The model's text and the name diagnostics give it, to render those of a
     /// re-derivation ([`LoadedModel::with_laws`]).
     source: (String, PathBuf),
+    /// Where the statements of its components came from (docs/components.md), to locate
+    /// their diagnostics at the use sites.
+    composition: Composition,
 }
 
 /// The tag, among those not asked for (`with`), whose statements make `name` a parameter
@@ -81,33 +85,27 @@ pub fn load_source(source: &str, path: &Path, with: &[String]) -> Result<LoadedM
         rendered: render(&diagnostics, source, path),
         count: diagnostics.len(),
     };
-    let full = parse_system(source).map_err(failed)?;
+    let parsed = parse_system(source).map_err(failed)?;
+    let composition = compose(source, parsed, path).map_err(failed)?;
+    let full = composition.ast.clone();
     let ast = select_tags(&full, with).map_err(|unknown| {
         let messages: Vec<String> = unknown.iter().map(|u| format!("--with: {u}")).collect();
         CliError::Input(messages.join("\n"))
     })?;
     // Table files are read relative to the model file.
     let base = path.parent().map(PathBuf::from).unwrap_or_default();
-    let derivation = derive_in(&ast, Parameters::Inferred, Outputs::FULL, &base).map_err(failed)?;
-    let flows = ast
-        .statements
-        .iter()
-        .filter_map(|s| match &s.kind {
-            StatementKind::Outflow(f) => Some(format!("outflow `{}`", f.body.node)),
-            StatementKind::Inflow(f) => Some(format!("inflow `{}`", f.body.node)),
-            _ => None,
-        })
-        .collect();
+    let derivation = derive_in(&ast, Parameters::Inferred, Outputs::FULL, &base)
+        .map_err(|diagnostics| failed(composition.locate(diagnostics)))?;
     let warnings = crate::lint::typo_warnings(&derivation, &ast);
     Ok(LoadedModel {
         base,
         derivation,
-        flows,
         ast: full,
         with: with.to_vec(),
         selected: ast,
         warnings,
         source: (source.to_string(), path.to_path_buf()),
+        composition,
     })
 }
 
@@ -123,10 +121,7 @@ impl LoadedModel {
             &self.base,
             laws,
         );
-        self.derivation = derived.map_err(|diagnostics| CliError::Model {
-            rendered: render(&diagnostics, &self.source.0, &self.source.1),
-            count: diagnostics.len(),
-        })?;
+        self.derivation = derived.map_err(|diagnostics| self.failed(diagnostics))?;
         Ok(self)
     }
 }
@@ -155,11 +150,34 @@ impl LoadedModel {
             Outputs::FULL,
             &self.base,
         );
-        self.derivation = derived.map_err(|diagnostics| CliError::Model {
+        self.derivation = derived.map_err(|diagnostics| self.failed(diagnostics))?;
+        Ok(self)
+    }
+}
+
+impl LoadedModel {
+    /// The values of the parameters `values` (`--set`) leaves out that have a default in
+    /// the model (`parameter g = 9.81`, docs/components.md#defaults), after `values`.
+    pub fn with_defaults(&self, values: &[(String, f64)]) -> Vec<(String, f64)> {
+        let mut all = values.to_vec();
+        let parameters = &self.derivation.parameters;
+        for (name, value) in self.composition.defaults() {
+            let known = parameters.iter().any(|(n, _)| *n == name);
+            if known && !values.iter().any(|(n, _)| *n == name) {
+                all.push((name, value));
+            }
+        }
+        all
+    }
+
+    /// A re-derivation's diagnostics as a [`CliError::Model`], those inside components at
+    /// their use sites.
+    fn failed(&self, diagnostics: Vec<Diagnostic>) -> CliError {
+        let diagnostics = self.composition.locate(diagnostics);
+        CliError::Model {
             rendered: render(&diagnostics, &self.source.0, &self.source.1),
             count: diagnostics.len(),
-        })?;
-        Ok(self)
+        }
     }
 }
 

@@ -10,6 +10,7 @@
 mod build;
 mod file;
 mod fly;
+mod models;
 
 use std::fmt::Write;
 use std::path::Path;
@@ -24,6 +25,7 @@ use crate::run::plot;
 use crate::run::record::Recorded;
 
 pub use build::ENERGY_RESIDUAL;
+pub use models::Models;
 
 /// Whether `path` names a scene file (`.toml`) rather than a model.
 pub fn is_scene(path: &Path) -> bool {
@@ -49,6 +51,9 @@ pub struct SceneRun {
     pub stopped_by: Option<String>,
     /// The steppers' work over every phase.
     pub statistics: Statistics,
+    /// When the body left its support (`support = "y"`, docs/scenes.md): the start if it
+    /// lifted at once, `None` if it was still held at the end or the scene has no support.
+    pub lift_off: Option<f64>,
 }
 
 /// A change of phase, as the summary prints it.
@@ -68,8 +73,14 @@ pub struct Change {
 /// before any step; a run that fails is an `Ok` whose `failure` is set, with the points so
 /// far in the table.
 pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
+    run_file_with(path, &mut Models::default())
+}
+
+/// [`run_file`] with the models derived by the runs before (`models`, which keeps those
+/// this run derives): a scene run again derives nothing again.
+pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliError> {
     let read = file::read(path)?;
-    let scene = build::build(&read, path)?;
+    let scene = build::build(&read, path, models)?;
     let csv = scene.csv.clone();
     let phases: Vec<(Carry, Vec<(String, Recorded)>)> = scene
         .phases
@@ -82,6 +93,7 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
         .map(|p| p.end.as_ref().map(|e| e.text.clone()))
         .collect();
     let energy = scene.energy_residual;
+    let support = read.scene.support.as_ref().map(|s| s.get_ref().clone());
     let mut flown = fly::fly(scene)?;
     let mut names = vec!["phase".to_string()];
     names.extend(phases[0].1.iter().map(|(n, _)| n.clone()));
@@ -106,7 +118,10 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
         (true, Some(last)) => ends.get(*last).cloned().flatten(),
         _ => None,
     };
-    let summary = summary(&flown, &changes, &ends, stopped_by.as_deref());
+    let mut summary = summary(&flown, &changes, &ends, stopped_by.as_deref());
+    if let Some(support) = &support {
+        summary.insert_str(0, &lift_off_line(support, flown.lift_off));
+    }
     Ok(SceneRun {
         table: Table::from_rows(names, rows),
         summary,
@@ -116,7 +131,19 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
         stopped_by,
         statistics: flown.statistics,
         failure: flown.failure,
+        lift_off: flown.lift_off,
     })
+}
+
+/// The summary's line on the support: when the body lifted off it, or that it did not.
+fn lift_off_line(coordinate: &str, lift_off: Option<f64>) -> String {
+    match lift_off {
+        Some(time) => format!(
+            "lifted off its support ({coordinate}) at t = {}\n",
+            shown(time)
+        ),
+        None => format!("never lifted off its support ({coordinate}): held to the end\n"),
+    }
 }
 
 /// The table's rows: each point's phase (counted from 1), its phase's recorded quantities
@@ -243,18 +270,7 @@ fn summary(
     out.push_str("state:");
     out.push_str(&output::state_lines(&flown.programs[*last], *time, state));
     out.push('\n');
-    out.push_str(&work(&flown.statistics));
+    out.push_str(&output::work(&flown.statistics));
+    out.push_str(&output::gimbal_warning(flown.closest_singular_attitude));
     out
-}
-
-fn work(s: &Statistics) -> String {
-    format!(
-        "steps: {} accepted, {} rejected; {} rate evaluations, {} Jacobians, {} Newton \
-         iterations\n",
-        s.accepted_steps,
-        s.rejected_steps,
-        s.rate_evaluations,
-        s.jacobian_evaluations,
-        s.newton_iterations
-    )
 }

@@ -264,3 +264,26 @@ fn a_failed_recording_hands_back_the_rows_before_it() {
     let v_1 = table.column(0)[4];
     assert!((v_1 + 97.0).abs() <= 1e-12, "{v_1}");
 }
+
+/// A recorded expression that is not a finite number is refused, with the rows before it:
+/// on the sled (θ = 30°, docs/examples) x starts at 0 and grows, so `sqrt(x - 1)` is NaN
+/// until x passes 1 — at t = 0 already, so no row precedes it — and `1/(x - x)` is
+/// infinite from the first row. Before, both were written as NaN and inf with exit 0.
+#[test]
+fn a_recorded_value_that_is_not_a_number_is_refused() {
+    let mut model = compiled();
+    for (expression, shown) in [("sqrt(x - 1)", "NaN"), ("1/(x - x)", "inf")] {
+        let mut args = args();
+        args.record = vec![format!("s={expression}")];
+        let Err(failed) = model.run(&sled(30.0), &args) else {
+            panic!("`{expression}` is recorded");
+        };
+        let expected = format!("cannot record `s` at t = 0: its value is {shown}");
+        assert!(
+            matches!(&failed.error, CliError::Run(m) if m.contains(&expected)),
+            "{}",
+            failed.error
+        );
+        assert_eq!(failed.table.expect("an empty table").len(), 0);
+    }
+}

@@ -3,11 +3,9 @@
 //! and its law runs as the same model with the law written in place, and every mistake in
 //! the option is a message and exit 2.
 
-use assert_cmd::Command;
+mod common;
 
-fn data(name: &str) -> String {
-    format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"))
-}
+use common::{csv, data, scratch_file, varmass, written};
 
 /// The hover flight's options: parameters, start on the ground at rest with 50 kg, 15 s.
 const FLIGHT: [&str; 16] = [
@@ -29,37 +27,13 @@ const FLIGHT: [&str; 16] = [
     "15",
 ];
 
-/// Runs `varmass ARGS`, expects exit `code`, returns stderr.
-fn varmass(args: &[&str], code: i32) -> String {
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .args(args)
-        .output()
-        .expect("runs");
-    let stderr = String::from_utf8_lossy(&output.stderr).to_string();
-    assert_eq!(output.status.code(), Some(code), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    stderr
-}
-
 /// The CSV `varmass run MODEL FLIGHT EXTRA --csv …` writes, as rows of numbers.
 fn flight(model: &str, extra: &[&str], name: &str) -> Vec<Vec<f64>> {
-    let csv = format!("{}/{name}.csv", env!("CARGO_TARGET_TMPDIR"));
     let model = data(model);
     let mut args = vec!["run", model.as_str()];
     args.extend(FLIGHT);
     args.extend(extra);
-    args.extend(["--csv", csv.as_str()]);
-    varmass(&args, 0);
-    let text = std::fs::read_to_string(&csv).expect("the CSV is written");
-    text.lines()
-        .skip(1)
-        .map(|line| {
-            line.split(',')
-                .map(|v| v.parse().expect("a number"))
-                .collect()
-        })
-        .collect()
+    csv(&written(&args, &format!("{name}.csv"))).1
 }
 
 const PD: &str = "u=g + kp*(y_ref - y) - kd*y'";
@@ -101,7 +75,7 @@ fn a_missing_law_names_the_input() {
     let model = data("hover_input.vms");
     let mut args = vec!["run", model.as_str()];
     args.extend(FLIGHT);
-    let stderr = varmass(&args, 2);
+    let (_, stderr) = varmass(&args, 2);
     assert!(
         stderr.contains("no law for input `u`: the model declares `input u(t, y, y')`; give --input 'u=EXPRESSION'"),
         "{stderr}"
@@ -113,7 +87,7 @@ fn a_law_for_an_undeclared_name_suggests_the_input() {
     let model = data("hover_input.vms");
     let mut args = vec!["run", model.as_str(), "--input", "uu=1"];
     args.extend(FLIGHT);
-    let stderr = varmass(&args, 2);
+    let (_, stderr) = varmass(&args, 2);
     assert!(
         stderr.contains("`uu` is not an input of the model (did you mean `u`?)"),
         "{stderr}"
@@ -122,7 +96,7 @@ fn a_law_for_an_undeclared_name_suggests_the_input() {
     let law = data("hover_law.vms");
     let mut args = vec!["run", law.as_str(), "--input", "u=1"];
     args.extend(FLIGHT);
-    let stderr = varmass(&args, 2);
+    let (_, stderr) = varmass(&args, 2);
     assert!(
         stderr.contains("--input u: the model declares no input"),
         "{stderr}"
@@ -143,7 +117,7 @@ fn a_bad_law_is_refused_with_its_column() {
     ] {
         let mut args = vec!["run", model.as_str(), "--input", law];
         args.extend(FLIGHT);
-        let stderr = varmass(&args, 2);
+        let (_, stderr) = varmass(&args, 2);
         assert!(stderr.contains(expected), "{law}: {stderr}");
     }
 }
@@ -153,7 +127,7 @@ fn a_law_with_an_unknown_function_points_at_the_call_in_the_model() {
     let model = data("hover_input.vms");
     let mut args = vec!["run", model.as_str(), "--input", "u=sine(t)"];
     args.extend(FLIGHT);
-    let stderr = varmass(&args, 1);
+    let (_, stderr) = varmass(&args, 1);
     assert!(stderr.contains("unknown function `sine`"), "{stderr}");
     // The first call of `u` is on line 5 of the model.
     assert!(stderr.contains(&format!("{model}:5:")), "{stderr}");
@@ -163,14 +137,13 @@ fn a_law_with_an_unknown_function_points_at_the_call_in_the_model() {
 fn a_sampled_input_with_a_bad_period_is_a_diagnostic_at_the_period() {
     // `every 0.01` runs (cli/tests/input_sampled.rs); a period that is no positive number of
     // seconds is the model's mistake, shown at the period (column 25 of line 4).
-    let file = format!("{}/bad_period.vms", env!("CARGO_TARGET_TMPDIR"));
     let text = std::fs::read_to_string(data("hover_input.vms"))
         .expect("read")
         .replace("input u(t, y, y')", "input u(t, y, y') every 0");
-    std::fs::write(&file, text).expect("written");
+    let file = scratch_file("bad_period.vms", &text);
     let mut args = vec!["run", file.as_str(), "--input", PD];
     args.extend(FLIGHT);
-    let stderr = varmass(&args, 1);
+    let (_, stderr) = varmass(&args, 1);
     assert!(
         stderr.contains("the sample period `0` is not a positive number of seconds"),
         "{stderr}"

@@ -2,7 +2,9 @@
 //! `varmass run hover_sampled.vms --input 'u=…'` holds the law's value between samples at
 //! 100 Hz as the macro's generated code holds the Rust method's, run for run.
 
-use assert_cmd::Command;
+mod common;
+
+use common::{csv, data, written};
 use varmass::core::nalgebra::Vector4;
 use varmass::core::steppers::{AdaptiveControl, DormandPrince, StepControl};
 use varmass::core::{run, RunConfig};
@@ -26,11 +28,7 @@ const END: f64 = 3.0;
 
 /// The tool's run: rows of t, y, p_y, m, u.
 fn tool(extra: &[&str], name: &str) -> Vec<Vec<f64>> {
-    let csv = format!("{}/{name}.csv", env!("CARGO_TARGET_TMPDIR"));
-    let model = format!(
-        "{}/tests/data/hover_sampled.vms",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let model = data("hover_sampled.vms");
     let end = END.to_string();
     let mut args = vec![
         "run",
@@ -57,25 +55,11 @@ fn tool(extra: &[&str], name: &str) -> Vec<Vec<f64>> {
         "1e-10",
         "--record",
         "y,p_y,m,u",
-        "--csv",
-        &csv,
     ];
     args.extend(extra);
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .args(&args)
-        .output()
-        .expect("runs");
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(0), "{stderr}");
-    let text = std::fs::read_to_string(&csv).expect("the CSV is written");
-    assert!(text.starts_with("t,y,p_y,m,u\n"), "{text}");
-    let row = |line: &str| {
-        line.split(',')
-            .map(|v| v.parse().expect("a number"))
-            .collect()
-    };
-    text.lines().skip(1).map(row).collect()
+    let (names, rows) = csv(&written(&args, &format!("{name}.csv")));
+    assert_eq!(names, ["t", "y", "p_y", "m", "u"]);
+    rows
 }
 
 /// The macro's run with the same steps: (t, [y, p, m, u]) at every point.

@@ -4,29 +4,17 @@
 //! sampled again every 0.01, and `sampled_knot.vms`, whose `u` took u(0.015) at a table's
 //! knot. With u(t) = t and w(t) = t the held values are the sample times themselves.
 
-use assert_cmd::Command;
+mod common;
+
+use common::{csv, data, varmass, written};
 
 /// The tool's rows (t, then the `--record`ed columns) for `model` with `args`.
 fn tool(model: &str, args: &[&str], record: &str, name: &str) -> Vec<Vec<f64>> {
-    let csv = format!("{}/{name}.csv", env!("CARGO_TARGET_TMPDIR"));
-    let model = format!("{}/tests/data/{model}", env!("CARGO_MANIFEST_DIR"));
+    let model = data(model);
     let mut all = vec!["run", &model, "--init", "y=0", "--tol", "1e-12"];
-    all.extend(["--record", record, "--csv", &csv]);
+    all.extend(["--record", record]);
     all.extend(args);
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .args(&all)
-        .output()
-        .expect("runs");
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(0), "{stderr}");
-    let text = std::fs::read_to_string(&csv).expect("the CSV is written");
-    let row = |line: &str| {
-        line.split(',')
-            .map(|v| v.parse().expect("a number"))
-            .collect()
-    };
-    text.lines().skip(1).map(row).collect()
+    csv(&written(&all, &format!("{name}.csv"))).1
 }
 
 /// The times at which column `column` changed, with its value after (between two rows at
@@ -123,15 +111,9 @@ fn a_switch_crossed_just_before_a_sample_time_does_not_skip_it_in_the_tool() {
 fn a_law_without_a_value_at_a_sample_names_the_input_and_the_time() {
     // √(0.015 − t) is NaN at the sample 0.02 (before: "the state became non-finite" and
     // help about a fixed step past the stability limit). A run that fails exits 1.
-    let model = format!("{}/tests/data/sampled_knot.vms", env!("CARGO_MANIFEST_DIR"));
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .args(["run", &model, "--init", "y=0", "--until", "0.05"])
-        .args(["--input", "u=sqrt(0.015 - t)"])
-        .output()
-        .expect("runs");
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    let model = data("sampled_knot.vms");
+    let args = ["run", &model, "--init", "y=0", "--until", "0.05"];
+    let (_, stderr) = varmass(&[&args[..], &["--input", "u=sqrt(0.015 - t)"]].concat(), 1);
     assert!(
         stderr.contains("at t = 0.02: the sampled input `u` is not finite at its sample (NaN)"),
         "{stderr}"

@@ -2,24 +2,14 @@
 //! first argument (here t) runs as the same model with the table written in it, to every
 //! printed digit; a bad file is exit 2 with its line.
 
-use assert_cmd::Command;
+mod common;
 
-fn data(name: &str) -> String {
-    format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"))
-}
+use common::{data, scratch_file, varmass_in, written_in};
 
-/// Runs `varmass ARGS` in the tests' data directory, expects exit `code`, returns stderr.
+/// Runs `varmass ARGS` in the data directory (relative table paths are read from there),
+/// expecting exit `code`; returns stderr.
 fn varmass(args: &[&str], code: i32) -> String {
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .current_dir(data(""))
-        .args(args)
-        .output()
-        .expect("runs");
-    let stderr = String::from_utf8_lossy(&output.stderr).to_string();
-    assert_eq!(output.status.code(), Some(code), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    stderr
+    varmass_in(&data(""), args, code).1
 }
 
 /// The hover flight to 15 s of the data directory's `model`: the CSV text of y, y', m at
@@ -30,7 +20,6 @@ fn flight(model: &str, extra: &[&str], name: &str) -> String {
 
 /// [`flight`] of the model file at `model`.
 fn flight_of(model: &str, extra: &[&str], name: &str) -> String {
-    let csv = format!("{}/{name}.csv", env!("CARGO_TARGET_TMPDIR"));
     let mut args = vec!["run", model];
     args.extend([
         "--set",
@@ -49,9 +38,8 @@ fn flight_of(model: &str, extra: &[&str], name: &str) -> String {
         "y,y',m",
     ]);
     args.extend(extra);
-    args.extend(["--csv", csv.as_str()]);
-    varmass(&args, 0);
-    std::fs::read_to_string(&csv).expect("the CSV is written")
+    let csv = written_in(&data(""), &args, &format!("{name}.csv"));
+    std::fs::read_to_string(csv).expect("the CSV is written")
 }
 
 #[test]
@@ -70,8 +58,7 @@ fn an_input_given_by_a_table_file_is_the_dsl_table() {
 
 #[test]
 fn a_bad_input_table_file_is_an_input_error_with_its_line() {
-    let bad = format!("{}/bad_input.csv", env!("CARGO_TARGET_TMPDIR"));
-    std::fs::write(&bad, "t,u\n0,1\n1,x\n").unwrap();
+    let bad = scratch_file("bad_input.csv", "t,u\n0,1\n1,x\n");
     let model = data("hover_input.vms");
     let option = format!("u={bad}");
     let stderr = varmass(
@@ -114,8 +101,10 @@ fn the_table_made_for_an_input_takes_a_name_no_let_has() {
     // name; a `let u_table = …` was not seen (the derivation inlines lets), and the run
     // failed with "`u_table` is declared twice".
     let source = std::fs::read_to_string(data("hover_input.vms")).unwrap();
-    let model = format!("{}/hover_input_let.vms", env!("CARGO_TARGET_TMPDIR"));
-    std::fs::write(&model, format!("{source}\nlet u_table = 2\n")).unwrap();
+    let model = scratch_file(
+        "hover_input_let.vms",
+        &format!("{source}\nlet u_table = 2\n"),
+    );
     let input = ["--input", "u=tables/hover_u.csv"];
     let with_let = flight_of(&model, &input, "with_let");
     let without = flight("hover_input.vms", &input, "no_let");

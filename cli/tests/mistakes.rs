@@ -3,30 +3,9 @@
 //! each old behaviour fails it (the old tool ran `--tol 1e-30` for 37 s, took `--set k`
 //! twice, ran a negative flow without comment, called a zero mass a singular matrix, …).
 
-use assert_cmd::Command;
+mod common;
 
-fn data(name: &str) -> String {
-    format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"))
-}
-
-fn model(name: &str) -> String {
-    format!("{}/../models/{name}", env!("CARGO_MANIFEST_DIR"))
-}
-
-/// Runs `varmass ARGS`; checks the exit code and that nothing panicked; returns (stdout,
-/// stderr).
-fn varmass(args: &[&str], code: i32) -> (String, String) {
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .args(args)
-        .output()
-        .expect("runs");
-    let stdout = String::from_utf8_lossy(&output.stdout).to_string();
-    let stderr = String::from_utf8_lossy(&output.stderr).to_string();
-    assert_eq!(output.status.code(), Some(code), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    (stdout, stderr)
-}
+use common::{data, model, root, scratch, scratch_file, varmass};
 
 /// The rocket of `models/rocket.vms` to t = 0.5 with `extra` appended.
 fn rocket(extra: &[&str], code: i32) -> String {
@@ -51,14 +30,14 @@ fn rocket_until(until: &str, extra: &[&str], code: i32) -> String {
 fn tolerances_and_steps_beyond_what_f64_or_the_step_limit_allow_are_refused_first() {
     let stderr = rocket(&["--tol", "1e-30"], 2);
     assert!(
-        stderr.contains("--tol 1e-30 is finer than f64 can honour")
-            && stderr.contains("the usable range is 2.2e-14 to 0.1"),
+        stderr.contains("--tol 1e-30 is finer than dormand-prince can honour")
+            && stderr.contains("the usable range of dormand-prince is 2.2e-14 to 0.1"),
         "{stderr}"
     );
     let stderr = rocket(&["--tol", "10"], 2);
     assert!(
         stderr.contains("--tol 10 is too loose")
-            && stderr.contains("usable range is 2.2e-14 to 0.1"),
+            && stderr.contains("usable range of dormand-prince is 2.2e-14 to 0.1"),
         "{stderr}"
     );
     // 1/1e-12 = 1e12 steps against the default limit of 10⁷: the usable steps start at 1e-7.
@@ -108,12 +87,41 @@ fn the_step_and_wall_clock_limits_end_a_run_with_its_state() {
     );
 }
 
+/// The tolerance floor is the method's (`core/src/tolerance.rs`, `Floor`): each
+/// error-estimating family refuses a `--tol` below 100 ε, naming 2.2e-14, where taylor
+/// (the run-time models have no double-double head) takes down to its own floor 1e-15
+/// and refuses below it, naming 1.0e-15. Measured where the error stops following the
+/// tolerance: `cargo test --test kepler_floor tolerance_floor_table -- --ignored` and
+/// `cargo test --test tolerance_floor tolerance_floor_table -- --ignored`.
+#[test]
+fn a_tolerance_below_the_methods_floor_is_refused_with_the_floor() {
+    for method in ["dormand-prince", "dop853", "sdirk4", "esdirk43"] {
+        let stderr = rocket(&["--method", method, "--tol", "1e-14"], 2);
+        assert!(
+            stderr.contains(&format!(
+                "--tol 1e-14 is finer than {method} can honour (its floor is 2.2e-14"
+            )) && stderr.contains(&format!("the usable range of {method} is 2.2e-14 to 0.1")),
+            "{method}: {stderr}"
+        );
+    }
+    let stderr = rocket(&["--method", "taylor", "--tol", "5e-16"], 2);
+    assert!(
+        stderr.contains("--tol 5e-16 is finer than taylor can honour (its floor is 1.0e-15")
+            && stderr.contains("the usable range of taylor is 1.0e-15 to 0.1"),
+        "{stderr}"
+    );
+    // Taylor's floor itself, and 1e-14 (refused above for the others), run.
+    for tol in ["1e-15", "1e-14"] {
+        rocket(&["--method", "taylor", "--tol", tol], 0);
+    }
+}
+
 /// `--tol -1e-9` reaches the range check, not clap's "use `-- -1`" tip.
 #[test]
 fn negative_numbers_after_options_get_the_must_be_positive_message() {
     let stderr = rocket(&["--tol", "-1e-9"], 2);
     assert!(
-        stderr.contains("--tol -1e-9 must be positive and finite; the usable range is"),
+        stderr.contains("--tol -1e-9 must be positive and finite; the usable range of"),
         "{stderr}"
     );
     assert!(!stderr.contains("-- -1"), "{stderr}");
@@ -202,8 +210,7 @@ fn a_negative_flow_rate_ends_the_run_with_the_flow_its_rate_and_the_time() {
         "{stderr}"
     );
     // rate 1 − t: RK4 at h = 0.25 lands on t = 1 (rate 0, allowed), then 1.25 (−0.25).
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let path = dir.join("emptying_cart.vms");
+    let path = scratch("emptying_cart.vms");
     std::fs::write(
         &path,
         "coordinates x\nmass m: state, rate mu - k*t\nbody cart: mass m, position [x]\n\
@@ -264,8 +271,7 @@ fn rational_identities_are_proven_and_numerical_ones_say_so() {
 /// `--record` takes `let` names, `mdot_m` and expressions of recordable names.
 #[test]
 fn record_takes_let_names_mdot_and_expressions() {
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let csv = dir.join("mistakes_record.csv");
+    let csv = scratch("mistakes_record.csv");
     let csv_arg = csv.display().to_string();
     let file = data("falling_chain.vms");
     // On the similarity solution x'² = 2gx/3 (from x = 1, x' = √(2·9.81/3)), recorded at
@@ -359,8 +365,7 @@ fn the_frozen_rule_for_distributed_bodies_is_documented_with_the_falling_chain()
         .filter(|l| !l.starts_with("check"))
         .collect::<Vec<_>>()
         .join("\n");
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let path = dir.join("chain_half.vms");
+    let path = scratch("chain_half.vms");
     std::fs::write(&path, half).expect("written");
     let (stdout, _) = varmass(&["derive", &path.display().to_string()], 0);
     assert!(
@@ -386,7 +391,7 @@ fn the_frozen_rule_for_distributed_bodies_is_documented_with_the_falling_chain()
     let exact = 1.0 + v0 + 9.81 / 6.0;
     // Measured error 3.9e-13 (117 steps at --tol 1e-12); bound 1e-11.
     assert!((x - exact).abs() <= 1e-11, "{x} vs {exact}");
-    let docs = format!("{}/../docs/mechanics.md", env!("CARGO_MANIFEST_DIR"));
+    let docs = root("docs/mechanics.md");
     let docs = std::fs::read_to_string(docs).expect("read");
     for needle in [
         "## Distributed bodies",
@@ -395,7 +400,7 @@ fn the_frozen_rule_for_distributed_bodies_is_documented_with_the_falling_chain()
     ] {
         assert!(docs.contains(needle), "docs/mechanics.md lacks {needle}");
     }
-    let dsl = format!("{}/../docs/dsl.md", env!("CARGO_MANIFEST_DIR"));
+    let dsl = root("docs/dsl.md");
     let dsl = std::fs::read_to_string(dsl).expect("read");
     assert!(dsl.contains("mechanics.md#distributed-bodies"));
 }
@@ -464,11 +469,10 @@ fn the_end_state_is_written_with_exponents_where_a_number_needs_one() {
     );
 }
 
-/// A recorded expression that calls a table is refused naming the table (before: "`a` with
-/// 1 argument(s) is not a function of the DSL"); the list of what a model has names
-/// `mdot_m` once.
+/// A recorded expression may call a table (cli/tests/record_tables.rs checks the values;
+/// before: refused); the list of what a model has names `mdot_m` once.
 #[test]
-fn a_recorded_table_call_is_named_and_the_names_are_listed_once() {
+fn a_recorded_table_call_is_taken_and_the_names_are_listed_once() {
     let file = data("hover_table.vms");
     let args = [
         "run", &file, "--set", "g=9.81", "--set", "u_e=2000", "--init", "y=0", "--init", "m=50",
@@ -476,11 +480,7 @@ fn a_recorded_table_call_is_named_and_the_names_are_listed_once() {
     ];
     let mut with_table = args.to_vec();
     with_table.push("thrust=m*a(t)");
-    let (_, stderr) = varmass(&with_table, 2);
-    assert!(
-        stderr.contains("`a` is a table of the model: a recorded expression cannot read a table"),
-        "{stderr}"
-    );
+    varmass(&with_table, 0);
     let mut unknown = args.to_vec();
     unknown.push("zzz");
     let (_, stderr) = varmass(&unknown, 2);
@@ -512,4 +512,69 @@ fn a_record_that_names_nothing_or_a_column_twice_is_refused() {
         stderr.contains("--record `e=y`: the column `e`"),
         "{stderr}"
     );
+}
+
+/// `--record "y=y'"` would head a column `y` holding the speed, while `--stop-when` and the
+/// other expressions still read the coordinate y: refused naming the entry (before: exit 0,
+/// a mislabelled column). A new name for the same expression is taken.
+#[test]
+fn a_recorded_column_that_hides_a_model_name_is_refused() {
+    let stderr = rocket(&["--record", "y=y'"], 2);
+    assert!(
+        stderr.contains("--record `y=y'`: the column `y` would hide the model's own `y`"),
+        "{stderr}"
+    );
+    rocket(&["--record", "speed=y'"], 0);
+}
+
+/// A `<` condition standing exactly on its value at the start: a ball at y = 0 under
+/// gravity. Dropped from rest it enters y < 0 at once (y = −g t²/2), so the run's events —
+/// which watch for a crossing from y > 0 — would never stop it: refused, with the first
+/// probe's time and value. Thrown up at 5 m/s it stops where it comes back down through 0,
+/// at t = 2·5/g = 1.0193679918450562 s (y = 5t − g t²/2; DOP853 at 1e-12, bound 1e-9 s).
+#[test]
+fn a_stop_condition_standing_on_its_value_that_the_motion_enters_is_refused() {
+    let model = scratch_file(
+        "ball_on_boundary.vms",
+        "coordinates y\nmass m = m0\nbody b: mass m, position [y]\npotential m*g*y\n",
+    );
+    let args = |speed: &str| {
+        [
+            "run",
+            &model,
+            "--set",
+            "m0=1",
+            "--set",
+            "g=9.81",
+            "--init",
+            "y=0",
+            "--init",
+            speed,
+            "--until",
+            "5",
+            "--method",
+            "dop853",
+            "--tol",
+            "1e-12",
+            "--stop-when",
+            "y < 0",
+        ]
+        .map(String::from)
+    };
+    let dropped = args("y'=0");
+    let dropped: Vec<&str> = dropped.iter().map(String::as_str).collect();
+    let (_, stderr) = varmass(&dropped, 2);
+    assert!(
+        stderr.contains("stands exactly on its value at the start and the motion enters it"),
+        "{stderr}"
+    );
+    let thrown = args("y'=5");
+    let thrown: Vec<&str> = thrown.iter().map(String::as_str).collect();
+    let (stdout, _) = varmass(&thrown, 0);
+    let time: f64 = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("stopped at t = "))
+        .and_then(|l| l.split(' ').next()?.parse().ok())
+        .unwrap_or_else(|| panic!("no stop: {stdout}"));
+    assert!((time - 10.0 / 9.81).abs() <= 1e-9, "{time}");
 }

@@ -2,10 +2,12 @@
 //! coordinates and a state mass: beyond the tool's former 4 × 2 size table) and agrees with
 //! the macro-generated code of the same file, run by the same core stepper.
 
-use std::path::PathBuf;
-
 use assert_cmd::Command;
 use varmass::prelude::*;
+
+mod common;
+
+use common::{csv, model, scratch};
 
 #[variable_mass_system(file = "../models/rocket_6dof.vms")]
 #[allow(non_snake_case)] // the model's names: A_d, C_d
@@ -95,8 +97,8 @@ fn generated(method: &str) -> Vec<f64> {
 
 /// The final [q, m_p] of `varmass run` on the model file with `method` and `setting`.
 fn tool(method: &str, setting: &str) -> Vec<f64> {
-    let csv = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("rocket_6dof_{method}.csv"));
-    let model = format!("{}/../models/rocket_6dof.vms", env!("CARGO_MANIFEST_DIR"));
+    let table = scratch(format!("rocket_6dof_{method}.csv"));
+    let model = model("rocket_6dof.vms");
     let mut cmd = Command::cargo_bin("varmass").expect("the binary is built");
     cmd.args([
         "run",
@@ -117,14 +119,10 @@ fn tool(method: &str, setting: &str) -> Vec<f64> {
     }
     cmd.args(["--init", &format!("m_p={GRAIN}")]);
     cmd.args(["--record", "x,y,z,psi,th,phi,m_p", "--csv"])
-        .arg(&csv);
+        .arg(&table);
     cmd.assert().success();
-    let text = std::fs::read_to_string(&csv).expect("the CSV was written");
-    let last = text.lines().last().expect("a row");
-    let row: Vec<f64> = last
-        .split(',')
-        .map(|v| v.parse().expect("a number"))
-        .collect();
+    let (_, rows) = csv(&table);
+    let row = rows.last().expect("a row");
     assert_eq!(row[0], UNTIL);
     row[1..].to_vec()
 }

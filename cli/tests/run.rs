@@ -1,35 +1,18 @@
 //! `varmass run` against closed forms: the paper's sled to x = 50 m (eq. 24) and a vertical
 //! rocket to burnout (Tsiolkovsky with gravity loss).
 
-use std::path::PathBuf;
+use std::path::Path;
 
 use assert_cmd::Command;
 
-/// A model file of the repository's `models/`.
-fn model(name: &str) -> String {
-    format!("{}/../models/{name}", env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
 
-fn scratch(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name)
-}
+use common::{csv, model, scratch};
 
 /// The last row of a CSV written by the tool, as numbers, with the header.
-fn last_row(path: &PathBuf) -> (Vec<String>, Vec<f64>) {
-    let text = std::fs::read_to_string(path).expect("the CSV was written");
-    let mut lines = text.lines();
-    let header = lines
-        .next()
-        .expect("a header")
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let last = lines.last().expect("at least one row");
-    let values = last
-        .split(',')
-        .map(|v| v.parse().expect("a number"))
-        .collect();
-    (header, values)
+fn last_row(path: &Path) -> (Vec<String>, Vec<f64>) {
+    let (header, rows) = csv(path);
+    (header, rows.last().expect("at least one row").clone())
 }
 
 const SLED: [&str; 5] = [
@@ -180,7 +163,7 @@ fn every_method_runs_the_sled() {
         ("taylor", "--step=1e-1", 1e-14),
         ("taylor", "--tol=1e-12", 1e-13),
     ] {
-        let csv = scratch(&format!("sled_{method}{setting}.csv"));
+        let csv = scratch(format!("sled_{method}{setting}.csv"));
         sled_run("1", &["--method", method, setting, "--record", "x,x'"])
             .arg("--csv")
             .arg(&csv)
@@ -193,6 +176,37 @@ fn every_method_runs_the_sled() {
             "{method}: {row:?}, error {error:e}"
         );
     }
+}
+
+/// Taylor's floor is 1e-15, below the 100 ε (2.2e-14) of the error-estimating steppers
+/// (`core/src/tolerance.rs`, `Floor`): `--tol 1e-14` and `--tol 1e-15` run with taylor, and
+/// the speed at t = 1 s against eq. 24 does not grow as the tolerance falls below 2.2e-14.
+/// Measured (relative): 5.3e-16 at 2.2e-14 (order 17), 2.7e-16 at 1e-14 (order 18),
+/// 1.3e-16 at 1e-15 (order 19: one ulp of the speed, 3.4 m/s). Bound at the floor 4e-16
+/// (3×).
+#[test]
+fn taylor_takes_tolerances_down_to_its_floor_below_100_epsilons() {
+    let error = |tol: &str| {
+        let csv = scratch(format!("sled_taylor_{tol}.csv"));
+        sled_run(
+            "1",
+            &["--method", "taylor", "--tol", tol, "--record", "x,x'"],
+        )
+        .arg("--csv")
+        .arg(&csv)
+        .assert()
+        .success();
+        let (_, row) = last_row(&csv);
+        assert_eq!(row[0], 1.0);
+        (row[2] - sled_speed(row[1])).abs() / sled_speed(row[1])
+    };
+    let (coarse, finer, floor) = (error("2.2e-14"), error("1e-14"), error("1e-15"));
+    eprintln!("2.2e-14: {coarse:e}, 1e-14: {finer:e}, 1e-15: {floor:e}");
+    assert!(
+        floor <= finer && finer <= coarse,
+        "{floor:e} {finer:e} {coarse:e}"
+    );
+    assert!(floor <= 4e-16, "{floor:e}");
 }
 
 /// The rocket of `models/rocket.vms` (μ = 10 kg/s, m0 = 1000 kg) to `until` with `extra`.

@@ -2,37 +2,14 @@
 //! runtime` given at the command line, or other data for a file table; the path relative to
 //! the current directory; every mistake exit 2 naming the table (and the file's line).
 
-use assert_cmd::Command;
-use varmass::core::table::Motor;
+mod common;
 
-/// Runs the tool in `dir`, asserting the exit code; returns stdout and stderr.
-fn run_in(dir: &str, args: &[&str], code: i32) -> (String, String) {
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("runs");
-    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
-    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
-    assert_eq!(output.status.code(), Some(code), "{stdout}\n{stderr}");
-    (stdout, stderr)
-}
-
-fn root(path: &str) -> String {
-    format!("{}/../{path}", env!("CARGO_MANIFEST_DIR"))
-}
-
-fn u_e() -> f64 {
-    let text = std::fs::read_to_string(root("models/motors/Cesaroni_M1670.eng")).unwrap();
-    Motor::parse(&text).unwrap().exhaust_speed()
-}
+use common::{motor, root, varmass_in as run_in, written_in};
 
 /// The M1670 rocket's flight to 6 s at tolerance 1e-10, with `extra` options, recorded as
 /// CSV text (y, y', m at every step).
 fn flight(model: &str, extra: &[&str], name: &str) -> String {
-    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let u_e = format!("u_e={:?}", u_e());
+    let u_e = format!("u_e={:?}", motor().exhaust_speed());
     let mut args = vec![
         "run",
         model,
@@ -50,12 +27,9 @@ fn flight(model: &str, extra: &[&str], name: &str) -> String {
         "1e-10",
         "--record",
         "y,y',m",
-        "--csv",
     ];
-    args.push(csv.to_str().unwrap());
     args.extend_from_slice(extra);
-    run_in(&root(""), &args, 0);
-    std::fs::read_to_string(&csv).unwrap()
+    std::fs::read_to_string(written_in(&root(""), &args, name)).unwrap()
 }
 
 #[test]

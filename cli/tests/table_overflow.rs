@@ -2,7 +2,9 @@
 //! the file's lines (docs/tables.md#interpolation): before (review of 2026-11-26) the run
 //! failed at t = 0 with "the state became non-finite" and a help line blaming the equations.
 
-use assert_cmd::Command;
+mod common;
+
+use common::{scratch, varmass};
 
 /// The data 0, 1.5e308, 0, 1.5e308 at t = 0…3 (each slope finite; the cubics' 2δ is not).
 const PEAKS: &str = "t,G\n0,0\n1,1.5e308\n2,0\n3,1.5e308\n";
@@ -10,7 +12,7 @@ const PEAKS: &str = "t,G\n0,0\n1,1.5e308\n2,0\n3,1.5e308\n";
 /// Writes `model` (a unit mass pushed by G(t)·1e-300) and peaks.csv into a directory of
 /// their own; returns the model's path.
 fn model(name: &str, table: &str) -> String {
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let dir = scratch(name);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("peaks.csv"), PEAKS).unwrap();
     let model = dir.join("model.vms");
@@ -21,21 +23,11 @@ fn model(name: &str, table: &str) -> String {
     model.to_str().unwrap().to_string()
 }
 
-/// `varmass run` with `args`: its exit code, stdout and stderr.
-fn run(args: &[&str]) -> (Option<i32>, String, String) {
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .args(["run"])
-        .args(args)
-        .args(["--init", "x=0", "--init", "x'=0", "--until", "2.5"])
-        .output()
-        .expect("runs");
-    let text = |bytes: &[u8]| String::from_utf8_lossy(bytes).into_owned();
-    (
-        output.status.code(),
-        text(&output.stdout),
-        text(&output.stderr),
-    )
+/// `varmass run` with `args` from rest to 2.5 s, expecting exit `code`: its stdout and
+/// stderr.
+fn run(args: &[&str], code: i32) -> (String, String) {
+    let start = ["--init", "x=0", "--init", "x'=0", "--until", "2.5"];
+    varmass(&[&["run"][..], args, &start].concat(), code)
 }
 
 #[test]
@@ -44,8 +36,7 @@ fn a_linear_table_of_huge_values_runs() {
     // ∫₀² G = 1.5e308, ∫₂^2.5 G = ½ · 0.5 · 0.75e308, so v = 1.5e8 + 0.1875e8 = 1.6875e8
     // (RK4 integrates a linear G exactly: measured 1.6875e8 to the digits printed).
     let file = model("peaks_linear", "table G(s) = \"peaks.csv\", outside zero");
-    let (code, stdout, stderr) = run(&[&file, "--method", "rk4", "--step", "0.5"]);
-    assert_eq!(code, Some(0), "{stderr}");
+    let (stdout, _) = run(&[&file, "--method", "rk4", "--step", "0.5"], 0);
     assert!(stdout.contains("x' = 1.6875e8"), "{stdout}");
 }
 
@@ -55,8 +46,7 @@ fn a_model_table_whose_cubics_overflow_is_a_diagnostic_with_its_lines() {
     for interpolation in ["pchip", "spline"] {
         let table = format!("table G(s) = \"peaks.csv\", {interpolation}, outside zero");
         let file = model(&format!("peaks_{interpolation}"), &table);
-        let (code, _, stderr) = run(&[&file]);
-        assert_eq!(code, Some(1), "{stderr}");
+        let (_, stderr) = run(&[&file], 1);
         let message = format!(
             "peaks.csv:3:1: the {interpolation} interpolant from (0.0, 0.0) (line 2) to \
              (1.0, 1.5e308) is not finite"
@@ -73,8 +63,7 @@ fn a_runtime_table_whose_cubics_overflow_is_an_input_error() {
     let file = model("peaks_runtime", "table G(s) = runtime, pchip, outside zero");
     let peaks = std::path::Path::new(&file).with_file_name("peaks.csv");
     let table = format!("G={}", peaks.display());
-    let (code, _, stderr) = run(&[&file, "--table", &table]);
-    assert_eq!(code, Some(2), "{stderr}");
+    let (_, stderr) = run(&[&file, "--table", &table], 2);
     assert!(
         stderr.contains("peaks.csv:3:1: the pchip interpolant from (0.0, 0.0) (line 2)"),
         "{stderr}"

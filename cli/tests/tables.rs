@@ -2,30 +2,11 @@
 //! relative to the model file, lands on the knots of tables of t, and a table asked for a
 //! value outside its data ends the run with exit 1 naming the table and the argument.
 
-use assert_cmd::Command;
-use varmass::core::table::{Interpolation, Motor};
+use varmass::core::table::Interpolation;
 
-/// Runs the tool, asserting the exit code; returns stdout and stderr.
-fn run(args: &[&str], code: i32) -> (String, String) {
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .args(args)
-        .output()
-        .expect("runs");
-    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
-    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
-    assert_eq!(output.status.code(), Some(code), "{stdout}\n{stderr}");
-    (stdout, stderr)
-}
+mod common;
 
-fn root(path: &str) -> String {
-    format!("{}/../{path}", env!("CARGO_MANIFEST_DIR"))
-}
-
-fn motor() -> Motor {
-    let text = std::fs::read_to_string(root("models/motors/Cesaroni_M1670.eng")).unwrap();
-    Motor::parse(&text).unwrap()
-}
+use common::{data, motor, root, scratch, varmass as run};
 
 /// `models/motor_rocket.vms` run from another directory: the mass follows the closed form
 /// m(t) = m₀ − I(t)/u_e (I the exact trapezoid integral of the thrust curve) at every
@@ -37,7 +18,7 @@ fn the_motor_rocket_runs_from_its_table_file() {
     let impulse = Interpolation::Linear
         .interpolate(&motor().thrust)
         .antiderivative();
-    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("motor_rocket.csv");
+    let csv = scratch("motor_rocket.csv");
     run(
         &[
             "run",
@@ -84,10 +65,7 @@ fn a_table_outside_its_data_fails_the_run_naming_it() {
     let (_, stderr) = run(
         &[
             "run",
-            &format!(
-                "{}/tests/data/tables/strict_rocket.vms",
-                env!("CARGO_MANIFEST_DIR")
-            ),
+            &data("tables/strict_rocket.vms"),
             "--set",
             &format!("u_e={u_e:?}"),
             "--set",
@@ -109,7 +87,7 @@ fn a_table_outside_its_data_fails_the_run_naming_it() {
 /// exit 1 (a model that fails).
 #[test]
 fn a_malformed_table_file_is_a_diagnostic_with_its_line() {
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad_table");
+    let dir = scratch("bad_table");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("thrust.csv"), "time_s,thrust_N\n0,1\n0.5,x\n").unwrap();
     let model = dir.join("model.vms");
@@ -135,12 +113,9 @@ fn recorded_only(
     record: &str,
     code: i32,
 ) -> (std::path::PathBuf, String) {
-    let csv = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.csv"));
+    let csv = scratch(format!("{name}.csv"));
     let _ = std::fs::remove_file(&csv);
-    let model = format!(
-        "{}/tests/data/tables/recorded_only.vms",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let model = data("tables/recorded_only.vms");
     let mut args = vec![
         "run", &model, "--set", "m0=2", "--set", "g=10", "--init", "y=0", "--record", record,
     ];

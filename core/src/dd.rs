@@ -346,138 +346,86 @@ impl Neg for Dual {
     }
 }
 
-impl Add<f64> for Dual {
-    type Output = Dual;
-    #[inline(always)]
-    fn add(self, o: f64) -> Dual {
-        Dual::new(self.v + o, self.d)
-    }
-}
+/// `Dual ∘ c` and `c ∘ Dual` for a constant `c` (an `f64` or a [`Dd`], no ε part): the
+/// operation on v, and on d by the rules of a constant, (v ± c)′ = v′, (c·v)′ = c v′,
+/// (c − v)′ = −v′; the same text for both types, each operation on v and d being the
+/// constant's own (`Dd ∘ f64` or `Dd ∘ Dd`).
+macro_rules! dual_with_constant {
+    ($C:ty) => {
+        impl Add<$C> for Dual {
+            type Output = Dual;
+            #[inline(always)]
+            fn add(self, o: $C) -> Dual {
+                Dual::new(self.v + o, self.d)
+            }
+        }
 
-impl Sub<f64> for Dual {
-    type Output = Dual;
-    #[inline(always)]
-    fn sub(self, o: f64) -> Dual {
-        Dual::new(self.v - o, self.d)
-    }
-}
+        impl Sub<$C> for Dual {
+            type Output = Dual;
+            #[inline(always)]
+            fn sub(self, o: $C) -> Dual {
+                Dual::new(self.v - o, self.d)
+            }
+        }
 
-impl Mul<f64> for Dual {
-    type Output = Dual;
-    #[inline(always)]
-    fn mul(self, o: f64) -> Dual {
-        Dual::new(self.v * o, self.d * o)
-    }
-}
+        impl Mul<$C> for Dual {
+            type Output = Dual;
+            #[inline(always)]
+            fn mul(self, o: $C) -> Dual {
+                Dual::new(self.v * o, self.d * o)
+            }
+        }
 
-impl Div<f64> for Dual {
-    type Output = Dual;
-    #[inline(always)]
-    fn div(self, o: f64) -> Dual {
-        Dual::new(self.v / o, self.d / o)
-    }
-}
+        impl Div<$C> for Dual {
+            type Output = Dual;
+            #[inline(always)]
+            fn div(self, o: $C) -> Dual {
+                Dual::new(self.v / o, self.d / o)
+            }
+        }
 
-impl Add<Dual> for f64 {
-    type Output = Dual;
-    #[inline(always)]
-    fn add(self, o: Dual) -> Dual {
-        o + self
-    }
-}
+        impl Add<Dual> for $C {
+            type Output = Dual;
+            #[inline(always)]
+            fn add(self, o: Dual) -> Dual {
+                o + self
+            }
+        }
 
-impl Sub<Dual> for f64 {
-    type Output = Dual;
-    #[inline(always)]
-    fn sub(self, o: Dual) -> Dual {
-        Dual::new(self - o.v, -o.d)
-    }
-}
+        impl Sub<Dual> for $C {
+            type Output = Dual;
+            #[inline(always)]
+            fn sub(self, o: Dual) -> Dual {
+                Dual::new(self - o.v, -o.d)
+            }
+        }
 
-impl Mul<Dual> for f64 {
-    type Output = Dual;
-    #[inline(always)]
-    fn mul(self, o: Dual) -> Dual {
-        o * self
-    }
-}
+        impl Mul<Dual> for $C {
+            type Output = Dual;
+            #[inline(always)]
+            fn mul(self, o: Dual) -> Dual {
+                o * self
+            }
+        }
 
-impl Div<Dual> for f64 {
-    type Output = Dual;
-    /// (c/b)′ = −(c/b) b′/b, through the reciprocal 1/b as `Dual / Dual`.
-    #[inline(always)]
-    fn div(self, o: Dual) -> Dual {
-        let reciprocal = Dd::new(1.0) / o.v;
-        let q = reciprocal * self;
-        Dual::new(q, -(q * o.d) * reciprocal)
-    }
+        impl Div<Dual> for $C {
+            type Output = Dual;
+            /// (c/b)′ = −(c/b) b′/b, through the reciprocal 1/b as `Dual / Dual`. The
+            /// product 1/b · c is `Dd × f64` for an `f64` (cheaper than widening c), and
+            /// for a `Dd` the same bits as c · 1/b: `Dd × Dd` is commutative to the bit
+            /// (`two_prod` is exact either way, and the cross terms are one sum of two
+            /// products, whose order IEEE addition does not see; `dd_tests.rs` checks it).
+            #[inline(always)]
+            fn div(self, o: Dual) -> Dual {
+                let reciprocal = Dd::new(1.0) / o.v;
+                let q = reciprocal * self;
+                Dual::new(q, -(q * o.d) * reciprocal)
+            }
+        }
+    };
 }
-
-impl Add<Dd> for Dual {
-    type Output = Dual;
-    #[inline(always)]
-    fn add(self, o: Dd) -> Dual {
-        Dual::new(self.v + o, self.d)
-    }
-}
-
-impl Sub<Dd> for Dual {
-    type Output = Dual;
-    #[inline(always)]
-    fn sub(self, o: Dd) -> Dual {
-        Dual::new(self.v - o, self.d)
-    }
-}
-
-impl Mul<Dd> for Dual {
-    type Output = Dual;
-    #[inline(always)]
-    fn mul(self, o: Dd) -> Dual {
-        Dual::new(self.v * o, self.d * o)
-    }
-}
-
-impl Div<Dd> for Dual {
-    type Output = Dual;
-    #[inline(always)]
-    fn div(self, o: Dd) -> Dual {
-        Dual::new(self.v / o, self.d / o)
-    }
-}
-
-impl Add<Dual> for Dd {
-    type Output = Dual;
-    #[inline(always)]
-    fn add(self, o: Dual) -> Dual {
-        o + self
-    }
-}
-
-impl Sub<Dual> for Dd {
-    type Output = Dual;
-    #[inline(always)]
-    fn sub(self, o: Dual) -> Dual {
-        Dual::new(self - o.v, -o.d)
-    }
-}
-
-impl Mul<Dual> for Dd {
-    type Output = Dual;
-    #[inline(always)]
-    fn mul(self, o: Dual) -> Dual {
-        o * self
-    }
-}
-
-impl Div<Dual> for Dd {
-    type Output = Dual;
-    #[inline(always)]
-    fn div(self, o: Dual) -> Dual {
-        let reciprocal = Dd::new(1.0) / o.v;
-        let q = self * reciprocal;
-        Dual::new(q, -(q * o.d) * reciprocal)
-    }
-}
+dual_with_constant!(f64);
+dual_with_constant!(Dd);
 
 impl From<Dd> for Dual {
     #[inline(always)]

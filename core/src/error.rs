@@ -3,8 +3,6 @@
 
 use nalgebra::SVector;
 
-use crate::system::{SystemError, VariableMassSystem};
-
 /// A failure of a stepper or of a run: what went wrong ([`StepErrorKind`]) and the time and
 /// the state `[q, p, m_s]` where it was detected. `S` is the state dimension.
 ///
@@ -34,12 +32,6 @@ pub enum StepErrorKind {
     /// fixed step is far past the stability limit.
     #[error("the state became non-finite")]
     NonFiniteState,
-    /// A mass or inertia reached zero or became negative, e.g. a rocket out of propellant.
-    #[error("mass {index} is not positive")]
-    NonPositiveMass {
-        /// Index into [`VariableMassSystem::MASSES`].
-        index: usize,
-    },
     /// The end of the next step, t + h, is not a finite time (it overflows f64). The error's
     /// time and state are those at the start of the step, which are finite.
     #[error("the time t + {step:e} is not finite")]
@@ -47,9 +39,6 @@ pub enum StepErrorKind {
         /// The step that would have been taken.
         step: f64,
     },
-    /// The mass matrix ∂²L/∂q̇² is singular here, so q̇ cannot be recovered from p.
-    #[error("the mass matrix is singular")]
-    SingularMassMatrix,
     /// An adaptive stepper had to shrink its step below what the time resolution allows.
     /// The error's time and state are those at the start of the failed step.
     #[error("the step size {step:e} underflowed")]
@@ -70,6 +59,15 @@ pub enum StepErrorKind {
     TooManySteps {
         /// The configured limit.
         max_steps: usize,
+    },
+    /// A run went round `steps` times in a row without moving t by more than a few
+    /// roundings (a switch or an event it cannot get past, a stepper that cannot leave a
+    /// point): it ends here instead of looping to [`TooManySteps`](Self::TooManySteps) or
+    /// for ever. The error's time and state are those of the last point the run kept.
+    #[error("the run stalled: {steps} passes without t moving more than a few roundings")]
+    Stalled {
+        /// The passes counted.
+        steps: usize,
     },
     /// The energy budget stopped closing: |∫ power dt − (H − H₀)| exceeded the run's
     /// [`RunConfig::energy_tolerance`](crate::RunConfig) times the largest |H| or |p·q̇| so far. The
@@ -93,9 +91,10 @@ pub enum StepErrorKind {
     /// A flow's rate came out negative (Q1 of an outflow or Q2 of an inflow below 0): the
     /// statement declares mass leaving (or arriving) and the rate says the opposite, so the
     /// reactive forces (eqs. 15–16) would act with the wrong sign. A run checks
-    /// [`VariableMassSystem::flow_rate`] at the start and after each step (through
-    /// [`StepError::check_flow_rates`]), at the error's time and state; the flow's text is
-    /// [`VariableMassSystem::flow_name`].
+    /// [`VariableMassSystem::flow_rate`](crate::VariableMassSystem::flow_rate) at the start
+    /// and after each step (through [`StepError::check_flow_rates`]), at the error's time
+    /// and state; the flow's text is
+    /// [`VariableMassSystem::flow_name`](crate::VariableMassSystem::flow_name).
     #[error("the rate of flow {index} is negative ({rate})")]
     NegativeFlowRate {
         /// The flow's index, in the order the model declares its flows.
@@ -110,11 +109,13 @@ pub enum StepErrorKind {
         /// The limit, in seconds.
         seconds: f64,
     },
-    /// A switching function ([`VariableMassSystem::switching_functions`]) changed sign
-    /// `crossings` times within a vanishing interval (Coulomb friction at rest, a Zeno
-    /// bounce): the motion sticks or chatters on the switch, which the equations as written
-    /// cannot continue. The error's time and state are those of the last crossing; the
-    /// switch's text is [`VariableMassSystem::switch_name`].
+    /// A switching function
+    /// ([`VariableMassSystem::switching_functions`](crate::VariableMassSystem::switching_functions))
+    /// changed sign `crossings` times within a vanishing interval (Coulomb friction at rest,
+    /// a Zeno bounce): the motion sticks or chatters on the switch, which the equations as
+    /// written cannot continue. The error's time and state are those of the last crossing;
+    /// the switch's text is
+    /// [`VariableMassSystem::switch_name`](crate::VariableMassSystem::switch_name).
     #[error("switching function {switch} chatters: {crossings} sign changes within {within:e}")]
     Chattering {
         /// Index of the switching function.
@@ -124,26 +125,11 @@ pub enum StepErrorKind {
         /// The time they fell within.
         within: f64,
     },
-    /// A table (`outside error`, the default) was asked for a value outside its data
-    /// (docs/tables.md#outside-the-data): a thrust curve past burnout without `outside
-    /// zero`, an atmosphere above its last altitude.
-    #[error("table `{table}` has no value at {argument} (outside its data)")]
-    TableOutside {
-        /// The table's name (`F`, or `F'` for its derivative).
-        table: &'static str,
-        /// The argument asked for.
-        argument: f64,
-    },
-    /// A sampled input gave a value that is not a finite number at a sample (its method,
-    /// or its `--input` law, returned NaN or ±∞ there; docs/inputs.md#sampled-inputs). The
-    /// error's time is the sample's, its state the one sampled at.
-    #[error("the sampled input `{input}` is not finite at its sample ({value})")]
-    SampledInputNotFinite {
-        /// The input's name.
-        input: &'static str,
-        /// The value it gave.
-        value: f64,
-    },
+    /// The system could not be evaluated at the state: a singular mass matrix, a mass ≤ 0,
+    /// a table outside its data, a sampled input that is not finite
+    /// ([`StepError::from_system`] attaches the time and state).
+    #[error(transparent)]
+    System(#[from] SystemError),
 }
 
 impl<const S: usize> StepError<S> {
@@ -160,44 +146,6 @@ impl<const S: usize> StepError<S> {
         reason: &'static str,
     ) -> Self {
         Self::new(time, state, StepErrorKind::InvalidConfiguration { reason })
-    }
-
-    /// Attaches the time and state to a [`SystemError`]. A singular mass matrix is reported
-    /// as the non-positive mass that caused it when there is one, and a non-finite state as
-    /// such, because those are the causes a user can act on.
-    pub fn from_system<Sys, const N: usize>(
-        system: &Sys,
-        error: SystemError,
-        time: f64,
-        state: &SVector<f64, S>,
-    ) -> Self
-    where
-        Sys: VariableMassSystem<N, S> + ?Sized,
-    {
-        let state = *state;
-        if !is_finite(&state) {
-            return Self::new(time, state, StepErrorKind::NonFiniteState);
-        }
-        let error = match error {
-            SystemError::SingularMassMatrix => match system.check_masses(time, &state) {
-                Err(mass_error) => mass_error,
-                Ok(()) => error,
-            },
-            SystemError::NonPositiveMass { .. }
-            | SystemError::TableOutside { .. }
-            | SystemError::SampledInputNotFinite { .. } => error,
-        };
-        let kind = match error {
-            SystemError::SingularMassMatrix => StepErrorKind::SingularMassMatrix,
-            SystemError::NonPositiveMass { index } => StepErrorKind::NonPositiveMass { index },
-            SystemError::TableOutside { table, argument } => {
-                StepErrorKind::TableOutside { table, argument }
-            }
-            SystemError::SampledInputNotFinite { input, value } => {
-                StepErrorKind::SampledInputNotFinite { input, value }
-            }
-        };
-        Self::new(time, state, kind)
     }
 }
 
@@ -236,6 +184,43 @@ impl ConfigError {
     pub fn at<const S: usize>(self, time: f64, state: &SVector<f64, S>) -> StepError<S> {
         StepError::invalid_configuration(time, *state, self.reason)
     }
+}
+
+/// Why a system could not be evaluated at a state: what the fallible methods of
+/// [`VariableMassSystem`](crate::VariableMassSystem) return, and, with the time and state attached, [`StepErrorKind::System`].
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum SystemError {
+    /// The mass matrix ∂²L/∂q̇² is singular (or not positive definite) here, so q̇ cannot be
+    /// recovered from p.
+    #[error("the mass matrix is singular")]
+    SingularMassMatrix,
+    /// A mass (or inertia) is zero or negative, e.g. a rocket out of propellant; its index
+    /// is into [`VariableMassSystem::MASSES`](crate::VariableMassSystem::MASSES).
+    #[error("mass {index} is not positive")]
+    NonPositiveMass {
+        /// Index into [`VariableMassSystem::MASSES`](crate::VariableMassSystem::MASSES).
+        index: usize,
+    },
+    /// A table (`outside error`, the default) was asked for a value outside its data, or
+    /// at a NaN argument (docs/tables.md#outside-the-data): a thrust curve past burnout
+    /// without `outside zero`, an atmosphere above its last altitude.
+    #[error("table `{table}` has no value at {argument} (outside its data)")]
+    TableOutside {
+        /// The table's name (`F`, or `F'` for its derivative).
+        table: &'static str,
+        /// The argument asked for.
+        argument: f64,
+    },
+    /// A sampled input's value at a sample is not a finite number: its method (or its
+    /// `--input` law) gave NaN or ±∞ there (docs/inputs.md#sampled-inputs). In a
+    /// [`StepError`], its time is the sample's, its state the one sampled at.
+    #[error("the sampled input `{input}` is not finite at its sample ({value})")]
+    SampledInputNotFinite {
+        /// The input's name.
+        input: &'static str,
+        /// The value it gave.
+        value: f64,
+    },
 }
 
 /// Whether every component of a vector is finite.

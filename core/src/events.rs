@@ -55,6 +55,13 @@ pub enum EventCondition<'a, const S: usize> {
         /// The value at which the event triggers.
         value: f64,
     },
+    /// g = ṗ_k of the free equations ([`VariableMassSystem::free_state_rate`]): the net
+    /// generalized force along coordinate k's support, whose rise through 0 lifts a held
+    /// body off it ([`crate::support`]).
+    LiftOff {
+        /// The supported coordinate, an index into the coordinates.
+        coordinate: usize,
+    },
     /// Any function of the time and the state `[q, p, m_s]`.
     Function(&'a dyn Fn(f64, &SVector<f64, S>) -> f64),
 }
@@ -71,6 +78,10 @@ impl<const S: usize> fmt::Debug for EventCondition<'_, S> {
                 .debug_struct("StateComponent")
                 .field("index", index)
                 .field("value", value)
+                .finish(),
+            Self::LiftOff { coordinate } => f
+                .debug_struct("LiftOff")
+                .field("coordinate", coordinate)
                 .finish(),
             Self::Function(_) => f.write_str("Function(..)"),
         }
@@ -131,6 +142,7 @@ impl<'a, const S: usize> Event<'a, S> {
                 index < Sys::MASSES.len() && threshold.is_finite()
             }
             EventCondition::StateComponent { index, value } => index < S && value.is_finite(),
+            EventCondition::LiftOff { coordinate } => coordinate < N,
             EventCondition::Function(_) => true,
         };
         if ok {
@@ -142,8 +154,8 @@ impl<'a, const S: usize> Event<'a, S> {
         }
     }
 
-    /// g(t, state).
-    pub(crate) fn value<Sys, const N: usize>(
+    /// g(t, state): the event's function, whose sign changes trigger it.
+    pub fn value<Sys, const N: usize>(
         &self,
         system: &Sys,
         time: f64,
@@ -159,6 +171,9 @@ impl<'a, const S: usize> Event<'a, S> {
             EventCondition::StateComponent { index, value } => state
                 .get(index)
                 .map_or(f64::NAN, |component| component - value),
+            EventCondition::LiftOff { coordinate } => system
+                .free_state_rate(time, state)
+                .map_or(f64::NAN, |rate| rate[N + coordinate]),
             EventCondition::Function(function) => function(time, state),
         }
     }

@@ -1,7 +1,7 @@
 //! Inputs written in Rust (docs/inputs.md): the default partials of the generated
 //! `…Inputs` trait, by central differences, and the sample grid of a sampled input.
 
-use crate::system::SystemError;
+use crate::error::SystemError;
 
 /// The partials ∂f/∂xⱼ at `x` by central differences,
 /// (f(x + hⱼeⱼ) − f(x − hⱼeⱼ)) / (2hⱼ), with hⱼ = ε^(1/3) · max(|xⱼ|, 1).

@@ -103,6 +103,7 @@ pub mod error;
 pub mod input;
 pub mod lanes;
 pub mod math;
+pub mod scratch;
 pub mod stepper;
 pub mod steppers;
 pub mod system;
@@ -123,13 +124,15 @@ pub mod phases;
 pub mod run;
 #[cfg(feature = "run")]
 pub mod solution;
+#[cfg(feature = "run")]
+pub mod support;
 
 /// nalgebra, re-exported so generated code and users name one version.
 pub use nalgebra;
 
-pub use error::{ConfigError, StepError, StepErrorKind};
+pub use error::{ConfigError, StepError, StepErrorKind, SystemError};
 pub use stepper::{Progress, Statistics, StepOutcome, Stepper};
-pub use system::{SystemError, VariableMassSystem};
+pub use system::VariableMassSystem;
 
 #[cfg(feature = "run")]
 pub use events::{Direction, Event, EventAction, EventCondition, EventHit};
@@ -143,4 +146,6 @@ pub use phases::{
 #[cfg(feature = "run")]
 pub use run::{run, RunConfig, RunError, Switching};
 #[cfg(feature = "run")]
-pub use solution::{GeneralizedForces, Record, Solution, StopReason};
+pub use solution::{GeneralizedForces, Record, Solution, StopReason, GIMBAL_WARNING};
+#[cfg(feature = "run")]
+pub use support::{lift_off_time, Supported};

@@ -41,3 +41,19 @@ pub(crate) fn exp(x: f64) -> f64 {
 pub(crate) fn ceil(x: f64) -> f64 {
     <f64 as ComplexField>::ceil(x)
 }
+
+/// The angle, rad, from the nearest singular attitude (gimbal lock) of Euler sequences given
+/// their middle angles and whether each sequence is proper (`zxz`; else Tait–Bryan, `zyx`):
+/// the middle angle's distance to π/2 + kπ (Tait–Bryan) or to kπ (proper), where the map
+/// from the angles' rates to ω loses rank (det E = cos θ₂, resp. sin θ₂, up to sign). The
+/// smallest over `middles`; ∞ for none. Generated code and the interpreter call it.
+pub fn singular_attitude_distance(middles: &[(f64, bool)]) -> f64 {
+    use core::f64::consts::{FRAC_PI_2, PI};
+    middles
+        .iter()
+        .map(|&(angle, proper)| {
+            let offset = if proper { angle } else { angle - FRAC_PI_2 };
+            (offset - PI * <f64 as ComplexField>::round(offset / PI)).abs()
+        })
+        .fold(f64::INFINITY, f64::min)
+}

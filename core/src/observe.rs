@@ -128,12 +128,7 @@ impl Recording {
             usize::from(later.times.first() == self.times.last() && later.names == self.names);
         self.times.extend(later.times.iter().skip(skip));
         self.values.extend(later.values.iter().skip(skip * columns));
-        let (a, b) = (&mut self.statistics, later.statistics);
-        a.accepted_steps += b.accepted_steps;
-        a.rejected_steps += b.rejected_steps;
-        a.rate_evaluations += b.rate_evaluations;
-        a.jacobian_evaluations += b.jacobian_evaluations;
-        a.newton_iterations += b.newton_iterations;
+        self.statistics = self.statistics.combine(later.statistics);
     }
 }
 

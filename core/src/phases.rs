@@ -10,7 +10,7 @@
 
 use alloc::vec::Vec;
 
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 use crate::error::StepError;
 use crate::events::Event;
@@ -30,6 +30,15 @@ pub const ALREADY_PAST: &str = "a phase's end condition already holds (or stands
 /// is not a positive number.
 pub const BAD_STATE_MASS: &str =
     "a phase sets a state mass the system does not have, or to a value that is not positive";
+
+/// The error of a change whose masses move against its carry rule: a separation whose mass
+/// matrix grows (mass cannot leave and arrive at once) or a capture whose mass matrix
+/// shrinks (mass cannot arrive and leave). Either would create kinetic energy at the change
+/// instead of removing it: ½ q̇ᵀ (M_before − M_after) q̇ < 0 for a separation, T at the same
+/// p raised for a capture.
+pub const MASS_AGAINST_CARRY: &str = "a separation must not add mass and a capture must not \
+     remove it: the change would create kinetic energy (a phase that gains mass is entered \
+     by `capture`, one that loses mass by `separation`)";
 
 /// The error of [`continue_phases`] given phases that failed: there is no event to go on from.
 pub const NOTHING_TO_CONTINUE: &str =
@@ -318,6 +327,16 @@ where
         (entered[index], moving[index]) = (value, value);
     }
     let system = &phase.system;
+    let mass_before = before.mass_matrix(time, &velocity_state);
+    let mass_after = system.mass_matrix(time, &moving);
+    let (larger, smaller) = match phase.carry {
+        Carry::Separation => (&mass_before, &mass_after),
+        Carry::Capture => (&mass_after, &mass_before),
+    };
+    if !dominates(larger, smaller) {
+        let reason = MASS_AGAINST_CARRY;
+        return Err(StepError::invalid_configuration(time, *state, reason));
+    }
     let before_energy = kinetic(before, time, &velocity_state);
     match phase.carry {
         Carry::Separation => {
@@ -332,6 +351,19 @@ where
             ))
         }
     }
+}
+
+/// Whether `larger − smaller` is positive semidefinite to the rounding of their entries:
+/// then ½ q̇ᵀ (larger − smaller) q̇ ≥ 0 for every q̇, and the change removes kinetic energy
+/// whatever the velocity (for a capture at the same p, T = ½ pᵀ M⁻¹ p falls exactly when
+/// M_after − M_before ⪰ 0). Tested by a Cholesky factorisation of the difference shifted by
+/// 1e-12 of the largest entry (a semidefinite difference, mass unchanged along some
+/// direction, factors once shifted); a NaN passes, to be reported where it arises.
+fn dominates<const N: usize>(larger: &SMatrix<f64, N, N>, smaller: &SMatrix<f64, N, N>) -> bool {
+    let scale = larger.amax().max(smaller.amax());
+    let shift = 1e-12 * scale;
+    let shifted = larger - smaller + SMatrix::<f64, N, N>::identity() * shift;
+    shifted.iter().any(|x| x.is_nan()) || shifted.cholesky().is_some()
 }
 
 /// ½ q̇ᵀ M q̇ of `system` at a velocity state.
@@ -372,17 +404,8 @@ fn append<const N: usize, const S: usize>(
         .extend(solution.energy_residual.into_iter().map(|r| r + offset));
     all.events.extend(solution.events);
     all.stop = solution.stop;
-    all.statistics = add(all.statistics, solution.statistics);
-}
-
-/// The work of two runs together.
-fn add(a: crate::stepper::Statistics, b: crate::stepper::Statistics) -> crate::stepper::Statistics {
-    crate::stepper::Statistics {
-        accepted_steps: a.accepted_steps + b.accepted_steps,
-        rejected_steps: a.rejected_steps + b.rejected_steps,
-        rate_evaluations: a.rate_evaluations + b.rate_evaluations,
-        jacobian_evaluations: a.jacobian_evaluations + b.jacobian_evaluations,
-        newton_iterations: a.newton_iterations + b.newton_iterations,
-        stiffness_detected: a.stiffness_detected || b.stiffness_detected,
+    all.statistics = all.statistics.combine(solution.statistics);
+    if let Some(distance) = solution.closest_singular_attitude {
+        all.note_attitude(distance);
     }
 }

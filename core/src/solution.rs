@@ -75,7 +75,18 @@ pub struct Solution<const N: usize, const S: usize> {
     pub stop: StopReason,
     /// The stepper's work counters at the end of the run.
     pub statistics: Statistics,
+    /// The closest the run's points came to a singular attitude of the system's Euler
+    /// sequences (gimbal lock), rad ([`VariableMassSystem::singular_attitude_distance`]);
+    /// `None` without spatial rigid bodies. Within [`GIMBAL_WARNING`] of it the angles'
+    /// rates, and the integration error with them, grow as 1/distance: the command line
+    /// tool's summary warns.
+    pub closest_singular_attitude: Option<f64>,
 }
+
+/// How close to gimbal lock (rad) a run comes before the command line tool's summary warns
+/// ([`Solution::closest_singular_attitude`]): at 1e-2 rad the error of a run through it
+/// measured 70 times that of the same motion far from it (issue 34).
+pub const GIMBAL_WARNING: f64 = 1e-2;
 
 impl<const N: usize, const S: usize> Solution<N, S> {
     pub(crate) fn new() -> Self {
@@ -89,7 +100,16 @@ impl<const N: usize, const S: usize> Solution<N, S> {
             events: Vec::new(),
             stop: StopReason::ReachedEnd,
             statistics: Statistics::default(),
+            closest_singular_attitude: None,
         }
+    }
+
+    /// Takes `distance` from a singular attitude into the closest approach.
+    pub(crate) fn note_attitude(&mut self, distance: f64) {
+        let closest = self
+            .closest_singular_attitude
+            .map_or(distance, |c| c.min(distance));
+        self.closest_singular_attitude = Some(closest);
     }
 
     /// The last time and state.
@@ -111,6 +131,9 @@ impl<const N: usize, const S: usize> Solution<N, S> {
         Sys: VariableMassSystem<N, S>,
     {
         let to_step_error = |error| StepError::from_system(system, error, time, &state);
+        if let Some(distance) = system.singular_attitude_distance(time, &state) {
+            self.note_attitude(distance);
+        }
         if record.hamiltonian {
             let hamiltonian = match energy {
                 Some(point) => point.hamiltonian,

@@ -37,6 +37,23 @@ pub struct Statistics {
     pub stiffness_detected: bool,
 }
 
+impl Statistics {
+    /// The work of two runs one after the other (the phases of a scene, the intervals of a
+    /// recording): every count added, and the stiffness verdict kept if either found it —
+    /// the one rule for adding up work, so no caller drops the flag.
+    #[must_use]
+    pub fn combine(self, later: Statistics) -> Statistics {
+        Statistics {
+            accepted_steps: self.accepted_steps + later.accepted_steps,
+            rejected_steps: self.rejected_steps + later.rejected_steps,
+            rate_evaluations: self.rate_evaluations + later.rate_evaluations,
+            jacobian_evaluations: self.jacobian_evaluations + later.jacobian_evaluations,
+            newton_iterations: self.newton_iterations + later.newton_iterations,
+            stiffness_detected: self.stiffness_detected || later.stiffness_detected,
+        }
+    }
+}
+
 /// Where a stepper is: its time and state, the start of its last step, the stop time it
 /// must not pass, and its statistics.
 #[derive(Clone, Copy, Debug, PartialEq)]

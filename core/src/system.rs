@@ -19,67 +19,14 @@
 
 use nalgebra::{SMatrix, SVector};
 
+pub use crate::cholesky::{regular_pivot, RELATIVE_PIVOT_FLOOR};
+pub use crate::error::SystemError;
+use crate::error::{is_finite, StepError, StepErrorKind};
 use crate::input::Sampling;
 
 /// ε^(1/3), the step of a central difference that balances truncation against rounding.
 /// A literal because `f64::powf` is not available without `std`.
 const CBRT_EPSILON: f64 = 6.055_454_452_393_343e-6;
-
-/// The smallest pivot of a factorisation of M, relative to its diagonal entry, that is not
-/// reported as a singular mass matrix: √ε = 2⁻²⁶.
-///
-/// Rounding in the pivot d_j = m_jj − Σₖ l_jk² leaves an absolute error of about n ε m_jj
-/// (each term is at most m_jj when M is positive definite), so d_j, and every rate divided
-/// by it, carries a relative error of about n ε m_jj / d_j. Below √ε m_jj that error passes
-/// √ε ≈ 1.5e-8: half the digits are gone, more than the tolerance of any run can absorb, and
-/// an adaptive stepper would only shrink its steps towards the singularity. The typical
-/// case is a rigid body's attitude near the gimbal lock of its Euler sequence, where a pivot
-/// falls as cos²θ of the middle angle: the floor is met at |cos θ| ≈ ε^(1/4) ≈ 1.2e-4
-/// (0.007° from the lock), and the run ends there with [`SystemError::SingularMassMatrix`]
-/// at its time instead of stepping on with meaningless angle rates. Well-posed mass matrices
-/// stay far above it (a pivot is the part of a coordinate's inertia that the earlier
-/// coordinates cannot take up, e.g. 1 − m₂cos²/(m₁+m₂) of a double pendulum's second arm).
-pub const RELATIVE_PIVOT_FLOOR: f64 = 1.490_116_119_384_765_6e-8;
-
-/// Whether a pivot of M's factorisation is usable: above [`RELATIVE_PIVOT_FLOOR`] times its
-/// diagonal entry (false for a NaN, a pivot ≤ 0, or a diagonal entry ≤ 0).
-pub fn regular_pivot(pivot: f64, diagonal: f64) -> bool {
-    pivot > RELATIVE_PIVOT_FLOOR * diagonal && diagonal > 0.0
-}
-
-/// Why a system could not be evaluated at a state.
-#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
-pub enum SystemError {
-    /// The mass matrix ∂²L/∂q̇² is singular (or not positive definite) here, so q̇ cannot be
-    /// recovered from p.
-    #[error("the mass matrix is singular, so q̇ cannot be recovered from p")]
-    SingularMassMatrix,
-    /// A mass (or inertia) is zero or negative; its index is into
-    /// [`VariableMassSystem::MASSES`].
-    #[error("mass {index} is not positive")]
-    NonPositiveMass {
-        /// Index into [`VariableMassSystem::MASSES`].
-        index: usize,
-    },
-    /// A table (`outside error`, the default) was asked for a value outside its data, or
-    /// at a NaN argument (docs/tables.md#outside-the-data).
-    #[error("table `{table}` has no value at {argument} (outside its data)")]
-    TableOutside {
-        /// The table's name (`F`, or `F'` for its derivative).
-        table: &'static str,
-        /// The argument asked for.
-        argument: f64,
-    },
-    /// A sampled input's value at a sample is not a finite number: its method (or its
-    /// `--input` law) gave NaN or ±∞ there (docs/inputs.md#sampled-inputs).
-    #[error("the sampled input `{input}` is not finite at its sample ({value})")]
-    SampledInputNotFinite {
-        /// The input's name.
-        input: &'static str,
-        /// The value it gave.
-        value: f64,
-    },
-}
 
 /// A holonomic variable-mass system in the sense of Zhang Jiuzhu (2015): generalized
 /// coordinates q, frozen masses mᵢ(q, t) or state masses, a Lagrangian L = T − V, and
@@ -166,13 +113,13 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// Sets the anchors of the switches whose function depends on where the run is
     /// (`anchors` of length [`Self::switch_count`]; the others are left alone): a switch at
     /// the knots of a table of the state is anchored at the knot bracket of the table's
-    /// argument ([`crate::table::knot_bracket`]). A run sets them at its start and after
+    /// argument ([`crate::table::knot_bracket_read`]). A run sets them at its start and after
     /// every crossing. None by default.
     fn switch_anchors(&self, _t: f64, _velocity_state: &SVector<f64, S>, _anchors: &mut [f64]) {}
 
     /// The switching functions with the anchors a run last set by [`Self::switch_anchors`]:
     /// an anchored switch is ≥ 0 at the point it was anchored at and changes sign where
-    /// the run leaves its bracket ([`crate::table::knot_gap`]), so that a step across
+    /// the run leaves its bracket ([`crate::table::knot_gap_read`]), so that a step across
     /// several knots is a crossing too. [`Self::switching_functions`] by default, which
     /// gives an anchored switch anchored at the point itself.
     fn anchored_switching_functions(
@@ -210,6 +157,15 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(())
     }
 
+    /// The angle, rad, from the nearest singular attitude of the system's Euler sequences at
+    /// `(t, state)` ([`crate::math::singular_attitude_distance`]), which a run records its
+    /// closest approach to (`Solution::closest_singular_attitude`); `None` (the default) for
+    /// a system without spatial rigid bodies.
+    fn singular_attitude_distance(&self, t: f64, state: &SVector<f64, S>) -> Option<f64> {
+        let _ = (t, state);
+        None
+    }
+
     /// The number of flows (`outflow` and `inflow` statements) whose rates a run checks.
     /// None by default; generated systems count their flows.
     fn flow_count(&self) -> usize {
@@ -224,7 +180,7 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// The rate of flow `index` (Q1 of an outflow, Q2 of an inflow, eqs. 15–16) at a
     /// velocity state, NaN past the last. It is ≥ 0 by definition (the statement says which
     /// way the mass goes), so a run ends with
-    /// [`StepErrorKind::NegativeFlowRate`](crate::StepErrorKind::NegativeFlowRate) at the
+    /// [`StepErrorKind::NegativeFlowRate`] at the
     /// first point where one is negative, instead of turning the reactive forces round.
     fn flow_rate(&self, _index: usize, _t: f64, _velocity_state: &SVector<f64, S>) -> f64 {
         f64::NAN
@@ -332,6 +288,18 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(rate)
     }
 
+    /// The state rate of the free equations: [`Self::state_rate`] itself, except for a body
+    /// held on its support ([`crate::support::Supported`]), whose state rate clamps the
+    /// supported coordinate while this gives the rate the body would have without the
+    /// support (its momentum rate is the lift-off's switching function).
+    fn free_state_rate(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+    ) -> Result<SVector<f64, S>, SystemError> {
+        self.state_rate(t, state)
+    }
+
     /// The energy-budget power dH/dt along the motion (docs/mechanics.md#energy-budget). The default differentiates
     /// H along the state rate by central differences; generated systems return the formula
     /// ∂*H/∂t + q̇·(Q* − R1 + R2 + Σ ṁᵢ ∂*p/∂mᵢ) + Σ ṁᵢ ∂H/∂mᵢ.
@@ -374,7 +342,7 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         _t: f64,
         _state: &SVector<f64, S>,
         _coefficients: &mut [SVector<f64, S>],
-        _scratch: &mut crate::steppers::taylor::series::Scratch,
+        _scratch: &mut crate::scratch::Scratch,
     ) -> Option<Result<(), SystemError>> {
         None
     }
@@ -398,5 +366,37 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// [`taylor_head`](VariableMassSystem::taylor_head); `None` by default.
     fn taylor_head_rate(&self, _t: f64, _state: &[crate::dd::Dd; S]) -> Option<[crate::dd::Dd; S]> {
         None
+    }
+}
+
+// The bridge from the trait to the run's errors lives beside the trait, so that the errors
+// (`crate::error`) stay a leaf that every module may read.
+impl<const S: usize> StepError<S> {
+    /// Attaches the time and state to a [`SystemError`]. A singular mass matrix is reported
+    /// as the non-positive mass that caused it when there is one, and a non-finite state as
+    /// such, because those are the causes a user can act on.
+    pub fn from_system<Sys, const N: usize>(
+        system: &Sys,
+        error: SystemError,
+        time: f64,
+        state: &SVector<f64, S>,
+    ) -> Self
+    where
+        Sys: VariableMassSystem<N, S> + ?Sized,
+    {
+        let state = *state;
+        if !is_finite(&state) {
+            return Self::new(time, state, StepErrorKind::NonFiniteState);
+        }
+        let error = match error {
+            SystemError::SingularMassMatrix => match system.check_masses(time, &state) {
+                Err(mass_error) => mass_error,
+                Ok(()) => error,
+            },
+            SystemError::NonPositiveMass { .. }
+            | SystemError::TableOutside { .. }
+            | SystemError::SampledInputNotFinite { .. } => error,
+        };
+        Self::new(time, state, StepErrorKind::System(error))
     }
 }

@@ -6,7 +6,17 @@
 //! II.4). Dormand–Prince (its step-size control and its first step), DOP853 (through
 //! [`Tolerance::mean_squares_pair`]) and the Newton iteration of the implicit steppers all
 //! measure with [`weighted_rms`]'s rule; their configurations are checked
-//! by [`Tolerance::new`].
+//! by [`Tolerance::new`]. The Taylor stepper's order and step come from a [`Tolerance`] too
+//! (Jorba & Zou's rule, `steppers/taylor.rs`).
+//!
+//! **The floor is the method's.** A relative tolerance finer than the method's arithmetic
+//! can honour only shrinks the steps (or raises the order) without lowering the error, so
+//! each method refuses one below its [`Floor`], the finest at which the achieved error
+//! still follows the tolerance, measured on Kepler (e = 0.5, three orbits, against the
+//! exact orbit; `tests/kepler_floor.rs::tolerance_floor_table`) and the sled
+//! (`tests/tolerance_floor.rs::tolerance_floor_table`). The one rule: [`Tolerance::new`]
+//! checks against [`Floor::ErrorEstimate`], [`Tolerance::for_floor`] against the floor it
+//! is given, and each stepper refuses a tolerance below its own floor.
 
 use nalgebra::SVector;
 
@@ -47,10 +57,81 @@ fn scaled_square(value: f64, scale: impl FnOnce(f64) -> f64) -> f64 {
     }
 }
 
+/// The finest relative tolerance a method honours: below it the achieved error stops
+/// following the tolerance (the module docs say where each was measured).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Floor {
+    /// The error-estimating steppers (Dormand–Prince, DOP853, SDIRK4, ESDIRK4(3)):
+    /// 100 machine epsilons, ≈ 2.2e-14. The rounding of one step's own arithmetic (a few ε
+    /// per stage, times the stages, times the magnitude of the state) is already of that
+    /// size, and their error estimates see only rounding below it. Hairer's codes refuse
+    /// such tolerances for the same reason (DOPRI5 and DOP853 stop with "tolerances are
+    /// too small" below 10·uround; 100 ε leaves the margin the estimates need). Measured:
+    /// DOP853 on Kepler ends 7.6e-13 off at 100 ε, 9.4e-14 at 1e-14, 1.0e-13 at 1e-15 and
+    /// 9.9e-14 at 1e-16 (run below the floor for the measurement): it stops following at
+    /// about 1e-14, and 100 ε keeps a factor 2 to spare.
+    ErrorEstimate,
+    /// The Taylor stepper in double: 1e-15 (≈ 4.5 ε). Down to it the error follows the
+    /// tolerance where truncation dominates: the sled's closed form over 1 s is met to
+    /// 2.7e-16 at 1e-14 and 1.3e-16 (one ulp) at 1e-15, Kepler over ¾ orbit to 9.6e-16 at
+    /// 1e-15 (`core/tests/taylor.rs`). Below it only the order grows, and the error is the
+    /// rounding of the first two coefficients at every step: Kepler over three orbits ends
+    /// 2.0e-14 rms over 16 starts at 1e-14 and at 1e-15 (6.7e-14 at 100 ε), and no lower
+    /// than 1.0e-14 at any finer tolerance.
+    Taylor,
+    /// The Taylor stepper with its double-double head (`Taylor::with_head`): one machine
+    /// epsilon, ≈ 2.2e-16. On Kepler's start 5.2e-16 at 1e-15, 2.4e-16 at 2e-16 and
+    /// 1e-16, 4.3e-16 at 1e-17: the state's own storage (half an ulp of θ ≈ 6π) is all
+    /// that is left.
+    TaylorHead,
+}
+
+impl Floor {
+    /// The finest relative tolerance.
+    pub const fn relative(self) -> f64 {
+        match self {
+            Self::ErrorEstimate => 100.0 * f64::EPSILON,
+            Self::Taylor => 1e-15,
+            Self::TaylorHead => f64::EPSILON,
+        }
+    }
+
+    /// Why a finer relative tolerance is refused, with the number (a constant string, as
+    /// [`ConfigError`] carries one).
+    const fn refusal(self) -> &'static str {
+        match self {
+            Self::ErrorEstimate => {
+                "the relative tolerance is below 100 machine epsilons (2.2e-14), the floor of \
+                 the error-estimating steppers: finer than f64 can honour"
+            }
+            Self::Taylor => {
+                "the relative tolerance is below 1e-15, the Taylor stepper's floor in double \
+                 (its double-double head honours down to 2.2e-16)"
+            }
+            Self::TaylorHead => {
+                "the relative tolerance is below one machine epsilon (2.2e-16), the floor of \
+                 the Taylor stepper with its double-double head"
+            }
+        }
+    }
+
+    /// `relative` against this floor: refused (with the floor in the reason) when it is
+    /// positive and finer.
+    pub fn check(self, relative: f64) -> Result<(), ConfigError> {
+        if relative > 0.0 && relative < self.relative() {
+            Err(ConfigError {
+                reason: self.refusal(),
+            })
+        } else {
+            Ok(())
+        }
+    }
+}
+
 /// A relative and an absolute tolerance, checked: both finite and non-negative, not both
-/// zero, and a relative tolerance, when there is one, no finer than
-/// [`Tolerance::MIN_RELATIVE`]. Component i of an error is weighed against
-/// [`Tolerance::weight`]: atol + rtol·mᵢ.
+/// zero, and a relative tolerance, when there is one, no finer than the method's
+/// [`Floor`] ([`Tolerance::MIN_RELATIVE`] for [`Tolerance::new`]). Component i of an error
+/// is weighed against [`Tolerance::weight`]: atol + rtol·mᵢ.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerance {
     relative: f64,
@@ -58,18 +139,21 @@ pub struct Tolerance {
 }
 
 impl Tolerance {
-    /// The finest relative tolerance f64 can honour: 100 machine epsilons (≈ 2.2e-14). The
-    /// rounding of one step's own arithmetic (a few ε per stage, times the stages, times the
-    /// magnitude of the state) is already of that size, so a finer request can never be met
-    /// and an adaptive stepper would shrink its step until the step limit. Hairer's codes
-    /// refuse such tolerances for the same reason (DOPRI5 and DOP853 stop with "tolerances
-    /// are too small" below 10·uround; 100 ε leaves the margin the error estimates need).
-    pub const MIN_RELATIVE: f64 = 100.0 * f64::EPSILON;
+    /// The finest relative tolerance of the error-estimating steppers, 100 machine
+    /// epsilons (≈ 2.2e-14): [`Floor::ErrorEstimate`]'s.
+    pub const MIN_RELATIVE: f64 = Floor::ErrorEstimate.relative();
 
-    /// A tolerance of `relative` (rtol) and `absolute` (atol); fails unless both are finite
-    /// and non-negative, at least one is positive, and a positive `relative` is at least
-    /// [`Tolerance::MIN_RELATIVE`] (a purely absolute tolerance, rtol = 0, stays usable).
+    /// A tolerance of `relative` (rtol) and `absolute` (atol) for the error-estimating
+    /// steppers: [`Tolerance::for_floor`] at [`Floor::ErrorEstimate`].
     pub fn new(relative: f64, absolute: f64) -> Result<Self, ConfigError> {
+        Self::for_floor(relative, absolute, Floor::ErrorEstimate)
+    }
+
+    /// A tolerance of `relative` (rtol) and `absolute` (atol) for a method of floor
+    /// `floor`; fails unless both are finite and non-negative, at least one is positive,
+    /// and a positive `relative` is at least the floor (a purely absolute tolerance,
+    /// rtol = 0, stays usable).
+    pub fn for_floor(relative: f64, absolute: f64, floor: Floor) -> Result<Self, ConfigError> {
         let usable = relative >= 0.0
             && absolute >= 0.0
             && relative.is_finite()
@@ -80,12 +164,7 @@ impl Tolerance {
                 reason: "tolerances must be finite, non-negative and not both zero",
             });
         }
-        if relative > 0.0 && relative < Self::MIN_RELATIVE {
-            return Err(ConfigError {
-                reason: "the relative tolerance is below 100 machine epsilons (2.2e-14), \
-                         finer than f64 can honour",
-            });
-        }
+        floor.check(relative)?;
         Ok(Self { relative, absolute })
     }
 
@@ -199,6 +278,23 @@ mod tests {
             error.reason
         );
         assert!(Tolerance::new(Tolerance::MIN_RELATIVE, 0.0).is_ok());
+        // Each floor refuses below itself, naming its number, and takes itself.
+        for (floor, named) in [
+            (Floor::ErrorEstimate, "2.2e-14"),
+            (Floor::Taylor, "1e-15"),
+            (Floor::TaylorHead, "2.2e-16"),
+        ] {
+            let below = floor.relative() * (1.0 - f64::EPSILON);
+            let error = Tolerance::for_floor(below, 0.0, floor).unwrap_err();
+            assert!(error.reason.contains(named), "{floor:?}: {}", error.reason);
+            assert!(Tolerance::for_floor(floor.relative(), 0.0, floor).is_ok());
+        }
+        // 1e-16 is finer than the double Taylor stepper's floor, not than its head's; 1e-15
+        // than the error-estimating steppers', not than Taylor's.
+        assert!(Tolerance::for_floor(5e-16, 5e-16, Floor::Taylor).is_err());
+        assert!(Tolerance::for_floor(5e-16, 5e-16, Floor::TaylorHead).is_ok());
+        assert!(Tolerance::new(1e-15, 1e-15).is_err());
+        assert!(Tolerance::for_floor(1e-15, 1e-15, Floor::Taylor).is_ok());
         // Either alone is usable.
         assert_eq!(Tolerance::new(1e-6, 0.0).map(|t| t.weight(2.0)), Ok(2e-6));
         assert_eq!(Tolerance::new(0.0, 1e-9).map(|t| t.weight(2.0)), Ok(1e-9));

@@ -14,6 +14,7 @@ use varmass_core::steppers::{
     ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, StepControl, Taylor, TaylorControl,
     Variational, VariationalConfig,
 };
+use varmass_core::tolerance::{Floor, Tolerance};
 use varmass_core::{observe, Observable, Stepper};
 
 /// Allocations made during `steps` calls of `step()` (after the stepper is built).
@@ -105,7 +106,15 @@ fn steppers_do_not_allocate_per_step() {
         (
             "Taylor",
             allocations_while_stepping(
-                Taylor::new(system, 0.0, y0, TaylorControl::adaptive(1e-12, 1e-12)).unwrap(),
+                Taylor::new(
+                    system,
+                    0.0,
+                    y0,
+                    TaylorControl::adaptive(
+                        Tolerance::for_floor(1e-12, 1e-12, Floor::Taylor).unwrap(),
+                    ),
+                )
+                .unwrap(),
                 steps,
             ),
         ),

@@ -206,8 +206,8 @@ fn rocket_out_of_propellant_ends_in_the_event_or_a_typed_error() {
         assert!(
             matches!(
                 error.kind,
-                StepErrorKind::NonPositiveMass { index: 0, .. }
-                    | StepErrorKind::SingularMassMatrix
+                StepErrorKind::System(varmass_core::SystemError::NonPositiveMass { index: 0, .. })
+                    | StepErrorKind::System(varmass_core::SystemError::SingularMassMatrix)
                     | StepErrorKind::NewtonDivergence { .. }
             ),
             "{error:?}"

@@ -241,7 +241,7 @@ fn failed_members_are_reported_with_index_parameters_and_error() {
         match &failure.error {
             MemberError::Run(StepError {
                 time,
-                kind: StepErrorKind::NonPositiveMass { index: 0 },
+                kind: StepErrorKind::System(varmass_core::SystemError::NonPositiveMass { index: 0 }),
                 ..
             }) => {
                 assert!((time - 10.0).abs() < 1e-9, "failed at t = {time}");

@@ -99,7 +99,7 @@ fn rocket_out_of_propellant_is_a_typed_error_for_every_stepper() {
         };
         assert_eq!(
             error.kind,
-            StepErrorKind::NonPositiveMass { index: 0 },
+            StepErrorKind::System(varmass_core::SystemError::NonPositiveMass { index: 0 }),
             "{method:?}: {error:?}"
         );
         // At the end of the step to t = 20 (measured 20 + 1.4e-14 after 200 additions of
@@ -139,7 +139,10 @@ fn adaptive_rocket_past_burn_out_fails_at_burn_out() {
     )
     .unwrap();
     let error = run(&mut stepper, &RunConfig::until(30.0), &[]).unwrap_err();
-    assert_eq!(error.kind, StepErrorKind::NonPositiveMass { index: 0 });
+    assert_eq!(
+        error.kind,
+        StepErrorKind::System(varmass_core::SystemError::NonPositiveMass { index: 0 })
+    );
     // Measured 20 − 3.6e-15 (one unit in the last place of 20); ten units asserted.
     assert!(
         error.time <= 20.0 && 20.0 - error.time < 10.0 * 3.6e-15,
@@ -202,7 +205,10 @@ fn invalid_configurations_are_rejected_before_stepping() {
     let mut empty = rocket.initial_state();
     empty[2] = 0.0;
     let error = ClassicalRk4::new(&rocket.system, 3.0, empty, FixedStep { step: 0.1 }).unwrap_err();
-    assert_eq!(error.kind, StepErrorKind::NonPositiveMass { index: 0 });
+    assert_eq!(
+        error.kind,
+        StepErrorKind::System(varmass_core::SystemError::NonPositiveMass { index: 0 })
+    );
     assert_eq!(error.time, 3.0);
 }
 
@@ -296,6 +302,7 @@ fn a_step_past_the_largest_time_is_a_typed_error_at_the_start() {
 #[test]
 fn taylor_configuration_and_expansion_errors_are_typed() {
     use varmass_core::steppers::{Taylor, TaylorControl};
+    use varmass_core::tolerance::{Floor, Tolerance};
     let is_invalid =
         |error: &StepError<3>| matches!(error.kind, StepErrorKind::InvalidConfiguration { .. });
     // The hand-written rocket provides no Taylor coefficients.
@@ -327,9 +334,12 @@ fn taylor_configuration_and_expansion_errors_are_typed() {
             order: 4,
             step: f64::NAN,
         },
-        TaylorControl::adaptive(-1.0, 1e-9),
-        TaylorControl::adaptive(0.0, 0.0),
-        TaylorControl::adaptive(f64::NAN, 1e-9),
+        TaylorControl::Adaptive {
+            tolerance: Tolerance::new(1e-6, 1e-9).unwrap(),
+            max_step: 0.0,
+        },
+        // Usable by the head, finer than the double stepper's floor (1e-15).
+        TaylorControl::adaptive(Tolerance::for_floor(5e-16, 5e-16, Floor::TaylorHead).unwrap()),
     ] {
         let error = Taylor::new(&oscillator.system, 0.5, y0, control).unwrap_err();
         assert!(
@@ -338,13 +348,20 @@ fn taylor_configuration_and_expansion_errors_are_typed() {
         );
         assert_eq!((error.time, error.state), (0.5, y0), "{control:?}");
     }
+    // Unusable tolerances never reach the stepper: `Tolerance` refuses them.
+    for (relative, absolute) in [(-1.0, 1e-9), (0.0, 0.0), (f64::NAN, 1e-9)] {
+        assert!(Tolerance::for_floor(relative, absolute, Floor::Taylor).is_err());
+    }
     // Kepler at r = 0: the expansion fails (1/r), reported at the start of the step.
     let kepler = KeplerProblem::standard();
     let mut singular = kepler.initial_state();
-    let control = TaylorControl::adaptive(1e-9, 1e-9);
+    let control = TaylorControl::adaptive(Tolerance::for_floor(1e-9, 1e-9, Floor::Taylor).unwrap());
     singular[0] = 0.0;
     let error = Taylor::new(&kepler.system, 0.25, singular, control).unwrap_err();
-    assert_eq!(error.kind, StepErrorKind::SingularMassMatrix);
+    assert_eq!(
+        error.kind,
+        StepErrorKind::System(varmass_core::SystemError::SingularMassMatrix)
+    );
     assert_eq!(error.time, 0.25);
     // A fixed step far past the series' radius: h²⁰ = 1e400 overflows the sum to a
     // non-finite state, a typed error at the end of the step, never a silent NaN.

@@ -19,7 +19,10 @@ fn a_rocket_that_runs_out_keeps_its_points() {
         DormandPrince::new(&problem.system, 0.0, problem.initial_state(), control).unwrap();
     let failure = run(&mut stepper, &RunConfig::until(30.0), &[]).unwrap_err();
     // The error reads as before through the RunError.
-    assert_eq!(failure.kind, StepErrorKind::NonPositiveMass { index: 0 });
+    assert_eq!(
+        failure.kind,
+        StepErrorKind::System(varmass_core::SystemError::NonPositiveMass { index: 0 })
+    );
     assert!(
         failure.time <= 20.0 && 20.0 - failure.time < 1e-13,
         "{failure:?}"

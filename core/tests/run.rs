@@ -237,10 +237,12 @@ fn a_taylor_run_locates_its_event_on_the_series() {
     use std::f64::consts::PI;
     use support::problems::OscillatorProblem;
     use varmass_core::steppers::{Taylor, TaylorControl};
+    use varmass_core::tolerance::{Floor, Tolerance};
     use varmass_core::{Direction, Event};
 
     let problem = OscillatorProblem::standard();
-    let control = TaylorControl::adaptive(1e-14, 1e-14);
+    let control =
+        TaylorControl::adaptive(Tolerance::for_floor(1e-14, 1e-14, Floor::Taylor).unwrap());
     let mut stepper = Taylor::new(&problem.system, 0.0, problem.exact(0.0), control).unwrap();
     let events = [Event::state_reaches(0, 0.0, Direction::Falling)];
     let solution = run(&mut stepper, &RunConfig::until(3.0), &events).unwrap();

@@ -8,13 +8,15 @@ mod support;
 use support::problems::{KeplerProblem, OscillatorProblem};
 use support::{integrate, Problem};
 use varmass_core::steppers::{Taylor, TaylorControl};
+use varmass_core::tolerance::{Floor, Tolerance};
 use varmass_core::{StepOutcome, Stepper};
 
 /// The error at the end of Kepler (e = 0.5, three quarters of an orbit) with tolerance
 /// `tolerance` (relative and absolute), the order used and the statistics.
 fn kepler(tolerance: f64) -> (f64, usize, varmass_core::Statistics) {
     let problem = KeplerProblem::standard();
-    let control = TaylorControl::adaptive(tolerance, tolerance);
+    let control =
+        TaylorControl::adaptive(Tolerance::for_floor(tolerance, tolerance, Floor::Taylor).unwrap());
     let stepper = Taylor::new(&problem.system, 0.0, problem.initial_state(), control).unwrap();
     let mut stepper = stepper;
     stepper.set_stop_time(problem.end_time).unwrap();
@@ -51,7 +53,8 @@ fn order_and_error_follow_the_tolerance_without_rejections() {
 #[test]
 fn dense_output_is_the_series_and_as_accurate_inside_a_step() {
     let problem = OscillatorProblem::standard();
-    let control = TaylorControl::adaptive(1e-13, 1e-13);
+    let control =
+        TaylorControl::adaptive(Tolerance::for_floor(1e-13, 1e-13, Floor::Taylor).unwrap());
     let mut stepper = Taylor::new(&problem.system, 0.0, problem.exact(0.0), control).unwrap();
     // Before the first step the dense output is the current state.
     assert_eq!(stepper.dense_output(0.0), Some(problem.exact(0.0)));

@@ -9,7 +9,7 @@
 use libfuzzer_sys::fuzz_target;
 use quote::quote;
 use varmass_symbolic::emit::{emit_system, Target};
-use varmass_symbolic::mechanics::{derive, Parameters};
+use varmass_symbolic::{derive, mechanics::Parameters};
 use varmass_symbolic::parse::{known_tags, parse_system, select_tags};
 use varmass_symbolic::Diagnostic;
 

@@ -18,7 +18,7 @@ use libfuzzer_sys::fuzz_target;
 use varmass::core::steppers::{ImplicitMidpointConfig, VariationalConfig};
 use varmass::prelude::*;
 use varmass_symbolic::expr::Tape;
-use varmass_symbolic::mechanics::{derive, Derivation, Parameters, VelocitySolve};
+use varmass_symbolic::{derive, mechanics::{Derivation, Parameters, VelocitySolve}};
 use varmass_symbolic::parse::{parse_system, select_tags};
 
 // The systems are the repository's model files (paths relative to this crate, `fuzz/`),

@@ -3,10 +3,14 @@
 
 use proc_macro2::TokenStream;
 use quote::{quote, ToTokens};
+use varmass_symbolic::compose::{compose, Composition};
 use varmass_symbolic::emit::{emit_system_for, Target};
-use varmass_symbolic::mechanics::{derive_in, Outputs, Parameters};
 use varmass_symbolic::parse::ast::{MassLaw, StatementKind, SystemAst};
 use varmass_symbolic::parse::{parse_system, select_tags};
+use varmass_symbolic::{
+    derive_in,
+    mechanics::{Outputs, Parameters},
+};
 
 use crate::ast::{parse_attribute, parse_struct, Attribute};
 use crate::ctxt::Ctxt;
@@ -32,30 +36,52 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
         .and_then(|a| ModelText::load(&a.source).map_err(|e| cx.push(e)).ok());
     let mut dims = (1, 0);
     let mut generated = None;
-    let ast = match (&attribute, &model) {
+    let composed = match (&attribute, &model) {
         (Some(attribute), Some(model)) => selected_system(&cx, attribute, model),
         _ => None,
     };
     // The fields of `= runtime` tables hold their data; every other field is a parameter.
-    let tables = ast.as_ref().map(runtime_tables).unwrap_or_default();
+    let tables = composed
+        .as_ref()
+        .map(|(ast, _)| runtime_tables(ast))
+        .unwrap_or_default();
     let fields = parameter_fields(&cx, &item_struct, &tables);
-    if let (Some(attribute), Some(model), Some(ast)) = (&attribute, &model, &ast) {
+    if let (Some(attribute), Some(model), Some((ast, composition))) =
+        (&attribute, &model, &composed)
+    {
         dims = dimensions(ast);
         let outputs = outputs(&cx, attribute);
-        generated = generate(&cx, &item_struct, &fields, model, ast, outputs);
+        generated = generate(
+            &cx,
+            &item_struct,
+            &fields,
+            (model, composition),
+            ast,
+            outputs,
+        );
     }
-    let tracking = model.as_ref().map(ModelText::tracking);
+    let composition = composed.as_ref().map(|(_, composition)| composition);
+    let tracking = model.as_ref().map(|m| m.tracking(composition));
     finish(cx, &item_struct, dims, generated, tracking)
 }
 
-/// The parsed system with the statements the attribute's `with` selects, or `None` after
-/// reporting why not.
-fn selected_system(cx: &Ctxt, attribute: &Attribute, model: &ModelText) -> Option<SystemAst> {
+/// The parsed system, its components expanded (docs/components.md), with the statements the
+/// attribute's `with` selects, and the composition that locates diagnostics in components;
+/// or `None` after reporting why not.
+fn selected_system(
+    cx: &Ctxt,
+    attribute: &Attribute,
+    model: &ModelText,
+) -> Option<(SystemAst, Composition)> {
     let ast = parse_system(&model.text)
         .map_err(|errors| model.report(cx, &errors))
         .ok()?;
+    let composition = compose(&model.text, ast, &model.path())
+        .map_err(|errors| model.report(cx, &errors))
+        .ok()?;
     let with: Vec<String> = attribute.with.iter().map(|t| t.value()).collect();
-    select_tags(&ast, &with)
+    select_tags(&composition.ast, &with)
+        .map(|ast| (ast, composition))
         .map_err(|unknown| {
             for u in unknown {
                 cx.error_at(attribute.with[u.index].span(), &u);
@@ -84,13 +110,13 @@ fn generate(
     cx: &Ctxt,
     item_struct: &syn::ItemStruct,
     fields: &[syn::Ident],
-    model: &ModelText,
+    (model, composition): (&ModelText, &Composition),
     ast: &SystemAst,
     outputs: Outputs,
 ) -> Option<TokenStream> {
     let names = fields.iter().map(|f| f.to_string()).collect();
     let mut derivation = derive_in(ast, Parameters::Declared(names), outputs, &model.base())
-        .map_err(|errors| model.report(cx, &errors))
+        .map_err(|errors| model.report(cx, &composition.locate(errors)))
         .ok()?;
     check_unused_fields(cx, fields, &derivation);
     check_generated_names(cx, fields, &derivation);

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::LitStr;
+use varmass_symbolic::compose::Composition;
 use varmass_symbolic::mechanics::Derivation;
 use varmass_symbolic::parse::Origin;
 use varmass_symbolic::Diagnostic;
@@ -76,16 +77,24 @@ impl ModelText {
         quote!(#(const _: &[u8] = ::core::include_bytes!(#paths);)*)
     }
 
-    /// Makes cargo rebuild the crate when the model file changes: an `include_bytes!` of it
-    /// (nothing for an inline system).
-    pub fn tracking(&self) -> TokenStream {
-        let Some((_, resolved)) = &self.file else {
-            return TokenStream::new();
-        };
-        let path = resolved.to_string_lossy();
-        quote!(
-            const _: &[u8] = ::core::include_bytes!(#path);
-        )
+    /// The model file, or for an inline system a name in the crate's directory: where the
+    /// paths of its components start (docs/components.md).
+    pub fn path(&self) -> PathBuf {
+        match &self.file {
+            Some((_, resolved)) => resolved.clone(),
+            None => self.base().join("(inline system)"),
+        }
+    }
+
+    /// Makes cargo rebuild the crate when the model file or one of its components changes:
+    /// an `include_bytes!` of each (nothing for an inline system without components).
+    pub fn tracking(&self, composition: Option<&Composition>) -> TokenStream {
+        let model = self.file.iter().map(|(_, resolved)| resolved.as_path());
+        let components = composition.into_iter().flat_map(Composition::files);
+        let paths = model
+            .chain(components)
+            .map(|p| p.to_string_lossy().into_owned());
+        quote!(#(const _: &[u8] = ::core::include_bytes!(#paths);)*)
     }
 
     /// Each diagnostic as a compile error on the literal, with the line:column (in the Rust

@@ -15,11 +15,11 @@ use varmass::core::ensemble::{member_rng, Ensemble, Partial, Shard, SummaryConfi
 use varmass_cli::args::RunArgs;
 use varmass_cli::error::CliError;
 use varmass_cli::model::LoadedModel;
-use varmass_cli::run::Compiled;
+use varmass_cli::run::{column_name, Compiled};
 
 use crate::errors::{to_py, value_error};
 use crate::model::NativeModel;
-use crate::run::{bytes, parse_args};
+use crate::run::{bytes, run_args, Options};
 use crate::sample::Distribution;
 
 /// The most observables an ensemble reports (the core's ensemble has their count as a
@@ -150,7 +150,7 @@ pub struct NativeEnsemble {
 
 #[pymethods]
 impl NativeEnsemble {
-    /// Checks the specification: flags, distributions, observables, and that member 0's
+    /// Checks the specification: options, distributions, observables, and that member 0's
     /// input is accepted (an unknown name or a missing value is a `ValueError` now, not a
     /// failure of every member later; member 0's *run* may still fail).
     #[new]
@@ -163,7 +163,7 @@ impl NativeEnsemble {
         with: Vec<String>,
         set: Vec<(String, f64)>,
         sample: Vec<(String, String, f64, f64)>,
-        flags: Vec<String>,
+        options: Options,
         observables: Vec<String>,
     ) -> PyResult<Self> {
         if observables.is_empty() || observables.len() > MAX_OBSERVABLES {
@@ -179,19 +179,13 @@ impl NativeEnsemble {
             })
             .collect::<Result<Vec<_>, _>>()
             .map_err(value_error)?;
-        let recorded: Vec<&String> = observables.iter().filter(|o| *o != "t").collect();
-        let mut flags = flags;
-        flags.extend(recorded.iter().map(|name| format!("--record={name}")));
-        let args = parse_args(&file, &with, &flags).map_err(|e| to_py(py, e))?;
+        let mut args = run_args(&file, &with, options).map_err(|e| to_py(py, e))?;
+        let recorded = observables.iter().filter(|o| *o != "t").cloned();
+        args.record.extend(recorded);
         // Keep only the end point: one output interval, the whole run (the same steps).
-        let args = match args.until.filter(|&until| until > args.from) {
-            Some(until) => {
-                let mut flags = flags;
-                flags.push(format!("--every={:?}", until - args.from));
-                parse_args(&file, &with, &flags).map_err(|e| to_py(py, e))?
-            }
-            None => args,
-        };
+        if let Some(until) = args.until.filter(|&until| until > args.from) {
+            args.every = Some(until - args.from);
+        }
         let mut next = 0;
         let sources = observables
             .iter()
@@ -210,7 +204,7 @@ impl NativeEnsemble {
             fixed: set,
             sampled,
             args,
-            names: observables.iter().map(|o| intern(o)).collect(),
+            names: observables.iter().map(|o| intern(column_name(o))).collect(),
             sources,
         };
         let drawn = spec.sample(&mut member_rng(seed, 0));
@@ -253,6 +247,12 @@ impl NativeEnsemble {
             .detach(|| self.spec.fly(&drawn))
             .map_err(|e| to_py(py, e))?;
         Ok((drawn, values))
+    }
+
+    /// The observables' column names, as `--record` names them (`MU` for `"MU=mu"`).
+    #[getter]
+    fn columns(&self) -> Vec<&'static str> {
+        self.spec.names.clone()
     }
 
     /// The members of shard `index` of `count` in an ensemble of `total`.

@@ -20,13 +20,16 @@ use pyo3::prelude::*;
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // The tool's list of methods, so that Python's checks cannot drift from it.
+    m.add("METHODS", varmass_cli::args::Method::names())?;
     m.add_function(wrap_pyfunction!(model::load, m)?)?;
-    m.add_function(wrap_pyfunction!(run::parse, m)?)?;
+    m.add_function(wrap_pyfunction!(run::options, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
     m.add_class::<model::NativeModel>()?;
     m.add_class::<run::RunFlags>()?;
     m.add_class::<run::Details>()?;
+    m.add_class::<scene::NativeScene>()?;
     m.add_class::<ensemble::NativeEnsemble>()?;
     m.add_class::<ensemble::NativePartial>()?;
     Ok(())

@@ -85,12 +85,23 @@ pub fn load<'py>(
     facts.set_item("state_masses", masses(true))?;
     facts.set_item("mass_laws", masses(false))?;
     facts.set_item("tags", tags)?;
+    // The tables declared from a RASP file: arrays given for one are read as such a file.
+    let motors: Vec<&str> = d
+        .tables
+        .iter()
+        .filter(|t| !t.runtime && t.path.extension().is_some_and(|e| e == "eng"))
+        .map(|t| t.name.as_str())
+        .collect();
+    facts.set_item("motors", motors)?;
     let checks: Vec<(String, String)> = d
         .checks
         .iter()
         .map(|c| (c.source.clone(), verdict(&c.verdict)))
         .collect();
     facts.set_item("checks", checks)?;
+    // What `varmass check` and `run` warn of (a parameter one edit from another name, most
+    // likely a typo that became a parameter): `Model` warns of it when made.
+    facts.set_item("warnings", &loaded.warnings)?;
     let model = NativeModel {
         compiled: Mutex::new(Compiled::new(loaded)),
     };

@@ -1,56 +1,92 @@
-//! One run with the command line tool's semantics: the options arrive as the tool's own
-//! flags (`--until=…`, `--init=x=0`, …), parsed by its clap parser, so every default, check
-//! and message is the tool's; the parameter values arrive as numbers. The result comes back
-//! as raw little-endian `f64` bytes per column, which NumPy wraps without a copy per value.
+//! One run with the command line tool's semantics: the options arrive typed (checked for
+//! their Python types by `varmass/_checks.py`) and become the tool's [`RunArgs`] directly,
+//! with messages in Python's words ([`Words::Python`]); the run is the tool's one path
+//! ([`varmass_cli::run::Compiled::execute`]), so every default and check is the tool's.
+//! The result comes back as raw little-endian `f64` bytes per column, which NumPy wraps
+//! without a copy per value.
 
 use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyFloat, PyString};
 use varmass::core::Statistics;
-use varmass_cli::args::{Cli, Command, RunArgs};
+use varmass_cli::args::{Method, ModelArgs, RunArgs, Words};
 use varmass_cli::error::CliError;
 use varmass_cli::run::{Failed, Summary, Table};
 
 use crate::errors::{to_py, value_error};
 use crate::model::NativeModel;
 
-/// `varmass run FILE <flags>` parsed by the tool's parser; a bad flag is the tool's message.
-pub fn parse_args(file: &str, with: &[String], flags: &[String]) -> Result<RunArgs, CliError> {
-    let mut argv = vec!["varmass".to_string(), "run".to_string(), file.to_string()];
-    argv.extend(with.iter().map(|tag| format!("--with={tag}")));
-    argv.extend(flags.iter().cloned());
-    let cli = <Cli as clap::Parser>::try_parse_from(argv).map_err(|e| {
-        // clap's own rendering, without its usage footer (the Python API has no usage).
-        let text = e.to_string();
-        let first = text
-            .lines()
-            .next()
-            .unwrap_or("")
-            .trim_start_matches("error: ");
-        CliError::Input(first.to_string())
-    })?;
-    match cli.command {
-        Command::Run(args) => Ok(*args),
-        _ => Err(CliError::Input("not a run".to_string())),
-    }
+/// A run's options as `_checks.run_options` makes them: a dict of Python's keywords to
+/// values of their types (the names and laws as text, as the tool reads them).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+pub struct Options {
+    from_: f64,
+    until: f64,
+    init: Vec<(String, f64)>,
+    stop_when: Vec<String>,
+    method: String,
+    tol: Option<f64>,
+    step: Option<f64>,
+    record: Vec<String>,
+    every: Option<f64>,
+    inputs: Vec<(String, String)>,
+    tables: Vec<(String, String)>,
 }
 
-/// A run's flags, parsed once by the tool's parser (a `Model` keeps the last one, so a
-/// sweep over parameter values with the same flags parses them once).
+/// The tool's arguments of a run of the model `file` with the tags `with` and `options`.
+pub fn run_args(file: &str, with: &[String], options: Options) -> Result<RunArgs, CliError> {
+    let method = <Method as clap::ValueEnum>::from_str(&options.method, false)
+        .map_err(|_| CliError::Input(format!("method {:?} is unknown", options.method)))?;
+    let pairs = |pairs: Vec<(String, String)>| -> Vec<String> {
+        pairs.into_iter().map(|(n, v)| format!("{n}={v}")).collect()
+    };
+    Ok(RunArgs {
+        model: ModelArgs {
+            file: file.into(),
+            with: with.to_vec(),
+        },
+        set: Vec::new(),
+        input: pairs(options.inputs),
+        table: pairs(options.tables),
+        // `{:?}` writes the shortest text that reads back to the same bits.
+        init: options
+            .init
+            .iter()
+            .map(|(n, v)| format!("{n}={v:?}"))
+            .collect(),
+        from: options.from_,
+        until: Some(options.until),
+        stop_when: options.stop_when,
+        method,
+        tol: options.tol,
+        step: options.step,
+        max_steps: 10_000_000,
+        max_seconds: None,
+        record: options.record,
+        every: options.every,
+        csv: None,
+        plot: None,
+        words: Words::Python,
+    })
+}
+
+/// A run's options as the tool's arguments, made once (a `Model` keeps the last one, so a
+/// sweep over parameter values with the same options makes them once).
 #[pyclass(module = "varmass._native", frozen)]
 pub struct RunFlags {
     args: RunArgs,
 }
 
-/// Parses `flags` for a run of the model `file` with the tags `with`.
+/// The arguments of a run of the model `file` with the tags `with` and `options`.
 #[pyfunction]
-pub fn parse(
+pub fn options(
     py: Python<'_>,
     file: &str,
     with: Vec<String>,
-    flags: Vec<String>,
+    options: Options,
 ) -> PyResult<RunFlags> {
-    let args = parse_args(file, &with, &flags).map_err(|e| to_py(py, e))?;
+    let args = run_args(file, &with, options).map_err(|e| to_py(py, e))?;
     Ok(RunFlags { args })
 }
 

@@ -6,19 +6,54 @@
 use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use varmass_cli::scene::{run_file, SceneRun};
+use std::sync::{Mutex, MutexGuard};
+
+use varmass_cli::scene::{run_file_with, Models, SceneRun};
 
 use crate::errors::to_py;
 use crate::run::{columns, statistics};
 
-/// Runs the scene file at `path`: the recorded columns (`phase` first), the changes of
-/// phase, the end, the statistics and the summary the tool prints. A mistake in the file
-/// is the tool's `ValueError`/`ModelError`; a failed run its `RunError`, with the points
-/// up to the failure as `_partial`.
+/// The models a `varmass.Scene` derived, kept for its next run: a scene run again costs
+/// its integration, not a derivation.
+#[pyclass(module = "varmass._native", frozen)]
+#[derive(Default)]
+pub struct NativeScene {
+    models: Mutex<Models>,
+}
+
+#[pymethods]
+impl NativeScene {
+    #[new]
+    fn new() -> Self {
+        Self::default()
+    }
+
+    /// How many derivations the scene's runs cost so far.
+    fn derivations(&self) -> usize {
+        self.lock().derivations()
+    }
+}
+
+impl NativeScene {
+    /// The models, for one run at a time (a poisoned lock is only a panic's leftover).
+    fn lock(&self) -> MutexGuard<'_, Models> {
+        self.models.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// Runs the scene file at `path` with the models `scene` derived before: the recorded
+/// columns (`phase` first), the changes of phase, the end, the statistics and the summary
+/// the tool prints. A mistake in the file is the tool's `ValueError`/`ModelError`; a
+/// failed run its `RunError`, with the points up to the failure as `_partial`.
 #[pyfunction]
-pub fn run_scene<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyDict>> {
+pub fn run_scene<'py>(
+    py: Python<'py>,
+    scene: &NativeScene,
+    path: &str,
+) -> PyResult<Bound<'py, PyDict>> {
     let path = std::path::PathBuf::from(path);
-    let mut done: SceneRun = py.detach(|| run_file(&path)).map_err(|e| to_py(py, e))?;
+    let run = || run_file_with(&path, &mut scene.lock());
+    let mut done: SceneRun = py.detach(run).map_err(|e| to_py(py, e))?;
     if let Some(failure) = done.failure.take() {
         let error = to_py(py, failure);
         columns(py, &done.table).and_then(|d| error.value(py).setattr("_partial", d))?;

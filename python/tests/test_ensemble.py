@@ -136,3 +136,24 @@ def test_failures_keep_index_parameters_and_message(rocket):
         rocket.run(set={"g": G, "mu": 10.0, **failure.parameters}, init={"y": 0, "m": M0},
                    until=1e4, stop_when="y = 250000")
     assert failure.message == "the run failed: " + str(caught.value)
+
+
+def test_a_named_observable_is_named_as_record_names_it(rocket):
+    """`"MU=mu"` is a column named `MU`, as `--record "MU=mu"` names it (before, the
+    whole text `MU=mu` was its name). Its value is the member's μ: burning from rest to
+    the dry mass takes t_b = (m0 − m_dry)/μ, so MU·t_b = m0 − m_dry."""
+    ensemble = rocket.ensemble(
+        7,
+        sample={"mu": varmass.uniform(9.5, 10.5)},
+        set={"g": G, "u_e": 2500.0},
+        init={"y": 0, "m": M0},
+        until=1e4,
+        stop_when=f"m = {DRY}",
+        observables=["MU=mu", "t"],
+    )
+    result = ensemble.run(20)
+    assert result.observables == ["MU", "t"]
+    # Dormand–Prince locates the stop to ~1e-12 relative; asserted to 1e-9.
+    assert np.allclose(result["MU"] * result["t"], M0 - DRY, rtol=1e-9, atol=0)
+    params, values = ensemble.member(3)
+    assert set(values) == {"MU", "t"} and values["MU"] == params["mu"]

@@ -86,20 +86,25 @@ BAD_RUNS = [
     (dict(set={**SLED, "m0": "ten"}), TypeError, "set['m0']"),
     (dict(set={**SLED, "zz": 1.0}), ValueError, "`zz` is not a parameter"),
     (dict(set=SET_WITHOUT_F_D), ValueError, "missing value for f_d"),
+    # Python's words, not the command line's (before: "give --set f_d=VALUE").
+    (dict(set=SET_WITHOUT_F_D), ValueError, 'give `set={"f_d": VALUE}`'),
     (dict(init={"y": 0}), ValueError, "`y` is not a coordinate"),
     (dict(init={"x": math.inf}), ValueError, "init['x']"),
     (dict(tol=-1e-9), ValueError, "tol"),
     (dict(tol=1e-9, step=0.1), ValueError, "tol and step"),
+    # Below the method's floor (core/src/tolerance.rs `Floor`), named with it.
+    (dict(tol=1e-15), ValueError, 'finer than "dormand-prince" can honour (its floor is 2.2e-14'),
+    (dict(tol=5e-16, method="taylor"), ValueError, 'finer than "taylor" can honour (its floor is 1.0e-15'),
     (dict(step="0.1"), TypeError, "step"),
     (dict(method="rk5"), ValueError, "method 'rk5'"),
     (dict(method=4), TypeError, "method"),
-    (dict(method="rk4"), ValueError, "--method rk4 takes a fixed step"),
+    (dict(method="rk4"), ValueError, '`method="rk4"` takes a fixed step: give `step=H`'),
     (dict(record=["xx"]), ValueError, "`xx` is not a quantity"),
     (dict(record=[3]), TypeError, "record"),
-    (dict(stop_when="x ~ 50"), ValueError, "--stop-when `x ~ 50`"),
+    (dict(stop_when="x ~ 50"), ValueError, "`stop_when` `x ~ 50`"),
     (dict(stop_when="x > -1"), ValueError, "already holds at the start"),
     (dict(every=0), ValueError, "every"),
-    (dict(from_=20.0), ValueError, "--until 10 must be finite and not before the start time 20"),
+    (dict(from_=20.0), ValueError, "`until=10` must be finite and not before the start time 20"),
 ]
 
 
@@ -108,6 +113,9 @@ def test_a_bad_argument_names_itself(sled, overrides, exception, names):
     with pytest.raises(exception) as caught:
         run_sled(sled, **overrides)
     assert names in str(caught.value)
+    # Python's users typed no flag: no message names one (`set=`, `stop_when=`, ...).
+    for flag in ("--set", "--method", "--stop-when", "--until", "--step", "--init"):
+        assert flag not in str(caught.value), str(caught.value)
 
 
 def test_bad_model_arguments_name_themselves():

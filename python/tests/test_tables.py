@@ -219,3 +219,40 @@ def test_a_bad_table_file_is_refused_with_its_line(tmp_path):
         model.run(**BASE, tables={"F": bad})
     with pytest.raises(TypeError, match=r"inputs\['u'\] must be a law"):
         varmass.Model.from_file(DATA / "hover_input.vms").run(**BASE, inputs={"u": 1.0})
+
+
+def test_arrays_for_a_table_declared_from_an_eng_file_start_from_zero_thrust(file_table):
+    """``tables={"F": (t, F)}`` for a table whose statement names a RASP ``.eng`` file is
+    read as such a file: from (0 s, 0 N) when the points do not list t = 0, as the
+    declared file's curve (before, the arrays became a CSV table that began at the first
+    point, so the 0.055 s ramp from zero thrust was lost, silently).
+
+    By hand: ṁ = −F/u_e, so after burnout m = m₀ − I/u_e with I the exact trapezoid
+    integral of the curve from (0, 0); bound 1e-11 relative to m (measured near 1e-15:
+    the knots are stop times, the burn linear between them)."""
+    rows = [line.split() for line in M1670.read_text().splitlines()]
+    t, f = (np.array(c) for c in zip(*[(float(a), float(b)) for a, b in (r for r in rows[1:] if len(r) == 2)]))
+    assert t[0] > 0.0  # the file does not list t = 0: the reader adds (0, 0)
+    given = flight(MODELS / "motor_rocket.vms", tables={"F": (t, f)})
+    assert_same_bits(given, file_table)
+    t0, f0 = np.concatenate(([0.0], t)), np.concatenate(([0.0], f))
+    impulse = float(np.sum(0.5 * (f0[1:] + f0[:-1]) * np.diff(t0)))
+    assert t[-1] < FLIGHT["until"]  # burnt out before the end
+    m_end = 20.0 - impulse / FLIGHT["set"]["u_e"]
+    assert abs(given["m"][-1] - m_end) <= 1e-11 * m_end, (given["m"][-1], m_end)
+    # The ramp from zero is what the CSV table lost: ½·0.055 s·100 N of impulse.
+    lost = 0.5 * t[0] * f[0]
+    assert lost > 1.0 and abs(given["m"][-1] - (m_end + lost / FLIGHT["set"]["u_e"])) > 1e-4
+
+
+def test_a_table_and_a_sqrt_are_recorded():
+    """``record=["F", "S=sqrt(F)"]``: the model's table at the argument it calls it with
+    (``F(t)``) and an expression calling ``sqrt`` (both refused before). F is the RASP
+    curve, linear between its points (``eng_points``), 0 outside."""
+    model = varmass.Model.from_file(MODELS / "motor_rocket.vms")
+    solution = model.run(**{**FLIGHT, "record": ["F", "S=sqrt(F)"]})
+    t, f = eng_points(M1670)
+    exact = np.interp(solution["t"], t, f, right=0.0)
+    # Linear interpolation of the same points: to rounding (bound 1e-12 of the peak).
+    assert np.max(np.abs(solution["F"] - exact)) <= 1e-12 * f.max()
+    assert np.array_equal(solution["S"], np.sqrt(solution["F"]))

@@ -13,7 +13,7 @@ code (the run-time interpreter and the core's steppers), reached without a proce
 
 from ._checks import METHODS
 from ._ensemble import Distribution, Ensemble, EnsembleResult, Failure, normal, uniform
-from ._errors import Diagnostic, ModelError, RunError, VarmassError
+from ._errors import Diagnostic, ModelError, ModelWarning, RunError, VarmassError
 from ._model import Check, Model
 from ._scene import PhaseChange, Scene, run_scene
 from ._solution import Solution
@@ -28,6 +28,7 @@ __all__ = [
     "Failure",
     "Model",
     "ModelError",
+    "ModelWarning",
     "PhaseChange",
     "RunError",
     "Scene",

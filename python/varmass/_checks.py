@@ -1,4 +1,4 @@
-"""Arguments from Python, checked and turned into the command line tool's flags.
+"""Arguments from Python, checked and turned into the typed options of a run.
 
 A wrong type is a ``TypeError`` and an unusable value a ``ValueError``, each naming the
 argument; what the model decides (an unknown name, a missing initial value) is checked by
@@ -12,19 +12,11 @@ import numbers
 import os
 from typing import Iterable, List, Mapping, Optional, Sequence, Tuple
 
-from . import _tables
+from . import _native, _tables
 
-METHODS = (
-    "dormand-prince",
-    "dop853",
-    "sdirk4",
-    "esdirk43",
-    "rk4",
-    "euler",
-    "implicit-midpoint",
-    "variational",
-    "taylor",
-)
+# The tool's methods, in its order (`varmass_cli::args::Method::names`): one list for the
+# command line, scene files and Python.
+METHODS = tuple(_native.METHODS)
 
 
 def number(name: str, value, *, positive: bool = False) -> float:
@@ -114,47 +106,58 @@ def tags(value) -> List[str]:
     return names("with_", value)
 
 
-def run_flags(
-    *,
-    init: Optional[Mapping] = None,
-    until=None,
-    from_=0.0,
-    stop_when=None,
-    method_name="dormand-prince",
-    tol=None,
-    step=None,
-    record=None,
-    every=None,
-    inputs: Optional[Mapping] = None,
-    tables: Optional[Mapping] = None,
-) -> List[str]:
-    """The tool's ``run`` flags for these arguments (numbers in Python's round-trip form)."""
-    if until is None:
+#: The keywords of a run beside ``set``, with their defaults, written once: ``Model.run``
+#: takes them all, an ensemble all but ``record`` and ``every`` (it records its observables
+#: at the end of each run).
+RUN_KEYWORDS = {
+    "init": None,
+    "until": None,
+    "from_": 0.0,
+    "stop_when": None,
+    "method": "dormand-prince",
+    "tol": None,
+    "step": None,
+    "record": None,
+    "every": None,
+    "inputs": None,
+    "tables": None,
+}
+
+
+def run_keywords(arguments: Mapping) -> dict:
+    """The run keywords among ``arguments`` (a call's ``locals()``)."""
+    return {key: arguments[key] for key in RUN_KEYWORDS if key in arguments}
+
+
+def run_options(given: Mapping, motors: Iterable[str] = ()) -> dict:
+    """The run keywords ``given`` (the others at their defaults), checked and typed, as the
+    extension's ``options`` takes them (numbers as floats, names and laws as text, arrays
+    of ``inputs`` and ``tables`` written to this process's data files; ``motors``: the
+    tables declared from a RASP ``.eng`` file, see ``_tables.table_options``)."""
+    o = {**RUN_KEYWORDS, **given}
+    if o["until"] is None:
         raise TypeError("until is required: the end time of the run")
-    flags = [f"--from={number('from_', from_)!r}", f"--until={number('until', until)!r}"]
-    flags += [f"--init={key}={value!r}" for key, value in values("init", init)]
-    flags += [f"--stop-when={condition}" for condition in names("stop_when", stop_when)]
-    flags.append(f"--method={method(method_name)}")
-    tol = optional_number("tol", tol, positive=True)
-    step = optional_number("step", step, positive=True)
+    from_, until = number("from_", o["from_"]), number("until", o["until"])
+    init = values("init", o["init"])
+    stop_when = names("stop_when", o["stop_when"])
+    method_name = method(o["method"])
+    tol = optional_number("tol", o["tol"], positive=True)
+    step = optional_number("step", o["step"], positive=True)
     if tol is not None and step is not None:
         raise ValueError("tol and step exclude each other: give one")
-    if tol is not None:
-        flags.append(f"--tol={tol!r}")
-    if step is not None:
-        flags.append(f"--step={step!r}")
-    flags += [f"--record={quantity}" for quantity in names("record", record)]
-    every = optional_number("every", every, positive=True)
-    if every is not None:
-        flags.append(f"--every={every!r}")
-    return flags + data_flags(inputs, tables)
-
-
-def data_flags(inputs: Optional[Mapping], tables: Optional[Mapping]) -> List[str]:
-    """The ``--input`` and ``--table`` flags of ``inputs`` and ``tables`` (arrays written
-    to this process's data files)."""
-    flags = [f"--input={name}={law}" for name, law in input_laws(inputs)]
-    return flags + [f"--table={option}" for option in _tables.table_options(tables)]
+    return {
+        "from_": from_,
+        "until": until,
+        "init": init,
+        "stop_when": stop_when,
+        "method": method_name,
+        "tol": tol,
+        "step": step,
+        "record": names("record", o["record"]),
+        "every": optional_number("every", o["every"], positive=True),
+        "inputs": input_laws(o["inputs"]),
+        "tables": _tables.table_options(o["tables"], motors),
+    }
 
 
 def input_laws(inputs: Optional[Mapping]) -> List[Tuple[str, str]]:
@@ -181,12 +184,12 @@ def input_laws(inputs: Optional[Mapping]) -> List[Tuple[str, str]]:
 
 
 def plain_key(*arguments) -> Optional[tuple]:
-    """A key for the run flags of ``arguments``, or ``None``: two calls whose keys are
-    equal make the same flags (``Model.run`` then skips making them again). Only plain
+    """A key for the run options of ``arguments``, or ``None``: two calls whose keys are
+    equal make the same options (``Model.run`` then skips making them again). Only plain
     types make a key — numbers of type ``float`` or ``int`` (``1 == 1.0`` makes the same
     flag; a ``bool``, equal to 1 but refused, makes none), strings, ``None``, lists and
     tuples of strings and dicts of strings to numbers or strings — so that equality means
-    the same flags; any other argument is checked and made anew each time."""
+    the same options; any other argument is checked and made anew each time."""
     key = []
     for value in arguments:
         kind = type(value)

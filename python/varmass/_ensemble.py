@@ -74,7 +74,8 @@ class Ensemble:
 
     Each member runs as ``model.run`` would with ``set`` and its sampled values, and
     reports ``observables`` at the end of its run (``"t"`` or any quantity ``record``
-    takes, e.g. ``"y"``, ``"y'"``, ``"m"``, ``"H"``). ``inputs`` and ``tables`` are
+    takes, e.g. ``"y"``, ``"y'"``, ``"m"``, ``"H"``; ``"MU=mu"`` is named ``MU``, as
+    ``record`` names it). ``inputs`` and ``tables`` are
     ``Model.run``'s: laws, data files or arrays, the same for every member. Results are
     bit-identical for any thread count, any split into shards and any merge order. An
     ensemble pickles (its specification, with the arrays of ``tables``/``inputs`` and their
@@ -121,26 +122,18 @@ class Ensemble:
         self.sample: Dict[str, Distribution] = dict(sample)
         self.observables: List[str] = _checks.names("observables", observables)
         self._fixed = fixed
-        self._flags = _checks.run_flags(
-            init=init,
-            until=until,
-            from_=from_,
-            stop_when=stop_when,
-            method_name=method,
-            tol=tol,
-            step=step,
-        )
-        # The inputs and tables as another process reads them (paths made absolute, arrays
-        # kept): each process makes their flags, writing arrays to its own files.
-        self._data = (
-            _tables.portable(inputs, laws=True),
-            _tables.portable(tables),
-        )
+        # The run's keywords, those of inputs and tables as another process reads them
+        # (paths made absolute, arrays kept): each process makes their options, writing
+        # arrays to its own files.
+        options = _checks.run_keywords(locals())
+        options["inputs"] = _tables.portable(inputs, laws=True)
+        options["tables"] = _tables.portable(tables)
+        self._options = options
         self._native = None
         self._build()
 
     def _build(self):
-        flags = self._flags + _checks.data_flags(*self._data)
+        options = _checks.run_options(self._options, self.model._facts["motors"])
         self._native = _native.NativeEnsemble(
             self.seed,
             self.model._native(),
@@ -148,7 +141,7 @@ class Ensemble:
             self.model._with,
             self._fixed,
             [(k, d.kind, d.a, d.b) for k, d in self.sample.items()],
-            flags,
+            options,
             self.observables,
         )
 
@@ -179,7 +172,7 @@ class Ensemble:
         """Member ``index`` alone: its sampled parameters (dict) and its observables (dict),
         as in any run of the ensemble; a member that fails raises its RunError."""
         params, values = self._native.member(_count("index", index))
-        return dict(zip(self.sample, params)), dict(zip(self.observables, values))
+        return dict(zip(self.sample, params)), dict(zip(self._native.columns, values))
 
     def _result(self, native) -> "EnsembleResult":
         return EnsembleResult(native, list(self.sample))

@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 from typing import Dict, List, NamedTuple, Optional
 
-__all__ = ["VarmassError", "ModelError", "RunError", "Diagnostic"]
+__all__ = ["VarmassError", "ModelError", "ModelWarning", "RunError", "Diagnostic"]
 
 
 class Diagnostic(NamedTuple):
@@ -22,6 +22,13 @@ class Diagnostic(NamedTuple):
 
 class VarmassError(Exception):
     """The base of varmass's own exceptions."""
+
+
+class ModelWarning(UserWarning):
+    """A model that derives but probably does not say what its author meant: without
+    ``units``, a parameter one edit away from another name of the model (``muu`` beside
+    ``mu``) is most likely a typo that became a new parameter. The text is ``varmass
+    check``'s warning."""
 
 
 _POSITION = re.compile(r"^\s*--> (.*):(\d+):(\d+)$")

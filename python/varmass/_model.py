@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import os
+import warnings
 from typing import List, Mapping, NamedTuple, Optional, Tuple
 
 from . import _checks, _native
-from ._errors import RunError
+from ._errors import ModelWarning, RunError
 from ._solution import Solution, table
 
 
@@ -36,13 +37,16 @@ class Model:
         self._with = _checks.tags(with_)
         facts, self._compiled = _native.load(self._source, self._file, self._with)
         self._facts = facts
+        # Without `units`, a misspelt name becomes a new parameter: said now, as `varmass
+        # check` says it, rather than found when a run asks for its value.
+        for warning in facts["warnings"]:
+            warnings.warn(warning, ModelWarning, stacklevel=2)
         self._text: Optional[str] = None
         self._latex: Optional[str] = None
-        # The last run's arguments (`_checks.plain_key`), its flags, the flags as the
-        # tool parsed them and its stop_when conditions by name: a sweep over `set`
-        # neither makes nor parses them again
-        # (parsing costs about as much as a short run's integration).
-        self._parsed = None
+        # The last run's arguments (`_checks.plain_key`), its options as the tool's
+        # arguments and its stop_when conditions by name: a sweep over `set` checks and
+        # makes them once.
+        self._options = None
 
     @classmethod
     def from_file(cls, path, with_=()) -> "Model":
@@ -124,7 +128,7 @@ class Model:
 
     def __getstate__(self):
         state = dict(self.__dict__)
-        state["_parsed"] = None
+        state["_options"] = None
         state["_compiled"] = None
         return state
 
@@ -157,7 +161,8 @@ class Model:
         ``x'`` default to 0); ``until``: the end time (``from_`` the start);
         ``stop_when``: ``"x = 50"``, ``"y' < 0"`` (falling through), ``"m > 3"``
         (rising), or a list; ``method``: one of ``varmass.METHODS``; ``tol`` (adaptive
-        methods, default 1e-9) or ``step`` (fixed step); ``record``: the quantities to
+        methods, default 1e-9, from the method's floor, 2.2e-14 or 1e-15 for
+        ``"taylor"``, to 0.1) or ``step`` (fixed step); ``record``: the quantities to
         record (default coordinates, velocities and state masses); ``every``: output
         spacing instead of every accepted step; ``inputs``: a law for each ``input`` of
         the model, ``{"u": "g + kp*(y_ref - y) - kd*y'"}``, as ``--input`` takes it
@@ -167,85 +172,39 @@ class Model:
         relative to the current directory) or ``{"F": (t, F)}`` (two arrays), as
         ``--table`` takes them: required by each ``table F(t) = runtime``, and replacing
         the file of a file table; the statement's options (interpolation, ``outside``) hold
-        (docs/tables.md#runtime-tables). The GIL is released while it runs.
+        (docs/tables.md#runtime-tables), and arrays for a table declared from a RASP
+        ``.eng`` file are read as one (from (0 s, 0 N) unless they list t = 0). A mistake
+        is a ``ValueError`` or ``TypeError`` naming the keyword. The GIL is released while
+        it runs.
         """
         # A dict goes to the extension as it is (checked there if plain, else below, after
         # the other arguments); anything else is checked first, as always.
         plain = type(set) is dict
         parameters = set if plain else _checks.unique_values("set", set)
-        key = _checks.plain_key(
-            init, until, from_, stop_when, method, tol, step, record, every, inputs, tables
-        )
-        parsed = self._parsed
-        if key is None or parsed is None or parsed[0] != key:
-            flags = tuple(
-                _checks.run_flags(
-                    init=init,
-                    until=until,
-                    from_=from_,
-                    stop_when=stop_when,
-                    method_name=method,
-                    tol=tol,
-                    step=step,
-                    record=record,
-                    every=every,
-                    inputs=inputs,
-                    tables=tables,
-                )
-            )
-            if parsed is None or parsed[1] != flags:
-                parsed = (key, flags, _native.parse(self._file, self._with, list(flags)))
-            else:
-                parsed = (key, flags, parsed[2])
-            parsed += (_checks.names("stop_when", stop_when),)
-            self._parsed = parsed
+        given = _checks.run_keywords(locals())
+        key = _checks.plain_key(*given.values())
+        made = self._options
+        if key is None or made is None or made[0] != key:
+            options = _checks.run_options(given, self._facts["motors"])
+            args = _native.options(self._file, self._with, options)
+            made = self._options = (key, args, options["stop_when"])
         native = self._native()
         try:
             # The extension refuses (None) a dict it cannot take as it is.
-            raw = _native.run(native, parameters, parsed[2])
+            raw = _native.run(native, parameters, made[1])
             if raw is None:  # a dict that is not plain
-                raw = _native.run(native, _checks.unique_values("set", set), parsed[2])
+                raw = _native.run(native, _checks.unique_values("set", set), made[1])
         except RunError as error:
             error.points = _partial_points(error)
             raise
-        return Solution._of_run(raw, parsed[3])
+        return Solution._of_run(raw, made[2])
 
-    def ensemble(
-        self,
-        seed: int,
-        *,
-        sample: Mapping,
-        observables,
-        until=None,
-        set: Optional[Mapping] = None,
-        init: Optional[Mapping] = None,
-        from_=0.0,
-        stop_when=None,
-        method: str = "dormand-prince",
-        tol=None,
-        step=None,
-        inputs: Optional[Mapping] = None,
-        tables: Optional[Mapping] = None,
-    ):
-        """An ensemble of runs of this model (see :class:`varmass.Ensemble`)."""
+    def ensemble(self, seed: int, **options):
+        """An ensemble of runs of this model (see :class:`varmass.Ensemble`, which takes
+        ``options``)."""
         from ._ensemble import Ensemble
 
-        return Ensemble(
-            self,
-            seed,
-            sample=sample,
-            observables=observables,
-            until=until,
-            set=set,
-            init=init,
-            from_=from_,
-            stop_when=stop_when,
-            method=method,
-            tol=tol,
-            step=step,
-            inputs=inputs,
-            tables=tables,
-        )
+        return Ensemble(self, seed, **options)
 
 
 def _partial_points(error):

@@ -43,6 +43,8 @@ class Scene:
         self._path = os.fspath(path)
         if not os.path.isfile(self._path):
             raise FileNotFoundError(f"no scene file {self._path!r}")
+        # The models its runs derive, kept for the next run (made again after unpickling).
+        self._native = _native.NativeScene()
 
     @classmethod
     def from_file(cls, path) -> "Scene":
@@ -54,14 +56,24 @@ class Scene:
         return self._path
 
     def run(self) -> Solution:
-        """Reads, checks and runs the scene (the GIL is released while it computes)."""
+        """Reads, checks and runs the scene (the GIL is released while it computes). The
+        model is derived at the first run and kept for the next ones while its file is
+        unchanged; the scene file itself is read again at each run."""
         try:
-            raw = _native.run_scene(self._path)
+            raw = _native.run_scene(self._scene(), self._path)
         except RunError as error:
             error.points = _partial_points(error)
             raise
         changes = [PhaseChange(*change) for change in raw["changes"]]
         return Solution._of_scene(raw, changes)
+
+    def _scene(self):
+        if self._native is None:
+            self._native = _native.NativeScene()
+        return self._native
+
+    def __getstate__(self):
+        return {**self.__dict__, "_native": None}
 
     def __repr__(self) -> str:
         return f"<varmass.Scene {self._path}>"

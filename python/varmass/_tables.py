@@ -19,7 +19,7 @@ import hashlib
 import os
 import shutil
 import tempfile
-from typing import List, Mapping, Optional, Tuple
+from typing import Iterable, List, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -64,15 +64,21 @@ def arrays(argument: str, given) -> Tuple[np.ndarray, np.ndarray]:
     return x, y
 
 
-def csv_file(name: str, x: np.ndarray, y: np.ndarray) -> str:
-    """The path of a CSV file holding the points (x, y), written if not there yet."""
+def csv_file(name: str, x: np.ndarray, y: np.ndarray, *, eng: bool = False) -> str:
+    """The path of a file holding the points (x, y), written if not there yet: a CSV
+    table, or with ``eng`` a RASP motor (a header, then ``time thrust`` a line), which the
+    tool reads as it reads any ``.eng`` file — from (0 s, 0 N) unless the points list t = 0."""
     digest = hashlib.sha256(x.astype("<f8").tobytes() + y.astype("<f8").tobytes())
     # The name only helps a reader of the directory: any character but a word's is dropped.
     stem = "".join(c for c in name if c.isalnum() or c == "_") or "table"
-    path = os.path.join(_files(), f"{stem}-{digest.hexdigest()[:32]}.csv")
+    extension = "eng" if eng else "csv"
+    path = os.path.join(_files(), f"{stem}-{digest.hexdigest()[:32]}.{extension}")
     if not os.path.exists(path):
-        lines = [f"argument,{name}"]
-        lines += [f"{a!r},{b!r}" for a, b in zip(x.tolist(), y.tolist())]
+        # A RASP header: the name, then diameter, length, delays, masses and maker, which
+        # the run does not read.
+        lines = [f"{stem} 0 0 0 0 0 varmass" if eng else f"argument,{name}"]
+        separator = " " if eng else ","
+        lines += [f"{a!r}{separator}{b!r}" for a, b in zip(x.tolist(), y.tolist())]
         # Written whole under another name, then renamed: a reader never sees half a file.
         partial = f"{path}.{os.getpid()}.partial"
         with open(partial, "w", encoding="utf-8") as f:
@@ -81,22 +87,25 @@ def csv_file(name: str, x: np.ndarray, y: np.ndarray) -> str:
     return path
 
 
-def data(argument: str, name: str, given) -> str:
+def data(argument: str, name: str, given, *, eng: bool = False) -> str:
     """The file the tool reads for ``given``: a path (``str`` or ``os.PathLike``) as given,
-    or arrays written to a CSV file."""
+    or arrays written to a CSV file (a RASP ``.eng`` file with ``eng``)."""
     if isinstance(given, (str, os.PathLike)):
         return os.fspath(given)
     if isinstance(given, (tuple, list)):
         x, y = arrays(argument, given)
-        return csv_file(name, x, y)
+        return csv_file(name, x, y, eng=eng)
     raise TypeError(
         f"{argument} must be a path (str or os.PathLike) or a pair (arguments, values) of "
         f"arrays, not {type(given).__name__}"
     )
 
 
-def table_options(tables: Optional[Mapping]) -> List[str]:
-    """``--table`` values (``NAME=FILE``) for ``tables`` ({name: path or (x, y)})."""
+def table_options(tables: Optional[Mapping], motors: Iterable[str] = ()) -> List[Tuple[str, str]]:
+    """(name, file) pairs, as ``--table NAME=FILE`` takes them, for ``tables`` ({name: path
+    or (x, y)}); the arrays of a table in ``motors`` (declared from a RASP ``.eng`` file)
+    are written as one, so that they start from (0 s, 0 N) as the declared file's curve
+    does."""
     if tables is None:
         return []
     if not isinstance(tables, Mapping):
@@ -111,7 +120,8 @@ def table_options(tables: Optional[Mapping]) -> List[str]:
         if "=" in name:
             # The tool would split `F=x=path` at its first `=` and read the file `x=path`.
             raise ValueError(f"tables: {name!r} is not a table name (a name has no `=`)")
-        options.append(f"{name}={data(f'tables[{name!r}]', name.strip(), given)}")
+        stripped = name.strip()
+        options.append((name, data(f"tables[{name!r}]", stripped, given, eng=stripped in motors)))
     return options
 
 

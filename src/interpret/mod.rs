@@ -18,7 +18,7 @@
 //! ```
 //! use varmass::interpret::{Program, TapeSystem};
 //! use varmass::prelude::*;
-//! use varmass::symbolic::mechanics::{derive_source, Parameters};
+//! use varmass::symbolic::{derive_source, mechanics::Parameters};
 //!
 //! let source = "coordinates y
 //!               mass m: state, rate -mu

@@ -4,7 +4,8 @@
 use std::cell::RefCell;
 use std::sync::Arc;
 
-use varmass_core::table::{knot_bracket, knot_gap, next_knot_time, Table};
+use varmass_core::math::singular_attitude_distance;
+use varmass_core::table::{knot_bracket_read, knot_gap_read, next_knot_time_read, Table};
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, Tape};
 use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation, Outputs};
@@ -68,15 +69,19 @@ pub struct Program {
     switches: Stage,
     /// Those tables, in order: switch `switches.roots.len() - switch_tables.len() + i` is
     /// at the knots of `switch_tables[i]`.
-    switch_tables: Vec<Arc<Table>>,
+    /// Each as the orders the equations read, 0 to the highest.
+    switch_tables: Vec<Vec<Arc<Table>>>,
     switch_names: Vec<String>,
     /// The Taylor recurrences of the state rate.
     taylor: TaylorProgram,
     /// The flows' rates (Q1 of an outflow, Q2 of an inflow), in the model's order.
     flows: Stage,
-    /// The tables of t with the slope and offset of their argument: their knots are stop
-    /// times (docs/tables.md#knots-are-switches).
-    stops: Vec<(Arc<Table>, f64, f64)>,
+    /// The Euler middle angles of the spatial rigid bodies (`Derivation::euler_middles`).
+    attitudes: Stage,
+    /// The tables of t (each the orders the equations read, 0 to the highest) with the
+    /// slope and offset of their argument: their knots are stop times
+    /// (docs/tables.md#knots-are-switches).
+    stops: Vec<(Vec<Arc<Table>>, f64, f64)>,
     /// Each stop table's slope and offset (made of parameters), to recompute [`Self::stops`]
     /// when [`Program::set_parameters`] changes the values.
     stop_arguments: Stage,
@@ -105,17 +110,7 @@ impl Program {
         parameters: &[(&str, f64)],
         evaluation: Evaluation,
     ) -> Result<Self, ProgramError> {
-        if let Some(table) = d.tables.iter().find(|t| t.runtime) {
-            return Err(ProgramError::RuntimeTableWithoutData {
-                name: table.name.clone(),
-            });
-        }
-        let lawless = d.inputs.iter().find(|i| i.held.is_none());
-        if let Some(input) = lawless.filter(|i| d.pool.input_law(i.index).is_none()) {
-            return Err(ProgramError::InputWithoutLaw {
-                name: input.name.clone(),
-            });
-        }
+        check_given(&d)?;
         let used = d.used_parameters();
         let env = parameter_env(&d, &used, parameters)?;
         // Law masses → q̇ → ṗ and ṁ, as every evaluator of the state rate stages them.
@@ -137,7 +132,10 @@ impl Program {
         };
         let stop_arguments = stage(stop_roots);
         let stops = stop_values(&tables, &stop_arguments, &env);
-        let quantities = Quantity::ALL.iter().map(|q| stage(q.read(&d))).collect();
+        let quantities = Quantity::ALL
+            .iter()
+            .map(|q| stage(d.quantity(*q)))
+            .collect();
         let sampled: Vec<_> = d.inputs.iter().filter(|i| i.held.is_some()).collect();
         if let Some(input) = sampled.iter().find(|i| i.law.is_none()) {
             return Err(ProgramError::MissingInputLaw {
@@ -163,6 +161,7 @@ impl Program {
             switch_tables,
             switch_names,
             flows: stage(d.flow_rates.clone()),
+            attitudes: stage(d.euler_middles.iter().map(|(angle, _)| *angle).collect()),
             stops,
             stop_arguments,
             used,
@@ -185,7 +184,7 @@ impl Program {
     /// with these values.
     pub fn set_parameters(&mut self, parameters: &[(&str, f64)]) -> Result<(), ProgramError> {
         let env = parameter_env(&self.d, &self.used, parameters)?;
-        let tables: Vec<Arc<Table>> = self.stops.iter().map(|(t, _, _)| Arc::clone(t)).collect();
+        let tables: Vec<Vec<Arc<Table>>> = self.stops.iter().map(|(t, _, _)| t.clone()).collect();
         self.stops = stop_values(&tables, &self.stop_arguments, &env);
         self.taylor.set_env(&env);
         let scratch = self.scratch.get_mut();
@@ -406,9 +405,41 @@ impl Program {
         let next = self
             .stops
             .iter()
-            .map(|(table, slope, offset)| next_knot_time(table, *slope, *offset, after))
+            .map(|(orders, slope, offset)| {
+                let orders: Vec<&Table> = orders.iter().map(|t| &**t).collect();
+                next_knot_time_read(&orders, *slope, *offset, after)
+            })
             .fold(self.next_sample_time(after), f64::min);
         (next < f64::INFINITY).then_some(next)
+    }
+
+    /// The angle from gimbal lock of the spatial rigid bodies' Euler sequences at
+    /// `(t, state)` (`varmass_core::math::singular_attitude_distance`); `None` without them.
+    pub fn singular_attitude_distance(&self, t: f64, state: &[f64]) -> Option<f64> {
+        if self.d.euler_middles.is_empty() {
+            return None;
+        }
+        let scratch = &mut *self.scratch.borrow_mut();
+        self.load_positions(scratch, t, state);
+        self.run(&self.attitudes, scratch);
+        let middles: Vec<(f64, bool)> = (scratch.values.iter())
+            .zip(&self.d.euler_middles)
+            .map(|(&angle, &(_, proper))| (angle, proper))
+            .collect();
+        Some(singular_attitude_distance(&middles))
+    }
+
+    /// The value of the pool's table `table` (`ExprPool::table_name` names it) at
+    /// `argument`, by its interpolant and outside rule; a lookup outside its data (or a NaN
+    /// argument, or an unknown table) is the typed error generated code returns.
+    pub fn table_value(&self, table: u16, argument: f64) -> Result<f64, SystemError> {
+        match self.d.pool.table(table, 0).map(|t| t.value(argument)) {
+            Some(Ok(value)) => Ok(value),
+            _ => Err(SystemError::TableOutside {
+                table: super::names::intern(self.d.pool.table_name(table)),
+                argument,
+            }),
+        }
     }
 
     /// The number of switching functions (docs/mechanics.md#switches).
@@ -427,7 +458,7 @@ impl Program {
     }
 
     /// The anchors of the switches at the knots of tables of the state (their arguments'
-    /// knot brackets, `varmass_core::table::knot_bracket`) into `anchors`; the other
+    /// knot brackets, `varmass_core::table::knot_bracket_read`) into `anchors`; the other
     /// switches' are left alone.
     pub fn switch_anchors(&self, t: f64, velocity_state: &[f64], anchors: &mut [f64]) {
         let scratch = &mut *self.scratch.borrow_mut();
@@ -436,7 +467,7 @@ impl Program {
         let first = scratch.values.len() - self.switch_tables.len();
         for (i, table) in self.switch_tables.iter().enumerate() {
             if let Some(anchor) = anchors.get_mut(first + i) {
-                *anchor = knot_bracket(table, scratch.values[first + i]);
+                *anchor = knot_bracket_read(table, scratch.values[first + i]);
             }
         }
     }
@@ -468,8 +499,8 @@ impl Program {
             let x = scratch.values[first + i];
             let anchor = anchors
                 .and_then(|a| a.get(first + i).copied())
-                .unwrap_or_else(|| knot_bracket(table, x));
-            scratch.values[first + i] = knot_gap(table, x, anchor);
+                .unwrap_or_else(|| knot_bracket_read(table, x));
+            scratch.values[first + i] = knot_gap_read(table, x, anchor);
         }
         copy(&scratch.values, out);
     }
@@ -655,7 +686,7 @@ fn parameter_env(
 /// The switching functions of `d` with their names: the non-smooth points of its
 /// equations, then one anchored switch per call of a table of the state (its argument,
 /// watched against the knot bracket it is anchored in), with those tables in call order.
-fn switches(d: &mut Derivation) -> (Vec<Id>, Vec<String>, Vec<Arc<Table>>) {
+fn switches(d: &mut Derivation) -> (Vec<Id>, Vec<String>, Vec<Vec<Arc<Table>>>) {
     let mut roots = varmass_symbolic::mechanics::switching_functions(d);
     let mut names: Vec<String> = roots
         .iter()
@@ -663,10 +694,11 @@ fn switches(d: &mut Derivation) -> (Vec<Id>, Vec<String>, Vec<Arc<Table>>) {
         .collect();
     let mut tables = Vec::new();
     for s in varmass_symbolic::mechanics::table_switches(d) {
-        let Some(table) = d.pool.table(s.table, 0) else {
+        let orders = (0..=s.order).map(|order| d.pool.table(s.table, order).map(Arc::clone));
+        let Some(orders) = orders.collect::<Option<Vec<_>>>() else {
             continue;
         };
-        tables.push(Arc::clone(table));
+        tables.push(orders);
         let name = d.pool.table_name(s.table);
         names.push(format!(
             "the knots of {name}({})",
@@ -677,15 +709,17 @@ fn switches(d: &mut Derivation) -> (Vec<Id>, Vec<String>, Vec<Arc<Table>>) {
     (roots, names, tables)
 }
 
-/// The tables of t called by `roots`, and the slope and offset of each one's argument
-/// (they are made of parameters only), slope then offset per table.
-fn stop_tables(d: &mut Derivation, roots: &[&[Id]]) -> (Vec<Arc<Table>>, Vec<Id>) {
+/// The tables of t called by `roots` (each the orders read, 0 to the highest), and the
+/// slope and offset of each one's argument (they are made of parameters only), slope then
+/// offset per table.
+fn stop_tables(d: &mut Derivation, roots: &[&[Id]]) -> (Vec<Vec<Arc<Table>>>, Vec<Id>) {
     let all: Vec<Id> = roots.iter().flat_map(|r| r.iter().copied()).collect();
     let mut tables = Vec::new();
     let mut arguments = Vec::new();
     for t in time_tables(d, &all) {
-        if let Some(table) = d.pool.table(t.table, 0) {
-            tables.push(Arc::clone(table));
+        let orders = (0..=t.order).map(|order| d.pool.table(t.table, order).map(Arc::clone));
+        if let Some(orders) = orders.collect::<Option<Vec<_>>>() {
+            tables.push(orders);
             arguments.extend([t.slope, t.offset]);
         }
     }
@@ -694,16 +728,16 @@ fn stop_tables(d: &mut Derivation, roots: &[&[Id]]) -> (Vec<Arc<Table>>, Vec<Id>
 
 /// Each table of t with its argument's slope and offset at the parameter values of `env`.
 fn stop_values(
-    tables: &[Arc<Table>],
+    tables: &[Vec<Arc<Table>>],
     arguments: &Stage,
     env: &[f64],
-) -> Vec<(Arc<Table>, f64, f64)> {
+) -> Vec<(Vec<Arc<Table>>, f64, f64)> {
     let mut values = vec![f64::NAN; arguments.roots.len()];
     arguments.tape.eval(env, &mut values);
     tables
         .iter()
         .zip(values.chunks_exact(2))
-        .map(|(table, v)| (Arc::clone(table), v[0], v[1]))
+        .map(|(orders, v)| (orders.clone(), v[0], v[1]))
         .collect()
 }
 
@@ -735,4 +769,21 @@ fn copy(from: &[f64], to: &mut [f64]) {
     for (t, f) in to.iter_mut().zip(from) {
         *t = *f;
     }
+}
+
+/// The tables and inputs a program cannot be made without: every runtime table's data and
+/// every input's law must have been given (`--table`, `--input`, Python's arrays).
+fn check_given(d: &Derivation) -> Result<(), ProgramError> {
+    if let Some(table) = d.tables.iter().find(|t| t.runtime) {
+        return Err(ProgramError::RuntimeTableWithoutData {
+            name: table.name.clone(),
+        });
+    }
+    let lawless = d.inputs.iter().find(|i| i.held.is_none());
+    if let Some(input) = lawless.filter(|i| d.pool.input_law(i.index).is_none()) {
+        return Err(ProgramError::InputWithoutLaw {
+            name: input.name.clone(),
+        });
+    }
+    Ok(())
 }

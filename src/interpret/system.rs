@@ -117,6 +117,16 @@ impl<const N: usize, const S: usize> TapeSystem<N, S> {
     }
 }
 
+/// The vector a program's solve writes into `out` (NaN where it writes nothing), or its
+/// error.
+fn filled<const M: usize>(
+    solve: impl FnOnce(&mut [f64]) -> Result<(), SystemError>,
+) -> Result<SVector<f64, M>, SystemError> {
+    let mut out = SVector::<f64, M>::from_element(f64::NAN);
+    solve(out.as_mut_slice())?;
+    Ok(out)
+}
+
 impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, S> {
     const COORDINATES: [&'static str; N] = [""; N];
     const MASSES: &'static [&'static str] = &[];
@@ -207,10 +217,10 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         t: f64,
         velocity_state: &SVector<f64, S>,
     ) -> Result<SVector<f64, N>, SystemError> {
-        let mut out = SVector::<f64, N>::from_element(f64::NAN);
-        self.program
-            .accelerations(t, velocity_state.as_slice(), out.as_mut_slice())?;
-        Ok(out)
+        filled(|out| {
+            self.program
+                .accelerations(t, velocity_state.as_slice(), out)
+        })
     }
 
     fn switch_count(&self) -> usize {
@@ -223,6 +233,10 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
 
     fn flow_count(&self) -> usize {
         self.program.flow_count()
+    }
+
+    fn singular_attitude_distance(&self, t: f64, state: &SVector<f64, S>) -> Option<f64> {
+        self.program.singular_attitude_distance(t, state.as_slice())
     }
 
     fn flow_name(&self, index: usize) -> Option<&str> {
@@ -264,10 +278,7 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
     }
 
     fn velocities(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, N>, SystemError> {
-        let mut out = SVector::<f64, N>::from_element(f64::NAN);
-        self.program
-            .velocities(t, state.as_slice(), out.as_mut_slice())?;
-        Ok(out)
+        filled(|out| self.program.velocities(t, state.as_slice(), out))
     }
 
     fn hamiltonian(&self, t: f64, state: &SVector<f64, S>) -> Result<f64, SystemError> {
@@ -294,7 +305,7 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         state: &SVector<f64, S>,
         coefficients: &mut [SVector<f64, S>],
         // The tapes keep their own jet (`TaylorProgram`'s scratch).
-        _: &mut varmass_core::steppers::taylor::series::Scratch,
+        _: &mut varmass_core::scratch::Scratch,
     ) -> Option<Result<(), SystemError>> {
         let order = coefficients.len().checked_sub(1)?;
         Some(

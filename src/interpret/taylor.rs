@@ -12,22 +12,18 @@
 
 use std::cell::RefCell;
 
-use varmass_core::steppers::taylor::series;
+use varmass_core::table::recurrence as rule;
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{TaylorJet, TaylorTape};
-use varmass_symbolic::mechanics::Derivation;
+use varmass_symbolic::mechanics::{Derivation, TaylorLayout};
 
 use super::cholesky::{cholesky_factor, cholesky_substitute};
 
 /// The three tapes and where their inputs and outputs go.
 #[derive(Debug)]
 pub(super) struct TaylorProgram {
-    /// Inputs of every tape: t, q, p, q̇, every mass (in mass order).
-    n: usize,
-    masses: usize,
-    state_masses: usize,
-    /// Held values of sampled inputs: the state's last entries, constant series.
-    held: usize,
+    /// Where t, q, p, q̇, the masses and the held inputs sit among every tape's inputs.
+    layout: TaylorLayout,
     /// Mass index of each law output.
     law_masses: Vec<usize>,
     laws: TaylorTape,
@@ -59,10 +55,7 @@ impl TaylorProgram {
         // The emitted method's stages (`Derivation::taylor_stages`): the same choices.
         let stages = d.taylor_stages();
         Self {
-            n: d.coordinates.len(),
-            masses: d.masses.len(),
-            state_masses: d.state_mass_count(),
-            held: d.held().len(),
+            layout: stages.layout,
             law_masses: stages.law_masses,
             velocities: stages.velocities,
             numeric: stages.numeric,
@@ -94,14 +87,13 @@ impl TaylorProgram {
         mut write: impl FnMut(usize, usize, f64),
     ) -> Result<(), SystemError> {
         let scratch = &mut *self.scratch.borrow_mut();
-        let s = 2 * self.n + self.state_masses + self.held;
+        let l = self.layout;
         self.begin(scratch, order);
-        for (i, x) in state.iter().take(s).enumerate() {
-            let input = self.state_input(i);
-            set(scratch, input, 0, *x);
+        for (i, x) in state.iter().take(l.state_len()).enumerate() {
+            set(scratch, l.state(i), 0, *x);
         }
-        set(scratch, 0, 0, t);
-        set(scratch, 0, 1, 1.0);
+        set(scratch, TaylorLayout::TIME, 0, t);
+        set(scratch, TaylorLayout::TIME, 1, 1.0);
         for k in 0..=order {
             self.stage_laws(scratch, k);
             self.stage_velocities(scratch, k)?;
@@ -110,42 +102,28 @@ impl TaylorProgram {
             }
             advance(&self.rates, scratch, Stage::Rates, k);
             let next = 1.0 / (k + 1) as f64;
-            for a in 0..self.n {
-                let v = get(scratch, 1 + 2 * self.n + a, k);
-                set(scratch, 1 + a, k + 1, v * next);
+            for a in 0..l.n {
+                let v = get(scratch, l.velocity(a), k);
+                set(scratch, l.q(a), k + 1, v * next);
             }
-            for i in 0..self.n + self.state_masses {
+            for i in 0..l.n + l.state_masses {
                 let rate = self.rates.output(&scratch.velocities, i, k);
-                let input = self.state_input(self.n + i);
-                set(scratch, input, k + 1, rate * next);
+                set(scratch, l.state(l.n + i), k + 1, rate * next);
             }
         }
         for k in 0..=order {
-            for i in 0..s {
-                write(k, i, get(scratch, self.state_input(i), k));
+            for i in 0..l.state_len() {
+                write(k, i, get(scratch, l.state(i), k));
             }
         }
         Ok(())
     }
 
-    /// Input index of state component i: q, p, then the state masses, then the held
-    /// inputs (after every mass among the inputs; their higher coefficients stay 0).
-    fn state_input(&self, i: usize) -> usize {
-        if i < 2 * self.n {
-            1 + i
-        } else if i < 2 * self.n + self.state_masses {
-            1 + 3 * self.n + (i - 2 * self.n)
-        } else {
-            1 + 3 * self.n + self.masses + (i - 2 * self.n - self.state_masses)
-        }
-    }
-
     fn begin(&self, scratch: &mut Scratch, order: usize) {
         let stride = order + 1;
-        let inputs = 1 + 3 * self.n + self.masses + self.held;
         scratch.stride = stride;
         scratch.inputs.clear();
-        scratch.inputs.resize(inputs * stride, 0.0);
+        scratch.inputs.resize(self.layout.len() * stride, 0.0);
         self.laws.begin(&mut scratch.laws, order, &self.env);
         self.velocities
             .begin(&mut scratch.velocities, order, &self.env);
@@ -157,22 +135,21 @@ impl TaylorProgram {
         advance(&self.laws, scratch, Stage::Laws, k);
         for (i, mass) in self.law_masses.iter().enumerate() {
             let value = self.laws.output(&scratch.laws, i, k);
-            set(scratch, 1 + 3 * self.n + mass, k, value);
+            set(scratch, self.layout.mass(*mass), k, value);
         }
     }
 
     /// Coefficient k of q̇, into the inputs: read off the closed form, or solved.
     fn stage_velocities(&self, scratch: &mut Scratch, k: usize) -> Result<(), SystemError> {
         advance(&self.velocities, scratch, Stage::Velocities, k);
-        let n = self.n;
-        let first_velocity = 1 + 2 * n;
+        let (l, n) = (self.layout, self.layout.n);
         if !self.numeric {
             for a in 0..n {
                 let v = self.velocities.output(&scratch.velocities, a, k);
                 if k == 0 && !v.is_finite() && scratch.inputs.iter().all(|x| x.is_finite()) {
                     return Err(SystemError::SingularMassMatrix);
                 }
-                set(scratch, first_velocity + a, k, v);
+                set(scratch, l.velocity(a), k, v);
             }
             return Ok(());
         }
@@ -187,24 +164,26 @@ impl TaylorProgram {
                 return Err(SystemError::SingularMassMatrix);
             }
         }
-        // M[0] q̇[k] = p[k] − b[k] − Σⱼ₌₁ᵏ M[j] q̇[k−j].
+        // M[0] q̇[k] = p[k] − b[k] − Σⱼ₌₁ᵏ M[j] q̇[k−j], by the rule generated code calls.
         scratch.rhs.clear();
-        // The sum over j in four chains, as the generated code's `series::solve_velocities`.
         for a in 0..n {
-            let coupling = series::sum(1, k + 1, |j| {
-                (0..n).fold(-0.0, |total, b| {
-                    total + entry(a, b, j) * get(scratch, first_velocity + b, k - j)
-                })
-            });
-            let r = get(scratch, 1 + n + a, k) - self.velocities.output(jet, n * n + a, k);
-            scratch.rhs.push(r - coupling);
+            let r = rule::velocity_right_side(
+                (n, a, k),
+                entry,
+                |b, j| get(scratch, l.velocity(b), j),
+                (
+                    get(scratch, l.momentum(a), k),
+                    self.velocities.output(jet, n * n + a, k),
+                ),
+            );
+            scratch.rhs.push(r);
         }
         if !cholesky_substitute(&scratch.factor, &mut scratch.rhs, n) {
             return Err(SystemError::SingularMassMatrix);
         }
         for a in 0..n {
             let v = scratch.rhs[a];
-            set(scratch, first_velocity + a, k, v);
+            set(scratch, l.velocity(a), k, v);
         }
         Ok(())
     }

@@ -14,8 +14,17 @@
 //!
 //! Beside the stages, [`units`] checks the dimensions of a system that declares `units` on
 //! its resolved model, between name resolution and the derivation (see `docs/dsl.md#units`);
-//! [`pipeline`] is the driver that runs the three in turn, and [`dimension`] the algebra of
-//! dimensions that `units`, `mechanics` and the registry share.
+//! [`pipeline`] is the driver that runs the three in turn (its functions are named here,
+//! [`derive_source`] and the others), [`dimension`] the algebra of dimensions that `units`,
+//! `mechanics` and the registry share, and [`quantity`] the registry's vocabulary (names,
+//! labels, dimension rules).
+//!
+//! Before the derivation, [`compose`] expands the `use` of other model files as components
+//! (`docs/components.md`) into one composed model.
+//!
+//! Each module reads only those before it in: parse → expr → dimension → quantity →
+//! compose → mechanics (the derivation, which answers "give me quantity Q") → units → emit (which
+//! owns the quantity → generated-method map) → pipeline.
 //!
 //! `ARCHITECTURE.md` at the repository root describes the stages and their invariants.
 //!
@@ -23,6 +32,7 @@
 //! position of the offending text.
 #![warn(missing_docs)]
 
+pub mod compose;
 pub mod dimension;
 pub mod emit;
 pub mod expr;
@@ -33,3 +43,4 @@ pub mod quantity;
 pub mod units;
 
 pub use parse::{Diagnostic, Span};
+pub use pipeline::{derive, derive_for, derive_in, derive_source, derive_with_laws};

@@ -4,7 +4,7 @@
 //! `mechanics` never names `units`.
 //!
 //! ```
-//! use varmass_symbolic::mechanics::{derive_source, Parameters};
+//! use varmass_symbolic::{derive_source, mechanics::Parameters};
 //! let source = "coordinates x; units x: m, k: N/m, m0: kg; kinetic m0*x'^2/2; potential k*x^2/2";
 //! let derivation = derive_source(source, Parameters::Inferred).unwrap();
 //! assert_eq!(derivation.units.unwrap().written("k"), Some("N/m"));

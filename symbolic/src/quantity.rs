@@ -1,17 +1,20 @@
 //! The registry of derived quantities: for each quantity a system derives, its DSL name
 //! (`H`, `p_x`, `mdot_m`, …), its labels in the derivation text and LaTeX, its dimension
-//! rule, where a [`Derivation`] holds it, the generated method that carries it and how the
-//! run-time interpreter evaluates it.
+//! rule and how the run-time interpreter evaluates it: the vocabulary alone. The stages
+//! above answer the rest: where a derivation holds a quantity
+//! (`mechanics::Derivation::quantity`) and which generated method carries it
+//! (`emit::Method::carrying`).
 //!
 //! Everything that lists quantities reads this one table: the reserved names and the
 //! `check` bindings of `mechanics`, the units table, the macro's name message, the command
 //! line tool's recordable names, the emitter's vector methods, and the interpreter's
 //! groups. Not (yet) the lists of *expressions* that evaluators walk: the roots of every
-//! equation ([`Derivation::equation_roots`], read by the emitter and the checks of inputs
+//! equation (`Derivation::equation_roots`, read by the emitter and the checks of inputs
 //! and tables) and the switches' `state_rate_roots` are kept by hand beside the
 //! `Derivation`'s fields. [`Quantity::spec`] is one exhaustive `match`, so a new variant
-//! without its entry does not compile; `symbolic/tests/quantities.rs` holds every entry to
-//! each of those uses (ARCHITECTURE.md, "Add a generated quantity").
+//! without its entry does not compile (and so are the two maps above);
+//! `symbolic/tests/quantities.rs` holds every entry to each of those uses (ARCHITECTURE.md,
+//! "Add a generated quantity").
 //!
 //! ```
 //! use varmass_symbolic::quantity::{Quantity, Named};
@@ -22,9 +25,6 @@
 //! ```
 
 use crate::dimension::Dimension;
-use crate::emit::Method;
-use crate::expr::Id;
-use crate::mechanics::{Derivation, VelocitySolve};
 
 /// Declares `Quantity` and `Quantity::ALL` from one list, so that `ALL` cannot miss a
 /// variant (the order of the list is the order of `ALL`).
@@ -143,10 +143,6 @@ pub struct Spec {
     pub latex: &'static str,
     /// The dimension rule.
     pub dimension: DimensionRule,
-    /// The trait method that carries it in generated code, if one does.
-    pub method: Option<Method>,
-    /// The doc comment's title of that method.
-    pub doc: &'static str,
     /// How it is evaluated at run time.
     pub evaluated: Evaluated,
 }
@@ -158,114 +154,40 @@ impl Quantity {
         use Named::*;
         let per = |prefix| PerCoordinate { prefix, suffix: "" };
         let v = Evaluated::VelocityForm;
-        let entry = |name, text, latex, dimension, method, doc| Spec {
+        let entry = |name, text, latex, dimension| Spec {
             name,
             text,
             latex,
             dimension,
-            method,
-            doc,
             evaluated: v,
         };
         match self {
-            Quantity::MassRates => entry(
-                PerMass("mdot_"),
-                "d#/dt",
-                "\\dot{#}",
-                D::MassRate,
-                Some(Method::MassRate),
-                "ṁ of every mass along the motion.",
-            ),
-            Quantity::Momenta => entry(
-                per("p_"),
-                "p_#",
-                "p_{#}",
-                D::Momentum,
-                Some(Method::Momenta),
-                "The generalized momenta p = ∂*L/∂q̇ (eq. 8).",
-            ),
-            Quantity::MassMatrix => entry(
-                Unnamed,
-                "M",
-                "M",
-                D::Mixed,
-                Some(Method::MassMatrix),
-                "The mass matrix M = ∂²L/∂q̇², masses frozen.",
-            ),
-            Quantity::Lagrangian => entry(
-                Scalar("L"),
-                "L",
-                "L",
-                D::Energy,
-                Some(Method::Lagrangian),
-                "The Lagrangian L = T − V.",
-            ),
-            Quantity::Kinetic => entry(Scalar("T"), "T", "T", D::Energy, None, "T"),
-            Quantity::Potential => entry(Scalar("V"), "V", "V", D::Energy, None, "V"),
+            Quantity::MassRates => entry(PerMass("mdot_"), "d#/dt", "\\dot{#}", D::MassRate),
+            Quantity::Momenta => entry(per("p_"), "p_#", "p_{#}", D::Momentum),
+            Quantity::MassMatrix => entry(Unnamed, "M", "M", D::Mixed),
+            Quantity::Lagrangian => entry(Scalar("L"), "L", "L", D::Energy),
+            Quantity::Kinetic => entry(Scalar("T"), "T", "T", D::Energy),
+            Quantity::Potential => entry(Scalar("V"), "V", "V", D::Energy),
             Quantity::LagrangianGradient => entry(
                 Unnamed,
                 "∂*L/∂#",
                 "\\frac{\\partial^* L}{\\partial #}",
                 D::Force,
-                Some(Method::LagrangianGradient),
-                "∂*L/∂q, masses frozen (= −∂*H/∂q, eq. 13).",
             ),
-            Quantity::ActiveForce => entry(
-                per("Q_"),
-                "Q*_#",
-                "Q^*_{#}",
-                D::Force,
-                Some(Method::ActiveForce),
-                "The generalized active force Q* (eq. 22 for the sled).",
-            ),
-            Quantity::ReactiveThrust => entry(
-                per("R1_"),
-                "R1_#",
-                "R_{1,#}",
-                D::Force,
-                Some(Method::ReactiveThrust),
-                "The generalized reactive thrust R1 = Σ Q1 v_r1 · ∂r/∂q.",
-            ),
-            Quantity::ImpactForce => entry(
-                per("R2_"),
-                "R2_#",
-                "R_{2,#}",
-                D::Force,
-                Some(Method::ImpactForce),
-                "The generalized impact force R2 = Σ Q2 v_r2 · ∂r/∂q (eq. 23 for the sled).",
-            ),
-            Quantity::FrozenMomentumRate => entry(
-                per("dp_"),
-                "d*p_#/dt",
-                "\\frac{d^* p_{#}}{dt}",
-                D::Force,
-                None,
-                "d*p/dt (eq. 14)",
-            ),
+            Quantity::ActiveForce => entry(per("Q_"), "Q*_#", "Q^*_{#}", D::Force),
+            Quantity::ReactiveThrust => entry(per("R1_"), "R1_#", "R_{1,#}", D::Force),
+            Quantity::ImpactForce => entry(per("R2_"), "R2_#", "R_{2,#}", D::Force),
+            Quantity::FrozenMomentumRate => {
+                entry(per("dp_"), "d*p_#/dt", "\\frac{d^* p_{#}}{dt}", D::Force)
+            }
             Quantity::MassFluxForce => entry(
                 Unnamed,
                 "flux_#",
                 "\\sum_i \\dot m_i \\frac{\\partial^* p_{#}}{\\partial m_i}",
                 D::Force,
-                Some(Method::MassFluxForce),
-                "The mass-flux term Σ ṁᵢ ∂*p/∂mᵢ of the true ṗ.",
             ),
-            Quantity::MomentumRate => entry(
-                per("pdot_"),
-                "dp_#/dt",
-                "\\dot p_{#}",
-                D::Force,
-                None,
-                "The true ṗ = d*p/dt + Σ ṁᵢ ∂*p/∂mᵢ.",
-            ),
-            Quantity::AccelerationRhs => entry(
-                Unnamed,
-                "rhs_#",
-                "(M \\ddot q)_{#}",
-                D::Force,
-                None,
-                "The right side of M q̈ (eq. 6).",
-            ),
+            Quantity::MomentumRate => entry(per("pdot_"), "dp_#/dt", "\\dot p_{#}", D::Force),
+            Quantity::AccelerationRhs => entry(Unnamed, "rhs_#", "(M \\ddot q)_{#}", D::Force),
             Quantity::Accelerations => Spec {
                 evaluated: Evaluated::SolvedOrNumeric,
                 ..entry(
@@ -276,26 +198,10 @@ impl Quantity {
                     "#''",
                     "\\ddot{#}",
                     D::Acceleration,
-                    Some(Method::Accelerations),
-                    "q̈(q, q̇, t) from M q̈ = d*p/dt − ∂*p/∂q q̇ − ∂*p/∂t (eq. 6).",
                 )
             },
-            Quantity::Power => entry(
-                Scalar("power"),
-                "dH/dt",
-                "\\frac{dH}{dt}",
-                D::Power,
-                Some(Method::Power),
-                "The energy-budget power dH/dt = ∂*H/∂t + q̇·(Q* − R1 + R2 + Σ ṁ ∂*p/∂m) + Σ ṁ ∂H/∂m.",
-            ),
-            Quantity::Energy => entry(
-                Scalar("H"),
-                "H",
-                "H",
-                D::Energy,
-                Some(Method::Hamiltonian),
-                "The Hamiltonian H(q, p, t) = p·q̇ − L (eqs. 9–10).",
-            ),
+            Quantity::Power => entry(Scalar("power"), "dH/dt", "\\frac{dH}{dt}", D::Power),
+            Quantity::Energy => entry(Scalar("H"), "H", "H", D::Energy),
         }
     }
 
@@ -306,30 +212,6 @@ impl Quantity {
             .iter()
             .position(|q| *q == self)
             .unwrap_or(usize::MAX)
-    }
-
-    /// The expressions of this quantity in `d`, in velocity form; empty when `d` does not
-    /// hold it in closed form (accelerations beyond `SYMBOLIC_INVERSE_MAX_DOF`).
-    pub fn read(self, d: &Derivation) -> Vec<Id> {
-        match self {
-            Quantity::MassRates => d.mass_rates.clone(),
-            Quantity::Momenta => d.momenta.clone(),
-            Quantity::MassMatrix => d.mass_matrix.iter().flatten().copied().collect(),
-            Quantity::Lagrangian => vec![d.lagrangian],
-            Quantity::Kinetic => vec![d.kinetic],
-            Quantity::Potential => vec![d.potential],
-            Quantity::LagrangianGradient => d.lagrangian_gradient.clone(),
-            Quantity::ActiveForce => d.active_force.clone(),
-            Quantity::ReactiveThrust => d.reactive_thrust.clone(),
-            Quantity::ImpactForce => d.impact_force.clone(),
-            Quantity::FrozenMomentumRate => d.frozen_momentum_rate.clone(),
-            Quantity::MassFluxForce => d.mass_flux_force.clone(),
-            Quantity::MomentumRate => d.momentum_rate.clone(),
-            Quantity::AccelerationRhs => d.acceleration_rhs.clone(),
-            Quantity::Accelerations => d.accelerations.clone().unwrap_or_default(),
-            Quantity::Power => vec![d.power],
-            Quantity::Energy => vec![d.energy],
-        }
     }
 
     /// The quantity and index (coordinate or mass) a DSL name means, if it names one:
@@ -434,16 +316,4 @@ pub fn reserved_names() -> String {
         _ => None,
     });
     names.collect::<Vec<_>>().join(", ")
-}
-
-/// The velocity-form roots of every quantity the registry holds for `d`, in
-/// [`Quantity::ALL`] order, plus q̇ in closed form: what the doc comments show.
-pub fn documented_roots(d: &Derivation) -> Vec<Id> {
-    let mut roots: Vec<Id> = Quantity::ALL.iter().flat_map(|q| q.read(d)).collect();
-    roots.extend(d.hamiltonian);
-    roots.extend(d.closed_laws.iter().flatten());
-    if let VelocitySolve::Symbolic(v) = &d.velocities {
-        roots.extend(v);
-    }
-    roots
 }

@@ -1,7 +1,7 @@
 //! One test per diagnostic of the derivation: the message and the position.
 
-use varmass_symbolic::mechanics::{derive_source, Parameters};
 use varmass_symbolic::Diagnostic;
+use varmass_symbolic::{derive_source, mechanics::Parameters};
 
 fn errors(source: &str, parameters: Parameters) -> Vec<Diagnostic> {
     match derive_source(source, parameters) {

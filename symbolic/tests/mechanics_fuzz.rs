@@ -9,7 +9,7 @@ mod mechanics_support;
 use mechanics_support::systems::ALL;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
-use varmass_symbolic::mechanics::{derive_source, Parameters};
+use varmass_symbolic::{derive_source, mechanics::Parameters};
 
 /// The seed CI uses; `VARMASS_FUZZ_SEED` replaces it.
 const DEFAULT_SEED: u64 = 20261121;

@@ -2,10 +2,13 @@
 //! diagnostic at its text, calls lowered to the opaque input, its partials only in the
 //! Jacobian, and the equations never differentiating it.
 
-use varmass_symbolic::mechanics::{derive_for, Derivation, Outputs, Parameters};
 use varmass_symbolic::parse::ast::StatementKind;
 use varmass_symbolic::parse::parse_system;
 use varmass_symbolic::Diagnostic;
+use varmass_symbolic::{
+    derive_for,
+    mechanics::{Derivation, Outputs, Parameters},
+};
 
 fn derive(source: &str) -> Result<Derivation, Vec<Diagnostic>> {
     let ast = parse_system(source)?;
@@ -181,7 +184,7 @@ fn units_of_an_input_are_declared() {
 fn derive_with_law(source: &str, law: &str) -> Result<Derivation, Vec<Diagnostic>> {
     let ast = parse_system(source)?;
     let law = varmass_symbolic::parse::parse_expression(law).map_err(|d| vec![d])?;
-    varmass_symbolic::mechanics::derive_with_laws(
+    varmass_symbolic::derive_with_laws(
         &ast,
         Parameters::Inferred,
         Outputs::FULL,

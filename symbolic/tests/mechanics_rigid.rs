@@ -2,7 +2,7 @@
 //! text it is about, and the hand-derived terms of docs/mechanics.md#flows-at-points hold
 //! as `check`s (thrust torque, jet damping, a torque's generalized force).
 
-use varmass_symbolic::mechanics::{derive_source, Parameters};
+use varmass_symbolic::{derive_source, mechanics::Parameters};
 
 /// The one diagnostic of `source`, with the text under its span.
 fn error(source: &str) -> (String, String) {

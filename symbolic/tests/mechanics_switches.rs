@@ -1,7 +1,7 @@
 //! Non-smooth points of a derivation: a mass law that can jump is refused at the jump
 //! (docs/mechanics.md#jumps-and-phases); a kink is allowed.
 
-use varmass_symbolic::mechanics::{derive_source, Parameters};
+use varmass_symbolic::{derive_source, mechanics::Parameters};
 
 /// The 23 % example: the dry stage m_d "drops" at t_b inside the law. Refused at
 /// `sign` (line 2, column 25), with help pointing to phases.

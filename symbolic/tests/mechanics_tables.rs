@@ -9,10 +9,13 @@
 use std::path::{Path, PathBuf};
 
 use varmass_symbolic::expr::Identity;
-use varmass_symbolic::mechanics::{derive_in, Outputs, Parameters};
 use varmass_symbolic::parse::ast::StatementKind;
 use varmass_symbolic::parse::parse_system;
 use varmass_symbolic::Diagnostic;
+use varmass_symbolic::{
+    derive_in,
+    mechanics::{Outputs, Parameters},
+};
 use varmass_table::{Interpolation, Outside};
 
 fn data() -> PathBuf {
@@ -219,6 +222,18 @@ fn files_are_read_relative_to_the_model_and_their_errors_carry_the_line() {
     error(
         "coordinates y\ntable F(t) = \"ramp.txt\"\nkinetic y'^2",
         "a RASP motor (`.eng`) or a CSV table (`.csv`)",
+        2,
+        14,
+    );
+}
+
+#[test]
+fn a_motor_with_negative_thrust_is_refused_at_its_file_line_and_value() {
+    // negative.eng, line 4: `0.3 -4.5`; before, it was read and a run failed later with a
+    // negative flow rate (ṁ = −F/u_e).
+    error(
+        "coordinates y\ntable F(t) = \"negative.eng\"\nkinetic y'^2",
+        "negative.eng:4:5: the thrust -4.5 N is negative",
         2,
         14,
     );

@@ -29,7 +29,8 @@ fn expect(source: &str, message: &str, line: u32, column: u32, under: &str) -> D
 }
 
 const ALL_STATEMENTS: &str = "coordinates, mass, inertia, let, body, kinetic, potential, \
-lagrangian, force, thrust, impact, outflow, inflow, check, units, rigid, torque, table, input";
+lagrangian, force, thrust, impact, outflow, inflow, check, units, rigid, torque, table, input, use, \
+parameter";
 
 #[test]
 fn missing_operand() {

@@ -159,6 +159,20 @@ fn summary(kind: &StatementKind) -> String {
                 every.unwrap_or_default()
             )
         }
+        StatementKind::Use(u) => {
+            let bindings: Vec<String> = u
+                .bindings
+                .iter()
+                .map(|b| format!("{} = {}", b.name.node, show(&b.value)))
+                .collect();
+            format!(
+                "use {:?} as {}: {}",
+                u.file.node,
+                u.instance.node,
+                bindings.join(", ")
+            )
+        }
+        StatementKind::Parameter(p) => format!("parameter {} = {:?}", p.name.node, p.value),
     }
 }
 

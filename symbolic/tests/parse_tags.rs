@@ -2,8 +2,8 @@
 //! rule (untagged always in; a tagged statement in when all its tags are asked for), down
 //! to the parameters the derivation then demands.
 
-use varmass_symbolic::mechanics::{derive, Parameters};
 use varmass_symbolic::parse::{known_tags, parse_system, select_tags};
+use varmass_symbolic::{derive, mechanics::Parameters};
 
 const ROCKET: &str = "coordinates y
 mass m: state, rate -mu

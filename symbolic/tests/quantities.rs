@@ -7,10 +7,13 @@
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
-use varmass_symbolic::emit::{emit_system, Target};
+use varmass_symbolic::emit::{emit_system, Method, Target};
 use varmass_symbolic::expr::Identity;
-use varmass_symbolic::mechanics::{derive_source, is_reserved, Derivation, Parameters};
 use varmass_symbolic::quantity::{Named, Quantity};
+use varmass_symbolic::{
+    derive_source,
+    mechanics::{is_reserved, Derivation, Parameters},
+};
 
 /// A planar rocket: two coordinates (so q̈ is in closed form), a state mass with an outflow,
 /// units. By hand, with v = (x', y') and the exhaust at −u along y relative to the body:
@@ -143,7 +146,7 @@ fn every_named_quantity_is_in_the_derivation_text_and_its_method_in_the_docs() {
             "`{name}`: `{label}` in\n{text}"
         );
         assert!(latex.contains(&q.latex_label(&on)), "`{name}` in the LaTeX");
-        if let Some(method) = q.spec().method {
+        if let Some((method, _)) = Method::carrying(q) {
             let method = method.name();
             assert!(
                 code.contains(&format!("fn {method}")),

@@ -5,7 +5,10 @@
 use proc_macro2::{TokenStream, TokenTree};
 use quote::format_ident;
 use varmass_symbolic::emit::{emit_system, Target};
-use varmass_symbolic::mechanics::{derive_source, Derivation, Parameters};
+use varmass_symbolic::{
+    derive_source,
+    mechanics::{Derivation, Parameters},
+};
 
 /// The sled in body form (eqs. 20–24), with the paper's results as checks.
 const SLED: &str = "coordinates x
@@ -182,7 +185,7 @@ fn the_comparison_sees_a_changed_derivation() {
 #[test]
 fn the_sled_table_has_the_units_of_its_quantities() {
     let source = format!("{SLED_UNITS}\n{SLED}");
-    let derivation = varmass_symbolic::mechanics::derive_source(&source, Parameters::Inferred);
+    let derivation = varmass_symbolic::derive_source(&source, Parameters::Inferred);
     let table = derivation.unwrap().units.unwrap();
     let shown = |name: &str| table.quantity(name).unwrap().to_string();
     assert_eq!(shown("H"), "kg·m²/s²");
@@ -210,7 +213,7 @@ fn every_model_file_states_its_units_and_passes_the_check() {
             Parameters::Inferred,
             varmass_symbolic::mechanics::Outputs::MINIMAL,
         );
-        match varmass_symbolic::mechanics::derive_in(&all, inferred, minimal, &dir) {
+        match varmass_symbolic::derive_in(&all, inferred, minimal, &dir) {
             Ok(d) if d.units.is_some() => count += 1,
             Ok(_) => panic!("{} has no `units` statement", path.display()),
             Err(errors) => panic!("{}: {}", path.display(), errors[0].render(&text)),

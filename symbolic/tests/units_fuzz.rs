@@ -4,7 +4,7 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
-use varmass_symbolic::mechanics::{derive_source, Parameters};
+use varmass_symbolic::{derive_source, mechanics::Parameters};
 
 const SYSTEMS: &[&str] = &[
     "coordinates x

@@ -2,8 +2,8 @@
 //! text under the caret, and that every problem is reported together. Each expected
 //! dimension was derived by hand in the comment beside it.
 
-use varmass_symbolic::mechanics::{derive_source, Parameters};
 use varmass_symbolic::Diagnostic;
+use varmass_symbolic::{derive_source, mechanics::Parameters};
 
 /// Every diagnostic of `source` (which must fail), rendered for failure messages.
 fn errors(source: &str) -> Vec<Diagnostic> {

@@ -1,7 +1,7 @@
 //! The derivation text of a system with units states the unit of every coordinate and
 //! parameter and of each derived quantity; without units it is unchanged.
 
-use varmass_symbolic::mechanics::{derive_source, Parameters};
+use varmass_symbolic::{derive_source, mechanics::Parameters};
 
 /// The leaking polar pendulum: r in m, th in rad.
 const PENDULUM: &str = "coordinates r, th

@@ -57,6 +57,13 @@ pub enum ReadErrorKind {
         /// The time found.
         time: f64,
     },
+    /// A RASP thrust below zero: a motor only pushes, and a negative thrust would make the
+    /// mass law ṁ = −F/u_e a negative flow rate, refused only when a run reaches it.
+    #[error("the thrust {thrust} N is negative: a motor's thrust is ≥ 0")]
+    NegativeThrust {
+        /// The thrust found, N.
+        thrust: f64,
+    },
     /// The text ends before the header it needs (a RASP header line, a CSV header).
     #[error("missing the header line ({expected})")]
     MissingHeader {

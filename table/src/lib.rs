@@ -18,10 +18,10 @@
 //! * [`Tabulated`]: a table with its derivative tables built once, the field of a generated
 //!   system for a `table F(t) = runtime` statement; [`Tabulated::transformed`] scales its
 //!   values and stretches its argument (an ensemble dispersing a thrust curve).
-//! * Taylor series of a table call ([`series_coefficient`]), and the four-chain [`sum`] of
-//!   every Taylor recurrence: here because generated code (through `varmass-core`) and the
-//!   run-time tapes (`varmass-symbolic`) both depend on this crate, and one function each
-//!   keeps the two bit-identical.
+//! * Taylor series of a table call ([`series_coefficient`]), and every Taylor recurrence
+//!   ([`recurrence`], with its four-chain [`sum`]): here because generated code (through
+//!   `varmass-core`) and the run-time tapes (`varmass-symbolic`) both depend on this crate,
+//!   and one function each keeps the two bit-identical.
 //!
 //! The crate is `no_std` (with `alloc`) without its `std` feature, as `varmass-core`.
 //! The design, and how the DSL uses tables, is in `docs/tables.md`.
@@ -50,6 +50,7 @@ mod interpolant;
 mod piecewise;
 mod points;
 mod rasp;
+pub mod recurrence;
 mod series;
 mod table;
 mod tabulated;
@@ -61,6 +62,7 @@ pub use interpolant::Interpolation;
 pub use piecewise::Piecewise;
 pub use points::{InvalidPoints, Points};
 pub use rasp::Motor;
-pub use series::{series_coefficient, sum, Local};
+pub use recurrence::{sum, Scalar};
+pub use series::{series_coefficient, Local};
 pub use table::{Cursor, Outside, Table, END_SLACK};
 pub use tabulated::Tabulated;

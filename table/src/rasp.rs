@@ -74,7 +74,7 @@ impl Motor {
     }
 }
 
-/// Puts in the thrust curve a data line of a RASP file: `time thrust`, the time ≥ 0; the
+/// Puts in the thrust curve a data line of a RASP file: `time thrust`, both ≥ 0; the
 /// curve starts from ignition at zero thrust unless the file says otherwise. A line of seven
 /// fields or more that starts with a name is a second motor's header.
 fn thrust_row(thrust: &mut PointsBuilder, line: usize, content: &str) -> Result<(), ReadError> {
@@ -97,6 +97,13 @@ fn thrust_row(thrust: &mut PointsBuilder, line: usize, content: &str) -> Result<
             line,
             fields[0].0,
             ReadErrorKind::NegativeTime { time },
+        ));
+    }
+    if force < 0.0 {
+        return Err(error_at(
+            line,
+            fields[1].0,
+            ReadErrorKind::NegativeThrust { thrust: force },
         ));
     }
     // The curve starts from ignition at zero thrust unless the file says otherwise.

@@ -80,7 +80,7 @@ impl Table {
         // series (a rising one is stopped past it, `next_knot_time`, where this errs).
         // Where the table jumps at an end, the lookups read the data within their rounding
         // band beyond it, and a switch on the state restarts a run entering the data at
-        // the band's edge (`varmass_core::table::knot_bracket`): the series must read what
+        // the band's edge (`varmass_core::table::knot_bracket_read`): the series must read what
         // the lookups read there.
         let in_band = |end: f64| self.jumps_at(end) && (first..=last).contains(&self.snapped(x));
         let from_first = first <= x || in_band(first);
@@ -156,55 +156,4 @@ pub fn series_coefficient(
         w += h(i) * s(k - i);
     }
     (h1, w)
-}
-
-/// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the range
-/// into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)): the sums of the
-/// Taylor recurrences (`varmass_core::steppers::taylor::series`, the tapes of
-/// `varmass_symbolic::expr::taylor`), here because both crates depend on this one and
-/// generated code must add in the tapes' order to stay bit-identical to them
-/// (`tests/taylor_emitted.rs`). A recurrence's sum is a chain of k dependent additions:
-/// four independent chains let the processor overlap them (heyoka sums its recurrences
-/// pairwise for the same reason), and the error bound shrinks with the depth. The partial
-/// sums start at −0, the identity of addition (x + (−0) = x for every x, −0 included; not
-/// so +0: −0 + 0 = +0), so the compiler drops the first addition of each: 9 % of the 3-link
-/// pendulum's instructions at 1e-9 (callgrind). `#[inline(always)]`: generated code unrolls
-/// it at every order.
-#[inline(always)]
-pub fn sum(start: usize, end: usize, term: impl Fn(usize) -> f64) -> f64 {
-    let mut s = [-0.0f64; 4];
-    let mut j = start;
-    while j + 4 <= end {
-        s[0] += term(j);
-        s[1] += term(j + 1);
-        s[2] += term(j + 2);
-        s[3] += term(j + 3);
-        j += 4;
-    }
-    let mut i = 0;
-    while j < end {
-        s[i] += term(j);
-        i += 1;
-        j += 1;
-    }
-    (s[0] + s[1]) + (s[2] + s[3])
-}
-
-#[cfg(test)]
-mod tests {
-    use super::sum;
-
-    /// The order of the additions, which generated code and the tapes share: terms 0 and 4
-    /// go to one chain, 1 and 5 to the next, then ((s₀ + s₁) + (s₂ + s₃)). With 2⁵³ and 1
-    /// groupings round differently: s₀ = 2⁵³ + 1 → 2⁵³, s₁ = −2⁵³ + 1 (exact), s₂ = s₃ = 1,
-    /// so (2⁵³ + (1 − 2⁵³)) + 2 = 3, where left to right 2⁵³ − 2⁵³ + 1 + 1 + 1 + 1 = 4.
-    #[test]
-    fn adds_in_four_chains_then_pairwise() {
-        let big = 2f64.powi(53);
-        let terms = [big, -big, 1.0, 1.0, 1.0, 1.0];
-        assert_eq!(sum(0, 6, |j| terms[j]), 3.0);
-        assert_eq!(terms.iter().fold(0.0, |s, t| s + t), 4.0);
-        // Empty: −0, the identity of addition.
-        assert!(sum(3, 3, |_| 1.0).to_bits() == (-0.0f64).to_bits());
-    }
 }

@@ -166,3 +166,14 @@ fn a_header_without_points_has_too_few() {
         (2, ReadErrorKind::TooFewPoints { found: 1 })
     );
 }
+
+#[test]
+fn a_negative_thrust_is_refused_where_it_is_written() {
+    // A motor only pushes: -3 N on line 3 would become a negative flow rate ṁ = −F/u_e
+    // only when a run reached it. Refused at the thrust's field (line 3, column 5).
+    let e = error("A 1 2 0 0.1 0.2 X\n0.1 10\n0.2 -3\n0.3 0\n");
+    assert_eq!((e.line, e.column), (3, 5));
+    assert_eq!(e.kind, ReadErrorKind::NegativeThrust { thrust: -3.0 });
+    // Zero thrust stays valid (the burn's end).
+    assert!(Motor::parse("A 1 2 0 0.1 0.2 X\n0.1 10\n0.2 0\n").is_ok());
+}

@@ -7,6 +7,7 @@ use varmass::core::steppers::{
     AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, FixedStep, StepControl, Taylor,
     TaylorControl,
 };
+use varmass::core::tolerance::{Floor, Tolerance};
 use varmass::core::{run, RunConfig, Solution, VariableMassSystem};
 
 /// The adaptive methods' tolerance, relative and absolute.
@@ -30,7 +31,8 @@ pub fn adaptive_ends<Sys: VariableMassSystem<1, 2>>(
             ..base
         })
     };
-    let control = TaylorControl::adaptive(TOLERANCE, TOLERANCE);
+    let control =
+        TaylorControl::adaptive(Tolerance::for_floor(TOLERANCE, TOLERANCE, Floor::Taylor).unwrap());
     let mut taylor = Taylor::new(system, 0.0, start, control).unwrap();
     let mut dop853 = Dop853::new(system, 0.0, start, adaptive(AdaptiveControl::dop853())).unwrap();
     let mut dp =

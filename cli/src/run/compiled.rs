@@ -98,12 +98,13 @@ impl Compiled {
         }
     }
 
-    /// Reads the tables `table` (`--table NAME=FILE`, docs/tables.md#runtime-tables) and
-    /// puts the laws `input` (`--input NAME=EXPR`) in the calls of the model's inputs
-    /// (docs/inputs.md), deriving the model again when they, or the files they name, differ
-    /// from the last run's; a missing law, a law for a model without inputs, a bad table
-    /// file or name is the tool's input error.
-    fn apply_laws(&mut self, input: &[String], table: &[String]) -> Result<(), CliError> {
+    /// Reads the tables of `args.table` (`--table NAME=FILE`, docs/tables.md#runtime-tables)
+    /// and puts the laws of `args.input` (`--input NAME=EXPR`) in the calls of the model's
+    /// inputs (docs/inputs.md), deriving the model again when they, or the files they name,
+    /// differ from the last run's; a missing law, a law for a model without inputs, a bad
+    /// table file or name is the tool's input error, in the words of `args.words`.
+    fn apply_laws(&mut self, args: &RunArgs) -> Result<(), CliError> {
+        let (input, table) = (args.input.as_slice(), args.table.as_slice());
         let Some((declared, current)) = &mut self.declared else {
             // No inputs and no tables: nothing to do (no copy: an ensemble member passes
             // here), and any `--input` or `--table` is refused as `apply` would refuse it.
@@ -112,7 +113,7 @@ impl Compiled {
             }
             return match input.is_empty() {
                 true => Ok(()),
-                false => super::inputs::laws(input, &[]).map(|_| ()),
+                false => super::inputs::laws(input, &[], args.words).map(|_| ()),
             };
         };
         let options = RunOptions::new(input, table);
@@ -120,7 +121,7 @@ impl Compiled {
             return Ok(());
         }
         let tabled = super::tables::apply(declared.clone(), table)?;
-        self.model = super::inputs::apply(tabled, input)?;
+        self.model = super::inputs::apply(tabled, input, args.words)?;
         *current = Some(options);
         self.used = self.model.derivation.used_parameters();
         self.program = None;
@@ -140,60 +141,126 @@ impl Compiled {
     fn program(
         &mut self,
         values: &[(String, f64)],
+        words: Words,
         mut warn: impl FnMut(&str),
     ) -> Result<Program, CliError> {
         for warning in plan::unused_among(&self.model.derivation, &self.used, values) {
             warn(&warning);
         }
+        // A parameter with a default in the model needs no `--set` (docs/components.md).
+        let values = self.model.with_defaults(values);
         let borrowed: Vec<(&str, f64)> = values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
         let mut program = match self.program.take() {
             Some(program) => program,
             None => {
                 let derivation = self.model.derivation.clone();
-                Program::new(derivation, &borrowed).map_err(|e| self.refused(e))?
+                Program::new(derivation, &borrowed).map_err(|e| self.refused(e, words))?
             }
         };
         let refilled = program.set_parameters(&borrowed);
         // Kept either way: a refused value list leaves the former values in place.
         if let Err(e) = refilled {
             self.program = Some(program);
-            return Err(self.refused(e));
+            return Err(self.refused(e, words));
         }
         Ok(program)
     }
 
     /// A refused value list in the tool's words.
-    fn refused(&self, e: varmass::interpret::ProgramError) -> CliError {
+    fn refused(&self, e: varmass::interpret::ProgramError, words: Words) -> CliError {
         let m = &self.model;
-        super::program_error(&m.ast, &m.with, &m.base, Words::Flags, e)
+        super::program_error(&m.ast, &m.with, &m.base, words, e)
     }
 
-    /// The tool's `run` from the parameter values on: the program, the plan (every check
-    /// of the arguments), the integration (with a progress bar if `progress`); `finish`
-    /// reads the outcome, then the program is kept for the next run.
-    pub(super) fn execute<T>(
+    /// The program of this model with the run's values and its checked plan: every
+    /// mistake in the arguments found before any work, as the tool's
+    /// [`CliError::Input`]. The plan stays here for the next run (see [`Compiled::plan`]);
+    /// the program is the caller's until it gives it back.
+    fn prepare(
+        &mut self,
+        args: &RunArgs,
+        values: Vec<(String, f64)>,
+        warn: impl FnMut(&str),
+    ) -> Result<(Program, &mut Plan), CliError> {
+        self.apply_laws(args)?;
+        let program = self.program(&values, args.words, warn)?;
+        match self.plan(args, values, &program) {
+            Ok(planned) => Ok((program, &mut self.planned.insert(planned).plan)),
+            Err(e) => {
+                self.program = Some(program);
+                Err(e)
+            }
+        }
+    }
+
+    /// `Compiled::prepare` for one use (a scene's first phase): the program and the plan.
+    pub fn prepared(
+        mut self,
+        args: &RunArgs,
+        values: Vec<(String, f64)>,
+        warn: impl FnMut(&str),
+    ) -> Result<(Program, Plan), CliError> {
+        let (program, _) = self.prepare(args, values, warn)?;
+        let planned = self.planned.take();
+        let plan = planned.map(|p| p.plan);
+        plan.map(|plan| (program, plan))
+            .ok_or_else(|| CliError::Run("the run was not planned".to_string()))
+    }
+
+    /// The program alone, with the laws and tables of `args` and the values `values`, and
+    /// its flows' names (a scene's later phase, whose plan is the first phase's).
+    pub fn program_only(
+        mut self,
+        args: &RunArgs,
+        values: &[(String, f64)],
+    ) -> Result<(Program, Vec<String>), CliError> {
+        self.apply_laws(args)?;
+        let program = self.program(values, args.words, |_| {})?;
+        let flows = program.derivation().flow_names.clone();
+        Ok((program, flows))
+    }
+
+    /// Every check a run makes before its first step (`Compiled::prepare`), nothing
+    /// integrated; the program is kept for the next run.
+    pub fn check(&mut self, args: &RunArgs, values: Vec<(String, f64)>) -> Result<(), CliError> {
+        let (program, _) = self.prepare(args, values, |_| {})?;
+        self.program = Some(program);
+        Ok(())
+    }
+
+    /// The program and plan ([`Compiled::prepare`]), then the integration in the
+    /// monomorphized code for the model's sizes ([`dispatch`]), with a progress bar if
+    /// `progress`: the outcome, not recorded yet, and its plan.
+    fn integrate(
         &mut self,
         args: &RunArgs,
         progress: bool,
         values: Vec<(String, f64)>,
         warn: impl FnMut(&str),
-        finish: impl FnOnce(&mut Outcome, &Plan) -> T,
-    ) -> Result<T, CliError> {
-        self.apply_laws(&args.input, &args.table)?;
-        let program = self.program(&values, warn)?;
-        let mut planned = match self.plan(args, values, &program) {
-            Ok(planned) => planned,
-            Err(e) => {
-                self.program = Some(program);
-                return Err(e);
-            }
-        };
-        planned.plan.progress = progress;
-        let mut outcome = dispatch(program, &planned.plan)?;
-        let result = finish(&mut outcome, &planned.plan);
+    ) -> Result<(Outcome, &Plan), CliError> {
+        let (program, plan) = self.prepare(args, values, warn)?;
+        plan.progress = progress;
+        Ok((dispatch(program, plan)?, plan))
+    }
+
+    /// The one path from a model to a result, for `varmass run` and for the Python
+    /// package's `Model.run`: the program, plan and integration
+    /// (`Compiled::integrate`), then the recording and the summary (`finish`); the
+    /// program is kept for the next run. A failed run gives the points recorded up to
+    /// the failure with its error ([`Failed::table`]).
+    pub fn execute(
+        &mut self,
+        args: &RunArgs,
+        progress: bool,
+        values: Vec<(String, f64)>,
+        warn: impl FnMut(&str),
+    ) -> Result<Completed, Failed> {
+        let (mut outcome, plan) = self
+            .integrate(args, progress, values, warn)
+            .map_err(Failed::before)?;
+        let done = finish(&mut outcome, plan, &args.stop_when);
         self.program = Some(outcome.program);
-        self.planned = Some(planned);
-        Ok(result)
+        done
     }
 
     /// The plan of a run with `args` and the parameter values `values`: the last run's
@@ -225,8 +292,7 @@ impl Compiled {
             };
         }
         let names = values.iter().map(|(n, _)| n.clone()).collect();
-        let mut plan = plan::plan_with(args, values, program, &self.model.selected)?;
-        plan.flows = self.model.flows.clone();
+        let plan = plan::plan_with(args, values, program, &self.model.selected)?;
         let velocity_state = plan::initial_velocities(args, program)?;
         Ok(Planned {
             made_for: (args.clone(), names),
@@ -237,18 +303,11 @@ impl Compiled {
 
     /// The tool's `run` of this model with the parameter values given as numbers (`args.set`
     /// is not read) and nothing written to files: the same checks, plan, stepper, recording
-    /// and messages. A run that fails returns its error; the points up to it are in
-    /// [`Failed::table`].
+    /// and messages ([`Compiled::execute`]). A run that fails returns its error; the points
+    /// up to it are in [`Failed::table`].
     pub fn run(&mut self, parameters: &[(&str, f64)], args: &RunArgs) -> Result<Completed, Failed> {
         let values = typed(parameters).map_err(Failed::before)?;
-        let done = self.execute(
-            args,
-            false,
-            values,
-            |_| {},
-            |outcome, plan| completed(outcome, plan, args),
-        );
-        done.map_err(Failed::before)?
+        self.execute(args, false, values, |_| {})
     }
 
     /// [`Compiled::run`] for a caller that wants only where the run ended (an ensemble's
@@ -261,23 +320,15 @@ impl Compiled {
         args: &RunArgs,
     ) -> Result<(f64, Vec<f64>), CliError> {
         let values = typed(parameters)?;
-        self.execute(
-            args,
-            false,
-            values,
-            |_| {},
-            |outcome, plan| {
-                let program = &outcome.program;
-                // A member wants the end: rows before an unrecordable point are of no use.
-                let table = output::table(program, &plan.record, outcome.points.iter())
-                    .map_err(|partial| partial.with_run_failure(outcome.failure.take()).1)?;
-                if let Some(error) = outcome.failure.take() {
-                    return Err(error);
-                }
-                let no_point = || CliError::Run("the run returned no point".to_string());
-                table.last().ok_or_else(no_point)
-            },
-        )?
+        let (mut outcome, plan) = self.integrate(args, false, values, |_| {})?;
+        // A member wants the end: rows before an unrecordable point are of no use.
+        let table = recorded(&mut outcome, plan);
+        self.program = Some(outcome.program);
+        let no_point = || CliError::Run("the run returned no point".to_string());
+        table
+            .map_err(|failed| failed.error)?
+            .last()
+            .ok_or_else(no_point)
     }
 }
 
@@ -296,42 +347,46 @@ fn typed(parameters: &[(&str, f64)]) -> Result<Vec<(String, f64)>, CliError> {
     Ok(values)
 }
 
-/// What a finished run gives a library caller.
-fn completed(outcome: &mut Outcome, plan: &Plan, args: &RunArgs) -> Result<Completed, Failed> {
-    let program = &outcome.program;
-    let table = match output::table(program, &plan.record, outcome.points.iter()) {
-        Ok(table) => table,
-        Err(partial) => {
-            // The rows before the point that could not be recorded go with the error.
-            let (table, error) = partial.with_run_failure(outcome.failure.take());
-            let table = Some(table);
-            return Err(Failed { error, table });
-        }
-    };
-    if let Some(error) = outcome.failure.take() {
-        let table = Some(table);
-        return Err(Failed { error, table });
-    }
-    let end = outcome.points.last().map(|(t, s)| (t, s.to_vec()));
-    let end =
-        end.ok_or_else(|| Failed::before(CliError::Run("the run returned no point".to_string())))?;
-    let stopped_by = outcome
-        .stopped_by
-        .and_then(|index| args.stop_when.get(index));
+/// The one finisher of a run: its recorded table ([`recorded`]), where it ended, which
+/// `--stop-when` condition of `stop_when` ended it, its work and its summary — what the
+/// tool prints and writes, and what a library caller gets.
+fn finish(outcome: &mut Outcome, plan: &Plan, stop_when: &[String]) -> Result<Completed, Failed> {
+    let table = recorded(outcome, plan)?;
+    let no_point = || Failed::before(CliError::Run("the run returned no point".to_string()));
+    let (time, state) = outcome.points.last().ok_or_else(no_point)?;
+    let stopped_by = outcome.stopped_by.and_then(|index| stop_when.get(index));
+    let statistics = outcome.statistics;
     let summary = Summary::new(
-        program,
-        end.0,
-        &end.1,
+        &outcome.program,
+        time,
+        state,
         stopped_by.map(String::as_str),
-        &outcome.statistics,
-    );
+        &statistics,
+    )
+    .near_gimbal_lock(outcome.closest_singular_attitude);
     Ok(Completed {
         table,
-        end,
+        end: (time, state.to_vec()),
         stopped_by: outcome.stopped_by,
-        statistics: outcome.statistics,
+        statistics,
         summary,
     })
+}
+
+/// The table of `plan`'s recorded quantities at every point of `outcome`; a run that failed
+/// (or a point that cannot be recorded) is its error, with the rows before it.
+fn recorded(outcome: &mut Outcome, plan: &Plan) -> Result<Table, Failed> {
+    let failed = |(table, error)| Failed {
+        error,
+        table: Some(table),
+    };
+    match output::table(&outcome.program, &plan.record, outcome.points.iter()) {
+        Err(partial) => Err(failed(partial.with_run_failure(outcome.failure.take()))),
+        Ok(table) => match outcome.failure.take() {
+            Some(error) => Err(failed((table, error))),
+            None => Ok(table),
+        },
+    }
 }
 
 /// What a run computed, for a library caller (the Python package): what the tool's `run`

@@ -4,9 +4,9 @@
 //! none may panic, and every failure must be an exit-2 error with a message.
 //!
 //! In process, without integrating: clap's parse, then for `run` the parameters, the
-//! program and the plan ([`super::program`], [`super::plan::plan`]); for `check` and
-//! `derive` the command itself. Loading a model derives it, so the program is cached per
-//! (file, tags, `--set` values) — the `--set` lists come from a small pool for that reason.
+//! program and the plan ([`Compiled::check`], the tool's own path); for `check` and
+//! `derive` the command itself. Loading a model derives it, so the compiled model is cached per
+//! (file, tags) and given each case's `--set` values, as a run is.
 //!
 //! Cases: `VARMASS_FUZZ_CASES` (default 3000, about two seconds in the test profile);
 //! the seed is fixed, `VARMASS_FUZZ_SEED` moves it. The 10⁵ run:
@@ -21,8 +21,8 @@ use clap::Parser;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestRunner};
 
-use super::{plan, Prepared};
-use crate::args::{Cli, Command};
+use super::{plan, Compiled};
+use crate::args::{Cli, Command, Method};
 use crate::error::CliError;
 use crate::model::load;
 
@@ -88,18 +88,12 @@ const SETS: &[&str] = &[
     "",
 ];
 
-const METHODS: &[&str] = &[
-    "dormand-prince",
-    "dop853",
-    "sdirk4",
-    "esdirk43",
-    "rk4",
-    "euler",
-    "implicit-midpoint",
-    "variational",
-    "rk5",
-    "",
-];
+/// Every `--method` name (the tool's own list) and two that are none.
+fn methods() -> impl Strategy<Value = String> {
+    let mut names = Method::names();
+    names.extend(["rk5", ""].map(String::from));
+    proptest::sample::select(names)
+}
 
 const RECORDS: &[&str] = &[
     "x",
@@ -191,7 +185,7 @@ fn option() -> impl Strategy<Value = Vec<String>> {
             ])
             .boxed()
         ),
-        flagged("--method", pick(METHODS).boxed()),
+        flagged("--method", methods().boxed()),
         flagged("--record", pick(RECORDS).boxed()),
         flagged("--stop-when", pick(CONDITIONS).boxed()),
         flagged("--csv", pick(&["/dev/null"]).boxed()),
@@ -270,8 +264,8 @@ fn once(
     verdict.clone()
 }
 
-/// The programs already built, by (file, tags, `--set` values).
-type Programs = HashMap<(String, Vec<String>, Vec<String>), Result<Prepared, (u8, String)>>;
+/// The models already derived (and compiled by their first run), by (file, tags).
+type Programs = HashMap<(String, Vec<String>), Result<Compiled, (u8, String)>>;
 
 /// Runs one argument vector as far as the tool goes before integrating.
 fn one(
@@ -302,19 +296,14 @@ fn one(
             })
         }
         Command::Run(a) => {
-            let key = (
-                a.model.file.display().to_string(),
-                a.model.with.clone(),
-                a.set.clone(),
-            );
+            let key = (a.model.file.display().to_string(), a.model.with.clone());
             let mut programs = programs.borrow_mut();
-            let prepared = programs.entry(key).or_insert_with(|| {
-                let model = load(&a.model).map_err(|e| failed(&e))?;
-                super::program(&a, model, |_| {}).map_err(|e| failed(&e))
-            });
-            match prepared {
-                Ok(p) => plan::plan(&a, &p.program, &p.selected)
-                    .map(|_| ())
+            let compiled = programs
+                .entry(key)
+                .or_insert_with(|| load(&a.model).map(Compiled::new).map_err(|e| failed(&e)));
+            match compiled {
+                Ok(c) => plan::parameters(&a)
+                    .and_then(|values| c.check(&a, values))
                     .map_err(|e| failed(&e)),
                 Err(e) => Err(e.clone()),
             }

@@ -51,7 +51,7 @@ pub fn apply(
 }
 
 /// Whether an `--input` value names a table file rather than an expression.
-pub(super) fn is_table_file(value: &str) -> bool {
+pub(crate) fn is_table_file(value: &str) -> bool {
     let lower = value.to_ascii_lowercase();
     lower.ends_with(".csv") || lower.ends_with(".eng")
 }

@@ -10,20 +10,26 @@ use varmass::symbolic::parse::ast::{Expr, ExprNode};
 use varmass::symbolic::parse::parse_expression;
 
 use super::names::resolve;
+use crate::args::Words;
 use crate::error::CliError;
 use crate::model::LoadedModel;
 
 /// `model` with the laws `options` (the `--input` values) in the calls of its inputs,
 /// derived again; a model without inputs and no `--input` is returned as it is. The one
-/// place both the tool's runs ([`super::Compiled`]) and [`super::program`] apply laws.
-pub fn apply(model: LoadedModel, options: &[String]) -> Result<LoadedModel, CliError> {
+/// place the tool's runs ([`super::Compiled`]: `varmass run`, scenes, Python) apply laws;
+/// `words` says how the run's user gives a law.
+pub fn apply(
+    model: LoadedModel,
+    options: &[String],
+    words: Words,
+) -> Result<LoadedModel, CliError> {
     if model.derivation.inputs.is_empty() && options.is_empty() {
         return Ok(model);
     }
     // `--input u=FILE.csv`: a table of u's first argument, and its law (docs/tables.md).
     let (model, options) = super::input_tables::apply(model, options)?;
     let options = options.as_slice();
-    let laws = laws(options, &model.derivation.inputs)?;
+    let laws = laws(options, &model.derivation.inputs, words)?;
     model.with_laws(&laws)
 }
 
@@ -32,6 +38,7 @@ pub fn apply(model: LoadedModel, options: &[String]) -> Result<LoadedModel, CliE
 pub fn laws(
     options: &[String],
     declared: &[ModelInput],
+    words: Words,
 ) -> Result<Vec<(String, ExprNode)>, CliError> {
     let known: Vec<(String, usize)> = declared
         .iter()
@@ -65,8 +72,10 @@ pub fn laws(
         let arguments = input.arguments.join(", ");
         return Err(CliError::Input(format!(
             "no law for input `{}`: the model declares `input {}({arguments})`; give \
-             --input '{}=EXPRESSION', an expression of {arguments} and the parameters",
-            input.name, input.name, input.name
+             {}, an expression of {arguments} and the parameters",
+            input.name,
+            input.name,
+            words.give_input(&input.name)
         )));
     }
     Ok(laws)

@@ -3,10 +3,12 @@
 //! [`varmass::core::run`] to the end (or to each output time in turn with `--every`).
 
 use varmass::core::nalgebra::SVector;
-use varmass::core::steppers::{AdaptiveControl, FixedStep, StepControl};
+use varmass::core::phases::MASS_AGAINST_CARRY;
+use varmass::core::steppers::{AdaptiveControl, FixedStep, StepControl, TaylorControl};
+use varmass::core::tolerance::{Floor, Tolerance};
 use varmass::core::{
-    run, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper, StopReason,
-    VariableMassSystem,
+    run, Direction, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper,
+    StopReason, SystemError, VariableMassSystem,
 };
 use varmass::interpret::{Program, TapeSystem};
 
@@ -14,6 +16,7 @@ use super::names::{evaluate, shown, Observable};
 use super::output::Points;
 use super::plan::{Plan, Steps};
 use super::watch::Watched;
+use crate::args::Words;
 use crate::error::CliError;
 
 /// What a run produced, sizes erased.
@@ -28,6 +31,9 @@ pub struct Outcome {
     pub program: Program,
     /// Why the run failed, if it did: `points` then end at the last accepted point.
     pub failure: Option<CliError>,
+    /// The closest every accepted step (not only the kept points) came to a singular
+    /// attitude of the model's Euler sequences, rad (`Solution::closest_singular_attitude`).
+    pub closest_singular_attitude: Option<f64>,
 }
 
 /// Integrates `program` (with `N` coordinates and state length `S`) as `plan` says.
@@ -57,20 +63,20 @@ pub fn integrate<const N: usize, const S: usize>(
             )
         };
     }
-    let driven = with_stepper!(plan.method, plan.steps, drive_with);
-    let (points, stopped_by, statistics, failure) = match driven {
-        Ok((points, stopped_by, statistics)) => (points, stopped_by, statistics, None),
-        Err(failed) => {
-            let (points, statistics, error) = *failed;
-            (points, None, statistics, Some(fail(error)))
-        }
-    };
+    let Driven {
+        points,
+        stopped_by,
+        statistics,
+        closest_singular_attitude,
+        error,
+    } = with_stepper!(plan.method, plan.steps, drive_with);
     Ok(Outcome {
         points,
         stopped_by,
         statistics,
+        failure: error.map(fail),
         program: system.into_program(),
-        failure,
+        closest_singular_attitude,
     })
 }
 
@@ -81,12 +87,11 @@ macro_rules! with_stepper {
     ($method:expr, $steps:expr, $with:ident) => {{
         use varmass::core::steppers::{
             AdaptiveControl, ClassicalRk4, Dop853, DormandPrince, Esdirk43, ExplicitEuler,
-            FixedStep, ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, Taylor, TaylorControl,
-            Variational, VariationalConfig,
+            FixedStep, ImplicitMidpoint, ImplicitMidpointConfig, Sdirk4, Taylor, Variational,
+            VariationalConfig,
         };
         use $crate::args::Method;
-        use $crate::run::integrate::{control, step};
-        use $crate::run::plan::Steps;
+        use $crate::run::integrate::{control, step, taylor};
         match ($method, $steps) {
             (Method::DormandPrince, s) => {
                 $with!(DormandPrince, control(s, AdaptiveControl::default()))
@@ -103,12 +108,7 @@ macro_rules! with_stepper {
                     ..ImplicitMidpointConfig::default()
                 }
             ),
-            (Method::Taylor, Steps::Adaptive(tol)) => {
-                $with!(Taylor, TaylorControl::adaptive(tol, tol))
-            }
-            (Method::Taylor, Steps::Fixed(h)) => {
-                $with!(Taylor, TaylorControl::Fixed { order: 20, step: h })
-            }
+            (Method::Taylor, s) => $with!(Taylor, taylor(s)),
             (Method::Variational, s) => $with!(
                 Variational,
                 VariationalConfig {
@@ -134,6 +134,20 @@ pub(crate) fn control(steps: Steps, defaults: AdaptiveControl) -> StepControl {
     }
 }
 
+/// The Taylor stepper's control: adaptive at the tolerance asked for, or order 20 at the
+/// fixed step.
+pub(crate) fn taylor(steps: Steps) -> TaylorControl {
+    match steps {
+        Steps::Adaptive(tol) => TaylorControl::adaptive(
+            // The plan admits only tolerances at or above the method's floor
+            // (`plan::min_tolerance`), and padding leaves Taylor's unscaled
+            // (`dispatch::padded_steps`), so this cannot fail.
+            Tolerance::for_floor(tol, tol, Floor::Taylor).expect("checked by the plan"),
+        ),
+        Steps::Fixed(step) => TaylorControl::Fixed { order: 20, step },
+    }
+}
+
 /// The step of a fixed-step method (the plan guarantees one; the adaptive tolerance never
 /// reaches a fixed-step method).
 pub(crate) fn step(steps: Steps) -> f64 {
@@ -142,12 +156,21 @@ pub(crate) fn step(steps: Steps) -> f64 {
     }
 }
 
-/// A failed run: the points up to the failure, the work done and the error.
-/// (Boxed: a failure is rare, and the success path should not carry its size.)
-type Failed<const S: usize> = Box<(Points, Statistics, StepError<S>)>;
+/// What [`drive`] gives back: the points (up to the failure, if the run failed), the
+/// `--stop-when` condition that ended it, the work, the closest approach to gimbal lock
+/// over every accepted step of every output interval, and the error of a failed run.
+struct Driven<const S: usize> {
+    points: Points,
+    stopped_by: Option<usize>,
+    statistics: Statistics,
+    closest_singular_attitude: Option<f64>,
+    error: Option<StepError<S>>,
+}
 
-/// An event function g(t, state) borrowing the program.
-type Watcher<'a, const S: usize> = Box<dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a>;
+/// An event function g(t, state).
+pub(crate) type EventFunction<'a, const S: usize> = dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a;
+/// One owned (borrowing the program it evaluates).
+pub(crate) type Watcher<'a, const S: usize> = Box<EventFunction<'a, S>>;
 
 /// Runs `stepper` to the end or a stopping event: one run over every accepted step, or
 /// with `--every` one run to each output time in turn (the stepper lands on each). A
@@ -156,28 +179,22 @@ fn drive<St, const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
     stepper: St,
     plan: &Plan,
-) -> Result<(Points, Option<usize>, Statistics), Failed<S>>
+) -> Driven<S>
 where
     St: Stepper<N, S, System = TapeSystem<N, S>>,
 {
     let program = system.program();
-    let watchers: Vec<Watcher<'_, S>> = plan
+    let watchers: Vec<Option<Watcher<'_, S>>> = plan
         .stop_when
         .iter()
-        .map(|c| watcher(program, c.observable, c.value))
+        .map(|c| watcher(Some(program), Some(c.observable), c.value))
         .collect();
+    let k = program.state_mass_count();
     let events: Vec<Event<'_, S>> = plan
         .stop_when
         .iter()
         .zip(&watchers)
-        .map(|(c, w)| match c.observable {
-            Observable::Coordinate(a) => Event::state_reaches(a, c.value, c.direction),
-            // A state mass is a state entry, `[q, p, m_s]`: no program evaluation needed.
-            Observable::Mass(i) if i < program.state_mass_count() => {
-                Event::state_reaches(2 * N + i, c.value, c.direction)
-            }
-            _ => Event::function(w.as_ref(), c.direction, EventAction::Stop),
-        })
+        .map(|(c, w)| event::<N, S>(Some(c.observable), c.value, c.direction, k, w.as_deref()))
         .collect();
     // The flows' rates are checked by the core's run at the start and after every step
     // (`TapeSystem::flow_rate`): a negative one fails it with the start point kept below.
@@ -190,6 +207,14 @@ where
     let mut points = Points::new(S, 64);
     points.push(plan.from, start.as_slice());
     let targets = output_times(plan);
+    let mut closest: Option<f64> = None;
+    let driven = |points, stopped_by, statistics: &Statistics, closest, error| Driven {
+        points,
+        stopped_by,
+        statistics: *statistics,
+        closest_singular_attitude: closest,
+        error,
+    };
     for (interval, target) in targets.into_iter().enumerate() {
         // --max-steps bounds the whole run, over every output interval.
         let taken = stepper.statistics().accepted_steps as u64;
@@ -204,6 +229,9 @@ where
             Ok(solution) => (solution, None),
             Err(failure) => (*failure.partial, Some(failure.error)),
         };
+        if let Some(distance) = solution.closest_singular_attitude {
+            closest = Some(closest.map_or(distance, |c: f64| c.min(distance)));
+        }
         let mut fresh = solution.times.iter().zip(&solution.states).skip(1);
         let kept: &mut dyn Iterator<Item = _> = match plan.every {
             None => &mut fresh,
@@ -212,14 +240,14 @@ where
         for (t, s) in kept {
             points.push(*t, s.as_slice());
         }
-        if let Some(error) = failure {
-            return Err(Box::new((points, *stepper.statistics(), error)));
+        if failure.is_some() {
+            return driven(points, None, stepper.statistics(), closest, failure);
         }
         if let StopReason::EventFound { index } = solution.stop {
-            return Ok((points, Some(index), *stepper.statistics()));
+            return driven(points, Some(index), stepper.statistics(), closest, None);
         }
     }
-    Ok((points, None, *stepper.statistics()))
+    driven(points, None, stepper.statistics(), closest, None)
 }
 
 /// The end times of the runs: the end, or every `--every` step and the end.
@@ -241,15 +269,44 @@ fn output_times(plan: &Plan) -> Vec<f64> {
     }
 }
 
-/// g(t, state) = observable − value; NaN where the observable cannot be had.
-fn watcher<const S: usize>(
-    program: &Program,
-    observable: Observable,
+/// g(t, state) = the observable minus `value`, evaluated with `program` (NaN where it
+/// cannot be had), or t − `value` for the time (`observable` `None`); `None` for an
+/// observable without a program (a state entry, which [`event`] reads from the state).
+pub(crate) fn watcher<'a, const S: usize>(
+    program: Option<&'a Program>,
+    observable: Option<Observable>,
     value: f64,
-) -> Watcher<'_, S> {
-    Box::new(move |t, state| {
+) -> Option<Watcher<'a, S>> {
+    let Some(observable) = observable else {
+        return Some(Box::new(move |t, _: &SVector<f64, S>| t - value));
+    };
+    let program = program?;
+    Some(Box::new(move |t, state: &SVector<f64, S>| {
         evaluate(program, observable, t, state.as_slice()).map_or(f64::NAN, |v| v - value)
-    })
+    }))
+}
+
+/// The core event of "`observable` (t for `None`) crosses `value`", for `varmass run`'s
+/// `--stop-when` and a scene's phase ends alike: a coordinate or one of the
+/// `state_masses` state masses read from the state `[q, p, m_s]` (no program evaluation),
+/// anything else through its `watcher`.
+pub(crate) fn event<'a, const N: usize, const S: usize>(
+    observable: Option<Observable>,
+    value: f64,
+    direction: Direction,
+    state_masses: usize,
+    watcher: Option<&'a EventFunction<'a, S>>,
+) -> Event<'a, S> {
+    match (observable, watcher) {
+        (Some(Observable::Coordinate(a)), _) => Event::state_reaches(a, value, direction),
+        (Some(Observable::Mass(i)), _) if i < state_masses => {
+            Event::state_reaches(2 * N + i, value, direction)
+        }
+        (_, Some(w)) => Event::function(w, direction, EventAction::Stop),
+        // Every other condition has a watcher; were one missing, an index past the state is
+        // the core's typed configuration error, not a silent non-event.
+        (_, None) => Event::state_reaches(S, value, direction),
+    }
 }
 
 /// A failed run as a message with the error in the user's names, its time, the state by
@@ -290,131 +347,216 @@ fn explain(
     kind: StepErrorKind,
 ) -> (String, String) {
     let what = kind.to_string();
-    let w = |flag: &str| plan.words.setting(flag);
-    let (stop_when, until, tol, step) = (w("--stop-when"), w("--until"), w("--tol"), w("--step"));
+    let advice = Advice::of(plan.words);
     match kind {
-        StepErrorKind::NonPositiveMass { index } => {
-            let name = program.mass_names().nth(index).unwrap_or("?");
-            (
-                format!("the mass `{name}` is not positive"),
-                format!(
-                    "end the run before `{name}` runs out, e.g. {} or an earlier {until}",
-                    plan.words.stop_when(&format!("{name} < VALUE"))
-                ),
-            )
-        }
+        StepErrorKind::System(error) => advice.in_the_model(program, error, what),
         StepErrorKind::NegativeFlowRate { index, rate } => {
             let flow = flows.get(index).map_or("a flow", String::as_str);
-            (
-                format!("the rate of the {flow} is negative ({rate})"),
-                format!(
-                    "a flow's rate is the mass it moves per second, ≥ 0 by definition; correct \
-                     the parameters it reads ({}), or write the flow the other way round \
-                     (outflow ↔ inflow)",
-                    w("--set")
-                ),
-            )
+            let what = format!("the rate of the {flow} is negative ({rate})");
+            (what, advice.negative_flow())
         }
-        StepErrorKind::TooManySteps { .. } => (
-            format!(
-                "more than {} {} steps were needed",
-                w("--max-steps"),
-                plan.max_steps
-            ),
-            format!(
-                "raise {}, loosen {tol}, or use {} sdirk4 if the model is stiff",
-                w("--max-steps"),
-                w("--method")
-            ),
-        ),
-        StepErrorKind::WallClockExceeded { .. } => (
-            what,
-            format!(
-                "raise {}, loosen {tol}, or shorten {until}",
-                w("--max-seconds")
-            ),
-        ),
+        StepErrorKind::Chattering { switch, .. } => {
+            let name = program.switch_name(switch).unwrap_or("?");
+            let what = format!("{what}: the motion sticks on the switch `{name}`");
+            (what, advice.chattering())
+        }
+        StepErrorKind::TooManySteps { .. } => {
+            let max_steps = &advice.max_steps;
+            let what = format!("more than {max_steps} {} steps were needed", plan.max_steps);
+            (what, advice.too_many_steps())
+        }
+        StepErrorKind::Stalled { .. } => {
+            let what = format!("{what}: it cannot get past this time");
+            (what, advice.stalled())
+        }
+        StepErrorKind::WallClockExceeded { .. } => (what, advice.out_of_time()),
         // Only a fixed step can step past the stability limit: an adaptive run that meets a
         // non-finite state met it in the equations (a Taylor series of a table outside its
         // data is NaN, for one).
         StepErrorKind::NonFiniteState | StepErrorKind::EnergyBudgetExceeded { .. }
             if matches!(plan.steps, Steps::Fixed(_)) =>
         {
-            (
+            (what, advice.past_the_stability_limit())
+        }
+        StepErrorKind::NonFiniteState => (what, advice.no_finite_value()),
+        StepErrorKind::EnergyBudgetExceeded { .. } => (what, advice.energy_budget()),
+        StepErrorKind::StepSizeUnderflow { .. } => (what, advice.singular_or_stiff()),
+        StepErrorKind::NewtonDivergence { .. } => (what, advice.newton()),
+        StepErrorKind::InvalidConfiguration { reason } if reason == MASS_AGAINST_CARRY => {
+            (what, Advice::carry_rule())
+        }
+        StepErrorKind::NonFiniteTime { .. } | StepErrorKind::InvalidConfiguration { .. } => {
+            (what, advice.settings())
+        }
+    }
+}
+
+/// How to fix a failed run, naming each setting as the run's user wrote it (a flag, or a
+/// scene file's key: [`Words::setting`]).
+struct Advice {
+    words: Words,
+    until: String,
+    stop_when: String,
+    tol: String,
+    step: String,
+    method: String,
+    max_steps: String,
+}
+
+impl Advice {
+    fn of(words: Words) -> Advice {
+        let w = |flag: &str| words.setting(flag);
+        Advice {
+            words,
+            until: w("--until"),
+            stop_when: w("--stop-when"),
+            tol: w("--tol"),
+            step: w("--step"),
+            method: w("--method"),
+            max_steps: w("--max-steps"),
+        }
+    }
+
+    /// A failure of the model's equations at the state (the core's [`SystemError`]): what
+    /// it is in the model's names, and the fix.
+    fn in_the_model(
+        &self,
+        program: &Program,
+        error: SystemError,
+        what: String,
+    ) -> (String, String) {
+        let (until, stop_when) = (&self.until, &self.stop_when);
+        match error {
+            SystemError::NonPositiveMass { index } => {
+                let name = program.mass_names().nth(index).unwrap_or("?");
+                let stop = self.words.stop_when(&format!("{name} < VALUE"));
+                (
+                    format!("the mass `{name}` is not positive"),
+                    format!(
+                        "end the run before `{name}` runs out, e.g. {stop} or an earlier {until}"
+                    ),
+                )
+            }
+            SystemError::SingularMassMatrix => (
+                format!("{what} (the velocities cannot be recovered from the momenta)"),
+                format!(
+                    "the model's kinetic energy stops depending on a velocity here: stop before \
+                     this state ({stop_when}), or check the masses and positions; a rigid body at \
+                     the gimbal lock of its Euler sequence (middle angle ±90° for zyx-like, 0° or \
+                     180° for zxz-like sequences) needs a sequence whose lock the motion avoids \
+                     (docs/mechanics.md#rigid-bodies)"
+                ),
+            ),
+            SystemError::SampledInputNotFinite { input, .. } => (
                 what,
                 format!(
-                    "a fixed step past the stability limit does this: use a smaller {step} or \
-                     an adaptive method ({tol})"
+                    "the {} law of `{input}` has no value at this sample (a square root of a \
+                     negative number, a division by zero): correct the law or its parameters, or \
+                     stop the run before ({until}, {stop_when})",
+                    self.words.setting("--input")
                 ),
-            )
-        }
-        StepErrorKind::NonFiniteState => (
-            what,
-            format!(
-                "the equations have no finite value here (a division by zero, a root of a \
-                 negative number, a table read outside its data): stop before this time \
-                 ({stop_when}, {until}), or correct the parameters ({})",
-                w("--set")
             ),
-        ),
-        StepErrorKind::EnergyBudgetExceeded { .. } => (
-            what,
-            format!("tighten {tol}, or stop before this time ({stop_when}, {until})"),
-        ),
-        StepErrorKind::StepSizeUnderflow { .. } => (
-            what,
-            format!(
-                "the solution is singular here, or the model stiff: stop before this time \
-                 ({stop_when}, {until}), or use {} sdirk4",
-                w("--method")
-            ),
-        ),
-        StepErrorKind::NewtonDivergence { .. } => (
-            what,
-            format!("use a smaller {step}, or an adaptive method ({tol})"),
-        ),
-        StepErrorKind::SingularMassMatrix => (
-            format!("{what} (the velocities cannot be recovered from the momenta)"),
-            format!(
-                "the model's kinetic energy stops depending on a velocity here: stop before \
-                 this state ({stop_when}), or check the masses and positions; a rigid body at \
-                 the gimbal lock of its Euler sequence (middle angle ±90° for zyx-like, 0° or \
-                 180° for zxz-like sequences) needs a sequence whose lock the motion avoids \
-                 (docs/mechanics.md#rigid-bodies)"
-            ),
-        ),
-        StepErrorKind::Chattering { switch, .. } => {
-            let name = program.switch_name(switch).unwrap_or("?");
-            (
-                format!("{what}: the motion sticks on the switch `{name}`"),
+            SystemError::TableOutside { .. } => (
+                what,
                 format!(
-                    "the equations as written cannot continue on the switch: model the stuck \
-                     motion as its own phase (a scene file), or stop before it ({stop_when})"
+                    "the table has no data there: stop before it ({until}, {stop_when}), or give \
+                     the table `outside zero` or `outside hold` in the model (a table given by {} \
+                     NAME=FILE errs outside its data: extend the file)",
+                    self.words.setting("--input")
                 ),
-            )
+            ),
         }
-        StepErrorKind::NonFiniteTime { .. } | StepErrorKind::InvalidConfiguration { .. } => (
-            what,
-            format!("check {}, {until}, {step} and {tol}", w("--from")),
-        ),
-        StepErrorKind::SampledInputNotFinite { input, .. } => (
-            what,
-            format!(
-                "the {} law of `{input}` has no value at this sample (a square root of a \
-                 negative number, a division by zero): correct the law or its parameters, or \
-                 stop the run before ({until}, {stop_when})",
-                w("--input")
-            ),
-        ),
-        StepErrorKind::TableOutside { .. } => (
-            what,
-            format!(
-                "the table has no data there: stop before it ({until}, {stop_when}), or give \
-                 the table `outside zero` or `outside hold` in the model (a table given by {} \
-                 NAME=FILE errs outside its data: extend the file)",
-                w("--input")
-            ),
-        ),
+    }
+
+    fn negative_flow(&self) -> String {
+        format!(
+            "a flow's rate is the mass it moves per second, ≥ 0 by definition; correct \
+             the parameters it reads ({}), or write the flow the other way round \
+             (outflow ↔ inflow)",
+            self.words.setting("--set")
+        )
+    }
+
+    fn chattering(&self) -> String {
+        format!(
+            "the equations as written cannot continue on the switch: model the stuck \
+             motion as its own phase (a scene file), or stop before it ({})",
+            self.stop_when
+        )
+    }
+
+    fn too_many_steps(&self) -> String {
+        let (max_steps, tol, method) = (&self.max_steps, &self.tol, &self.method);
+        format!("raise {max_steps}, loosen {tol}, or use {method} sdirk4 if the model is stiff")
+    }
+
+    fn stalled(&self) -> String {
+        let (until, stop_when, tol, method) =
+            (&self.until, &self.stop_when, &self.tol, &self.method);
+        format!(
+            "a switch or an event the run cannot cross here (a discontinuity it keeps \
+             finding at the same time): try another {method} or {tol}, or stop before it \
+             ({stop_when}, {until}); please report the model"
+        )
+    }
+
+    fn out_of_time(&self) -> String {
+        let (until, tol) = (&self.until, &self.tol);
+        let max_seconds = self.words.setting("--max-seconds");
+        format!("raise {max_seconds}, loosen {tol}, or shorten {until}")
+    }
+
+    fn past_the_stability_limit(&self) -> String {
+        let (tol, step) = (&self.tol, &self.step);
+        format!(
+            "a fixed step past the stability limit does this: use a smaller {step} or \
+             an adaptive method ({tol})"
+        )
+    }
+
+    fn no_finite_value(&self) -> String {
+        let (until, stop_when) = (&self.until, &self.stop_when);
+        format!(
+            "the equations have no finite value here (a division by zero, a root of a \
+             negative number, a table read outside its data): stop before this time \
+             ({stop_when}, {until}), or correct the parameters ({})",
+            self.words.setting("--set")
+        )
+    }
+
+    fn energy_budget(&self) -> String {
+        let (until, stop_when, tol) = (&self.until, &self.stop_when, &self.tol);
+        format!("tighten {tol}, or stop before this time ({stop_when}, {until})")
+    }
+
+    fn singular_or_stiff(&self) -> String {
+        let (until, stop_when, method) = (&self.until, &self.stop_when, &self.method);
+        format!(
+            "the solution is singular here, or the model stiff: stop before this time \
+             ({stop_when}, {until}), or use {method} sdirk4"
+        )
+    }
+
+    fn newton(&self) -> String {
+        let (tol, step) = (&self.tol, &self.step);
+        format!("use a smaller {step}, or an adaptive method ({tol})")
+    }
+
+    /// A phase whose masses change against its carry rule (the core's
+    /// [`MASS_AGAINST_CARRY`]).
+    fn carry_rule() -> String {
+        "give the phase `carry = \"capture\"` if it gains mass, `\"separation\"` if it \
+         loses it"
+            .to_string()
+    }
+
+    /// A time, step or tolerance the core refuses.
+    fn settings(&self) -> String {
+        let (until, tol, step) = (&self.until, &self.tol, &self.step);
+        format!(
+            "check {}, {until}, {step} and {tol}",
+            self.words.setting("--from")
+        )
     }
 }
 

@@ -124,7 +124,7 @@ pub fn evaluate(
             Ok(state.get(first + j).copied().unwrap_or(f64::NAN))
         }
         Observable::Quantity(quantity, index) => {
-            let len = quantity.read(program.derivation()).len().max(n);
+            let len = program.derivation().quantity(quantity).len().max(n);
             scratch(len, |out| {
                 program.evaluate_at_state(quantity, t, state, out)?;
                 Ok(pick(out, index))

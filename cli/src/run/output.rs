@@ -3,7 +3,7 @@
 use std::fmt::{self, Write};
 use std::path::Path;
 
-use varmass::core::Statistics;
+use varmass::core::{Statistics, GIMBAL_WARNING};
 use varmass::interpret::Program;
 
 use super::names::shown;
@@ -198,7 +198,15 @@ pub fn table<'a>(
     let mut values = vec![0.0; record.len()];
     for (t, state) in points {
         for ((name, o), value) in record.iter().zip(&mut values) {
-            match o.value(program, t, state) {
+            // A value that is not a number is refused like one that cannot be evaluated:
+            // a recorded √ of a negative, a division by zero or a ln of a non-positive
+            // number is never written silently.
+            let finite = match o.value(program, t, state) {
+                Ok(v) if v.is_finite() => Ok(v),
+                Ok(v) => Err(format!("its value is {v}, not a finite number")),
+                Err(e) => Err(e.to_string()),
+            };
+            match finite {
                 Ok(v) => *value = v,
                 Err(e) => {
                     let error = CliError::Run(format!(
@@ -303,6 +311,8 @@ pub struct Summary {
     /// The condition that stopped the run, as written (quoted in the text).
     stopped_by: Option<String>,
     statistics: Statistics,
+    /// The closest the run's points came to gimbal lock, rad ([`Summary::near_gimbal_lock`]).
+    closest_singular_attitude: Option<f64>,
 }
 
 impl Summary {
@@ -320,7 +330,16 @@ impl Summary {
             end: EndState::new(program, time, state),
             stopped_by: stopped_by.map(str::to_string),
             statistics: *statistics,
+            closest_singular_attitude: None,
         }
+    }
+
+    /// With the run's closest approach (over every accepted step, whatever `--every` kept)
+    /// to a singular attitude of the model's Euler sequences, warned of within
+    /// `GIMBAL_WARNING` (`Program::singular_attitude_distance`).
+    pub fn near_gimbal_lock(mut self, closest: Option<f64>) -> Self {
+        self.closest_singular_attitude = closest;
+        self
     }
 }
 
@@ -333,28 +352,34 @@ impl fmt::Display for Summary {
         }
         out.write_str("\nstate:")?;
         self.end.write(out)?;
-        let s = &self.statistics;
-        writeln!(
-            out,
-            "\nsteps: {} accepted, {} rejected; {} rate evaluations, {} Jacobians, {} Newton \
-             iterations",
-            s.accepted_steps,
-            s.rejected_steps,
-            s.rate_evaluations,
-            s.jacobian_evaluations,
-            s.newton_iterations
-        )
+        write!(out, "\n{}", work(&self.statistics))?;
+        out.write_str(&gimbal_warning(self.closest_singular_attitude))
     }
 }
 
-/// The summary printed after a run, as text ([`Summary`]); `stopped_by` is the condition
-/// as written.
-pub fn summary(
-    program: &Program,
-    time: f64,
-    state: &[f64],
-    stopped_by: Option<&str>,
-    statistics: &Statistics,
-) -> String {
-    Summary::new(program, time, state, stopped_by, statistics).to_string()
+/// The summary's warning line when a run came within `GIMBAL_WARNING` of a singular attitude
+/// of its Euler sequences (`closest`, rad, over every accepted step); empty otherwise. The
+/// summaries of `varmass run` and of a scene end with it.
+pub fn gimbal_warning(closest: Option<f64>) -> String {
+    match closest {
+        Some(closest) if closest < GIMBAL_WARNING => format!(
+            "warning: the attitude came within {} rad of gimbal lock (the Euler sequence's \
+             singular attitude), where the angles' rates and the error grow as 1/distance\n",
+            shown(closest)
+        ),
+        _ => String::new(),
+    }
+}
+
+/// The line of a run's work, as the summaries of `varmass run` and of a scene end.
+pub fn work(s: &Statistics) -> String {
+    format!(
+        "steps: {} accepted, {} rejected; {} rate evaluations, {} Jacobians, {} Newton \
+         iterations\n",
+        s.accepted_steps,
+        s.rejected_steps,
+        s.rate_evaluations,
+        s.jacobian_evaluations,
+        s.newton_iterations
+    )
 }

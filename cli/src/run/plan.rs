@@ -1,7 +1,7 @@
 //! From the command line to a run plan: parameter values, the initial state `[q, p, m_s]`,
 //! the stop conditions, the stepper and the output times, all checked against the model.
 
-use varmass::core::tolerance::Tolerance;
+use varmass::core::tolerance::Floor;
 use varmass::core::Direction;
 use varmass::interpret::{Program, Quantity};
 use varmass::symbolic::mechanics::Derivation;
@@ -62,8 +62,8 @@ pub struct Plan {
     pub progress: bool,
     /// The parameter values (`--set`).
     pub parameters: Vec<(String, f64)>,
-    /// Each flow's name for messages, in the derivation's flow order (`flow 1`, … until
-    /// the caller, which has the model's statements, names them).
+    /// Each flow's name for messages (``outflow `rocket` ``), in the derivation's flow
+    /// order: the derivation's own `flow_names`.
     pub flows: Vec<String>,
     /// How messages name the settings: flags, or a scene file's keys.
     pub words: Words,
@@ -72,8 +72,16 @@ pub struct Plan {
 /// The default tolerance of the adaptive methods when `--tol` is not given.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
-/// The finest `--tol`: what f64 can honour (see [`Tolerance::MIN_RELATIVE`]).
-pub const MIN_TOLERANCE: f64 = Tolerance::MIN_RELATIVE;
+/// The finest `--tol` of `method`: its [`Floor`], where its error stops following the
+/// tolerance (100 ε for the error-estimating steppers, 1e-15 for taylor: the run-time
+/// models have no double-double head).
+pub fn min_tolerance(method: Method) -> f64 {
+    match method {
+        Method::Taylor => Floor::Taylor,
+        _ => Floor::ErrorEstimate,
+    }
+    .relative()
+}
 
 /// The loosest `--tol`. Above it the error control lets a step's error reach tens of per
 /// cent (`--tol 10` gave an answer 17 % wrong): not an answer worth computing.
@@ -101,13 +109,8 @@ pub fn parameters(args: &RunArgs) -> Result<Vec<(String, f64)>, CliError> {
 
 /// A warning for each parameter given a value that enters none of the quantities the run
 /// computes (declared or inferred, e.g. used only by a `check`, or multiplied by 0): its
-/// value changes nothing, which the user should know.
-pub fn unused_parameters(d: &Derivation, values: &[(String, f64)]) -> Vec<String> {
-    unused_among(d, &d.used_parameters(), values)
-}
-
-/// [`unused_parameters`] knowing the parameters the equations read (`used`, found once by
-/// `Derivation::used_parameters`, a walk of every expression).
+/// value changes nothing, which the user should know. `used`: the parameters the equations
+/// read, found once by `Derivation::used_parameters` (a walk of every expression).
 pub fn unused_among(d: &Derivation, used: &[String], values: &[(String, f64)]) -> Vec<String> {
     values
         .iter()
@@ -123,69 +126,18 @@ pub fn unused_among(d: &Derivation, used: &[String], values: &[(String, f64)]) -
 }
 
 /// Builds and checks the plan for `program`, whose model's statements (after tag
-/// selection) are `ast` (for the `let` names `--record` may use).
-pub fn plan(args: &RunArgs, program: &Program, ast: &SystemAst) -> Result<Plan, CliError> {
-    plan_with(args, parameters(args)?, program, ast)
-}
-
-/// [`plan`] with the parameter values given as numbers (`args.set` is not read): the entry
-/// of a caller that holds typed values (the Python package).
+/// selection) are `ast` (for the `let` names `--record` may use), with the parameter values
+/// given as numbers (`args.set` is read by [`parameters`] before).
 pub fn plan_with(
     args: &RunArgs,
     parameters: Vec<(String, f64)>,
     program: &Program,
     ast: &SystemAst,
 ) -> Result<Plan, CliError> {
-    let from = args.from;
-    let w = |flag| args.words.setting(flag);
-    let Some(until) = args.until else {
-        return Err(CliError::Input(format!(
-            "{} is required: the end time of the run (a scene file, SCENE.toml, gives its own)",
-            args.words.given("--until", "T")
-        )));
-    };
-    if !from.is_finite() {
-        return Err(CliError::Input(format!(
-            "{}: the start time must be finite",
-            args.words.given("--from", &shown(from))
-        )));
-    }
-    if !until.is_finite() || until < from {
-        return Err(CliError::Input(format!(
-            "{} must be finite and not before the start time {} ({}): a run goes forward in \
-             time",
-            args.words.given("--until", &shown(until)),
-            shown(from),
-            w("--from")
-        )));
-    }
-    let span = until - from;
-    if span > 0.0 && span < f64::MIN_POSITIVE {
-        return Err(CliError::Input(format!(
-            "the run from t = {} to {} spans {}, below the smallest normal f64 ({:e}): steps \
-             within it underflow (give a span of at least that, or none)",
-            shown(from),
-            args.words.given("--until", &shown(until)),
-            shown(span),
-            f64::MIN_POSITIVE
-        )));
-    }
+    let (from, until) = span(args)?;
     let known = observables(program);
     let initial_state = initial_state(args, program)?;
-    let mut stop_when = Vec::new();
-    for text in &args.stop_when {
-        let flag = args.words.setting("--stop-when");
-        let what = format!("{flag} `{text}`");
-        let (name, direction, value) = condition(text, &flag)?;
-        let observable = resolve(&name, &known, "a quantity")?;
-        let condition = StopWhen {
-            observable,
-            value,
-            direction,
-        };
-        not_yet_true(program, &condition, &what, from, &initial_state)?;
-        stop_when.push(condition);
-    }
+    let stop_when = stop_conditions(args, program, &known, &initial_state)?;
     let record = match args.record.is_empty() {
         true => default_record(&known, program)
             .into_iter()
@@ -220,11 +172,73 @@ pub fn plan_with(
         max_seconds,
         progress: true,
         parameters,
-        flows: (1..=program.derivation().flow_rates.len())
-            .map(|i| format!("flow {i}"))
-            .collect(),
+        flows: program.derivation().flow_names.clone(),
         words: args.words,
     })
+}
+
+/// The start and end times: both finite, the end given and not before the start, and the
+/// span between them either none or wide enough to step (at least the smallest normal f64).
+fn span(args: &RunArgs) -> Result<(f64, f64), CliError> {
+    let from = args.from;
+    let Some(until) = args.until else {
+        return Err(CliError::Input(format!(
+            "{} is required: the end time of the run (a scene file, SCENE.toml, gives its own)",
+            args.words.given("--until", "T")
+        )));
+    };
+    if !from.is_finite() {
+        return Err(CliError::Input(format!(
+            "{}: the start time must be finite",
+            args.words.given("--from", &shown(from))
+        )));
+    }
+    if !until.is_finite() || until < from {
+        return Err(CliError::Input(format!(
+            "{} must be finite and not before the start time {} ({}): a run goes forward in \
+             time",
+            args.words.given("--until", &shown(until)),
+            shown(from),
+            args.words.setting("--from")
+        )));
+    }
+    let span = until - from;
+    if span > 0.0 && span < f64::MIN_POSITIVE {
+        return Err(CliError::Input(format!(
+            "the run from t = {} to {} spans {}, below the smallest normal f64 ({:e}): steps \
+             within it underflow (give a span of at least that, or none)",
+            shown(from),
+            args.words.given("--until", &shown(until)),
+            shown(span),
+            f64::MIN_POSITIVE
+        )));
+    }
+    Ok((from, until))
+}
+
+/// The `--stop-when` conditions, each on a quantity of the model (`known`) and not yet
+/// true at the start state `initial_state`.
+fn stop_conditions(
+    args: &RunArgs,
+    program: &Program,
+    known: &[(String, Observable)],
+    initial_state: &[f64],
+) -> Result<Vec<StopWhen>, CliError> {
+    let flag = args.words.setting("--stop-when");
+    let mut stop_when = Vec::new();
+    for text in &args.stop_when {
+        let what = format!("{flag} `{text}`");
+        let (name, direction, value) = condition(text, &flag)?;
+        let observable = resolve(&name, known, "a quantity")?;
+        let condition = StopWhen {
+            observable,
+            value,
+            direction,
+        };
+        not_yet_true(program, &condition, &what, args.from, initial_state)?;
+        stop_when.push(condition);
+    }
+    Ok(stop_when)
 }
 
 /// `plan`, made by [`plan_with`] for the same `args` and parameters of the same names, given
@@ -303,7 +317,62 @@ pub(crate) fn not_yet_true(
              when the quantity crosses the value"
         )));
     }
-    Ok(())
+    if start != condition.value || condition.direction == Direction::Either {
+        return Ok(());
+    }
+    // Exactly on its value: the run's events watch for a crossing from the other side, so
+    // a motion that enters the condition's side at once (a rocket sinking from y = 0 under
+    // `y < 0`) would never be stopped. The side it enters is refused as holding.
+    match entered(program, condition, from, state)? {
+        Some((time, value))
+            if (value > condition.value) == (condition.direction == Direction::Rising) =>
+        {
+            Err(CliError::Input(format!(
+                "{what} stands exactly on its value at the start and the motion enters it at \
+                 once (at t = {} the value is {}): a run stops when the quantity crosses the \
+                 value; start a hair away from it, or hold the body on a `support` in a scene",
+                shown(time),
+                shown(value)
+            )))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The time and value of `condition`'s quantity where the motion first leaves its value,
+/// from `state` at `from`: two-stage Euler probes y + s·f(t + s, y + s·f(t, y)) of
+/// s = 4ε·max(|t|, 1)·2ᵏ up to 10⁶ of those (as a run leaves a switch standing on zero,
+/// `core::run::switching`); the second stage sees a quantity whose rate is zero at the
+/// start (a body at rest under a force). `None` if none leaves it within reach.
+fn entered(
+    program: &Program,
+    condition: &StopWhen,
+    from: f64,
+    state: &[f64],
+) -> Result<Option<(f64, f64)>, CliError> {
+    let failed = |e: varmass::core::SystemError| CliError::Input(format!("{e} at the start"));
+    let mut rate = vec![0.0; state.len()];
+    program.state_rate(from, state, &mut rate).map_err(failed)?;
+    let rounding = 4.0 * f64::EPSILON * from.abs().max(1.0);
+    let (mut step, mut later) = (rounding, vec![0.0; state.len()]);
+    while step <= 1e6 * rounding {
+        let time = from + step;
+        let predicted: Vec<f64> = state.iter().zip(&rate).map(|(y, f)| y + step * f).collect();
+        program
+            .state_rate(time, &predicted, &mut later)
+            .map_err(failed)?;
+        let probe: Vec<f64> = state
+            .iter()
+            .zip(&later)
+            .map(|(y, f)| y + step * f)
+            .collect();
+        let value = evaluate(program, condition.observable, time, &probe).map_err(failed)?;
+        if value != condition.value {
+            return Ok(Some((time, value)));
+        }
+        step *= 2.0;
+    }
+    Ok(None)
 }
 
 fn positive(value: f64, flag: &str, words: Words) -> Result<f64, CliError> {
@@ -334,15 +403,9 @@ fn steps(args: &RunArgs, until: f64) -> Result<Steps, CliError> {
             | Method::Taylor,
             None,
             tol,
-        ) => tolerance(tol.unwrap_or(DEFAULT_TOLERANCE), args.words).map(Steps::Adaptive),
+        ) => tolerance(tol.unwrap_or(DEFAULT_TOLERANCE), args).map(Steps::Adaptive),
         (method, None, _) => {
-            let name = clap::ValueEnum::to_possible_value(&method)
-                .map(|v| v.get_name().to_string())
-                .unwrap_or_default();
-            let method = match args.words {
-                Words::Flags => name,
-                Words::Scene => format!("\"{name}\""),
-            };
+            let method = method_name(method, args.words);
             Err(CliError::Input(format!(
                 "{} takes a fixed step: give {}",
                 args.words.given("--method", &method),
@@ -386,22 +449,34 @@ fn count(n: f64) -> String {
     }
 }
 
-/// A `--tol` within [`MIN_TOLERANCE`, `MAX_TOLERANCE`].
-fn tolerance(tol: f64, words: Words) -> Result<f64, CliError> {
-    let range = format!("the usable range is {MIN_TOLERANCE:.1e} to {MAX_TOLERANCE}");
+/// `method` as the caller names it (`--method`'s value, or a scene's or Python's).
+fn method_name(method: Method, words: Words) -> String {
+    let name = clap::ValueEnum::to_possible_value(&method)
+        .map(|v| v.get_name().to_string())
+        .unwrap_or_default();
+    words.name(&name)
+}
+
+/// A `--tol` within [`min_tolerance`] of the method and [`MAX_TOLERANCE`].
+fn tolerance(tol: f64, args: &RunArgs) -> Result<f64, CliError> {
+    let floor = min_tolerance(args.method);
+    let method = method_name(args.method, args.words);
+    let range = format!("the usable range of {method} is {floor:.1e} to {MAX_TOLERANCE}");
     let why = if !(tol.is_finite() && tol > 0.0) {
-        "must be positive and finite"
-    } else if tol < MIN_TOLERANCE {
-        "is finer than f64 can honour (100 machine epsilons): the steps would shrink until \
-         the step limit"
+        "must be positive and finite".to_string()
+    } else if tol < floor {
+        format!(
+            "is finer than {method} can honour (its floor is {floor:.1e}, below which its \
+             error stops following the tolerance)"
+        )
     } else if tol > MAX_TOLERANCE {
-        "is too loose: each step's error could reach tens of per cent of the state"
+        "is too loose: each step's error could reach tens of per cent of the state".to_string()
     } else {
         return Ok(tol);
     };
     Err(CliError::Input(format!(
         "{} {why}; {range}",
-        words.given("--tol", &shown(tol))
+        args.words.given("--tol", &shown(tol))
     )))
 }
 
@@ -475,7 +550,7 @@ pub fn initial_velocities(args: &RunArgs, program: &Program) -> Result<Vec<f64>,
     }
     let mut values: Vec<Option<f64>> = vec![None; 2 * n + k];
     for text in &args.init {
-        let (name, value) = assignment(text, "--init")?;
+        let (name, value) = assignment(text, &args.words.setting("--init"))?;
         let slot = match resolve(&name, &settable, "a coordinate, velocity or state mass")? {
             Initial::Coordinate(a) => a,
             Initial::Velocity(a) => n + a,
@@ -483,7 +558,8 @@ pub fn initial_velocities(args: &RunArgs, program: &Program) -> Result<Vec<f64>,
         };
         if values[slot].is_some() {
             return Err(CliError::Input(format!(
-                "--init {text}: `{name}` is given twice; give each initial value once"
+                "{} {text}: `{name}` is given twice; give each initial value once",
+                args.words.setting("--init")
             )));
         }
         values[slot] = Some(value);

@@ -1,6 +1,7 @@
 //! What `--record` takes: the model's quantities by name (as `--stop-when` does), and beyond
-//! them `mdot_<mass>`, the model's `let` names, and any expression of these, the parameters
-//! and `t`, named (`--record "E=1/2*m*x'^2"`) or not (`--record "x*sin(theta)"`, its
+//! them `mdot_<mass>`, the model's `let` names, its tables (`rho(y + h0)` at any argument,
+//! `rho` alone at the argument the model calls it with), and any expression of these (with
+//! the DSL's functions, `sqrt` among them), the parameters and `t`, named (`--record "E=1/2*m*x'^2"`) or not (`--record "x*sin(theta)"`, its
 //! column named by its text).
 //!
 //! An expression is parsed by the DSL's own expression grammar, every name resolved once
@@ -9,7 +10,7 @@
 
 use varmass::core::SystemError;
 use varmass::interpret::{Program, Quantity};
-use varmass::symbolic::expr::Func;
+use varmass::symbolic::expr::{Func, Node};
 use varmass::symbolic::parse::ast::{BinOp, Expr, ExprNode, StatementKind, SystemAst};
 use varmass::symbolic::parse::parse_expression;
 
@@ -43,6 +44,21 @@ pub enum Term {
     Binary(BinOp, Box<Term>, Box<Term>),
     /// f(a, …).
     Call(Func, Vec<Term>),
+    /// √a.
+    Sqrt(Box<Term>),
+    /// The pool's table `.0` at `.1` (`Program::table_value`).
+    Table(u16, Box<Term>),
+}
+
+/// A table of the model as a recorded expression reads it: its index in the derivation's
+/// pool, and the arguments (DSL text) the model calls it with.
+pub struct TableScope {
+    /// The table's name.
+    pub name: String,
+    /// Its index in the pool.
+    pub index: u16,
+    /// The distinct arguments of the model's calls of the table itself (not its derivatives).
+    pub calls: Vec<String>,
 }
 
 /// What an expression's names can be, besides the model's quantities.
@@ -55,9 +71,9 @@ pub struct Scope<'a> {
     pub masses: Vec<String>,
     /// The model's `let` definitions, in order.
     pub lets: Vec<(String, ExprNode)>,
-    /// The model's tables' names (a recorded expression cannot call them: named in the
-    /// message).
-    pub tables: Vec<String>,
+    /// The model's tables: `rho(y)` reads one at any argument, `rho` alone at the argument
+    /// the model calls it with.
+    pub tables: Vec<TableScope>,
 }
 
 impl<'a> Scope<'a> {
@@ -76,20 +92,12 @@ impl<'a> Scope<'a> {
                 _ => None,
             })
             .collect();
-        let tables = ast
-            .statements
-            .iter()
-            .filter_map(|s| match &s.kind {
-                StatementKind::Table(table) => Some(table.name.node.clone()),
-                _ => None,
-            })
-            .collect();
         Self {
             quantities,
             parameters,
             masses: program.mass_names().map(str::to_string).collect(),
             lets,
-            tables,
+            tables: tables(program),
         }
     }
 
@@ -98,6 +106,7 @@ impl<'a> Scope<'a> {
         let mut names: Vec<String> = self.quantities.iter().map(|(n, _)| n.clone()).collect();
         names.extend(self.masses.iter().map(|m| format!("mdot_{m}")));
         names.extend(self.lets.iter().map(|(n, _)| n.clone()));
+        names.extend(self.tables.iter().map(|t| t.name.clone()));
         names.extend(self.parameters.iter().map(|(n, _)| n.clone()));
         names.push("t".to_string());
         // `mdot_<mass>` is a registry quantity too where the model derives it: named once.
@@ -105,6 +114,32 @@ impl<'a> Scope<'a> {
         names.retain(|n| seen.insert(n.clone()));
         names.into_iter().map(|n| (n, ())).collect()
     }
+}
+
+/// The tables of `program`, each with the arguments the derivation calls it with (printed as
+/// DSL text, which reads back to the same expression): what `--record rho` records.
+fn tables(program: &Program) -> Vec<TableScope> {
+    let pool = &program.derivation().pool;
+    let mut tables: Vec<TableScope> = (0..pool.table_count())
+        .filter_map(|i| u16::try_from(i).ok())
+        .map(|index| TableScope {
+            name: pool.table_name(index).to_string(),
+            index,
+            calls: Vec::new(),
+        })
+        .collect();
+    for id in pool.ids() {
+        if let Node::Call(Func::Table { table, order: 0 }, args) = pool.node(id) {
+            let (Some(entry), [argument]) = (tables.get_mut(usize::from(*table)), &args[..]) else {
+                continue;
+            };
+            let text = pool.display(*argument).to_string();
+            if !entry.calls.contains(&text) {
+                entry.calls.push(text);
+            }
+        }
+    }
+    tables
 }
 
 /// The recorded columns of `values` (`--record`, a scene's `record`), each entry resolved by
@@ -174,11 +209,16 @@ pub fn recorded(
     if let Some((_, observable)) = scope.quantities.iter().find(|(n, _)| n == entry) {
         return Ok((entry.to_string(), Recorded::Quantity(*observable)));
     }
-    let (name, text) = match entry.split_once('=') {
-        Some((name, text)) if is_identifier(name.trim()) => (name.trim(), text.trim()),
-        _ => (entry, entry),
-    };
+    let (name, text) = named_entry(entry);
     let setting = words.setting("--record");
+    if name != text && scope.names().iter().any(|(n, _)| n == name) {
+        // A column headed `x` holding x' would be read as the coordinate by whoever reads
+        // the table, while expressions and `--stop-when` still mean the model's `x`.
+        return Err(CliError::Input(format!(
+            "{setting} `{entry}`: the column `{name}` would hide the model's own `{name}`: \
+             name it something else"
+        )));
+    }
     let node = parse_expression(text).map_err(|d| {
         CliError::Input(format!(
             "{setting} `{entry}`: {} (at `{}`)",
@@ -191,6 +231,20 @@ pub fn recorded(
         other => other,
     })?;
     Ok((name.to_string(), Recorded::Expression(term)))
+}
+
+/// The column name and the expression of a `--record` entry (or an ensemble's
+/// observable): `NAME=EXPRESSION` is named `NAME`, anything else by its own text.
+fn named_entry(entry: &str) -> (&str, &str) {
+    match entry.split_once('=') {
+        Some((name, text)) if is_identifier(name.trim()) => (name.trim(), text.trim()),
+        _ => (entry, entry),
+    }
+}
+
+/// The column `entry` is recorded under, as `--record` names it: `MU` for `MU=mu`.
+pub fn column_name(entry: &str) -> &str {
+    named_entry(entry).0
 }
 
 fn is_identifier(name: &str) -> bool {
@@ -219,12 +273,21 @@ fn resolve_term(node: &ExprNode, scope: &Scope<'_>, depth: usize) -> Result<Term
         }
         Expr::Neg(a) => Term::Neg(resolve_box(a)?),
         Expr::Binary { op, lhs, rhs } => Term::Binary(*op, resolve_box(lhs)?, resolve_box(rhs)?),
-        Expr::Call { func, .. } if scope.tables.contains(&func.node) => {
-            return Err(CliError::Input(format!(
-                "`{}` is a table of the model: a recorded expression cannot read a table (record \
-                 the quantities it feeds instead, such as Q_x, R1_x or x'')",
-                func.node
-            )));
+        Expr::Call { func, args } if args.len() == 1 && func.node == "sqrt" => {
+            Term::Sqrt(resolve_box(&args[0])?)
+        }
+        Expr::Call { func, args } if scope.table(&func.node).is_some() => {
+            let table = scope.table(&func.node).map_or(0, |t| t.index);
+            match &args[..] {
+                [argument] => Term::Table(table, resolve_box(argument)?),
+                _ => {
+                    return Err(CliError::Input(format!(
+                        "`{}` is a table: a function of one argument, given {}",
+                        func.node,
+                        args.len()
+                    )))
+                }
+            }
         }
         Expr::Call { func, args } => {
             let f = Func::from_name(&func.node)
@@ -262,6 +325,9 @@ fn name_term(name: &str, scope: &Scope<'_>, depth: usize) -> Result<Term, CliErr
     if let Some((_, value)) = scope.parameters.iter().find(|(n, _)| n == name) {
         return Ok(Term::Constant(*value));
     }
+    if let Some(table) = scope.table(name) {
+        return table_at_its_call(table, scope, depth);
+    }
     if let Some((_, value)) = scope.lets.iter().find(|(n, _)| n == name) {
         if depth >= MAX_LET_DEPTH {
             return Err(CliError::Input(format!(
@@ -274,6 +340,40 @@ fn name_term(name: &str, scope: &Scope<'_>, depth: usize) -> Result<Term, CliErr
         Err(unknown) => Err(unknown),
         // Every name of the list was tried above; this is for completeness.
         Ok(()) => Err(CliError::Input(format!("`{name}` cannot be recorded"))),
+    }
+}
+
+/// Table `table` alone: read at the argument the model calls it with, if that is one
+/// expression; else the message says to give the argument.
+fn table_at_its_call(
+    table: &TableScope,
+    scope: &Scope<'_>,
+    depth: usize,
+) -> Result<Term, CliError> {
+    let name = &table.name;
+    let [call] = &table.calls[..] else {
+        let calls = match table.calls.len() {
+            0 => "the model does not call it".to_string(),
+            _ => format!("the model calls it at {}", table.calls.join(", ")),
+        };
+        return Err(CliError::Input(format!(
+            "`{name}` is a table: {calls}; record it at an argument, as `{name}(ARGUMENT)`"
+        )));
+    };
+    let node = parse_expression(call).map_err(|d| {
+        CliError::Input(format!(
+            "the argument `{call}` of table `{name}`: {}",
+            d.message
+        ))
+    })?;
+    let argument = resolve_term(&node, scope, depth)?;
+    Ok(Term::Table(table.index, Box::new(argument)))
+}
+
+impl Scope<'_> {
+    /// The model's table `name`.
+    fn table(&self, name: &str) -> Option<&TableScope> {
+        self.tables.iter().find(|t| t.name == name)
     }
 }
 
@@ -315,6 +415,8 @@ impl Term {
                 let args = args.iter().map(of).collect::<Result<Vec<f64>, _>>()?;
                 f.apply(&args)
             }
+            Term::Sqrt(a) => of(a)?.sqrt(),
+            Term::Table(table, argument) => program.table_value(*table, of(argument)?)?,
         })
     }
 }
@@ -327,5 +429,14 @@ mod tests {
     fn entries_split_at_top_level_commas_only() {
         let values = ["x, E=1/2*m*x'^2".to_string(), "atan2(y, x),H".to_string()];
         assert_eq!(entries(&values), ["x", "E=1/2*m*x'^2", "atan2(y, x)", "H"]);
+    }
+
+    #[test]
+    fn an_assignment_is_named_by_its_name_and_an_expression_by_its_text() {
+        assert_eq!(column_name("MU=mu"), "MU");
+        assert_eq!(column_name(" E = 1/2*m*x'^2"), "E");
+        assert_eq!(column_name("x*sin(theta)"), "x*sin(theta)");
+        // Not an identifier before `=`: the whole text (the parser then refuses it).
+        assert_eq!(column_name("2x=y"), "2x=y");
     }
 }

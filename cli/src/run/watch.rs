@@ -152,7 +152,7 @@ mod tests {
     use varmass::core::steppers::{DormandPrince, StepControl};
     use varmass::core::{run, RunConfig};
     use varmass::interpret::{Program, TapeSystem};
-    use varmass::symbolic::mechanics::{derive_source, Parameters};
+    use varmass::symbolic::{derive_source, mechanics::Parameters};
 
     use super::*;
 

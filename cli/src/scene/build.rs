@@ -10,13 +10,16 @@ use varmass::core::{Carry, Direction};
 use varmass::interpret::Program;
 use varmass::symbolic::parse::ast::SystemAst;
 
-use super::file::{line_column, CarryRule, PhaseEntry, Read};
+use super::file::{line_column, CarryRule, PhaseEntry, Read, SceneFile};
+use super::models::Models;
 use crate::args::{ModelArgs, RunArgs, Words};
 use crate::error::CliError;
-use crate::model::{load, LoadedModel};
+use crate::model::LoadedModel;
+use crate::run::input_tables::is_table_file;
 use crate::run::names::{observables, resolve, Observable};
 use crate::run::plan::{condition, not_yet_true, Plan};
 use crate::run::record::{columns, Recorded, Scope};
+use crate::run::Compiled;
 
 /// The recorded column that holds the energy-budget residual.
 pub const ENERGY_RESIDUAL: &str = "energy_residual";
@@ -64,70 +67,85 @@ pub struct Scene {
     pub energy_residual: bool,
     /// Where to write the CSV (relative paths resolved against the scene file).
     pub csv: Option<PathBuf>,
+    /// The coordinate that starts on its support (`support = "y"`) and a program of the
+    /// first phase for the held phase's system.
+    pub support: Option<(usize, Program)>,
 }
 
-/// What a phase needs from the one before: its tags and parameter values.
+/// What a phase needs from the one before: its tags and parameter values, and the
+/// scene's input laws (`NAME=LAW`, as `--input` takes them).
 #[derive(Clone)]
 struct InForce {
     with: Vec<String>,
     parameters: Vec<(String, f64)>,
+    input: Vec<String>,
 }
 
 /// Checks the scene read from `path` and builds its phases.
-pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
+pub fn build(read: &Read, path: &Path, models: &mut Models) -> Result<Scene, CliError> {
     let scene = &read.scene;
     let at = |offset: usize| format!("{}:{}", path.display(), line_column(&read.source, offset));
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let model_file = base.join(scene.model.get_ref());
-    let mut entries_asked: Vec<String> = Vec::new();
-    let mut energy_residual = false;
-    for entry in &scene.record {
-        match entry.get_ref().trim() {
-            ENERGY_RESIDUAL => energy_residual = true,
-            "phase" => {}
-            _ => entries_asked.push(entry.get_ref().clone()),
-        }
-    }
-    let in_force = InForce {
-        with: scene.with.iter().map(|t| t.get_ref().clone()).collect(),
-        parameters: scene
-            .set
-            .iter()
-            .map(|(n, v)| (n.get_ref().clone(), *v))
-            .collect(),
-    };
+    let (entries_asked, energy_residual) = asked(scene);
+    let in_force = first_in_force(scene, &base);
     let args = first_args(read, model_file.clone(), &in_force, entries_asked.clone());
-    let model = load(&args.model).map_err(|e| located(e, &at(scene.model.span().start)))?;
-    for warning in &model.warnings {
-        eprintln!("warning: {warning}");
-    }
-    let (program, plan) = crate::run::prepare(&args, model, |w| eprintln!("warning: {w}"))
-        .map_err(|e| located(e, &format!("{} (the first phase)", path.display())))?;
+    let model_at = at(scene.model.span().start);
+    let (first, plan) = first_phase(&args, in_force, path, models, &model_at)?;
     let record_entries = match entries_asked.is_empty() {
         true => plan.record.iter().map(|(n, _)| n.clone()).collect(),
         false => entries_asked,
     };
-    let first = ScenePhase {
-        program,
-        flows: plan.flows.clone(),
-        carry: Carry::Separation,
-        state_masses: Vec::new(),
-        record: plan.record.clone(),
-        end: None,
-        in_force,
+    let mut phases = ended_phases(scene, first, &model_file, &record_entries, &at, models)?;
+    first_end_not_yet_true(scene, &phases[0], &plan, &at)?;
+    watch_programs(&mut phases, &model_file, models)?;
+    let support = match &scene.support {
+        Some(name) => {
+            let k = supported(name.get_ref(), &phases[0].program)
+                .map_err(|e| located(e, &at(name.span().start)))?;
+            Some((k, program_of(&model_file, &phases[0].in_force, models)?))
+        }
+        None => None,
     };
+    Ok(Scene {
+        phases,
+        plan,
+        energy_residual,
+        csv: scene.csv.as_ref().map(|c| base.join(c)),
+        support,
+    })
+}
+
+/// The scene's phases from the `first`: each later one begun by its entry (its tags and
+/// values, checked against the first's coordinates), each ended by the next one's `when`,
+/// the last by the scene's `stop_when` if it has one.
+fn ended_phases(
+    scene: &SceneFile,
+    first: ScenePhase,
+    model_file: &Path,
+    record_entries: &[String],
+    at: &dyn Fn(usize) -> String,
+    models: &mut Models,
+) -> Result<Vec<ScenePhase>, CliError> {
     let mut phases = vec![first];
     for (k, entry) in scene.phases.iter().enumerate() {
         let where_ = |offset| format!("{} (phase {})", at(offset), k + 2);
         let before = phases.len() - 1;
-        let in_force = next_in_force(entry, phases[before].in_force.clone(), &model_file, &where_)?;
+        let in_force = next_in_force(
+            entry,
+            phases[before].in_force.clone(),
+            model_file,
+            &where_,
+            models,
+        )?;
         let phase = phase(
             entry,
             in_force,
-            &model_file,
-            &record_entries,
+            model_file,
+            record_entries,
             &phases[0],
             &where_,
+            models,
         )?;
         let end = end(&entry.when, "`when`", &phases[before])
             .map_err(|e| located(e, &where_(entry.when.span().start)))?;
@@ -140,48 +158,137 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
             .map_err(|e| located(e, &at(stop.span().start)))?;
         phases[last].end = Some(end);
     }
-    if let Some(first_end) = &phases[0].end {
-        if let Some(observable) = first_end.observable {
-            let check = crate::run::plan::StopWhen {
-                observable,
-                value: first_end.value,
-                direction: first_end.direction,
-            };
-            // The condition ending the first phase: phase 2's `when`, or the scene's
-            // `stop_when` when there is one phase.
-            let (what, offset) = match (scene.phases.first(), &scene.stop_when) {
-                (Some(next), _) => ("phase 2's `when", next.when.span().start),
-                (None, Some(stop)) => ("`stop_when", stop.span().start),
-                (None, None) => ("`stop_when", 0),
-            };
-            let what = format!("{what} = \"{}\"`", first_end.text);
-            not_yet_true(
-                &phases[0].program,
-                &check,
-                &what,
-                plan.from,
-                &plan.initial_state,
-            )
-            .map_err(|e| located(e, &at(offset)))?;
+    Ok(phases)
+}
+
+/// The scene's `record` entries other than `phase` (always recorded) and the energy
+/// residual, and whether the residual is asked for.
+fn asked(scene: &SceneFile) -> (Vec<String>, bool) {
+    let mut entries = Vec::new();
+    let mut energy_residual = false;
+    for entry in &scene.record {
+        match entry.get_ref().trim() {
+            ENERGY_RESIDUAL => energy_residual = true,
+            "phase" => {}
+            _ => entries.push(entry.get_ref().clone()),
         }
     }
-    for phase in &mut phases {
+    (entries, energy_residual)
+}
+
+/// The first phase's tags, parameter values and input laws: the scene's own (input data
+/// files relative to the scene file, at `base`).
+fn first_in_force(scene: &SceneFile, base: &Path) -> InForce {
+    InForce {
+        with: scene.with.iter().map(|t| t.get_ref().clone()).collect(),
+        parameters: scene
+            .set
+            .iter()
+            .map(|(n, v)| (n.get_ref().clone(), *v))
+            .collect(),
+        input: scene
+            .input
+            .iter()
+            .map(|(name, law)| format!("{}={}", name.get_ref(), law_at(law, base)))
+            .collect(),
+    }
+}
+
+/// The first phase and the scene's plan, made as `varmass run` makes them from `args` (the
+/// model's warnings printed); a failure is located at the scene's `model` line (`model_at`)
+/// or, for the plan, the scene file.
+fn first_phase(
+    args: &RunArgs,
+    in_force: InForce,
+    path: &Path,
+    models: &mut Models,
+    model_at: &str,
+) -> Result<(ScenePhase, Plan), CliError> {
+    let model = models.load(&args.model).map_err(|e| located(e, model_at))?;
+    for warning in &model.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let warn = |w: &str| eprintln!("warning: {w}");
+    let (program, plan) = crate::run::plan::parameters(args)
+        .and_then(|values| Compiled::new(model).prepared(args, values, warn))
+        .map_err(|e| located(e, &format!("{} (the first phase)", path.display())))?;
+    let first = ScenePhase {
+        program,
+        flows: plan.flows.clone(),
+        carry: Carry::Separation,
+        state_masses: Vec::new(),
+        record: plan.record.clone(),
+        end: None,
+        in_force,
+    };
+    Ok((first, plan))
+}
+
+/// The condition ending the first phase (phase 2's `when`, or the scene's `stop_when` when
+/// there is one phase) may not hold at the start, as `--stop-when` may not.
+fn first_end_not_yet_true(
+    scene: &SceneFile,
+    first: &ScenePhase,
+    plan: &Plan,
+    at: &dyn Fn(usize) -> String,
+) -> Result<(), CliError> {
+    let Some(first_end) = &first.end else {
+        return Ok(());
+    };
+    let Some(observable) = first_end.observable else {
+        return Ok(());
+    };
+    let check = crate::run::plan::StopWhen {
+        observable,
+        value: first_end.value,
+        direction: first_end.direction,
+    };
+    let (what, offset) = match (scene.phases.first(), &scene.stop_when) {
+        (Some(next), _) => ("phase 2's `when", next.when.span().start),
+        (None, Some(stop)) => ("`stop_when", stop.span().start),
+        (None, None) => ("`stop_when", 0),
+    };
+    let what = format!("{what} = \"{}\"`", first_end.text);
+    not_yet_true(
+        &first.program,
+        &check,
+        &what,
+        plan.from,
+        &plan.initial_state,
+    )
+    .map_err(|e| located(e, &at(offset)))
+}
+
+/// A program of its own for each phase whose end condition evaluates the model (the
+/// phase's program moves into its system).
+fn watch_programs(
+    phases: &mut [ScenePhase],
+    model_file: &Path,
+    models: &mut Models,
+) -> Result<(), CliError> {
+    for phase in phases {
         let needs_watch = phase
             .end
             .as_ref()
             .is_some_and(|e| needs_program(e, &phase.program));
         if needs_watch {
-            let watch = program_of(&model_file, &phase.in_force)?;
+            let watch = program_of(model_file, &phase.in_force, models)?;
             if let Some(end) = &mut phase.end {
                 end.watch = Some(watch);
             }
         }
     }
-    Ok(Scene {
-        phases,
-        plan,
-        energy_residual,
-        csv: scene.csv.as_ref().map(|c| base.join(c)),
+    Ok(())
+}
+
+/// The index of the coordinate `name` that a scene's `support` names.
+fn supported(name: &str, program: &Program) -> Result<usize, CliError> {
+    let coordinates: Vec<&str> = program.coordinate_names().collect();
+    coordinates.iter().position(|c| *c == name).ok_or_else(|| {
+        CliError::Input(format!(
+            "`support = \"{name}\"` names no coordinate of the model; its coordinates are {}",
+            coordinates.join(", ")
+        ))
     })
 }
 
@@ -189,7 +296,7 @@ pub fn build(read: &Read, path: &Path) -> Result<Scene, CliError> {
 fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String>) -> RunArgs {
     let scene = &read.scene;
     RunArgs {
-        input: Vec::new(),
+        input: in_force.input.clone(),
         table: Vec::new(),
         model: ModelArgs {
             file,
@@ -217,6 +324,15 @@ fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String
     }
 }
 
+/// An input's law as `--input` reads it: a data file relative to the scene file (as the
+/// model and the CSV are), an expression as written.
+fn law_at(law: &str, base: &Path) -> String {
+    match is_table_file(law) {
+        true => base.join(law.trim()).display().to_string(),
+        false => law.to_string(),
+    }
+}
+
 /// `NAME=VALUE` with the value written back exactly.
 fn settings(parameters: &[(String, f64)]) -> Vec<String> {
     parameters
@@ -232,6 +348,7 @@ fn next_in_force(
     before: InForce,
     file: &Path,
     where_: &dyn Fn(usize) -> String,
+    models: &mut Models,
 ) -> Result<InForce, CliError> {
     let with = match &entry.with {
         Some(tags) => tags.get_ref().iter().map(|t| t.get_ref().clone()).collect(),
@@ -241,11 +358,12 @@ fn next_in_force(
         .with
         .as_ref()
         .map_or(entry.when.span().start, |w| w.span().start);
-    let model = load(&ModelArgs {
-        file: file.to_path_buf(),
-        with: with.clone(),
-    })
-    .map_err(|e| located(e, &where_(tag_span)))?;
+    let model = models
+        .load(&ModelArgs {
+            file: file.to_path_buf(),
+            with: with.clone(),
+        })
+        .map_err(|e| located(e, &where_(tag_span)))?;
     let known: Vec<(String, ())> = model
         .derivation
         .parameters
@@ -263,7 +381,11 @@ fn next_in_force(
         parameters.retain(|(n, _)| n != name.get_ref());
         parameters.push((name.get_ref().clone(), *value));
     }
-    Ok(InForce { with, parameters })
+    Ok(InForce {
+        with,
+        parameters,
+        input: before.input,
+    })
 }
 
 /// The phase `entry` begins, its coordinates and state masses checked against the first.
@@ -274,13 +396,15 @@ fn phase(
     record_entries: &[String],
     first: &ScenePhase,
     where_: &dyn Fn(usize) -> String,
+    models: &mut Models,
 ) -> Result<ScenePhase, CliError> {
     let here = where_(entry.when.span().start);
-    let model = load(&ModelArgs {
-        file: file.to_path_buf(),
-        with: in_force.with.clone(),
-    })
-    .map_err(|e| located(e, &here))?;
+    let model = models
+        .load(&ModelArgs {
+            file: file.to_path_buf(),
+            with: in_force.with.clone(),
+        })
+        .map_err(|e| located(e, &here))?;
     let selected = model.selected.clone();
     let (program, flows) = program_from(model, &in_force).map_err(|e| located(e, &here))?;
     let same = |p: &Program| {
@@ -394,8 +518,8 @@ fn needs_program(end: &End, program: &Program) -> bool {
 }
 
 /// The program of `file` with `in_force`'s tags and values.
-fn program_of(file: &Path, in_force: &InForce) -> Result<Program, CliError> {
-    let model = load(&ModelArgs {
+fn program_of(file: &Path, in_force: &InForce, models: &mut Models) -> Result<Program, CliError> {
+    let model = models.load(&ModelArgs {
         file: file.to_path_buf(),
         with: in_force.with.clone(),
     })?;
@@ -409,7 +533,7 @@ fn program_from(
     in_force: &InForce,
 ) -> Result<(Program, Vec<String>), CliError> {
     let args = RunArgs {
-        input: Vec::new(),
+        input: in_force.input.clone(),
         table: Vec::new(),
         model: ModelArgs {
             file: PathBuf::new(),
@@ -431,8 +555,8 @@ fn program_from(
         plot: None,
         words: Words::Scene,
     };
-    let prepared = crate::run::program(&args, model, |_| {})?;
-    Ok((prepared.program, prepared.flows))
+    let values = crate::run::plan::parameters(&args)?;
+    Compiled::new(model).program_only(&args, &values)
 }
 
 /// `error` with the place in the scene file it comes from.

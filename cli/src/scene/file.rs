@@ -25,9 +25,17 @@ pub struct SceneFile {
     /// The parameter values of the first phase (`--set`).
     #[serde(default)]
     pub set: BTreeMap<Spanned<String>, f64>,
+    /// A law for each `input` of the model (`--input`'s syntax: an expression of the
+    /// input's arguments and the parameters, or a `.csv`/`.eng` file relative to the scene
+    /// file), in force in every phase.
+    #[serde(default)]
+    pub input: BTreeMap<Spanned<String>, String>,
     /// The initial state (`--init`): coordinates, velocities `x'` (0 if unset), state masses.
     #[serde(default)]
     pub init: BTreeMap<Spanned<String>, f64>,
+    /// The coordinate that starts resting on its support (a pad, a rail's end) and is held
+    /// there until the net force along it lifts the body (docs/scenes.md).
+    pub support: Option<Spanned<String>>,
     /// The start time.
     #[serde(default)]
     pub from: f64,

@@ -4,18 +4,20 @@
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::phases::ALREADY_PAST;
+use varmass::core::support::{held_phase, starts_held};
 use varmass::core::{
-    run_phases_keeping, Event, EventAction, Phase, PhaseChange, Record, RunConfig, Statistics,
-    StepError, StepErrorKind, StopReason,
+    run_phases_keeping, Event, Phase, PhaseChange, PhasedSolution, Record, RunConfig, Statistics,
+    StepError, StepErrorKind, StopReason, Supported,
 };
 use varmass::interpret::{Program, TapeSystem};
 
 use super::build::{End, Scene};
+use crate::args::Method;
 use crate::error::CliError;
-use crate::run::dispatch::MAX_STATE_MASSES;
-use crate::run::integrate::{describe, with_stepper};
-use crate::run::names::{evaluate, shown, Observable};
-use crate::run::plan::{Steps, MIN_TOLERANCE};
+use crate::run::dispatch::{on_sizes, padded_steps, SizedRun, Sizes};
+use crate::run::integrate::{describe, event, watcher, with_stepper, Watcher};
+use crate::run::names::shown;
+use crate::run::plan::Plan;
 use crate::run::watch::Watched;
 
 /// What a scene's run computed, sizes erased.
@@ -36,31 +38,74 @@ pub struct Flown {
     pub programs: Vec<Program>,
     /// Why the run failed, if it did: the points end at the last accepted one.
     pub failure: Option<CliError>,
+    /// When the body left its support (`support = "y"`): the start if it lifted at once,
+    /// `None` if it was still held at the end (or the scene has no support).
+    pub lift_off: Option<f64>,
+    /// The closest every accepted step of every phase came to a singular attitude, rad.
+    pub closest_singular_attitude: Option<f64>,
 }
 
-/// One arm per N with S = 2N + 3, as `varmass run` monomorphizes.
-macro_rules! sizes {
-    ($scene:ident; $(($n:literal, $s:literal)),* $(,)?) => {
-        match $scene.phases[0].program.coordinate_count() {
-            $($n => fly_sized::<$n, $s>($scene),)*
-            n => Err(CliError::Input(format!(
-                "the model has {n} coordinates; the tool runs models with 1 to 8 (use the \
-                 #[variable_mass_system] macro for larger ones)"
-            ))),
-        }
-    };
-}
-
-/// Runs the scene's phases in turn.
+/// Runs the scene's phases in turn, in the monomorphized code of the first phase's sizes
+/// padded as `varmass run` pads ([`on_sizes`]; the phases share their coordinates and
+/// state masses).
 pub fn fly(scene: Scene) -> Result<Flown, CliError> {
-    let k = scene.phases[0].program.state_mass_count();
-    if k > MAX_STATE_MASSES {
-        return Err(CliError::Input(format!(
-            "the model has {k} state masses; the tool runs models with at most \
-             {MAX_STATE_MASSES}"
-        )));
+    // Padded even where `varmass run` has an exact arm: a scene's numbers stay those of
+    // the padded arms it has always run in.
+    on_sizes(Sizes::of(&scene.phases[0].program), false, scene)
+}
+
+impl SizedRun for Scene {
+    type Output = Flown;
+
+    fn run<const N: usize, const S: usize>(self, len: usize) -> Result<Flown, CliError> {
+        fly_sized::<N, S>(self, len)
     }
-    sizes!(scene; (1, 5), (2, 7), (3, 9), (4, 11), (5, 13), (6, 15), (7, 17), (8, 19))
+}
+
+/// The scene's run settings: the plan's end and step limit (each phase's), and the
+/// energy-budget residual if recorded.
+fn config(plan: &Plan, energy_residual: bool) -> RunConfig {
+    RunConfig {
+        max_steps: usize::try_from(plan.max_steps).unwrap_or(usize::MAX),
+        ..RunConfig::until(plan.until)
+    }
+    .recording(Record {
+        energy_residual,
+        ..Record::default()
+    })
+}
+
+/// The scene's failure `e` in the tool's words, given the changes of phase so far and the
+/// phase of the last point (`ended`): a phase whose end condition holds where it begins,
+/// or the failure described in the model of the phase it happened in.
+fn failure<const N: usize, const S: usize>(
+    e: StepError<S>,
+    ended: (&[PhaseChange], usize),
+    phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
+    ends: &[Option<End>],
+    plan: &Plan,
+    flows: &[Vec<String>],
+) -> CliError {
+    let (changes, last) = ended;
+    let entered = changes.last().map_or(0, |c| c.phase);
+    if never_triggers(&e) {
+        // The change into the phase is recorded; none of its points are.
+        let when = ends
+            .get(entered)
+            .and_then(Option::as_ref)
+            .map_or("?", |e| &e.text);
+        return CliError::Run(format!(
+            "phase {} ends when `{when}`, which already holds (or stands exactly on its \
+             boundary) where the phase begins, at t = {}: it could never end the phase\n\
+             help: give the phase a condition that its motion reaches later",
+            entered + 1,
+            shown(e.time)
+        ));
+    }
+    // The phase the run failed in, with its own model's flows: the last one entered (a
+    // failure at its first step leaves no point of it).
+    let k = entered.max(last).min(phases.len() - 1);
+    describe(&phases[k].system.system, plan, &flows[k], e)
 }
 
 /// Whether `error` is the core's refusal of a phase whose end condition holds at its start.
@@ -68,19 +113,15 @@ fn never_triggers<const S: usize>(error: &StepError<S>) -> bool {
     matches!(error.kind, StepErrorKind::InvalidConfiguration { reason } if reason == ALREADY_PAST)
 }
 
-/// An event function g(t, state).
-type EventFunction<'a, const S: usize> = dyn Fn(f64, &SVector<f64, S>) -> f64 + 'a;
-/// One owned.
-type Watcher<'a, const S: usize> = Box<EventFunction<'a, S>>;
-
-fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliError> {
+fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result<Flown, CliError> {
     let Scene {
         phases: built,
         plan,
         energy_residual,
+        support,
         ..
     } = scene;
-    let len = built[0].program.state_len();
+    let k = built[0].program.state_mass_count();
     let mut systems = Vec::new();
     let mut ends = Vec::new();
     let mut masses = Vec::new();
@@ -89,18 +130,20 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
         flows.push(phase.flows);
         let system = TapeSystem::<N, S>::padded(phase.program)
             .map_err(|e| CliError::Input(e.to_string()))?;
-        systems.push((system, phase.carry));
+        systems.push((Supported::free(system), phase.carry));
         ends.push(phase.end);
         masses.push(phase.state_masses);
     }
-    let watchers: Vec<Option<Watcher<'_, S>>> =
-        ends.iter().map(|e| e.as_ref().and_then(watcher)).collect();
+    let watchers = end_watchers::<S>(&ends);
     let events: Vec<Option<Event<'_, S>>> = ends
         .iter()
         .zip(&watchers)
-        .map(|(end, w)| end.as_ref().map(|end| event::<N, S>(end, w.as_deref())))
+        .map(|(end, w)| {
+            end.as_ref()
+                .map(|e| event::<N, S>(e.observable, e.value, e.direction, k, w.as_deref()))
+        })
         .collect();
-    let phases: Vec<Phase<'_, TapeSystem<N, S>, S>> = systems
+    let mut phases: Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>> = systems
         .into_iter()
         .zip(&masses)
         .zip(events)
@@ -111,27 +154,10 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
             until,
         })
         .collect();
-    let mut initial_state = plan.initial_state.clone();
-    initial_state.resize(S, 0.0);
-    let start = (
-        plan.from,
-        SVector::<f64, S>::from_column_slice(&initial_state),
-    );
-    let config = RunConfig {
-        max_steps: usize::try_from(plan.max_steps).unwrap_or(usize::MAX),
-        ..RunConfig::until(plan.until)
-    }
-    .recording(Record {
-        energy_residual,
-        ..Record::default()
-    });
-    let steps = match plan.steps {
-        // The padding's errors are 0: scale as `varmass run` does (dispatch.rs).
-        Steps::Adaptive(tol) => {
-            Steps::Adaptive((tol * (len as f64 / S as f64).sqrt()).max(MIN_TOLERANCE))
-        }
-        fixed => fixed,
-    };
+    let start = start_of::<S>(&plan);
+    let held = held_first(&mut phases, support, start, &plan)?;
+    let config = config(&plan, energy_residual);
+    let steps = padded_steps(plan.steps, plan.method, len, S)?;
     let (from, until) = (plan.from, plan.until);
     macro_rules! phased_with {
         ($stepper:ident, $settings:expr) => {
@@ -146,86 +172,211 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene) -> Result<Flown, CliE
         };
     }
     let (phased, error) = with_stepper!(plan.method, steps, phased_with);
+    if held == Some(true) {
+        met_while_held(&phased, &phases, start, &ends)?;
+    }
+    let (phased, lift_off) = renumbered(phased, held, from);
+    let offset = usize::from(held == Some(true));
     let last = phased.phase.last().copied().unwrap_or(0);
-    let failure = error.map(|e| match never_triggers(&e) {
-        // The change into the phase is recorded; none of its points are.
-        true => {
-            let k = phased.changes.last().map_or(0, |c| c.phase);
-            let when = ends
-                .get(k)
-                .and_then(Option::as_ref)
-                .map_or("?", |e| &e.text);
-            CliError::Run(format!(
-                "phase {} ends when `{when}`, which already holds (or stands exactly on its \
-                 boundary) where the phase begins, at t = {}: it could never end the phase\n\
-                 help: give the phase a condition that its motion reaches later",
-                k + 1,
-                shown(e.time)
-            ))
-        }
-        false => {
-            // The phase the run failed in, with its own model's flows: the last one
-            // entered (a failure at its first step leaves no point of it).
-            let entered = phased.changes.last().map_or(0, |c| c.phase).max(last);
-            let k = entered.min(phases.len() - 1);
-            describe(&phases[k].system, &plan, &flows[k], e)
-        }
+    let failure = error.map(|e| {
+        let ended = (&phased.changes[..], last);
+        failure::<N, S>(e, ended, &phases[offset..], &ends, &plan, &flows)
     });
-    let stopped = phases.len() == last + 1
-        && phases[last].until.is_some()
+    let stopped = phases.len() == last + 1 + offset
+        && phases[last + offset].until.is_some()
         && phased.solution.stop == (StopReason::EventFound { index: 0 });
-    let points = phased
-        .solution
+    let mut flown = flown(phased, (phases, offset), len, stopped, failure);
+    flown.lift_off = lift_off;
+    Ok(flown)
+}
+
+/// The watcher of each phase's end condition (none for a phase without one).
+fn end_watchers<const S: usize>(ends: &[Option<End>]) -> Vec<Option<Watcher<'_, S>>> {
+    ends.iter()
+        .map(|e| {
+            e.as_ref()
+                .and_then(|e| watcher(e.watch.as_ref(), e.observable, e.value))
+        })
+        .collect()
+}
+
+/// Refuses a scene whose first phase's end condition was met while the body was held on its
+/// support: conditions are watched from the lift-off on (docs/scenes.md), so a phase change
+/// or a stop due during the hold would be skipped without a word. `phased` is the run before
+/// renumbering (the held phase is phase 0, the lift-off the first point of phase 1; a body
+/// held to the end is checked at its last point).
+fn met_while_held<const N: usize, const S: usize>(
+    phased: &PhasedSolution<N, S>,
+    phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
+    (t0, y0): (f64, SVector<f64, S>),
+    ends: &[Option<End>],
+) -> Result<(), CliError> {
+    let lift_off = phased.phase.iter().position(|&p| p == 1);
+    let Some(i) = lift_off.or(phased.phase.len().checked_sub(1)) else {
+        return Ok(());
+    };
+    let (Some(first), Some(Some(end))) = (phases.get(1), ends.first()) else {
+        return Ok(());
+    };
+    let Some(until) = &first.until else {
+        return Ok(());
+    };
+    let (t1, y1) = (phased.solution.times[i], &phased.solution.states[i]);
+    let (g0, g1) = (
+        until.value(&first.system, t0, &y0),
+        until.value(&first.system, t1, y1),
+    );
+    if g1 != 0.0 && g0.signum() == g1.signum() {
+        return Ok(());
+    }
+    Err(CliError::Input(format!(
+        "`{}` (the end of phase 1) was met while the body was held on its `support`, between \
+         t = {} and the end of the hold at t = {}: a scene's conditions are watched from the lift-off \
+         on (docs/scenes.md), so it would be skipped; write a condition met after the lift-off, \
+         or fly the scene without `support`",
+        end.text,
+        shown(t0),
+        shown(t1)
+    )))
+}
+
+/// The plan's initial time and state, padded with zeros to the arm's `S`.
+fn start_of<const S: usize>(plan: &Plan) -> (f64, SVector<f64, S>) {
+    let mut initial_state = plan.initial_state.clone();
+    initial_state.resize(S, 0.0);
+    (
+        plan.from,
+        SVector::<f64, S>::from_column_slice(&initial_state),
+    )
+}
+
+/// [`hold`], and the refusal of a held phase under Taylor (the held phase has no Taylor
+/// coefficients of its own).
+fn held_first<const N: usize, const S: usize>(
+    phases: &mut Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>>,
+    support: Option<(usize, Program)>,
+    start: (f64, SVector<f64, S>),
+    plan: &Plan,
+) -> Result<Option<bool>, CliError> {
+    let held = hold(phases, support, start)?;
+    if held == Some(true) && matches!(plan.method, Method::Taylor) {
+        return Err(CliError::Input(
+            "`support` with `method = \"taylor\"`: the held phase has no Taylor coefficients \
+             of its own (docs/scenes.md); fly it with another method, e.g. \"dop853\""
+                .to_string(),
+        ));
+    }
+    Ok(held)
+}
+
+/// What the scene computed, sizes erased: the points cut to the model's own state `len`,
+/// the programs given back for recording.
+fn flown<const N: usize, const S: usize>(
+    phased: PhasedSolution<N, S>,
+    (phases, offset): (Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>>, usize),
+    len: usize,
+    stopped: bool,
+    failure: Option<CliError>,
+) -> Flown {
+    let solution = phased.solution;
+    let points = solution
         .times
         .iter()
-        .zip(&phased.solution.states)
+        .zip(&solution.states)
         .map(|(t, s)| (*t, s.as_slice()[..len].to_vec()))
         .collect();
-    Ok(Flown {
+    Flown {
         points,
         phase: phased.phase,
         changes: phased.changes,
-        energy_residual: phased.solution.energy_residual,
+        energy_residual: solution.energy_residual,
         stopped,
-        statistics: phased.solution.statistics,
+        statistics: solution.statistics,
+        // The held phase (if any) comes first: its program is the first phase's again.
         programs: phases
             .into_iter()
-            .map(|p| p.system.into_program())
+            .skip(offset)
+            .map(|p| p.system.system.into_program())
             .collect(),
         failure,
-    })
+        lift_off: None,
+        closest_singular_attitude: solution.closest_singular_attitude,
+    }
 }
 
-/// g(t, state) of an end condition read from the model or the time: the time
-/// minus the value for `t`, or the quantity minus the value (NaN where it cannot be had)
-/// evaluated with the phase's own model; `None` for a state entry.
-fn watcher<const S: usize>(end: &End) -> Option<Watcher<'_, S>> {
-    let value = end.value;
-    let Some(observable) = end.observable else {
-        return Some(Box::new(move |t, _: &SVector<f64, S>| t - value));
+/// Puts the held phase before `phases` when the scene's `support` (its coordinate and a
+/// program of the first phase) holds the body at the start: `Some(true)` if it does,
+/// `Some(false)` if the body lifts at once, `None` without a support. A body not at rest
+/// along its support, or a coordinate that couples with another, is refused.
+fn hold<const N: usize, const S: usize>(
+    phases: &mut Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>>,
+    support: Option<(usize, Program)>,
+    (time, state): (f64, SVector<f64, S>),
+) -> Result<Option<bool>, CliError> {
+    let Some((k, program)) = support else {
+        return Ok(None);
     };
-    let program = end.watch.as_ref()?;
-    Some(Box::new(move |t, state: &SVector<f64, S>| {
-        evaluate(program, observable, t, state.as_slice()).map_or(f64::NAN, |v| v - value)
-    }))
+    let refused = |e: StepError<S>| match e.kind {
+        StepErrorKind::InvalidConfiguration { reason } => {
+            CliError::Input(format!("`support`: {reason}"))
+        }
+        kind => CliError::Run(format!("`support`: at t = {}: {kind}", shown(e.time))),
+    };
+    if !starts_held(&phases[0].system.system, k, (time, &state)).map_err(refused)? {
+        return Ok(Some(false));
+    }
+    let system = TapeSystem::<N, S>::padded(program).map_err(|e| CliError::Input(e.to_string()))?;
+    phases.insert(0, held_phase(system, k));
+    Ok(Some(true))
 }
 
-/// The core event of an end condition: a state entry (a coordinate, a state mass) read
-/// from the state, anything else through its `watcher`.
-fn event<'a, const N: usize, const S: usize>(
-    end: &'a End,
-    watcher: Option<&'a EventFunction<'a, S>>,
-) -> Event<'a, S> {
-    match (end.observable, watcher) {
-        (_, Some(w)) => Event::function(w, end.direction, EventAction::Stop),
-        (Some(Observable::Coordinate(a)), None) => {
-            Event::state_reaches(a, end.value, end.direction)
+/// The run of the held phase and the scene's phases numbered as the scene's (the held
+/// phase is part of the first: its points are phase 1, the lift-off no change of phase),
+/// and the lift-off time.
+fn renumbered<const N: usize, const S: usize>(
+    mut phased: PhasedSolution<N, S>,
+    held: Option<bool>,
+    from: f64,
+) -> (PhasedSolution<N, S>, Option<f64>) {
+    match held {
+        None => (phased, None),
+        Some(false) => (phased, Some(from)),
+        Some(true) => {
+            // The lift-off's two points (before and after) are one state: keep the first.
+            if let Some(i) = phased.phase.iter().position(|&p| p == 1) {
+                drop_point(&mut phased, i);
+            }
+            for phase in &mut phased.phase {
+                *phase = phase.saturating_sub(1);
+            }
+            let lift_off = match phased.changes.is_empty() {
+                true => None,
+                false => Some(phased.changes.remove(0).time),
+            };
+            for change in &mut phased.changes {
+                change.phase -= 1;
+            }
+            (phased, lift_off)
         }
-        (Some(Observable::Mass(i)), None) => {
-            Event::state_reaches(2 * N + i, end.value, end.direction)
+    }
+}
+
+/// Removes point `i` from `phased` and from every extra recorded at it.
+fn drop_point<const N: usize, const S: usize>(phased: &mut PhasedSolution<N, S>, i: usize) {
+    let solution = &mut phased.solution;
+    phased.phase.remove(i);
+    solution.times.remove(i);
+    solution.states.remove(i);
+    for extra in [
+        &mut solution.hamiltonian,
+        &mut solution.power,
+        &mut solution.energy_residual,
+    ] {
+        if i < extra.len() {
+            extra.remove(i);
         }
-        // The build gives every other condition a watcher; were one missing, an index past
-        // the state is the core's typed configuration error, not a silent non-event.
-        (_, None) => Event::state_reaches(S, end.value, end.direction),
+    }
+    if i < solution.forces.len() {
+        solution.forces.remove(i);
     }
 }

@@ -4,95 +4,42 @@
 //! gives that member alone.
 //!
 //! The design is heyoka's batch mode's (Biscani & Izzo 2021, per-lane step sizes and
-//! times), reduced to what keeps the scalar path's arithmetic: the stages — six state rates
-//! and the combinations between them, the work of an attempt —, the error estimate with the
-//! weighted RMS of `Tolerance::norm` and the finiteness of the stage states run in lanes,
-//! each operation the scalar one lane by lane, compiled for AVX where the CPU has it (chosen
-//! at run time; never FMA). So does the PI controller's arithmetic after the attempt
-//! (`lanes/control.rs`): its two `powf` per step stay one scalar call per lane (a vector
-//! `pow` would round otherwise), skipped where the clamp decides alone (`ClampedErrors`).
-//! Each lane then decides on its own, in scalar code, exactly as the scalar stepper does:
-//! the shared controller (`steppers/control.rs`'s `Controlled`: first step, stop time),
-//! acceptance or rejection, the flow check of every point and the events located on the
-//! lane's own dense output (`locate_root`). An accepted lane's next attempt starts from
-//! the new state and its rate (FSAL) where the lanes hold them. A lane whose member is done
-//! is refilled with the next job at once, so the lanes stay busy while members take
+//! times: one integrator in scalar and batch form), reduced to what keeps the scalar path's
+//! arithmetic. Nothing of the method is written here: the stages, the new state and the
+//! error estimate with its weighted RMS are the explicit core's (`steppers/explicit.rs`)
+//! over Dormand–Prince's tableau (`steppers/dp_tableau.rs`), with [`Lanes`] as the
+//! component instead of `f64`; the step-size rule is `steppers/step_size.rs`'s (its two
+//! `powf` per step one scalar call per lane, skipped where the clamp decides alone); a
+//! failed attempt follows the one rejection policy (`Controlled::shrink_or_fail`); the
+//! dense output located on by the events (`lanes/events.rs`) is `DormandPrince`'s. The
+//! arithmetic runs in lanes compiled for AVX where the CPU has it (chosen at run time;
+//! never FMA), each operation the scalar one lane by lane. Each lane then decides on its
+//! own, in scalar code, exactly as the scalar stepper does: the shared controller
+//! (`Controlled`: first step, stop time), acceptance or rejection, the flow check of every
+//! point and the events. An accepted lane's next attempt starts from the new state and its
+//! rate (FSAL) where the lanes hold them. A lane whose member is done is refilled with the
+//! next job at once (`lanes/member.rs`), so the lanes stay busy while members take
 //! different numbers of steps. Hairer's stiffness test (statistics only) is not run.
 //!
-//! The tableau and the dense output are the scalar stepper's (`steppers/dormand_prince.rs`,
-//! HNW I, II.5, Table 5.2 and `CONTD5`), with every operation in the same order: that is
-//! what makes the lanes bit-identical, and `tests/lanes_dispersion.rs` holds it.
+//! Every operation is the scalar stepper's in the same order: that is what makes the lanes
+//! bit-identical, and `tests/lanes_dispersion.rs` holds it.
 
 use alloc::vec::Vec;
 
 use nalgebra::SVector;
 
-use super::control::step_after_acceptance;
 use super::events::after_step;
+use super::member::{start, Last, Member};
+pub use super::member::{LaneEnd, LaneJob};
 use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
 use crate::error::{is_finite, StepError, StepErrorKind};
-use crate::events::Event;
 use crate::run::RunConfig;
-use crate::solution::Record;
-use crate::stepper::{Checked, Statistics};
-use crate::steppers::control::{
-    resolvable, AdaptiveControl, ClampedErrors, Controlled, Mode, StepControl,
-};
+use crate::stepper::Checked;
+use crate::steppers::control::{AdaptiveControl, Mode, StepControl};
+use crate::steppers::dp_tableau::{ERROR_WEIGHTS, STAGE_ROWS, WEIGHTS};
+use crate::steppers::explicit::{self, Rates};
+use crate::steppers::step_size::{step_after_acceptance, ClampedErrors};
 use crate::tolerance::Tolerance;
-
-use crate::steppers::dp_tableau::*;
-
-/// One member's run: its system, its initial value and the events that end it (as
-/// [`run`](crate::run::run)'s `events`).
-#[derive(Clone, Copy, Debug)]
-pub struct LaneJob<'e, Sys, const S: usize> {
-    /// The member's system (its parameters go into its lane).
-    pub system: Sys,
-    /// The initial time.
-    pub time: f64,
-    /// The initial state `[q, p, m_s]`.
-    pub state: SVector<f64, S>,
-    /// The events watched; the first [`EventAction::Stop`](crate::events::EventAction::Stop) hit ends the run.
-    pub events: &'e [Event<'e, S>],
-}
-
-/// Where a member's run ended: the last point of the scalar run's solution.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LaneEnd<const S: usize> {
-    /// The time of the last point: the located event, or the end time.
-    pub time: f64,
-    /// The state there.
-    pub state: SVector<f64, S>,
-    /// The index of the stopping event, `None` when the run reached the end time.
-    pub event: Option<usize>,
-    /// The work counters (rate evaluations counted six per attempt and one at the start;
-    /// the stiffness flag is never set).
-    pub statistics: Statistics,
-}
-
-/// A member in its lane: the scalar controller and the run's bookkeeping.
-pub(super) struct Member<'s, 'e, Sys, const S: usize> {
-    pub(super) job: usize,
-    pub(super) core: Controlled<'s, Sys, S>,
-    pub(super) events: &'e [Event<'e, S>],
-    /// g of each event at the last point.
-    pub(super) values: Vec<f64>,
-    pub(super) steps: usize,
-    /// How the member's last attempt ended, which says where its next one starts.
-    last: Last,
-}
-
-/// How a member's last attempt ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Last {
-    /// None yet: the attempt starts from the member's initial value.
-    Started,
-    /// Accepted: the next starts from its new state and last stage (FSAL), which are in the
-    /// lanes already.
-    Accepted,
-    /// Rejected: the next starts where it did, from what the lane holds still.
-    Rejected,
-}
 
 /// The inputs of one attempt in every lane, and the stages it computes.
 pub(super) struct Attempt<const S: usize, const W: usize> {
@@ -238,35 +185,13 @@ where
         }
         attempt.kernel::<Sys, N>(kernel, &parameters, &tolerance);
         attempt.rows();
-        // An empty lane's error is NaN here, so that its proposal costs no `powf`.
-        let previous = Lanes::from_fn(|i| {
-            lanes[i]
-                .as_ref()
-                .map_or(1.0, |member| member.core.memory.previous_error)
-        });
-        let busy = lanes.each_ref().map(Option::is_some);
-        let error = Lanes::select(busy, attempt.error, Lanes::splat(f64::NAN));
-        let proposals = step_after_acceptance(&adaptive, &clamped, attempt.h, error, previous);
-        for (index, slot) in lanes.iter_mut().enumerate() {
-            let Some(member) = slot else { continue };
-            let verdict = Verdict {
-                index,
-                control: &adaptive,
-                clamped: &clamped,
-                proposal: proposals.0[index],
-            };
-            match conclude(member, &attempt, verdict, config) {
-                Ok(None) => {}
-                Ok(Some(end)) => {
-                    results[member.job] = Some(Ok(end));
-                    *slot = None;
-                }
-                Err(error) => {
-                    results[member.job] = Some(Err(error));
-                    *slot = None;
-                }
-            }
-        }
+        conclude_lanes(
+            &mut lanes,
+            &mut results,
+            &attempt,
+            (&adaptive, &clamped),
+            config,
+        );
     }
     results
         .into_iter()
@@ -274,103 +199,57 @@ where
         .collect()
 }
 
+/// A member's end, or its error, by job.
+type Ends<const S: usize> = [Option<Result<LaneEnd<S>, StepError<S>>>];
+
+/// The verdict on the attempt in each occupied lane (`conclude`), with the step its
+/// controller proposes should it be accepted; a member whose run ended leaves its lane and
+/// its end goes to `results`.
+#[inline]
+fn conclude_lanes<Sys, const N: usize, const S: usize, const W: usize>(
+    lanes: &mut [Option<Member<'_, '_, Sys, S>>; W],
+    results: &mut Ends<S>,
+    attempt: &Attempt<S, W>,
+    (adaptive, clamped): (&AdaptiveControl, &ClampedErrors),
+    config: &RunConfig,
+) where
+    Sys: LaneSystem<N, S, W>,
+{
+    // An empty lane's error is NaN here, so that its proposal costs no `powf`.
+    let previous = Lanes::from_fn(|i| {
+        lanes[i]
+            .as_ref()
+            .map_or(1.0, |member| member.core.memory.previous_error)
+    });
+    let busy = lanes.each_ref().map(Option::is_some);
+    let error = Lanes::select(busy, attempt.error, Lanes::splat(f64::NAN));
+    let proposals = step_after_acceptance(adaptive, clamped, attempt.h, error, previous);
+    for (index, slot) in lanes.iter_mut().enumerate() {
+        let Some(member) = slot else { continue };
+        let verdict = Verdict {
+            index,
+            control: adaptive,
+            clamped,
+            proposal: proposals.0[index],
+        };
+        match conclude(member, attempt, verdict, config) {
+            Ok(None) => {}
+            Ok(Some(end)) => {
+                results[member.job] = Some(Ok(end));
+                *slot = None;
+            }
+            Err(error) => {
+                results[member.job] = Some(Err(error));
+                *slot = None;
+            }
+        }
+    }
+}
+
 /// The error of a job the loop never finished (it cannot happen: every job is started,
 /// and a started member ends with a result).
 fn unfinished<const S: usize>() -> StepError<S> {
     StepError::invalid_configuration(f64::NAN, SVector::zeros(), "a lane job never finished")
-}
-
-/// A member at the start of its run, with the scalar run's checks; `Err` holds the member's
-/// result when it ends before any step (a failed check, or a run of zero length).
-#[allow(clippy::type_complexity)]
-fn start<'s, 'e, Sys, const N: usize, const S: usize, const W: usize>(
-    jobs: &'s [LaneJob<'e, Sys, S>],
-    job: usize,
-    control: StepControl,
-    config: &RunConfig,
-) -> Result<Member<'s, 'e, Sys, S>, Result<LaneEnd<S>, StepError<S>>>
-where
-    Sys: LaneSystem<N, S, W>,
-{
-    let LaneJob {
-        system,
-        time,
-        state,
-        events,
-    } = &jobs[job];
-    let mut core = Controlled::new::<N>(system, *time, *state, control).map_err(Err)?;
-    let invalid = |reason| Err(StepError::invalid_configuration(*time, *state, reason));
-    if !matches!(core.mode, Mode::Adaptive(..)) {
-        return Err(invalid("lanes: only adaptive steps run in lanes"));
-    }
-    let supported = config.record == Record::default()
-        && config.energy_tolerance.is_none()
-        && !config.event_tolerance.is_nan()
-        && config.event_tolerance >= 0.0;
-    if !supported {
-        return Err(invalid(
-            "lanes: a run in lanes records nothing and guards no energy; the event \
-             tolerance must be non-negative",
-        ));
-    }
-    if system.switch_count() > 0 || system.next_stop_time(*time).is_some() {
-        return Err(invalid(
-            "lanes: a system with switches or stop times runs on the scalar path",
-        ));
-    }
-    for event in *events {
-        event
-            .validate::<Sys, N>()
-            .map_err(|error| invalid(error.reason))?;
-    }
-    core.progress.set_stop_time(config.end_time).map_err(Err)?;
-    system.check_flows(*time, state).map_err(Err)?;
-    if config.end_time == *time {
-        return Err(Ok(end_at(&core, *time, *state, None)));
-    }
-    if config.max_steps == 0 {
-        let kind = StepErrorKind::TooManySteps { max_steps: 0 };
-        return Err(Err(StepError::new(*time, *state, kind)));
-    }
-    let values = events
-        .iter()
-        .map(|event| event.value(system, *time, state))
-        .collect();
-    Ok(Member {
-        job,
-        core,
-        events,
-        values,
-        steps: 0,
-        last: Last::Started,
-    })
-}
-
-/// The member's end at `(time, state)`, stopped by `event` (`None`: at the end time).
-pub(super) fn end_at<Sys, const S: usize>(
-    core: &Controlled<'_, Sys, S>,
-    time: f64,
-    state: SVector<f64, S>,
-    event: Option<usize>,
-) -> LaneEnd<S> {
-    LaneEnd {
-        time,
-        state,
-        event,
-        statistics: *core.progress.statistics(),
-    }
-}
-
-/// y₀ + δ(j) in every component j, δ written out in place: a closure would be compiled on
-/// its own, without the AVX of the kernel it serves.
-macro_rules! stage {
-    ($y0:expr, |$j:ident| $delta:expr) => {{
-        let mut out = $y0;
-        for ($j, component) in out.iter_mut().enumerate() {
-            *component += $delta;
-        }
-        out
-    }};
 }
 
 impl<const S: usize, const W: usize> Attempt<S, W> {
@@ -500,70 +379,32 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         self.kernel_portable::<Sys, N>(parameters, tolerance);
     }
 
-    /// The stages k₂ … k₇ and the new state in every lane: `DormandPrince::attempt`'s
-    /// operations, in its order, lane by lane.
+    /// The stages k₂ … k₇ and the new state in every lane: the explicit core's, as
+    /// `DormandPrince`'s attempt takes them, lane by lane.
     #[inline(always)]
     fn stages<Sys, const N: usize>(&mut self, parameters: &Sys::Parameters)
     where
         Sys: LaneSystem<N, S, W>,
     {
         let (t0, h, y0) = (self.t0, self.h, self.y0);
-        // Called directly and the stages written out (`stage!`), with no closure: a closure
-        // is compiled on its own, without the AVX of the kernel that calls it.
-        let rate = Sys::state_rate_lanes;
-        let k1 = self.k[0];
-        let y2 = stage!(y0, |j| k1[j] * (A21 * h));
-        let k2 = rate(parameters, t0 + C2 * h, &y2);
-        let y3 = stage!(y0, |j| (k1[j] * A31 + k2[j] * A32) * h);
-        let k3 = rate(parameters, t0 + C3 * h, &y3);
-        let y4 = stage!(y0, |j| (k1[j] * A41 + k2[j] * A42 + k3[j] * A43) * h);
-        let k4 = rate(parameters, t0 + C4 * h, &y4);
-        let y5 = stage!(y0, |j| {
-            (k1[j] * A51 + k2[j] * A52 + k3[j] * A53 + k4[j] * A54) * h
-        });
-        let k5 = rate(parameters, t0 + C5 * h, &y5);
-        let y6 = stage!(y0, |j| {
-            (k1[j] * A61 + k2[j] * A62 + k3[j] * A63 + k4[j] * A64 + k5[j] * A65) * h
-        });
-        let k6 = rate(parameters, t0 + h, &y6);
-        let y1 = stage!(y0, |j| {
-            (k1[j] * B1 + k3[j] * B3 + k4[j] * B4 + k5[j] * B5 + k6[j] * B6) * h
-        });
-        let k7 = rate(parameters, t0 + h, &y1);
-        self.k = [k1, k2, k3, k4, k5, k6, k7];
-        self.y = [y2, y3, y4, y5, y6, y1];
+        let mut rates = LaneRates::<Sys, N, S, W> { parameters };
+        // The stage states y₂ … y₆ go straight to where the checks read them.
+        let states = &mut self.y[..5];
+        match explicit::stages(STAGE_ROWS, (t0, &y0), h, &mut self.k, states, &mut rates) {
+            Ok(_) => {}
+            Err(never) => match never {},
+        }
+        let y1 = explicit::solution(WEIGHTS, &y0, &self.k, h);
+        self.k[6] = Sys::state_rate_lanes(parameters, t0 + h, &y1);
+        self.y[5] = y1;
     }
 
-    /// Which lanes' stage states are all finite, and every lane's scaled error:
-    /// `DormandPrince::attempt`'s estimate and [`Tolerance::norm`]'s weighted RMS (weights
-    /// atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|), an exact zero counting 0, the squares summed in
-    /// component order), lane by lane.
+    /// Which lanes' stage states are all finite, and every lane's scaled error: the
+    /// explicit core's estimate and norm, as `DormandPrince`'s attempt takes them.
     #[inline(always)]
     fn measure(&mut self, tolerance: &Tolerance) {
-        let (k, h, y1) = (&self.k, self.h, &self.y[5]);
-        let absolute = Lanes::<W>::splat(tolerance.absolute());
-        let relative = Lanes::<W>::splat(tolerance.relative());
-        let mut sum = Lanes::<W>::splat(0.0);
-        for j in 0..S {
-            let estimate = (k[0][j] * E1
-                + k[2][j] * E3
-                + k[3][j] * E4
-                + k[4][j] * E5
-                + k[5][j] * E6
-                + k[6][j] * E7)
-                * h;
-            let magnitude = self.y0[j].abs().max(y1[j].abs());
-            // `Tolerance::weight`: atol + rtol·m.
-            let weight = absolute + relative * magnitude;
-            let scaled = estimate / weight;
-            let square = Lanes::select(
-                estimate.0.map(|e| e == 0.0),
-                Lanes::splat(0.0),
-                scaled * scaled,
-            );
-            sum += square;
-        }
-        self.error = (sum / S as f64).sqrt();
+        let estimate = explicit::combination(ERROR_WEIGHTS, &self.k, self.h);
+        self.error = explicit::error_norm(tolerance, &estimate, (&self.y0, &self.y[5]));
         // 0·x is 0 for a finite x and NaN for ±∞ or NaN: one sum over the stage states
         // tells, lane by lane, whether they were all finite.
         let mut spread = Lanes::<W>::splat(0.0);
@@ -573,6 +414,31 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
             }
         }
         self.finite = spread.0.map(|x| x == 0.0);
+    }
+}
+
+/// The generated state rate over lanes, for the explicit core (it cannot fail: each lane's
+/// input is checked afterwards, `check_stages`).
+struct LaneRates<'p, Sys, const N: usize, const S: usize, const W: usize>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    parameters: &'p Sys::Parameters,
+}
+
+impl<Sys, const N: usize, const S: usize, const W: usize> Rates<Lanes<W>, LaneState<S, W>>
+    for LaneRates<'_, Sys, N, S, W>
+where
+    Sys: LaneSystem<N, S, W>,
+{
+    type Error = core::convert::Infallible;
+    #[inline(always)]
+    fn rate(
+        &mut self,
+        time: Lanes<W>,
+        state: &LaneState<S, W>,
+    ) -> Result<LaneState<S, W>, Self::Error> {
+        Ok(Sys::state_rate_lanes(self.parameters, time, state))
     }
 }
 
@@ -635,26 +501,22 @@ where
     memory.last_step = h;
     memory.propose(next, reaches_stop, control.max_step);
     member.last = Last::Accepted;
-    after_step(member, attempt, index, outcome, config)
+    after_step(member, &attempt.k, index, outcome, config)
 }
 
 /// A trial state outside the domain (non-finite, a mass not positive): a step too long,
-/// shrunk by `min_factor` and retried, unless it can shrink no more
-/// (`DormandPrince::control`).
+/// shrunk by `min_factor` and retried, unless it can shrink no more (the one rejection
+/// policy, `Controlled::shrink_or_fail`).
 fn too_long<Sys, const S: usize>(
     member: &mut Member<'_, '_, Sys, S>,
     h: f64,
     control: &AdaptiveControl,
     error: StepError<S>,
 ) -> Result<Option<LaneEnd<S>>, StepError<S>> {
-    let core = &mut member.core;
-    core.memory
-        .reject(h * control.min_factor, &mut core.progress);
-    if resolvable(core.progress.time(), core.memory.next_step) {
-        Ok(None)
-    } else {
-        Err(error)
-    }
+    member
+        .core
+        .shrink_or_fail(h * control.min_factor, error)
+        .map(|()| None)
 }
 
 /// Scalar `state_rate`'s check of each stage state (finite) and `Checked::check_state` of the new
@@ -672,7 +534,7 @@ where
     if finite {
         return system.check_state(t0 + h, &attempt.new_states[index]);
     }
-    for (y, c) in attempt.y[..5].iter().zip([C2, C3, C4, C5, 1.0]) {
+    for (y, &(c, _)) in attempt.y[..5].iter().zip(STAGE_ROWS) {
         let y = lane(y, index);
         if !is_finite(&y) {
             let time = if c == 1.0 { t0 + h } else { t0 + c * h };

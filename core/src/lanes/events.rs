@@ -5,16 +5,13 @@
 
 use alloc::vec::Vec;
 
-use nalgebra::SVector;
-
-use super::dormand_prince::{end_at, Attempt, LaneEnd, Member};
-use super::{lane, LaneSystem};
+use super::member::{end_at, LaneEnd, Member};
+use super::{lane, LaneState, LaneSystem};
 use crate::error::{StepError, StepErrorKind};
 use crate::events::{locate_root, Event, EventAction, EventCondition};
 use crate::run::RunConfig;
 use crate::stepper::{Checked, StepOutcome};
-use crate::steppers::control::Controlled;
-use crate::steppers::dp_tableau::{D1, D3, D4, D5, D6, D7};
+use crate::steppers::dormand_prince::Dense;
 use crate::system::VariableMassSystem;
 
 /// The run's bookkeeping after an accepted step (`run`'s `drive` and `EventWatch`): the flow
@@ -23,7 +20,7 @@ use crate::system::VariableMassSystem;
 #[inline]
 pub(super) fn after_step<Sys, const N: usize, const S: usize, const W: usize>(
     member: &mut Member<'_, '_, Sys, S>,
-    attempt: &Attempt<S, W>,
+    stages: &[LaneState<S, W>; 7],
     index: usize,
     outcome: StepOutcome,
     config: &RunConfig,
@@ -45,7 +42,14 @@ where
         *before = after;
     }
     if !changed.is_empty() {
-        let dense = Dense::new(attempt, index, core);
+        // The lane's stages read out of the lanes only now, for `DormandPrince`'s dense
+        // output over its last step.
+        let k = core::array::from_fn(|i| lane(&stages[i], index));
+        let start = (
+            core.progress.previous_time(),
+            core.progress.previous_state(),
+        );
+        let dense = Dense::new(start, &state, core.memory.last_step, &k);
         if let Some((hit, event_index)) = first_stop(member, &changed, &dense, config) {
             let hit_state = dense.at(hit);
             system.check_flows(hit, &hit_state)?;
@@ -117,70 +121,5 @@ where
             Some((2 * N + index, threshold))
         }
         _ => None,
-    }
-}
-
-/// The dense output over a lane's last accepted step: `DormandPrince::interpolate`.
-/// Its four vectors are the interpolant's coefficients, which do not depend on the time:
-/// computed once, with `interpolate`'s operations, for the several times root finding asks.
-struct Dense<const S: usize> {
-    y0: SVector<f64, S>,
-    y1: SVector<f64, S>,
-    difference: SVector<f64, S>,
-    first: SVector<f64, S>,
-    second: SVector<f64, S>,
-    third: SVector<f64, S>,
-    h: f64,
-    t0: f64,
-}
-
-impl<const S: usize> Dense<S> {
-    fn new<Sys, const W: usize>(
-        attempt: &Attempt<S, W>,
-        index: usize,
-        core: &Controlled<'_, Sys, S>,
-    ) -> Self {
-        let k: [SVector<f64, S>; 7] = core::array::from_fn(|i| lane(&attempt.k[i], index));
-        let (y0, y1) = (*core.progress.previous_state(), *core.progress.state());
-        let h = core.memory.last_step;
-        let difference = y1 - y0;
-        let first = k[0] * h - difference;
-        let second = difference - k[6] * h - first;
-        let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
-        Self {
-            y0,
-            y1,
-            difference,
-            first,
-            second,
-            third,
-            h,
-            t0: core.progress.previous_time(),
-        }
-    }
-
-    /// Component `j` of [`Self::at`], with its operations (each component of `at` is
-    /// computed on its own, so the two agree to the bit).
-    fn component_at(&self, j: usize, time: f64) -> f64 {
-        let h = self.h;
-        if h <= 0.0 {
-            return self.y1[j];
-        }
-        let theta = (time - self.t0) / h;
-        let theta1 = 1.0 - theta;
-        let (difference, first, second) = (self.difference[j], self.first[j], self.second[j]);
-        self.y0[j]
-            + (difference + (first + (second + self.third[j] * theta1) * theta) * theta1) * theta
-    }
-
-    fn at(&self, time: f64) -> SVector<f64, S> {
-        let h = self.h;
-        if h <= 0.0 {
-            return self.y1;
-        }
-        let theta = (time - self.t0) / h;
-        let theta1 = 1.0 - theta;
-        let (difference, first, second) = (self.difference, self.first, self.second);
-        self.y0 + (difference + (first + (second + self.third * theta1) * theta) * theta1) * theta
     }
 }

@@ -13,16 +13,17 @@
 //! lanes and its state rate over lanes. [`dormand_prince`] integrates with it.
 
 #[cfg(feature = "run")]
-mod control;
-#[cfg(feature = "run")]
 pub mod dormand_prince;
 #[cfg(feature = "run")]
 mod events;
+#[cfg(feature = "run")]
+mod member;
 
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub};
 
 use nalgebra::{ComplexField, RealField, SVector};
 
+use crate::steppers::explicit::{Lane, Vector};
 use crate::system::VariableMassSystem;
 
 #[cfg(feature = "run")]
@@ -263,6 +264,69 @@ impl<const W: usize> MulAssign<f64> for Lanes<W> {
     #[inline(always)]
     fn mul_assign(&mut self, other: f64) {
         *self = *self * other;
+    }
+}
+
+/// A component of the explicit core (`steppers/explicit.rs`) over W lanes.
+impl<const W: usize> Lane for Lanes<W> {
+    #[inline(always)]
+    fn splat(value: f64) -> Self {
+        Self::splat(value)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        Self::abs(self)
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        Self::max(self, other)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        Self::sqrt(self)
+    }
+    #[inline(always)]
+    fn zero_where_zero(value: Self, otherwise: Self) -> Self {
+        Self::select(value.0.map(|v| v == 0.0), Self::splat(0.0), otherwise)
+    }
+}
+
+/// A state of the explicit core over W lanes: each operation component by component, lane
+/// by lane (plain loops, which the compiler vectorizes).
+impl<const S: usize, const W: usize> Vector<Lanes<W>> for LaneState<S, W> {
+    const LEN: usize = S;
+    #[inline(always)]
+    fn component(&self, j: usize) -> Lanes<W> {
+        self[j]
+    }
+    #[inline(always)]
+    fn add_scaled(mut self, k: &Self, s: Lanes<W>) -> Self {
+        for (y, k) in self.iter_mut().zip(k) {
+            *y += *k * s;
+        }
+        self
+    }
+    #[inline(always)]
+    fn scaled(&self, a: f64) -> Self {
+        let mut out = *self;
+        for y in &mut out {
+            *y *= a;
+        }
+        out
+    }
+    #[inline(always)]
+    fn plus(mut self, other: &Self) -> Self {
+        for (y, x) in self.iter_mut().zip(other) {
+            *y += *x;
+        }
+        self
+    }
+    #[inline(always)]
+    fn times(mut self, h: Lanes<W>) -> Self {
+        for y in &mut self {
+            *y = *y * h;
+        }
+        self
     }
 }
 

@@ -3,35 +3,39 @@
 //!
 //! The parts of a run, one file each in `run/`: `point.rs` (what the run computes at the end
 //! of a step), `interpolation.rs` (states within the last step: the stepper's dense output or
-//! a cubic Hermite interpolant), `watch.rs` (events), `energy.rs` (the energy budget and its
-//! guard) and `record.rs` (the solution being filled). [`run`] only sequences them.
+//! a cubic Hermite interpolant), `watch.rs` (events), `switching.rs` (switches), `energy.rs`
+//! (the energy budget and its guard), `record.rs` (the solution being filled), `drive.rs`
+//! (the loop: one pass a step) and `stall.rs` (the progress guard). [`run`] only sequences
+//! them.
 
+mod drive;
 mod energy;
 mod failure;
 pub(crate) mod interpolation;
 pub(crate) mod point;
 mod record;
+mod stall;
 mod switching;
 mod watch;
 
 pub use failure::RunError;
 pub use switching::Switching;
 
-use crate::error::{StepError, StepErrorKind};
+use crate::error::StepError;
 use crate::events::Event;
 use crate::input::Sampling;
 use crate::solution::{Record, Solution, StopReason};
-use crate::stepper::{StepOutcome, Stepper};
+use crate::stepper::Stepper;
 use crate::system::VariableMassSystem;
 
 use alloc::boxed::Box;
 
 use nalgebra::SVector;
 
-use interpolation::over_last_step;
+use drive::Running;
 use point::{Needs, Point};
 use record::Recorder;
-use switching::{Crossing, SwitchWatch};
+use switching::SwitchWatch;
 use watch::EventWatch;
 
 /// How to run: the end time, the step limit, what to record and how finely to locate
@@ -40,13 +44,13 @@ use watch::EventWatch;
 pub struct RunConfig {
     /// The time to integrate to (not before the stepper's current time).
     pub end_time: f64,
-    /// The most steps a run may take before [`StepErrorKind::TooManySteps`].
+    /// The most steps a run may take before [`StepErrorKind::TooManySteps`](crate::StepErrorKind::TooManySteps).
     pub max_steps: usize,
     /// The extras to record at every point.
     pub record: Record,
     /// How finely events are located in time (absolute, never below rounding of t).
     pub event_tolerance: f64,
-    /// If set, the run fails with [`StepErrorKind::EnergyBudgetExceeded`] once the energy-budget
+    /// If set, the run fails with [`StepErrorKind::EnergyBudgetExceeded`](crate::StepErrorKind::EnergyBudgetExceeded) once the energy-budget
     /// residual exceeds this fraction of the largest |H| or |p·q̇| seen: a guard against the finite
     /// garbage of a fixed step past the stability limit. Costs H and the power at every
     /// point (and a midpoint), as recording the residual does.
@@ -61,11 +65,15 @@ pub struct RunConfig {
     /// grid k·T instead of being sampled again where the earlier run stopped: it samples at
     /// its start only the inputs whose grid holds t₀.
     pub sample_at_start: bool,
+    /// How many passes in a row (steps, redos before a switch, crossings, retries of a step
+    /// refused for a mass) the run may take without moving t by more than a few roundings
+    /// before it ends with [`StepErrorKind::Stalled`](crate::StepErrorKind::Stalled) (1 000 by default).
+    pub stall_passes: usize,
 }
 
 impl RunConfig {
-    /// A run to `end_time` with at most 10⁷ steps, nothing extra recorded and events
-    /// located to 1e-12 in t.
+    /// A run to `end_time` with at most 10⁷ steps, nothing extra recorded, events
+    /// located to 1e-12 in t, and 1 000 passes without progress before it stalls.
     pub fn until(end_time: f64) -> Self {
         Self {
             end_time,
@@ -75,6 +83,7 @@ impl RunConfig {
             energy_tolerance: None,
             switching: Switching::default(),
             sample_at_start: true,
+            stall_passes: 1_000,
         }
     }
 
@@ -198,8 +207,7 @@ where
     };
     let state = *stepper.state();
     sample(stepper, start_time, state, which)?;
-    let mut target = next_target(stepper.system(), start_time, config.end_time);
-    stepper.set_stop_time(target)?;
+    stepper.set_stop_time(next_target(stepper.system(), start_time, config.end_time))?;
     let switches = stepper.system().switch_count() > 0 && config.switching.locate;
     let needs = Needs {
         rate: (config.needs_energy() || !events.is_empty() || switches)
@@ -213,110 +221,18 @@ where
     if config.end_time == start_time {
         return Ok(StopReason::ReachedEnd);
     }
-    let mut watch = EventWatch::start(events, stepper.system(), &start);
-    let mut switch_watch =
-        SwitchWatch::start(stepper.system(), config.switching, &start, config.end_time)?;
-    let mut previous = start;
-    for _ in 0..config.max_steps {
-        let outcome = stepper.step()?;
-        let current = Point::at(stepper.system(), stepper.time(), *stepper.state(), needs)?;
-        if let Some(switch_watch) = &mut switch_watch {
-            let interpolate = |time| over_last_step(&*stepper, &previous, &current, time);
-            let crossing =
-                switch_watch.check_step(stepper.system(), (&previous, &current), &interpolate)?;
-            match crossing {
-                Crossing::None => {}
-                Crossing::Redo { near } => {
-                    stepper.restart(previous.time, previous.state)?;
-                    stepper.set_stop_time(near)?;
-                    continue;
-                }
-                Crossing::Cross { time, state } => {
-                    let step_start = previous.time;
-                    let sliver = (&mut *recorder, &mut watch, config);
-                    previous = match cross_past(stepper, sliver, &previous, (time, state), needs)? {
-                        Crossed::Past(point) => point,
-                        Crossed::Stopped(stop) => return Ok(stop),
-                    };
-                    let watches = (&mut *recorder, &mut watch, Some(&mut *switch_watch));
-                    let which = Sampling::Since(step_start);
-                    if let Sampled::Stopped(stop) =
-                        sample_point(stepper, watches, &mut previous, which, needs)?
-                    {
-                        return Ok(stop);
-                    }
-                    target = next_target(stepper.system(), time, config.end_time);
-                    stepper.set_stop_time(target)?;
-                    continue;
-                }
-            }
-        }
-        let step = (&previous, &current);
-        let interpolate = |time| over_last_step(&*stepper, &previous, &current, time);
-        let system = stepper.system();
-        if let Some(stop) = record_step(system, (recorder, &mut watch, config), step, &interpolate)?
-        {
-            return Ok(stop);
-        }
-        let step_start = previous.time;
-        previous = current;
-        if outcome != StepOutcome::ReachedStopTime {
-            continue;
-        }
-        let time = stepper.time();
-        let crossing = match &mut switch_watch {
-            // The end first: a switch landed on at the end is not crossed past it.
-            _ if time >= config.end_time => {
-                return reach_end(stepper, recorder, &previous, needs);
-            }
-            Some(switch_watch) if switch_watch.landed(time) => {
-                switch_watch.cross_from(stepper.system(), &previous)?
-            }
-            _ => Crossing::None,
-        };
-        match crossing {
-            // Restarted a few roundings past the switch, maybe past a sample time: the
-            // inputs with a sample since the step's start are sampled at the restart.
-            Crossing::Cross { time, state } => {
-                let sliver = (&mut *recorder, &mut watch, config);
-                previous = match cross_past(stepper, sliver, &previous, (time, state), needs)? {
-                    Crossed::Past(point) => point,
-                    Crossed::Stopped(stop) => return Ok(stop),
-                };
-                let watches = (&mut *recorder, &mut watch, switch_watch.as_mut());
-                let which = Sampling::Since(step_start);
-                if let Sampled::Stopped(stop) =
-                    sample_point(stepper, watches, &mut previous, which, needs)?
-                {
-                    return Ok(stop);
-                }
-            }
-            Crossing::Redo { near } => {
-                // The crossing is still ahead: land nearer.
-                stepper.restart(time, previous.state)?;
-                stepper.set_stop_time(near)?;
-                continue;
-            }
-            // A stop time of the system, or a crossing not there after all: restart here
-            // (the rate may have a kink in t), sample the held inputs whose grid holds it
-            // (a knot of a table of t, or another input's sample, samples none), and aim at
-            // the next.
-            Crossing::None => {
-                let watches = (&mut *recorder, &mut watch, switch_watch.as_mut());
-                match sample_point(stepper, watches, &mut previous, Sampling::Due, needs)? {
-                    Sampled::Unchanged => stepper.restart(time, previous.state)?,
-                    Sampled::Changed => {}
-                    Sampled::Stopped(stop) => return Ok(stop),
-                }
-            }
-        }
-        target = next_target(stepper.system(), stepper.time(), config.end_time);
-        stepper.set_stop_time(target)?;
+    let system = stepper.system();
+    Running {
+        watch: EventWatch::start(events, system, &start),
+        switches: SwitchWatch::start(system, config.switching, &start, config.end_time)?,
+        stepper,
+        config,
+        needs,
+        recorder,
+        previous: start,
+        refused: None,
     }
-    let kind = StepErrorKind::TooManySteps {
-        max_steps: config.max_steps,
-    };
-    Err(StepError::new(stepper.time(), *stepper.state(), kind))
+    .go()
 }
 
 /// Samples the held inputs `which` takes at `(time, state)` ([`VariableMassSystem::sample`],

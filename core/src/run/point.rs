@@ -62,9 +62,4 @@ impl<const S: usize> Point<S> {
             energy,
         })
     }
-
-    /// The power at this point (0 when the energy terms were not computed).
-    pub(crate) fn power(&self) -> f64 {
-        self.energy.map_or(0.0, |(_, power)| power)
-    }
 }

@@ -124,18 +124,118 @@ impl SwitchWatch {
         Ok(Some(watch))
     }
 
+    /// Where the run starts with a switch standing exactly on zero (`sign(x')`, `abs(y')` of
+    /// a body released from rest), the start is the switch: the rate there is the kink's
+    /// (sign(0) = 0), and a first step whose end lies on either side is no change of sign
+    /// (`changed_sign(0, g)`), so it was taken blindly across it (RK4 stepped 0 → + → −
+    /// through a body held by friction and ended with ẋ = −0.2; Taylor's |ẏ| took the branch
+    /// of ẏ ≥ 0 for a whole first step of a fall). The side the motion enters is found by
+    /// probes s = 4ε·max(|t|, 1)·2ᵏ (up to 10⁶ of them, as a crossing's sliver) along
+    /// y + s·f(t + s, y + s·f(t, y)): its second stage sees the rate change where the tangent
+    /// itself is flat (a push a·t from t = 0 on a body at rest). The first probe off zero is
+    /// crossed to as a switch is, counted, and held there ([`Self::sliding`]); `None` when
+    /// no switch is on zero or none leaves it within reach (an equilibrium on the switch:
+    /// the run steps on as before).
+    pub(crate) fn leave_zero<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        point: &Point<S>,
+    ) -> Result<Option<Crossing<S>>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let on_zero: Vec<usize> = (self.values.iter().enumerate())
+            .filter(|(_, &g)| g == 0.0)
+            .map(|(index, _)| index)
+            .collect();
+        if on_zero.is_empty() {
+            return Ok(None);
+        }
+        let rate = match point.rate {
+            Some(rate) => rate,
+            None => rate_at(system, point.time, &point.state)?,
+        };
+        let rounding = 4.0 * f64::EPSILON * point.time.abs().max(1.0);
+        let mut after = vec![0.0; self.values.len()];
+        let mut step = rounding;
+        while step <= 1e6 * rounding {
+            let time = point.time + step;
+            let predicted = point.state + rate * step;
+            let state = point.state + rate_at(system, time, &predicted)? * step;
+            self.evaluate(system, time, &state, &mut after)?;
+            let left: Vec<usize> = (on_zero.iter().copied())
+                .filter(|&index| after[index] != 0.0)
+                .collect();
+            if !left.is_empty() {
+                for &index in &left {
+                    self.count(index, time, &state)?;
+                }
+                let (time, state) = self.sliding(system, &left, step, (time, state), &mut after)?;
+                self.keep(&after);
+                self.anchor(system, time, &state)?;
+                return Ok(Some(Crossing::Cross { time, state }));
+            }
+            step *= 2.0;
+        }
+        Ok(None)
+    }
+
+    /// From `at`, just off zero on the side the switches `left` entered (g there in
+    /// `values`), Euler steps of `step` while one of them comes back toward zero or across
+    /// it, each crossing counted: where the rate on either side drives g back to zero
+    /// (Filippov's sliding mode, a block held by Coulomb friction) the crossings go on and
+    /// the run ends with [`StepErrorKind::Chattering`], as an adaptive stepper's shrinking
+    /// steps find (a fixed RK4 step from just off zero has stages on both sides and 0.25 s
+    /// of them ended on the side it began: no sign change, ẋ garbage). Else the point from
+    /// which g moves away from zero; `values` then holds g there (its side where it is 0).
+    fn sliding<Sys, const N: usize, const S: usize>(
+        &mut self,
+        system: &Sys,
+        left: &[usize],
+        step: f64,
+        mut at: (f64, SVector<f64, S>),
+        values: &mut [f64],
+    ) -> Result<(f64, SVector<f64, S>), StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let mut previous = values.to_vec();
+        let mut next = vec![0.0; values.len()];
+        for _ in 0..4 * self.settings.chatter_crossings {
+            let time = at.0 + step;
+            let state = at.1 + rate_at(system, at.0, &at.1)? * step;
+            self.evaluate(system, time, &state, &mut next)?;
+            let mut back = false;
+            for &index in left {
+                if changed_sign(values[index], next[index]) {
+                    self.count(index, time, &state)?;
+                    back = true;
+                }
+                back |= next[index].abs() < previous[index].abs();
+            }
+            if !back {
+                break;
+            }
+            for ((value, kept), &now) in values.iter_mut().zip(&mut previous).zip(&next) {
+                *kept = now;
+                if now != 0.0 {
+                    *value = now;
+                }
+            }
+            at = (time, state);
+        }
+        Ok(at)
+    }
+
     /// Takes g afresh at `point`, where the run restarted with a state changed by a jump
     /// that is no crossing (a sample of the held inputs, docs/inputs.md#sampled-inputs): a
     /// switch on a held value changes there without the state crossing it. The chatter
     /// counts are kept.
-    pub(crate) fn resume<Sys, const N: usize, const S: usize>(
+    pub(crate) fn resume<const N: usize, const S: usize>(
         &mut self,
-        system: &Sys,
+        system: &impl VariableMassSystem<N, S>,
         point: &Point<S>,
-    ) -> Result<(), StepError<S>>
-    where
-        Sys: VariableMassSystem<N, S>,
-    {
+    ) -> Result<(), StepError<S>> {
         self.pending = None;
         self.anchor(system, point.time, &point.state)?;
         let mut values = core::mem::take(&mut self.values);
@@ -340,7 +440,7 @@ impl SwitchWatch {
     /// a few roundings of s only when |ds/dt| ≳ 1. For s = a·x + c with |a·ẋ| ≪ 1 the
     /// bracket located in t (or the tangent's root plus a rounding of t) moves s by less
     /// than an ulp, and g, which sits on the last argument of its side (zero there,
-    /// `core::table::knot_gap`), does not change: the step must be as long as s needs.
+    /// `core::table::knot_gap_read`), does not change: the step must be as long as s needs.
     /// Before (review of 2026-11-26) the run then let the step that crossed the box of
     /// G(0.01·x + 0.995) stand, the jump read at its later stages only (5.5e-5 off by RK4 at
     /// step 0.01), and the switch, never re-anchored, missed the exit.
@@ -396,8 +496,9 @@ impl SwitchWatch {
         Ok(Some(Crossing::Cross { time, state }))
     }
 
-    /// The first positive root of any g along the tangent t ↦ (t, y + (t − t₀) f) from
-    /// `point`, by one secant over a short difference (g values `before` there).
+    /// The first root ahead of any g along the tangent t ↦ (t, y + (t − t₀) f) from
+    /// `point`, by one secant over a short difference (g values `before` there); 0 for a
+    /// switch that stands on zero there and leaves the side it came from.
     fn tangent_root<Sys, const N: usize, const S: usize>(
         &self,
         system: &Sys,
@@ -416,12 +517,19 @@ impl SwitchWatch {
             &(point.state + rate * h),
             &mut probe,
         )?;
-        let roots = before
-            .iter()
-            .zip(&probe)
-            .map(|(&g0, &g1)| -g0 * h / (g1 - g0));
+        // A switch standing exactly on zero (the step before ended on a table's knot) whose
+        // probe lies across the side it came from crosses here: its root is 0, not the −0
+        // of the secant, which would leave the nearest root to another switch — a redo
+        // there re-runs the step that crosses this one, found again at its start, forever
+        // (the Calisto flight of issue 34 at tolerance 1e-10, on the density knot 4500 m).
+        let roots = (before.iter().zip(&probe).zip(&self.values)).filter_map(
+            |((&g0, &g1), &kept)| match g0 == 0.0 {
+                true => changed_sign(kept, g1).then_some(0.0),
+                false => Some(-g0 * h / (g1 - g0)),
+            },
+        );
         Ok(roots
-            .filter(|root| root.is_finite() && *root > 0.0)
+            .filter(|root| root.is_finite() && *root >= 0.0)
             .min_by(f64::total_cmp))
     }
 
@@ -450,6 +558,20 @@ impl SwitchWatch {
         }
         Ok(())
     }
+}
+
+/// The state rate at `(time, state)`, its failure a step error there.
+fn rate_at<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    time: f64,
+    state: &SVector<f64, S>,
+) -> Result<SVector<f64, S>, StepError<S>>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    system
+        .state_rate(time, state)
+        .map_err(|error| StepError::from_system(system, error, time, state))
 }
 
 /// Whether g went from `before` strictly to the other side of zero at `after` (a zero is

@@ -8,6 +8,7 @@
 
 use nalgebra::SVector;
 
+use super::explicit::Counted;
 use super::stiffness::StiffnessTest;
 use super::FixedStep;
 use crate::error::{ConfigError, StepError, StepErrorKind};
@@ -170,84 +171,6 @@ impl Mode {
 
 /// The PI controller's memory of the last accepted error before any step, and its floor.
 pub(crate) const ERROR_FLOOR: f64 = 1e-4;
-
-/// The error norms at which a Dormand–Prince step factor is decided by its clamp alone, so
-/// that the controller may skip its `powf`s there and give the same bits (the lanes'
-/// controller, `lanes/dormand_prince.rs`, where the two `powf` per step were a fifth of the
-/// time).
-///
-/// Why the result is the same, bit for bit. Write α = 1/5 − 0.75β ∈ (0.05, 0.2] (β ∈ [0, 0.2)),
-/// s the safety, lo = 1/max_factor and hi = 1/min_factor. The full controller computes
-/// f = fl(fl(pow(e, α) / P) / s) with P = pow(e_prev, β) (1 without β) and clamps: to lo
-/// on acceptance, f ≤ lo giving exactly lo; on rejection `f.min(hi)`, f ≥ hi giving exactly
-/// hi. Assume only that `pow` is within a relative 1e-9 of xʸ (glibc's and libm's are within
-/// 1 ulp, 2.2e-16). Then:
-/// - accepted, e ≤ `smallest` = pow(T, 1/α)·(1 − 10⁻⁶) with T = lo·s·P_min·(1 − 10⁻⁶), P_min
-///   = pow(10⁻⁴, β)·(1 − 10⁻⁶): e_prev ≥ 10⁻⁴ (the floor), so the computed P ≥ P_min;
-///   pow(e, α) ≤ T (the factor (1 − 10⁻⁶)^α ≤ 1 − 5·10⁻⁸ dwarfs every rounding); and correctly
-///   rounded division is monotone, so f ≤ fl(fl(T/P_min)/s) ≤ lo: the clamp gives lo;
-/// - rejected, finite e ≥ `largest` = pow(hi·s, 1/α)·(1 + 10⁻⁶): pow(e, α) ≥ hi·s·(1 + 4·10⁻⁸),
-///   so fl(pow/s) ≥ hi and `min` gives hi.
-///
-/// And P = pow(10⁻⁴, β) at the floor is `floor_power`, computed once: the same call on the same
-/// arguments. Between the bounds the `powf`s are computed as before. The tests here and in
-/// `lanes/control.rs` check the bounds against the full formula on both sides of each.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ClampedErrors {
-    /// An accepted error at most this makes the PI factor lo.
-    pub(crate) smallest: f64,
-    /// A rejected finite error at least this makes the factor hi.
-    pub(crate) largest: f64,
-    /// pow(10⁻⁴, β): P when the previous error is at the floor.
-    pub(crate) floor_power: f64,
-}
-
-/// The relative margin of [`ClampedErrors`]' bounds.
-const CLAMP_MARGIN: f64 = 1e-6;
-
-impl ClampedErrors {
-    /// Dormand–Prince's α = 1/5 − 0.75β, as its controller computes it.
-    pub(crate) fn exponent(control: &AdaptiveControl) -> f64 {
-        0.2 - 0.75 * control.beta
-    }
-
-    /// The bounds for `control` (checked: β ∈ [0, 0.2), s ∈ (0, 1], factors finite).
-    pub(crate) fn dormand_prince(control: &AdaptiveControl) -> Self {
-        let alpha = Self::exponent(control);
-        let floor_power = powf(ERROR_FLOOR, control.beta);
-        let p_min = if control.beta == 0.0 {
-            1.0
-        } else {
-            floor_power * (1.0 - CLAMP_MARGIN)
-        };
-        let lo = 1.0 / control.max_factor;
-        let hi = 1.0 / control.min_factor;
-        let target = lo * control.safety * p_min * (1.0 - CLAMP_MARGIN);
-        // Subnormal products round absolutely, not relatively: no shortcut then.
-        let smallest = if target >= f64::MIN_POSITIVE {
-            powf(target, 1.0 / alpha) * (1.0 - CLAMP_MARGIN)
-        } else {
-            -1.0
-        };
-        let largest = powf(hi * control.safety, 1.0 / alpha) * (1.0 + CLAMP_MARGIN);
-        Self {
-            smallest,
-            largest,
-            floor_power,
-        }
-    }
-
-    /// The factor h/h_new after a rejected error `error` (> 1 or NaN): pow(e, α)/s, at most
-    /// hi; hi for a non-finite error. `DormandPrince::control`'s, without its `powf` where the
-    /// clamp decides.
-    pub(crate) fn rejection_factor(&self, control: &AdaptiveControl, error: f64) -> f64 {
-        let hi = 1.0 / control.min_factor;
-        if !error.is_finite() || error >= self.largest {
-            return hi;
-        }
-        (powf(error, Self::exponent(control)) / control.safety).min(hi)
-    }
-}
 
 /// The adaptive-control state of an embedded pair.
 #[derive(Clone, Copy, Debug)]
@@ -480,6 +403,31 @@ impl<'a, Sys, const S: usize> Controlled<'a, Sys, S> {
         Ok((t0, y0, k1))
     }
 
+    /// The rate of the system, counted in the progress, for the explicit core.
+    pub(crate) fn rates<const N: usize>(&mut self) -> Counted<'_, Sys, N> {
+        Counted {
+            system: self.system,
+            statistics: &mut self.progress.statistics,
+        }
+    }
+
+    /// The one rejection policy of a failed attempt (a trial state outside the domain:
+    /// non-finite, a mass ≤ 0, a singular mass matrix — a step too long, not yet a failure):
+    /// the next attempt has size `next`, unless that no longer moves t, when the cause
+    /// `error` is returned rather than an underflow.
+    pub(crate) fn shrink_or_fail(
+        &mut self,
+        next: f64,
+        error: StepError<S>,
+    ) -> Result<(), StepError<S>> {
+        self.memory.reject(next, &mut self.progress);
+        if resolvable(self.progress.time(), self.memory.next_step) {
+            Ok(())
+        } else {
+            Err(error)
+        }
+    }
+
     /// The size of the next attempt from `(t0, y0)` and whether it reaches the stop time; an
     /// underflow error when it no longer moves t.
     pub(crate) fn attempt_size(
@@ -524,79 +472,3 @@ impl<Sys, const S: usize> Controlled<'_, Sys, S> {
 
 /// The start of a step: t₀, y₀ and the rate there.
 pub(crate) type Start<const S: usize> = (f64, SVector<f64, S>, SVector<f64, S>);
-
-#[cfg(test)]
-pub(crate) mod tests {
-    use super::*;
-
-    /// The controls the bounds are tried on (here and by the lanes' controller): Hairer's
-    /// defaults, no PI term, the largest β with a safety of 1 and a narrower factor range,
-    /// and a factor range of one point.
-    pub(crate) fn controls() -> [AdaptiveControl; 4] {
-        let default = AdaptiveControl::default();
-        [
-            default,
-            AdaptiveControl {
-                beta: 0.0,
-                ..AdaptiveControl::dop853()
-            },
-            AdaptiveControl {
-                beta: 0.199,
-                safety: 1.0,
-                max_factor: 3.0,
-                ..default
-            },
-            AdaptiveControl {
-                min_factor: 1.0,
-                max_factor: 1.0,
-                ..default
-            },
-        ]
-    }
-
-    /// Errors spread geometrically over `[low, high]`, and the neighbours of `around` to
-    /// a few ulps.
-    fn errors(low: f64, high: f64, around: f64) -> Vec<f64> {
-        let mut errors: Vec<f64> = (0..=400)
-            .map(|i| low * powf(high / low, f64::from(i) / 400.0))
-            .collect();
-        let bits = around.to_bits();
-        errors.extend((bits - 4..=bits + 4).map(f64::from_bits));
-        errors
-    }
-
-    /// After a rejection the factor with the shortcut equals `DormandPrince::control`'s
-    /// (pow(e, α)/s at most hi, hi for a non-finite error) to the bit, across the bound;
-    /// both bounds are within 10⁻⁴ of the exact thresholds (tight: the shortcut covers
-    /// nearly all of the clamp's range).
-    #[test]
-    fn the_rejection_shortcut_gives_the_full_controllers_factor() {
-        for control in controls() {
-            let clamped = ClampedErrors::dormand_prince(&control);
-            let alpha = ClampedErrors::exponent(&control);
-            let hi = 1.0 / control.min_factor;
-            let top = clamped.largest * 1e3;
-            let mut checked = errors(1.0, top, clamped.largest);
-            checked.extend([f64::INFINITY, f64::NAN]);
-            for error in checked {
-                let expected = if error.is_finite() {
-                    (powf(error, alpha) / control.safety).min(hi)
-                } else {
-                    hi
-                };
-                let got = clamped.rejection_factor(&control, error);
-                assert_eq!(got.to_bits(), expected.to_bits(), "{control:?} {error:e}");
-            }
-            let exact = powf(hi * control.safety, 1.0 / alpha);
-            let gap = (clamped.largest - exact) / exact;
-            assert!(gap > 0.0 && gap < 1e-4, "{control:?}: gap {gap:e}");
-            // The acceptance bound against the exact threshold with the smallest P (the
-            // previous error at the floor), e^α = lo·s·P_min: measured 1.3e-5 below it for
-            // β = 0.04 (the margins, raised to 1/α). Its bits: `lanes/control.rs`'s test.
-            let p_min = powf(ERROR_FLOOR, control.beta);
-            let exact = powf(p_min * control.safety / control.max_factor, 1.0 / alpha);
-            let gap = (exact - clamped.smallest) / exact;
-            assert!(gap > 0.0 && gap < 1e-4, "{control:?}: gap {gap:e}");
-        }
-    }
-}

@@ -19,7 +19,8 @@ use nalgebra::SVector;
 
 use self::coefficients::*;
 use super::adaptive::{Adaptive, AdaptiveMethod, ExplicitAttempt};
-use super::control::{resolvable, AdaptiveControl, Mode};
+use super::control::{AdaptiveControl, Mode};
+use super::explicit::{self, Counted};
 use super::stiffness::StiffnessTest;
 use crate::error::{StepError, StepErrorKind};
 use crate::math::{powf, sqrt};
@@ -66,23 +67,14 @@ impl<const N: usize, const S: usize> AdaptiveMethod<N, S> for Dop853State<S> {
                 .core
                 .progress
                 .next_step(stepper.core.memory.next_step)?;
-            let statistics = &mut stepper.core.progress.statistics;
-            let attempt = attempt(stepper.core.system, statistics, (t0, &y0), &k1, h, None)?;
+            let attempt = attempt(stepper.core.rates(), (t0, &y0), &k1, h, None)?;
             let completion = stepper.complete((t0, &y0), h, &attempt)?;
             return stepper.accept(h, reaches_stop, &attempt, completion);
         };
         loop {
             let (h, reaches_stop) = stepper.core.attempt_size((t0, &y0))?;
-            let statistics = &mut stepper.core.progress.statistics;
             let tolerance = Some(&tolerance);
-            let trial = attempt(
-                stepper.core.system,
-                statistics,
-                (t0, &y0),
-                &k1,
-                h,
-                tolerance,
-            );
+            let trial = attempt(stepper.core.rates(), (t0, &y0), &k1, h, tolerance);
             let step = ((t0, &y0), h, reaches_stop);
             if let Some(outcome) = stepper.control(&control, step, trial)? {
                 return Ok(outcome);
@@ -127,10 +119,10 @@ where
     }
 }
 
-/// The eleven new stages and the new state of a step of size `h` from `(t0, y0)`.
+/// The eleven new stages and the new state of a step of size `h` from `(t0, y0)`: the
+/// explicit core's stages 2–12 over [`STAGE_ROWS`], the new state from b.
 fn attempt<Sys, const N: usize, const S: usize>(
-    system: &Sys,
-    statistics: &mut Statistics,
+    mut rates: Counted<'_, Sys, N>,
     (t0, y0): (f64, &SVector<f64, S>),
     k1: &SVector<f64, S>,
     h: f64,
@@ -140,31 +132,16 @@ where
     Sys: VariableMassSystem<N, S>,
 {
     let mut k = [*k1; 12];
-    let mut stage_12_state = *y0;
-    // One loop with one call of the state rate, not eleven calls: the compiler can then
-    // inline the rate and compute what does not vary from stage to stage (a sine of a
-    // parameter, say) once per step.
-    for (stage, (c, row)) in STAGE_ROWS.iter().enumerate() {
-        let y = stage_state(&k, row, y0, h);
-        k[stage + 1] = state_rate(system, statistics, t0 + c * h, &y)?;
-        stage_12_state = y;
-    }
-    let [k1, _, _, _, _, k6, k7, k8, k9, k10, k11, k12] = k;
-    let increment =
-        k1 * B1 + k6 * B6 + k7 * B7 + k8 * B8 + k9 * B9 + k10 * B10 + k11 * B11 + k12 * B12;
+    let stage_12_state = explicit::stages(&STAGE_ROWS, (t0, y0), h, &mut k, &mut [], &mut rates)?;
+    // b's increment Σ bⱼ kⱼ serves the new state and the third-order estimate.
+    let increment = explicit::weighted_sum(WEIGHTS, &k);
     let y1 = y0 + increment * h;
-    system.check_state(t0 + h, &y1)?;
+    rates.system.check_state(t0 + h, &y1)?;
     let error = match tolerance {
         None => 0.0,
         Some(tolerance) => {
-            let fifth = k1 * ER1
-                + k6 * ER6
-                + k7 * ER7
-                + k8 * ER8
-                + k9 * ER9
-                + k10 * ER10
-                + k11 * ER11
-                + k12 * ER12;
+            let [k1, _, _, _, _, _, _, _, k9, _, _, k12] = k;
+            let fifth = explicit::weighted_sum(ERROR_WEIGHTS, &k);
             let third = increment - k1 * BHH1 - k9 * BHH2 - k12 * BHH3;
             error_norm(&fifth, &third, (y0, &y1), tolerance, h)
         }
@@ -175,18 +152,6 @@ where
         stiffness_state: stage_12_state,
         error,
     })
-}
-
-/// The state y₀ + h Σⱼ aⱼ kⱼ of a stage from its row of (j, aⱼ) (j from 1), accumulated
-/// term by term onto y₀ as y + (aⱼ h) kⱼ in the row's order: one vector operation fewer
-/// per term than summing first, the same value up to rounding.
-fn stage_state<const S: usize>(
-    k: &[SVector<f64, S>; 12],
-    row: &[(usize, f64)],
-    y0: &SVector<f64, S>,
-    h: f64,
-) -> SVector<f64, S> {
-    row.iter().fold(*y0, |y, &(j, a)| y + k[j - 1] * (a * h))
 }
 
 /// err^(1/8 − 0.2β). With β = 0 (`dop853.f`'s default) the eighth root is three square
@@ -333,21 +298,6 @@ where
         Ok(outcome)
     }
 
-    /// Shrinks the step after a failed attempt; `Err(error)` once the step would underflow.
-    fn shrink_after(
-        &mut self,
-        h: f64,
-        factor: f64,
-        error: StepError<S>,
-    ) -> Result<(), StepError<S>> {
-        self.core.memory.reject(h * factor, &mut self.core.progress);
-        if resolvable(self.core.progress.time(), self.core.memory.next_step) {
-            Ok(())
-        } else {
-            Err(error)
-        }
-    }
-
     /// The step-size controller's verdict on an attempted step of size `h` (`dop853.f`):
     /// accepted (its outcome) when its error is at most 1 and the rate at its end and its
     /// dense output can be evaluated, otherwise `None` with a shorter next step; an error
@@ -365,7 +315,8 @@ where
             // matrix) is a step too long, not yet a failure: shrink and retry.
             Err(error) => {
                 return self
-                    .shrink_after(h, control.min_factor, error)
+                    .core
+                    .shrink_or_fail(h * control.min_factor, error)
                     .map(|()| None)
             }
         };
@@ -380,13 +331,17 @@ where
             };
             let kind = StepErrorKind::StepSizeUnderflow { step: h * factor };
             let underflow = StepError::new(t0, *y0, kind);
-            return self.shrink_after(h, factor, underflow).map(|()| None);
+            return self
+                .core
+                .shrink_or_fail(h * factor, underflow)
+                .map(|()| None);
         }
         let completion = match self.complete((t0, y0), h, attempt) {
             Ok(completion) => completion,
             Err(error) => {
                 return self
-                    .shrink_after(h, control.min_factor, error)
+                    .core
+                    .shrink_or_fail(h * control.min_factor, error)
                     .map(|()| None)
             }
         };

@@ -18,21 +18,25 @@
 //!  ŷ₁   | 5179/57600  0           7571/16695   393/640  −92097/339200 187/2100  1/40
 //! ```
 //!
-//! The error estimate is y₁ − ŷ₁ = h Σ eⱼ kⱼ with e = b − b̂. Dense output is Hairer's
+//! The stages, the new state and the error estimate are the explicit core's
+//! (`explicit.rs`) over `STAGE_ROWS`, `WEIGHTS` and `ERROR_WEIGHTS` (`dp_tableau.rs`):
+//! the error estimate is y₁ − ŷ₁ = h Σ eⱼ kⱼ with e = b − b̂. Dense output is Hairer's
 //! `CONTD5` (HNW I, II.6, and the `dopri5` code): a quartic in θ = (t − t₀)/h through y₀ and
 //! y₁ with the end slopes k₁ and k₇ and one more combination of the stages (coefficients dⱼ).
 //! The step-size controller is Gustafsson's PI controller (HNW II, IV.2) as in Hairer's
 //! `dopri5`: β = 0.04, safety 0.9, factor in [0.2, 10]. Hairer's stiffness test (stages 6
-//! and 7, both at t₀ + h; bound h|λ| = 3.25) sets [`Statistics::stiffness_detected`].
+//! and 7, both at t₀ + h; bound h|λ| = 3.25) sets `Statistics::stiffness_detected`.
 
 use nalgebra::SVector;
 
 use super::adaptive::{Adaptive, AdaptiveMethod, ExplicitAttempt};
-use super::control::{resolvable, AdaptiveControl, Mode};
+use super::control::{AdaptiveControl, Mode};
+use super::explicit::{self, Counted, Rates};
+use super::step_size::{step_after_acceptance, ClampedErrors};
 use super::stiffness::StiffnessTest;
 use crate::error::StepError;
-use crate::math::powf;
-use crate::stepper::{state_rate, Checked, Statistics, StepOutcome};
+use crate::lanes::Lanes;
+use crate::stepper::{Checked, StepOutcome};
 use crate::system::VariableMassSystem;
 use crate::tolerance::Tolerance;
 
@@ -52,6 +56,9 @@ pub struct DormandPrinceState<const S: usize> {
     stages: [SVector<f64, S>; 7],
     /// Hairer's stiffness test (on stages 6 and 7, both at t₀ + h).
     stiffness: StiffnessTest,
+    /// The errors at which the step factor is its clamp's, for the control (computed at the
+    /// first adaptive step: the control does not change).
+    clamped: Option<ClampedErrors>,
 }
 
 impl<const S: usize> Default for DormandPrinceState<S> {
@@ -59,6 +66,7 @@ impl<const S: usize> Default for DormandPrinceState<S> {
         Self {
             stages: [SVector::zeros(); 7],
             stiffness: StiffnessTest::default(),
+            clamped: None,
         }
     }
 }
@@ -70,19 +78,12 @@ impl<const N: usize, const S: usize> AdaptiveMethod<N, S> for DormandPrinceState
         let (t0, y0, k1) = stepper.core.begin::<N>(5)?;
         loop {
             let (h, reaches_stop) = stepper.core.attempt_size((t0, &y0))?;
-            let tolerance = match &stepper.core.mode {
+            let tolerance = match stepper.core.mode {
                 Mode::Adaptive(_, tolerance) => Some(tolerance),
                 Mode::Fixed(_) => None,
             };
-            let attempt = DormandPrince::attempt(
-                stepper.core.system,
-                &mut stepper.core.progress.statistics,
-                t0,
-                &y0,
-                &k1,
-                h,
-                tolerance,
-            );
+            let rates = stepper.core.rates();
+            let attempt = attempt(rates, (t0, &y0), &k1, h, tolerance.as_ref());
             let Mode::Adaptive(control, _) = stepper.core.mode else {
                 return stepper.accept(h, reaches_stop, attempt?);
             };
@@ -100,67 +101,109 @@ impl<const N: usize, const S: usize> AdaptiveMethod<N, S> for DormandPrinceState
     }
 }
 
-impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
+/// The six new stages and the new state of a step of size `h` from `(t0, y0)`: the explicit
+/// core's stages 2–6, the new state from b, checked, and its rate k₇ (FSAL).
+fn attempt<Sys, const N: usize, const S: usize>(
+    mut rates: Counted<'_, Sys, N>,
+    (t0, y0): (f64, &SVector<f64, S>),
+    k1: &SVector<f64, S>,
+    h: f64,
+    tolerance: Option<&Tolerance>,
+) -> Result<ExplicitAttempt<S, 7>, StepError<S>>
 where
     Sys: VariableMassSystem<N, S>,
 {
-    /// The dense output over the last accepted step: the fourth-order continuous extension,
-    /// evaluated at `time` (meant for `time` within the step; outside it extrapolates).
-    /// Before the first step it returns the current state.
-    pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
-        let h = self.core.memory.last_step;
-        let y0 = self.core.progress.previous_state();
-        let y1 = self.core.progress.state();
-        if h <= 0.0 {
-            return *y1;
+    let mut k = [*k1; 7];
+    let stage_6 = explicit::stages(STAGE_ROWS, (t0, y0), h, &mut k, &mut [], &mut rates)?;
+    let y1 = explicit::solution(WEIGHTS, y0, &k, h);
+    rates.system.check_state(t0 + h, &y1)?;
+    k[6] = rates.rate(t0 + h, &y1)?;
+    let error = match tolerance {
+        None => 0.0,
+        Some(tolerance) => {
+            let estimate = explicit::combination(ERROR_WEIGHTS, &k, h);
+            explicit::error_norm(tolerance, &estimate, (y0, &y1))
         }
-        let k = &self.method.stages;
-        let theta = (time - self.core.progress.previous_time()) / h;
-        let theta1 = 1.0 - theta;
+    };
+    Ok(ExplicitAttempt {
+        state: y1,
+        stages: k,
+        stiffness_state: stage_6,
+        error,
+    })
+}
+
+/// Dormand–Prince's continuous extension over one step (Hairer's `CONTD5`): its
+/// coefficients, which do not depend on the time, computed once for the times asked. The
+/// scalar stepper's [`DormandPrince::interpolate`] and the lanes' events use it.
+pub(crate) struct Dense<const S: usize> {
+    y0: SVector<f64, S>,
+    y1: SVector<f64, S>,
+    difference: SVector<f64, S>,
+    first: SVector<f64, S>,
+    second: SVector<f64, S>,
+    third: SVector<f64, S>,
+    h: f64,
+    t0: f64,
+}
+
+impl<const S: usize> Dense<S> {
+    /// The extension over the step of size `h` from `(t0, y0)` to `y1` with stages `k`.
+    pub(crate) fn new(
+        (t0, y0): (f64, &SVector<f64, S>),
+        y1: &SVector<f64, S>,
+        h: f64,
+        k: &[SVector<f64, S>; 7],
+    ) -> Self {
         let difference = y1 - y0;
         let first = k[0] * h - difference;
         let second = difference - k[6] * h - first;
         let third = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
-        y0 + (difference + (first + (second + third * theta1) * theta) * theta1) * theta
+        Self {
+            y0: *y0,
+            y1: *y1,
+            difference,
+            first,
+            second,
+            third,
+            h,
+            t0,
+        }
     }
 
-    /// The six new stages and the new state of a step of size `h` from `(t0, y0)`.
-    fn attempt(
-        system: &Sys,
-        statistics: &mut Statistics,
-        t0: f64,
-        y0: &SVector<f64, S>,
-        k1: &SVector<f64, S>,
-        h: f64,
-        tolerance: Option<&Tolerance>,
-    ) -> Result<ExplicitAttempt<S, 7>, StepError<S>> {
-        let k1 = *k1;
-        let k2 = state_rate(system, statistics, t0 + C2 * h, &(y0 + k1 * (A21 * h)))?;
-        let y3 = y0 + (k1 * A31 + k2 * A32) * h;
-        let k3 = state_rate(system, statistics, t0 + C3 * h, &y3)?;
-        let y4 = y0 + (k1 * A41 + k2 * A42 + k3 * A43) * h;
-        let k4 = state_rate(system, statistics, t0 + C4 * h, &y4)?;
-        let y5 = y0 + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h;
-        let k5 = state_rate(system, statistics, t0 + C5 * h, &y5)?;
-        let y6 = y0 + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h;
-        let k6 = state_rate(system, statistics, t0 + h, &y6)?;
-        let y1 = y0 + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5 + k6 * B6) * h;
-        system.check_state(t0 + h, &y1)?;
-        let k7 = state_rate(system, statistics, t0 + h, &y1)?;
-        // Each component weighed by atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|).
-        let error = match tolerance {
-            None => 0.0,
-            Some(tolerance) => {
-                let estimate = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
-                tolerance.norm(&estimate, |i| y0[i].abs().max(y1[i].abs()))
-            }
-        };
-        Ok(ExplicitAttempt {
-            state: y1,
-            stages: [k1, k2, k3, k4, k5, k6, k7],
-            stiffness_state: y6,
-            error,
-        })
+    /// The quartic at `time` (meant for `time` within the step; outside it extrapolates);
+    /// the new state for a step of no length.
+    pub(crate) fn at(&self, time: f64) -> SVector<f64, S> {
+        SVector::from_fn(|j, _| self.component_at(j, time))
+    }
+
+    /// Component `j` of [`Self::at`].
+    #[inline]
+    pub(crate) fn component_at(&self, j: usize, time: f64) -> f64 {
+        let h = self.h;
+        if h <= 0.0 {
+            return self.y1[j];
+        }
+        let theta = (time - self.t0) / h;
+        let theta1 = 1.0 - theta;
+        let (difference, first, second) = (self.difference[j], self.first[j], self.second[j]);
+        self.y0[j]
+            + (difference + (first + (second + self.third[j] * theta1) * theta) * theta1) * theta
+    }
+}
+
+impl<Sys, const N: usize, const S: usize> DormandPrince<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    /// The dense output over the last accepted step: the fourth-order continuous extension
+    /// (`Dense`), evaluated at `time` (meant for `time` within the step; outside it
+    /// extrapolates). Before the first step it returns the current state.
+    pub fn interpolate(&self, time: f64) -> SVector<f64, S> {
+        let progress = &self.core.progress;
+        let start = (progress.previous_time(), progress.previous_state());
+        let h = self.core.memory.last_step;
+        Dense::new(start, progress.state(), h, &self.method.stages).at(time)
     }
 
     /// The step-size controller's verdict on an attempted step of size `h`: accepted (its
@@ -173,60 +216,40 @@ where
         reaches_stop: bool,
         attempt: Result<ExplicitAttempt<S, 7>, StepError<S>>,
     ) -> Result<Option<StepOutcome>, StepError<S>> {
+        let clamped = *self
+            .method
+            .clamped
+            .get_or_insert_with(|| ClampedErrors::dormand_prince(control));
         match attempt {
-            Ok(attempt) if attempt.error <= 1.0 => self
-                .accept_controlled(control, h, reaches_stop, attempt)
-                .map(Some),
+            Ok(attempt) if attempt.error <= 1.0 => {
+                // The PI controller (HNW II, IV.2), as the lanes compute it.
+                let (error, previous) = (attempt.error, self.core.memory.previous_error);
+                let proposal = step_after_acceptance(
+                    control,
+                    &clamped,
+                    Lanes([h]),
+                    Lanes([error]),
+                    Lanes([previous]),
+                );
+                let next = self.core.memory.after_acceptance(h, proposal.0[0], error);
+                let outcome = self.accept(h, reaches_stop, attempt)?;
+                self.core
+                    .memory
+                    .propose(next, reaches_stop, control.max_step);
+                Ok(Some(outcome))
+            }
             Ok(attempt) => {
-                let factor = powf(attempt.error, 0.2 - 0.75 * control.beta) / control.safety;
-                // A non-finite error estimate (overflowing stages) shrinks the most.
-                let factor = if attempt.error.is_finite() {
-                    factor.min(1.0 / control.min_factor)
-                } else {
-                    1.0 / control.min_factor
-                };
-                self.reject(h / factor);
+                let factor = clamped.rejection_factor(control, attempt.error);
+                self.core.memory.reject(h / factor, &mut self.core.progress);
                 Ok(None)
             }
-            Err(error) => {
-                // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
-                // matrix) is a step too long, not yet a failure: shrink and retry. If the
-                // step underflows, report the cause rather than the underflow.
-                self.reject(h * control.min_factor);
-                if resolvable(self.core.progress.time(), self.core.memory.next_step) {
-                    Ok(None)
-                } else {
-                    Err(error)
-                }
-            }
+            // A trial state outside the domain (non-finite, a mass ≤ 0, a singular mass
+            // matrix) is a step too long, not yet a failure.
+            Err(error) => self
+                .core
+                .shrink_or_fail(h * control.min_factor, error)
+                .map(|()| None),
         }
-    }
-
-    /// Accepts a step whose error met the tolerance and chooses the next step by the PI
-    /// controller (HNW II, IV.2): h_new = h·err^(−α)·err_old^β with α = 1/5 − 0.75β, within
-    /// the factor limits, not growing right after a rejection.
-    fn accept_controlled(
-        &mut self,
-        control: &AdaptiveControl,
-        h: f64,
-        reaches_stop: bool,
-        attempt: ExplicitAttempt<S, 7>,
-    ) -> Result<StepOutcome, StepError<S>> {
-        let error_power = powf(attempt.error, 0.2 - 0.75 * control.beta);
-        let next = self
-            .core
-            .memory
-            .pi_after_acceptance(control, h, attempt.error, error_power);
-        let outcome = self.accept(h, reaches_stop, attempt)?;
-        self.core
-            .memory
-            .propose(next, reaches_stop, control.max_step);
-        Ok(outcome)
-    }
-
-    /// Rejects an attempt: the next attempt has size `next`.
-    fn reject(&mut self, next: f64) {
-        self.core.memory.reject(next, &mut self.core.progress);
     }
 
     fn accept(

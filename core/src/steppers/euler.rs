@@ -9,6 +9,7 @@
 //!    | 1
 //! ```
 
+use super::explicit::{self, Row};
 use super::fixed::{Explicit, Fixed, NewState, Step};
 use crate::system::VariableMassSystem;
 
@@ -21,9 +22,11 @@ pub type ExplicitEuler<'a, Sys, const N: usize, const S: usize> = Fixed<'a, Sys,
 pub struct EulerMethod;
 
 impl<const N: usize, const S: usize> Explicit<N, S> for EulerMethod {
+    /// The explicit core's new state with b = (1): y₀ + (k₁·1)·h, the bits of y₀ + k₁ h.
     fn formula<Sys: VariableMassSystem<N, S>>(mut step: Step<'_, Sys, S>) -> NewState<S> {
+        const WEIGHTS: Row = &[(1, 1.0)];
         let y0 = step.y0;
         let rate = step.rate(step.t0, &y0)?;
-        Ok(y0 + rate * step.h)
+        Ok(explicit::solution(WEIGHTS, &y0, &[rate], step.h))
     }
 }

@@ -10,6 +10,11 @@
 //! -----+--------------------
 //!      | 1/6  1/3  1/3  1/6
 //! ```
+//!
+//! Written out, not through the explicit core (`explicit.rs`, whose stages give these same
+//! bits): the costs bench's generated ÷ hand-written ratio, taken over RK4 steps, moved
+//! from 0.996 to 1.046 on Kepler with the core's loop (both rates faster, the hand-written
+//! more), and that ratio is a figure the project holds.
 
 use super::fixed::{Explicit, Fixed, NewState, Step};
 use crate::system::VariableMassSystem;

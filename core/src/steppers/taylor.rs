@@ -29,11 +29,12 @@
 //! reference is the orbit through the start as stored: the start's own rounding moves the
 //! end point by 8e-15). What is left is the rounding of the first two coefficients, the
 //! rate c₁ = f(y) and c₂ = ½ f′(y) f(y), to a few ulps at every step: over 16 starts near
-//! Kepler's (e ≈ 0.5, three orbits, tolerance 1e-16) 1.3e-14 rms, against 1.2e-16 were c₁
-//! and c₂ computed in double-double, 9e-17 for truncation, 1.0e-14 with a double-double
-//! state and sum, 1.2e-14 with the carried part fed into the next c₁ (`tests/kepler_floor.rs`).
-//! No summation removes it, and tolerances below 1e-16 (accepted: the order grows to 22 at
-//! 1e-18) do not lower it.
+//! Kepler's (e ≈ 0.5, three orbits) the stepper ends 2.0e-14 rms off at tolerance 1e-14 and
+//! at 1e-15 (1.3e-14 at 1e-16, when it was accepted), against 1.2e-16 were c₁ and c₂
+//! computed in double-double, 9e-17 for truncation, 1.0e-14 with a double-double state and
+//! sum, 1.2e-14 with the carried part fed into the next c₁ (a harness mirroring the
+//! stepper, `tests/kepler_floor.rs`). No summation removes it, and finer tolerances do not
+//! lower it: below 1e-15 ([`Floor::Taylor`]) the stepper refuses them.
 //!
 //! The head ([`Taylor::with_head`], opt-in) removes it: c₁ and c₂ come from the system's
 //! state rate evaluated over double-double dual numbers ([`crate::dd`];
@@ -43,8 +44,9 @@
 //! double-double (the tail Σₖ≥₃ in double: multiplied by h³ and more, its rounding is far
 //! below the state's ulp); the state keeps the sum's high part and the compensation its low
 //! part. Order and steps are unchanged (the coefficients from c₃ on, and the step rule,
-//! are the double expansion's). Kepler at tolerance 1e-16: 2.4e-16 against the exact
-//! orbit through the stored start, 1.7e-14 without (`tests/kepler_floor.rs`). Run-time
+//! are the double expansion's). Kepler at tolerance 2.2e-16, the head's floor
+//! ([`Floor::TaylorHead`]): 2.4e-16 against the exact orbit through the stored start,
+//! 1.3e-14 without at the double floor 1e-15 (`tests/kepler_floor.rs`). Run-time
 //! models (the interpreter's tapes, `varmass run --method taylor`) have no head: their
 //! tapes evaluate in `f64` only, so they keep the double floor.
 //!
@@ -63,21 +65,23 @@ use nalgebra::SVector;
 use crate::dd::Dual;
 use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::{ceil, exp, ln, powf};
+use crate::scratch::Scratch;
 use crate::stepper::{Progress, ProgressMut, Restarting, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
+use crate::tolerance::{Floor, Tolerance};
 
-/// The highest order the stepper expands to (a tolerance of 1e-16 asks for 20).
-pub const MAX_ORDER: usize = 32;
+pub use crate::scratch::MAX_ORDER;
 
 /// How the Taylor stepper chooses its order and steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum TaylorControl {
-    /// Order and step from the tolerances (Jorba & Zou 2005, §3.2).
+    /// Order and step from the tolerance (Jorba & Zou 2005, §3.2): ε is its absolute part
+    /// when rtol‖y‖∞ ≤ atol, its relative part otherwise. Its relative part must be at
+    /// least the stepper's [`Floor`]: [`Floor::Taylor`] (1e-15) for [`Taylor::new`],
+    /// [`Floor::TaylorHead`] (2.2e-16) for [`Taylor::with_head`].
     Adaptive {
-        /// Relative tolerance rtol.
-        relative_tolerance: f64,
-        /// Absolute tolerance atol.
-        absolute_tolerance: f64,
+        /// The tolerance (build one below 100 ε with [`Tolerance::for_floor`]).
+        tolerance: Tolerance,
         /// The largest step allowed.
         max_step: f64,
     },
@@ -91,29 +95,23 @@ pub enum TaylorControl {
 }
 
 impl TaylorControl {
-    /// Adaptive control with these tolerances and no step limit.
-    pub fn adaptive(relative_tolerance: f64, absolute_tolerance: f64) -> Self {
+    /// Adaptive control with this tolerance and no step limit.
+    pub fn adaptive(tolerance: Tolerance) -> Self {
         Self::Adaptive {
-            relative_tolerance,
-            absolute_tolerance,
+            tolerance,
             max_step: f64::INFINITY,
         }
     }
 
-    /// Checks the settings.
-    fn validated(self) -> Result<Self, ConfigError> {
+    /// Checks the settings against the stepper's `floor`.
+    fn validated(self, floor: Floor) -> Result<Self, ConfigError> {
         let ok = match self {
             Self::Adaptive {
-                relative_tolerance: r,
-                absolute_tolerance: a,
+                tolerance,
                 max_step,
             } => {
-                r.is_finite()
-                    && a.is_finite()
-                    && r >= 0.0
-                    && a >= 0.0
-                    && r + a > 0.0
-                    && max_step > 0.0
+                floor.check(tolerance.relative())?;
+                max_step > 0.0
             }
             Self::Fixed { order, step } => {
                 (1..=MAX_ORDER).contains(&order) && step.is_finite() && step > 0.0
@@ -123,8 +121,8 @@ impl TaylorControl {
             Ok(self)
         } else {
             Err(ConfigError {
-                reason: "Taylor control: tolerances finite, non-negative and not both zero, \
-                         max_step positive; a fixed order in 1..=32 and a positive finite step",
+                reason: "Taylor control: max_step positive; a fixed order in 1..=32 and a \
+                         positive finite step",
             })
         }
     }
@@ -133,7 +131,7 @@ impl TaylorControl {
 impl Default for TaylorControl {
     /// The tolerances of the other adaptive steppers' defaults: 1e-6 relative, 1e-9 absolute.
     fn default() -> Self {
-        Self::adaptive(1e-6, 1e-9)
+        Self::adaptive(Tolerance::new(1e-6, 1e-9).expect("1e-6 and 1e-9 are usable"))
     }
 }
 
@@ -154,7 +152,7 @@ pub struct Taylor<'a, Sys, const N: usize, const S: usize> {
     /// per step were a tenth of the sled's step).
     rules: [(usize, f64); 2],
     /// The expansions' working memory, kept from step to step.
-    scratch: series::Scratch,
+    scratch: Scratch,
     /// Whether c₁ and c₂ come from the system's double-double head ([`Taylor::with_head`]).
     head: bool,
 }
@@ -163,8 +161,9 @@ impl<'a, Sys, const N: usize, const S: usize> Taylor<'a, Sys, N, S>
 where
     Sys: VariableMassSystem<N, S>,
 {
-    /// Starts at `(time, state)`; the state and the control are checked, and the system must
-    /// provide Taylor coefficients (otherwise an
+    /// Starts at `(time, state)`, every coefficient in double; the state and the control
+    /// (its tolerance against [`Floor::Taylor`]) are checked, and the system must provide
+    /// Taylor coefficients (otherwise an
     /// [`InvalidConfiguration`](StepErrorKind::InvalidConfiguration) error says how to get
     /// them).
     pub fn new(
@@ -173,10 +172,49 @@ where
         state: SVector<f64, S>,
         control: TaylorControl,
     ) -> Result<Self, StepError<S>> {
-        let control = control.validated().map_err(|e| e.at(time, &state))?;
+        Self::checked(system, (time, state), control.validated(Floor::Taylor))
+    }
+
+    /// Starts as [`Taylor::new`] with its head: c₁ and c₂ from the system's state rate
+    /// evaluated in double-double dual numbers ([`VariableMassSystem::taylor_head`],
+    /// emitted with `emit = [..., "taylor", "head"]`) at the state and its compensation
+    /// y_hi + y_lo, and the increment c₁h + c₂h² + Σₖ≥₃ cₖhᵏ added in double-double (see
+    /// the module docs: what it buys and costs). The tolerance is checked against the
+    /// head's floor, [`Floor::TaylorHead`]. An
+    /// [`InvalidConfiguration`](StepErrorKind::InvalidConfiguration) error when the
+    /// system has no head.
+    pub fn with_head(
+        system: &'a Sys,
+        time: f64,
+        state: SVector<f64, S>,
+        control: TaylorControl,
+    ) -> Result<Self, StepError<S>> {
+        let control = control.validated(Floor::TaylorHead);
+        let mut stepper = Self::checked(system, (time, state), control)?;
+        let probe = core::array::from_fn(|i| Dual::from(state[i]));
+        if system.taylor_head(Dual::from(time), &probe).is_none() {
+            return Err(StepError::invalid_configuration(
+                time,
+                state,
+                "the system has no double-double head (generate it with \
+                 emit = [..., \"taylor\", \"head\"])",
+            ));
+        }
+        stepper.head = true;
+        Ok(stepper)
+    }
+
+    /// The stepper at `(time, state)` with `control` as its check left it, once the state
+    /// is checked and the system shows that it provides Taylor coefficients.
+    fn checked(
+        system: &'a Sys,
+        (time, state): (f64, SVector<f64, S>),
+        control: Result<TaylorControl, ConfigError>,
+    ) -> Result<Self, StepError<S>> {
+        let control = control.map_err(|e| e.at(time, &state))?;
         let progress = Progress::new(system, time, state)?;
         let mut coefficients = [SVector::zeros(); MAX_ORDER + 1];
-        let mut scratch = series::Scratch::new();
+        let mut scratch = Scratch::new();
         match system.taylor_coefficients(time, &state, &mut coefficients[..2], &mut scratch) {
             None => {
                 return Err(StepError::invalid_configuration(
@@ -198,38 +236,14 @@ where
             last_step: 0.0,
             compensation: SVector::zeros(),
             rules: match control {
-                TaylorControl::Adaptive {
-                    relative_tolerance,
-                    absolute_tolerance,
-                    ..
-                } => [rule(absolute_tolerance), rule(relative_tolerance)],
+                TaylorControl::Adaptive { tolerance, .. } => {
+                    [rule(tolerance.absolute()), rule(tolerance.relative())]
+                }
                 TaylorControl::Fixed { .. } => [(2, 0.0); 2],
             },
             scratch,
             head: false,
         })
-    }
-
-    /// The stepper with its head: c₁ and c₂ from the system's state rate evaluated in
-    /// double-double dual numbers ([`VariableMassSystem::taylor_head`], emitted with
-    /// `emit = [..., "taylor", "head"]`) at the state and its compensation y_hi + y_lo,
-    /// and the increment c₁h + c₂h² + Σₖ≥₃ cₖhᵏ added in double-double (see the module
-    /// docs: what it buys and costs). An
-    /// [`InvalidConfiguration`](StepErrorKind::InvalidConfiguration) error when the
-    /// system has no head.
-    pub fn with_head(mut self) -> Result<Self, StepError<S>> {
-        let (t, y) = (self.progress.time(), *self.progress.state());
-        let probe = core::array::from_fn(|i| Dual::from(y[i]));
-        if self.system.taylor_head(Dual::from(t), &probe).is_none() {
-            return Err(StepError::invalid_configuration(
-                t,
-                y,
-                "the system has no double-double head (generate it with \
-                 emit = [..., \"taylor\", \"head\"])",
-            ));
-        }
-        self.head = true;
-        Ok(self)
     }
 
     /// Whether the stepper uses the system's double-double head.
@@ -394,13 +408,12 @@ where
                 (order, step)
             }
             TaylorControl::Adaptive {
-                relative_tolerance,
-                absolute_tolerance,
+                tolerance,
                 max_step,
             } => {
                 // Relative when rtol‖y‖∞ > atol (J&Z's ε is then rtol).
                 let relative_mode =
-                    relative_tolerance * self.progress.state().amax() > absolute_tolerance;
+                    tolerance.relative() * self.progress.state().amax() > tolerance.absolute();
                 let rule = self.rules[usize::from(relative_mode)];
                 self.expand(rule.0)?;
                 (rule.0, self.adaptive_step(rule, relative_mode, max_step))

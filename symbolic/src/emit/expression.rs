@@ -222,13 +222,6 @@ fn float_literal(value: f64) -> Rendered {
     }
 }
 
-fn rational(pool: &ExprPool, id: Id) -> Option<Rational> {
-    match pool.node(id) {
-        Node::Num(r) => Some(*r),
-        _ => None,
-    }
-}
-
 impl Syntax for RustSyntax {
     fn group(&self, text: &str) -> String {
         format!("({text})")
@@ -289,7 +282,7 @@ impl Syntax for RustSyntax {
     }
 
     fn product(&self, p: &Printer<'_>, factors: &[Id]) -> Rendered {
-        match rational(p.pool(), factors[0]) {
+        match p.pool().as_rational(factors[0]) {
             Some(c) if c.numer() == -1 && c.denom() == 1 => {
                 let rest = self.product_of(p, None, &factors[1..]);
                 let rest = self.at_least(&rest, Prec::Power);
@@ -301,7 +294,7 @@ impl Syntax for RustSyntax {
     }
 
     fn power(&self, p: &Printer<'_>, base: Id, exponent: Id) -> Rendered {
-        match rational(p.pool(), exponent) {
+        match p.pool().as_rational(exponent) {
             Some(e) if e.is_negative() => {
                 let below = self.power_rational(p, base, Rational::new(-e.numer(), e.denom()));
                 let below = self.at_least(&below, Prec::Atom);
@@ -346,7 +339,7 @@ impl RustSyntax {
     fn split_sign(&self, p: &Printer<'_>, id: Id) -> Option<Rendered> {
         match p.pool().node(id) {
             Node::Num(r) if r.is_negative() => Some(float_literal(-r.to_f64())),
-            Node::Mul(factors) if !p.is_bound(id) => match rational(p.pool(), factors[0]) {
+            Node::Mul(factors) if !p.is_bound(id) => match p.pool().as_rational(factors[0]) {
                 Some(c) if c.is_negative() => {
                     Some(self.product_of(p, Some(-c.to_f64()), &factors[1..]))
                 }
@@ -366,7 +359,9 @@ impl RustSyntax {
         }
         for f in factors {
             let below = match p.pool().node(*f) {
-                Node::Pow(base, exponent) if !p.is_bound(*f) => rational(p.pool(), *exponent)
+                Node::Pow(base, exponent) if !p.is_bound(*f) => p
+                    .pool()
+                    .as_rational(*exponent)
                     .filter(|e| e.is_negative())
                     .map(|e| (*base, e)),
                 _ => None,

@@ -17,7 +17,7 @@
 //! min, max, …), powers with other exponents, tables, inputs, a numeric solve of
 //! M q̇ = p − b — gets a compile error naming it, never a silent evaluation in double.
 
-use proc_macro2::{Ident, Span, TokenStream};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
 use super::system::{Emitter, Input};
@@ -88,7 +88,7 @@ pub(crate) fn head_items(emitter: &Emitter<'_>, taylor: bool) -> (TokenStream, T
     let runtime = &emitter.target.runtime;
     let name = &emitter.target.name;
     let head_name = format_ident!("__{}Head", name);
-    let s_lit = emitter.sizes().1;
+    let s_lit = emitter.sizes().state_literal();
     let (dual, dd) = (quote!(#runtime::dd::Dual), quote!(#runtime::dd::Dd));
     let fields: Vec<Ident> = emitter
         .d
@@ -104,33 +104,7 @@ pub(crate) fn head_items(emitter: &Emitter<'_>, taylor: bool) -> (TokenStream, T
     };
     let (dual_body, dd_body) = (body(&dual), body(&dd));
     let doc = format!("The parameters of a `{name}` in double-double (`emit = [..., \"head\"]`).");
-    let method = quote! {
-        /// The state rate over double-double dual numbers (`emit = [..., "head"]`).
-        #[inline]
-        fn taylor_head(
-            &self,
-            t: #dual,
-            state: &[#dual; #s_lit],
-        ) -> ::core::option::Option<[#dual; #s_lit]> {
-            let parameters = #head_name {
-                #(#fields: #dd::from(self.#fields),)*
-            };
-            ::core::option::Option::Some(parameters.state_rate(t, state))
-        }
-
-        /// The state rate in double-double (`emit = [..., "head"]`).
-        #[inline]
-        fn taylor_head_rate(
-            &self,
-            t: f64,
-            state: &[#dd; #s_lit],
-        ) -> ::core::option::Option<[#dd; #s_lit]> {
-            let parameters = #head_name {
-                #(#fields: #dd::from(self.#fields),)*
-            };
-            ::core::option::Option::Some(parameters.rate(#dd::from(t), state))
-        }
-    };
+    let method = head_methods(&head_name, &fields, (&dual, &dd), &s_lit);
     let items = quote! {
         #[doc = #doc]
         #[doc(hidden)]
@@ -156,6 +130,43 @@ pub(crate) fn head_items(emitter: &Emitter<'_>, taylor: bool) -> (TokenStream, T
         }
     };
     (method, items)
+}
+
+/// `taylor_head` and `taylor_head_rate`, inside the trait impl: each fills the companion
+/// struct `head_name` (its `fields`, the parameters, in double-double) and evaluates on it.
+fn head_methods(
+    head_name: &Ident,
+    fields: &[Ident],
+    (dual, dd): (&TokenStream, &TokenStream),
+    s_lit: &Literal,
+) -> TokenStream {
+    quote! {
+        /// The state rate over double-double dual numbers (`emit = [..., "head"]`).
+        #[inline]
+        fn taylor_head(
+            &self,
+            t: #dual,
+            state: &[#dual; #s_lit],
+        ) -> ::core::option::Option<[#dual; #s_lit]> {
+            let parameters = #head_name {
+                #(#fields: #dd::from(self.#fields),)*
+            };
+            ::core::option::Option::Some(parameters.state_rate(t, state))
+        }
+
+        /// The state rate in double-double (`emit = [..., "head"]`).
+        #[inline]
+        fn taylor_head_rate(
+            &self,
+            t: f64,
+            state: &[#dd; #s_lit],
+        ) -> ::core::option::Option<[#dd; #s_lit]> {
+            let parameters = #head_name {
+                #(#fields: #dd::from(self.#fields),)*
+            };
+            ::core::option::Option::Some(parameters.rate(#dd::from(t), state))
+        }
+    }
 }
 
 #[cfg(test)]

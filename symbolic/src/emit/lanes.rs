@@ -20,7 +20,7 @@ use crate::mechanics::VelocitySolve;
 impl Emitter<'_> {
     /// The roots of `state_rate`: q̇, the true ṗ, the state masses' rates.
     pub(super) fn state_rate_roots(&self) -> Vec<Id> {
-        let k = self.d.state_mass_count();
+        let k = self.sizes().state_masses;
         let mut roots = self.velocity_ids.clone();
         roots.extend(&self.d.momentum_rate);
         roots.extend(self.d.mass_rates.iter().take(k));
@@ -62,7 +62,8 @@ pub(crate) fn lanes_impl(emitter: &Emitter<'_>) -> TokenStream {
     let runtime = &emitter.target.runtime;
     let name = &emitter.target.name;
     let lanes_name = format_ident!("__{}Lanes", name);
-    let (n_lit, s_lit, _, _) = emitter.sizes();
+    let sizes = emitter.sizes();
+    let (n_lit, s_lit) = (sizes.coordinates_literal(), sizes.state_literal());
     let fields: Vec<Ident> = emitter
         .d
         .parameters

@@ -11,26 +11,9 @@ use crate::mechanics::{Of, VelocitySolve};
 use crate::quantity::Quantity;
 
 impl Emitter<'_> {
-    pub(crate) fn sizes(&self) -> (Literal, Literal, usize, usize) {
-        let (n, k) = (self.d.coordinates.len(), self.d.state_mass_count());
-        (
-            Literal::usize_unsuffixed(n),
-            Literal::usize_unsuffixed(self.d.state_len()),
-            n,
-            k,
-        )
-    }
-
-    /// The signature of `method` for this system (see `signature.rs`).
-    fn signature(&self, method: Method) -> TokenStream {
-        let (_, _, n, k) = self.sizes();
-        let _ = k;
-        method.signature(&self.target.runtime, n, self.d.state_len())
-    }
-
     /// `mass(index, t, state)`: a state mass is read from the state, a law is evaluated.
     pub(crate) fn mass(&self) -> TokenStream {
-        let (_, _, n, _) = self.sizes();
+        let n = self.sizes().coordinates;
         let mut arms = Vec::new();
         let mut docs = Vec::new();
         for (i, (m, law)) in self.d.masses.iter().zip(&self.d.closed_laws).enumerate() {
@@ -95,14 +78,15 @@ impl Emitter<'_> {
                 arms.push(quote!(#index => { #body },));
             }
         }
-        let title = Quantity::MassRates.spec().doc;
+        let title = title(Quantity::MassRates);
         self.indexed_method(Method::MassRate, title, docs, arms)
     }
 
     /// `mass_matrix(t, state)`.
     pub(crate) fn mass_matrix(&self) -> TokenStream {
         let runtime = &self.target.runtime;
-        let (n_lit, _, n, _) = self.sizes();
+        let sizes = self.sizes();
+        let (n, n_lit) = (sizes.coordinates, sizes.coordinates_literal());
         let entries: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
         let docs = self.docs(
             "The mass matrix M = ∂²L/∂q̇² (masses frozen), row by row.",
@@ -136,7 +120,7 @@ impl Emitter<'_> {
         fallible: bool,
     ) -> TokenStream {
         let lines = self.quantity_lines(quantity, &[root]);
-        let docs = self.docs(quantity.spec().doc, lines);
+        let docs = self.docs(title(quantity), lines);
         self.scalar_method(method, docs, (input, root), fallible)
     }
 
@@ -164,7 +148,7 @@ impl Emitter<'_> {
     /// straight-line LDLᵀ of `factor.rs`.
     pub(crate) fn accelerations(&self) -> TokenStream {
         let runtime = &self.target.runtime;
-        let (n_lit, _, _, _) = self.sizes();
+        let n_lit = self.sizes().coordinates_literal();
         let (docs, body) = match &self.d.accelerations {
             Some(acc) => (
                 self.docs(
@@ -234,13 +218,13 @@ impl Emitter<'_> {
                 ),
             ),
         };
-        let docs = self.docs(Quantity::Energy.spec().doc, [line]);
+        let docs = self.docs(title(Quantity::Energy), [line]);
         self.scalar_method(Method::Hamiltonian, docs, (Input::State, root), true)
     }
 
     /// `canonical_rates(t, state)`: (q̇, d*p/dt) of eq. 14.
     pub(crate) fn canonical_rates(&self) -> TokenStream {
-        let n = self.sizes().2;
+        let n = self.sizes().coordinates;
         let velocities: Vec<Id> = self.velocity_roots();
         let mut roots = velocities.clone();
         roots.extend(&self.d.frozen_momentum_rate);
@@ -282,10 +266,8 @@ impl Emitter<'_> {
 
     /// `state_rate(t, state)`: [q̇, ṗ, ṁ_s], the integration hot path, fused.
     pub(crate) fn state_rate(&self) -> TokenStream {
-        let k = self.sizes().3;
-        let mut roots = self.velocity_roots();
-        roots.extend(&self.d.momentum_rate);
-        roots.extend(self.d.mass_rates.iter().take(k));
+        let k = self.sizes().state_masses;
+        let roots = self.state_rate_roots();
         let mut lines = self.velocity_docs();
         lines.extend(self.quantity_lines(Quantity::MomentumRate, &self.d.momentum_rate));
         let state_masses = self.d.masses.iter().zip(&self.d.mass_rates).take(k);
@@ -317,7 +299,9 @@ impl Emitter<'_> {
     /// `jacobian(t, state)` from the derivation's blocks, combined with M⁻¹ numerically.
     pub(crate) fn jacobian(&self) -> TokenStream {
         let runtime = &self.target.runtime;
-        let (n_lit, s, n, k) = self.sizes();
+        let sizes = self.sizes();
+        let (n, k) = (sizes.coordinates, sizes.state_masses);
+        let (n_lit, s) = (sizes.coordinates_literal(), sizes.state_literal());
         let Some(j) = &self.d.jacobian else {
             // Not derived: the trait's finite-difference default serves.
             return TokenStream::new();
@@ -398,8 +382,6 @@ impl Emitter<'_> {
         if d.flow_rates.is_empty() {
             return TokenStream::new();
         }
-        let runtime = &self.target.runtime;
-        let (_, s_lit, _, _) = self.sizes();
         let docs = self.docs(
             "The flows' rates, ≥ 0 by definition: a run ends where one is negative.",
             d.flow_names
@@ -414,22 +396,50 @@ impl Emitter<'_> {
             });
             quote!(#index => { #body },)
         });
-        let count_and_names = count_and_names("flow", d.flow_rates.len(), &d.flow_names);
-        quote! {
-            #count_and_names
-            #docs
-            #[inline]
-            fn flow_rate(
-                &self,
-                index: usize,
-                t: f64,
-                velocity_state: &#runtime::nalgebra::SVector<f64, #s_lit>,
-            ) -> f64 {
-                match index {
-                    #(#arms)*
-                    _ => f64::NAN,
-                }
-            }
-        }
+        let mut code = count_and_names("flow", d.flow_rates.len(), &d.flow_names);
+        let body = quote!(match index {
+            #(#arms)*
+            _ => f64::NAN,
+        });
+        code.extend(method_item(docs, self.signature(Method::FlowRate), body));
+        code
     }
+
+    /// `singular_attitude_distance(t, state)`: the angle from gimbal lock of the spatial
+    /// rigid bodies' Euler sequences, from their middle angles (nothing without them: the
+    /// trait's `None`).
+    pub(crate) fn singular_attitude_distance(&self) -> TokenStream {
+        let d = self.d;
+        if d.euler_middles.is_empty() {
+            return TokenStream::new();
+        }
+        let runtime = &self.target.runtime;
+        let docs = self.docs(
+            "The angle from gimbal lock: the Euler middle angles' distance to π/2 + kπ \
+             (Tait–Bryan) or kπ (proper).",
+            d.euler_middles.iter().map(|(angle, proper)| {
+                format!(
+                    "{} ({})",
+                    self.display(*angle),
+                    match proper {
+                        true => "proper",
+                        false => "Tait–Bryan",
+                    }
+                )
+            }),
+        );
+        let angles: Vec<Id> = d.euler_middles.iter().map(|(angle, _)| *angle).collect();
+        let propers = d.euler_middles.iter().map(|(_, proper)| *proper);
+        let body = self.body(Input::Configuration, &angles, |outs| {
+            quote!(Some(#runtime::math::singular_attitude_distance(&[#((#outs, #propers)),*])))
+        });
+        let signature = self.signature(Method::SingularAttitudeDistance);
+        method_item(docs, signature, body)
+    }
+}
+
+/// The doc comment's title of the method that carries `quantity` ([`Method::carrying`]);
+/// every caller passes a quantity that one carries.
+fn title(quantity: Quantity) -> &'static str {
+    Method::carrying(quantity).map_or("", |(_, title)| title)
 }

@@ -29,9 +29,9 @@ pub use system::Target;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::expr::{ExprPool, Func, Id, Node};
-use crate::mechanics::{Derivation, Outputs};
-use crate::quantity::{documented_roots, Quantity};
-use system::Emitter;
+use crate::mechanics::{Derivation, Outputs, TableSwitch, TimeTable, VelocitySolve};
+use crate::quantity::Quantity;
+use system::{Emitter, Sizes};
 
 /// The inherent constants and the trait impl for `target.name`, with every optional output.
 pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenStream {
@@ -40,41 +40,26 @@ pub fn emit_system(d: &mut Derivation, source: &str, target: &Target) -> TokenSt
 
 /// [`emit_system`] with only the optional outputs `outputs` asks for; the trait's defaults
 /// serve for the methods left out. The Jacobian is emitted when it is asked for and was
-/// derived (see [`crate::mechanics::derive_for`]).
+/// derived (see [`crate::pipeline::derive_for`]).
 pub fn emit_system_for(
     d: &mut Derivation,
     source: &str,
     target: &Target,
     outputs: Outputs,
 ) -> TokenStream {
-    // The doc comments' texts come from the derivation text's printing walk when there is
-    // one (the quantities do not change below: what follows adds nodes to the pool only).
-    let shown = documented_roots(d);
-    let (texts, shown_texts) = if outputs.derivation {
-        let (texts, shown_texts) = derivation_texts(d, &shown);
-        (Some(texts), shown_texts)
-    } else {
-        (None, d.pool.display_all(&shown))
-    };
-    let shown_texts = shown.iter().copied().zip(shown_texts).collect();
+    // Every step that adds nodes to the pool runs first, in this order (the texts, the
+    // velocity symbols, the forms for code, the switches and stop times): the code's
+    // names and shared subexpressions follow the pool's order.
+    let (texts, shown_texts) = doc_texts(d, outputs);
     let velocity_ids = d
         .coordinates
         .iter()
         .map(|c| d.pool.sym(c.velocity))
         .collect();
-    // The code evaluates sin/cos of sums of two coordinates through the sines and cosines
-    // of the coordinates themselves (shared by CSE); the text above keeps cos(a - b).
-    let mut for_code = FxHashMap::default();
-    for e in with_angle_sums(&d.pool, &d.code_roots(outputs)) {
-        let expanded = d.pool.expand_trig_arguments(e);
-        if expanded != e {
-            for_code.insert(e, expanded);
-        }
-    }
+    let for_code = code_forms(d, outputs);
     let switches = crate::mechanics::switching_functions(d);
     let table_switches = crate::mechanics::table_switches(d);
     let time_tables = crate::mechanics::time_tables(d, &d.code_roots(outputs));
-    let name = &target.name;
     let runtime = &target.runtime;
     let statics = (d.pool.table_count() > 0).then(|| tables::statics(&d.pool, runtime));
     let constructors = tables::constructors(d, runtime);
@@ -85,21 +70,69 @@ pub fn emit_system_for(
         for_code,
         texts: shown_texts,
     };
-    let n = d.coordinates.len();
-    let k = d.state_mass_count();
-    let (n_lit, s_lit) = (
-        Literal::usize_unsuffixed(n),
-        Literal::usize_unsuffixed(d.state_len()),
-    );
-    let _ = k;
-    let coordinates = d.coordinates.iter().map(|c| c.name.as_str());
-    let masses = d.masses.iter().map(|m| m.name.as_str());
-    let parameters = d.parameters.iter().map(|(p, _)| p.as_str());
     let head = match outputs.head {
         true => head::head_items(&emitter, outputs.taylor),
         false => Default::default(),
     };
-    let methods = [
+    let stops = (&switches[..], &table_switches[..], &time_tables[..]);
+    let methods = trait_methods(&emitter, outputs, stops, head.0);
+    let lanes = optional(outputs.lanes, || lanes::lanes_impl(&emitter));
+    let trait_impl = trait_impl(d, target, methods, statics);
+    let inherent = inherent_items(d, source, texts, constructors);
+    let name = &target.name;
+    let head_struct = head.1;
+    quote! {
+        impl #name {
+            #inherent
+        }
+
+        #trait_impl
+        #lanes
+        #head_struct
+    }
+}
+
+/// The `DERIVATION` constants when `outputs` asks for them, and the DSL text of every
+/// root the doc comments show: from the derivation text's printing walk when there is
+/// one (the quantities do not change after it: what follows adds nodes to the pool only).
+fn doc_texts(d: &mut Derivation, outputs: Outputs) -> (Option<TokenStream>, FxHashMap<Id, String>) {
+    let shown = documented_roots(d);
+    let (texts, shown_texts) = if outputs.derivation {
+        let (texts, shown_texts) = derivation_texts(d, &shown);
+        (Some(texts), shown_texts)
+    } else {
+        (None, d.pool.display_all(&shown))
+    };
+    (texts, shown.iter().copied().zip(shown_texts).collect())
+}
+
+/// The code evaluates sin/cos of sums of two coordinates through the sines and cosines of
+/// the coordinates themselves (shared by CSE); the text keeps cos(a - b). The rewritten
+/// form of each root of the code that changes.
+fn code_forms(d: &mut Derivation, outputs: Outputs) -> FxHashMap<Id, Id> {
+    let mut for_code = FxHashMap::default();
+    for e in with_angle_sums(&d.pool, &d.code_roots(outputs)) {
+        let expanded = d.pool.expand_trig_arguments(e);
+        if expanded != e {
+            for_code.insert(e, expanded);
+        }
+    }
+    for_code
+}
+
+/// The switching functions, the tables' anchored switches and the stop times of tables
+/// of time, as the mechanics found them.
+type Stops<'a> = (&'a [Id], &'a [TableSwitch], &'a [TimeTable]);
+
+/// Every method of the trait impl, in the trait's order; `head` the head's methods.
+fn trait_methods(
+    emitter: &Emitter<'_>,
+    outputs: Outputs,
+    (switches, table_switches, time_tables): Stops<'_>,
+    head: TokenStream,
+) -> [TokenStream; 24] {
+    let (d, target) = (emitter.d, emitter.target);
+    [
         emitter.mass(),
         emitter.mass_rate(),
         emitter.mass_matrix(),
@@ -117,19 +150,31 @@ pub fn emit_system_for(
         emitter.state_rate(),
         optional(outputs.power, || emitter.power()),
         optional(outputs.jacobian, || emitter.jacobian()),
-        emitter.switching_functions(&switches, &table_switches),
-        optional(outputs.taylor, || taylor::taylor_method(d, runtime, name)),
-        head.0,
+        emitter.switching_functions(switches, table_switches),
+        optional(outputs.taylor, || {
+            taylor::taylor_method(d, &target.runtime, &target.name)
+        }),
+        head,
         emitter.flow_rates(),
-        emitter.stop_times(&time_tables),
+        emitter.singular_attitude_distance(),
+        emitter.stop_times(time_tables),
         emitter.sample(),
-    ];
-    let lanes = optional(outputs.lanes, || lanes::lanes_impl(&emitter));
-    let head_struct = head.1;
-    let units_doc = d.units_line().map(|line| {
-        let line = format!("Units: {line}.");
-        quote!(#[doc = ""] #[doc = #line])
-    });
+    ]
+}
+
+/// `impl VariableMassSystem for Name` with `methods`; with the tables' statics and the
+/// inputs' trait alias beside it, in a block of their own, when the model has any.
+fn trait_impl(
+    d: &Derivation,
+    target: &Target,
+    methods: [TokenStream; 24],
+    statics: Option<TokenStream>,
+) -> TokenStream {
+    let (name, runtime) = (&target.name, &target.runtime);
+    let sizes = Sizes::of(d);
+    let (n_lit, s_lit) = (sizes.coordinates_literal(), sizes.state_literal());
+    let coordinates = d.coordinates.iter().map(|c| c.name.as_str());
+    let masses = d.masses.iter().map(|m| m.name.as_str());
     // The held values of the sampled inputs: the state's last entries.
     let held = match d.held().len() {
         0 => TokenStream::new(),
@@ -155,21 +200,30 @@ pub fn emit_system_for(
         (statics, alias) => quote!(const _: () = { #alias #statics #trait_impl };),
     };
     let inputs_trait = inputs::inputs_trait(name, &d.inputs, runtime);
-    quote! {
-        impl #name {
-            /// The system in the DSL, as written.
-            pub const SOURCE: &'static str = #source;
-            #texts
-            /// The parameters (fields) the equations use, in order.
-            #units_doc
-            pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
-            #constructors
-        }
+    quote!(#inputs_trait #trait_impl)
+}
 
-        #inputs_trait
-        #trait_impl
-        #lanes
-        #head_struct
+/// The inherent items: `SOURCE`, the derivation's texts, `PARAMETERS` (with the units
+/// line in its doc) and the tables' constructors.
+fn inherent_items(
+    d: &Derivation,
+    source: &str,
+    texts: Option<TokenStream>,
+    constructors: TokenStream,
+) -> TokenStream {
+    let parameters = d.parameters.iter().map(|(p, _)| p.as_str());
+    let units_doc = d.units_line().map(|line| {
+        let line = format!("Units: {line}.");
+        quote!(#[doc = ""] #[doc = #line])
+    });
+    quote! {
+        /// The system in the DSL, as written.
+        pub const SOURCE: &'static str = #source;
+        #texts
+        /// The parameters (fields) the equations use, in order.
+        #units_doc
+        pub const PARAMETERS: &'static [&'static str] = &[#(#parameters),*];
+        #constructors
     }
 }
 
@@ -184,6 +238,18 @@ fn derivation_texts(d: &mut Derivation, shown: &[Id]) -> (TokenStream, Vec<Strin
         pub const DERIVATION_LATEX: &'static str = #latex;
     };
     (constants, shown_texts)
+}
+
+/// The velocity-form roots of every quantity of the registry that `d` holds, in
+/// [`Quantity::ALL`] order, plus q̇ in closed form: what the doc comments show.
+fn documented_roots(d: &Derivation) -> Vec<Id> {
+    let mut roots: Vec<Id> = Quantity::ALL.iter().flat_map(|q| d.quantity(*q)).collect();
+    roots.extend(d.hamiltonian);
+    roots.extend(d.closed_laws.iter().flatten());
+    if let VelocitySolve::Symbolic(v) = &d.velocities {
+        roots.extend(v);
+    }
+    roots
 }
 
 /// A method's code when it is asked for, nothing otherwise.

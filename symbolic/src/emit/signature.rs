@@ -5,6 +5,8 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
+use crate::quantity::Quantity;
+
 /// A method of `VariableMassSystem` that generated code implements.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
@@ -42,6 +44,16 @@ pub enum Method {
     Power,
     /// `jacobian(t, state) -> Result<SMatrix<S, S>>` (provided by the trait).
     Jacobian,
+    /// `flow_rate(index, t, velocity_state) -> f64` (provided: no flows).
+    FlowRate,
+    /// `singular_attitude_distance(t, state) -> Option<f64>` (provided: `None`).
+    SingularAttitudeDistance,
+    /// `switching_functions(t, velocity_state, values)` (provided: no switches).
+    SwitchingFunctions,
+    /// `switch_anchors(t, velocity_state, anchors)` (provided: no anchored switches).
+    SwitchAnchors,
+    /// `anchored_switching_functions(t, velocity_state, anchors, values)` (provided).
+    AnchoredSwitchingFunctions,
 }
 
 /// The methods the trait does not provide, in the trait's order: every impl has them.
@@ -61,7 +73,10 @@ pub const REQUIRED: [Method; 11] = [
 
 /// What a method returns, for N coordinates and a state of S.
 enum Output {
+    /// Nothing: the method writes into the slices it takes.
+    Unit,
     Scalar,
+    OptionScalar,
     Coordinates,
     MassMatrix,
     ResultScalar,
@@ -72,12 +87,70 @@ enum Output {
 }
 
 impl Method {
+    /// The generated method that carries `quantity`, with its doc comment's title: the
+    /// emitter's half of the registry (`crate::quantity`). `None` for a quantity that no
+    /// method of its own carries (T, V and the intermediates of the true ṗ and of eq. 6 are
+    /// lines in other methods' doc comments). One exhaustive `match`, as
+    /// [`Quantity::spec`] is, so a new quantity without its entry does not compile.
+    pub fn carrying(quantity: Quantity) -> Option<(Method, &'static str)> {
+        let carrier = match quantity {
+            Quantity::MassRates => (Method::MassRate, "ṁ of every mass along the motion."),
+            Quantity::Momenta => (
+                Method::Momenta,
+                "The generalized momenta p = ∂*L/∂q̇ (eq. 8).",
+            ),
+            Quantity::MassMatrix => (
+                Method::MassMatrix,
+                "The mass matrix M = ∂²L/∂q̇², masses frozen.",
+            ),
+            Quantity::Lagrangian => (Method::Lagrangian, "The Lagrangian L = T − V."),
+            Quantity::LagrangianGradient => (
+                Method::LagrangianGradient,
+                "∂*L/∂q, masses frozen (= −∂*H/∂q, eq. 13).",
+            ),
+            Quantity::ActiveForce => (
+                Method::ActiveForce,
+                "The generalized active force Q* (eq. 22 for the sled).",
+            ),
+            Quantity::ReactiveThrust => (
+                Method::ReactiveThrust,
+                "The generalized reactive thrust R1 = Σ Q1 v_r1 · ∂r/∂q.",
+            ),
+            Quantity::ImpactForce => (
+                Method::ImpactForce,
+                "The generalized impact force R2 = Σ Q2 v_r2 · ∂r/∂q (eq. 23 for the sled).",
+            ),
+            Quantity::MassFluxForce => (
+                Method::MassFluxForce,
+                "The mass-flux term Σ ṁᵢ ∂*p/∂mᵢ of the true ṗ.",
+            ),
+            Quantity::Accelerations => (
+                Method::Accelerations,
+                "q̈(q, q̇, t) from M q̈ = d*p/dt − ∂*p/∂q q̇ − ∂*p/∂t (eq. 6).",
+            ),
+            Quantity::Power => (
+                Method::Power,
+                "The energy-budget power dH/dt = ∂*H/∂t + q̇·(Q* − R1 + R2 + Σ ṁ ∂*p/∂m) + Σ ṁ ∂H/∂m.",
+            ),
+            Quantity::Energy => (
+                Method::Hamiltonian,
+                "The Hamiltonian H(q, p, t) = p·q̇ − L (eqs. 9–10).",
+            ),
+            Quantity::Kinetic
+            | Quantity::Potential
+            | Quantity::FrozenMomentumRate
+            | Quantity::MomentumRate
+            | Quantity::AccelerationRhs => return None,
+        };
+        Some(carrier)
+    }
+
     /// The method's name.
     pub fn name(self) -> &'static str {
         self.spec().0
     }
 
-    /// (name, takes a mass index, reads a velocity state, output).
+    /// (name, takes an index (of a mass, of a flow), reads a velocity state, output).
     fn spec(self) -> (&'static str, bool, bool, Output) {
         use Output::*;
         match self {
@@ -98,6 +171,26 @@ impl Method {
             Method::StateRate => ("state_rate", false, false, ResultState),
             Method::Power => ("power", false, false, ResultScalar),
             Method::Jacobian => ("jacobian", false, false, ResultJacobian),
+            Method::FlowRate => ("flow_rate", true, true, Scalar),
+            Method::SingularAttitudeDistance => {
+                ("singular_attitude_distance", false, false, OptionScalar)
+            }
+            Method::SwitchingFunctions => ("switching_functions", false, true, Unit),
+            Method::SwitchAnchors => ("switch_anchors", false, true, Unit),
+            Method::AnchoredSwitchingFunctions => {
+                ("anchored_switching_functions", false, true, Unit)
+            }
+        }
+    }
+
+    /// The slices a switching method takes after its state (the run's buffers of the
+    /// switches' values and knot brackets), else nothing.
+    fn slices(self) -> TokenStream {
+        match self {
+            Method::SwitchingFunctions => quote!(, values: &mut [f64]),
+            Method::SwitchAnchors => quote!(, anchors: &mut [f64]),
+            Method::AnchoredSwitchingFunctions => quote!(, anchors: &[f64], values: &mut [f64]),
+            _ => TokenStream::new(),
         }
     }
 
@@ -119,7 +212,9 @@ impl Method {
         // signatures.
         let result = |ok: TokenStream| quote!(::core::result::Result<#ok, #runtime::SystemError>);
         let output = match output {
+            Output::Unit => TokenStream::new(),
             Output::Scalar => quote!(f64),
+            Output::OptionScalar => quote!(Option<f64>),
             Output::Coordinates => vector(&n),
             Output::MassMatrix => matrix(&n),
             Output::ResultScalar => result(quote!(f64)),
@@ -131,7 +226,8 @@ impl Method {
             Output::ResultState => result(vector(&s)),
             Output::ResultJacobian => result(matrix(&s)),
         };
-        let state = vector(&s);
-        quote!(fn #name(&self, #index t: f64, #input: &#state) -> #output)
+        let output = (!output.is_empty()).then(|| quote!(-> #output));
+        let (state, slices) = (vector(&s), self.slices());
+        quote!(fn #name(&self, #index t: f64, #input: &#state #slices) #output)
     }
 }

@@ -3,13 +3,14 @@
 //! of t as stop times (docs/tables.md#knots-are-switches): every table
 //! call whose argument is affine in t, a·t + b with a and b made of parameters only, gives
 //! `next_stop_time`, so the runs land on each knot and restart there instead of stepping
-//! across the kink.
+//! across the kink (twice, just before and on it, where a derivative order the code reads
+//! jumps there).
 
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 use super::system::{Emitter, Input};
-use super::tables::reference;
+use super::tables::orders_read;
 use crate::expr::Id;
 use crate::mechanics::{ModelInput, TimeTable};
 
@@ -24,16 +25,17 @@ impl Emitter<'_> {
         }
         let runtime = &self.target.runtime;
         let roots: Vec<Id> = tables.iter().flat_map(|t| [t.slope, t.offset]).collect();
-        let statics: Vec<TokenStream> = tables
-            .iter()
-            .map(|t| super::expression::tokens(&reference(&self.d.pool, t.table, 0)))
+        // Per table of t, the orders the code reads, 0 to the highest: where one of them
+        // jumps at a knot, the knot has two stop times (`next_knot_time_read`).
+        let statics: Vec<TokenStream> = (tables.iter())
+            .map(|t| orders_read(&self.d.pool, t.table, t.order))
             .collect();
         let body = self.body(Input::Configuration, &roots, |outs| {
             let slopes = outs.iter().step_by(2);
             let offsets = outs.iter().skip(1).step_by(2);
             quote! {
                 let mut next = f64::INFINITY;
-                #(next = next.min(#runtime::table::next_knot_time(&#statics, #slopes, #offsets, after));)*
+                #(next = next.min(#runtime::table::next_knot_time_read(#statics, #slopes, #offsets, after));)*
                 #(next = next.min(#runtime::input::next_sample_time(#periods, after));)*
                 if next < f64::INFINITY {
                     ::core::option::Option::Some(next)
@@ -62,11 +64,10 @@ impl Emitter<'_> {
             return TokenStream::new();
         }
         let runtime = &self.target.runtime;
-        let s = Literal::usize_unsuffixed(self.d.state_len());
-        let first = 2 * self.d.coordinates.len() + self.d.state_mass_count();
+        let sizes = self.sizes();
+        let (s, first, n) = (sizes.state_literal(), sizes.first_held(), sizes.coordinates);
         let alias = Ident::new(super::inputs::ALIAS, Span::call_site());
         let coordinate = |name: &str| self.d.coordinates.iter().position(|c| c.name == name);
-        let n = self.d.coordinates.len();
         let writes = sampled.iter().enumerate().map(|(j, input)| {
             let method = Ident::new(&input.name, Span::call_site());
             let arguments = input.arguments.iter().map(|a| match a.strip_suffix('\'') {

@@ -6,8 +6,9 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use super::system::{count_and_names, Emitter, Input};
-use super::tables::reference;
+use super::signature::Method;
+use super::system::{count_and_names, method_item, Emitter, Input};
+use super::tables::orders_read;
 use crate::expr::Id;
 use crate::mechanics::TableSwitch;
 
@@ -24,7 +25,6 @@ impl Emitter<'_> {
             return TokenStream::new();
         }
         let runtime = &self.target.runtime;
-        let (_, s_lit, _, _) = self.sizes();
         let mut names: Vec<String> = switches.iter().map(|g| self.display(*g)).collect();
         names.extend(tables.iter().map(|s| {
             let table = self.d.pool.table_name(s.table);
@@ -38,9 +38,9 @@ impl Emitter<'_> {
                 .map(|(i, name)| format!("g_{i} = {name}")),
         );
         let m = switches.len();
-        let statics: Vec<TokenStream> = tables
-            .iter()
-            .map(|s| super::expression::tokens(&reference(&self.d.pool, s.table, 0)))
+        // Per switch, the orders read, 0 to the highest (`knot_bracket_read`).
+        let statics: Vec<TokenStream> = (tables.iter())
+            .map(|s| orders_read(&self.d.pool, s.table, s.order))
             .collect();
         let table_slots: Vec<Literal> = (m..m + tables.len())
             .map(Literal::usize_unsuffixed)
@@ -54,27 +54,17 @@ impl Emitter<'_> {
                 #(values[#indices] = #gs;)*
                 #({
                     let __x = #xs;
-                    let __bracket = #runtime::table::knot_bracket(&#statics, __x);
-                    values[#table_slots] = #runtime::table::knot_gap(&#statics, __x, __bracket);
+                    let __bracket = #runtime::table::knot_bracket_read(#statics, __x);
+                    values[#table_slots] = #runtime::table::knot_gap_read(#statics, __x, __bracket);
                 })*
             }
         });
         let anchored = self.anchored(switches, tables, &statics, &table_slots);
-        let count_and_names = count_and_names("switch", switches.len() + tables.len(), &names);
-        quote! {
-            #count_and_names
-            #docs
-            #[inline]
-            fn switching_functions(
-                &self,
-                t: f64,
-                velocity_state: &#runtime::nalgebra::SVector<f64, #s_lit>,
-                values: &mut [f64],
-            ) {
-                #plain
-            }
-            #anchored
-        }
+        let mut code = count_and_names("switch", switches.len() + tables.len(), &names);
+        let signature = self.signature(Method::SwitchingFunctions);
+        code.extend(method_item(docs, signature, plain));
+        code.extend(anchored);
+        code
     }
 
     /// `switch_anchors` and `anchored_switching_functions` for the switches of tables of
@@ -90,13 +80,12 @@ impl Emitter<'_> {
             return TokenStream::new();
         }
         let runtime = &self.target.runtime;
-        let (_, s_lit, _, _) = self.sizes();
         let m = switches.len();
         let arguments: Vec<Id> = tables.iter().map(|s| s.argument).collect();
         let anchors = self.body(
             Input::VelocityState,
             &arguments,
-            |xs| quote!(#(anchors[#slots] = #runtime::table::knot_bracket(&#statics, #xs);)*),
+            |xs| quote!(#(anchors[#slots] = #runtime::table::knot_bracket_read(#statics, #xs);)*),
         );
         let mut roots = switches.to_vec();
         roots.extend(&arguments);
@@ -105,29 +94,21 @@ impl Emitter<'_> {
             let indices = (0..m).map(Literal::usize_unsuffixed);
             quote! {
                 #(values[#indices] = #gs;)*
-                #(values[#slots] = #runtime::table::knot_gap(&#statics, #xs, anchors[#slots]);)*
+                #(values[#slots] = #runtime::table::knot_gap_read(#statics, #xs, anchors[#slots]);)*
             }
         });
-        quote! {
-            #[inline]
-            fn switch_anchors(
-                &self,
-                t: f64,
-                velocity_state: &#runtime::nalgebra::SVector<f64, #s_lit>,
-                anchors: &mut [f64],
-            ) {
-                #anchors
-            }
-            #[inline]
-            fn anchored_switching_functions(
-                &self,
-                t: f64,
-                velocity_state: &#runtime::nalgebra::SVector<f64, #s_lit>,
-                anchors: &[f64],
-                values: &mut [f64],
-            ) {
-                #values
-            }
+        let methods = [
+            (Method::SwitchAnchors, anchors),
+            (Method::AnchoredSwitchingFunctions, values),
+        ];
+        let mut code = TokenStream::new();
+        for (method, body) in methods {
+            code.extend(method_item(
+                TokenStream::new(),
+                self.signature(method),
+                body,
+            ));
         }
+        code
     }
 }

@@ -8,6 +8,7 @@ use quote::{format_ident, quote};
 
 use super::expression::{block, staged_block, symbol_ident, Lookups, Stage};
 use super::factor::ldlt_solve;
+use super::signature::Method;
 use crate::expr::{Id, Symbol, SymbolKind};
 use crate::mechanics::{Derivation, Of, VelocitySolve};
 use crate::quantity::{Named, Quantity};
@@ -45,6 +46,43 @@ pub(crate) enum Input {
     Configuration,
 }
 
+/// What the generated code's vectors and matrices count: the state is `[q, p, m_s, held]`
+/// (`velocity_state` has q̇ where `state` has p), its length S = 2N + K + the held inputs.
+pub(crate) struct Sizes {
+    /// N, the coordinates (as many velocities and momenta).
+    pub coordinates: usize,
+    /// K, the masses integrated in the state, after its 2N positions and momenta.
+    pub state_masses: usize,
+    /// S, the whole state.
+    pub state: usize,
+}
+
+impl Sizes {
+    /// The sizes of `d`'s system.
+    pub(crate) fn of(d: &Derivation) -> Sizes {
+        Sizes {
+            coordinates: d.coordinates.len(),
+            state_masses: d.state_mass_count(),
+            state: d.state_len(),
+        }
+    }
+
+    /// N as the literal of `SVector<f64, N>`.
+    pub(crate) fn coordinates_literal(&self) -> Literal {
+        Literal::usize_unsuffixed(self.coordinates)
+    }
+
+    /// S as the literal of `SVector<f64, S>`.
+    pub(crate) fn state_literal(&self) -> Literal {
+        Literal::usize_unsuffixed(self.state)
+    }
+
+    /// The state's index of the first held input (after q, p and m_s).
+    pub(crate) fn first_held(&self) -> usize {
+        2 * self.coordinates + self.state_masses
+    }
+}
+
 pub(crate) struct Emitter<'a> {
     pub d: &'a Derivation,
     pub target: &'a Target,
@@ -67,12 +105,15 @@ impl Emitter<'_> {
         es.iter().map(|e| self.code(*e)).collect()
     }
 
-    fn n(&self) -> usize {
-        self.d.coordinates.len()
+    /// The sizes the generated code is written for.
+    pub(crate) fn sizes(&self) -> Sizes {
+        Sizes::of(self.d)
     }
 
-    fn k(&self) -> usize {
-        self.d.state_mass_count()
+    /// The signature of `method` for this system (see `signature.rs`).
+    pub(crate) fn signature(&self, method: Method) -> TokenStream {
+        let sizes = self.sizes();
+        method.signature(&self.target.runtime, sizes.coordinates, sizes.state)
     }
 
     /// `id` in DSL text, for a doc comment: from [`Self::texts`] when it is there.
@@ -100,7 +141,8 @@ impl Emitter<'_> {
 
     /// `let` bindings for every used symbol from the struct's fields, `t` and the input.
     fn prologue(&self, used: &BTreeSet<Symbol>, input: Input) -> TokenStream {
-        let n = self.n();
+        let sizes = self.sizes();
+        let n = sizes.coordinates;
         let vector = match input {
             Input::State | Input::Configuration => format_ident!("state"),
             Input::VelocityState => format_ident!("velocity_state"),
@@ -130,7 +172,7 @@ impl Emitter<'_> {
                 out.extend(quote!(let #local = #vector[#second];));
             }
         }
-        for (k, m) in self.d.masses.iter().take(self.k()).enumerate() {
+        for (k, m) in self.d.masses.iter().take(sizes.state_masses).enumerate() {
             if used.contains(&m.symbol) {
                 let local = symbol_ident(&self.d.pool, m.symbol);
                 let index = Literal::usize_unsuffixed(2 * n + k);
@@ -141,7 +183,7 @@ impl Emitter<'_> {
         for (j, held) in self.d.held().into_iter().enumerate() {
             if used.contains(&held) {
                 let local = symbol_ident(&self.d.pool, held);
-                let index = Literal::usize_unsuffixed(2 * n + self.k() + j);
+                let index = Literal::usize_unsuffixed(sizes.first_held() + j);
                 out.extend(quote!(let #local = #vector[#index];));
             }
         }
@@ -371,15 +413,14 @@ impl Emitter<'_> {
     /// velocity_state) -> SVector<N>`, documented by its entry, returning zeros when every
     /// entry is identically zero. `None` for a quantity that no generated method carries.
     pub(crate) fn vector_method(&self, quantity: Quantity) -> TokenStream {
-        let spec = quantity.spec();
-        let Some(method) = spec.method else {
+        let Some((method, doc)) = Method::carrying(quantity) else {
             return TokenStream::new();
         };
-        let values = quantity.read(self.d);
+        let values = self.d.quantity(quantity);
         let runtime = &self.target.runtime;
-        let n = Literal::usize_unsuffixed(self.n());
-        let signature = method.signature(runtime, self.n(), self.d.state_len());
-        let docs = self.docs(spec.doc, self.quantity_lines(quantity, &values));
+        let n = self.sizes().coordinates_literal();
+        let signature = self.signature(method);
+        let docs = self.docs(doc, self.quantity_lines(quantity, &values));
         let all_zero = values.iter().all(|v| self.d.pool.is_zero(*v));
         let body = if all_zero {
             quote!(#runtime::nalgebra::SVector::<f64, #n>::zeros())

@@ -5,6 +5,7 @@
 //! table is the struct's field instead, with a constructor over the user's data.
 
 use proc_macro2::TokenStream;
+use quote::quote;
 
 use super::expression::tokens;
 use crate::expr::ExprPool;
@@ -25,6 +26,14 @@ pub(crate) fn reference(pool: &ExprPool, table: u16, order: u8) -> String {
     } else {
         static_name(table, order)
     }
+}
+
+/// `&[&order 0, …, &order highest]` of `table`: the orders a knot reader
+/// (`knot_bracket_read`, `next_knot_time_read`) looks at for the edges where one of them
+/// jumps (docs/tables.md#knots-are-switches).
+pub(crate) fn orders_read(pool: &ExprPool, table: u16, highest: u8) -> TokenStream {
+    let orders = (0..=highest).map(|order| tokens(&reference(pool, table, order)));
+    quote!(&[#(&#orders),*])
 }
 
 /// For each `= runtime` table, `pub fn tabulate_F(points) -> Tabulated`: the field's value

@@ -14,7 +14,7 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::expr::{Func, Instr, Op, TaylorTape};
-use crate::mechanics::{Derivation, TaylorStages};
+use crate::mechanics::{Derivation, TaylorLayout, TaylorStages};
 
 /// Names the arrays of one tape: its input slots are the shared `i<n>`, the rest
 /// `<prefix><slot>`.
@@ -27,7 +27,7 @@ impl Names<'_> {
     /// The field of the jet holding `slot`'s coefficients.
     fn field(&self, slot: usize) -> Ident {
         match self.tape.input_slots().iter().position(|s| *s == slot) {
-            Some(i) => format_ident!("i{}", i),
+            Some(i) => input(i),
             None => format_ident!("{}{}", self.prefix, slot),
         }
     }
@@ -71,6 +71,23 @@ impl Names<'_> {
 /// Orders 0 … `steppers::taylor::MAX_ORDER`: one instance of the per-order function each.
 const ORDERS: usize = 33;
 
+/// The row of the jet holding Taylor input `i` ([`TaylorLayout`]).
+fn input(i: usize) -> Ident {
+    format_ident!("i{}", i)
+}
+
+/// What the parts of the method read: the derivation, its stages and their inputs' layout,
+/// the names of the three tapes' rows, and the runtime's path.
+struct Method<'a> {
+    d: &'a Derivation,
+    st: &'a TaylorStages,
+    layout: TaylorLayout,
+    laws: Names<'a>,
+    velocities: Names<'a>,
+    rates: Names<'a>,
+    runtime: &'a TokenStream,
+}
+
 /// The `taylor_coefficients` method of `d`'s system `name`, with the runtime at `runtime`.
 ///
 /// Every coefficient array is a field of one local struct, the jet, and the work of one
@@ -82,98 +99,20 @@ const ORDERS: usize = 33;
 /// is that of the loop over a run-time k (`tests/taylor_emitted.rs`).
 pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident) -> TokenStream {
     let st = d.taylor_stages();
-    let n = d.coordinates.len();
-    let s = d.state_len();
-    let (k_masses, masses) = (d.state_mass_count(), d.masses.len());
-    let s_lit = Literal::usize_unsuffixed(s);
-    let ts = quote!(#runtime::steppers::taylor::series);
-    let len = quote!(#ts::LEN);
-    let laws = Names {
-        tape: &st.laws,
-        prefix: "l",
-    };
-    let velocities = Names {
-        tape: &st.velocities,
-        prefix: "v",
-    };
-    // q̇ and the rates share their slots (`ExprPool::compile_taylor_stages`): one name
-    // each, declared once.
-    let rates = Names {
-        tape: &st.rates,
-        prefix: "v",
-    };
-    let field = |i: usize| format_ident!("i{}", i);
-    let input = |i: usize| {
-        let f = field(i);
-        quote!(#f)
-    };
-    // The input of state component j.
-    let state_index = |j: usize| {
-        if j < 2 * n {
-            1 + j
-        } else if j < 2 * n + k_masses {
-            1 + 3 * n + (j - 2 * n)
-        } else {
-            // A held input, after every mass among the tape's inputs.
-            1 + 3 * n + masses + (j - 2 * n - k_masses)
-        }
-    };
-    let state_input = |j: usize| input(state_index(j));
-    let fields: Vec<Ident> = (0..st.inputs)
-        .map(field)
-        .chain(laws.fields())
-        .chain(velocities.fields())
-        .chain(rates.fields())
-        .collect();
-    let k = quote!(k);
-    let zero = quote!(0);
-    let fixed = [&laws, &velocities, &rates].map(|names| ops(d, names, true, &zero, runtime));
-    let series = [&laws, &velocities, &rates].map(|names| ops(d, names, false, &k, runtime));
-    let [law_series, velocity_series, rate_series] = series;
-    let start = (0..s).map(|j| {
-        let name = state_input(j);
-        quote!(#name[0] = state[#j];)
-    });
-    let law_copies = st.law_masses.iter().enumerate().map(|(i, mass)| {
-        let (to, from) = (input(1 + 3 * n + mass), laws.output(i));
-        quote!(#to[k] = #from[k];)
-    });
-    // The rows written at every order of an expansion before they are read: the series
-    // instructions' results, the state, q̇ and the law masses. Every other row (time, held
-    // inputs, constants) is set at order 0 alone: zeroed when the scratch is new to this
-    // code, so that a higher coefficient read from it is 0 whatever the scratch held
-    // (`series::Scratch`).
-    let written: Vec<Ident> = laws
-        .series_fields()
-        .into_iter()
-        .chain(velocities.series_fields())
-        .chain(rates.series_fields())
-        .chain((0..2 * n + k_masses).map(|j| field(state_index(j))))
-        .chain((0..n).map(|a| field(1 + 2 * n + a)))
-        .chain(st.law_masses.iter().map(|mass| field(1 + 3 * n + mass)))
-        .collect();
-    let zeroed = fields.iter().filter(|f| !written.contains(f));
-    let (solve, factor_size) = velocity_solve(&st, &velocities, n, runtime);
+    let m = Method::new(d, &st, runtime);
+    let fields = m.fields();
+    let (solve, factor_size) = m.velocity_solve();
     let factor_size = factor_size.unwrap_or_else(|| Literal::usize_unsuffixed(0));
-    // A held input's higher coefficients stay 0: it is constant between samples.
-    let next = (0..2 * n + k_masses).map(|j| {
-        let to = state_input(j);
-        let from = if j < n {
-            input(1 + 2 * n + j)
-        } else {
-            rates.output(j - n)
-        };
-        quote!(#to[k + 1] = #from[k] * next;)
-    });
-    let out = (0..s).map(|j| {
-        let from = state_input(j);
+    let order_k = m.order_k(name, &fields, solve);
+    let start = m.start(&fields);
+    let out = (0..m.layout.state_len()).map(|j| {
+        let from = input(m.layout.state(j));
         quote!(c[#j] = #from[k];)
     });
     let orders = (0..ORDERS).map(Literal::usize_unsuffixed);
     let orders_len = Literal::usize_unsuffixed(ORDERS);
     let rows = Literal::usize_unsuffixed(fields.len());
-    let system = quote!(#runtime::SystemError);
-    let vector = quote!(#runtime::nalgebra::SVector<f64, #s_lit>);
+    let (ts, system, vector) = m.paths();
     quote! {
         /// The Taylor coefficients y[k] = y⁽ᵏ⁾(t)/k! of the solution through `(t, state)`
         /// (k ≤ `steppers::taylor::MAX_ORDER`), by the recurrences of automatic
@@ -186,47 +125,18 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
             coefficients: &mut [#vector],
             scratch: &mut #ts::Scratch,
         ) -> ::core::option::Option<::core::result::Result<(), #system>> {
-            const _: () = assert!(#len == #orders_len, "one instance per order");
+            const _: () = assert!(#ts::LEN == #orders_len, "one instance per order");
             /// One row of coefficients per subexpression, bound by name below.
-            type Jet = [[f64; #len]; #rows];
-            /// Order `K` of every stage; `Some` ends the expansion with an error.
-            #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
-            fn order_k<const K: usize>(
-                this: &#name,
-                jet: &mut Jet,
-                factor: &mut [f64],
-                state: &#vector,
-                last: bool,
-            ) -> ::core::option::Option<::core::result::Result<(), #system>> {
-                let [#(#fields),*] = jet;
-                let k = K;
-                #law_series
-                #(#law_copies)*
-                #velocity_series
-                #solve
-                if last || K + 1 >= #len {
-                    return None;
-                }
-                #rate_series
-                let next = 1.0 / (k + 1) as f64;
-                #(#next)*
-                None
-            }
-            let order = coefficients.len().checked_sub(1)?.min(#len - 1);
+            type Jet = [[f64; #ts::LEN]; #rows];
+            #order_k
+            let order = coefficients.len().checked_sub(1)?.min(#ts::LEN - 1);
             let this = self;
             /// This code's own type: the scratch knows whether this code used it last.
             struct Owner;
             let owner = ::core::any::TypeId::of::<Owner>();
             let (jet, factor, fresh) = scratch.parts::<#rows>(#factor_size, owner);
             {
-                let [#(#fields),*] = &mut *jet;
-                if fresh {
-                    #(*#zeroed = [0.0f64; #len];)*
-                }
-                i0[0] = t;
-                i0[1] = 1.0;
-                #(#start)*
-                #(#fixed)*
+                #start
             }
             for k in 0..=order {
                 let last = k == order;
@@ -247,52 +157,177 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
     }
 }
 
-/// Coefficient k of q̇ into its inputs: copied from the closed form (a non-finite value at
-/// order 0 is a singular M), or solved with M\[0\]'s factor, the scratch's `factor` of the
-/// size returned.
-fn velocity_solve(
-    st: &TaylorStages,
-    names: &Names,
-    n: usize,
-    runtime: &TokenStream,
-) -> (TokenStream, Option<Literal>) {
-    let velocity = |a: usize| {
-        let f = format_ident!("i{}", 1 + 2 * n + a);
-        quote!(#f)
-    };
-    let singular = quote!(return Some(Err(#runtime::SystemError::SingularMassMatrix)););
-    if !st.numeric {
-        let copies = (0..n).map(|a| {
-            let (to, from) = (velocity(a), names.output(a));
-            quote! {
-                #to[k] = #from[k];
-                if k == 0 && !#to[0].is_finite() && state.iter().all(|x| x.is_finite()) {
-                    #singular
-                }
-            }
-        });
-        return (quote!(#(#copies)*), None);
-    }
-    let matrix = (0..n * n).map(|e| names.output(e));
-    let offset = (0..n).map(|a| names.output(n * n + a));
-    let momenta = (0..n).map(|a| {
-        let f = format_ident!("i{}", 1 + n + a);
-        quote!(#f)
-    });
-    let velocities = (0..n).map(velocity);
-    let size = Literal::usize_unsuffixed(n * n);
-    let solve = quote! {
-        if !#runtime::steppers::taylor::series::solve_velocities(
-            #n,
-            (&[#(&*#matrix),*], &[#(&*#offset),*], &[#(&*#momenta),*]),
-            &mut [#(&mut *#velocities),*],
-            factor,
-            k,
-        ) {
-            #singular
+impl<'a> Method<'a> {
+    fn new(d: &'a Derivation, st: &'a TaylorStages, runtime: &'a TokenStream) -> Self {
+        let names = |tape, prefix| Names { tape, prefix };
+        Method {
+            d,
+            st,
+            layout: st.layout,
+            laws: names(&st.laws, "l"),
+            // q̇ and the rates share their slots (`ExprPool::compile_taylor_stages`): one
+            // name each, declared once.
+            velocities: names(&st.velocities, "v"),
+            rates: names(&st.rates, "v"),
+            runtime,
         }
-    };
-    (solve, Some(size))
+    }
+
+    /// The paths of the series module, of `SystemError` and of the state's vector type.
+    fn paths(&self) -> (TokenStream, TokenStream, TokenStream) {
+        let runtime = self.runtime;
+        let s = Literal::usize_unsuffixed(self.layout.state_len());
+        (
+            quote!(#runtime::steppers::taylor::series),
+            quote!(#runtime::SystemError),
+            quote!(#runtime::nalgebra::SVector<f64, #s>),
+        )
+    }
+
+    /// Every row of the jet: the inputs, then the rows each tape writes.
+    fn fields(&self) -> Vec<Ident> {
+        (0..self.layout.len())
+            .map(input)
+            .chain(self.laws.fields())
+            .chain(self.velocities.fields())
+            .chain(self.rates.fields())
+            .collect()
+    }
+
+    /// The rows written at every order of an expansion before they are read: the series
+    /// instructions' results, the state, q̇ and the law masses. Every other row (time, held
+    /// inputs, constants) is set at order 0 alone: zeroed when the scratch is new to this
+    /// code, so that a higher coefficient read from it is 0 whatever the scratch held
+    /// (`series::Scratch`).
+    fn written(&self) -> Vec<Ident> {
+        let l = self.layout;
+        (self.laws.series_fields().into_iter())
+            .chain(self.velocities.series_fields())
+            .chain(self.rates.series_fields())
+            .chain((0..2 * l.n + l.state_masses).map(|j| input(l.state(j))))
+            .chain((0..l.n).map(|a| input(l.velocity(a))))
+            .chain(self.st.law_masses.iter().map(|mass| input(l.mass(*mass))))
+            .collect()
+    }
+
+    /// The statements of the three tapes: their fixed instructions at order 0 (`fixed`), or
+    /// their series instructions at order k.
+    fn stages(&self, fixed: bool) -> [TokenStream; 3] {
+        let k = if fixed { quote!(0) } else { quote!(k) };
+        [&self.laws, &self.velocities, &self.rates]
+            .map(|names| ops(self.d, names, fixed, &k, self.runtime))
+    }
+
+    /// Order 0 of the jet: the rows no series writes zeroed if the scratch is new to this
+    /// code, t and the state into their inputs, then the fixed instructions.
+    fn start(&self, fields: &[Ident]) -> TokenStream {
+        let written = self.written();
+        let zeroed = fields.iter().filter(|f| !written.contains(f));
+        let (ts, ..) = self.paths();
+        let state = (0..self.layout.state_len()).map(|j| {
+            let name = input(self.layout.state(j));
+            quote!(#name[0] = state[#j];)
+        });
+        let time = input(TaylorLayout::TIME);
+        let fixed = self.stages(true);
+        quote! {
+            let [#(#fields),*] = &mut *jet;
+            if fresh {
+                #(*#zeroed = [0.0f64; #ts::LEN];)*
+            }
+            #time[0] = t;
+            #time[1] = 1.0;
+            #(#state)*
+            #(#fixed)*
+        }
+    }
+
+    /// `order_k::<K>`, order K of every stage, then coefficient K + 1 of the state from
+    /// the rates: y\[k+1\] = f\[k\]/(k+1) (q from q̇; a held input's higher coefficients stay
+    /// 0: it is constant between samples).
+    fn order_k(&self, name: &Ident, fields: &[Ident], solve: TokenStream) -> TokenStream {
+        let l = self.layout;
+        let [law_series, velocity_series, rate_series] = self.stages(false);
+        let law_copies = self.st.law_masses.iter().enumerate().map(|(i, mass)| {
+            let (to, from) = (input(l.mass(*mass)), self.laws.output(i));
+            quote!(#to[k] = #from[k];)
+        });
+        let next = (0..2 * l.n + l.state_masses).map(|j| {
+            let to = input(l.state(j));
+            let from = if j < l.n {
+                let velocity = input(l.velocity(j));
+                quote!(#velocity)
+            } else {
+                self.rates.output(j - l.n)
+            };
+            quote!(#to[k + 1] = #from[k] * next;)
+        });
+        let (ts, system, vector) = self.paths();
+        quote! {
+            /// Order `K` of every stage; `Some` ends the expansion with an error.
+            #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
+            fn order_k<const K: usize>(
+                this: &#name,
+                jet: &mut Jet,
+                factor: &mut [f64],
+                state: &#vector,
+                last: bool,
+            ) -> ::core::option::Option<::core::result::Result<(), #system>> {
+                let [#(#fields),*] = jet;
+                let k = K;
+                #law_series
+                #(#law_copies)*
+                #velocity_series
+                #solve
+                if last || K + 1 >= #ts::LEN {
+                    return None;
+                }
+                #rate_series
+                let next = 1.0 / (k + 1) as f64;
+                #(#next)*
+                None
+            }
+        }
+    }
+
+    /// Coefficient k of q̇ into its inputs: copied from the closed form (a non-finite value
+    /// at order 0 is a singular M), or solved with M\[0\]'s factor, the scratch's `factor` of
+    /// the size returned.
+    fn velocity_solve(&self) -> (TokenStream, Option<Literal>) {
+        let (l, names, runtime) = (self.layout, &self.velocities, self.runtime);
+        let velocity = |a: usize| input(l.velocity(a));
+        let singular = quote!(return Some(Err(#runtime::SystemError::SingularMassMatrix)););
+        if !self.st.numeric {
+            let copies = (0..l.n).map(|a| {
+                let (to, from) = (velocity(a), names.output(a));
+                quote! {
+                    #to[k] = #from[k];
+                    if k == 0 && !#to[0].is_finite() && state.iter().all(|x| x.is_finite()) {
+                        #singular
+                    }
+                }
+            });
+            return (quote!(#(#copies)*), None);
+        }
+        let n = l.n;
+        let matrix = (0..n * n).map(|e| names.output(e));
+        let offset = (0..n).map(|a| names.output(n * n + a));
+        let momenta = (0..n).map(|a| input(l.momentum(a)));
+        let velocities = (0..n).map(velocity);
+        let size = Literal::usize_unsuffixed(n * n);
+        let solve = quote! {
+            if !#runtime::steppers::taylor::series::solve_velocities(
+                #n,
+                (&[#(&*#matrix),*], &[#(&*#offset),*], &[#(&*#momenta),*]),
+                &mut [#(&mut *#velocities),*],
+                factor,
+                k,
+            ) {
+                #singular
+            }
+        };
+        (solve, Some(size))
+    }
 }
 
 /// The statements of one tape's fixed (order-0) or series instructions at order `k`.
@@ -366,28 +401,15 @@ fn op(
             let c = number(c);
             quote!(#w[0] = #c;)
         }
-        Op::Param(index) => {
-            let field = d
-                .parameters
-                .iter()
-                .find(|(_, s)| s.index() == index)
-                .map(|(name, _)| Ident::new(name, Span::call_site()));
-            match field {
-                Some(field) => quote!(#w[0] = this.#field;),
-                None => quote!(#w[0] = f64::NAN;),
-            }
-        }
+        Op::Param(index) => parameter(d, &w, index),
         Op::Add { start, len } => {
             let terms = names.tape.operand_slots(start, len).iter().map(|s| n(*s));
-            quote!(#w[#k] = -0.0 #(+ #terms[#k])*;)
+            quote!(#w[#k] = #ts::add([#(#terms[#k]),*]);)
         }
-        Op::Scale(c, a) => {
-            let (c, a) = (n(c), n(a));
-            quote!(#w[#k] = #c[0] * #a[#k];)
-        }
+        Op::Scale(c, a) => call("scale", &[c, a], false),
         Op::Affine { a, scale, offset } => {
             let (a, scale, offset) = (n(a), number(scale), number(offset));
-            quote!(#w[#k] = if #k == 0 { #offset + #scale * #a[0] } else { #scale * #a[#k] };)
+            quote!(#w[#k] = #ts::affine(&*#a, #k, (#scale, #offset));)
         }
         Op::Mul(a, b) => call("mul", &[a, b], false),
         Op::Square(a) => call("square", &[a], false),
@@ -396,25 +418,15 @@ fn op(
         Op::Sqrt(a) => call("sqrt_of", &[a], true),
         Op::Pow(a, e) => call("pow", &[a, e], true),
         Op::Exp(a) => call("exp", &[a], true),
-        Op::SinCos { a, cos } => {
-            let (a, c) = (n(a), n(cos));
-            quote!(#ts::sin_cos(&*#a, &mut *#w, &mut *#c, #k, false);)
-        }
-        Op::SinhCosh { a, cosh } => {
-            let (a, c) = (n(a), n(cosh));
-            quote!(#ts::sin_cos(&*#a, &mut *#w, &mut *#c, #k, true);)
+        Op::SinCos { a, cos: c } | Op::SinhCosh { a, cosh: c } => {
+            let (a, c, hyperbolic) = (n(a), n(c), matches!(instr.op, Op::SinhCosh { .. }));
+            quote!(#ts::sin_cos(&*#a, &mut *#w, &mut *#c, #k, #hyperbolic);)
         }
         Op::Tan { a, v, f, .. } => {
             let (a, v, hyperbolic) = (n(a), n(v), f == Func::Tanh);
             quote!(#ts::tan(&*#a, &mut *#w, &mut *#v, #k, #hyperbolic);)
         }
-        Op::Quotient { a, d: den, sign, f } => {
-            let (a, den, sign) = (n(a), n(den), number(sign));
-            let at_zero = value(f, quote!(#a[0]), rt);
-            quote! {
-                #w[#k] = #ts::quotient(&*#a, &*#den, &*#w, #k, (#sign, if #k == 0 { #at_zero } else { 0.0 }));
-            }
-        }
+        Op::Quotient { a, d: den, sign, f } => quotient(&ts, (&w, n(a), n(den)), (sign, f), k, rt),
         Op::Atan2 { y, x, d: den } if den == usize::MAX => {
             let (y, x) = (n(y), n(x));
             quote!(#w[0] = #y[0].atan2(#x[0]);)
@@ -437,6 +449,35 @@ fn op(
             piece,
             ..
         } => table_op(d, (w, n(a), n(h)), (table, order), piece, names, k, rt),
+    }
+}
+
+/// A parameter's value at order 0 (`this.field`; NaN for a slot that names none).
+fn parameter(d: &Derivation, w: &TokenStream, index: usize) -> TokenStream {
+    let field = d
+        .parameters
+        .iter()
+        .find(|(_, s)| s.index() == index)
+        .map(|(name, _)| Ident::new(name, Span::call_site()));
+    match field {
+        Some(field) => quote!(#w[0] = this.#field;),
+        None => quote!(#w[0] = f64::NAN;),
+    }
+}
+
+/// w = f(a) by the quotient recurrence w′ den = sign·a′ (`Op::Quotient`: ln, asin, acos,
+/// atan), its value at order 0 f(a\[0\]).
+fn quotient(
+    ts: &TokenStream,
+    (w, a, den): (&TokenStream, TokenStream, TokenStream),
+    (sign, f): (f64, Func),
+    k: &TokenStream,
+    rt: &TokenStream,
+) -> TokenStream {
+    let sign = number(sign);
+    let at_zero = value(f, quote!(#a[0]), rt);
+    quote! {
+        #w[#k] = #ts::quotient(&*#a, &*#den, &*#w, #k, (#sign, if #k == 0 { #at_zero } else { 0.0 }));
     }
 }
 

@@ -11,7 +11,7 @@ use super::pool::ExprPool;
 use super::symbol::{Symbol, SymbolKind};
 use crate::parse::ast::{BinOp, Expr, ExprNode};
 use crate::parse::keywords::FUNCTIONS;
-use crate::parse::{Diagnostic, Span};
+use crate::parse::{Diagnostic, Span, Spanned};
 
 /// A name as written in the DSL: `x`, `x'` or `x''`, and where.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -163,62 +163,71 @@ fn lower_node(
                 BinOp::Pow => pool.pow(a, b),
             })
         }
-        Expr::Call { func, args } => {
-            if let Some(swapped) = swapped_argument(pool, resolver, &func.node, args) {
-                errors.push(swapped);
-                return None;
-            }
-            if let Some((law, parameters)) = input_law(pool, resolver, &func.node, args.len()) {
-                let law = substitute_arguments(&law, &parameters, args, func.span);
-                return lower_node(pool, &law, resolver, errors);
-            }
-            if let Some((input, held)) = held_input(pool, resolver, &func.node) {
-                return record(held_call(pool, (input, held), args, func.span), errors);
-            }
-            let lowered: Vec<Option<Id>> = args
-                .iter()
-                .map(|a| lower_node(pool, a, resolver, errors))
-                .collect();
-            // The name and arity from the one list; `sqrt` is no [`Func`] but the power ½.
-            let known = FUNCTIONS.iter().find(|(name, _)| *name == func.node);
-            let table = resolver.table(&func.node);
-            let input = resolver.input(&func.node);
-            let (expected, f) = if let Some(&(_, arity)) = known {
-                (arity, Func::from_name(&func.node))
-            } else if let Some(table) = table {
-                (1, Some(Func::Table { table, order: 0 }))
-            } else if let Some((input, arity)) = input {
-                (arity, Some(Func::Input { input, partial: 0 }))
-            } else {
-                errors.push(
-                    Diagnostic::new(func.span, format!("unknown function `{}`", func.node))
-                        .with_help(format!("known functions: {}", known_functions())),
-                );
-                return None;
-            };
-            if args.len() != expected {
-                errors.push(Diagnostic::new(
-                    func.span,
-                    format!(
-                        "`{}` takes {expected} argument{}, found {}",
-                        func.node,
-                        if expected == 1 { "" } else { "s" },
-                        args.len()
-                    ),
-                ));
-                return None;
-            }
-            let args: Vec<Id> = lowered.into_iter().collect::<Option<_>>()?;
-            match (f, args.as_slice()) {
-                (Some(Func::Table { table, order }), [u]) => {
-                    Some(pool.table_call(table, order, *u))
-                }
-                (Some(f), _) => Some(pool.call(f, &args)),
-                (None, [u]) if func.node == SQRT => Some(pool.sqrt(*u)),
-                // A name of FUNCTIONS without a `Func` (tested not to exist).
-                (None, _) => None,
-            }
-        }
+        Expr::Call { func, args } => lower_call(pool, func, args, resolver, errors),
+    }
+}
+
+/// A call `func(args…)`: an input with a law (its law, substituted), a held input, a
+/// function of the DSL, a table or an input; its arguments lowered first, so that their
+/// errors are found whatever the call's.
+fn lower_call(
+    pool: &mut ExprPool,
+    func: &Spanned<String>,
+    args: &[ExprNode],
+    resolver: &mut dyn Resolver,
+    errors: &mut Vec<Diagnostic>,
+) -> Option<Id> {
+    if let Some(swapped) = swapped_argument(pool, resolver, &func.node, args) {
+        errors.push(swapped);
+        return None;
+    }
+    if let Some((law, parameters)) = input_law(pool, resolver, &func.node, args.len()) {
+        let law = substitute_arguments(&law, &parameters, args, func.span);
+        return lower_node(pool, &law, resolver, errors);
+    }
+    if let Some((input, held)) = held_input(pool, resolver, &func.node) {
+        return record(held_call(pool, (input, held), args, func.span), errors);
+    }
+    let lowered: Vec<Option<Id>> = args
+        .iter()
+        .map(|a| lower_node(pool, a, resolver, errors))
+        .collect();
+    // The name and arity from the one list; `sqrt` is no [`Func`] but the power ½.
+    let known = FUNCTIONS.iter().find(|(name, _)| *name == func.node);
+    let table = resolver.table(&func.node);
+    let input = resolver.input(&func.node);
+    let (expected, f) = if let Some(&(_, arity)) = known {
+        (arity, Func::from_name(&func.node))
+    } else if let Some(table) = table {
+        (1, Some(Func::Table { table, order: 0 }))
+    } else if let Some((input, arity)) = input {
+        (arity, Some(Func::Input { input, partial: 0 }))
+    } else {
+        errors.push(
+            Diagnostic::new(func.span, format!("unknown function `{}`", func.node))
+                .with_help(format!("known functions: {}", known_functions())),
+        );
+        return None;
+    };
+    if args.len() != expected {
+        errors.push(Diagnostic::new(
+            func.span,
+            format!(
+                "`{}` takes {expected} argument{}, found {}",
+                func.node,
+                if expected == 1 { "" } else { "s" },
+                args.len()
+            ),
+        ));
+        return None;
+    }
+    let args: Vec<Id> = lowered.into_iter().collect::<Option<_>>()?;
+    match (f, args.as_slice()) {
+        (Some(Func::Table { table, order }), [u]) => Some(pool.table_call(table, order, *u)),
+        (Some(f), _) => Some(pool.call(f, &args)),
+        (None, [u]) if func.node == SQRT => Some(pool.sqrt(*u)),
+        // A name of FUNCTIONS without a `Func` (tested not to exist).
+        (None, _) => None,
     }
 }
 

@@ -13,8 +13,8 @@ use super::resolve::{is_reserved, lower_with, Binding, Context, Parameters};
 use super::switches::jump_in_law;
 use crate::expr::{ExprPool, Id, Symbol, SymbolKind};
 use crate::parse::ast::{
-    BodyDecl, ExprNode, FlowVelocity, LoadValue, MassDecl, MassLaw, StatementKind, SystemAst,
-    VectorNode,
+    BodyDecl, ExprNode, FlowVelocity, LoadValue, MassDecl, MassLaw, ParameterDecl, StatementKind,
+    SystemAst, VectorNode,
 };
 use crate::parse::{keywords, Diagnostic, Span, Spanned};
 
@@ -142,6 +142,11 @@ impl Builder {
                 }
                 StatementKind::Table(table) => self.declare_table(table),
                 StatementKind::Input(input) => self.declare_input(input),
+                StatementKind::Parameter(decl) => self.declare_default(decl),
+                StatementKind::Use(decl) => self.errors.push(
+                    Diagnostic::new(decl.file.span, "a `use` is not expanded")
+                        .with_help("expand the model's components first (`compose::compose`)"),
+                ),
                 _ => {}
             }
         }
@@ -296,6 +301,23 @@ impl Builder {
 
     pub(super) fn body_index(&self, name: &str) -> Option<usize> {
         self.model.bodies.iter().position(|b| b.name == name)
+    }
+
+    /// `parameter g = 9.81` (docs/components.md#defaults): with inferred parameters the name
+    /// is a parameter like any other (its value given by the caller, the default when it
+    /// gives none); with declared ones (the macro's fields) a name that is no field is a
+    /// definition of its default, everywhere in the model.
+    fn declare_default(&mut self, decl: &ParameterDecl) {
+        let name = &decl.name.node;
+        if matches!(self.model.parameter_mode, Parameters::Inferred)
+            || self.model.names.contains_key(name)
+            || !self.check_new_name(name, decl.name.span, "parameter")
+        {
+            return;
+        }
+        if let Some(value) = self.lower(&decl.default) {
+            self.model.names.insert(name.clone(), Binding::Let(value));
+        }
     }
 
     /// After a `body` or `rigid` statement: when it added no body `name`, it failed with

@@ -28,7 +28,7 @@ pub(crate) struct CheckScope {
 fn quantities(d: &Derivation) -> FxHashMap<String, Id> {
     let coordinates: Vec<&str> = d.coordinates.iter().map(|c| c.name.as_str()).collect();
     let masses: Vec<&str> = d.masses.iter().map(|m| m.name.as_str()).collect();
-    let values: Vec<Vec<Id>> = Quantity::ALL.iter().map(|q| q.read(d)).collect();
+    let values: Vec<Vec<Id>> = Quantity::ALL.iter().map(|q| d.quantity(*q)).collect();
     Quantity::names(&coordinates, &masses)
         .into_iter()
         .filter_map(|(name, q, i)| Some((name, *values[q.index()].get(i)?)))

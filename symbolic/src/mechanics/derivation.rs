@@ -23,6 +23,7 @@ use super::rigid_rates::body_frame_rates;
 use super::rigid_solve::rigid_velocities;
 use crate::expr::{ExprPool, Id, Symbol};
 use crate::parse::Diagnostic;
+use crate::quantity::Quantity;
 
 pub use super::equations::SYMBOLIC_INVERSE_MAX_DOF;
 
@@ -148,9 +149,39 @@ pub struct Derivation {
     pub tables: Vec<super::tables::ModelTable>,
     /// The model's inputs (functions the user writes in Rust).
     pub inputs: Vec<super::inputs::ModelInput>,
+    /// Each spatial rigid body's Euler middle angle (a function of q and t) and whether its
+    /// sequence is proper: where the attitude's distance from gimbal lock is read
+    /// (`singular_attitude_distance`, docs/mechanics.md#rigid-bodies).
+    pub euler_middles: Vec<(Id, bool)>,
 }
 
 impl Derivation {
+    /// The expressions of `quantity` in this derivation, in velocity form: the one place
+    /// that answers "give me quantity Q" (the registry, [`crate::quantity`], names them;
+    /// this says where each is held). Empty when the derivation does not hold it in closed
+    /// form (accelerations beyond [`SYMBOLIC_INVERSE_MAX_DOF`]).
+    pub fn quantity(&self, quantity: Quantity) -> Vec<Id> {
+        match quantity {
+            Quantity::MassRates => self.mass_rates.clone(),
+            Quantity::Momenta => self.momenta.clone(),
+            Quantity::MassMatrix => self.mass_matrix.iter().flatten().copied().collect(),
+            Quantity::Lagrangian => vec![self.lagrangian],
+            Quantity::Kinetic => vec![self.kinetic],
+            Quantity::Potential => vec![self.potential],
+            Quantity::LagrangianGradient => self.lagrangian_gradient.clone(),
+            Quantity::ActiveForce => self.active_force.clone(),
+            Quantity::ReactiveThrust => self.reactive_thrust.clone(),
+            Quantity::ImpactForce => self.impact_force.clone(),
+            Quantity::FrozenMomentumRate => self.frozen_momentum_rate.clone(),
+            Quantity::MassFluxForce => self.mass_flux_force.clone(),
+            Quantity::MomentumRate => self.momentum_rate.clone(),
+            Quantity::AccelerationRhs => self.acceleration_rhs.clone(),
+            Quantity::Accelerations => self.accelerations.clone().unwrap_or_default(),
+            Quantity::Power => vec![self.power],
+            Quantity::Energy => vec![self.energy],
+        }
+    }
+
     /// The names of the parameters the equations read (a declared field may go unused).
     pub fn used_parameters(&self) -> Vec<String> {
         let mut roots = vec![self.lagrangian, self.power];
@@ -362,6 +393,11 @@ fn assemble(model: Model, e: Equations) -> (Derivation, CheckScope) {
             format!("{kind} `{body}`")
         })
         .collect();
+    let euler_middles = model
+        .bodies
+        .iter()
+        .filter_map(|b| b.rigid.as_ref().and_then(|r| r.euler_middle))
+        .collect();
     let derivation = Derivation {
         pool: model.pool,
         time: model.time,
@@ -397,6 +433,7 @@ fn assemble(model: Model, e: Equations) -> (Derivation, CheckScope) {
         units: None,
         tables: model.tables,
         inputs: model.inputs,
+        euler_middles,
     };
     (derivation, scope)
 }

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use super::model::{FlowVelocityValue, MassKind, Model};
 use crate::expr::{ExprPool, Id, Symbol};
-use crate::parse::Diagnostic;
+use crate::parse::{Diagnostic, Span};
 
 /// The laws with every other law-mass substituted, so that each depends only on q, t,
 /// parameters and state masses. `None` for state masses.
@@ -132,38 +132,9 @@ pub(crate) fn flow_rates(model: &mut Model, mass_rates: &[Id]) -> Result<Vec<Id>
         let given_net = pool.add(&net_terms);
         match missing.as_slice() {
             [] => {
-                let verdict = pool.identical(mass_rates[mass_index], given_net);
                 let span = model.flows[flows[0]].span;
-                if verdict == crate::expr::Identity::Undecided {
-                    // Neither proven nor seen to hold: the balance is not known to hold,
-                    // and the forces built on these rates would not be trusted either.
-                    errors.push(
-                        Diagnostic::new(
-                            span,
-                            format!(
-                                "the flow rates of `{}` cannot be checked against its mass law: ṁ = {} and inflow − outflow = {} are not both defined at any sample point",
-                                mass.name,
-                                pool.display(mass_rates[mass_index]),
-                                pool.display(given_net)
-                            ),
-                        )
-                        .with_help("write the rates so that they are defined for the states the system reaches, or leave one flow's `rate` out to have it derived from ṁ"),
-                    );
-                }
-                if matches!(verdict, crate::expr::Identity::Refuted { .. }) {
-                    errors.push(
-                        Diagnostic::new(
-                            span,
-                            format!(
-                                "the flow rates contradict the mass law of `{}`: ṁ = {}, but inflow − outflow = {}",
-                                mass.name,
-                                pool.display(mass_rates[mass_index]),
-                                pool.display(given_net)
-                            ),
-                        )
-                        .with_help("mass is conserved: the rates of all inflows minus all outflows of a body must equal its ṁ"),
-                    );
-                }
+                let law = (mass.name.as_str(), mass_rates[mass_index]);
+                errors.extend(unbalanced(pool, law, given_net, span));
             }
             [only] => {
                 // The one flow without a rate carries what the mass law leaves over.
@@ -190,6 +161,42 @@ pub(crate) fn flow_rates(model: &mut Model, mass_rates: &[Id]) -> Result<Vec<Id>
         .into_iter()
         .map(|r| r.unwrap_or_else(|| model.pool.int(0)))
         .collect())
+}
+
+/// Why the given rates of a mass's flows, inflow − outflow = `given_net`, break its mass
+/// law (`name`, ṁ): they contradict it, or the two cannot be compared; `None` when they
+/// agree.
+fn unbalanced(
+    pool: &mut ExprPool,
+    (name, mass_rate): (&str, Id),
+    given_net: Id,
+    span: Span,
+) -> Option<Diagnostic> {
+    let verdict = pool.identical(mass_rate, given_net);
+    let (law, given) = (pool.display(mass_rate), pool.display(given_net));
+    match verdict {
+        // Neither proven nor seen to hold: the balance is not known to hold, and the forces
+        // built on these rates would not be trusted either.
+        crate::expr::Identity::Undecided => Some(
+            Diagnostic::new(
+                span,
+                format!(
+                    "the flow rates of `{name}` cannot be checked against its mass law: ṁ = {law} and inflow − outflow = {given} are not both defined at any sample point"
+                ),
+            )
+            .with_help("write the rates so that they are defined for the states the system reaches, or leave one flow's `rate` out to have it derived from ṁ"),
+        ),
+        crate::expr::Identity::Refuted { .. } => Some(
+            Diagnostic::new(
+                span,
+                format!(
+                    "the flow rates contradict the mass law of `{name}`: ṁ = {law}, but inflow − outflow = {given}"
+                ),
+            )
+            .with_help("mass is conserved: the rates of all inflows minus all outflows of a body must equal its ṁ"),
+        ),
+        crate::expr::Identity::Proven | crate::expr::Identity::Numerical { .. } => None,
+    }
 }
 
 /// The relative velocity v_r = u − ṙ of a flow's mass, or `None` when it moves with the body.

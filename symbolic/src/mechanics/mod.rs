@@ -1,13 +1,13 @@
 //! Stage 3: from a parsed system to its derivation (docs/mechanics.md; ARCHITECTURE.md#stage-3-mechanics).
 //!
-//! [`derive()`](fn@derive) (the driver, `crate::pipeline`) runs the whole stage: it resolves
-//! names and lowers every expression into a checked [`Model`], has the units check read that
-//! model, derives every quantity into a [`Derivation`], then verifies the system's `check`s
-//! against it. Every problem is a [`Diagnostic`] with the position of the
-//! statement it is about.
+//! `derive` (the driver, `crate::pipeline`, which stands above this stage and the units
+//! check and is named at the crate root) runs the whole stage: it resolves names and lowers
+//! every expression into a checked [`Model`], has the units check read that model, derives
+//! every quantity into a [`Derivation`], then verifies the system's `check`s against it.
+//! Every problem is a [`Diagnostic`] with the position of the statement it is about.
 //!
 //! ```
-//! use varmass_symbolic::mechanics::{derive_source, Parameters};
+//! use varmass_symbolic::{derive_source, mechanics::Parameters};
 //!
 //! let sled = "coordinates x
 //!             mass m = m0 + c*x
@@ -60,17 +60,13 @@ pub use outputs::{Outputs, UnknownOutput};
 pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
 pub use rigid_solve::RigidVelocities;
-pub use stages::{RateStages, TaylorStages};
+pub use stages::{RateStages, TaylorLayout, TaylorStages};
 pub use stops::{time_tables, TimeTable};
 pub use switches::{switching_functions, table_switches, TableSwitch};
 pub(crate) use tables::check_smooth_enough;
 pub use tables::{read_points, runtime_placeholder, ModelTable};
 pub use unit_table::UnitTable;
 
-// The driver that runs resolution, the units check and the derivation in turn lives above
-// both stages (`crate::pipeline`): this module never calls the units check. Its functions
-// are named here too, where every caller has always found them.
-pub use crate::pipeline::{derive, derive_for, derive_in, derive_source, derive_with_laws};
 pub(crate) use build::build_model as build_model_in;
 pub(crate) use derivation::derive_model;
 pub(crate) use resolve::Binding;

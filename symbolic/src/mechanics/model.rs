@@ -79,6 +79,10 @@ pub struct Rigid {
     pub rotation: Matrix,
     /// ω in body components as a function of q, q̇ (one component in the plane).
     pub angular_velocity: Vec<Id>,
+    /// In space, the middle angle of the Euler sequence and whether the sequence is proper
+    /// (its first axis is its last, `zxz`): the attitude is singular (gimbal lock) where
+    /// that angle's cosine (Tait–Bryan, `zyx`) or sine (proper) vanishes.
+    pub euler_middle: Option<(Id, bool)>,
     /// The inertia about the centre of mass in body components (1×1 in the plane), frozen.
     pub inertia: Matrix,
     /// c: the centre of mass from the reference point, body components, frozen.

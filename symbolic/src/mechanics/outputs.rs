@@ -7,7 +7,8 @@
 //! power by central differences of H; the Jacobian by central differences of the state
 //! rate; no `DERIVATION` text).
 
-/// The optional outputs of a system. [`Outputs::FULL`] (the default) has all of them.
+/// The optional outputs of a system. [`Outputs::FULL`] (the default) has all of them but the
+/// opt-in `taylor`, `head` and `lanes`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Outputs {
     /// The closed-form `hamiltonian` method.

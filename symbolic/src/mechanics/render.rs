@@ -113,7 +113,7 @@ impl Derivation {
     /// One line per value of `quantity` (one per coordinate, or one for a scalar), its
     /// registry label put in place of `{}` in `text` and `latex`.
     fn per_coordinate(&self, quantity: Quantity, text: &str, latex: &str) -> Vec<Line> {
-        let values = quantity.read(self);
+        let values = self.quantity(quantity);
         self.lines_of(quantity, &values, text, latex)
     }
 

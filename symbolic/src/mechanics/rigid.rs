@@ -15,6 +15,7 @@ use crate::parse::{keywords, Diagnostic, Span};
 struct Turned {
     rotation: Matrix,
     angular_velocity: Vec<Id>,
+    euler_middle: Option<(Id, bool)>,
 }
 
 impl Builder {
@@ -56,6 +57,7 @@ impl Builder {
                 origin,
                 rotation: turned.rotation,
                 angular_velocity: turned.angular_velocity,
+                euler_middle: turned.euler_middle,
                 inertia,
                 centre,
             }),
@@ -127,12 +129,14 @@ impl Builder {
             (None, [angle], [rate]) => Some(Turned {
                 rotation: rotation::planar(pool, *angle),
                 angular_velocity: vec![*rate],
+                euler_middle: None,
             }),
             (Some(axes), [a, b, c], [da, db, dc]) => {
                 let angles = [*a, *b, *c];
                 Some(Turned {
                     rotation: rotation::spatial(pool, axes, &angles),
                     angular_velocity: rotation::body_rates(pool, axes, &angles, &[*da, *db, *dc]),
+                    euler_middle: Some((*b, axes[0] == axes[2])),
                 })
             }
             _ => None,

@@ -6,11 +6,16 @@
 use super::Derivation;
 use crate::expr::{Func, Id, Node, SymbolKind};
 
-/// A table of t: the table and the slope a and offset b of its argument a·t + b.
+/// A table of t: the table, the highest derivative order the code reads of it at this
+/// argument, and the slope a and offset b of its argument a·t + b.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TimeTable {
     /// The table's index in the pool.
     pub table: u16,
+    /// The highest derivative order read (0: the table itself; 1 in a mass law's rate):
+    /// orders 0 to this one are where a knot may make the equations jump
+    /// (docs/tables.md#knots-are-switches).
+    pub order: u8,
     /// a, made of parameters.
     pub slope: Id,
     /// b, made of parameters.
@@ -21,10 +26,11 @@ pub struct TimeTable {
 pub fn time_tables(d: &mut Derivation, roots: &[Id]) -> Vec<TimeTable> {
     table_calls(d, roots)
         .into_iter()
-        .filter_map(|(table, argument)| {
+        .filter_map(|(table, argument, order)| {
             let (slope, offset) = affine_in_time(d, argument)?;
             Some(TimeTable {
                 table,
+                order,
                 slope,
                 offset,
             })
@@ -33,14 +39,15 @@ pub fn time_tables(d: &mut Derivation, roots: &[Id]) -> Vec<TimeTable> {
 }
 
 /// The table calls reachable from `roots`, each (table, argument) once whatever the
-/// derivative order (the derivatives have the table's knots).
-pub(crate) fn table_calls(d: &Derivation, roots: &[Id]) -> Vec<(u16, Id)> {
-    let mut calls: Vec<(u16, Id)> = Vec::new();
+/// derivative order (the derivatives have the table's knots), with the highest order read.
+pub(crate) fn table_calls(d: &Derivation, roots: &[Id]) -> Vec<(u16, Id, u8)> {
+    let mut calls: Vec<(u16, Id, u8)> = Vec::new();
     for id in d.pool.reachable(roots, true) {
-        if let Node::Call(Func::Table { table, .. }, args) = d.pool.node(id) {
+        if let Node::Call(Func::Table { table, order }, args) = d.pool.node(id) {
             if let [argument] = args.as_ref() {
-                if !calls.contains(&(*table, *argument)) {
-                    calls.push((*table, *argument));
+                match calls.iter_mut().find(|c| (c.0, c.1) == (*table, *argument)) {
+                    Some(call) => call.2 = call.2.max(*order),
+                    None => calls.push((*table, *argument, *order)),
                 }
             }
         }

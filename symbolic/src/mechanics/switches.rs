@@ -115,11 +115,14 @@ fn state_rate_roots(d: &Derivation) -> Vec<Id> {
 
 /// A switch at the knots of a table of the state (docs/tables.md#knots-are-switches):
 /// g = the distance from `argument` to the nearer end of the knot bracket the run was
-/// anchored in (`varmass_core::table::knot_gap`), one switch per call however many knots.
+/// anchored in (`varmass_core::table::knot_gap_read`), one switch per call however many knots.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TableSwitch {
     /// The table's index in the pool.
     pub table: u16,
+    /// The highest derivative order the equations read of it at this argument: the edges
+    /// at its ends are those of the first order read that jumps there.
+    pub order: u8,
     /// The call's argument, in velocity form.
     pub argument: Id,
 }
@@ -130,14 +133,18 @@ pub struct TableSwitch {
 pub fn table_switches(d: &mut Derivation) -> Vec<TableSwitch> {
     let roots = state_rate_roots(d);
     let mut found = Vec::new();
-    for (table, argument) in table_calls(d, &roots) {
+    for (table, argument, order) in table_calls(d, &roots) {
         let moves = d
             .pool
             .free_symbols(argument)
             .into_iter()
             .any(|s| d.pool.symbols().kind(s) != SymbolKind::Parameter);
         if moves && affine_in_time(d, argument).is_none() {
-            found.push(TableSwitch { table, argument });
+            found.push(TableSwitch {
+                table,
+                order,
+                argument,
+            });
         }
     }
     found

@@ -39,7 +39,7 @@ impl UnitTable {
     /// force on a dimensionless coordinate is in N·m.
     ///
     /// ```
-    /// use varmass_symbolic::mechanics::{derive_source, Parameters};
+    /// use varmass_symbolic::{derive_source, mechanics::Parameters};
     /// use varmass_symbolic::quantity::Quantity;
     /// let source = "coordinates th; units th: rad, k: J, J0: kg*m^2; kinetic J0*th'^2/2; potential k*th^2";
     /// let table = derive_source(source, Parameters::Inferred).unwrap().units.unwrap();
@@ -60,7 +60,7 @@ impl UnitTable {
     /// `pdot_q` are energy / dim(q) and `q''` is dim(q)/s²; `mdot_m` is dim(m)/s.
     ///
     /// ```
-    /// use varmass_symbolic::mechanics::{derive_source, Parameters};
+    /// use varmass_symbolic::{derive_source, mechanics::Parameters};
     /// use varmass_symbolic::units::Dimension;
     /// let source = "coordinates th; units th: rad, k: N*m, J0: kg*m^2; kinetic J0*th'^2/2; potential k*th^2";
     /// let table = derive_source(source, Parameters::Inferred).unwrap().units.unwrap();

@@ -150,6 +150,45 @@ pub enum StatementKind {
     /// `input u(t, y, y') [every 0.01]`: a function the user writes in Rust
     /// (docs/inputs.md).
     Input(InputDecl),
+    /// `use "lib/thruster.vms" as left: F = 2*F0, on = rocket`: another model file as a
+    /// named component (docs/components.md), expanded by [`crate::compose`] before the
+    /// derivation.
+    Use(UseDecl),
+    /// `parameter g0 = 9.80665`: a parameter with its default value (docs/components.md),
+    /// replaced by a binding at a use site or by `--set`.
+    Parameter(ParameterDecl),
+}
+
+/// A `use` statement: `use "FILE" as NAME [: BINDING {, BINDING}]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UseDecl {
+    /// The component's file as written (without the quotes), relative to the using file;
+    /// the span covers the quotes.
+    pub file: Spanned<String>,
+    /// The instance's name: the prefix of every name the component declares.
+    pub instance: Spanned<String>,
+    /// `name = expr`: a name the component reads, bound to an expression of the user's.
+    pub bindings: Vec<UseBinding>,
+}
+
+/// One `name = expr` of a `use` statement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UseBinding {
+    /// The component's name being bound.
+    pub name: Spanned<String>,
+    /// The value, in the using model's names.
+    pub value: ExprNode,
+}
+
+/// A `parameter` statement: `parameter NAME = NUMBER`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParameterDecl {
+    /// The parameter's name.
+    pub name: Spanned<String>,
+    /// Its default value as written: a number, with an optional sign, in SI units.
+    pub default: ExprNode,
+    /// The default's value.
+    pub value: f64,
 }
 
 /// An `input` statement: `input NAME(ARG, …) [every PERIOD]`.

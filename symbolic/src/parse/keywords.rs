@@ -66,6 +66,13 @@ pub const OUTSIDE: &str = "outside";
 /// `table F(t) = runtime`: the table's data are given at run time (docs/tables.md).
 pub const RUNTIME: &str = "runtime";
 
+/// `use "file.vms" as name: a = …` (docs/components.md)
+pub const USE: &str = "use";
+/// `as name` in a `use` statement.
+pub const AS: &str = "as";
+/// `parameter g0 = 9.80665`: a parameter with a default value (docs/components.md)
+pub const PARAMETER: &str = "parameter";
+
 /// Every statement keyword, for "expected one of" messages.
 pub const STATEMENTS: &[&str] = &[
     COORDINATES,
@@ -87,6 +94,8 @@ pub const STATEMENTS: &[&str] = &[
     TORQUE,
     TABLE,
     INPUT,
+    USE,
+    PARAMETER,
 ];
 
 /// The options of a `table` statement: an interpolation, or `outside` and a rule.

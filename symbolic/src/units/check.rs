@@ -245,7 +245,9 @@ impl<'m> Checker<'m> {
             StatementKind::Coordinates(_)
             | StatementKind::Units(_)
             | StatementKind::Table(_)
-            | StatementKind::Input(_) => {}
+            | StatementKind::Input(_)
+            | StatementKind::Use(_)
+            | StatementKind::Parameter(_) => {}
         }
     }
 

@@ -4,7 +4,10 @@
 pub mod systems;
 
 use varmass_symbolic::expr::{Id, SymbolKind};
-use varmass_symbolic::mechanics::{derive_source, Derivation, MassKind, Parameters, VelocitySolve};
+use varmass_symbolic::{
+    derive_source,
+    mechanics::{Derivation, MassKind, Parameters, VelocitySolve},
+};
 
 /// Derives `source`, panicking with the rendered diagnostics if it fails.
 pub fn derive_ok(source: &str) -> Derivation {

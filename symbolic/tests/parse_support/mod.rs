@@ -97,7 +97,10 @@ pub fn statement_expressions(statement: &Statement) -> Vec<&ExprNode> {
         }
         StatementKind::Check { lhs, rhs, .. } => vec![lhs, rhs],
         StatementKind::Units(entries) => entries.iter().map(|e| &e.unit).collect(),
-        StatementKind::Table(_) | StatementKind::Input(_) => vec![],
+        StatementKind::Use(decl) => decl.bindings.iter().map(|b| &b.value).collect(),
+        StatementKind::Table(_) | StatementKind::Input(_) | StatementKind::Parameter(_) => {
+            vec![]
+        }
     }
 }
 

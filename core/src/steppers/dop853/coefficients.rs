@@ -11,7 +11,10 @@
 //! Stage 13 is the FSAL rate f(t₀ + h, y₁); stages 14–16 are evaluated only for the dense
 //! output. The literals carry the source's 30 digits (more than an f64 holds) so that they
 //! can be compared with it by eye.
+
 #![allow(clippy::excessive_precision)]
+
+use crate::steppers::explicit::Row;
 
 pub(crate) const C2: f64 = 0.526001519587677318785587544488e-01;
 pub(crate) const C3: f64 = 0.789002279381515978178381316732e-01;
@@ -240,6 +243,30 @@ pub(crate) const STAGE_ROWS: [(f64, &[(usize, f64)]); 11] = [
     ),
 ];
 
+/// b, the eighth-order weights, as the explicit core takes them (stages 2–5 weigh 0).
+pub(crate) const WEIGHTS: Row = &[
+    (1, B1),
+    (6, B6),
+    (7, B7),
+    (8, B8),
+    (9, B9),
+    (10, B10),
+    (11, B11),
+    (12, B12),
+];
+
+/// The fifth-order error estimate's weights, `er` of `dop853.f` (b − er has order 5).
+pub(crate) const ERROR_WEIGHTS: Row = &[
+    (1, ER1),
+    (6, ER6),
+    (7, ER7),
+    (8, ER8),
+    (9, ER9),
+    (10, ER10),
+    (11, ER11),
+    (12, ER12),
+];
+
 #[cfg(test)]
 mod tests {
     //! The table against the order conditions it claims, in f64 (the decimals are not
@@ -325,16 +352,7 @@ mod tests {
 
     /// The eighth-order weights b.
     fn weights() -> Vec<f64> {
-        on_stages(&[
-            (1, B1),
-            (6, B6),
-            (7, B7),
-            (8, B8),
-            (9, B9),
-            (10, B10),
-            (11, B11),
-            (12, B12),
-        ])
+        on_stages(WEIGHTS)
     }
 
     /// The largest |defect| over the trees of each order 1..=max.
@@ -383,16 +401,7 @@ mod tests {
     #[test]
     fn the_embedded_estimates_have_orders_five_and_three() {
         let a = tableau();
-        let er = on_stages(&[
-            (1, ER1),
-            (6, ER6),
-            (7, ER7),
-            (8, ER8),
-            (9, ER9),
-            (10, ER10),
-            (11, ER11),
-            (12, ER12),
-        ]);
+        let er = on_stages(ERROR_WEIGHTS);
         let fifth: Vec<f64> = weights().iter().zip(&er).map(|(b, e)| b - e).collect();
         let worst = worst_by_order(&fifth, &a, 6, 1.0);
         eprintln!("b − er: worst defect by order {worst:?}");

@@ -1,121 +1,67 @@
 //! The Taylor recurrences generated code calls (`emit = [..., "taylor"]`): coefficient `k`
 //! of one operation from the coefficients 0..=k of its operands and 0..k of its result,
 //! each array holding the normalized coefficients u\[j\] = u⁽ʲ⁾/j!. At k = 0 each returns the
-//! function's value. The formulas are those of the run-time tapes
-//! (`varmass_symbolic::expr::TaylorTape`, Jorba & Zou 2005 §2, Biscani & Izzo 2021
-//! appendix A), each named beside the identity it comes from; `tests/taylor_emitted.rs`
-//! holds the two to the same coefficients.
-
-use core::any::TypeId;
+//! function's value (the value tape's semantics); for k ≥ 1 each calls the rule of
+//! `varmass_table::recurrence`, the one the run-time tapes (`varmass_symbolic::expr::TaylorTape`)
+//! call too, so the two cannot differ (`tests/taylor_emitted.rs` checks the values at order
+//! 0 and the whole series).
 
 use nalgebra::{ComplexField, RealField};
 
 use crate::cholesky::{factor as cholesky, substitute};
 use crate::math::{powf, sqrt};
+use varmass_table::recurrence as rule;
 
 /// The recurrences' sums, in four chains: one function for generated code and the tapes
 /// (`varmass-table` is the crate both depend on).
 pub use varmass_table::sum;
 
-/// The length of every coefficient array of generated code: orders 0 … [`super::MAX_ORDER`].
-pub const LEN: usize = super::MAX_ORDER + 1;
+/// The scratch and the arrays' length, where generated code has always named them (they
+/// live below the trait, which names the scratch, in `crate::scratch`).
+pub use crate::scratch::{Scratch, LEN};
 
 /// Coefficient arrays of several subexpressions (rows of M, offsets, momenta).
 pub type Arrays<'a> = &'a [&'a [f64; LEN]];
 
-/// The working memory of generated `taylor_coefficients`: one coefficient array (a row) per
-/// subexpression, and M\[0\]'s factor when q̇ is solved order by order. The caller keeps it
-/// between expansions (the [`Taylor`](super::Taylor) stepper owns one), so that an
-/// expansion neither allocates nor clears its rows: zeroing every row of a stack buffer of
-/// `LEN`-long arrays at each expansion was two thirds of the instructions of the 3-link
-/// pendulum's step.
-///
-/// Why no row needs clearing: generated code writes every row it reads at orders
-/// 0 ..= k before reading it at order k, except the rows set at order 0 alone (time, held
-/// inputs, constants), whose higher coefficients must read 0. Those it zeroes when the
-/// scratch is new to it ([`Scratch::parts`] says so: the scratch remembers which
-/// generated code used it last), and nothing writes their higher coefficients afterwards.
-/// So what a scratch held before, another system's rows included, never reaches a result
-/// (`tests/taylor_emitted.rs` and `tests/taylor_tables.rs` run on scratches filled with
-/// NaN, reused).
-#[derive(Clone, Debug, Default)]
-pub struct Scratch {
-    rows: Vec<[f64; LEN]>,
-    factor: Vec<f64>,
-    /// The generated code that used the rows last (a type of its own, local to it).
-    owner: Option<TypeId>,
+/// w = Σ terms (coefficient k of each, left to right).
+pub use varmass_table::recurrence::add;
+
+/// w = c a for a constant c.
+#[inline(always)]
+pub fn scale(c: &[f64; LEN], a: &[f64; LEN], k: usize) -> f64 {
+    let k = k.min(LEN - 1);
+    rule::scale(|j| c[j], |j| a[j], k)
 }
 
-impl Scratch {
-    /// An empty scratch; the first expansion sizes it (the only allocation).
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// A scratch of `rows` rows and a factor of `factor` entries, every entry `value`: for
-    /// tests that what a scratch held never reaches a result.
-    #[doc(hidden)]
-    pub fn filled(rows: usize, factor: usize, value: f64) -> Self {
-        Self {
-            rows: vec![[value; LEN]; rows],
-            factor: vec![value; factor],
-            owner: None,
-        }
-    }
-
-    /// The first `F` rows and `factor` entries of the factor, grown if shorter, for the
-    /// generated code `owner`; `true` when that code did not use them last (its rows set
-    /// at order 0 alone must then be zeroed).
-    pub fn parts<const F: usize>(
-        &mut self,
-        factor: usize,
-        owner: TypeId,
-    ) -> (&mut [[f64; LEN]; F], &mut [f64], bool) {
-        let fresh = self.owner != Some(owner) || self.rows.len() < F;
-        if self.rows.len() < F {
-            self.rows.resize(F, [0.0; LEN]);
-        }
-        if self.factor.len() < factor {
-            self.factor.resize(factor, 0.0);
-        }
-        self.owner = Some(owner);
-        let rows = self.rows.first_chunk_mut::<F>();
-        // `rows` holds at least F rows now.
-        let rows = rows.unwrap_or_else(|| unreachable!("the rows were grown to {F}"));
-        (rows, &mut self.factor[..factor], fresh)
-    }
+/// w = offset + scale·a.
+#[inline(always)]
+pub fn affine(a: &[f64; LEN], k: usize, (scale, offset): (f64, f64)) -> f64 {
+    let k = k.min(LEN - 1);
+    rule::affine(|j| a[j], k, (scale, offset))
 }
 
 /// w = a b.
 #[inline(always)]
 pub fn mul(a: &[f64; LEN], b: &[f64; LEN], k: usize) -> f64 {
     let k = k.min(LEN - 1);
-    sum(0, k + 1, |j| a[j] * b[k - j])
+    rule::mul(|j| a[j], |j| b[j], k)
 }
 
 /// w = a².
 #[inline(always)]
 pub fn square(a: &[f64; LEN], k: usize) -> f64 {
     let k = k.min(LEN - 1);
-    let cross = sum(0, k.div_ceil(2), |j| a[j] * a[k - j]);
-    let middle = if k.is_multiple_of(2) {
-        a[k / 2] * a[k / 2]
-    } else {
-        -0.0
-    };
-    2.0 * cross + middle
+    rule::square(|j| a[j], k)
 }
 
-/// w a = 1. Times w\[0\] = 1/a\[0\] rather than over a\[0\]: each order's coefficient
-/// depends on the last, so the expansion is one long chain of dependent operations, and a
-/// division on it costs three to five times a product's latency at every order.
+/// w a = 1 (times w\[0\] = 1/a\[0\], [`rule::recip`] says why).
 #[inline(always)]
 pub fn recip(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return 1.0 / a[0];
     }
     let k = k.min(LEN - 1);
-    -sum(1, k + 1, |j| a[j] * w[k - j]) * w[0]
+    rule::recip(|j| a[j], |j| w[j], k)
 }
 
 /// w d = a, times 1/d\[0\] as `recip` multiplies: one sum where 1/d and a product took two.
@@ -126,7 +72,7 @@ pub fn div(a: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
         return a[0] * inverse;
     }
     let k = k.min(LEN - 1);
-    (a[k] - sum(1, k + 1, |j| d[j] * w[k - j])) * inverse
+    rule::div(|j| a[j], |j| d[j], |j| w[j], k, inverse)
 }
 
 /// w² = a.
@@ -136,11 +82,10 @@ pub fn sqrt_of(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
         return sqrt(a[0]);
     }
     let k = k.min(LEN - 1);
-    let cross = sum(1, k, |j| w[j] * w[k - j]);
-    (a[k] - cross) / (2.0 * w[0])
+    rule::sqrt(|j| a[j], |j| w[j], k)
 }
 
-/// a w′ = α a′ w, w = a^α for the constant α = e\[0\].
+/// w = a^α for the constant α = e\[0\].
 #[inline(always)]
 pub fn pow(a: &[f64; LEN], e: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     let alpha = e[0];
@@ -148,10 +93,7 @@ pub fn pow(a: &[f64; LEN], e: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
         return power(a[0], alpha);
     }
     let k = k.min(LEN - 1);
-    let total = sum(0, k, |j| {
-        (alpha * (k - j) as f64 - j as f64) * a[k - j] * w[j]
-    });
-    total / (k as f64 * a[0])
+    rule::pow(|j| a[j], alpha, |j| w[j], k)
 }
 
 /// bᵉ as the value tape computes it: `powi` for integer exponents, √ for ½.
@@ -165,18 +107,17 @@ fn power(b: f64, e: f64) -> f64 {
     }
 }
 
-/// w′ = a′ w.
+/// w = eᵃ.
 #[inline(always)]
 pub fn exp(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return crate::math::exp(a[0]);
     }
     let k = k.min(LEN - 1);
-    // Times 1/k, which depends on no data, so it is computed off the chain (see `recip`).
-    sum(1, k + 1, |j| j as f64 * a[j] * w[k - j]) * (1.0 / k as f64)
+    rule::exp(|j| a[j], |j| w[j], k)
 }
 
-/// (sin a, cos a): s′ = a′ c, c′ = −a′ s; for `hyperbolic`, (sinh, cosh) with both +.
+/// (sin a, cos a), or (sinh a, cosh a) for `hyperbolic`.
 #[inline(always)]
 pub fn sin_cos(a: &[f64; LEN], s: &mut [f64; LEN], c: &mut [f64; LEN], k: usize, hyperbolic: bool) {
     if k == 0 {
@@ -188,15 +129,11 @@ pub fn sin_cos(a: &[f64; LEN], s: &mut [f64; LEN], c: &mut [f64; LEN], k: usize,
         return;
     }
     let k = k.min(LEN - 1);
-    let first = sum(1, k + 1, |j| j as f64 * a[j] * c[k - j]);
-    let second = sum(1, k + 1, |j| j as f64 * a[j] * s[k - j]);
     let sign = if hyperbolic { 1.0 } else { -1.0 };
-    let inverse = 1.0 / k as f64;
-    s[k] = first * inverse;
-    c[k] = sign * second * inverse;
+    (s[k], c[k]) = rule::sin_cos(|j| a[j], (|j| s[j], |j| c[j]), k, sign);
 }
 
-/// tan (or tanh for `hyperbolic`): w′ = v a′ with v = 1 ± w².
+/// tan (or tanh for `hyperbolic`) into w, and v = 1 ± w² beside it.
 #[inline(always)]
 pub fn tan(a: &[f64; LEN], w: &mut [f64; LEN], v: &mut [f64; LEN], k: usize, hyperbolic: bool) {
     w[k] = if k == 0 {
@@ -207,11 +144,11 @@ pub fn tan(a: &[f64; LEN], w: &mut [f64; LEN], v: &mut [f64; LEN], k: usize, hyp
         }
     } else {
         let k = k.min(LEN - 1);
-        sum(1, k + 1, |j| j as f64 * a[j] * v[k - j]) * (1.0 / k as f64)
+        rule::tan(|j| a[j], |j| v[j], k)
     };
     let sign = if hyperbolic { -1.0 } else { 1.0 };
-    let one = if k == 0 { 1.0 } else { 0.0 };
-    v[k] = one + sign * mul(w, w, k);
+    let k = k.min(LEN - 1);
+    v[k] = rule::tan_companion(|j| w[j], k, sign);
 }
 
 /// w′ d = sign·a′ for k ≥ 1 (ln: d = a; asin, acos: d = √(1 − a²); atan: d = 1 + a²);
@@ -228,34 +165,27 @@ pub fn quotient(
         return value;
     }
     let k = k.min(LEN - 1);
-    let total = sum(1, k, |j| j as f64 * w[j] * d[k - j]);
-    (sign * a[k] - total / k as f64) / d[0]
+    rule::quotient(|j| a[j], |j| d[j], |j| w[j], k, sign)
 }
 
-/// w′ d = x y′ − y x′ with d = x² + y², w = atan2(y, x).
+/// w = atan2(y, x), with d = x² + y².
 #[inline(always)]
 pub fn atan2(y: &[f64; LEN], x: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
         return RealField::atan2(y[0], x[0]);
     }
     let k = k.min(LEN - 1);
-    let cross = sum(0, k, |j| {
-        (k - j) as f64 * (x[j] * y[k - j] - y[j] * x[k - j])
-    });
-    let total = sum(1, k, |j| j as f64 * w[j] * d[k - j]);
-    (cross - total) / (k as f64 * d[0])
+    rule::atan2((|j| y[j], |j| x[j]), |j| d[j], |j| w[j], k)
 }
 
 /// |a| on the branch of a\[0\]'s sign.
 #[inline(always)]
 pub fn abs(a: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
-        ComplexField::abs(a[0])
-    } else if a[0] < 0.0 {
-        -a[k]
-    } else {
-        a[k]
+        return ComplexField::abs(a[0]);
     }
+    let k = k.min(LEN - 1);
+    rule::abs(|j| a[j], k)
 }
 
 /// sign a\[0\], constant over the step.
@@ -271,15 +201,8 @@ pub fn sign(a: &[f64; LEN], k: usize) -> f64 {
 /// The smaller (`larger` false) or larger argument at order 0, NaN-propagating there.
 #[inline(always)]
 pub fn min_max(a: &[f64; LEN], b: &[f64; LEN], k: usize, larger: bool) -> f64 {
-    if a[0].is_nan() || b[0].is_nan() {
-        return f64::NAN;
-    }
-    let first = if larger { a[0] >= b[0] } else { a[0] <= b[0] };
-    if first {
-        a[k]
-    } else {
-        b[k]
-    }
+    let k = k.min(LEN - 1);
+    rule::min_max(|j| a[j], |j| b[j], k, larger)
 }
 
 /// Coefficient k of q̇ from M q̇ = p − b, n coordinates: M\[0\] q̇\[k\] = p\[k\] − b\[k\] −
@@ -304,13 +227,12 @@ pub fn solve_velocities(
     let k = k.min(LEN - 1);
     let mut rhs = [0.0; 16];
     for a in 0..n.min(16) {
-        // Σⱼ₌₁ᵏ (Σ_b M[j]_ab q̇_b[k−j]): the sum over j in four chains, as the tapes add it.
-        let coupling = sum(1, k + 1, |j| {
-            (0..n).fold(-0.0, |total, b| {
-                total + matrix[a * n + b][j] * velocities[b][k - j]
-            })
-        });
-        rhs[a] = (momenta[a][k] - offset[a][k]) - coupling;
+        rhs[a] = rule::velocity_right_side(
+            (n, a, k),
+            |a, b, j| matrix[a * n + b][j],
+            |b, j| velocities[b][j],
+            (momenta[a][k], offset[a][k]),
+        );
     }
     substitute(factor, &mut rhs, n);
     for (a, v) in velocities.iter_mut().enumerate().take(n) {

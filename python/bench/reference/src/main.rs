@@ -28,8 +28,8 @@ use varmass::core::ensemble::rand::distr::{Distribution, Uniform};
 use varmass::core::ensemble::{Ensemble, MemberRng};
 use varmass::interpret::{Program, TapeSystem};
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{derive, Parameters};
 use varmass::symbolic::parse::{parse_system, select_tags};
+use varmass::symbolic::{derive, mechanics::Parameters};
 
 const SLED: &str = include_str!("../../../../models/sled.vms");
 const ROCKET: &str = include_str!("../../../../models/rocket.vms");

@@ -15,6 +15,8 @@
 //!                  (each at most once; `velocity` and `relative_velocity` exclude each other)
 //!            | `check` expr `=` expr
 //!            | `units` name `:` expr { `,` name `:` expr }     (each expr a unit: kg*m/s^2)
+//!            | `use` file `as` name [ `:` name `=` expr { `,` name `=` expr } ]
+//!            | `parameter` name `=` [ `-` ] number                (docs/components.md)
 //! vector    := `[` expr { `,` expr } `]`                  (1 to 3 components)
 //! expr      := product { (`+` | `-`) product }            (left-associative)
 //! product   := unary { (`*` | `/`) unary }                (left-associative)
@@ -51,6 +53,7 @@
 //! spans cover exactly their text.
 
 mod building;
+mod component;
 mod expression;
 mod input;
 mod lexical;

@@ -80,6 +80,8 @@ impl<'a> Grammar<'a> {
             keywords::TORQUE => self.load(after, keywords::TORQUE, StatementKind::Torque)?,
             keywords::TABLE => self.table(after)?,
             keywords::INPUT => self.input(after)?,
+            keywords::USE => self.use_component(after)?,
+            keywords::PARAMETER => self.parameter(after)?,
             _ => return Err(self.unknown_statement(head, after)),
         };
         let span = self.span(head.span.start, self.offset(rest));
@@ -377,26 +379,8 @@ impl<'a> Grammar<'a> {
                     at_point = Some(value);
                     return Ok((rest, ()));
                 }
-                if let Some((previous, first)) = &velocity {
-                    let given = match previous {
-                        FlowVelocity::Absolute(_) => keywords::VELOCITY,
-                        FlowVelocity::Relative(_) => keywords::RELATIVE_VELOCITY,
-                    };
-                    let diagnostic = Diagnostic::new(
-                        option.span,
-                        format!(
-                            "`{}` and `{given}` cannot both be given for {keyword} `{}`",
-                            option.node, body.node
-                        ),
-                    )
-                    .with_help(format!(
-                        "`{given}` was given at {}:{}; `{}` is the absolute velocity of the \
-                     flowing mass, `{}` its velocity relative to the body: give one",
-                        first.line,
-                        first.column,
-                        keywords::VELOCITY,
-                        keywords::RELATIVE_VELOCITY
-                    ));
+                if let Some(first) = &velocity {
+                    let diagnostic = two_velocities(first, option, (keyword, &body.node));
                     return Err(self.fail(at, diagnostic));
                 }
                 let (rest, (written_in, vector)) = self.required(
@@ -488,4 +472,32 @@ impl<'a> Grammar<'a> {
             }
         }
     }
+}
+
+/// A flow given both `velocity` and `relative_velocity`: `option` the second, `first` the
+/// one given before with its span, `(keyword, body)` the statement's.
+fn two_velocities(
+    (previous, first): &(FlowVelocity, Span),
+    option: &Spanned<String>,
+    (keyword, body): (&str, &str),
+) -> Diagnostic {
+    let given = match previous {
+        FlowVelocity::Absolute(_) => keywords::VELOCITY,
+        FlowVelocity::Relative(_) => keywords::RELATIVE_VELOCITY,
+    };
+    Diagnostic::new(
+        option.span,
+        format!(
+            "`{}` and `{given}` cannot both be given for {keyword} `{body}`",
+            option.node
+        ),
+    )
+    .with_help(format!(
+        "`{given}` was given at {}:{}; `{}` is the absolute velocity of the \
+                     flowing mass, `{}` its velocity relative to the body: give one",
+        first.line,
+        first.column,
+        keywords::VELOCITY,
+        keywords::RELATIVE_VELOCITY
+    ))
 }

@@ -47,20 +47,21 @@ impl<'a> Grammar<'a> {
                 (Spanned::new(keywords::RUNTIME.to_string(), span), true),
             ));
         }
-        let (rest, file) = self.file_name(input)?;
+        let written = format!(
+            "a table is written `{} F(t) = \"motors/M1670.eng\"` (a path in double quotes, \
+             relative to the model file) or `{} F(t) = {}` (the data given at run time)",
+            keywords::TABLE,
+            keywords::TABLE,
+            keywords::RUNTIME
+        );
+        let (rest, file) = self.file_name(input, &written)?;
         Ok((rest, (file, false)))
     }
 
-    /// The quoted file name; the span covers the quotes.
-    fn file_name(&self, input: &'a str) -> PResult<'a, Spanned<String>> {
-        let help =
-            |d: Diagnostic| {
-                d.with_help(format!(
-                "a table is written `{} F(t) = \"motors/M1670.eng\"` (a path in double quotes, \
-                 relative to the model file) or `{} F(t) = {}` (the data given at run time)",
-                keywords::TABLE, keywords::TABLE, keywords::RUNTIME
-            ))
-            };
+    /// The quoted file name; the span covers the quotes. `written` (how the statement is
+    /// written) is the help of a diagnostic.
+    pub(super) fn file_name(&self, input: &'a str, written: &str) -> PResult<'a, Spanned<String>> {
+        let help = |d: Diagnostic| d.with_help(written);
         let start = self.skip_blanks(input, false);
         let Ok((inside, _)) = self.punct(start, '"') else {
             let diagnostic = self.unexpected_diagnostic(start, "a file name in double quotes");

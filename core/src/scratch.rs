@@ -1,0 +1,75 @@
+//! The working memory of a Taylor expansion and the length of its coefficient arrays: a
+//! leaf below the trait (`VariableMassSystem::taylor_coefficients` takes a scratch), the
+//! Taylor stepper that owns one and the recurrences (`steppers::taylor::series`) that
+//! generated code calls on its rows, which name both here too.
+
+use core::any::TypeId;
+
+/// The highest order the stepper expands to (a tolerance of 1e-16 asks for 20).
+pub const MAX_ORDER: usize = 32;
+
+/// The length of every coefficient array of generated code: orders 0 … [`MAX_ORDER`].
+pub const LEN: usize = MAX_ORDER + 1;
+
+/// The working memory of generated `taylor_coefficients`: one coefficient array (a row) per
+/// subexpression, and M\[0\]'s factor when q̇ is solved order by order. The caller keeps it
+/// between expansions (the `Taylor` stepper owns one), so that an
+/// expansion neither allocates nor clears its rows: zeroing every row of a stack buffer of
+/// `LEN`-long arrays at each expansion was two thirds of the instructions of the 3-link
+/// pendulum's step.
+///
+/// Why no row needs clearing: generated code writes every row it reads at orders
+/// 0 ..= k before reading it at order k, except the rows set at order 0 alone (time, held
+/// inputs, constants), whose higher coefficients must read 0. Those it zeroes when the
+/// scratch is new to it ([`Scratch::parts`] says so: the scratch remembers which
+/// generated code used it last), and nothing writes their higher coefficients afterwards.
+/// So what a scratch held before, another system's rows included, never reaches a result
+/// (`tests/taylor_emitted.rs` and `tests/taylor_tables.rs` run on scratches filled with
+/// NaN, reused).
+#[derive(Clone, Debug, Default)]
+pub struct Scratch {
+    rows: Vec<[f64; LEN]>,
+    factor: Vec<f64>,
+    /// The generated code that used the rows last (a type of its own, local to it).
+    owner: Option<TypeId>,
+}
+
+impl Scratch {
+    /// An empty scratch; the first expansion sizes it (the only allocation).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A scratch of `rows` rows and a factor of `factor` entries, every entry `value`: for
+    /// tests that what a scratch held never reaches a result.
+    #[doc(hidden)]
+    pub fn filled(rows: usize, factor: usize, value: f64) -> Self {
+        Self {
+            rows: vec![[value; LEN]; rows],
+            factor: vec![value; factor],
+            owner: None,
+        }
+    }
+
+    /// The first `F` rows and `factor` entries of the factor, grown if shorter, for the
+    /// generated code `owner`; `true` when that code did not use them last (its rows set
+    /// at order 0 alone must then be zeroed).
+    pub fn parts<const F: usize>(
+        &mut self,
+        factor: usize,
+        owner: TypeId,
+    ) -> (&mut [[f64; LEN]; F], &mut [f64], bool) {
+        let fresh = self.owner != Some(owner) || self.rows.len() < F;
+        if self.rows.len() < F {
+            self.rows.resize(F, [0.0; LEN]);
+        }
+        if self.factor.len() < factor {
+            self.factor.resize(factor, 0.0);
+        }
+        self.owner = Some(owner);
+        let rows = self.rows.first_chunk_mut::<F>();
+        // `rows` holds at least F rows now.
+        let rows = rows.unwrap_or_else(|| unreachable!("the rows were grown to {F}"));
+        (rows, &mut self.factor[..factor], fresh)
+    }
+}
