@@ -94,6 +94,7 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
         .collect();
     let energy = scene.energy_residual;
     let support = read.scene.support.as_ref().map(|s| s.get_ref().clone());
+    let held = scene.support.as_ref().map(|(k, _)| *k);
     let mut flown = fly::fly(scene)?;
     let mut names = vec!["phase".to_string()];
     names.extend(phases[0].1.iter().map(|(n, _)| n.clone()));
@@ -119,8 +120,9 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
         _ => None,
     };
     let mut summary = summary(&flown, &changes, &ends, stopped_by.as_deref());
-    if let Some(support) = &support {
-        summary.insert_str(0, &lift_off_line(support, flown.lift_off));
+    if let (Some(support), Some(k)) = (&support, held) {
+        let below = below_support(&flown, k);
+        summary.insert_str(0, &lift_off_line(support, flown.lift_off, below));
     }
     Ok(SceneRun {
         table: Table::from_rows(names, rows),
@@ -135,15 +137,39 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
     })
 }
 
-/// The summary's line on the support: when the body lifted off it, or that it did not.
-fn lift_off_line(coordinate: &str, lift_off: Option<f64>) -> String {
-    match lift_off {
+/// The summary's line on the support: when the body lifted off it, or that it did not;
+/// and a warning if it went below the support's height after lifting (`below`: when, and
+/// how far below at the lowest point).
+fn lift_off_line(coordinate: &str, lift_off: Option<f64>, below: Option<(f64, f64)>) -> String {
+    let mut line = match lift_off {
         Some(time) => format!(
             "lifted off its support ({coordinate}) at t = {}\n",
             shown(time)
         ),
         None => format!("never lifted off its support ({coordinate}): held to the end\n"),
+    };
+    if let Some((time, depth)) = below {
+        line.push_str(&format!(
+            "warning: after the lift-off {coordinate} went below its support, {} under it at \
+             t = {}: the support does not catch the body again (a landing is another model; \
+             docs/scenes.md), so the motion below it passes through the pad\n",
+            shown(depth),
+            shown(time)
+        ));
     }
+    line
+}
+
+/// The lowest point of the held coordinate `k` after the lift-off, if it is below the
+/// support's height (its value at the start): its time and the depth under the support.
+fn below_support(flown: &fly::Flown, k: usize) -> Option<(f64, f64)> {
+    let lift_off = flown.lift_off?;
+    let pad = flown.points.first()?.1.get(k).copied()?;
+    let after = flown.points.iter().filter(|(t, _)| *t > lift_off);
+    let (time, lowest) = after
+        .filter_map(|(t, state)| Some((*t, *state.get(k)?)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    (lowest < pad).then_some((time, pad - lowest))
 }
 
 /// The table's rows: each point's phase (counted from 1), its phase's recorded quantities

@@ -181,3 +181,49 @@ fn a_phase_condition_met_on_the_pad_is_refused() {
     let (stdout, _) = run(&["run", path.to_str().unwrap()], 0);
     assert!(stdout.contains("lifted off its support"), "{stdout}");
 }
+
+/// A held coordinate that starts uncoupled but couples as the others move ends the run there
+/// (exit 1), rather than hold it by clamping p_y, a wrong motion: the pitching rocket's
+/// M_yθ = g_c m_p sin θ is 0 at θ = 0 only, and its gimballed thrust turns θ at once.
+/// Before (review of session 33) the run ended with exit 0, θ 0.8 rad off at 3 s.
+#[test]
+fn a_coupling_that_appears_while_held_ends_the_run() {
+    let scene = common::data("support/pitching_on_pad.toml");
+    let (_, stderr) = run(&["run", &scene], 1);
+    assert!(
+        stderr.contains("the coordinate `y` held on its support couples here with another"),
+        "{stderr}"
+    );
+}
+
+/// A first phase's condition met and unmet again during the hold is refused, not skipped:
+/// the oscillator z (ω = 2π, from z = 0 at 3 m/s, amplitude 3/2π) passes z = 0.4 at
+/// t = asin(0.8π/3)/2π ≈ 0.158 s and is back below it at the lift-off (F = 200 t equals
+/// the weight 196.2 N at t ≈ 0.98 s). Before, phase 2 began at the first crossing after the
+/// lift-off (1.158 s), exit 0.
+#[test]
+fn a_condition_met_and_unmet_while_held_is_refused() {
+    let scene = common::data("support/held_oscillator.toml");
+    let (_, stderr) = run(&["run", &scene], 2);
+    assert!(
+        stderr.contains("`z = 0.4` (the end of phase 1) was met while the body was held"),
+        "{stderr}"
+    );
+}
+
+/// After the lift-off the support is gone: a thrust that dips below the weight (150 N
+/// against 196.2 N from 0.1 s to 0.3 s) brings the rocket back below its pad, and the summary
+/// says so (before, nothing did).
+#[test]
+fn a_body_that_comes_back_below_its_support_is_warned_of() {
+    let scene = common::data("support/dipping_thrust.toml");
+    let (stdout, stderr) = run(&["run", &scene], 0);
+    let all = format!("{stdout}{stderr}");
+    assert!(
+        all.contains("warning: after the lift-off y went below its support"),
+        "{all}"
+    );
+    // And the unwarned case: the M1670 rocket climbs for good.
+    let (summary, _) = fly("climbs_for_good", "support = \"y\"", 0.0, 20.0);
+    assert!(!summary.contains("went below its support"), "{summary}");
+}

@@ -211,6 +211,14 @@ pub enum SystemError {
         /// The argument asked for.
         argument: f64,
     },
+    /// A coordinate held on its support (`crate::support`) couples here with another in
+    /// the kinetic energy (M_kj ≠ 0, or p_k ≠ 0 at rest), which it did not where the hold
+    /// began: holding it by clamping p_k would no longer be the constrained motion.
+    #[error("the coordinate {index} held on its support couples with another here")]
+    SupportCoupled {
+        /// The held coordinate's index.
+        index: usize,
+    },
     /// A sampled input's value at a sample is not a finite number: its method (or its
     /// `--input` law) gave NaN or ±∞ there (docs/inputs.md#sampled-inputs). In a
     /// [`StepError`], its time is the sample's, its state the one sampled at.

@@ -160,11 +160,17 @@ impl<const S: usize> Progress<S> {
     /// remainder within a millionth of a step of the stop time is absorbed into this step
     /// rather than left as a sliver step that only rounding would create.
     ///
+    /// The nominal step is compared with the remainder, not t + h with the stop time: within
+    /// an ulp or two of the stop, t + h rounds onto it for any h the controller shrinks to,
+    /// so a rejected attempt was tried again with the same remainder for ever (review of
+    /// session 33: DOP853 at t = 1 − 2⁻⁵², h = 2⁻⁵²). Now a rejection shrinks the step below
+    /// the remainder, down to the step-size underflow, a typed error.
+    ///
     /// Fails with [`StepErrorKind::NonFiniteTime`] at the current time and state when the end
     /// of the step would not be a finite time (t + h overflows f64).
     pub(crate) fn next_step(&self, nominal: f64) -> Result<(f64, bool), StepError<S>> {
         let (step, reaches) = match self.stop_time {
-            Some(stop) if self.time + nominal * (1.0 + 1e-6) >= stop => (stop - self.time, true),
+            Some(stop) if nominal * (1.0 + 1e-6) >= stop - self.time => (stop - self.time, true),
             _ => (nominal, false),
         };
         if (self.time + step).is_finite() {

@@ -77,6 +77,27 @@ impl<Sys> Supported<Sys> {
     fn held_below<const N: usize>(&self) -> Option<usize> {
         self.held.filter(|&k| k < N)
     }
+
+    /// [`SystemError::SupportCoupled`] where the held coordinate couples with another at
+    /// `(t, state)`: uncoupled at the start ([`phases`] checks), the coupling may appear as
+    /// the other coordinates move (M_yθ = g_c m_p sin θ of a pitching rocket is 0 at θ = 0
+    /// only), and the clamp of p_k would then be a wrong motion, silently (review of
+    /// session 33: θ 0.8 rad off at 3 s, exit 0). Checked at every held evaluation.
+    fn still_uncoupled<const N: usize, const S: usize>(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+    ) -> Result<(), SystemError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        match self.held_below::<N>() {
+            Some(k) if coupled(&self.system, k, t, state) => {
+                Err(SystemError::SupportCoupled { index: k })
+            }
+            _ => Ok(()),
+        }
+    }
 }
 
 /// The held phase (ended by the lift-off) and the free phase after it, for `system` with
@@ -181,15 +202,27 @@ where
     if velocity_state[N + k] != 0.0 {
         return refuse(NOT_AT_REST);
     }
-    let mass_matrix = system.mass_matrix(time, state);
-    let mut at_rest = *state;
-    at_rest.fixed_rows_mut::<N>(N).fill(0.0);
-    let coupled = (0..N).any(|j| j != k && mass_matrix[(k, j)] != 0.0)
-        || system.momenta(time, &at_rest)[k] != 0.0;
-    if coupled {
+    if coupled(system, k, time, state) {
         return refuse(COUPLED);
     }
     Ok(())
+}
+
+/// Whether the held coordinate `k` couples with another at `(time, q, m)` of `state` (its
+/// momentum rows are not read): M_kj ≠ 0 for some j ≠ k, or p_k(q, 0, t) ≠ 0 at rest.
+fn coupled<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    k: usize,
+    time: f64,
+    state: &SVector<f64, S>,
+) -> bool
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let mass_matrix = system.mass_matrix(time, state);
+    let mut at_rest = *state;
+    at_rest.fixed_rows_mut::<N>(N).fill(0.0);
+    (0..N).any(|j| j != k && mass_matrix[(k, j)] != 0.0) || system.momenta(time, &at_rest)[k] != 0.0
 }
 
 /// `rate` with the rows of q_k and p_k (the held coordinate's) set to 0.
@@ -290,6 +323,7 @@ where
         t: f64,
         velocity_state: &SVector<f64, S>,
     ) -> Result<SVector<f64, N>, SystemError> {
+        self.still_uncoupled(t, velocity_state)?;
         let accelerations = self.system.accelerations(t, velocity_state)?;
         Ok(cancelled(self.held_below::<N>(), accelerations))
     }
@@ -305,6 +339,7 @@ where
     }
 
     fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
+        self.still_uncoupled(t, state)?;
         let rate = self.system.state_rate(t, state)?;
         Ok(clamped::<N, S>(self.held_below::<N>(), rate))
     }

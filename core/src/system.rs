@@ -395,7 +395,8 @@ impl<const S: usize> StepError<S> {
             },
             SystemError::NonPositiveMass { .. }
             | SystemError::TableOutside { .. }
-            | SystemError::SampledInputNotFinite { .. } => error,
+            | SystemError::SampledInputNotFinite { .. }
+            | SystemError::SupportCoupled { .. } => error,
         };
         Self::new(time, state, StepErrorKind::System(error))
     }

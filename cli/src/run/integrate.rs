@@ -430,10 +430,12 @@ impl Advice {
             SystemError::NonPositiveMass { index } => {
                 let name = program.mass_names().nth(index).unwrap_or("?");
                 let stop = self.words.stop_when(&format!("{name} < VALUE"));
+                let empty = self.words.stop_when(&format!("{name} = 0"));
                 (
                     format!("the mass `{name}` is not positive"),
                     format!(
-                        "end the run before `{name}` runs out, e.g. {stop} or an earlier {until}"
+                        "end the run before `{name}` runs out, e.g. {stop} or an earlier \
+                         {until}; a burn that empties `{name}` exactly ends on {empty}"
                     ),
                 )
             }
@@ -447,6 +449,19 @@ impl Advice {
                      (docs/mechanics.md#rigid-bodies)"
                 ),
             ),
+            SystemError::SupportCoupled { index } => {
+                let name = program.coordinate_names().nth(index).unwrap_or("?");
+                (
+                    format!(
+                        "the coordinate `{name}` held on its support couples here with another \
+                         in the kinetic energy (it did not where the hold began)"
+                    ),
+                    "holding it would no longer be the constrained motion: fly this model \
+                     without `support`, or write the support's coordinate so that the others \
+                     do not move it (docs/mechanics.md#a-support-that-holds-until-lifted)"
+                        .to_string(),
+                )
+            }
             SystemError::SampledInputNotFinite { input, .. } => (
                 what,
                 format!(

@@ -461,12 +461,14 @@ fn method_name(method: Method, words: Words) -> String {
 fn tolerance(tol: f64, args: &RunArgs) -> Result<f64, CliError> {
     let floor = min_tolerance(args.method);
     let method = method_name(args.method, args.words);
-    let range = format!("the usable range of {method} is {floor:.1e} to {MAX_TOLERANCE}");
+    // Every digit of the floor: a rounded one (2.2e-14 of 2.220446e-14) would be refused.
+    let floor_text = shown(floor);
+    let range = format!("the usable range of {method} is {floor_text} to {MAX_TOLERANCE}");
     let why = if !(tol.is_finite() && tol > 0.0) {
         "must be positive and finite".to_string()
     } else if tol < floor {
         format!(
-            "is finer than {method} can honour (its floor is {floor:.1e}, below which its \
+            "is finer than {method} can honour (its floor is {floor_text}, below which its \
              error stops following the tolerance)"
         )
     } else if tol > MAX_TOLERANCE {

@@ -204,7 +204,9 @@ fn end_watchers<const S: usize>(ends: &[Option<End>]) -> Vec<Option<Watcher<'_, 
 /// support: conditions are watched from the lift-off on (docs/scenes.md), so a phase change
 /// or a stop due during the hold would be skipped without a word. `phased` is the run before
 /// renumbering (the held phase is phase 0, the lift-off the first point of phase 1; a body
-/// held to the end is checked at its last point).
+/// held to the end is checked to its last point). The condition is read at every point of
+/// the hold, not only at its ends: one met and unmet again while held (an oscillator that
+/// passes its value and comes back) was skipped before (review of session 33).
 fn met_while_held<const N: usize, const S: usize>(
     phased: &PhasedSolution<N, S>,
     phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
@@ -212,7 +214,7 @@ fn met_while_held<const N: usize, const S: usize>(
     ends: &[Option<End>],
 ) -> Result<(), CliError> {
     let lift_off = phased.phase.iter().position(|&p| p == 1);
-    let Some(i) = lift_off.or(phased.phase.len().checked_sub(1)) else {
+    let Some(last) = lift_off.or(phased.phase.len().checked_sub(1)) else {
         return Ok(());
     };
     let (Some(first), Some(Some(end))) = (phases.get(1), ends.first()) else {
@@ -221,19 +223,22 @@ fn met_while_held<const N: usize, const S: usize>(
     let Some(until) = &first.until else {
         return Ok(());
     };
-    let (t1, y1) = (phased.solution.times[i], &phased.solution.states[i]);
-    let (g0, g1) = (
-        until.value(&first.system, t0, &y0),
-        until.value(&first.system, t1, y1),
-    );
-    if g1 != 0.0 && g0.signum() == g1.signum() {
+    let g0 = until.value(&first.system, t0, &y0);
+    // From the first point after the start (the start's own sign is g0's).
+    let held = (phased.solution.times[..=last].iter())
+        .zip(&phased.solution.states)
+        .skip(1);
+    let met = held
+        .map(|(&t, y)| (t, until.value(&first.system, t, y)))
+        .find(|&(_, g)| g == 0.0 || g.signum() != g0.signum());
+    let Some((t1, _)) = met else {
         return Ok(());
-    }
+    };
     Err(CliError::Input(format!(
         "`{}` (the end of phase 1) was met while the body was held on its `support`, between \
-         t = {} and the end of the hold at t = {}: a scene's conditions are watched from the lift-off \
-         on (docs/scenes.md), so it would be skipped; write a condition met after the lift-off, \
-         or fly the scene without `support`",
+         t = {} and t = {}, before the end of the hold: a scene's conditions are watched from \
+         the lift-off on (docs/scenes.md), so it would be skipped; write a condition met after \
+         the lift-off, or fly the scene without `support`",
         end.text,
         shown(t0),
         shown(t1)

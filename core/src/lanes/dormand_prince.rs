@@ -153,25 +153,8 @@ where
             .each_ref()
             .map(|slot| slot.as_ref().is_some_and(|m| m.last == Last::Accepted));
         attempt.carry(accepted);
-        for (index, slot) in lanes.iter_mut().enumerate() {
-            while slot.is_none() {
-                let Some(job) = queue.next() else { break };
-                match start(jobs, job, control, config) {
-                    Ok(member) => {
-                        Sys::set_lane(&mut parameters, index, &jobs[job].system);
-                        *slot = Some(member);
-                    }
-                    Err(done) => results[job] = Some(done),
-                }
-            }
-            // An empty lane repeats the attempt of an occupied one (its results unread).
-            if let Some(member) = slot {
-                if let Err(error) = attempt.load(index, member) {
-                    results[member.job] = Some(Err(error));
-                    *slot = None;
-                }
-            }
-        }
+        let pool = (&mut lanes, &mut queue, &mut results[..]);
+        fill_lanes(pool, &mut parameters, &mut attempt, (jobs, control, config));
         let Some(busy) = lanes.iter().position(Option::is_some) else {
             if queue.is_empty() {
                 break;
@@ -201,6 +184,45 @@ where
 
 /// A member's end, or its error, by job.
 type Ends<const S: usize> = [Option<Result<LaneEnd<S>, StepError<S>>>];
+
+/// The lanes, the jobs not yet started and the ends by job.
+type Pool<'p, 's, 'e, Sys, const S: usize, const W: usize> = (
+    &'p mut [Option<Member<'s, 'e, Sys, S>>; W],
+    &'p mut core::ops::Range<usize>,
+    &'p mut Ends<S>,
+);
+
+/// Gives each empty lane the next job that starts (its parameters into the lane; a job that
+/// ends at its start goes to the ends) and loads each occupied lane's attempt (a member that
+/// fails there leaves its lane). An empty lane is left to repeat an occupied one's attempt.
+#[inline(always)]
+fn fill_lanes<'s, 'e, Sys, const N: usize, const S: usize, const W: usize>(
+    (lanes, queue, results): Pool<'_, 's, 'e, Sys, S, W>,
+    parameters: &mut Sys::Parameters,
+    attempt: &mut Attempt<S, W>,
+    (jobs, control, config): (&'s [LaneJob<'e, Sys, S>], StepControl, &RunConfig),
+) where
+    Sys: LaneSystem<N, S, W>,
+{
+    for (index, slot) in lanes.iter_mut().enumerate() {
+        while slot.is_none() {
+            let Some(job) = queue.next() else { break };
+            match start(jobs, job, control, config) {
+                Ok(member) => {
+                    Sys::set_lane(parameters, index, &jobs[job].system);
+                    *slot = Some(member);
+                }
+                Err(done) => results[job] = Some(done),
+            }
+        }
+        if let Some(member) = slot {
+            if let Err(error) = attempt.load(index, member) {
+                results[member.job] = Some(Err(error));
+                *slot = None;
+            }
+        }
+    }
+}
 
 /// The verdict on the attempt in each occupied lane (`conclude`), with the step its
 /// controller proposes should it be accepted; a member whose run ended leaves its lane and

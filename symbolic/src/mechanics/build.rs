@@ -320,6 +320,35 @@ impl Builder {
         }
     }
 
+    /// `let name = value`. A name an earlier statement read (so that it became an inferred
+    /// parameter there, a `let` being visible only after it) is an error at the `let`: it
+    /// was dropped without a word, and the model ran with the parameter (review of session
+    /// 33; a component's values placed after a statement that reads them met it too).
+    fn lower_let(&mut self, name: &str, span: Span, value: &ExprNode) {
+        let read_before = matches!(self.model.parameter_mode, Parameters::Inferred)
+            && matches!(self.model.names.get(name), Some(Binding::Parameter(_)));
+        if read_before {
+            self.errors.push(
+                Diagnostic::new(
+                    span,
+                    format!("`{name}` is read before this `let` defines it"),
+                )
+                .with_help(format!(
+                    "a `let` is visible only after it, so the earlier read made `{name}` a \
+                     parameter: move this `let` above the first statement that reads `{name}` \
+                     (or above the `use` whose bindings read it)"
+                )),
+            );
+            return;
+        }
+        if let Some(value) = self.lower(value) {
+            self.model
+                .names
+                .entry(name.to_string())
+                .or_insert(Binding::Let(value));
+        }
+    }
+
     /// After a `body` or `rigid` statement: when it added no body `name`, it failed with
     /// its own diagnostics, and the loads and flows on `name` would only repeat them.
     fn note_failed_body(&mut self, name: &str) {
@@ -335,14 +364,7 @@ impl Builder {
         for statement in &ast.statements {
             let span = statement.span;
             match &statement.kind {
-                StatementKind::Let { name, value } => {
-                    if let Some(value) = self.lower(value) {
-                        self.model
-                            .names
-                            .entry(name.node.clone())
-                            .or_insert(Binding::Let(value));
-                    }
-                }
+                StatementKind::Let { name, value } => self.lower_let(&name.node, name.span, value),
                 StatementKind::Mass(decl) | StatementKind::Inertia(decl) => {
                     self.lower_mass(decl, span);
                 }
