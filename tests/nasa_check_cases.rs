@@ -165,12 +165,16 @@ fn equator_start(body_rates: Vector3<f64>) -> Start {
     }
 }
 
-/// Every quantity within NASA's spread (plus its rounding floor) at every time, and its
-/// largest distance to the median under `bounds` (name, bound).
-fn assert_rows(rows: &[Row], bounds: &[(&str, f64)]) {
+/// Every quantity within NASA's spread (plus its rounding floor) at every time, but those of
+/// `explained` (name, the largest ratio |Δ| / (spread + floor) allowed: see the case), and
+/// its largest distance to the median under `bounds` (name, bound).
+fn assert_rows(rows: &[Row], explained: &[(&str, f64)], bounds: &[(&str, f64)]) {
     assert_eq!(rows.len(), QUANTITIES.len(), "every quantity compared");
+    assert_eq!(bounds.len(), QUANTITIES.len(), "a bound for every quantity");
     for row in rows {
-        assert!(row.ratio <= 1.0, "outside NASA's spread: {row:?}");
+        let allowed = explained.iter().find(|(n, _)| *n == row.name);
+        let limit = allowed.map_or(1.0, |&(_, ratio)| ratio);
+        assert!(row.ratio <= limit, "outside NASA's spread: {row:?}");
     }
     for &(name, bound) in bounds {
         let row = row(rows, name);
@@ -181,6 +185,16 @@ fn assert_rows(rows: &[Row], bounds: &[(&str, f64)]) {
         );
     }
 }
+
+/// The inertial position and velocity are recorded by sims 4, 5 and 6 only, whose spread is
+/// their own disagreement at 1e-6 m and 1e-9 m/s (1.6e-13 and 2e-12 relative): sim 4 starts
+/// 1.24e-5 m higher (6387281.000012 m) with ω_E r 1.3e-9 m/s larger, sim 6 2.1e-7 m
+/// higher; ours starts as sim 5 (6387281 m, 465.76787589315 m/s) and stays within 5.3e-8 m
+/// and 1.5e-9 m/s of it (against the raw files), converged to 3e-9 m (DOP853 at 1e-9 to
+/// 3e-14 and Taylor at 1e-15 agree). The median of three is then sim 6, 1.07e-6 m and
+/// 7.8e-10 m/s from us, at times just beyond the other two: measured ratios x 1.006 (24.9 s),
+/// vx 3.09 (7.3 s), vy 1.11 (23.7 s); allowed 1.5, 4, 1.5.
+const ECI_EXPLAINED: [(&str, f64); 3] = [("x_eci", 1.5), ("vx_eci", 4.0), ("vy_eci", 1.5)];
 
 /// Case 1: a sphere dropped without drag. Measured (DOP853 at 1e-13; the same to three
 /// digits at 1e-10, so these are distances of the median, not our integration error):
@@ -207,7 +221,14 @@ fn case_1_dropped_sphere_over_a_rotating_earth() {
     assert!(flight.spin_drift == 0.0 && flight.energy_drift < 1e-14);
     assert_rows(
         &rows,
+        &ECI_EXPLAINED,
         &[
+            ("x_eci", 3e-6),
+            ("y_eci", 5e-8),
+            ("z_eci", 1e-15),
+            ("vx_eci", 2.5e-9),
+            ("vy_eci", 4.5e-9),
+            ("vz_eci", 1e-15),
             ("x_ecef", 3e-6),
             ("y_ecef", 3e-7),
             ("z_ecef", 1e-12),
@@ -254,7 +275,14 @@ fn case_2_tumbling_brick() {
     assert!(flight.energy_drift < 1e-10 && flight.spin_drift < 1e-10);
     assert_rows(
         &rows,
+        &ECI_EXPLAINED,
         &[
+            ("x_eci", 3e-6),
+            ("y_eci", 5e-8),
+            ("z_eci", 3e-12),
+            ("vx_eci", 2.5e-9),
+            ("vy_eci", 4.5e-9),
+            ("vz_eci", 1e-15),
             ("x_ecef", 3e-6),
             ("y_ecef", 2e-8),
             ("z_ecef", 3e-12),

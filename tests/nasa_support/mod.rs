@@ -15,8 +15,17 @@ pub const OMEGA_E: f64 = 7.292_115e-5;
 pub const MU_E: f64 = 3.986_004_418e14;
 pub const J2: f64 = 1.082_629_821_313e-3;
 
-/// The quantities NASA records that a run of ours gives, in the order of the CSV.
-pub const QUANTITIES: [&str; 16] = [
+/// The quantities NASA records that a run of ours gives, in the order of the CSV: the
+/// inertial (ECI, aligned with ECEF at t = 0) position and velocity, the ECEF position, the
+/// Earth-relative velocity in NED axes, geodetic altitude, longitude, latitude, the local
+/// gravity, yaw, pitch, roll relative to NED, the body rates relative to inertial space.
+pub const QUANTITIES: [&str; 22] = [
+    "x_eci",
+    "y_eci",
+    "z_eci",
+    "vx_eci",
+    "vy_eci",
+    "vz_eci",
     "x_ecef",
     "y_ecef",
     "z_ecef",
@@ -42,8 +51,8 @@ pub const QUANTITIES: [&str; 16] = [
 /// median may differ by rounding: |ours − median| ≤ spread + floor is "within".
 pub fn floor(name: &str) -> f64 {
     match name {
-        "x_ecef" | "y_ecef" | "z_ecef" | "altitude" => 1e-8,
-        "v_north" | "v_east" | "v_down" => 1e-12,
+        "x_eci" | "y_eci" | "z_eci" | "x_ecef" | "y_ecef" | "z_ecef" | "altitude" => 1e-8,
+        "vx_eci" | "vy_eci" | "vz_eci" | "v_north" | "v_east" | "v_down" => 1e-12,
         "gravity" => 1e-14,
         _ => 2e-15,
     }
@@ -210,7 +219,14 @@ pub fn nasa_quantities(state: &Inertial, earth_rate: f64) -> HashMap<&'static st
     let yaw = body_to_ned[(1, 0)].atan2(body_to_ned[(0, 0)]);
     let roll = body_to_ned[(2, 1)].atan2(body_to_ned[(2, 2)]);
     let w = body_rates(state.sequence, state.angles, state.angle_rates);
+    let (position, velocity) = (state.position, state.velocity);
     let values = [
+        position.x,
+        position.y,
+        position.z,
+        velocity.x,
+        velocity.y,
+        velocity.z,
         r.x,
         r.y,
         r.z,

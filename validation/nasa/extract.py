@@ -44,6 +44,12 @@ DEG = math.pi / 180.0
 
 # (output name, SI column, US column, factor from US to SI, is an angle to wrap)
 QUANTITIES = [
+    ("x_eci", "eiPosition_m_X", "eiPosition_ft_X", FT, False),
+    ("y_eci", "eiPosition_m_Y", "eiPosition_ft_Y", FT, False),
+    ("z_eci", "eiPosition_m_Z", "eiPosition_ft_Z", FT, False),
+    ("vx_eci", "eiVelocity_m_s_X", "eiVelocity_ft_s_X", FT, False),
+    ("vy_eci", "eiVelocity_m_s_Y", "eiVelocity_ft_s_Y", FT, False),
+    ("vz_eci", "eiVelocity_m_s_Z", "eiVelocity_ft_s_Z", FT, False),
     ("x_ecef", "gePosition_m_X", "gePosition_ft_X", FT, False),
     ("y_ecef", "gePosition_m_Y", "gePosition_ft_Y", FT, False),
     ("z_ecef", "gePosition_m_Z", "gePosition_ft_Z", FT, False),
