@@ -70,11 +70,9 @@ pub struct Reference {
     pub spread: HashMap<String, Vec<f64>>,
 }
 
-pub fn read_reference(case: u32) -> Reference {
-    let path = format!(
-        "{}/validation/nasa/case_{case:02}.csv",
-        env!("CARGO_MANIFEST_DIR")
-    );
+/// The named columns of a CSV of `validation/nasa/` (lines starting `#` skipped).
+fn read_columns(file: &str) -> Vec<(String, Vec<f64>)> {
+    let path = format!("{}/validation/nasa/{file}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().expect("header").split(',').collect();
@@ -84,18 +82,46 @@ pub fn read_reference(case: u32) -> Reference {
             column.push(field.parse().expect("a number"));
         }
     }
+    header.iter().map(|h| h.to_string()).zip(columns).collect()
+}
+
+pub fn read_reference(case: u32) -> Reference {
+    let columns = read_columns(&format!("case_{case:02}.csv"));
     let mut reference = Reference {
-        times: columns[0].clone(),
+        times: columns[0].1.clone(),
         median: HashMap::new(),
         spread: HashMap::new(),
     };
-    for (name, column) in header.iter().zip(columns) {
+    for (name, column) in columns {
         match name.strip_suffix("_spread") {
             Some(base) => reference.spread.insert(base.to_string(), column),
-            None => reference.median.insert(name.to_string(), column),
+            None => reference.median.insert(name, column),
         };
     }
     reference
+}
+
+/// The largest |ours − simulation| of each column `simNN_NAME` of `case_NN_sims.csv` (the
+/// same times as the medians), printed, as (column, deviation).
+pub fn single_simulations(case: u32, ours: &HashMap<&str, Vec<f64>>) -> Vec<(String, f64)> {
+    let mut found = Vec::new();
+    for (column, values) in read_columns(&format!("case_{case:02}_sims.csv"))
+        .into_iter()
+        .skip(1)
+    {
+        let name = column.split_once('_').expect("simNN_NAME").1;
+        let mut deviation = 0.0_f64;
+        for (ours, theirs) in ours[name].iter().zip(&values) {
+            let mut difference = ours - theirs;
+            if is_wrapped(name) {
+                difference = difference.sin().atan2(difference.cos());
+            }
+            deviation = deviation.max(difference.abs());
+        }
+        eprintln!("case {case}: max |ours − {column}| = {deviation:.2e}");
+        found.push((column, deviation));
+    }
+    found
 }
 
 /// Rotation about a body axis ('x', 'y', 'z') by `angle`.

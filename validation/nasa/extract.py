@@ -12,7 +12,9 @@ are 58 MB and stay out of this repository.
 For each case it writes validation/nasa/case_NN.csv: at every time all the case's
 simulations share (every 0.1 s from 0 to 30 s), for each quantity below, the median of the
 simulations that record it (the mean of the middle two when their number is even) and the
-spread, the largest |simulation - median| among them. SI units; angles in radians.
+spread, the largest |simulation - median| among them. SI units; angles in radians. For
+cases 1 and 2 it also writes case_NN_sims.csv, a few quantities of single simulations
+(SINGLE below).
 A simulation published only in US units (case 2's sims 2, 4, 5 and 6) is converted with
 ft = 0.3048 m exactly and deg = pi/180 rad. Euler angles are aligned to the first
 simulation's value modulo 2*pi before the median, which is then wrapped to (-pi, pi].
@@ -67,6 +69,17 @@ QUANTITIES = [
     ("q", "bodyAngularRateWrtEi_rad_s_Pitch", "bodyAngularRateWrtEi_deg_s_Pitch", DEG, False),
     ("r", "bodyAngularRateWrtEi_rad_s_Yaw", "bodyAngularRateWrtEi_deg_s_Yaw", DEG, False),
 ]
+
+
+# Single simulations kept beside the medians, where ours agrees with some of them far more
+# closely than with the median (docs/validation.md#nasa-check-cases): {case: [(sim, names)]}.
+SINGLE = {
+    1: [(5, ["x_eci", "y_eci", "vx_eci", "vy_eci"])],
+    2: [
+        (1, ["yaw", "pitch", "roll", "p", "q", "r"]),
+        (4, ["yaw", "pitch", "roll", "p", "q", "r"]),
+    ],
+}
 
 
 def git_show(mirror, commit, path):
@@ -160,6 +173,23 @@ def extract(mirror, commit, case, out_dir):
             out.write(",".join(row) + "\n")
     size = os.path.getsize(path)
     print(f"case {case}: sims {sorted(sims)}, {len(times)} times, {size} bytes -> {path}")
+    if case in SINGLE:
+        write_single(case, commit, sims, times, out_dir)
+
+
+def write_single(case, commit, sims, times, out_dir):
+    """case_NN_sims.csv: the quantities of SINGLE[case], simulation by simulation."""
+    columns = [(sim, name) for sim, names in SINGLE[case] for name in names]
+    path = os.path.join(out_dir, f"case_{case:02d}_sims.csv")
+    with open(path, "w", newline="") as out:
+        out.write(f"# NASA/TM-2015-218675 check-case {case}: single simulations, from\n")
+        out.write(f"# onurtuncer/Aetherion data/ at {commit}; validation/nasa/extract.py.\n")
+        header = ["t"] + [f"sim{sim}_{name}" for sim, name in columns]
+        out.write(",".join(header) + "\n")
+        for key in times:
+            row = [f"{key / 1000.0:g}"] + [repr(sims[sim][name][key]) for sim, name in columns]
+            out.write(",".join(row) + "\n")
+    print(f"case {case}: single simulations, {os.path.getsize(path)} bytes -> {path}")
 
 
 def main():
