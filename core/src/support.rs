@@ -79,7 +79,8 @@ impl<Sys> Supported<Sys> {
     }
 
     /// [`SystemError::SupportCoupled`] where the held coordinate couples with another at
-    /// `(t, state)`: uncoupled at the start ([`phases`] checks), the coupling may appear as
+    /// `(t, state)` above [`HELD_COUPLING`]: uncoupled at the start ([`phases`] checks, M_kj
+    /// and p_k at rest exactly 0), the coupling may appear as
     /// the other coordinates move (M_yθ = g_c m_p sin θ of a pitching rocket is 0 at θ = 0
     /// only), and the clamp of p_k would then be a wrong motion, silently (review of
     /// session 33: θ 0.8 rad off at 3 s, exit 0). Checked at every held evaluation.
@@ -92,7 +93,7 @@ impl<Sys> Supported<Sys> {
         Sys: VariableMassSystem<N, S>,
     {
         match self.held_below::<N>() {
-            Some(k) if coupled(&self.system, k, t, state) => {
+            Some(k) if coupled(&self.system, k, t, state, HELD_COUPLING) => {
                 Err(SystemError::SupportCoupled { index: k })
             }
             _ => Ok(()),
@@ -202,27 +203,37 @@ where
     if velocity_state[N + k] != 0.0 {
         return refuse(NOT_AT_REST);
     }
-    if coupled(system, k, time, state) {
+    let mut at_rest = *state;
+    at_rest.fixed_rows_mut::<N>(N).fill(0.0);
+    if coupled(system, k, time, state, 0.0) || system.momenta(time, &at_rest)[k] != 0.0 {
         return refuse(COUPLED);
     }
     Ok(())
 }
 
+/// The coupling that ends a hold ([`Supported::still_uncoupled`]): |M_kj| above this
+/// fraction of √(M_kk M_jj). Not 0: a coupling that grows from 0 (sin θ) would be refused
+/// at every state past the start, and the step controller, which takes a refused stage
+/// for a step too long, would shrink its steps towards t₀ for ever (10⁷ steps to
+/// t = 6.5e-160); at 1e-12 the clamp's error is below every tolerance, and the steps
+/// shrink onto where the coupling reaches it, a typed error there.
+const HELD_COUPLING: f64 = 1e-12;
+
 /// Whether the held coordinate `k` couples with another at `(time, q, m)` of `state` (its
-/// momentum rows are not read): M_kj ≠ 0 for some j ≠ k, or p_k(q, 0, t) ≠ 0 at rest.
+/// momentum rows are not read): |M_kj| > `fraction`·√(M_kk M_jj) for some j ≠ k.
 fn coupled<Sys, const N: usize, const S: usize>(
     system: &Sys,
     k: usize,
     time: f64,
     state: &SVector<f64, S>,
+    fraction: f64,
 ) -> bool
 where
     Sys: VariableMassSystem<N, S>,
 {
-    let mass_matrix = system.mass_matrix(time, state);
-    let mut at_rest = *state;
-    at_rest.fixed_rows_mut::<N>(N).fill(0.0);
-    (0..N).any(|j| j != k && mass_matrix[(k, j)] != 0.0) || system.momenta(time, &at_rest)[k] != 0.0
+    let m = system.mass_matrix(time, state);
+    let scale = |j: usize| (m[(k, k)] * m[(j, j)]).abs().sqrt();
+    (0..N).any(|j| j != k && m[(k, j)].abs() > fraction * scale(j))
 }
 
 /// `rate` with the rows of q_k and p_k (the held coordinate's) set to 0.
