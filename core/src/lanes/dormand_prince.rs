@@ -402,7 +402,8 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
     }
 
     /// The stages k₂ … k₇ and the new state in every lane: the explicit core's, as
-    /// `DormandPrince`'s attempt takes them, lane by lane.
+    /// `DormandPrince`'s attempt takes them, lane by lane (the same operations, each stage
+    /// written out by the compiler: `explicit::stages_written_out`).
     #[inline(always)]
     fn stages<Sys, const N: usize>(&mut self, parameters: &Sys::Parameters)
     where
@@ -412,7 +413,14 @@ impl<const S: usize, const W: usize> Attempt<S, W> {
         let mut rates = LaneRates::<Sys, N, S, W> { parameters };
         // The stage states y₂ … y₆ go straight to where the checks read them.
         let states = &mut self.y[..5];
-        match explicit::stages(STAGE_ROWS, (t0, &y0), h, &mut self.k, states, &mut rates) {
+        match explicit::stages_written_out(
+            STAGE_ROWS,
+            (t0, &y0),
+            h,
+            &mut self.k,
+            states,
+            &mut rates,
+        ) {
             Ok(_) => {}
             Err(never) => match never {},
         }

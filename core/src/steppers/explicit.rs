@@ -154,9 +154,9 @@ where
 
 /// The stages 2 … `rows.len() + 1` of a step of size `h` from `(t0, y0)`: kᵢ = f(t₀ + cᵢ h,
 /// yᵢ) with yᵢ = y₀ + Σⱼ kⱼ (aᵢⱼ h) accumulated in the row's order; k₁ is `k[0]` on entry.
-/// The stage states yᵢ go to `states` (as many as it holds); the last is returned. One loop with one call of
-/// the rate, not one call per stage: the compiler can inline the rate once and hoist what
-/// does not vary from stage to stage.
+/// The stage states yᵢ go to `states` (as many as it holds); the last is returned. One loop
+/// with one call of the rate, not one call per stage: the compiler can inline the rate once
+/// and hoist what does not vary from stage to stage (the scalar steppers' form).
 #[inline(always)]
 pub fn stages<T, V, R, const K: usize>(
     rows: &StageRows,
@@ -174,17 +174,79 @@ where
     let mut last = *y0;
     // Plain loops, no closures: a closure is compiled on its own, without the AVX of the
     // lanes' kernel that inlines this.
-    for (stage, &(c, row)) in rows.iter().enumerate() {
-        last = *y0;
-        for &(j, a) in row {
-            last = last.add_scaled(&k[j - 1], h * a);
-        }
-        k[stage + 1] = rates.rate(t0 + h * c, &last)?;
-        if let Some(state) = states.get_mut(stage) {
-            *state = last;
-        }
+    for (stage, &row) in rows.iter().enumerate() {
+        one_stage(stage, row, (t0, y0, h), k, states, rates, &mut last)?;
     }
     Ok(last)
+}
+
+/// The most stages [`stages_written_out`] writes out; any further ones it loops over.
+const WRITTEN_OUT: usize = 8;
+
+/// [`stages`], the same operations in the same order (so the same bits), with each stage
+/// written out by the compiler: stage i is a call of [`one_stage`] with i a constant, so
+/// where `rows` is a constant (a tableau's `const`) each row's loop is over a known row and
+/// unrolls, its coefficients folded into the code and kⱼ read from a known place, as a
+/// stage written out by hand. The rate is inlined once per stage: the form of the lanes
+/// (`lanes/dormand_prince.rs`), whose state rate is short and whose stages are W members'
+/// work each; through the loop of [`stages`] the compiler left each row's loop rolled, its
+/// coefficients read from memory and its kⱼ bounds-checked (`docs/bench/explicit_core.md`).
+#[inline(always)]
+pub fn stages_written_out<T, V, R, const K: usize>(
+    rows: &StageRows,
+    (t0, y0): (T, &V),
+    h: T,
+    k: &mut [V; K],
+    states: &mut [V],
+    rates: &mut R,
+) -> Result<V, R::Error>
+where
+    T: Lane,
+    V: Vector<T>,
+    R: Rates<T, V>,
+{
+    let mut last = *y0;
+    macro_rules! written_out {
+        ($($stage:literal)*) => {$(
+            if let Some(&row) = rows.get($stage) {
+                one_stage($stage, row, (t0, y0, h), k, states, rates, &mut last)?;
+            }
+        )*};
+    }
+    written_out!(0 1 2 3 4 5 6 7);
+    for (stage, &row) in rows.iter().enumerate().skip(WRITTEN_OUT) {
+        one_stage(stage, row, (t0, y0, h), k, states, rates, &mut last)?;
+    }
+    Ok(last)
+}
+
+/// Stage `stage + 2` of [`stages`], its node c and its row of A: its state y₀ + Σⱼ kⱼ (aⱼ h)
+/// in the row's order into `last` (and `states[stage]` if there is one), its rate into
+/// `k[stage + 1]`.
+#[inline(always)]
+fn one_stage<T, V, R, const K: usize>(
+    stage: usize,
+    (c, row): (f64, Row),
+    (t0, y0, h): (T, &V, T),
+    k: &mut [V; K],
+    states: &mut [V],
+    rates: &mut R,
+    last: &mut V,
+) -> Result<(), R::Error>
+where
+    T: Lane,
+    V: Vector<T>,
+    R: Rates<T, V>,
+{
+    *last = *y0;
+    for &(j, a) in row {
+        *last = last.add_scaled(&k[j - 1], h * a);
+    }
+    k[stage + 1] = rates.rate(t0 + h * c, last)?;
+    if let Some(state) = states.get_mut(stage) {
+        *state = *last;
+    }
+    Ok(())
 }
 
 /// (Σⱼ kⱼ bⱼ)·h over a row of weights (a solution's increment or an error estimate), summed
@@ -248,6 +310,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lanes::{lane, LaneState, Lanes};
 
     /// The core's norm is [`Tolerance::norm`] to the bit: on an estimate with an exact zero,
     /// a component over a zero weight's neighbour and magnitudes from either end.
@@ -260,6 +323,75 @@ mod tests {
         let expected = tolerance.norm(&estimate, |i| y0[i].abs().max(y1[i].abs()));
         let got: f64 = error_norm(&tolerance, &estimate, (&y0, &y1));
         assert_eq!(got.to_bits(), expected.to_bits());
+    }
+
+    /// The stages written out are the loop's to the bit: over ten rows (so two run in the
+    /// loop that follows the eight written out), a rate that is not linear, every k and
+    /// every stage state compared, in one lane and in four.
+    #[test]
+    fn stages_written_out_are_the_loops() {
+        const ROWS: &StageRows = &[
+            (0.1, &[(1, 0.1)]),
+            (0.3, &[(1, 0.075), (2, 0.225)]),
+            (0.8, &[(1, 0.97), (2, -3.7), (3, 3.5)]),
+            (0.9, &[(2, 0.4), (4, 0.5)]),
+            (1.0, &[(1, 0.3), (3, 0.2), (5, 0.5)]),
+            (0.5, &[(6, 0.5)]),
+            (0.7, &[(1, 0.1), (7, 0.6)]),
+            (0.2, &[(8, 0.2)]),
+            (0.6, &[(2, -0.4), (9, 1.0)]),
+            (1.0, &[(1, 0.25), (5, 0.25), (10, 0.5)]),
+        ];
+        struct Bent;
+        impl Rates<f64, SVector<f64, 2>> for Bent {
+            type Error = ();
+            fn rate(&mut self, t: f64, y: &SVector<f64, 2>) -> Result<SVector<f64, 2>, ()> {
+                Ok(SVector::<f64, 2>::new(
+                    y[1] * y[0] + t,
+                    1.0 / (1.0 + y[0] * y[0]),
+                ))
+            }
+        }
+        impl Rates<Lanes<4>, LaneState<2, 4>> for Bent {
+            type Error = ();
+            fn rate(&mut self, t: Lanes<4>, y: &LaneState<2, 4>) -> Result<LaneState<2, 4>, ()> {
+                Ok([y[1] * y[0] + t, Lanes::splat(1.0) / (y[0] * y[0] + 1.0)])
+            }
+        }
+        let y0 = SVector::<f64, 2>::new(0.7, -1.3);
+        let mut k = [y0 * 0.5; 11];
+        let (mut k_out, mut states, mut states_out) = (k, [y0; 10], [y0; 10]);
+        let last = stages(ROWS, (0.25, &y0), 0.1, &mut k, &mut states, &mut Bent).unwrap();
+        let out = stages_written_out(
+            ROWS,
+            (0.25, &y0),
+            0.1,
+            &mut k_out,
+            &mut states_out,
+            &mut Bent,
+        );
+        assert_eq!(out.unwrap().map(f64::to_bits), last.map(f64::to_bits));
+        for (a, b) in k.iter().chain(&states).zip(k_out.iter().chain(&states_out)) {
+            assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
+        }
+        // Four lanes, lane 2 the one-lane run above: the written-out stages over lanes give
+        // its bits.
+        let spread = |v: &SVector<f64, 2>| -> LaneState<2, 4> {
+            core::array::from_fn(|j| Lanes([v[j] * 3.0, -v[j], v[j], v[j] + 1.0]))
+        };
+        let mut k_lanes = [spread(&(y0 * 0.5)); 11];
+        let mut states_lanes = [spread(&y0); 10];
+        let (t0, h) = (Lanes::splat(0.25), Lanes([0.2, 0.05, 0.1, 0.1]));
+        let y0_lanes = spread(&y0);
+        let lanes = (&mut k_lanes, &mut states_lanes[..]);
+        stages_written_out(ROWS, (t0, &y0_lanes), h, lanes.0, lanes.1, &mut Bent).unwrap();
+        for (a, b) in k
+            .iter()
+            .chain(&states)
+            .zip(k_lanes.iter().chain(&states_lanes))
+        {
+            assert_eq!(a.map(f64::to_bits), lane(b, 2).map(f64::to_bits));
+        }
     }
 
     /// A stage state accumulates y + kⱼ·(aⱼ h) in the row's order, a combination sums
