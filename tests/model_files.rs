@@ -1,8 +1,10 @@
-//! Every model file in `models/` parses and derives (its `check`s pass) for every choice of
-//! its tags, and tag selection follows its documented rule.
+//! Every model file in `models/` parses, composes (its components of `models/lib/`
+//! expanded) and derives (its `check`s pass) for every choice of its tags, and tag
+//! selection follows its documented rule.
 
 use std::path::PathBuf;
 
+use varmass::symbolic::compose::compose;
 use varmass::symbolic::parse::{known_tags, parse_system, select_tags};
 use varmass::symbolic::{
     derive_in,
@@ -42,7 +44,11 @@ fn every_model_derives_with_every_choice_of_tags() {
     let files = models();
     assert!(files.len() >= 8, "found {} model files", files.len());
     for (path, text) in files {
-        let ast = parse_system(&text).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+        let parsed = parse_system(&text).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+        let composed = compose(&text, parsed, &path);
+        let ast = composed
+            .unwrap_or_else(|e| panic!("{}: {e:?}", path.display()))
+            .ast;
         for with in subsets(&known_tags(&ast)) {
             let selected = select_tags(&ast, &with).expect("known tags");
             // Table files are read next to the model file.

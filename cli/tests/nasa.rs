@@ -1,5 +1,5 @@
 //! NASA's check-cases 1 and 2 (NASA/TM-2015-218675) flown by `varmass run` on the model
-//! files of `models/nasa/` (composed with `models/lib/earth_wgs84.vms`), recorded every
+//! files of `models/nasa/` (composed with `models/lib/gravity_wgs84_j2.vms`), recorded every
 //! 0.1 s and held to the median and spread of NASA's simulations stored in
 //! `validation/nasa/case_NN.csv` (`tests/nasa_check_cases.rs` does every quantity through
 //! the macro; here the tool's own path, with the quantities its `--record` expressions give

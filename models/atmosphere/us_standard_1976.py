@@ -9,10 +9,13 @@ computed from the standard's defining formulas (NOAA-S/T 76-1562, part 1, sectio
   P = Pb exp(-g0' M0 (H - Hb) / (R* Tb))                if Lb == 0;
 * density rho = P M0 / (R* T) (eq. 42), with M0 constant below 86 km.
 
+It also writes the temperature and the pressure (`temperature.csv`, `pressure.csv`), the
+default sounding of models/lib/atmosphere_table.vms.
+
 Constants as the standard gives them: g0' = 9.80665 m^2/(s^2 m'), R* = 8.31432 J/(mol K),
 M0 = 28.9644 g/mol, P0 = 101325 Pa, T0 = 288.15 K.
 
-    python3 models/atmosphere/us_standard_1976.py    # rewrites density.csv beside it
+    python3 models/atmosphere/us_standard_1976.py    # rewrites the three CSVs beside it
 """
 
 import math
@@ -59,24 +62,38 @@ def state(dh, lapse, tb, pb):
     return t, pb * (tb / t) ** (G0 * M0 / (R_STAR * lapse))
 
 
-def density(z, layers):
-    """Density at geometric altitude z (m)."""
+def temperature_pressure(z, layers):
+    """Temperature (K) and pressure (Pa) at geometric altitude z (m)."""
     h = R0 * z / (R0 + z)
     base, lapse, tb, pb = next(layer for layer in reversed(layers) if layer[0] <= h)
-    t, p = state(h - base, lapse, tb, pb)
+    return state(h - base, lapse, tb, pb)
+
+
+def density(z, layers):
+    """Density at geometric altitude z (m)."""
+    t, p = temperature_pressure(z, layers)
     return p * M0 / (R_STAR * t)
+
+
+def write(name, header, value, layers):
+    """One CSV of altitude against value(z, layers), every STEP to TOP."""
+    path = Path(__file__).with_name(name)
+    with path.open("w") as f:
+        f.write(f"# U.S. Standard Atmosphere 1976: {header[1]} against geometric altitude,\n")
+        f.write("# computed by us_standard_1976.py from the standard's formulas.\n")
+        f.write(f"altitude_m,{header[0]}\n")
+        for k in range(int(TOP / STEP) + 1):
+            z = k * STEP
+            f.write(f"{z:.0f},{value(z, layers):.{header[2]}e}\n")
 
 
 def main():
     layers = bases()
-    path = Path(__file__).with_name("density.csv")
-    with path.open("w") as f:
-        f.write("# U.S. Standard Atmosphere 1976: density against geometric altitude,\n")
-        f.write("# computed by us_standard_1976.py from the standard's formulas.\n")
-        f.write("altitude_m,density_kg_m3\n")
-        for k in range(int(TOP / STEP) + 1):
-            z = k * STEP
-            f.write(f"{z:.0f},{density(z, layers):.6e}\n")
+    write("density.csv", ("density_kg_m3", "density", 6), density, layers)
+    temperature = lambda z, layers: temperature_pressure(z, layers)[0]
+    pressure = lambda z, layers: temperature_pressure(z, layers)[1]
+    write("temperature.csv", ("temperature_K", "temperature", 9), temperature, layers)
+    write("pressure.csv", ("pressure_Pa", "pressure", 9), pressure, layers)
 
 
 if __name__ == "__main__":

@@ -1,20 +1,23 @@
-//! Physical dimensions over the SI base units kg, m and s, with exact rational exponents.
+//! Physical dimensions over the SI base units kg, m, s, K and mol, with exact rational
+//! exponents.
 //!
-//! An angle (rad) is dimensionless: it multiplies like the number 1, so a torque and an
-//! energy share `kg·m²/s²`. Exponents are [`Rational`]s so that `sqrt(m)` is `m^(1/2)`
+//! The kelvin and the mole are there for thermodynamics (an atmosphere's temperature, a gas
+//! constant in J/(mol·K)); mechanics needs only kg, m and s. An angle (rad) is
+//! dimensionless: it multiplies like the number 1, so a torque and an energy share
+//! `kg·m²/s²`. Exponents are [`Rational`]s so that `sqrt(m)` is `m^(1/2)`
 //! exactly; every operation is checked and gives `None` rather than overflow.
 
 use crate::expr::Rational;
 use std::fmt;
 
-/// A dimension `kg^a · m^b · s^c`.
+/// A dimension `kg^a · m^b · s^c · K^d · mol^e`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Dimension {
-    exponents: [Rational; 3],
+    exponents: [Rational; 5],
 }
 
 /// The base units, in display order.
-const BASES: [&str; 3] = ["kg", "m", "s"];
+const BASES: [&str; 5] = ["kg", "m", "s", "K", "mol"];
 
 impl Dimension {
     /// Dimensionless (a pure number, or an angle in rad).
@@ -39,20 +42,32 @@ impl Dimension {
     pub const MASS_FLOW: Dimension = Dimension::integer(1, 0, -1);
     /// kg·m² (a moment of inertia).
     pub const INERTIA: Dimension = Dimension::integer(1, 2, 0);
+    /// K (a thermodynamic temperature).
+    pub const TEMPERATURE: Dimension = Dimension::thermal([0, 0, 0, 1, 0]);
+    /// mol (an amount of substance).
+    pub const AMOUNT: Dimension = Dimension::thermal([0, 0, 0, 0, 1]);
 
-    /// `kg^kg · m^m · s^s` with integer exponents.
+    /// `kg^kg · m^m · s^s` with integer exponents (no kelvin, no mole).
     pub const fn integer(kg: i128, m: i128, s: i128) -> Dimension {
+        Dimension::thermal([kg, m, s, 0, 0])
+    }
+
+    /// `kg^a · m^b · s^c · K^d · mol^e` from the integer exponents `[a, b, c, d, e]`.
+    pub const fn thermal(exponents: [i128; 5]) -> Dimension {
+        let [kg, m, s, kelvin, mole] = exponents;
         Dimension {
             exponents: [
                 Rational::integer(kg),
                 Rational::integer(m),
                 Rational::integer(s),
+                Rational::integer(kelvin),
+                Rational::integer(mole),
             ],
         }
     }
 
-    /// The exponents of kg, m and s.
-    pub fn exponents(self) -> [Rational; 3] {
+    /// The exponents of kg, m, s, K and mol.
+    pub fn exponents(self) -> [Rational; 5] {
         self.exponents
     }
 
@@ -67,11 +82,11 @@ impl Dimension {
         other: Dimension,
         f: impl Fn(Rational, Rational) -> Option<Rational>,
     ) -> Option<Dimension> {
-        let [a, b, c] = self.exponents;
-        let [x, y, z] = other.exponents;
-        Some(Dimension {
-            exponents: [f(a, x)?, f(b, y)?, f(c, z)?],
-        })
+        let mut exponents = self.exponents;
+        for (mine, theirs) in exponents.iter_mut().zip(other.exponents) {
+            *mine = f(*mine, theirs)?;
+        }
+        Some(Dimension { exponents })
     }
 
     /// The dimension of a product.
@@ -144,6 +159,9 @@ const NAMES: &[(Dimension, &str)] = &[
     (Dimension::integer(1, 1, -1), "a momentum"),
     (Dimension::integer(1, 2, -1), "an angular momentum"),
     (Dimension::integer(0, 0, -1), "a rate"),
+    (Dimension::TEMPERATURE, "a temperature"),
+    (Dimension::AMOUNT, "an amount of substance"),
+    (Dimension::integer(0, 2, -2), "a specific energy"),
 ];
 
 /// `²` for 2, `⁻¹` for −1: an integer in Unicode superscripts.
@@ -225,7 +243,8 @@ mod tests {
         assert_eq!(root_length.pow(r(2, 1)), Some(Dimension::LENGTH));
         // (kg·m²/s²)^(-3/2) = kg^(-3/2)·m^(-3)·s^3
         let e = Dimension::ENERGY.pow(r(-3, 2)).unwrap();
-        assert_eq!(e.exponents(), [r(-3, 2), r(-3, 1), r(3, 1)]);
+        let zero = Rational::ZERO;
+        assert_eq!(e.exponents(), [r(-3, 2), r(-3, 1), r(3, 1), zero, zero]);
         assert_eq!(Dimension::ENERGY.pow(Rational::ZERO), Some(Dimension::NONE));
     }
 
@@ -247,6 +266,48 @@ mod tests {
         assert_eq!(Dimension::LENGTH.sqrt().unwrap().to_string(), "m^(1/2)");
         let odd = Dimension::integer(1, 0, 0).pow(r(-3, 2)).unwrap();
         assert_eq!(odd.to_string(), "1/kg^(3/2)");
+    }
+
+    #[test]
+    fn kelvin_and_mole_are_base_dimensions_of_their_own() {
+        // The 1976 atmosphere's gas constant R* = 8.31432 J/(mol·K) and molar mass M0 in
+        // kg/mol: R*/M0 is J/(kg·K) = m²/(s²·K), and times a temperature a specific energy
+        // (m²/s², the square of a speed of sound).
+        let joule_per_mol_kelvin = Dimension::ENERGY
+            .checked_div(Dimension::AMOUNT)
+            .and_then(|d| d.checked_div(Dimension::TEMPERATURE))
+            .unwrap();
+        assert_eq!(joule_per_mol_kelvin.to_string(), "kg·m²/(s²·K·mol)");
+        let molar_mass = Dimension::MASS.checked_div(Dimension::AMOUNT).unwrap();
+        assert_eq!(molar_mass.to_string(), "kg/mol");
+        let specific = joule_per_mol_kelvin.checked_div(molar_mass).unwrap();
+        assert_eq!(specific.to_string(), "m²/(s²·K)");
+        let square_speed = specific.checked_mul(Dimension::TEMPERATURE).unwrap();
+        assert_eq!(square_speed.sqrt(), Some(Dimension::VELOCITY));
+        assert_eq!(square_speed.described(), "a specific energy, m²/s²");
+        // A temperature is not a mass, a length, a time nor dimensionless, and a lapse rate
+        // K/m times a length is a temperature again.
+        for other in [
+            Dimension::NONE,
+            Dimension::MASS,
+            Dimension::LENGTH,
+            Dimension::TIME,
+        ] {
+            assert_ne!(Dimension::TEMPERATURE, other);
+        }
+        let lapse = Dimension::TEMPERATURE
+            .checked_div(Dimension::LENGTH)
+            .unwrap();
+        assert_eq!(lapse.to_string(), "K/m");
+        assert_eq!(
+            lapse.checked_mul(Dimension::LENGTH),
+            Some(Dimension::TEMPERATURE)
+        );
+        assert_eq!(Dimension::TEMPERATURE.described(), "a temperature, K");
+        assert_eq!(
+            Dimension::TEMPERATURE.pow(r(-1, 2)).unwrap().to_string(),
+            "1/K^(1/2)"
+        );
     }
 
     #[test]

@@ -206,7 +206,10 @@ fn every_model_file_states_its_units_and_passes_the_check() {
             continue;
         }
         let text = std::fs::read_to_string(&path).expect("readable");
-        let ast = varmass_symbolic::parse::parse_system(&text).expect("parses");
+        let parsed = varmass_symbolic::parse::parse_system(&text).expect("parses");
+        // Its components (models/lib/) expanded first, as every caller does.
+        let composed = varmass_symbolic::compose::compose(&text, parsed, &path);
+        let ast = composed.expect("its components compose").ast;
         let every_tag = varmass_symbolic::parse::known_tags(&ast);
         let all = varmass_symbolic::parse::select_tags(&ast, &every_tag).expect("known tags");
         let (inferred, minimal) = (

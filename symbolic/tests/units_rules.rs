@@ -342,7 +342,7 @@ fn unit_declarations_are_checked_themselves() {
             "the unit of `x` is given twice",
             "`t` is the time, always in s",
             "`H` is a derived quantity: its unit follows from the others",
-            "unknown unit `sec`; the units are kg, m, s, rad, N, J, W, Pa and 1",
+            "unknown unit `sec`; the units are kg, m, s, rad, N, J, W, Pa, K, mol and 1",
         ]
     );
     single(

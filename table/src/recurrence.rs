@@ -226,30 +226,55 @@ pub fn atan2<S: Scalar>(
     (cross - total) / (int::<S>(k) * d(0))
 }
 
-/// |a|, k ≥ 1: the branch of a\[0\]'s sign (+ at 0; the kink itself is located by events).
+/// |a|, k ≥ 1: the branch of a\[0\]'s sign; at a\[0\] = 0 (a run restarted on the kink,
+/// which events locate) the branch a takes just after: the sign of its first non-zero
+/// coefficient up to k (+ when there is none: every coefficient up to k is then 0).
 #[inline(always)]
 pub fn abs(a: impl Fn(usize) -> f64, k: usize) -> f64 {
-    if a(0) < 0.0 {
+    let zero = |_| 0.0;
+    if below(&a, &zero, k) {
         -a(k)
     } else {
         a(k)
     }
 }
 
-/// The series of the smaller (`larger` false) or larger argument at order 0, the first at a
-/// tie, k ≥ 1; NaN when either order-0 value is (no branch is chosen then).
+/// The series of the smaller (`larger` false) or larger argument at order 0, k ≥ 1; NaN
+/// when either order-0 value is (no branch is chosen then). At a tie (a run restarted on
+/// the kink, which events locate) the branch that holds just after: the first coefficient
+/// up to k where the two series differ decides (where none does, a\[k\] = b\[k\] and the
+/// branch does not matter). A tie decided by the order of the arguments instead expanded a
+/// whole step on the wrong side: `max(H - 47000, 0)` restarted at H - 47000 = 0 with H
+/// falling gave the isothermal layer of models/lib/atmosphere_1976.vms a growing factor, and
+/// a sphere's fall time 2e-5 off (cli/tests/library.rs).
 #[inline(always)]
 pub fn min_max(a: impl Fn(usize) -> f64, b: impl Fn(usize) -> f64, k: usize, larger: bool) -> f64 {
-    let (a0, b0) = (a(0), b(0));
-    if a0.is_nan() || b0.is_nan() {
+    if a(0).is_nan() || b(0).is_nan() {
         return f64::NAN;
     }
-    let first = if larger { a0 >= b0 } else { a0 <= b0 };
+    let first = if larger {
+        !below(&a, &b, k)
+    } else {
+        !below(&b, &a, k)
+    };
     if first {
         a(k)
     } else {
         b(k)
     }
+}
+
+/// Whether the series a is below b just after the expansion point: the first of the
+/// coefficients 0..=k where they differ is smaller in a (false where none differs).
+#[inline(always)]
+fn below(a: &impl Fn(usize) -> f64, b: &impl Fn(usize) -> f64, k: usize) -> bool {
+    for j in 0..=k {
+        let (x, y) = (a(j), b(j));
+        if x != y {
+            return x < y;
+        }
+    }
+    false
 }
 
 /// Row `a` of the right side of M\[0\] q̇\[k\] = p\[k\] − b\[k\] − Σⱼ₌₁ᵏ M\[j\] q̇\[k−j\],
@@ -364,5 +389,34 @@ mod tests {
                 assert!((c[k].0[lane] - cos).abs() <= 1e-15 * magnitude, "cos k={k}");
             }
         }
+    }
+
+    #[test]
+    fn a_tie_takes_the_branch_that_holds_just_after() {
+        use super::{abs, min_max};
+        // a(t) = t - t², b(t) = 0: tied at t = 0, a above just after (its slope 1 > 0).
+        let a = [0.0, 1.0, -1.0, 0.0];
+        let b = [0.0; 4];
+        let (ra, rb) = (|j: usize| a[j], |j: usize| b[j]);
+        for k in 1..4 {
+            assert_eq!(min_max(ra, rb, k, true), a[k], "max k={k}");
+            assert_eq!(min_max(ra, rb, k, false), b[k], "min k={k}");
+            // Arguments swapped: the same branches (the order decided before).
+            assert_eq!(min_max(rb, ra, k, true), a[k], "max swapped k={k}");
+            assert_eq!(min_max(rb, ra, k, false), b[k], "min swapped k={k}");
+        }
+        // -t + t²: |.| = t - t² just after 0, the minus branch.
+        let c = [0.0, -1.0, 1.0, 0.0];
+        for k in 1..4 {
+            assert_eq!(abs(|j| c[j], k), -c[k], "abs k={k}");
+        }
+        // Equal slopes, the second coefficient decides: a = t + t², b = t.
+        let (p, q) = ([0.0, 1.0, 1.0], [0.0, 1.0, 0.0]);
+        assert_eq!(min_max(|j| p[j], |j| q[j], 2, false), q[2]);
+        assert_eq!(min_max(|j| q[j], |j| p[j], 2, true), p[2]);
+        // Apart at order 0: order 0 decides, as before.
+        let (low, high) = ([1.0, 5.0], [2.0, -5.0]);
+        assert_eq!(min_max(|j| low[j], |j| high[j], 1, false), 5.0);
+        assert_eq!(min_max(|j| high[j], |j| low[j], 1, true), -5.0);
     }
 }

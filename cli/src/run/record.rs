@@ -10,6 +10,7 @@
 
 use varmass::core::SystemError;
 use varmass::interpret::{Program, Quantity};
+use varmass::symbolic::compose::defaults;
 use varmass::symbolic::expr::{Func, Node};
 use varmass::symbolic::parse::ast::{BinOp, Expr, ExprNode, StatementKind, SystemAst};
 use varmass::symbolic::parse::parse_expression;
@@ -65,8 +66,10 @@ pub struct TableScope {
 pub struct Scope<'a> {
     /// The quantities, as [`super::names::observables`] lists them.
     pub quantities: &'a [(String, Observable)],
-    /// The parameter values.
-    pub parameters: &'a [(String, f64)],
+    /// The parameter values: those of the run, then the defaults of the model's
+    /// `parameter`s that the run has no value for (a component's `let` may read one that no
+    /// equation reads, `air_gamma` of a speed of sound: docs/components.md#defaults).
+    pub parameters: Vec<(String, f64)>,
     /// The masses' names, in mass order (for `mdot_<mass>`).
     pub masses: Vec<String>,
     /// The model's `let` definitions, in order.
@@ -92,9 +95,15 @@ impl<'a> Scope<'a> {
                 _ => None,
             })
             .collect();
+        let mut all = parameters.to_vec();
+        for (name, value) in defaults(ast) {
+            if !all.iter().any(|(n, _)| *n == name) {
+                all.push((name, value));
+            }
+        }
         Self {
             quantities,
-            parameters,
+            parameters: all,
             masses: program.mass_names().map(str::to_string).collect(),
             lets,
             tables: tables(program),

@@ -52,7 +52,8 @@
 //!
 //! The statistics count one rate evaluation per expansion (the work of an expansion to
 //! order p is about p²/2 products per subexpression, against one evaluation's one).
-//! Piecewise functions (abs, sign, min, max) are expanded on the branch of the step's start:
+//! Piecewise functions (abs, sign, min, max) are expanded on the branch of the step's start
+//! (abs, min, max at a tie: the branch that holds just after, `varmass_table::recurrence`):
 //! their switches must be located by events, so that no step straddles one.
 
 #[path = "taylor/head.rs"]

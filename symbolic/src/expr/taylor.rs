@@ -15,8 +15,9 @@
 //! ([`TaylorTape::begin`]); their higher coefficients stay zero.
 //!
 //! The piecewise functions (abs, sign, min, max) are differentiated on the smooth branch
-//! chosen by the order-0 values: a step must not straddle their switch, which is located
-//! elsewhere (events on the dense output), as for every other stepper.
+//! chosen by the order-0 values (abs, min, max at a tie: by the first coefficient where the
+//! series differ, the branch that holds just after): a step must not straddle their switch,
+//! which is located elsewhere (events on the dense output), as for every other stepper.
 
 #[path = "taylor/prune.rs"]
 mod prune;
@@ -101,11 +102,11 @@ pub(crate) enum Op {
         x: usize,
         d: usize,
     },
-    /// |a| on the branch of a\[0\]'s sign (+ at 0).
+    /// |a| on the branch of a\[0\]'s sign (at 0: of a's first non-zero coefficient).
     Abs(usize),
     /// sign a\[0\], constant over the step.
     Sign(usize),
-    /// The series of the argument smaller (larger) at order 0; the first at a tie.
+    /// The series of the argument smaller (larger) at order 0; at a tie, just after.
     Min(usize, usize),
     Max(usize, usize),
     /// Order `order` of table `table` of a (`tables[index]` of the tape): the cubic of the

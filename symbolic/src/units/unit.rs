@@ -18,9 +18,11 @@ pub const UNITS: &[(&str, Dimension)] = &[
     ("J", Dimension::ENERGY),
     ("W", Dimension::POWER),
     ("Pa", Dimension::PRESSURE),
+    ("K", Dimension::TEMPERATURE),
+    ("mol", Dimension::AMOUNT),
 ];
 
-/// `kg, m, s, rad, N, J, W, Pa and 1`, for messages.
+/// `kg, m, s, rad, N, J, W, Pa, K, mol and 1`, for messages.
 fn known_units() -> String {
     let names: Vec<&str> = UNITS.iter().map(|(name, _)| *name).collect();
     format!("{} and 1", names.join(", "))
@@ -141,6 +143,18 @@ mod tests {
     }
 
     #[test]
+    fn kelvin_and_mole_read_as_their_dimensions() {
+        assert_eq!(dimension("K").unwrap(), Dimension::TEMPERATURE);
+        assert_eq!(dimension("K/m").unwrap().to_string(), "K/m");
+        let gas_constant = dimension("J/(mol*K)").unwrap();
+        assert_eq!(gas_constant.to_string(), "kg·m²/(s²·K·mol)");
+        let specific = gas_constant.checked_div(dimension("kg/mol").unwrap());
+        assert_eq!(specific, Some(dimension("m^2/(s^2*K)").unwrap()));
+        assert_ne!(dimension("K").unwrap(), dimension("kg").unwrap());
+        assert_eq!(dimension("mol").unwrap(), Dimension::AMOUNT);
+    }
+
+    #[test]
     fn rad_is_dimensionless() {
         assert_eq!(dimension("rad").unwrap(), Dimension::NONE);
         assert_eq!(dimension("N*m/rad").unwrap(), Dimension::ENERGY);
@@ -152,7 +166,7 @@ mod tests {
         let error = dimension("kg/sec").unwrap_err();
         assert_eq!(
             error.message,
-            "unknown unit `sec`; the units are kg, m, s, rad, N, J, W, Pa and 1"
+            "unknown unit `sec`; the units are kg, m, s, rad, N, J, W, Pa, K, mol and 1"
         );
         assert_eq!(error.help.as_deref(), Some("did you mean `s`?"));
         assert_eq!((error.span.start, error.span.end), (3, 6));

@@ -178,7 +178,7 @@ pub fn atan2(y: &[f64; LEN], x: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: 
     rule::atan2((|j| y[j], |j| x[j]), |j| d[j], |j| w[j], k)
 }
 
-/// |a| on the branch of a\[0\]'s sign.
+/// |a| on the branch of a\[0\]'s sign (at 0: of a's first non-zero coefficient).
 #[inline(always)]
 pub fn abs(a: &[f64; LEN], k: usize) -> f64 {
     if k == 0 {
