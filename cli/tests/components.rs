@@ -4,28 +4,15 @@
 
 use std::path::PathBuf;
 
-use assert_cmd::Command;
+mod common;
+
+use common::output as varmass;
 
 /// A file of `tests/data/components/`.
 fn data(name: &str) -> String {
     format!(
         "{}/../tests/data/components/{name}",
         env!("CARGO_MANIFEST_DIR")
-    )
-}
-
-/// Runs the tool: exit code, stdout, stderr.
-fn varmass(args: &[&str]) -> (Option<i32>, String, String) {
-    let output = Command::cargo_bin("varmass")
-        .expect("the binary is built")
-        .args(args)
-        .output()
-        .expect("runs");
-    let text = |bytes: &[u8]| String::from_utf8_lossy(bytes).into_owned();
-    (
-        output.status.code(),
-        text(&output.stdout),
-        text(&output.stderr),
     )
 }
 

@@ -51,21 +51,32 @@ pub fn varmass(args: &[&str], code: i32) -> (String, String) {
 
 /// [`varmass`] run in the directory `dir` (where relative paths are read from).
 pub fn varmass_in(dir: &str, args: &[&str], code: i32) -> (String, String) {
+    let (status, stdout, stderr) = output_in(dir, args);
+    assert_eq!(status, Some(code), "{args:?}:\n{stdout}\n{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    (stdout, stderr)
+}
+
+/// Runs `varmass ARGS` in the cli crate's directory without asserting its exit: the exit
+/// code (`None` if a signal ended it), stdout and stderr.
+pub fn output(args: &[&str]) -> (Option<i32>, String, String) {
+    output_in(env!("CARGO_MANIFEST_DIR"), args)
+}
+
+/// [`output`] run in the directory `dir`.
+pub fn output_in(dir: &str, args: &[&str]) -> (Option<i32>, String, String) {
     let output = Command::cargo_bin("varmass")
         .expect("the binary is built")
         .current_dir(dir)
         .args(args)
         .output()
         .expect("runs");
-    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
-    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
-    assert_eq!(
+    let text = |bytes: &[u8]| String::from_utf8_lossy(bytes).into_owned();
+    (
         output.status.code(),
-        Some(code),
-        "{args:?}:\n{stdout}\n{stderr}"
-    );
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    (stdout, stderr)
+        text(&output.stdout),
+        text(&output.stderr),
+    )
 }
 
 /// Runs `varmass ARGS --csv FILE` in `dir`, FILE the scratch file `name` (removed first, so
