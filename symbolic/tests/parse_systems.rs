@@ -480,6 +480,14 @@ fn rigid_form_errors() {
             "an orientation is an Euler sequence",
         ),
         (
+            "rigid r: mass m, inertia J, position [x, y, z], orientation quaternion(a, b, c)",
+            "`quaternion` takes 4 components, found 3",
+        ),
+        (
+            "rigid r: mass m, inertia J, position [x, y, z], orientation quaternoin(a, b, c, d)",
+            "unknown Euler sequence `quaternoin`",
+        ),
+        (
             "rigid r: mass m, inertai J, position [x, y], angle th",
             "unknown option `inertai` for rigid",
         ),

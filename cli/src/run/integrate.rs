@@ -445,8 +445,9 @@ impl Advice {
                     "the model's kinetic energy stops depending on a velocity here: stop before \
                      this state ({stop_when}), or check the masses and positions; a rigid body at \
                      the gimbal lock of its Euler sequence (middle angle ±90° for zyx-like, 0° or \
-                     180° for zxz-like sequences) needs a sequence whose lock the motion avoids \
-                     (docs/mechanics.md#rigid-bodies)"
+                     180° for zxz-like sequences) needs a sequence whose lock the motion avoids, \
+                     or `orientation quaternion(e0, e1, e2, e3)`, singular nowhere \
+                     (docs/mechanics.md#quaternions)"
                 ),
             ),
             SystemError::SupportCoupled { index } => {

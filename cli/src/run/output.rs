@@ -364,7 +364,8 @@ pub fn gimbal_warning(closest: Option<f64>) -> String {
     match closest {
         Some(closest) if closest < GIMBAL_WARNING => format!(
             "warning: the attitude came within {} rad of gimbal lock (the Euler sequence's \
-             singular attitude), where the angles' rates and the error grow as 1/distance\n",
+             singular attitude), where the angles' rates and the error grow as 1/distance; \
+             `orientation quaternion(e0, e1, e2, e3)` has none\n",
             shown(closest)
         ),
         _ => String::new(),

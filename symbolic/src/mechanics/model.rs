@@ -83,6 +83,9 @@ pub struct Rigid {
     /// (its first axis is its last, `zxz`): the attitude is singular (gimbal lock) where
     /// that angle's cosine (Tait–Bryan, `zyx`) or sine (proper) vanishes.
     pub euler_middle: Option<(Id, bool)>,
+    /// With a quaternion, the kinetic term of its radial rate that makes M regular
+    /// (docs/mechanics.md#quaternions), zero on every motion from a q·q̇ = 0 start.
+    pub gauge: Option<Id>,
     /// The inertia about the centre of mass in body components (1×1 in the plane), frozen.
     pub inertia: Matrix,
     /// c: the centre of mass from the reference point, body components, frozen.

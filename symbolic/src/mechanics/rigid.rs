@@ -7,7 +7,7 @@ use super::build::Builder;
 use super::linear::{mat_vec, Matrix};
 use super::model::{Body, Load, LoadKind, LoadTarget, Rigid};
 use super::rotation;
-use crate::expr::{Id, SymbolKind};
+use crate::expr::{ExprPool, Id, SymbolKind};
 use crate::parse::ast::{Attitude, Frame, InertiaValue, LoadValue, RigidDecl, VectorNode};
 use crate::parse::{keywords, Diagnostic, Span};
 
@@ -16,6 +16,8 @@ struct Turned {
     rotation: Matrix,
     angular_velocity: Vec<Id>,
     euler_middle: Option<(Id, bool)>,
+    /// A quaternion's (q·q̇, |q|²), for the gauge term of T ([`gauge_term`]).
+    radial: Option<(Id, Id)>,
 }
 
 impl Builder {
@@ -43,6 +45,9 @@ impl Builder {
             return;
         };
         let pool = &mut self.model.pool;
+        let gauge = turned
+            .radial
+            .map(|radial| gauge_term(pool, radial, &inertia));
         let offset = mat_vec(pool, &turned.rotation, &centre);
         let position = origin
             .iter()
@@ -58,6 +63,7 @@ impl Builder {
                 rotation: turned.rotation,
                 angular_velocity: turned.angular_velocity,
                 euler_middle: turned.euler_middle,
+                gauge,
                 inertia,
                 centre,
             }),
@@ -130,13 +136,30 @@ impl Builder {
                 rotation: rotation::planar(pool, *angle),
                 angular_velocity: vec![*rate],
                 euler_middle: None,
+                radial: None,
             }),
+            (None, [a, b, c, d], [da, db, dc, dd]) => {
+                let (e, rates) = ([*a, *b, *c, *d], [*da, *db, *dc, *dd]);
+                let products: Vec<Id> = e
+                    .iter()
+                    .zip(&rates)
+                    .map(|(x, y)| pool.mul(&[*x, *y]))
+                    .collect();
+                let along = pool.add(&products);
+                Some(Turned {
+                    rotation: rotation::quaternion_rotation(pool, &e),
+                    angular_velocity: rotation::quaternion_rates(pool, &e, &rates),
+                    euler_middle: None,
+                    radial: Some((along, rotation::quaternion_norm(pool, &e))),
+                })
+            }
             (Some(axes), [a, b, c], [da, db, dc]) => {
                 let angles = [*a, *b, *c];
                 Some(Turned {
                     rotation: rotation::spatial(pool, axes, &angles),
                     angular_velocity: rotation::body_rates(pool, axes, &angles, &[*da, *db, *dc]),
                     euler_middle: Some((*b, axes[0] == axes[2])),
+                    radial: None,
                 })
             }
             _ => None,
@@ -427,4 +450,22 @@ impl Builder {
         let target = LoadTarget::Torque(body, torque);
         self.model.loads.push(Load { kind, target, span });
     }
+}
+
+/// ½ λ (q·q̇)² / n² with λ = 4/3 tr I, the kinetic term of a quaternion's radial rate
+/// (docs/mechanics.md#quaternions). R and ω depend on q/|q| only, so without it the
+/// mass matrix is singular along q; with it, in the orthonormal frame of q/|q| and the
+/// three rows of ω's Jacobian, the angular block of M is diag(4 I, λ)/n: positive definite
+/// for every q ≠ 0 and as well conditioned as I. Its equation keeps q·q̇ = 0 (so |q| is
+/// constant) when it starts there, where the term is zero: the motion and the energy are
+/// those of the Euler angles' derivation.
+fn gauge_term(pool: &mut ExprPool, (along, norm): (Id, Id), inertia: &Matrix) -> Id {
+    let trace: Vec<Id> = (0..inertia.len()).map(|i| inertia[i][i]).collect();
+    let trace = pool.add(&trace);
+    let (two, minus_two) = (pool.int(2), pool.int(-2));
+    let (two_, three) = (pool.int(2), pool.int(3));
+    let factor = pool.div(two_, three);
+    let squared = pool.pow(along, two);
+    let over = pool.pow(norm, minus_two);
+    pool.mul(&[factor, trace, squared, over])
 }

@@ -7,12 +7,16 @@ use super::linear::{dot, mat_vec, Matrix};
 use super::model::{Body, FlowVelocityValue, Rigid};
 use crate::expr::{ExprPool, Id, Rational, Symbol};
 
-/// ½ ωᵀ I ω, ω and I in body components.
+/// ½ ωᵀ I ω, ω and I in body components (and a quaternion's gauge term, `Rigid::gauge`).
 pub(crate) fn rotational_kinetic(pool: &mut ExprPool, rigid: &Rigid) -> Id {
     let half = pool.rational(Rational::HALF);
     let spin = mat_vec(pool, &rigid.inertia, &rigid.angular_velocity);
     let twice = dot(pool, &rigid.angular_velocity, &spin);
-    pool.mul(&[half, twice])
+    let rotational = pool.mul(&[half, twice]);
+    match rigid.gauge {
+        Some(gauge) => pool.add(&[rotational, gauge]),
+        None => rotational,
+    }
 }
 
 /// r_P = r_O + R a for the body-frame point a.

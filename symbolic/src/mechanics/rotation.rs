@@ -1,7 +1,7 @@
 //! Rotations of rigid bodies (docs/mechanics.md#rigid-bodies): the matrix R that takes
 //! body-frame components to world components, and the body-frame angular velocity ω as a
-//! function of the angles and their rates, in the plane and for the twelve intrinsic Euler
-//! sequences.
+//! function of the angles and their rates, in the plane, for the twelve intrinsic Euler
+//! sequences and for a quaternion (docs/mechanics.md#quaternions).
 
 use super::linear::Matrix;
 use crate::expr::{ExprPool, Func, Id};
@@ -90,6 +90,97 @@ pub(crate) fn body_rates(
         .map(|i| {
             let sum = pool.add(&[e1[i], e2[i], e3[i], zero]);
             pool.reduce_trig(sum)
+        })
+        .collect()
+}
+
+/// n = e0² + e1² + e2² + e3², the squared norm of a quaternion.
+pub(crate) fn quaternion_norm(pool: &mut ExprPool, e: &[Id; 4]) -> Id {
+    let two = pool.int(2);
+    let squares: Vec<Id> = e.iter().map(|c| pool.pow(*c, two)).collect();
+    pool.add(&squares)
+}
+
+/// R(q) = R(q/|q|) for q = (e0, e1, e2, e3), scalar first (Hamilton's convention, body →
+/// world): the rotation of the unit quaternion, written with n = |q|² so that every q ≠ 0
+/// is an attitude and the radial direction of q moves nothing:
+///
+/// ```text
+///       1 ⎡ e0²+e1²−e2²−e3²   2(e1e2 − e0e3)    2(e1e3 + e0e2)  ⎤
+/// R  =  ─ ⎢ 2(e1e2 + e0e3)    e0²−e1²+e2²−e3²   2(e2e3 − e0e1)  ⎥
+///       n ⎣ 2(e1e3 − e0e2)    2(e2e3 + e0e1)    e0²−e1²−e2²+e3² ⎦
+/// ```
+pub(crate) fn quaternion_rotation(pool: &mut ExprPool, e: &[Id; 4]) -> Matrix {
+    let n = quaternion_norm(pool, e);
+    let two = pool.int(2);
+    let square = |pool: &mut ExprPool, i: usize| pool.pow(e[i], two);
+    let diagonal = |pool: &mut ExprPool, k: usize| {
+        // e0² + e_k² − the other two.
+        let terms: Vec<Id> = (1..4)
+            .map(|i| {
+                let s = square(pool, i);
+                if i == k {
+                    s
+                } else {
+                    pool.neg(s)
+                }
+            })
+            .collect();
+        let e0 = square(pool, 0);
+        pool.add(&[&[e0], terms.as_slice()].concat())
+    };
+    // 2(e_i e_j ± e0 e_k): the off-diagonal entry (row i, column j) for {i, j, k} = {1, 2, 3}.
+    let off = |pool: &mut ExprPool, i: usize, j: usize, k: usize, plus: bool| {
+        let (a, b) = (pool.mul(&[two, e[i], e[j]]), pool.mul(&[two, e[0], e[k]]));
+        let b = if plus { b } else { pool.neg(b) };
+        pool.add(&[a, b])
+    };
+    let entries = [
+        [
+            diagonal(pool, 1),
+            off(pool, 1, 2, 3, false),
+            off(pool, 1, 3, 2, true),
+        ],
+        [
+            off(pool, 1, 2, 3, true),
+            diagonal(pool, 2),
+            off(pool, 2, 3, 1, false),
+        ],
+        [
+            off(pool, 1, 3, 2, false),
+            off(pool, 2, 3, 1, true),
+            diagonal(pool, 3),
+        ],
+    ];
+    entries
+        .iter()
+        .map(|row| row.iter().map(|x| pool.div(*x, n)).collect())
+        .collect()
+}
+
+/// ω in body axes from a quaternion and its rates: the vector part of 2 q* ⊗ q̇ / n,
+///
+/// ```text
+/// ω = 2 (e0 ė − ė0 e − e × ė) / n,    e = (e1, e2, e3),
+/// ```
+///
+/// which q̇ along q leaves unchanged (so ω is that of q/|q|; `Rᵀ Ṙ = [ω]×` with R above).
+pub(crate) fn quaternion_rates(pool: &mut ExprPool, e: &[Id; 4], rates: &[Id; 4]) -> Vec<Id> {
+    let n = quaternion_norm(pool, e);
+    let (two, minus) = (pool.int(2), pool.int(-1));
+    (1..4)
+        .map(|i| {
+            let (j, k) = (i % 3 + 1, (i + 1) % 3 + 1);
+            // (e × ė)_i = e_j ė_k − e_k ė_j for (i, j, k) cyclic in 1..3.
+            let terms = [
+                pool.mul(&[e[0], rates[i]]),
+                pool.mul(&[minus, rates[0], e[i]]),
+                pool.mul(&[minus, e[j], rates[k]]),
+                pool.mul(&[e[k], rates[j]]),
+            ];
+            let sum = pool.add(&terms);
+            let twice = pool.mul(&[two, sum]);
+            pool.div(twice, n)
         })
         .collect()
 }

@@ -267,11 +267,12 @@ pub enum InertiaValue {
 pub enum Attitude {
     /// `angle th`: planar, the angle from the world axes to the body axes.
     Angle(ExprNode),
-    /// `orientation zyx(psi, th, phi)`: spatial, an intrinsic Euler sequence.
+    /// `orientation zyx(psi, th, phi)`: spatial, an intrinsic Euler sequence; or
+    /// `orientation quaternion(e0, e1, e2, e3)`, a quaternion (scalar first).
     Orientation {
-        /// The sequence as written (`zyx`), with its span.
+        /// The sequence as written (`zyx`, or `quaternion`), with its span.
         sequence: Spanned<String>,
-        /// Its three angles, in the order of the sequence.
+        /// Its three angles, in the order of the sequence (a quaternion's four components).
         angles: Vec<ExprNode>,
     },
 }

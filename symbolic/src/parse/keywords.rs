@@ -112,6 +112,10 @@ pub const EULER_SEQUENCES: &[&str] = &[
     "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz",
 ];
 
+/// `orientation quaternion(e0, e1, e2, e3)`: the attitude as a quaternion of four coordinates,
+/// normalized by the derivation (docs/mechanics.md#quaternions), singular nowhere.
+pub const QUATERNION: &str = "quaternion";
+
 /// The functions the DSL knows, with their arity.
 pub const FUNCTIONS: &[(&str, usize)] = &[
     ("sin", 1),

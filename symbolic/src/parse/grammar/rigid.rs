@@ -211,13 +211,13 @@ impl<'a> Grammar<'a> {
         }
     }
 
-    /// `seq(a, b, c)` after `orientation`: read as a call, then checked to be a known
-    /// sequence with three angles.
+    /// `seq(a, b, c)` or `quaternion(e0, e1, e2, e3)` after `orientation`: read as a call,
+    /// then checked to be a known sequence with three angles, or a quaternion with four.
     fn orientation(&self, input: &'a str) -> PResult<'a, Attitude> {
         let (rest, (node, _)) = self.required(
             input,
             false,
-            "an Euler sequence such as `zyx(psi, th, phi)`",
+            "an Euler sequence such as `zyx(psi, th, phi)` or `quaternion(e0, e1, e2, e3)`",
             keywords::ORIENTATION,
             |i| self.expression(i, STATEMENT_LEVEL),
         )?;
@@ -227,32 +227,38 @@ impl<'a> Grammar<'a> {
         let Expr::Call { func, args } = *node else {
             let diagnostic = Diagnostic::new(
                 span,
-                "an orientation is an Euler sequence with its three angles, e.g. `zyx(psi, th, phi)`",
+                "an orientation is an Euler sequence with its three angles, e.g. `zyx(psi, th, phi)`, or `quaternion(e0, e1, e2, e3)`",
             )
             .with_help(format!("the intrinsic sequences are {sequences}"));
             return Err(self.fail(rest, diagnostic));
         };
-        if !keywords::EULER_SEQUENCES.contains(&func.node.as_str()) {
+        let quaternion = func.node == keywords::QUATERNION;
+        if !quaternion && !keywords::EULER_SEQUENCES.contains(&func.node.as_str()) {
             let mut diagnostic = Diagnostic::new(
                 func.span,
                 format!(
-                    "unknown Euler sequence `{}`; the intrinsic sequences are {sequences}",
-                    func.node
+                    "unknown Euler sequence `{}`; the intrinsic sequences are {sequences}, or `{}(e0, e1, e2, e3)`",
+                    func.node,
+                    keywords::QUATERNION
                 ),
             );
-            if let Some(close) = keywords::closest(&func.node, keywords::EULER_SEQUENCES) {
+            let known: Vec<&str> = (keywords::EULER_SEQUENCES.iter().copied())
+                .chain([keywords::QUATERNION])
+                .collect();
+            if let Some(close) = keywords::closest(&func.node, &known) {
                 diagnostic = diagnostic.with_help(format!("did you mean `{close}`?"));
             }
             return Err(self.fail(rest, diagnostic));
         }
-        if args.len() != 3 {
+        let (count, what) = if quaternion {
+            (4, "components")
+        } else {
+            (3, "angles")
+        };
+        if args.len() != count {
             let diagnostic = Diagnostic::new(
                 span,
-                format!(
-                    "the sequence `{}` takes 3 angles, found {}",
-                    func.node,
-                    args.len()
-                ),
+                format!("`{}` takes {count} {what}, found {}", func.node, args.len()),
             );
             return Err(self.fail(rest, diagnostic));
         }
