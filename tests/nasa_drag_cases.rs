@@ -177,9 +177,9 @@ fn turning_with_the_earth(yaw: f64) -> Vector3<f64> {
 /// (25.7 s), vy 24.67 (18.7 s); allowed 1.3, 1.4, 30.
 const CASE_6_EXPLAINED: [(&str, f64); 3] = [("x_eci", 1.3), ("y_eci", 1.4), ("vy_eci", 30.0)];
 
-/// The ECEF position, recorded by sims 1, 3, 5 and 6 only: two of them (1, 3) with a tabulated
-/// atmosphere 1.3 m from ours after 30 s, two (5, 6) with the standard's formulas 4.3e-3 and
-/// 0.1 m from ours. The median of four, the mean of the middle two, lies halfway between the
+/// The ECEF position, recorded by sims 1, 3, 5 and 6 only: two of them (1, 3), whose density
+/// is 5.7e-4 to 2.8e-3 from the standard's formulas, 1.3 m from ours after 30 s, two (5, 6),
+/// within 1e-5 of the formulas, 4.3e-3 and 0.1 m from ours. The median of four, the mean of the middle two, lies halfway between the
 /// groups and the spread is half their gap; ours, with sim 5, is a few mm beyond it. Measured
 /// (case 9): x 1.0065 (22.9 s), y 1.0059 (1.5 s); allowed 1.05.
 const CASE_9_EXPLAINED: [(&str, f64); 2] = [("x_ecef", 1.05), ("y_ecef", 1.05)];

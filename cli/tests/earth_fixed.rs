@@ -31,7 +31,7 @@ fn grid() -> Vec<Point> {
         89.99999, 90.0,
     ];
     let heights = [0.0, 1.0, 9144.0, 30_000.0, 86_000.0];
-    let longitudes = [0.0, 0.7, 2.5, -3.0, 3.14];
+    let longitudes = [0.0, 0.7, 2.5, -3.0, 3.1];
     let mut points = Vec::new();
     for (i, latitude) in latitudes.iter().enumerate() {
         for (j, &height) in heights.iter().enumerate() {

@@ -6,8 +6,9 @@ reads every simulation's recorded altitude and air density from the copy of NASA
 onurtuncer/Aetherion (data/, commit 9a495bf; as extract.py) and prints, per simulation, the
 largest relative difference of its density from the standard's formulas at its own
 altitude (models/atmosphere/us_standard_1976.py, the formulas models/lib/atmosphere_1976.vms
-writes). The simulations that interpolate a table differ by ~1e-3; those that evaluate the
-formulas by < 3e-5: the main reason their trajectories split (docs/validation.md).
+writes). Sims 1, 2 and 3 differ by 3.5e-4 to 2.8e-3 (the size of a table's interpolation
+error), sims 4, 5 and 6 by < 3e-5: the main reason their trajectories split
+(docs/validation.md#check-cases-6-9-and-10-drag-on-a-rotating-earth).
 
 Usage (stdlib only): python3 validation/nasa/densities.py [--mirror GIT_DIR]
 """
