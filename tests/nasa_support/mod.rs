@@ -340,3 +340,29 @@ pub fn print_table(case: u32, rows: &[Row]) {
         );
     }
 }
+
+/// The xyx angles (a, b, c) of a rotation R = R_x(a) R_y(b) R_x(c), 0 < b < π: from
+/// R = [[cos b, sin b sin c, sin b cos c], [sin a sin b, ·, ·], [−cos a sin b, ·, ·]]
+/// (multiplied out by hand), b = acos R₀₀, a = atan2(R₁₀, −R₂₀), c = atan2(R₀₁, R₀₂).
+pub fn xyx_angles(r: &Matrix3<f64>) -> [f64; 3] {
+    let b = r[(0, 0)].clamp(-1.0, 1.0).acos();
+    [r[(1, 0)].atan2(-r[(2, 0)]), b, r[(0, 1)].atan2(r[(0, 2)])]
+}
+
+/// A start as NASA's scenarios give it, in the inertial frame aligned with the Earth-fixed one
+/// at t = 0: the position of geodetic latitude, longitude, height and the inertial velocity,
+/// the Earth-relative one `velocity_ned` (north, east, down) plus ω_E × r; and R (body to
+/// inertial) of a yaw-pitch-roll relative to NED.
+pub fn inertial_start(
+    geodetic: [f64; 3],
+    velocity_ned: Vector3<f64>,
+    yaw_pitch_roll: [f64; 3],
+    earth_rate: f64,
+) -> (Vector3<f64>, Vector3<f64>, Matrix3<f64>) {
+    let [latitude, longitude, height] = geodetic;
+    let r = ecef_of_geodetic(latitude, longitude, height);
+    let ned = ned_from_ecef(latitude, longitude);
+    let v = ned.transpose() * velocity_ned + (Vector3::z() * earth_rate).cross(&r);
+    let body = ned.transpose() * rotation("zyx", yaw_pitch_roll);
+    (r, v, body)
+}
