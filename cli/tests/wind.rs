@@ -101,8 +101,9 @@ fn a_steady_wind_is_turned_from_north_east_down_into_the_world_axes() {
     let record = "x,y,z,x',y',z',wind_vx,wind_vy,wind_vz,wind_speed";
     let c = probe("wind_probe.vms", &args, record, "5", "wind_steady.csv");
     let mut worst = 0.0_f64;
-    for i in 0..c[0].len() {
-        let (x, y, z) = (c[0][i], c[1][i], c[2][i]);
+    let rows = (0..c[0].len()).map(|i| c.iter().map(|column| column[i]).collect::<Vec<_>>());
+    for row in rows {
+        let (x, y, z) = (row[0], row[1], row[2]);
         let lat = z.atan2(x.hypot(y));
         let lon = y.atan2(x);
         let (sp, cp) = lat.sin_cos();
@@ -114,13 +115,13 @@ fn a_steady_wind_is_turned_from_north_east_down_into_the_world_axes() {
         ];
         let w = transposed_times(&ned, [3.0, -4.0, 0.0]);
         let air = [
-            c[3][i] + OMEGA * y - w[0],
-            c[4][i] - OMEGA * x - w[1],
-            c[5][i] - w[2],
+            row[3] + OMEGA * y - w[0],
+            row[4] - OMEGA * x - w[1],
+            row[5] - w[2],
         ];
         let speed = air.iter().map(|a| a * a).sum::<f64>().sqrt();
         for (k, a) in air.iter().chain([&speed]).enumerate() {
-            worst = worst.max((c[6 + k][i] - a).abs());
+            worst = worst.max((row[6 + k] - a).abs());
         }
     }
     // Measured 0 at every row (the test's C and the component's expansion round alike);
