@@ -409,6 +409,40 @@ fn an_axial_force_coefficient_slows_a_body_along_its_own_axis() {
     );
 }
 
+#[test]
+fn a_coefficient_from_a_mach_table_of_the_using_model() {
+    // `table ca_m(M) = "ca_mach.csv", linear` (C_A = 0.8 M, exact between its knots 0 and
+    // 1) in the probe and `CA = ca_m(wind_speed/a0)` at the use, a0 = 340 m/s: coasting
+    // along x at u0 = 100 m/s, m u' = −½ ρ S (0.8 u/a0) u² = −c u³ with
+    // c = ρ S 0.8/(2 m a0), so u = u0/√(1 + 2 c u0² t).
+    let mut args = Vec::new();
+    for set in [
+        "m0=2",
+        "I0=1",
+        "rho0=1.2",
+        "area=0.05",
+        "span=0.2",
+        "a0=340",
+        "wind_omega=0",
+    ] {
+        args.extend(["--set", set]);
+    }
+    for init in ["x=7e6", "y=0", "z=0", "psi=0", "th=0", "ph=0", "x'=100"] {
+        args.extend(["--init", init]);
+    }
+    let c = probe("aero_mach_probe.vms", &args, "axes_u", "4", "aero_mach.csv");
+    let k = 1.2 * 0.05 * 0.8 / (2.0 * 2.0 * 340.0);
+    let mut worst = 0.0_f64;
+    for (i, u) in c[0].iter().enumerate() {
+        let expected = 100.0 / (1.0 + 2.0 * k * 1e4 * i as f64).sqrt();
+        worst = worst.max((u / expected - 1.0).abs());
+    }
+    // Measured 3.4e-14 relative; bound 1e-11. A constant C_A = 0.8 (the table's value at
+    // Mach 1) would leave u 0.66 lower at 4 s (17.2 m/s against 51.1).
+    println!("Mach table: u {worst:.1e} relative");
+    assert!(worst < 1e-11, "{worst:e}");
+}
+
 /// The stored median and spread of one quantity of NASA's case `case`: {time (ms):
 /// (median, spread)} (`validation/nasa/case_NN.csv`).
 fn reference(case: u32, name: &str) -> std::collections::HashMap<i64, (f64, f64)> {
