@@ -355,3 +355,22 @@ fn literal_outside_the_range_of_f64() {
     )
     .is_ok());
 }
+
+#[test]
+fn a_quaternion_of_expressions_that_are_not_its_coordinates() {
+    // quaternion(1, g1, g2, g3) (Gibbs' vector) is an attitude, but the gauge term of a
+    // quaternion would not vanish on its motions (q·q̇ = g·ġ): refused at the component.
+    let source = "coordinates g1, g2, g3
+mass m = m0
+rigid b: mass m, inertia [A, B, C], position [0, 0, 0], orientation quaternion(1, g1, g2, g3)";
+    expect(source, "is a coordinate (each once) or 0", 3, 80);
+    // A coordinate twice, and a law of t.
+    let twice = "coordinates e0, e1
+mass m = m0
+rigid b: mass m, inertia [A, B, C], position [0, 0, 0], orientation quaternion(e0, e1, e1, 0)";
+    expect(twice, "is a coordinate (each once) or 0", 3, 88);
+    let timed = "coordinates e0
+mass m = m0
+rigid b: mass m, inertia [A, B, C], position [0, 0, 0], orientation quaternion(e0, 0, 0, sin(t))";
+    expect(timed, "is a coordinate (each once) or 0", 3, 90);
+}

@@ -13,7 +13,7 @@ For each case it writes validation/nasa/case_NN.csv: at every time all the case'
 simulations share (every 0.1 s from 0 to 30 s), for each quantity below, the median of the
 simulations that record it (the mean of the middle two when their number is even) and the
 spread, the largest |simulation - median| among them. SI units; angles in radians. For
-cases 1, 2, 3, 7 and 8 it also writes case_NN_sims.csv, a few quantities of single
+cases 1, 2, 3 and 6-10 it also writes case_NN_sims.csv, a few quantities of single
 simulations (SINGLE below).
 A simulation published only in US units (case 2's sims 2, 4, 5 and 6) is converted with
 ft = 0.3048 m exactly and deg = pi/180 rad. Euler angles are aligned to the first

@@ -8,7 +8,9 @@ use super::linear::{mat_vec, Matrix};
 use super::model::{Body, Load, LoadKind, LoadTarget, Rigid};
 use super::rotation;
 use crate::expr::{ExprPool, Id, SymbolKind};
-use crate::parse::ast::{Attitude, Frame, InertiaValue, LoadValue, RigidDecl, VectorNode};
+use crate::parse::ast::{
+    Attitude, ExprNode, Frame, InertiaValue, LoadValue, RigidDecl, VectorNode,
+};
 use crate::parse::{keywords, Diagnostic, Span};
 
 /// The attitude of a rigid body, lowered: R and ω in body components.
@@ -112,9 +114,9 @@ impl Builder {
                 rotation::sequence_axes(&sequence.node),
             ),
         };
-        let mut angles = Vec::with_capacity(3);
-        let mut rates = Vec::with_capacity(3);
-        for node in nodes {
+        let mut angles = Vec::with_capacity(4);
+        let mut rates = Vec::with_capacity(4);
+        for node in &nodes {
             let angle = self.lower(node)?;
             let what = format!("an angle of rigid body `{name}`");
             if !self.require_configuration(angle, node.span, &what) {
@@ -129,6 +131,9 @@ impl Builder {
                 }
             }
             angles.push(angle);
+        }
+        if angles.len() == 4 && !self.quaternion_coordinates(name, &nodes, &angles) {
+            return None;
         }
         let pool = &mut self.model.pool;
         match (axes, angles.as_slice(), rates.as_slice()) {
@@ -164,6 +169,40 @@ impl Builder {
             }
             _ => None,
         }
+    }
+
+    /// A quaternion's components must be distinct coordinates or `0`: then q is homogeneous
+    /// of degree 1 in its coordinates, scaling them is a direction of motion that turns
+    /// nothing, and the gauge term is zero on every motion (docs/mechanics.md#quaternions).
+    /// Any other expression (`quaternion(1, g1, g2, g3)`, a law of t) would give the gauge
+    /// term a value on real motions and change them, so it is refused.
+    fn quaternion_coordinates(&mut self, name: &str, nodes: &[&ExprNode], values: &[Id]) -> bool {
+        let pool = &self.model.pool;
+        let mut seen = Vec::with_capacity(4);
+        let wrong = nodes.iter().zip(values).find(|(_, value)| {
+            if pool.is_zero(**value) {
+                return false;
+            }
+            let symbol = pool.as_symbol(**value);
+            let coordinate = symbol
+                .filter(|s| matches!(pool.symbols().kind(*s), SymbolKind::Coordinate))
+                .filter(|s| !seen.contains(s));
+            seen.extend(coordinate);
+            coordinate.is_none()
+        });
+        let Some((node, _)) = wrong else {
+            return true;
+        };
+        let message = format!(
+            "a component of the quaternion of rigid body `{name}` is a coordinate (each \
+             once) or 0, found another expression"
+        );
+        let help = "declare four coordinates, `coordinates …, e0, e1, e2, e3`, and write \
+                    `orientation quaternion(e0, e1, e2, e3)`; a body turning about one axis may \
+                    write `quaternion(e0, 0, 0, e3)`";
+        self.errors
+            .push(Diagnostic::new(node.span, message).with_help(help));
+        false
     }
 
     /// `inertia J` in the plane; `[A, B, C]` or the full symmetric tensor in space. Frozen.

@@ -95,7 +95,8 @@ pub(crate) fn own_coordinates(model: &Model) -> Option<Vec<usize>> {
         return None;
     };
     let rigid = body.rigid.as_ref()?;
-    if rigid.origin.len() != 3 {
+    // A quaternion's gauge term is a term of T the closed form does not hold.
+    if rigid.origin.len() != 3 || rigid.gauge.is_some() {
         return None;
     }
     let velocities: Vec<Symbol> = model.coordinates.iter().map(|c| c.velocity).collect();
