@@ -121,46 +121,6 @@ fn write_ours(case: u32, reference: &Reference, ours: &HashMap<&'static str, Vec
     std::fs::write(&path, text).expect("writable");
 }
 
-fn row<'a>(rows: &'a [Row], name: &str) -> &'a Row {
-    rows.iter().find(|r| r.name == name).expect(name)
-}
-
-/// Every quantity within NASA's spread (plus its rounding floor) at every time, but those of
-/// `explained` (name, the largest ratio |Δ| / (spread + floor) allowed: see the case), and
-/// its largest distance to the median under `bounds` (name, bound).
-fn assert_rows(rows: &[Row], explained: &[(&str, f64)], bounds: &[(&str, f64)]) {
-    assert_eq!(rows.len(), QUANTITIES.len(), "every quantity compared");
-    assert_eq!(bounds.len(), QUANTITIES.len(), "a bound for every quantity");
-    for row in rows {
-        let allowed = explained.iter().find(|(n, _)| *n == row.name);
-        let limit = allowed.map_or(1.0, |&(_, ratio)| ratio);
-        if row.ratio > 1.0 {
-            eprintln!(
-                "{}: {:.4}× the spread at {:.1} s",
-                row.name, row.ratio, row.worst_time
-            );
-        }
-        assert!(row.ratio <= limit, "outside NASA's spread: {row:?}");
-    }
-    for &(name, bound) in bounds {
-        let row = row(rows, name);
-        assert!(
-            row.deviation <= bound,
-            "{name}: {:e} > {bound:e}",
-            row.deviation
-        );
-    }
-}
-
-/// Each column `simNN_NAME` of the single simulations under its bound.
-fn assert_singles(found: &[(String, f64)], bounds: &[(&str, f64)]) {
-    assert_eq!(found.len(), bounds.len(), "a bound for every column");
-    for ((column, deviation), &(name, bound)) in found.iter().zip(bounds) {
-        assert_eq!(column, name);
-        assert!(*deviation <= bound, "{column}: {deviation:e} > {bound:e}");
-    }
-}
-
 /// The Earth's rate in body axes of a body at rest relative to the Earth at latitude 0,
 /// longitude 0 with the yaw `yaw` (pitch and roll 0): ω_E along north, which is body
 /// (cos yaw, −sin yaw, 0).

@@ -14,25 +14,7 @@
 
 mod common;
 
-use common::{column, csv, model, root, written};
-
-/// The stored median and spread columns of one quantity: {time (ms): (median, spread)}.
-fn reference(case: u32, name: &str) -> std::collections::HashMap<i64, (f64, f64)> {
-    let text = std::fs::read_to_string(root(&format!("validation/nasa/case_{case:02}.csv")))
-        .expect("the stored medians");
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
-    let at = |n: &str| header.iter().position(|h| *h == n).expect(n);
-    let (m, s) = (at(name), at(&format!("{name}_spread")));
-    lines
-        .map(|l| {
-            l.split(',')
-                .map(|v| v.parse().unwrap())
-                .collect::<Vec<f64>>()
-        })
-        .map(|v| ((v[0] * 1000.0).round() as i64, (v[m], v[s])))
-        .collect()
-}
+use common::{column, csv, model, nasa_reference, written};
 
 /// Runs `varmass run FILE ARGS --every 0.1 --until 30` and returns, per (name, floor), the
 /// largest |ours − median| and the largest |ours − median| / (spread + floor) over the
@@ -46,7 +28,7 @@ fn compare(case: u32, file: &str, args: &[&str], names: &[(&str, f64)]) -> Vec<(
     assert_eq!(rows.len(), 301, "every 0.1 s to 30 s");
     let mut found = Vec::new();
     for &(name, floor) in names {
-        let stored = reference(case, name);
+        let stored = nasa_reference(case, name);
         let (mut deviation, mut ratio) = (0.0_f64, 0.0_f64);
         for row in &rows {
             let (median, spread) = stored[&((row[0] * 1000.0).round() as i64)];

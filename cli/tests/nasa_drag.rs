@@ -15,32 +15,14 @@
 
 mod common;
 
-use common::{column, csv, model, root, written};
-
-/// The stored median and spread columns of one quantity: {time (ms): (median, spread)}.
-fn reference(case: u32, name: &str) -> std::collections::HashMap<i64, (f64, f64)> {
-    let text = std::fs::read_to_string(root(&format!("validation/nasa/case_{case:02}.csv")))
-        .expect("the stored medians");
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
-    let at = |n: &str| header.iter().position(|h| *h == n).expect(n);
-    let (m, s) = (at(name), at(&format!("{name}_spread")));
-    lines
-        .map(|l| {
-            l.split(',')
-                .map(|v| v.parse().unwrap())
-                .collect::<Vec<f64>>()
-        })
-        .map(|v| ((v[0] * 1000.0).round() as i64, (v[m], v[s])))
-        .collect()
-}
+use common::{column, csv, model, nasa_reference, written};
 
 /// For each (recorded name, NASA's name, floor): the largest |ours − median| and the largest
 /// |ours − median| / (spread + floor) over the stored times.
 fn compare(header: &[String], rows: &[Vec<f64>], names: &[(&str, &str, f64)]) -> Vec<(f64, f64)> {
     let mut found = Vec::new();
     for &(ours, theirs, floor) in names {
-        let stored = reference(9, theirs);
+        let stored = nasa_reference(9, theirs);
         let (mut deviation, mut ratio) = (0.0_f64, 0.0_f64);
         for row in rows {
             let (median, spread) = stored[&((row[0] * 1000.0).round() as i64)];

@@ -16,7 +16,7 @@
 
 mod common;
 
-use common::{column, csv, root, written};
+use common::{column, csv, nasa_reference, root, written};
 
 /// WGS-84's Earth rate (the component's default), rad/s.
 const OMEGA: f64 = 7.292_115e-5;
@@ -517,23 +517,6 @@ fn a_coefficient_from_a_mach_table_of_the_using_model() {
 
 /// The stored median and spread of one quantity of NASA's case `case`: {time (ms):
 /// (median, spread)} (`validation/nasa/case_NN.csv`).
-fn reference(case: u32, name: &str) -> std::collections::HashMap<i64, (f64, f64)> {
-    let text = std::fs::read_to_string(root(&format!("validation/nasa/case_{case:02}.csv")))
-        .expect("the stored medians");
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
-    let at = |n: &str| header.iter().position(|h| *h == n).expect(n);
-    let (m, s) = (at(name), at(&format!("{name}_spread")));
-    lines
-        .map(|l| {
-            l.split(',')
-                .map(|v| v.parse().unwrap())
-                .collect::<Vec<f64>>()
-        })
-        .map(|v| ((v[0] * 1000.0).round() as i64, (v[m], v[s])))
-        .collect()
-}
-
 #[test]
 fn varmass_run_flies_nasas_sphere_in_a_steady_wind_and_in_a_shear() {
     // Cases 7 and 8 (NASA/TM-2015-218675) by the tool on their model files, the start of
@@ -565,7 +548,7 @@ fn varmass_run_flies_nasas_sphere_in_a_steady_wind_and_in_a_shear() {
         let (header, rows) = csv(&written(&args, &format!("nasa_wind_{case}.csv")));
         assert_eq!(rows.len(), 301, "every 0.1 s to 30 s");
         for name in names {
-            let stored = reference(case, name.trim_start_matches("earth_"));
+            let stored = nasa_reference(case, name.trim_start_matches("earth_"));
             let mut ratio = 0.0_f64;
             for row in &rows {
                 let (median, spread) = stored[&((row[0] * 1000.0).round() as i64)];

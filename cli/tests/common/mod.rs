@@ -113,3 +113,22 @@ pub fn column(names: &[String], name: &str) -> usize {
         .position(|n| n == name)
         .unwrap_or_else(|| panic!("no column {name} in {names:?}"))
 }
+
+/// The stored median and spread columns of one quantity of NASA's check-case `case`
+/// (`validation/nasa/case_NN.csv`): {time (ms): (median, spread)}.
+pub fn nasa_reference(case: u32, name: &str) -> std::collections::HashMap<i64, (f64, f64)> {
+    let text = std::fs::read_to_string(root(&format!("validation/nasa/case_{case:02}.csv")))
+        .expect("the stored medians");
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let at = |n: &str| header.iter().position(|h| *h == n).expect(n);
+    let (m, s) = (at(name), at(&format!("{name}_spread")));
+    lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse().unwrap())
+                .collect::<Vec<f64>>()
+        })
+        .map(|v| ((v[0] * 1000.0).round() as i64, (v[m], v[s])))
+        .collect()
+}
