@@ -15,6 +15,7 @@ in 256-bit MPFR arithmetic (hy.real, 77 digits) at 1e-60; the 256-bit run is sto
 and the runs' gaps are printed and written into the file's header.
 
     target/venv-heyoka/bin/python benches/peers/pendulum3_reference.py  # writes the file
+    target/venv-heyoka/bin/python benches/peers/pendulum3_reference.py --sensitivity
 
 Writes benches/peers/pendulum3_reference.txt: comment lines, then the six final state
 components (a1 a2 a3 p1 p2 p3), one a line, to 40 significant digits.
@@ -103,7 +104,31 @@ def integrate(fp_type, tol, make):
     return [mp.mpf(str(x)) for x in ta.state], ta.order, steps
 
 
+def sensitivity():
+    """`--sensitivity`: the problem's conditioning, in long double (64-bit significand, tol
+    1e-19): how far the final state moves when g moves by one binary64 ulp (relative
+    2⁻⁵²), and this run's distance to the stored reference (a third check of it)."""
+    import numpy as np
+
+    ld = np.longdouble
+    ta = hy.taylor_adaptive(heyoka_system(), [ld(x) for x in START], fp_type=ld,
+                            tol=ld(1e-19), pars=[ld(G)])
+    ta.propagate_until(ld(END))
+    base = ta.state.copy()
+    ta.time, ta.state[:] = ld(0), [ld(x) for x in START]
+    ta.pars[0] = ld(G) * (1 + ld(2.0**-52))
+    ta.propagate_until(ld(END))
+    lines = OUT.read_text().splitlines()
+    stored = np.array([ld(x) for x in lines if x.strip() and not x.startswith("#")])
+    print(f"g one ulp up moves the final state by {float(np.max(np.abs(ta.state - base))):.2e};"
+          f" long double at 1e-19 against the stored reference: "
+          f"{float(np.max(np.abs(base - stored))):.2e}")
+
+
 def main():
+    if "--sensitivity" in sys.argv:
+        sensitivity()
+        return
     mp.mp.dps = 80
     quad = integrate(hy.real128, 2.0**-112, hy.real128)
     quad_loose = integrate(hy.real128, 1e-28, hy.real128)
