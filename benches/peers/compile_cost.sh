@@ -139,7 +139,7 @@ fastest() {
         expand=$(RUSTC_BOOTSTRAP=1 cargo rustc --quiet --release --lib -- -Z time-passes 2>&1 |
             awk '$NF == "expand_crate" { sub(";", "", $2); print $2 }')
         ended=$(date +%s.%N)
-        echo "$(echo "$ended - $began" | bc) $expand"
+        echo "$(awk -v a="$began" -v b="$ended" 'BEGIN { printf "%.2f", b - a }') $expand"
     done | sort -g | head -1
 }
 read -r wall expand < <(fastest)
