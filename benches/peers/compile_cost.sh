@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Our construction cost for the heyoka comparison (issue 38): the release build of a crate
-# holding the bench's three systems (the sled, Kepler with its head, the 3-link pendulum,
-# emitted with the Taylor recurrences as benches/peers/ours.rs uses them) and one function
+# holding the bench's four systems (the sled, Kepler with its head, the rocket, the 3-link
+# pendulum, emitted with the Taylor recurrences as benches/peers/ours.rs uses them) and one function
 # that runs each with the Taylor stepper, against the same crate without them (the function
 # empty). Each build is `cargo rustc --release --lib` after touching the crate, so only the
 # crate itself is rebuilt (its dependencies, varmass included, are built once before): wall
@@ -72,6 +72,22 @@ pub struct Kepler {
 
 #[variable_mass_system(
     "
+    coordinates y
+    mass m: state, rate -mu
+    body rocket: mass m, position [y]
+    potential m*g*y
+    outflow rocket: rate mu, relative_velocity [-u_e]
+",
+    emit = ["taylor"]
+)]
+pub struct Rocket {
+    pub mu: f64,
+    pub u_e: f64,
+    pub g: f64,
+}
+
+#[variable_mass_system(
+    "
     coordinates a1, a2, a3
     mass m1 = m
     mass m2 = m
@@ -106,12 +122,14 @@ fn final_state<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
 pub fn run(tolerance: f64) -> f64 {
     let sled = Sled { m0: 20.0, c: 4.0, g: 9.81, theta: 0.5, f_d: 0.1 };
     let kepler = Kepler { m1: 1.5, k: 1.0 };
+    let rocket = Rocket { mu: 0.05, u_e: 300.0, g: 9.81 };
     let pendulum = Pendulum3 { m: 1.0, l: 1.0, g: 9.81 };
     let a = final_state(&sled, SVector::<f64, 2>::zeros(), 4.0, tolerance);
     let b = final_state(&kepler, SVector::<f64, 4>::new(0.5, 0.0, 0.0, 1.3), 18.8, tolerance);
     let y0 = SVector::<f64, 6>::from_column_slice(&[0.6, -0.4, 0.3, 0.0, 0.0, 0.0]);
     let c = final_state(&pendulum, y0, 10.0, tolerance);
-    a[0] + b[0] + c[0]
+    let d = final_state(&rocket, SVector::<f64, 3>::new(0.0, 0.0, 1.0), 15.0, tolerance);
+    a[0] + b[0] + c[0] + d[0]
 }
 RUST
 }
@@ -148,7 +166,7 @@ read -r base_wall base_expand < <(fastest)
 with_systems
 # Also kept for benches/peers/heyoka.py, which puts these lines on docs/bench/heyoka.md.
 {
-    echo "with the three systems: build ${wall} s, expand_crate ${expand} s"
+    echo "with the four systems: build ${wall} s, expand_crate ${expand} s"
     echo "without them: build ${base_wall} s, expand_crate ${base_expand} s"
     echo "load average $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%Y-%m-%d)"
 } | tee "$crate/result.txt"

@@ -381,7 +381,7 @@ def at_error(points, target):
             w = (math.log(target) - math.log(e1)) / (math.log(e2) - math.log(e1))
             return math.exp(math.log(s1) + w * (math.log(s2) - math.log(s1)))
     if points and target > points[0][1]:
-        return "looser than its loosest run"
+        return "looser"
     return "not reached"
 
 
@@ -617,7 +617,7 @@ def main():
 
 PAGE = """# heyoka against varmass at equal achieved error
 
-Written by `benches/peers/heyoka.py` ({date}; heyoka {version}; {rounds} rounds, every
+Written by `benches/peers/heyoka.py` ({date}; heyoka {version}; rounds: {rounds}, every
 round all points — problem × tolerance × side — in an order shuffled with seed {seed}; the
 fastest round per point; load average (1 min) at the start and after each round {loads} on
 {cores} cores). Setup and options are in the script's docstring.
@@ -632,7 +632,8 @@ fastest round per point; load average (1 min) at the start and after each round 
   Python binding's entry and exit, the timer, and heyoka's own set-up of a propagation are
   all taken off, so it is a lower bound on what a C++ caller would measure. For scale, a
   bare binding call (reading `ta.time`, timed the same way, integrators at 1e-12) costs, in
-  µs: {bare}; the rest of the empty call is heyoka's own set-up of a propagation.
+  µs: {bare}; the rest of the empty call (most of it, and it grows with the order) is
+  heyoka's own work on a call that takes no step and the building of its Python result.
 - **ours**: inside Rust (`benches/common/timing.rs`), `Instant` around one run of a Taylor
   stepper made once and restarted (restart, stop time, the steps); DOP853 made afresh each
   run (it allocates nothing); the fastest of 3 to 1000 runs over about 0.15 s; our binary
@@ -640,7 +641,7 @@ fastest round per point; load average (1 min) at the start and after each round 
   subtracted on our side.
 - The **raw** ratio (ours ÷ heyoka) leans our way (heyoka carries the Python call); the
   **equalised** ratio (ours ÷ heyoka net) leans heyoka's (its set-up is taken off, ours is
-  not). The truth lies between the two columns.
+  not). The ratio a caller of both in one language would see lies between the two.
 
 ## References (none from varmass)
 
@@ -666,8 +667,8 @@ largest relative error of height, speed and mass; pendulum the largest state dif
 
 ## Time at equal error
 
-Times in µs per run; "–" where a side does not reach the target or the target is looser
-than its loosest run.
+Times in µs per run; "not reached": no run of that side gets down to the target; "looser":
+the target is above the error of that side's loosest run (1e-4); "–": no ratio.
 
 {speed}
 
@@ -684,7 +685,7 @@ and a second construction of it at once (the in-memory cache).
 {construction}
 
 Ours is compiled ahead of time. `bash benches/peers/compile_cost.sh`: a release crate holding
-the three systems (emitted with the Taylor recurrences, Kepler with its head) and a function
+the four systems (emitted with the Taylor recurrences, Kepler with its head) and a function
 running each with the Taylor stepper, rebuilt alone, against the same crate without them
 (wall seconds of the build, and the macro expansion inside it, fastest of 3): {ours_build}.
 """
