@@ -1,30 +1,36 @@
 //! Our side of the comparison with heyoka (`benches/peers/heyoka.py` runs this binary and
-//! heyoka in one interleaved session and writes the table): the Taylor stepper on the
-//! emitted recurrences, and DOP853, on the sled to 50 m, Kepler e = 0.5 over three orbits
-//! and the planar 3-link pendulum over 10 s, swept over tolerances; on Kepler also the
-//! Taylor stepper with its double-double head (`taylor-head`: `emit = [..., "head"]`,
+//! heyoka in one session, the points in a shuffled order, and writes the table): the Taylor
+//! stepper on the emitted recurrences, and DOP853, on the sled to 50 m, Kepler e = 0.5 over
+//! three orbits and the planar 3-link pendulum over 10 s, swept over tolerances; on Kepler
+//! also the Taylor stepper with its double-double head (`taylor-head`: `emit = [..., "head"]`,
 //! `Taylor::with_head`; the other two problems call sin and cos, which have no head yet).
-//! One line per point, tab-separated: problem, method, tolerance, achieved error, fastest seconds per run,
-//! steps, the final state's components. Each point's Taylor stepper is made once and
-//! restarted before every run, as the script resets heyoka's integrator: what is timed is
-//! the integration alone, on both sides (DOP853, which allocates nothing, is made afresh).
+//! One line per point, tab-separated: problem, method, tolerance, achieved error, fastest
+//! seconds per run, steps, the final state's components. Each point's Taylor stepper is made
+//! once and restarted before every run, as the script resets heyoka's integrator: what is
+//! timed (inside Rust, `Instant` around one run) is the integration alone (DOP853, which
+//! allocates nothing, is made afresh). The script measures every error itself, from the
+//! final states, against references independent of varmass.
 //!
 //! ```sh
 //! cargo bench -p varmass-benches --bench peers            # the sweep
 //! cargo bench -p varmass-benches --bench peers -- rates   # initial states and rates
+//! # points read from stdin, `<problem> <method> <tolerance>` a line, each answered by its line
+//! echo "kepler taylor 1e-12" | cargo bench -p varmass-benches --bench peers -- serve
 //! # one point run `runs` times, for `perf stat` (instructions per run do not depend on load)
 //! cargo bench -p varmass-benches --bench peers -- only kepler taylor 1e-12 1000
 //! ```
 //!
-//! The pendulum's reference is our own Taylor method at order 30 and step 1/200 s; its
-//! distance to the run at step 1/400 s is printed with `rates` (measured 4e-15).
+//! The pendulum's error printed here is against our own Taylor method at order 30 and step
+//! 1/200 s (its distance to the run at step 1/400 s is printed with `rates`: 1.3e-14); the
+//! script measures it against an independent reference instead (`pendulum3_reference.py`),
+//! from which ours is 1.07e-14 off.
 
 #[path = "../common/mod.rs"]
 mod common;
 
 use std::time::Duration;
 
-use common::problems::{KeplerProblem, Problem, SledProblem};
+use common::problems::{KeplerProblem, Problem, RocketProblem, SledProblem};
 use common::timing::fastest_of;
 use varmass::core::nalgebra::SVector;
 use varmass::core::steppers::{AdaptiveControl, Dop853, StepControl, Taylor, TaylorControl};
@@ -174,16 +180,87 @@ fn sweep<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
     for &(method, tightest) in methods {
         for k in 6..=tightest {
             let tolerance = 10f64.powi(-k);
-            let (elapsed, (state, steps)) = run(system, start, (method, tolerance), Timing::Sweep);
-            // The final state too, for errors the script measures itself.
-            let state_text: Vec<String> = state.iter().map(|x| format!("{x:e}")).collect();
             println!(
-                "{name}\t{method}\t{tolerance:e}\t{:e}\t{:e}\t{}\t{}",
-                error(&state),
-                elapsed.as_secs_f64(),
-                steps,
-                state_text.join("\t")
+                "{}",
+                point(name, system, start, (method, tolerance), &error)
             );
+        }
+    }
+}
+
+/// One point of the sweep, timed by the sweep's rule, as a tab-separated line: problem,
+/// method, tolerance, error, fastest seconds per run, steps, the final state's components
+/// (for errors the script measures itself).
+fn point<Sys: VariableMassSystem<N, S>, const N: usize, const S: usize>(
+    name: &str,
+    system: &Sys,
+    start: (SVector<f64, S>, f64),
+    (method, tolerance): (&str, f64),
+    error: impl Fn(&SVector<f64, S>) -> f64,
+) -> String {
+    let (elapsed, (state, steps)) = run(system, start, (method, tolerance), Timing::Sweep);
+    let state_text: Vec<String> = state.iter().map(|x| format!("{x:e}")).collect();
+    format!(
+        "{name}\t{method}\t{tolerance:e}\t{:e}\t{:e}\t{}\t{}",
+        error(&state),
+        elapsed.as_secs_f64(),
+        steps,
+        state_text.join("\t")
+    )
+}
+
+/// `serve`: reads points `<problem> <method> <tolerance>` from stdin, one a line, and
+/// answers each with its sweep line (flushed), so that the script interleaves our points
+/// with heyoka's in the order it shuffled; an unknown point is answered `?`.
+fn serve() {
+    use std::io::{BufRead, Write};
+    let sled = SledProblem::standard();
+    let kepler = KeplerProblem::standard();
+    let rocket = RocketProblem::standard();
+    let reference = pendulum_reference(1.0 / 200.0);
+    let stdout = std::io::stdout();
+    for line in std::io::stdin().lock().lines() {
+        let Ok(line) = line else { break };
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let parsed = match words[..] {
+            [problem, method, tolerance] => {
+                tolerance.parse::<f64>().ok().map(|t| (problem, method, t))
+            }
+            _ => None,
+        };
+        let answer = match parsed {
+            Some(("sled", method, t)) => {
+                let start = (sled.initial_state(), sled.end_time());
+                point("sled", sled.system(), start, (method, t), |y| {
+                    sled.error(start.1, y)
+                })
+            }
+            Some(("kepler", method, t)) => {
+                let start = (kepler.initial_state(), kepler.end_time());
+                point("kepler", kepler.system(), start, (method, t), |y| {
+                    kepler.error(start.1, y)
+                })
+            }
+            Some(("rocket", method, t)) => {
+                let start = (rocket.initial_state(), rocket.end_time());
+                point("rocket", rocket.system(), start, (method, t), |y| {
+                    rocket.error(start.1, y)
+                })
+            }
+            Some(("pendulum3", method, t)) => {
+                let start = (pendulum_start(), PENDULUM_END);
+                point("pendulum3", &PENDULUM, start, (method, t), |y| {
+                    (y - reference).amax()
+                })
+            }
+            _ => "?".to_string(),
+        };
+        let mut out = stdout.lock();
+        if writeln!(out, "{answer}")
+            .and_then(|()| out.flush())
+            .is_err()
+        {
+            break;
         }
     }
 }
@@ -238,6 +315,10 @@ fn only(args: &[String]) {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if args.iter().any(|a| a == "serve") {
+        serve();
+        return;
+    }
     if let Some(at) = args.iter().position(|a| a == "only") {
         only(&args[at + 1..]);
         return;
@@ -261,6 +342,13 @@ fn main() {
             "kepler",
             y.as_slice(),
             kepler.system().state_rate(0.0, &y).unwrap().as_slice(),
+        );
+        let rocket = RocketProblem::standard();
+        let y = rocket.initial_state() + SVector::<f64, 3>::new(100.0, 30.0, -0.2);
+        show(
+            "rocket",
+            y.as_slice(),
+            rocket.system().state_rate(1.0, &y).unwrap().as_slice(),
         );
         let y = pendulum_start()
             + SVector::<f64, 6>::from_column_slice(&[0.0, 0.0, 0.0, 0.3, -0.2, 0.1]);
