@@ -71,36 +71,7 @@ fn fly<Sys: VariableMassSystem<6, 12>>(
     start: &Start,
     reference: &Reference,
 ) -> HashMap<&'static str, Vec<f64>> {
-    let initial = system.momentum_state(0.0, &velocity_state(start));
-    let control = StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: 1e-13,
-        absolute_tolerance: 1e-13,
-        ..AdaptiveControl::default()
-    });
-    let mut stepper = Dop853::new(system, 0.0, initial, control).expect("stepper");
-    let mut ours: HashMap<&'static str, Vec<f64>> = HashMap::new();
-    for &t in &reference.times {
-        let state = match t > 0.0 {
-            true => {
-                let solution = run(&mut stepper, &RunConfig::until(t).continuing(), &[]).unwrap();
-                *solution.states.last().unwrap()
-            }
-            false => initial,
-        };
-        let rates = system.velocities(t, &state).expect("q̇");
-        let inertial = Inertial {
-            t,
-            position: Vector3::new(state[0], state[1], state[2]),
-            velocity: Vector3::new(rates[0], rates[1], rates[2]),
-            sequence: SEQUENCE,
-            angles: [state[3], state[4], state[5]],
-            angle_rates: [rates[3], rates[4], rates[5]],
-        };
-        for (name, value) in nasa_quantities(&inertial, OMEGA_E) {
-            ours.entry(name).or_default().push(value);
-        }
-    }
-    ours
+    fly_xyx(system, &velocity_state(start), reference, 1e-13, OMEGA_E).ours
 }
 
 /// Writes our quantities at the reference's times to `target/tmp/nasa_case_NN_ours.csv`

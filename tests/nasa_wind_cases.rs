@@ -12,7 +12,6 @@
 mod nasa_support;
 
 use nasa_support::*;
-use std::collections::HashMap;
 use varmass::core::nalgebra::Vector3;
 use varmass::prelude::*;
 
@@ -47,13 +46,6 @@ fn start(body_rates: Vector3<f64>) -> SVector<f64, 12> {
     ])
 }
 
-/// A flight's NASA quantities at the reference's times, and its closest approach to xyx's
-/// singular attitude (rad).
-struct Flight {
-    ours: HashMap<&'static str, Vec<f64>>,
-    closest: f64,
-}
-
 /// Flies `system` from `start` with DOP853 at `tolerance`, landing on every time of the
 /// reference.
 fn fly<Sys: VariableMassSystem<6, 12>>(
@@ -62,41 +54,7 @@ fn fly<Sys: VariableMassSystem<6, 12>>(
     reference: &Reference,
     tolerance: f64,
 ) -> Flight {
-    let initial = system.momentum_state(0.0, start);
-    let control = StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: tolerance,
-        absolute_tolerance: tolerance,
-        ..AdaptiveControl::default()
-    });
-    let mut stepper = Dop853::new(system, 0.0, initial, control).expect("stepper");
-    let mut flight = Flight {
-        ours: HashMap::new(),
-        closest: f64::INFINITY,
-    };
-    for &t in &reference.times {
-        let state = match t > 0.0 {
-            true => {
-                let solution = run(&mut stepper, &RunConfig::until(t).continuing(), &[]).unwrap();
-                let closest = solution.closest_singular_attitude.unwrap_or(f64::INFINITY);
-                flight.closest = flight.closest.min(closest);
-                *solution.states.last().unwrap()
-            }
-            false => initial,
-        };
-        let rates = system.velocities(t, &state).expect("q̇");
-        let inertial = Inertial {
-            t,
-            position: Vector3::new(state[0], state[1], state[2]),
-            velocity: Vector3::new(rates[0], rates[1], rates[2]),
-            sequence: SEQUENCE,
-            angles: [state[3], state[4], state[5]],
-            angle_rates: [rates[3], rates[4], rates[5]],
-        };
-        for (name, value) in nasa_quantities(&inertial, OMEGA_E) {
-            flight.ours.entry(name).or_default().push(value);
-        }
-    }
-    flight
+    fly_xyx(system, start, reference, tolerance, OMEGA_E)
 }
 
 /// The inertial position and velocity are recorded by sims 4, 5 and 6 only; their median

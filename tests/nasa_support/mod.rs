@@ -6,7 +6,8 @@
 #![allow(dead_code)]
 
 use std::collections::HashMap;
-use varmass::core::nalgebra::{Matrix3, Vector3};
+use varmass::core::nalgebra::{Matrix3, SVector, Vector3};
+use varmass::prelude::*;
 
 /// WGS-84 (NIMA TR8350.2): semi-major axis, flattening, Earth rate, GM, J2.
 pub const A_E: f64 = 6_378_137.0;
@@ -406,4 +407,64 @@ pub fn assert_singles(found: &[(String, f64)], bounds: &[(&str, f64)]) {
         assert_eq!(column, name);
         assert!(*deviation <= bound, "{column}: {deviation:e} > {bound:e}");
     }
+}
+
+/// A flight of a check-case model (coordinates [x, y, z, a, b, c]: the centre in the inertial
+/// frame, the attitude xyx(a, b, c)) at the reference's times.
+pub struct Flight {
+    /// NASA's quantities at each time.
+    pub ours: HashMap<&'static str, Vec<f64>>,
+    /// The closest approach to xyx's singular attitude over every step, rad.
+    pub closest: f64,
+    /// The state [q, p] at each time, for what a case checks besides.
+    pub states: Vec<SVector<f64, 12>>,
+}
+
+/// Flies `system` from the velocity state `start` ([q, q̇]) with DOP853 at `tolerance`,
+/// landing on every time of the reference, and returns NASA's quantities there (the Earth
+/// turning at `earth_rate` in the conversion).
+pub fn fly_xyx<Sys: VariableMassSystem<6, 12>>(
+    system: &Sys,
+    start: &SVector<f64, 12>,
+    reference: &Reference,
+    tolerance: f64,
+    earth_rate: f64,
+) -> Flight {
+    let initial = system.momentum_state(0.0, start);
+    let control = StepControl::Adaptive(AdaptiveControl {
+        relative_tolerance: tolerance,
+        absolute_tolerance: tolerance,
+        ..AdaptiveControl::default()
+    });
+    let mut stepper = Dop853::new(system, 0.0, initial, control).expect("stepper");
+    let mut flight = Flight {
+        ours: HashMap::new(),
+        closest: f64::INFINITY,
+        states: Vec::new(),
+    };
+    for &t in &reference.times {
+        let state = match t > 0.0 {
+            true => {
+                let solution = run(&mut stepper, &RunConfig::until(t).continuing(), &[]).unwrap();
+                let closest = solution.closest_singular_attitude.unwrap_or(f64::INFINITY);
+                flight.closest = flight.closest.min(closest);
+                *solution.states.last().unwrap()
+            }
+            false => initial,
+        };
+        let rates = system.velocities(t, &state).expect("q̇");
+        let inertial = Inertial {
+            t,
+            position: Vector3::new(state[0], state[1], state[2]),
+            velocity: Vector3::new(rates[0], rates[1], rates[2]),
+            sequence: "xyx",
+            angles: [state[3], state[4], state[5]],
+            angle_rates: [rates[3], rates[4], rates[5]],
+        };
+        for (name, value) in nasa_quantities(&inertial, earth_rate) {
+            flight.ours.entry(name).or_default().push(value);
+        }
+        flight.states.push(state);
+    }
+    flight
 }
