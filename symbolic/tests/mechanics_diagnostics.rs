@@ -374,3 +374,19 @@ mass m = m0
 rigid b: mass m, inertia [A, B, C], position [0, 0, 0], orientation quaternion(e0, 0, 0, sin(t))";
     expect(timed, "is a coordinate (each once) or 0", 3, 90);
 }
+
+#[test]
+fn a_potential_that_changes_with_the_length_of_a_quaternion() {
+    // By hand: V = m g c (e0² − e1² − e2² + e3²) is homogeneous of degree 2 in q, so
+    // Σ e_i ∂V/∂e_i = 2V ≠ 0: it pushes |q|, which turns nothing. Divided by n it is R₃₃
+    // m g c, of degree 0, and derives.
+    let head = "coordinates e0, e1, e2, e3
+mass m = m0
+rigid b: mass m, inertia [A, A, A], position [0, 0, 0], orientation quaternion(e0, e1, e2, e3), centre [0, 0, c]
+";
+    let bad = format!("{head}potential m*g*c*(e0^2 - e1^2 - e2^2 + e3^2)");
+    expect(&bad, "changes with the length of a quaternion", 4, 1);
+    let good =
+        format!("{head}potential m*g*c*(e0^2 - e1^2 - e2^2 + e3^2)/(e0^2 + e1^2 + e2^2 + e3^2)");
+    assert!(derive_source(&good, Parameters::Inferred).is_ok());
+}

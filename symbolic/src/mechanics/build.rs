@@ -30,6 +30,7 @@ pub fn build_model(
     builder.declare(ast);
     builder.lower_statements(ast);
     builder.lower_sampled_laws();
+    builder.check_quaternion_potentials();
     builder.finish()
 }
 

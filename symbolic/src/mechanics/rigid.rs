@@ -205,6 +205,62 @@ impl Builder {
         false
     }
 
+    /// Every `potential` term homogeneous of degree 0 in each quaternion's coordinates:
+    /// Σ e_i ∂V/∂e_i = 0, so V depends on q/|q| as R does (docs/mechanics.md#quaternions).
+    /// A potential written with the unit quaternion's formula and no /|q|² drives the
+    /// radial equation and lets |q| run away: refused at the term when the identity is
+    /// refuted at a point (a proof or numerical agreement lets it pass).
+    pub(super) fn check_quaternion_potentials(&mut self) {
+        for e in self.quaternion_coordinates_of_bodies() {
+            for (value, span) in self.potential_terms() {
+                let pool = &mut self.model.pool;
+                let inlined = pool.inline_definitions(value);
+                let terms: Vec<Id> = (e.iter())
+                    .map(|c| {
+                        let (q, rate) = (pool.sym(*c), pool.diff(inlined, *c));
+                        pool.mul(&[q, rate])
+                    })
+                    .collect();
+                let radial = pool.add(&terms);
+                let zero = pool.int(0);
+                if let crate::expr::Identity::Refuted { .. } = pool.identical(radial, zero) {
+                    let message = "this potential changes with the length of a quaternion, which \
+                                   turns nothing: write it in q/|q|";
+                    let help = "divide each product of two components by e0^2 + e1^2 + e2^2 + \
+                                e3^2, as R does (R33 = (e0^2 - e1^2 - e2^2 + e3^2)/n)";
+                    self.errors
+                        .push(Diagnostic::new(span, message).with_help(help));
+                }
+            }
+        }
+    }
+
+    /// The coordinates of each quaternion (the rate-carrying ones of a body with a gauge).
+    fn quaternion_coordinates_of_bodies(&self) -> Vec<Vec<crate::expr::Symbol>> {
+        let pool = &self.model.pool;
+        let rigid = self.model.bodies.iter().filter_map(|b| b.rigid.as_ref());
+        rigid
+            .filter(|r| r.gauge.is_some())
+            .map(|r| {
+                let moving = |c: &&super::model::Coordinate| {
+                    (r.angular_velocity.iter()).any(|w| pool.contains(*w, c.velocity))
+                };
+                (self.model.coordinates.iter())
+                    .filter(moving)
+                    .map(|c| c.q)
+                    .collect()
+            })
+            .collect()
+    }
+
+    fn potential_terms(&self) -> Vec<(Id, Span)> {
+        let potential = |t: &&super::model::Term| t.kind == super::model::TermKind::Potential;
+        (self.model.terms.iter())
+            .filter(potential)
+            .map(|t| (t.value, t.span))
+            .collect()
+    }
+
     /// `inertia J` in the plane; `[A, B, C]` or the full symmetric tensor in space. Frozen.
     fn lower_inertia(&mut self, decl: &RigidDecl, dimension: usize) -> Option<Matrix> {
         let name = &decl.name.node;
