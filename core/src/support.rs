@@ -80,10 +80,10 @@ impl<Sys> Supported<Sys> {
 
     /// [`SystemError::SupportCoupled`] where the held coordinate couples with another at
     /// `(t, state)` above [`HELD_COUPLING`]: uncoupled at the start ([`phases`] checks, M_kj
-    /// and p_k at rest exactly 0), the coupling may appear as
-    /// the other coordinates move (M_yθ = g_c m_p sin θ of a pitching rocket is 0 at θ = 0
-    /// only), and the clamp of p_k would then be a wrong motion, silently (review of
-    /// session 33: θ 0.8 rad off at 3 s, exit 0). Checked at every held evaluation.
+    /// and p_k at rest exactly 0), the coupling may appear as the other coordinates move
+    /// (M_yθ = g_c m_p sin θ of a pitching rocket is 0 at θ = 0 only), and the clamp of p_k
+    /// would then be a wrong motion, silently (review of session 33: θ 0.8 rad off at 3 s,
+    /// exit 0). Checked at every held evaluation (the mass matrix once, only while held).
     fn still_uncoupled<const N: usize, const S: usize>(
         &self,
         t: f64,
