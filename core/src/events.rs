@@ -62,6 +62,16 @@ pub enum EventCondition<'a, const S: usize> {
         /// The supported coordinate, an index into the coordinates.
         coordinate: usize,
     },
+    /// g = bᵀ f, the net force along a launch rail ([`crate::rail`]) of a body resting on
+    /// the rail's bottom, whose rise through 0 lifts it (the phase's system is on a rail:
+    /// [`VariableMassSystem::rail_reading`]).
+    RailLiftOff,
+    /// g = the distance travelled up a launch rail − `length`: the last rail button
+    /// leaving the rail as g rises through 0.
+    RailExit {
+        /// The travel of the body's reference point at which it leaves the rail, m.
+        length: f64,
+    },
     /// Any function of the time and the state `[q, p, m_s]`.
     Function(&'a dyn Fn(f64, &SVector<f64, S>) -> f64),
 }
@@ -83,6 +93,10 @@ impl<const S: usize> fmt::Debug for EventCondition<'_, S> {
                 .debug_struct("LiftOff")
                 .field("coordinate", coordinate)
                 .finish(),
+            Self::RailLiftOff => f.write_str("RailLiftOff"),
+            Self::RailExit { length } => {
+                f.debug_struct("RailExit").field("length", length).finish()
+            }
             Self::Function(_) => f.write_str("Function(..)"),
         }
     }
@@ -143,6 +157,8 @@ impl<'a, const S: usize> Event<'a, S> {
             }
             EventCondition::StateComponent { index, value } => index < S && value.is_finite(),
             EventCondition::LiftOff { coordinate } => coordinate < N,
+            EventCondition::RailLiftOff => true,
+            EventCondition::RailExit { length } => length.is_finite(),
             EventCondition::Function(_) => true,
         };
         if ok {
@@ -174,6 +190,14 @@ impl<'a, const S: usize> Event<'a, S> {
             EventCondition::LiftOff { coordinate } => system
                 .free_state_rate(time, state)
                 .map_or(f64::NAN, |rate| rate[N + coordinate]),
+            EventCondition::RailLiftOff => match system.rail_reading(time, state) {
+                Some(Ok((push, _))) => push,
+                _ => f64::NAN,
+            },
+            EventCondition::RailExit { length } => match system.rail_reading(time, state) {
+                Some(Ok((_, travel))) => travel - length,
+                _ => f64::NAN,
+            },
             EventCondition::Function(function) => function(time, state),
         }
     }

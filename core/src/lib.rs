@@ -121,6 +121,8 @@ pub mod observe;
 #[cfg(feature = "run")]
 pub mod phases;
 #[cfg(feature = "run")]
+pub mod rail;
+#[cfg(feature = "run")]
 pub mod run;
 #[cfg(feature = "run")]
 pub mod solution;

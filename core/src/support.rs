@@ -27,6 +27,7 @@ use nalgebra::{SMatrix, SVector};
 use crate::error::{StepError, StepErrorKind};
 use crate::events::{Direction, Event, EventAction, EventCondition};
 use crate::phases::{Carry, Phase, PhasedSolution};
+use crate::rail::Rail;
 use crate::system::{SystemError, VariableMassSystem};
 
 /// The error of a support on an index past the coordinates.
@@ -52,12 +53,19 @@ pub struct Supported<Sys> {
     pub system: Sys,
     /// The coordinate held on its support, `None` once lifted.
     pub held: Option<usize>,
+    /// The launch rail the body is on, if any ([`crate::rail`]): every coordinate but the
+    /// position held, the position sliding along the rail (or resting on its bottom).
+    pub rail: Option<Rail>,
 }
 
 impl<Sys> Supported<Sys> {
     /// The free system, as a phase after the lift-off (or any phase without a support).
     pub fn free(system: Sys) -> Self {
-        Self { system, held: None }
+        Self {
+            system,
+            held: None,
+            rail: None,
+        }
     }
 
     /// `system` with coordinate `k` held on its support.
@@ -65,17 +73,46 @@ impl<Sys> Supported<Sys> {
         Self {
             system,
             held: Some(k),
+            rail: None,
         }
     }
 
-    /// The free system once lifted (nothing held), `None` while held.
+    /// `system` on the launch rail `rail` ([`crate::rail`]).
+    pub fn on_rail(system: Sys, rail: Rail) -> Self {
+        Self {
+            system,
+            held: None,
+            rail: Some(rail),
+        }
+    }
+
+    /// The free system once lifted (nothing held, no rail), `None` while held.
     fn lifted(&self) -> Option<&Sys> {
-        self.held.is_none().then_some(&self.system)
+        (self.held.is_none() && self.rail.is_none()).then_some(&self.system)
     }
 
     /// The held coordinate, if it is one of the system's `N`.
     fn held_below<const N: usize>(&self) -> Option<usize> {
         self.held.filter(|&k| k < N)
+    }
+
+    /// The rail's constraint force at a velocity state (0 off a rail), for the Lagrange
+    /// side; a failure of the free system's accelerations is NaN here (the trait's force
+    /// methods cannot fail), which the steppers' finiteness check turns into a typed error.
+    fn rail_force<const N: usize, const S: usize>(
+        &self,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+    ) -> SVector<f64, N>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        match &self.rail {
+            None => SVector::zeros(),
+            Some(rail) => rail
+                .constraint_force(&self.system, t, velocity_state)
+                .unwrap_or_else(|_| SVector::repeat(f64::NAN)),
+        }
     }
 
     /// [`SystemError::SupportCoupled`] where the held coordinate couples with another at
@@ -335,22 +372,28 @@ where
         velocity_state: &SVector<f64, S>,
     ) -> Result<SVector<f64, N>, SystemError> {
         self.still_uncoupled(t, velocity_state)?;
+        if let Some(rail) = &self.rail {
+            return rail.accelerations(&self.system, t, velocity_state);
+        }
         let accelerations = self.system.accelerations(t, velocity_state)?;
         Ok(cancelled(self.held_below::<N>(), accelerations))
     }
 
     fn frozen_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
         let force = self.system.frozen_force(t, velocity_state);
-        cancelled(self.held_below::<N>(), force)
+        cancelled(self.held_below::<N>(), force) + self.rail_force(t, velocity_state)
     }
 
     fn generalized_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {
         let force = self.system.generalized_force(t, velocity_state);
-        cancelled(self.held_below::<N>(), force)
+        cancelled(self.held_below::<N>(), force) + self.rail_force(t, velocity_state)
     }
 
     fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
         self.still_uncoupled(t, state)?;
+        if let Some(rail) = &self.rail {
+            return rail.state_rate(&self.system, t, state);
+        }
         let rate = self.system.state_rate(t, state)?;
         Ok(clamped::<N, S>(self.held_below::<N>(), rate))
     }
@@ -365,8 +408,23 @@ where
         self.system.state_rate(t, state)
     }
 
+    fn rail_reading(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+    ) -> Option<Result<(f64, f64), SystemError>> {
+        let rail = self.rail.as_ref()?;
+        Some(
+            rail.push(&self.system, t, state)
+                .map(|push| (push, rail.travel(state))),
+        )
+    }
+
     fn jacobian(&self, t: f64, state: &SVector<f64, S>) -> Result<SMatrix<f64, S, S>, SystemError> {
         let mut jacobian = self.system.jacobian(t, state)?;
+        if let Some(rail) = &self.rail {
+            return Ok(rail.jacobian::<N, S>(jacobian));
+        }
         if let Some(k) = self.held_below::<N>() {
             jacobian.row_mut(k).fill(0.0);
             jacobian.row_mut(N + k).fill(0.0);

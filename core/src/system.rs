@@ -288,6 +288,18 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(rate)
     }
 
+    /// A body on a launch rail ([`crate::rail`], a system wrapped by `Supported::on_rail`):
+    /// the net generalized force along the rail bᵀ f (the pad's lift-off function) and the
+    /// distance its reference point has travelled up the rail, at `state`. `None` for every
+    /// other system (the default).
+    fn rail_reading(
+        &self,
+        _t: f64,
+        _state: &SVector<f64, S>,
+    ) -> Option<Result<(f64, f64), SystemError>> {
+        None
+    }
+
     /// The state rate of the free equations: [`Self::state_rate`] itself, except for a body
     /// held on its support ([`crate::support::Supported`]), whose state rate clamps the
     /// supported coordinate while this gives the rate the body would have without the
