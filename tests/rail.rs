@@ -21,11 +21,15 @@
 //! (∫₀^τ ln(m_L/m) dτ' = τ + (m/μ) ln(m/m_L), by the substitution m = m_L − μτ'). The
 //! rail exit is the root of s(τ) = L, found below by Newton's method on the closed form.
 
+mod rail_support;
+
 use varmass::core::nalgebra::SVector;
 use varmass::core::rail::{phases, times, BAD_DIRECTION, NOT_AT_REST};
 use varmass::core::steppers::{AdaptiveControl, Dop853, StepControl};
 use varmass::core::{run_phases, RunConfig, StepErrorKind, VariableMassSystem};
 use varmass::prelude::variable_mass_system;
+
+use rail_support::{exit, lift_off, slide, G, INCLINATION, LENGTH, MU, M_D, M_P, U_E};
 
 #[derive(Clone, Copy, Debug)]
 #[variable_mass_system(file = "models/rocket_6dof_quaternion.vms")]
@@ -43,17 +47,6 @@ struct QuaternionRocket {
     delta: f64,
     g: f64,
 }
-
-const MU: f64 = 5.0;
-const U_E: f64 = 1000.0;
-const G: f64 = 9.81;
-/// Dry and propellant mass at the start, kg: 5396 N of weight along the rail against 5000 N
-/// of thrust, so the rocket rests on its pad for 6.5 s.
-const M_D: f64 = 450.0;
-const M_P: f64 = 100.0;
-/// The rail: 80° above the horizontal, leaning towards +x; 5 m of travel.
-const INCLINATION: f64 = 80.0 * std::f64::consts::PI / 180.0;
-const LENGTH: f64 = 5.0;
 
 fn rocket() -> QuaternionRocket {
     QuaternionRocket {
@@ -89,29 +82,6 @@ fn start() -> SVector<f64, 15> {
     state.fixed_rows_mut::<4>(3).copy_from_slice(&q);
     state[14] = M_P;
     state
-}
-
-/// The closed form: lift-off time, and s(τ), ṡ(τ) after it.
-fn lift_off() -> f64 {
-    (M_D + M_P - MU * U_E / (G * INCLINATION.sin())) / MU
-}
-
-fn slide(tau: f64) -> (f64, f64) {
-    let m_l = M_D + M_P - MU * lift_off();
-    let m = m_l - MU * tau;
-    let gs = G * INCLINATION.sin();
-    let s = U_E * (tau + m / MU * (m / m_l).ln()) - 0.5 * gs * tau * tau;
-    (s, U_E * (m_l / m).ln() - gs * tau)
-}
-
-/// The exit: s(τ) = L by Newton's method on the closed form.
-fn exit() -> f64 {
-    let mut tau = 7.0;
-    for _ in 0..50 {
-        let (s, v) = slide(tau);
-        tau -= (s - LENGTH) / v;
-    }
-    lift_off() + tau
 }
 
 #[test]

@@ -54,6 +54,9 @@ pub struct SceneRun {
     /// When the body left its support (`support = "y"`, docs/scenes.md): the start if it
     /// lifted at once, `None` if it was still held at the end or the scene has no support.
     pub lift_off: Option<f64>,
+    /// When the body left its rail (`[rail]`, docs/scenes.md#a-launch-rail) and its speed
+    /// then (m/s), `None` if it was still on the rail at the end or the scene has no rail.
+    pub rail_exit: Option<(f64, f64)>,
 }
 
 /// A change of phase, as the summary prints it.
@@ -95,6 +98,7 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
     let energy = scene.energy_residual;
     let support = read.scene.support.as_ref().map(|s| s.get_ref().clone());
     let held = scene.support.as_ref().map(|(k, _)| *k);
+    let railed = scene.rail.is_some();
     let mut flown = fly::fly(scene)?;
     let mut names = vec!["phase".to_string()];
     names.extend(phases[0].1.iter().map(|(n, _)| n.clone()));
@@ -124,6 +128,9 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
         let below = below_support(&flown, k);
         summary.insert_str(0, &lift_off_line(support, flown.lift_off, below));
     }
+    if railed {
+        summary.insert_str(0, &rail_lines(flown.lift_off, flown.rail_exit));
+    }
     Ok(SceneRun {
         table: Table::from_rows(names, rows),
         summary,
@@ -134,6 +141,7 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
         statistics: flown.statistics,
         failure: flown.failure,
         lift_off: flown.lift_off,
+        rail_exit: flown.rail_exit,
     })
 }
 
@@ -158,6 +166,27 @@ fn lift_off_line(coordinate: &str, lift_off: Option<f64>, below: Option<(f64, f6
         ));
     }
     line
+}
+
+/// The summary's lines on the rail: the lift-off from its bottom, and the exit with its speed
+/// (or that the body never got there).
+fn rail_lines(lift_off: Option<f64>, exit: Option<(f64, f64)>) -> String {
+    let lift = match lift_off {
+        Some(time) => format!("lifted off its rail's bottom at t = {}\n", shown(time)),
+        None => "never lifted off its rail's bottom: held to the end\n".to_string(),
+    };
+    let exit = match (lift_off, exit) {
+        (_, Some((time, speed))) => {
+            format!(
+                "left its rail at t = {}, at {} m/s\n",
+                shown(time),
+                shown(speed)
+            )
+        }
+        (Some(_), None) => "still on its rail at the end\n".to_string(),
+        (None, None) => String::new(),
+    };
+    lift + &exit
 }
 
 /// The lowest point of the held coordinate `k` after the lift-off, if it is below the

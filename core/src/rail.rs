@@ -217,9 +217,8 @@ where
 /// one wrapper type [`Supported`], entered by [`Carry::Capture`] (q and p continuous: on
 /// the pad and the rail the momenta are the free system's at the constrained velocity, so
 /// nothing jumps). `position` names the coordinates x, y, z of the body's reference point and
-/// `direction` is the rail's unit vector up the rail in their axes. Refused (an
-/// [`InvalidConfiguration`](StepErrorKind) error at the start): a bad position or direction
-/// ([`Rail::check`]), a length that is not positive, a body not at rest.
+/// `direction` is the rail's unit vector up the rail in their axes. Refused as
+/// [`on_rail`] refuses.
 pub fn phases<Sys, const N: usize, const S: usize>(
     system: Sys,
     (position, direction): ([usize; 3], [f64; 3]),
@@ -229,45 +228,84 @@ pub fn phases<Sys, const N: usize, const S: usize>(
 where
     Sys: VariableMassSystem<N, S> + Clone,
 {
+    let (rail, on_pad) = on_rail(&system, (position, direction), length, (time, state))?;
+    let mut phases = Vec::new();
+    if on_pad {
+        phases.push(pad_phase(system.clone(), rail));
+    }
+    phases.push(slide_phase(system.clone(), rail, length));
+    phases.push(phase(Supported::free(system), None));
+    Ok(phases)
+}
+
+/// The rail of `system` starting at `(time, state)` (sliding; its origin the position
+/// there) and whether the body rests on the pad there (bᵀ f < 0), after the checks: refused
+/// (an [`InvalidConfiguration`](StepErrorKind) error at the start) are a bad position or
+/// direction ([`Rail::check`]), a length that is not positive, a body not at rest; a
+/// non-finite bᵀ f is a [`StepErrorKind::NonFiniteState`].
+pub fn on_rail<Sys, const N: usize, const S: usize>(
+    system: &Sys,
+    (position, direction): ([usize; 3], [f64; 3]),
+    length: f64,
+    (time, state): (f64, &SVector<f64, S>),
+) -> Result<(Rail, bool), StepError<S>>
+where
+    Sys: VariableMassSystem<N, S>,
+{
     let refuse = |reason| StepError::invalid_configuration(time, *state, reason);
-    let origin = [state[position[0]], state[position[1]], state[position[2]]];
+    let failed = |error| StepError::from_system(system, error, time, state);
     let rail = Rail {
         position,
         direction,
-        origin,
+        origin: [0.0; 3],
         on_pad: false,
     };
     rail.check::<N>().map_err(refuse)?;
+    let rail = Rail {
+        origin: position.map(|i| state[i]),
+        ..rail
+    };
     if !(length.is_finite() && length > 0.0) {
         return Err(refuse(BAD_LENGTH));
     }
-    let velocities = system
-        .velocities(time, state)
-        .map_err(|error| StepError::from_system(&system, error, time, state))?;
+    let velocities = system.velocities(time, state).map_err(failed)?;
     if velocities.iter().any(|&v| v != 0.0) {
         return Err(refuse(NOT_AT_REST));
     }
-    let push = rail
-        .push(&system, time, state)
-        .map_err(|error| StepError::from_system(&system, error, time, state))?;
+    let push = rail.push(system, time, state).map_err(failed)?;
     if push.is_nan() {
         return Err(StepError::new(time, *state, StepErrorKind::NonFiniteState));
     }
-    let mut phases = Vec::new();
-    if push < 0.0 {
-        let pad = Rail {
-            on_pad: true,
-            ..rail
-        };
-        phases.push(phase(
-            Supported::on_rail(system.clone(), pad),
-            Some(EventCondition::RailLiftOff),
-        ));
-    }
+    Ok((rail, push < 0.0))
+}
+
+/// The phase on the pad of `rail`, ended by the lift-off.
+pub fn pad_phase<Sys, const S: usize>(
+    system: Sys,
+    rail: Rail,
+) -> Phase<'static, Supported<Sys>, S> {
+    let pad = Rail {
+        on_pad: true,
+        ..rail
+    };
+    phase(
+        Supported::on_rail(system, pad),
+        Some(EventCondition::RailLiftOff),
+    )
+}
+
+/// The phase sliding up `rail`, ended where the reference point has travelled `length`.
+pub fn slide_phase<Sys, const S: usize>(
+    system: Sys,
+    rail: Rail,
+    length: f64,
+) -> Phase<'static, Supported<Sys>, S> {
+    let sliding = Rail {
+        on_pad: false,
+        ..rail
+    };
     let exit = EventCondition::RailExit { length };
-    phases.push(phase(Supported::on_rail(system.clone(), rail), Some(exit)));
-    phases.push(phase(Supported::free(system), None));
-    Ok(phases)
+    phase(Supported::on_rail(system, sliding), Some(exit))
 }
 
 /// A phase of [`phases`]: entered by capture, ended by `condition` rising through 0.

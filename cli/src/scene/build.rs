@@ -10,7 +10,7 @@ use varmass::core::{Carry, Direction};
 use varmass::interpret::Program;
 use varmass::symbolic::parse::ast::SystemAst;
 
-use super::file::{line_column, CarryRule, PhaseEntry, Read, SceneFile};
+use super::file::{line_column, CarryRule, PhaseEntry, RailEntry, Read, SceneFile};
 use super::models::Models;
 use crate::args::{ModelArgs, RunArgs, Words};
 use crate::error::CliError;
@@ -70,6 +70,22 @@ pub struct Scene {
     /// The coordinate that starts on its support (`support = "y"`) and a program of the
     /// first phase for the held phase's system.
     pub support: Option<(usize, Program)>,
+    /// The launch rail the body starts on (`[rail]`).
+    pub rail: Option<RailSpec>,
+}
+
+/// A scene's `[rail]`, checked: the position coordinates' indices, the rail's unit
+/// direction in world axes (x east, y north, z up), the travel to the exit, and two
+/// programs of the first phase for the systems on the pad and sliding up the rail.
+pub struct RailSpec {
+    /// The indices of the coordinates x, y, z of the body's reference point.
+    pub position: [usize; 3],
+    /// The unit vector up the rail.
+    pub direction: [f64; 3],
+    /// The travel of the reference point to the rail's exit, m.
+    pub length: f64,
+    /// Programs of the first phase, for the pad's system and the rail's.
+    pub programs: [Program; 2],
 }
 
 /// What a phase needs from the one before: its tags and parameter values, and the
@@ -107,12 +123,34 @@ pub fn build(read: &Read, path: &Path, models: &mut Models) -> Result<Scene, Cli
         }
         None => None,
     };
+    let rail = match &scene.rail {
+        Some(entry) => {
+            let at_rail = at(entry.span().start);
+            if scene.support.is_some() {
+                return Err(CliError::Input(format!(
+                    "{at_rail}: `[rail]` with `support`: a rail holds the body on its bottom \
+                     until lift-off by itself; remove `support`"
+                )));
+            }
+            let (position, direction, length) = railed(entry.get_ref(), &phases[0].program, &at)?;
+            let mut program = || program_of(&model_file, &phases[0].in_force, models);
+            let programs = [program()?, program()?];
+            Some(RailSpec {
+                position,
+                direction,
+                length,
+                programs,
+            })
+        }
+        None => None,
+    };
     Ok(Scene {
         phases,
         plan,
         energy_residual,
         csv: scene.csv.as_ref().map(|c| base.join(c)),
         support,
+        rail,
     })
 }
 
@@ -281,12 +319,67 @@ fn watch_programs(
     Ok(())
 }
 
+/// A `[rail]`'s position indices, unit direction (x east, y north, z up) and length,
+/// checked: three distinct coordinates of the model, an inclination in (0°, 90°], a finite
+/// heading, a positive length; each mistake at its line.
+fn railed(
+    entry: &RailEntry,
+    program: &Program,
+    at: &dyn Fn(usize) -> String,
+) -> Result<([usize; 3], [f64; 3], f64), CliError> {
+    let names = entry.position.get_ref();
+    let mut position = [0; 3];
+    if names.len() != 3 {
+        return Err(CliError::Input(format!(
+            "{}: `position` names {} coordinates; a rail needs the three of the body's \
+             reference point, x (east), y (north), z (up)",
+            at(entry.position.span().start),
+            names.len()
+        )));
+    }
+    for (slot, name) in position.iter_mut().zip(names) {
+        let key = format!("the rail's position `{}`", name.get_ref());
+        *slot = coordinate(name.get_ref(), program, &key)
+            .map_err(|e| located(e, &at(name.span().start)))?;
+    }
+    if position[0] == position[1] || position[1] == position[2] || position[0] == position[2] {
+        return Err(CliError::Input(format!(
+            "{}: `position` names a coordinate twice",
+            at(entry.position.span().start)
+        )));
+    }
+    let inclination = *entry.inclination.get_ref();
+    if !(inclination > 0.0 && inclination <= 90.0) || !entry.heading.is_finite() {
+        return Err(CliError::Input(format!(
+            "{}: a rail's `inclination` is in degrees above the horizontal, in (0, 90], and \
+             its `heading` a finite number of degrees (got {inclination}, {})",
+            at(entry.inclination.span().start),
+            entry.heading
+        )));
+    }
+    let length = *entry.length.get_ref();
+    if !(length.is_finite() && length > 0.0) {
+        return Err(CliError::Input(format!(
+            "{}: a rail's `length` (the travel to its exit, m) must be positive (got {length})",
+            at(entry.length.span().start)
+        )));
+    }
+    let (i, h) = (inclination.to_radians(), entry.heading.to_radians());
+    let direction = [i.cos() * h.sin(), i.cos() * h.cos(), i.sin()];
+    Ok((position, direction, length))
+}
+
 /// The index of the coordinate `name` that a scene's `support` names.
 fn supported(name: &str, program: &Program) -> Result<usize, CliError> {
+    coordinate(name, program, &format!("`support = \"{name}\"`"))
+}
+
+/// The index of the coordinate `name`, which the scene's `key` names.
+fn coordinate(name: &str, program: &Program, key: &str) -> Result<usize, CliError> {
     let coordinates: Vec<&str> = program.coordinate_names().collect();
     coordinates.iter().position(|c| *c == name).ok_or_else(|| {
         CliError::Input(format!(
-            "`support = \"{name}\"` names no coordinate of the model; its coordinates are {}",
+            "{key} names no coordinate of the model; its coordinates are {}",
             coordinates.join(", ")
         ))
     })

@@ -36,6 +36,8 @@ pub struct SceneFile {
     /// The coordinate that starts resting on its support (a pad, a rail's end) and is held
     /// there until the net force along it lifts the body (docs/scenes.md).
     pub support: Option<Spanned<String>>,
+    /// A launch rail the body starts on (docs/scenes.md#a-launch-rail).
+    pub rail: Option<Spanned<RailEntry>>,
     /// The start time.
     #[serde(default)]
     pub from: f64,
@@ -80,6 +82,24 @@ pub struct PhaseEntry {
     pub masses: BTreeMap<Spanned<String>, f64>,
     /// Other tags from here on (the same coordinates and state masses).
     pub with: Option<Spanned<Vec<Spanned<String>>>>,
+}
+
+/// `[rail]`: the position coordinates of the body's reference point (world axes x east,
+/// y north, z up), the rail's inclination above the horizontal and heading clockwise from
+/// north (degrees, RocketPy's convention), and the travel of the reference point along the
+/// rail until the last rail button leaves it (m).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RailEntry {
+    /// The coordinates x (east), y (north), z (up) of the body's reference point.
+    pub position: Spanned<Vec<Spanned<String>>>,
+    /// Degrees above the horizontal: 90 is vertical.
+    pub inclination: Spanned<f64>,
+    /// Degrees clockwise from north (the y axis) towards which the rail leans.
+    #[serde(default)]
+    pub heading: f64,
+    /// How far the reference point travels along the rail until the last button leaves it.
+    pub length: Spanned<f64>,
 }
 
 /// `carry = "separation" | "capture"` (docs/scenes.md).

@@ -4,14 +4,15 @@
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::phases::ALREADY_PAST;
+use varmass::core::rail::{on_rail, pad_phase, slide_phase};
 use varmass::core::support::{held_phase, starts_held};
 use varmass::core::{
     run_phases_keeping, Event, Phase, PhaseChange, PhasedSolution, Record, RunConfig, Statistics,
-    StepError, StepErrorKind, StopReason, Supported,
+    StepError, StepErrorKind, StopReason, Supported, VariableMassSystem,
 };
 use varmass::interpret::{Program, TapeSystem};
 
-use super::build::{End, Scene};
+use super::build::{End, RailSpec, Scene};
 use crate::args::Method;
 use crate::error::CliError;
 use crate::run::dispatch::{on_sizes, padded_steps, SizedRun, Sizes};
@@ -41,6 +42,9 @@ pub struct Flown {
     /// When the body left its support (`support = "y"`): the start if it lifted at once,
     /// `None` if it was still held at the end (or the scene has no support).
     pub lift_off: Option<f64>,
+    /// When the body left its rail (`[rail]`) and its speed then, `None` if it was still on
+    /// the rail at the end (or the scene has no rail).
+    pub rail_exit: Option<(f64, f64)>,
     /// The closest every accepted step of every phase came to a singular attitude, rad.
     pub closest_singular_attitude: Option<f64>,
 }
@@ -119,6 +123,7 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
         plan,
         energy_residual,
         support,
+        rail,
         ..
     } = scene;
     let k = built[0].program.state_mass_count();
@@ -156,6 +161,9 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
         .collect();
     let start = start_of::<S>(&plan);
     let held = held_first(&mut phases, support, start, &plan)?;
+    let railed = rail_first(&mut phases, rail, start, &plan)?;
+    let inserted =
+        usize::from(held == Some(true)) + railed.map_or(0, |on_pad| 1 + usize::from(on_pad));
     let config = config(&plan, energy_residual);
     let steps = padded_steps(plan.steps, plan.method, len, S)?;
     let (from, until) = (plan.from, plan.until);
@@ -172,11 +180,24 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
         };
     }
     let (phased, error) = with_stepper!(plan.method, steps, phased_with);
-    if held == Some(true) {
-        met_while_held(&phased, &phases, start, &ends)?;
+    if inserted > 0 {
+        let what = if railed.is_some() {
+            "on its `[rail]`"
+        } else {
+            "on its `support`"
+        };
+        met_while_held(&phased, (&phases, inserted), start, &ends, what)?;
     }
-    let (phased, lift_off) = renumbered(phased, held, from);
-    let offset = usize::from(held == Some(true));
+    let exit = railed.and_then(|on_pad| phased.changes.get(usize::from(on_pad)));
+    let rail_exit = exit.map(|change| (change.time, exit_speed(&phased, &phases, change.time)));
+    let (phased, removed) = renumbered(phased, inserted);
+    let starts_held = held == Some(true) || railed == Some(true);
+    let lift_off = match (held.or(railed), starts_held) {
+        (None, _) => None,
+        (Some(_), false) => Some(from),
+        (Some(_), true) => removed.first().copied(),
+    };
+    let offset = inserted;
     let last = phased.phase.last().copied().unwrap_or(0);
     let failure = error.map(|e| {
         let ended = (&phased.changes[..], last);
@@ -187,6 +208,7 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
         && phased.solution.stop == (StopReason::EventFound { index: 0 });
     let mut flown = flown(phased, (phases, offset), len, stopped, failure);
     flown.lift_off = lift_off;
+    flown.rail_exit = rail_exit;
     Ok(flown)
 }
 
@@ -201,23 +223,25 @@ fn end_watchers<const S: usize>(ends: &[Option<End>]) -> Vec<Option<Watcher<'_, 
 }
 
 /// Refuses a scene whose first phase's end condition was met while the body was held on its
-/// support: conditions are watched from the lift-off on (docs/scenes.md), so a phase change
-/// or a stop due during the hold would be skipped without a word. `phased` is the run before
-/// renumbering (the held phase is phase 0, the lift-off the first point of phase 1; a body
-/// held to the end is checked to its last point). The condition is read at every point of
-/// the hold, not only at its ends: one met and unmet again while held (an oscillator that
-/// passes its value and comes back) was skipped before (review of session 33).
+/// support or rail (`what`): conditions are watched from the lift-off (the rail's exit) on
+/// (docs/scenes.md), so a phase change or a stop due during the hold would be skipped without
+/// a word. `phased` is the run before renumbering (the `inserted` phases of the hold come
+/// first, the scene's first phase begins at the first point of phase `inserted`; a body held
+/// to the end is checked to its last point). The condition is read at every point of the
+/// hold, not only at its ends: one met and unmet again while held (an oscillator that passes
+/// its value and comes back) was skipped before (review of session 33).
 fn met_while_held<const N: usize, const S: usize>(
     phased: &PhasedSolution<N, S>,
-    phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
+    (phases, inserted): (&[Phase<'_, Supported<TapeSystem<N, S>>, S>], usize),
     (t0, y0): (f64, SVector<f64, S>),
     ends: &[Option<End>],
+    what: &str,
 ) -> Result<(), CliError> {
-    let lift_off = phased.phase.iter().position(|&p| p == 1);
+    let lift_off = phased.phase.iter().position(|&p| p == inserted);
     let Some(last) = lift_off.or(phased.phase.len().checked_sub(1)) else {
         return Ok(());
     };
-    let (Some(first), Some(Some(end))) = (phases.get(1), ends.first()) else {
+    let (Some(first), Some(Some(end))) = (phases.get(inserted), ends.first()) else {
         return Ok(());
     };
     let Some(until) = &first.until else {
@@ -235,14 +259,38 @@ fn met_while_held<const N: usize, const S: usize>(
         return Ok(());
     };
     Err(CliError::Input(format!(
-        "`{}` (the end of phase 1) was met while the body was held on its `support`, between \
-         t = {} and t = {}, before the end of the hold: a scene's conditions are watched from \
-         the lift-off on (docs/scenes.md), so it would be skipped; write a condition met after \
-         the lift-off, or fly the scene without `support`",
+        "`{}` (the end of phase 1) was met while the body was held {what}, between t = {} and \
+         t = {}, before the end of the hold: a scene's conditions are watched from the lift-off \
+         on (docs/scenes.md), so it would be skipped; write a condition met after the \
+         lift-off, or fly the scene without the hold",
         end.text,
         shown(t0),
         shown(t1)
     )))
+}
+
+/// The speed of the body's reference point along the rail's position coordinates at the
+/// rail's exit `t` (the point of the run at that time, before renumbering): |q̇| over the
+/// rail's three coordinates, the body's velocity being along the rail there.
+fn exit_speed<const N: usize, const S: usize>(
+    phased: &PhasedSolution<N, S>,
+    phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
+    t: f64,
+) -> f64 {
+    let i = phased.solution.times.iter().position(|&time| time == t);
+    let rail = phases.iter().find_map(|p| p.system.rail);
+    let (Some(i), Some(rail)) = (i, rail) else {
+        return f64::NAN;
+    };
+    let state = &phased.solution.states[i];
+    let v = phases[0].system.velocities(t, state);
+    v.map_or(f64::NAN, |v| {
+        rail.position
+            .iter()
+            .map(|&k| v[k] * v[k])
+            .sum::<f64>()
+            .sqrt()
+    })
 }
 
 /// The plan's initial time and state, padded with zeros to the arm's `S`.
@@ -272,6 +320,44 @@ fn held_first<const N: usize, const S: usize>(
         ));
     }
     Ok(held)
+}
+
+/// Puts the rail's phases before `phases` when the scene has a `[rail]`: the slide up the
+/// rail, and before it the pad when the body rests on the rail's bottom at the start.
+/// `Some(on_pad)` with a rail, `None` without. A body not at rest, and `method = "taylor"`
+/// (the rail's motion has no Taylor coefficients of its own), are refused.
+fn rail_first<const N: usize, const S: usize>(
+    phases: &mut Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>>,
+    rail: Option<RailSpec>,
+    (time, state): (f64, SVector<f64, S>),
+    plan: &Plan,
+) -> Result<Option<bool>, CliError> {
+    let Some(spec) = rail else {
+        return Ok(None);
+    };
+    if matches!(plan.method, Method::Taylor) {
+        return Err(CliError::Input(
+            "`[rail]` with `method = \"taylor\"`: the motion on the rail has no Taylor \
+             coefficients of its own (docs/scenes.md); fly it with another method, e.g. \"dop853\""
+                .to_string(),
+        ));
+    }
+    let refused = |e: StepError<S>| match e.kind {
+        StepErrorKind::InvalidConfiguration { reason } => {
+            CliError::Input(format!("`[rail]`: {reason}"))
+        }
+        kind => CliError::Run(format!("`[rail]`: at t = {}: {kind}", shown(e.time))),
+    };
+    let geometry = (spec.position, spec.direction);
+    let free = &phases[0].system.system;
+    let (rail, on_pad) = on_rail(free, geometry, spec.length, (time, &state)).map_err(refused)?;
+    let [pad, slide] = spec.programs;
+    let system = |p| TapeSystem::<N, S>::padded(p).map_err(|e| CliError::Input(e.to_string()));
+    phases.insert(0, slide_phase(system(slide)?, rail, spec.length));
+    if on_pad {
+        phases.insert(0, pad_phase(system(pad)?, rail));
+    }
+    Ok(Some(on_pad))
 }
 
 /// What the scene computed, sizes erased: the points cut to the model's own state `len`,
@@ -305,6 +391,7 @@ fn flown<const N: usize, const S: usize>(
             .collect(),
         failure,
         lift_off: None,
+        rail_exit: None,
         closest_singular_attitude: solution.closest_singular_attitude,
     }
 }
@@ -335,35 +422,32 @@ fn hold<const N: usize, const S: usize>(
     Ok(Some(true))
 }
 
-/// The run of the held phase and the scene's phases numbered as the scene's (the held
-/// phase is part of the first: its points are phase 1, the lift-off no change of phase),
-/// and the lift-off time.
+/// The run with the `inserted` phases of a hold (a support's held phase, a rail's pad and
+/// slide) numbered as part of the scene's first (their points are phase 1, the changes
+/// between them no changes of phase), and the times of the changes removed (the lift-off,
+/// the rail's exit), as many as the run reached.
 fn renumbered<const N: usize, const S: usize>(
     mut phased: PhasedSolution<N, S>,
-    held: Option<bool>,
-    from: f64,
-) -> (PhasedSolution<N, S>, Option<f64>) {
-    match held {
-        None => (phased, None),
-        Some(false) => (phased, Some(from)),
-        Some(true) => {
-            // The lift-off's two points (before and after) are one state: keep the first.
-            if let Some(i) = phased.phase.iter().position(|&p| p == 1) {
-                drop_point(&mut phased, i);
-            }
-            for phase in &mut phased.phase {
-                *phase = phase.saturating_sub(1);
-            }
-            let lift_off = match phased.changes.is_empty() {
-                true => None,
-                false => Some(phased.changes.remove(0).time),
-            };
-            for change in &mut phased.changes {
-                change.phase -= 1;
-            }
-            (phased, lift_off)
+    inserted: usize,
+) -> (PhasedSolution<N, S>, Vec<f64>) {
+    let mut removed = Vec::new();
+    for _ in 0..inserted {
+        // A change's two points (before and after) are one state: keep the first.
+        if let Some(i) = phased.phase.iter().position(|&p| p == 1) {
+            drop_point(&mut phased, i);
+        }
+        for phase in &mut phased.phase {
+            *phase = phase.saturating_sub(1);
+        }
+        if phased.changes.is_empty() {
+            break;
+        }
+        removed.push(phased.changes.remove(0).time);
+        for change in &mut phased.changes {
+            change.phase -= 1;
         }
     }
+    (phased, removed)
 }
 
 /// Removes point `i` from `phased` and from every extra recorded at it.
