@@ -1,0 +1,216 @@
+#!/usr/bin/env python3
+"""RocketPy 1.13 flies the public flights from flights/<name>/flight.toml (issue 36; not in CI).
+
+Each flight's inputs are read from its flight.toml (docs/flights.md), the file varmass's
+scene reads too, and handed to RocketPy in its own terms: a `tail_to_nose` rocket whose
+coordinate origin is our reference point (the centre of dry mass), so every `*_z` of the
+toml is RocketPy's position unchanged; a `nozzle_to_combustion_chamber` motor with its
+origin at the nozzle exit (`add_motor(position = nozzle_z)`, the motor's own positions
+`*_z - nozzle_z`). Then `Flight(rocket, env, rail_length, inclination, heading)` at
+RocketPy's defaults (LSODA, rtol 1e-6), from the pad to landing, as the notebooks do.
+
+Writes benches/peers/rocketpy/flights.csv: name, apogee (m above the site, of the centre of
+dry mass), its time, rail-exit speed, max speed, static margin (calibers, RocketPy's
+`rocket.static_margin`: centre of mass against the Mach-0 centre of pressure) at t = 0 and
+at rail exit, the run time of `Flight(...)` (fastest of --repeat), and beside them the
+apogees published in docs/examples/index.rst, the notebooks' stored outputs and the
+measured ones.
+
+The weather files (`[weather] file`) are RocketPy's; give a RocketPy checkout (a work tree,
+or a git directory such as a mirror: the file is then read with `git show`):
+
+    python3 -m venv target/venv-rocketpy
+    target/venv-rocketpy/bin/pip install -r benches/peers/rocketpy/requirements.txt
+    target/venv-rocketpy/bin/python benches/peers/rocketpy/flights.py \\
+        --rocketpy-repo PATH/TO/RocketPy [--only andromeda,astra] [--repeat 3]
+"""
+
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import tomllib
+import warnings
+from pathlib import Path
+
+import numpy as np
+from rocketpy import Environment, Flight, Rocket, SolidMotor
+
+ROOT = Path(__file__).resolve().parents[3]
+COLUMNS = [
+    "name", "apogee", "apogee_time", "rail_exit_speed", "max_speed", "static_margin_0",
+    "static_margin_rail_exit", "run_time", "published_sim", "notebook_output", "measured",
+]
+
+
+def weather_file(repo, path, cache):
+    """The path of RocketPy's weather file: in a work tree, or extracted from a git dir."""
+    direct = Path(repo) / path
+    if direct.exists():
+        return str(direct)
+    if path not in cache:
+        out = Path(tempfile.mkdtemp()) / Path(path).name
+        data = subprocess.run(["git", "-C", repo, "show", f"HEAD:{path}"], check=True,
+                              capture_output=True).stdout
+        out.write_bytes(data)
+        cache[path] = str(out)
+    return cache[path]
+
+
+def environment(spec, repo, cache):
+    site, weather = spec["site"], spec["weather"]
+    gravity = None if site["gravity"] == "somigliana" else site["gravity"]
+    date = spec["site"]["date_utc"]
+    y, mo, d, h = int(date[0:4]), int(date[5:7]), int(date[8:10]), int(date[11:13])
+    env = Environment(gravity=gravity, date=(y, mo, d, h), latitude=site["latitude"],
+                      longitude=site["longitude"], elevation=site["elevation"],
+                      timezone="UTC")
+    if weather["kind"] == "era5":
+        env.set_atmospheric_model(type="Reanalysis",
+                                  file=weather_file(repo, weather["file"], cache),
+                                  dictionary="ECMWF")
+        if "max_expected_height" in weather:
+            env.max_expected_height = weather["max_expected_height"]
+    elif weather["kind"] != "standard":
+        raise ValueError(f"weather kind {weather['kind']!r}")
+    return env
+
+
+def motor(spec, folder):
+    m, g = spec["motor"], spec["motor"]["grains"]
+    noz = m["nozzle_z"]
+    return SolidMotor(
+        thrust_source=str(folder / m["thrust"]),
+        burn_time=m["burn_time"],
+        dry_mass=m["dry_mass"],
+        dry_inertia=(m["dry_inertia"][0], m["dry_inertia"][0], m["dry_inertia"][1]),
+        center_of_dry_mass_position=m["dry_cg_z"] - noz,
+        grains_center_of_mass_position=g["cg_z"] - noz,
+        grain_number=g["number"],
+        grain_separation=g["separation"],
+        grain_density=g["density"],
+        grain_outer_radius=g["outer_radius"],
+        grain_initial_inner_radius=g["inner_radius"],
+        grain_initial_height=g["height"],
+        nozzle_radius=m["nozzle_radius"],
+        throat_radius=m["throat_radius"],
+        nozzle_position=0,
+        interpolation_method="linear",
+        coordinate_system_orientation="nozzle_to_combustion_chamber",
+    )
+
+
+def drag(value, folder):
+    return value if isinstance(value, (int, float)) else str(folder / value)
+
+
+def rocket(spec, folder):
+    r, dr = spec["rocket"], spec["drag"]
+    rk = Rocket(
+        radius=r["radius"], mass=r["mass"],
+        inertia=(r["inertia"][0], r["inertia"][0], r["inertia"][1]),
+        power_off_drag=drag(dr["power_off"], folder),
+        power_on_drag=drag(dr["power_on"], folder),
+        center_of_mass_without_motor=r["cg_z"],
+        coordinate_system_orientation="tail_to_nose",
+    )
+    rk.add_motor(motor(spec, folder), position=spec["motor"]["nozzle_z"])
+    rail = spec["rail"]
+    rk.set_rail_buttons(rail["upper_button_z"], rail["lower_button_z"], rail["button_angle"])
+    nose = spec["nose"]
+    rk.add_nose(length=nose["length"], kind=nose["kind"], position=nose["tip_z"],
+                base_radius=nose["base_radius"])
+    fins = spec["fins"]
+    if fins["airfoil"] != "none":
+        raise ValueError("airfoil fins are not in any flight.toml yet")
+    rk.add_trapezoidal_fins(
+        n=fins["n"], root_chord=fins["root_chord"], tip_chord=fins["tip_chord"],
+        span=fins["span"], position=fins["root_leading_edge_z"],
+        cant_angle=fins["cant"], sweep_length=fins["sweep_length"],
+        radius=fins["body_radius"],
+    )
+    if "tail" in spec:
+        t = spec["tail"]
+        rk.add_tail(top_radius=t["top_radius"], bottom_radius=t["bottom_radius"],
+                    length=t["length"], position=t["top_z"])
+    for c in spec.get("parachutes", []):
+        rk.add_parachute(c["name"], cd_s=c["cd_s"], trigger=c["trigger"],
+                         sampling_rate=c["sampling_rate"], lag=c["lag"],
+                         noise=tuple(c["noise"]))
+    return rk
+
+
+def fly(spec, env, rk):
+    kwargs = {}
+    if "max_time" in spec.get("run", {}):
+        kwargs["max_time"] = spec["run"]["max_time"]
+    rail = spec["rail"]
+    return Flight(rocket=rk, environment=env, rail_length=rail["length"],
+                  inclination=rail["inclination"], heading=rail["heading"], **kwargs)
+
+
+def run(name, repo, repeat, cache):
+    folder = ROOT / "flights" / name
+    spec = tomllib.loads((folder / "flight.toml").read_text())
+    env = environment(spec, repo, cache)
+    best, flight = math.inf, None
+    for _ in range(repeat):
+        np.random.seed(36)  # the parachutes' pressure noise: no effect before apogee
+        rk = rocket(spec, folder)
+        t0 = time.perf_counter()
+        flight = fly(spec, env, rk)
+        best = min(best, time.perf_counter() - t0)
+    ap = spec["apogee"]
+    return {
+        "name": name,
+        "apogee": flight.apogee - env.elevation,
+        "apogee_time": flight.apogee_time,
+        "rail_exit_speed": flight.out_of_rail_velocity,
+        "max_speed": flight.max_speed,
+        "static_margin_0": rk.static_margin(0),
+        "static_margin_rail_exit": rk.static_margin(flight.out_of_rail_time),
+        "run_time": best,
+        "published_sim": ap["published_sim"],
+        "notebook_output": ap["notebook_output"],
+        "measured": ap["measured"],
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--rocketpy-repo", required=True)
+    ap.add_argument("--only", default="")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--out", default=str(Path(__file__).with_name("flights.csv")))
+    args = ap.parse_args()
+    names = sorted(p.parent.name for p in (ROOT / "flights").glob("*/flight.toml"))
+    if args.only:
+        names = [n for n in names if n in args.only.split(",")]
+    os.environ.setdefault("MPLBACKEND", "Agg")
+    warnings.simplefilter("ignore")
+    rows, cache = [], {}
+    for name in names:
+        row = run(name, args.rocketpy_repo, args.repeat, cache)
+        rows.append(row)
+        print(f"{name:10s} apogee {row['apogee']:9.2f} m at {row['apogee_time']:6.2f} s"
+              f"  rail exit {row['rail_exit_speed']:6.2f} m/s  max {row['max_speed']:7.2f} m/s"
+              f"  margin {row['static_margin_0']:.3f}/{row['static_margin_rail_exit']:.3f}"
+              f"  {row['run_time']:.2f} s  (published {row['published_sim']},"
+              f" notebook {row['notebook_output']}, measured {row['measured']})",
+              flush=True)
+    with open(args.out, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(COLUMNS)
+        for row in rows:
+            w.writerow([row["name"]] + [f"{row[c]:.6g}" if c != "run_time" else
+                                        f"{row[c]:.3f}" for c in COLUMNS[1:]])
+    print(f"wrote {args.out} ({len(rows)} flights), rocketpy", sys.modules["rocketpy"].__version__
+          if hasattr(sys.modules["rocketpy"], "__version__") else "")
+
+
+if __name__ == "__main__":
+    main()
