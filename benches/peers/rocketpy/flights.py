@@ -30,11 +30,11 @@ import csv
 import math
 import os
 import subprocess
-import sys
 import tempfile
 import time
 import tomllib
 import warnings
+from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
@@ -61,7 +61,7 @@ def weather_file(repo, path, cache):
     return cache[path]
 
 
-def environment(spec, repo, cache):
+def environment(spec, repo, cache, folder=None):
     site, weather = spec["site"], spec["weather"]
     gravity = None if site["gravity"] == "somigliana" else site["gravity"]
     date = spec["site"]["date_utc"]
@@ -75,8 +75,16 @@ def environment(spec, repo, cache):
                                   dictionary="ECMWF")
         if "max_expected_height" in weather:
             env.max_expected_height = weather["max_expected_height"]
+    elif weather["kind"] == "us1976":
+        table = np.loadtxt(folder / weather["table"], delimiter=",", skiprows=1)
+        u, v = weather["wind"]
+        env.set_atmospheric_model(type="custom_atmosphere",
+                                  pressure=table[:, [0, 1]], temperature=table[:, [0, 2]],
+                                  wind_u=u, wind_v=v)
     elif weather["kind"] != "standard":
         raise ValueError(f"weather kind {weather['kind']!r}")
+    if not site.get("earth_rotation", True):
+        env.earth_rotation_vector = [0.0, 0.0, 0.0]
     return env
 
 
@@ -125,13 +133,14 @@ def rocket(spec, folder):
     rk.add_nose(length=nose["length"], kind=nose["kind"], position=nose["tip_z"],
                 base_radius=nose["base_radius"])
     fins = spec["fins"]
+    airfoil = None
     if fins["airfoil"] != "none":
-        raise ValueError("airfoil fins are not in any flight.toml yet")
+        airfoil = (str(folder / fins["airfoil"]), fins["airfoil_unit"])
     rk.add_trapezoidal_fins(
         n=fins["n"], root_chord=fins["root_chord"], tip_chord=fins["tip_chord"],
         span=fins["span"], position=fins["root_leading_edge_z"],
         cant_angle=fins["cant"], sweep_length=fins["sweep_length"],
-        radius=fins["body_radius"],
+        radius=fins["body_radius"], airfoil=airfoil,
     )
     if "tail" in spec:
         t = spec["tail"]
@@ -140,7 +149,8 @@ def rocket(spec, folder):
     for c in spec.get("parachutes", []):
         rk.add_parachute(c["name"], cd_s=c["cd_s"], trigger=c["trigger"],
                          sampling_rate=c["sampling_rate"], lag=c["lag"],
-                         noise=tuple(c["noise"]))
+                         noise=tuple(c["noise"]), radius=c.get("radius"),
+                         height=c.get("height"))
     return rk
 
 
@@ -156,7 +166,7 @@ def fly(spec, env, rk):
 def run(name, repo, repeat, cache):
     folder = ROOT / "flights" / name
     spec = tomllib.loads((folder / "flight.toml").read_text())
-    env = environment(spec, repo, cache)
+    env = environment(spec, repo, cache, folder)
     best, flight = math.inf, None
     for _ in range(repeat):
         np.random.seed(36)  # the parachutes' pressure noise: no effect before apogee
@@ -187,7 +197,8 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--out", default=str(Path(__file__).with_name("flights.csv")))
     args = ap.parse_args()
-    names = sorted(p.parent.name for p in (ROOT / "flights").glob("*/flight.toml"))
+    names = sorted(p.parent.name for p in (ROOT / "flights").glob("*/flight.toml")
+                   if p.parent.name != "calisto")  # calisto.py flies Calisto
     if args.only:
         names = [n for n in names if n in args.only.split(",")]
     os.environ.setdefault("MPLBACKEND", "Agg")
@@ -208,8 +219,7 @@ def main():
         for row in rows:
             w.writerow([row["name"]] + [f"{row[c]:.6g}" if c != "run_time" else
                                         f"{row[c]:.3f}" for c in COLUMNS[1:]])
-    print(f"wrote {args.out} ({len(rows)} flights), rocketpy", sys.modules["rocketpy"].__version__
-          if hasattr(sys.modules["rocketpy"], "__version__") else "")
+    print(f"wrote {args.out} ({len(rows)} flights), rocketpy {version('rocketpy')}")
 
 
 if __name__ == "__main__":

@@ -306,6 +306,44 @@ FLIGHTS = {
         "International Standard Atmosphere, no wind). The flight log was lost; the "
         "measured apogee (860 m AGL) and drift are all that is known.",
     ),
+    "calisto": dict(
+        title="Calisto (getting started)",
+        notebook="docs/user/first_simulation.rst",
+        published=None,
+        notebook_output=None,
+        env=dict(lat=32.990254, lon=-106.974998, elevation=1400, date=(2026, 1, 1, 12),
+                 timezone="UTC", tz_note="UTC", utc_offset=0, gravity=9.80665,
+                 weather=None, max_height=None, us1976_wind=(3.0, -4.0),
+                 earth_rotation=False),
+        motor=dict(thrust="data/motors/cesaroni/Cesaroni_M1670.eng", burn_time=3.9,
+                   grain_number=5, grain_density=1815, grain_inner_radius=15 / 1000,
+                   grain_outer_radius=33 / 1000, grain_height=120 / 1000,
+                   grain_separation=5 / 1000, grains_cm=0.397, nozzle_radius=33 / 1000,
+                   nozzle=0, throat_radius=11 / 1000, dry_mass=1.815, dry_cm=0.317,
+                   dry_inertia=(0.125, 0.125, 0.002), csys="nozzle_to_combustion_chamber",
+                   position=-1.255),
+        rocket=dict(radius=127 / 2000, mass=14.426, inertia=(6.321, 0.034), cm=0,
+                    csys="tail_to_nose",
+                    drag=("data/rockets/calisto/powerOffDragCurve.csv",
+                          "data/rockets/calisto/powerOnDragCurve.csv")),
+        buttons=(0.0818, -0.6182, 45),
+        nose=dict(length=0.55829, kind="von karman", position=1.278),
+        fins=dict(n=4, span=0.110, root=0.120, tip=0.060, position=-1.04956, cant=0.5,
+                  airfoil=("data/airfoils/NACA0012-radians.txt", "radians")),
+        tail=dict(top=0.0635, bottom=0.0435, length=0.060, position=-1.194656),
+        chutes=[dict(name="main", cd_s=10.0, trigger=800, rate=105, lag=1.5,
+                     noise=(0, 8.3, 0.5), radius=1.5, height=1.5),
+                dict(name="drogue", cd_s=1.0, trigger="apogee", rate=105, lag=1.5,
+                     noise=(0, 8.3, 0.5), radius=1.5, height=1.5)],
+        rail=dict(length=5.2, inclination=85, heading=0),
+        log=None,
+        note="RocketPy's getting-started rocket (docs/user/first_simulation.rst at d41dd11) "
+        "with its weather (a GFS forecast for tomorrow) replaced by one we reproduce "
+        "exactly: the U.S. Standard Atmosphere 1976 tabulated every 5 m (pressure and "
+        "temperature, linear between) and a constant wind of 3 m/s toward East and 4 m/s "
+        "toward South at every height; gravity constant. benches/peers/rocketpy/calisto.py "
+        "flies it with each of RocketPy's known differences switched off in turn.",
+    ),
 }
 
 
@@ -399,6 +437,25 @@ def copy_log(repo, log, dest):
     return len(rows), len(kept), rows[imax]
 
 
+def us1976(h):
+    """U.S. Standard Atmosphere 1976 below 11 km geopotential (NOAA-S/T 76-1562 eqs. 18, 23, 33a)."""
+    r0, g0, rs, m0 = 6356766.0, 9.80665, 8.31432, 0.0289644
+    hg = r0 * h / (r0 + h)
+    assert hg < 11000.0
+    t = 288.15 - 0.0065 * hg
+    return 101325.0 * (288.15 / t) ** (g0 * m0 / (rs * -0.0065)), t
+
+
+def write_us1976(path, lo, hi, step):
+    n = int(round((hi - lo) / step))
+    rows = []
+    for i in range(n + 1):
+        h = lo + i * step
+        p, t = us1976(h)
+        rows.append(f"{h:.1f},{p:.10g},{t:.10g}\n")
+    path.write_text("height,pressure,temperature\n" + "".join(rows))
+
+
 def utc_string(date, offset):
     y, mo, d, h = date
     return f"{y:04d}-{mo:02d}-{d:02d}T{h - offset:02d}:00:00Z"
@@ -428,13 +485,15 @@ def write_toml(name, f, t, files, log_info):
     w("")
     w("[source]")
     w(f"name = {fmt(f['title'])}")
-    w(f'notebook = "docs/examples/{f["notebook"]}"  # in RocketPy-Team/RocketPy')
+    nb = f["notebook"] if "/" in f["notebook"] else "docs/examples/" + f["notebook"]
+    w(f'notebook = "{nb}"  # in RocketPy-Team/RocketPy')
     w(f'rocketpy_commit = "{COMMIT}"')
     w("")
-    w("[apogee]  # metres above the launch site (AGL)")
-    w(f"published_sim = {fmt(f['published'][0])}  # docs/examples/index.rst at {COMMIT}")
-    w(f"measured = {fmt(f['published'][1])}  # docs/examples/index.rst at {COMMIT}")
-    w(f"notebook_output = {fmt(f['notebook_output'])}  # the notebook's stored output at {COMMIT}")
+    if f["published"]:
+        w("[apogee]  # metres above the launch site (AGL)")
+        w(f"published_sim = {fmt(f['published'][0])}  # docs/examples/index.rst at {COMMIT}")
+        w(f"measured = {fmt(f['published'][1])}  # docs/examples/index.rst at {COMMIT}")
+        w(f"notebook_output = {fmt(f['notebook_output'])}  # the notebook's stored output at {COMMIT}")
     if log_info:
         n_all, n_kept, (tmax, amax) = log_info
         w(f'log = "flight_log.csv"  # time (s), altitude AGL (m)')
@@ -458,7 +517,11 @@ def write_toml(name, f, t, files, log_info):
         w("# latitude, reduced with height (Environment(gravity=None))")
     else:
         w(f"gravity = {fmt(float(e['gravity']))}  # m/s^2, constant")
-    w("earth_rotation = true  # RocketPy adds the Coriolis acceleration -2 Omega x v")
+    if e.get("earth_rotation", True):
+        w("earth_rotation = true  # RocketPy adds the Coriolis acceleration -2 Omega x v")
+    else:
+        w("earth_rotation = false  # a flat, non-rotating Earth: RocketPy's earth_rotation_vector")
+        w("# set to zero (its Coriolis acceleration -2 Omega x v off; calisto.py measures it)")
     w("")
     w("[weather]")
     if e["weather"]:
@@ -468,6 +531,14 @@ def write_toml(name, f, t, files, log_info):
         w("# profiles bilinearly between the four grid points around (latitude, longitude)")
         if e["max_height"]:
             w(f"max_expected_height = {fmt(float(e['max_height']))}  # m ASL, RocketPy's env.max_expected_height")
+    elif e.get("us1976_wind"):
+        u, v = e["us1976_wind"]
+        w('kind = "us1976"  # the U.S. Standard Atmosphere 1976 (models/lib/atmosphere_1976.vms)')
+        w('table = "atmosphere.csv"  # height ASL (m), pressure (Pa), temperature (K), every 5 m')
+        w("# RocketPy reads the table (custom_atmosphere, linear between rows; density p/(R T),")
+        w("# R = 287.05287 J/(kg K) = R*/M0, sound speed sqrt(1.4 R T)); the closed form differs from")
+        w("# the table by < 1e-7 relative")
+        w(f"wind = {fmt([u, v])}  # m/s [East, North], the same at every height")
     else:
         w('kind = "standard"  # RocketPy\'s default: the ISA standard atmosphere, no wind')
     w("")
@@ -543,9 +614,16 @@ def write_toml(name, f, t, files, log_info):
         w(f"sweep_length = {fmt(sweep)}  # m = span tan({fins['sweep_angle']} deg), RocketPy sweep_angle = {fins['sweep_angle']}")
     else:
         w(f"sweep_length = {fmt((fins['root'] - fins['tip']) / 1.0)}  # m, RocketPy's default: root - tip (trailing edge square)")
-    w("cant = 0.0  # degrees")
+    w(f"cant = {fmt(float(fins.get('cant', 0.0)))}  # degrees (RocketPy cant_angle)")
     w(f"body_radius = {fmt(float(fins.get('radius', r['radius'])))}  # m, the body under the fins")
-    w('airfoil = "none"  # flat plate (Barrowman)')
+    if fins.get("airfoil"):
+        w(f'airfoil = "{files["airfoil"]}"  # lift coefficient against angle of attack ({fins["airfoil"][1]}), from {fins["airfoil"][0]}')
+        w(f'airfoil_unit = "{fins["airfoil"][1]}"')
+        w(f"airfoil_cl_alpha = {fmt(files['cl_alpha'])}  # 1/rad: RocketPy uses only the slope at 0 (its derivative at 1e-3,")
+        w("# step 1e-3, of the linear table), in place of the flat plate's 2 pi, then Prandtl-Glauert")
+        w("# and Diederich's planform correlation as for the flat plate")
+    else:
+        w('airfoil = "none"  # flat plate (Barrowman): 2 pi per radian')
     w("")
     if f["tail"]:
         tl = f["tail"]
@@ -572,8 +650,11 @@ def write_toml(name, f, t, files, log_info):
         w(f"lag = {fmt(float(c['lag']))}  # s from trigger to full opening (RocketPy: drag area switched at once)")
         w(f"sampling_rate = {fmt(float(c['rate']))}  # Hz, the trigger is checked at these instants")
         w(f"noise = {fmt([float(v) for v in c['noise']])}  # Pa: RocketPy's pressure noise (mean, sd, time correlation)")
+        if "radius" in c:
+            w(f"radius = {fmt(float(c['radius']))}  # m, canopy (RocketPy: for the added mass only)")
+            w(f"height = {fmt(float(c['height']))}  # m, canopy (RocketPy: for the added mass only)")
         w("# RocketPy 1.13 adds the canopy's added mass 1.068 (1 - 1.465 p - 0.25975 p^2 + 1.2626 p^3)")
-        w("# rho (2/3) pi R^2 h with porosity p = 0.0432, R = h = sqrt(cd_s / (1.4 pi)); under a")
+        w("# rho (2/3) pi R^2 h with porosity p = 0.0432, R = h = sqrt(cd_s / (1.4 pi)) unless given; under a")
         w("# parachute it flies the reference point as a particle (3 degrees of freedom)")
         w("")
     w("[run]  # how RocketPy's Flight is called")
@@ -627,6 +708,19 @@ def main():
                 if key == "power_off" or off != on:
                     notes.append(f"{fn}: from {val} ({n} points, sorted by Mach, stable)")
         files["drag"], files["drag_note"] = drag, notes
+        fins = f["fins"]
+        if fins.get("airfoil"):
+            src = fins["airfoil"][0]
+            (d / "airfoil.csv").write_bytes(git_show(repo, src))
+            pts = [tuple(map(float, ln.split(","))) for ln in
+                   (d / "airfoil.csv").read_text().split() if ln.strip()]
+            pts.sort()
+            cl = lambda a: next(y0 + (y1 - y0) * (a - x0) / (x1 - x0)  # noqa: E731
+                                for (x0, y0), (x1, y1) in zip(pts, pts[1:]) if x0 <= a <= x1)
+            slope = (cl(2e-3) - cl(0.0)) / 2e-3
+            files["airfoil"], files["cl_alpha"] = "airfoil.csv", slope
+        if f["env"].get("us1976_wind"):
+            write_us1976(d / "atmosphere.csv", 1000.0, 6000.0, 5.0)
         log_info = copy_log(repo, f["log"], d / "flight_log.csv") if f["log"] else None
         (d / "flight.toml").write_text(write_toml(name, f, t, files, log_info))
         print(name, f"cdm {t['cdm']:.6f}", f"propellant {t['propellant_mass']:.6f} kg")
