@@ -9,7 +9,12 @@ one we reproduce exactly: the U.S. Standard Atmosphere 1976 tabulated every 5 m
 East and 4 m/s toward South; gravity 9.80665 m/s^2; the Earth not rotating (RocketPy's
 `env.earth_rotation_vector` zeroed; the `coriolis` row puts it back).
 
-Rows (each measured against `rocketpy`, RocketPy 1.13 as it is):
+Printed and written: RocketPy 1.13 as it is at its defaults (LSODA, rtol 1e-6, pad to
+landing) and the time of `Flight(...)` (fastest of --repeat); then each known difference
+switched off alone, at rtol 1e-9 with the rail phase bounded in every row (RocketPy as it is
+stays on the pad at that tolerance, see `pad_hold`), against the first of those rows;
+RocketPy as it is against its tolerance; the propellant mass's error; and `all` against
+RocketPy's tolerance, the reference varmass compares with. The differences:
 
 - `jet_damping`: RocketPy's nozzle gyration tensor (Rocket.evaluate_nozzle_gyration_tensor,
   rocket/rocket.py) has S_11 = S_22 = r_e^2/4 + l^2/4, l the nozzle's distance from the
@@ -28,20 +33,18 @@ Rows (each measured against `rocketpy`, RocketPy 1.13 as it is):
   below), so the mass follows the exact integral to the solver's tolerance.
 - `pad_hold`: the rail phase (udot_rail1) holds the rocket while the thrust's component
   along the rail is below the weight's (a3 <= 0 returns zero acceleration): a correct pad
-  hold. But its derivative is then identically zero, and nothing bounds the first step of
-  the rail phase's solver: a curve that stays below the weight long enough is stepped over
-  and the rocket silently stays on the pad (`--pad-demo` shows it). Calisto's curve starts
-  below its weight (100 N at 0.055 s, 1500 N at 0.092 s against 187 N): bounded here by
-  `max_time_step` during the rail phase only (the wrapper below).
+  hold. But its derivative is then identically zero, and nothing bounds the steps of the
+  rail phase's solver: at tight tolerances, or with a curve that stays below the weight
+  long enough, the burn is stepped over and the rocket silently stays on the pad
+  (`--pad-demo`). Calisto's curve starts below its weight (100 N at 0.055 s, 1500 N at
+  0.092 s against 187 N). Corrected by flights.BoundedRailFlight: `max_step` 0.01 s for the
+  rail phase's solver only.
 - `all`: the three corrections together (and the pad bound): RocketPy's flight with its
   known differences removed, the reference varmass compares with.
 - `coriolis`: `all` with the Earth's rotation back on (its effect, for information).
 
 Each row: apogee (m above the pad, of the centre of dry mass), its time, rail-exit speed,
-max speed, static margin (calibers) at t = 0 and at rail exit, and the differences from the
-`rocketpy` row. Then `Flight(...)` at its defaults (LSODA, rtol 1e-6, to landing), timed
---repeat times, the fastest kept; and the `all` flight at rtol 1e-6 ... 1e-10 to show
-RocketPy's own integration error. Writes benches/peers/rocketpy/calisto.csv.
+max speed, static margin (calibers) at t = 0 and at rail exit. Figures: docs/flights.md.
 
     target/venv-rocketpy/bin/python benches/peers/rocketpy/calisto.py [--repeat 7] [--pad-demo]
 """
@@ -62,6 +65,7 @@ from rocketpy.mathutils.vector_matrix import Matrix
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import flights as reader  # noqa: E402  (benches/peers/rocketpy/flights.py)
+from flights import BoundedRailFlight  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[3]
 FOLDER = ROOT / "flights" / "calisto"
@@ -106,26 +110,6 @@ def correct_jet_damping(rk):
 
 def drop_axial_mddot(rk):
     rk.total_mass_flow_rate.differentiate_complex_step = lambda *a, **k: 0.0
-
-
-class BoundedRailFlight(Flight):
-    """Flight whose rail phase (only) has its solver's step bounded by `rail_max_step`."""
-
-    rail_max_step = 0.01
-
-    def _Flight__simulate(self, verbose):  # noqa: N802  (name-mangled private method)
-        original = self._solver
-
-        def solver(fun, t0, y0, t_bound, **kwargs):
-            if fun == self.udot_rail1:
-                kwargs["max_step"] = min(kwargs.get("max_step", np.inf), self.rail_max_step)
-            return original(fun, t0, y0, t_bound, **kwargs)
-
-        self._solver = solver
-        try:
-            return Flight._Flight__simulate(self, verbose)
-        finally:
-            self._solver = original
 
 
 def fly(config, rtol=1e-6, terminate_on_apogee=False, bound_rail=None):
@@ -176,7 +160,6 @@ def propellant_error():
         _, rk = build(propellant_exact=exact)
         m = rk.motor
         ts = np.linspace(0, m.burn_out_time, 40001)
-        thrust = np.array([m.thrust(t) for t in ts])
         # the thrust is linear between its points: integrate it exactly on a grid holding them
         grid = np.union1d(ts, m.thrust.x_array)
         fgrid = np.array([m.thrust(t) for t in grid])
@@ -185,7 +168,6 @@ def propellant_error():
         c = m.total_impulse / m.propellant_initial_mass
         exact_mass = m.propellant_initial_mass - impulse / c
         got = np.array([m.propellant_mass(t) for t in ts])
-        del thrust
         out.append(np.max(np.abs(got - exact_mass)) / m.propellant_initial_mass)
     return out
 

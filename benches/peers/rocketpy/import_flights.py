@@ -496,7 +496,7 @@ def write_toml(name, f, t, files, log_info):
         w(f"notebook_output = {fmt(f['notebook_output'])}  # the notebook's stored output at {COMMIT}")
     if log_info:
         n_all, n_kept, (tmax, amax) = log_info
-        w(f'log = "flight_log.csv"  # time (s), altitude AGL (m)')
+        w('log = "flight_log.csv"  # time (s), altitude AGL (m)')
         w(f'log_source = "{f["log"]["path"]}"  # columns "{f["log"]["time"].strip()}",'
           f' "{f["log"]["alt"].strip()}"' + (" (feet, / 3.281)" if f["log"]["scale"] != 1 else ""))
         if n_kept != n_all:
@@ -549,7 +549,7 @@ def write_toml(name, f, t, files, log_info):
     w(f"length = {fmt(float(rail['length']))}  # m")
     w(f"inclination = {fmt(float(rail['inclination']))}  # degrees above the horizontal")
     w(f"heading = {fmt(float(rail['heading']))}  # degrees from North toward East")
-    w(f"# the rail's direction in world (ENU) axes: [cos(incl) sin(head), cos(incl) cos(head), sin(incl)]")
+    w("# the rail's direction in world (ENU) axes: [cos(incl) sin(head), cos(incl) cos(head), sin(incl)]")
     w(f"# = [{math.cos(ci) * math.sin(hi):.9f}, {math.cos(ci) * math.cos(hi):.9f}, {math.sin(ci):.9f}]")
     w(f"upper_button_z = {fmt(up)}  # RocketPy upper_button_position = {f['buttons'][0]!r}")
     w(f"lower_button_z = {fmt(low)}  # RocketPy lower_button_position = {f['buttons'][1]!r}")
