@@ -9,7 +9,10 @@ origin at the nozzle exit (`add_motor(position = nozzle_z)`, the motor's own pos
 `*_z - nozzle_z`). Then `Flight(rocket, env, rail_length, inclination, heading)` at
 RocketPy's defaults (LSODA, rtol 1e-6), from the pad to landing, as the notebooks do.
 
-Writes benches/peers/rocketpy/flights.csv: name, apogee (m above the site, of the centre of
+Also writes benches/peers/rocketpy/surfaces.csv: each aerodynamic surface's lift slope
+(per radian on the rocket's reference area, Mach 0 and 0.5) and centre of pressure (our z),
+and the rocket's, for these flights and Calisto: what a Barrowman component is checked
+against. And benches/peers/rocketpy/flights.csv: name, apogee (m above the site, of the centre of
 dry mass), its time, rail-exit speed, max speed, static margin (calibers, RocketPy's
 `rocket.static_margin`: centre of mass against the Mach-0 centre of pressure) at t = 0 and
 at rail exit, the run time of `Flight(...)` (fastest of --repeat), and beside them the
@@ -227,6 +230,23 @@ def run(name, repo, repeat, cache):
     }
 
 
+def surfaces(name):
+    """RocketPy's lift slope (per radian, on the rocket's reference area, at Mach 0 and 0.5)
+    and centre of pressure (our z) of each aerodynamic surface of a flight, and the rocket's."""
+    folder = ROOT / "flights" / name
+    spec = tomllib.loads((folder / "flight.toml").read_text())
+    rk = rocket(spec, folder)
+    rows = []
+    for surface, _ in rk.aerodynamic_surfaces:
+        factor = (surface.rocket_radius / rk.radius) ** 2
+        rows.append([name, type(surface).__name__, factor * surface.clalpha(0.0),
+                     factor * surface.clalpha(0.5), rk.surfaces_cp_to_cdm[surface].z])
+    rows.append([name, "rocket", rk.total_lift_coeff_der(0.0), rk.total_lift_coeff_der(0.5),
+                 rk.cp_position(0.0)])
+    rows.append([name, "static_margin_0", rk.static_margin(0), "", ""])
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--rocketpy-repo", required=True)
@@ -257,6 +277,14 @@ def main():
             w.writerow([row["name"]] + [f"{row[c]:.6g}" if c != "run_time" else
                                         f"{row[c]:.3f}" for c in COLUMNS[1:]])
     print(f"wrote {args.out} ({len(rows)} flights), rocketpy {version('rocketpy')}")
+    out = Path(args.out).with_name("surfaces.csv")
+    with open(out, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["name", "surface", "cn_alpha_mach_0", "cn_alpha_mach_0.5", "cp_z"])
+        for name in names + ["calisto"]:
+            for row in surfaces(name):
+                w.writerow(row[:2] + [f"{v:.10g}" if v != "" else "" for v in row[2:]])
+    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

@@ -477,7 +477,7 @@ def write_toml(name, f, t, files, log_info):
     w("# that point's.")
     w(f"# RocketPy's notebook uses coordinate_system_orientation=\"{r['csys']}\" (s = {s:+d}) with")
     w(f"# its origin at our z = {t['rocket_origin']:.10g}; a notebook position p is our")
-    w(f"# z = {s:+d} (p - {t['cdm']:.10g}).")
+    w(f"# z = {s:+d} (p - p_cdm), p_cdm = {t['cdm']:.10g} m in the notebook's coordinates.")
     if f.get("note"):
         w("#")
         for line in wrap(f["note"]):
