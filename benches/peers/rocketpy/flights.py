@@ -130,7 +130,12 @@ def rocket(spec, folder):
         center_of_mass_without_motor=r["cg_z"],
         coordinate_system_orientation="tail_to_nose",
     )
-    rk.add_motor(motor(spec, folder), position=spec["motor"]["nozzle_z"])
+    mt = motor(spec, folder)
+    # the toml's derived impulse against RocketPy's: the thrust file is read alike
+    rel = abs(mt.total_impulse / spec["motor"]["total_impulse"] - 1)
+    if rel > 1e-9:
+        raise ValueError(f"total impulse {mt.total_impulse} against the toml's, {rel:.1e}")
+    rk.add_motor(mt, position=spec["motor"]["nozzle_z"])
     rail = spec["rail"]
     rk.set_rail_buttons(rail["upper_button_z"], rail["lower_button_z"], rail["button_angle"])
     nose = spec["nose"]

@@ -437,6 +437,36 @@ def copy_log(repo, log, dest):
     return len(rows), len(kept), rows[imax]
 
 
+def thrust_points(text, ext):
+    """The thrust curve as RocketPy reads it: a RASP file gets (0, 0) in front of its points
+    (Motor.import_eng); a CSV is taken as it is."""
+    pts = [(0.0, 0.0)] if ext == ".eng" else []
+    header_seen = False
+    for line in text.splitlines():
+        line = line.split(";")[0].strip()
+        if not line:
+            continue
+        if ext == ".eng" and not header_seen:
+            header_seen = True
+            continue
+        a, b = line.replace(",", " ").split()[:2]
+        pts.append((float(a), float(b)))
+    return pts
+
+
+def impulse(pts, t_end):
+    """The integral of the linear interpolant of pts over [0, t_end] (RocketPy clips there)."""
+    total = 0.0
+    for (t0, f0), (t1, f1) in zip(pts, pts[1:]):
+        if t0 >= t_end:
+            break
+        if t1 > t_end:
+            f1 = f0 + (f1 - f0) * (t_end - t0) / (t1 - t0)
+            t1 = t_end
+        total += (t1 - t0) * (f0 + f1) / 2
+    return total
+
+
 def us1976(h):
     """U.S. Standard Atmosphere 1976 below 11 km geopotential (NOAA-S/T 76-1562 eqs. 18, 23, 33a)."""
     r0, g0, rs, m0 = 6356766.0, 9.80665, 8.31432, 0.0289644
@@ -581,7 +611,9 @@ def write_toml(name, f, t, files, log_info):
     w(f"dry_inertia = {fmt([float(m['dry_inertia'][0]), float(m['dry_inertia'][2])])}  # kg m^2, [I_xx, I_zz] about dry_cg_z")
     w(f"# RocketPy motor coordinate_system_orientation = \"{m['csys']}\"")
     w(f"propellant_mass = {fmt(t['propellant_mass'])}  # kg, derived: n rho pi (R^2 - r^2) h")
-    w("# RocketPy burns it at F(t)/c, c = (total impulse over [0, burn_time]) / propellant_mass")
+    w(f"total_impulse = {fmt(files['impulse'])}  # N s, derived: the linear thrust over [0, burn_time]")
+    w(f"exhaust_speed = {fmt(files['impulse'] / t['propellant_mass'])}  # m/s, derived: c = total_impulse / propellant_mass")
+    w("# RocketPy burns the propellant at F(t)/c")
     w("")
     w("[motor.grains]  # RocketPy's grain geometry (sets the propellant's inertia as it burns)")
     w(f"number = {m['grain_number']}")
@@ -690,6 +722,8 @@ def main():
         ext = Path(src).suffix
         (d / f"thrust{ext}").write_bytes(git_show(repo, src))
         files["thrust"] = f"thrust{ext}"
+        pts = thrust_points(git_show(repo, src).decode(), ext)
+        files["impulse"] = impulse(pts, f["motor"]["burn_time"])
         drag, notes = [], []
         off, on = f["rocket"]["drag"]
         for key, val in (("power_off", off), ("power_on", on)):
