@@ -678,7 +678,7 @@ def write_toml(name, f, t, files, log_info):
         if c["trigger"] == "apogee":
             w('trigger = "apogee"  # RocketPy: vertical speed < 0')
         else:
-            w(f"trigger = {fmt(float(c['trigger']))}  # m AGL on the way down (RocketPy: vz < 0 and height < this)")
+            w(f"trigger = {fmt(float(c['trigger']))}  # m AGL on the way down (RocketPy: vz < 0 and the height its noisy pressure signal gives < this)")
         w(f"lag = {fmt(float(c['lag']))}  # s from trigger to full opening (RocketPy: drag area switched at once)")
         w(f"sampling_rate = {fmt(float(c['rate']))}  # Hz, the trigger is checked at these instants")
         w(f"noise = {fmt([float(v) for v in c['noise']])}  # Pa: RocketPy's pressure noise (mean, sd, time correlation)")
