@@ -37,7 +37,7 @@ RocketPy's tolerance, the reference varmass compares with. The differences:
   rail phase's solver: at tight tolerances, or with a curve that stays below the weight
   long enough, the burn is stepped over and the rocket silently stays on the pad
   (`--pad-demo`). Calisto's curve starts below its weight (100 N at 0.055 s, 1500 N at
-  0.092 s against 187 N). Corrected by flights.BoundedRailFlight: `max_step` 0.01 s for the
+  0.092 s against 187.5 N of weight along the rail). Corrected by flights.BoundedRailFlight: `max_step` 0.01 s for the
   rail phase's solver only.
 - `all`: the three corrections together (and the pad bound): RocketPy's flight with its
   known differences removed, the reference varmass compares with.
