@@ -41,7 +41,7 @@ from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
-from rocketpy import Environment, Flight, Rocket, SolidMotor
+from rocketpy import Environment, Flight, Function, Rocket, SolidMotor
 
 ROOT = Path(__file__).resolve().parents[3]
 COLUMNS = [
@@ -92,11 +92,20 @@ def environment(spec, repo, cache, folder=None):
     return env
 
 
+def curve(path, outside):
+    """A two-column CSV with a header line (Mach and Cd, time and thrust, angle and lift
+    coefficient) as a RocketPy Function, linear between its points as RocketPy reads a
+    headerless file (its own CSV reader would take a header for a multi-variable table)."""
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return Function(data, interpolation="linear", extrapolation=outside)
+
+
 def motor(spec, folder):
     m, g = spec["motor"], spec["motor"]["grains"]
     noz = m["nozzle_z"]
     return SolidMotor(
-        thrust_source=str(folder / m["thrust"]),
+        thrust_source=(str(folder / m["thrust"]) if m["thrust"].endswith(".eng")
+                       else np.loadtxt(folder / m["thrust"], delimiter=",", skiprows=1)),
         burn_time=m["burn_time"],
         dry_mass=m["dry_mass"],
         dry_inertia=(m["dry_inertia"][0], m["dry_inertia"][0], m["dry_inertia"][1]),
@@ -117,7 +126,7 @@ def motor(spec, folder):
 
 
 def drag(value, folder):
-    return value if isinstance(value, (int, float)) else str(folder / value)
+    return value if isinstance(value, (int, float)) else curve(folder / value, "constant")
 
 
 def rocket(spec, folder):
@@ -144,7 +153,8 @@ def rocket(spec, folder):
     fins = spec["fins"]
     airfoil = None
     if fins["airfoil"] != "none":
-        airfoil = (str(folder / fins["airfoil"]), fins["airfoil_unit"])
+        airfoil = (np.loadtxt(folder / fins["airfoil"], delimiter=",", skiprows=1),
+                   fins["airfoil_unit"])
     rk.add_trapezoidal_fins(
         n=fins["n"], root_chord=fins["root_chord"], tip_chord=fins["tip_chord"],
         span=fins["span"], position=fins["root_leading_edge_z"],

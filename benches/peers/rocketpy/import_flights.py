@@ -407,21 +407,52 @@ def fmt(x):
     raise TypeError(x)
 
 
-def copy_curve(repo, src, dest):
-    """A Mach or time curve as RocketPy reads it (two columns, no header), sorted by its
-    first column with a stable sort (RocketPy's Function sorts with argsort)."""
+NUDGE = 1e-9  # moves a repeated argument with another value just past the first
+
+
+def increasing(rows):
+    """Rows sorted by their first column (stable, as RocketPy's Function keeps a sorted
+    file's order), strictly increasing as varmass's tables need: a row repeating the one
+    before it is dropped; a repeated argument with another value (a jump) is moved NUDGE
+    past the first, which RocketPy interpolates the same way to within NUDGE times the
+    jump's slope. Returns the rows, how many were dropped and how many moved."""
+    rows = sorted(rows, key=lambda r: r[0])
+    out, dropped, moved = [], 0, 0
+    for a, b in rows:
+        if out and a <= out[-1][0]:
+            if a == out[-1][0] and b == out[-1][1]:
+                dropped += 1
+                continue
+            a = out[-1][0] + NUDGE
+            moved += 1
+        out.append((a, b))
+    return out, dropped, moved
+
+
+def read_pairs(text):
     rows = []
-    for line in git_show(repo, src).decode().splitlines():
+    for line in text.splitlines():
         parts = [p for p in line.replace(";", ",").split(",") if p.strip()]
         if len(parts) < 2:
             continue
         try:
             rows.append((float(parts[0]), float(parts[1])))
         except ValueError:
-            continue
-    rows.sort(key=lambda r: r[0])
-    dest.write_text("".join(f"{a!r},{b!r}\n" for a, b in rows))
-    return len(rows)
+            continue  # a header
+    return rows
+
+
+def copy_curve(repo, src, dest, header):
+    """A curve (argument, value) from a RocketPy data file, written with a header line and
+    strictly increasing arguments (`increasing`), the form both readers take."""
+    rows, dropped, moved = increasing(read_pairs(git_show(repo, src).decode()))
+    dest.write_text(header + "\n" + "".join(f"{a!r},{b!r}\n" for a, b in rows))
+    note = f"{len(rows)} points, sorted"
+    if dropped:
+        note += f", {dropped} repeated rows dropped"
+    if moved:
+        note += f", {moved} repeated Mach values with another Cd moved {NUDGE:g} up"
+    return note
 
 
 def copy_log(repo, log, dest):
@@ -433,8 +464,40 @@ def copy_log(repo, log, dest):
     rows = [(float(r[log["time"]]), float(r[log["alt"]]) * log["scale"]) for r in reader]
     imax = max(range(len(rows)), key=lambda i: rows[i][1])
     kept = [r for i, r in enumerate(rows) if i % log["every"] == 0 or i == imax]
-    dest.write_text("time,altitude\n" + "".join(f"{t:.6g},{a:.6g}\n" for t, a in kept))
-    return len(rows), len(kept), rows[imax]
+    # times strictly increasing as written (6 digits): a row that does not pass the last is dropped
+    mono = []
+    for t, a in kept:
+        if not mono or float(f"{t:.6g}") > float(f"{mono[-1][0]:.6g}"):
+            mono.append((t, a))
+    dest.write_text("time,altitude\n" + "".join(f"{t:.6g},{a:.6g}\n" for t, a in mono))
+    return len(rows), len(mono), rows[imax]
+
+
+def rasp_with_header(text, f):
+    """The RASP file as it is, unless its first line that is not a comment is no header (7
+    fields): RocketPy takes any first line for the header, varmass's reader wants one. That
+    line is replaced by a header (RocketPy reads the same curve: it ignores the header's
+    numbers and starts the curve from (0, 0) either way)."""
+    text = text.lstrip("\ufeff")
+    lines = text.splitlines()
+    for i, line in enumerate(lines):
+        content = line.split(";")[0].strip()
+        if not content:
+            continue
+        if len(content.split()) >= 7:
+            return text
+        m = f["motor"]
+        prop = (m["grain_number"] * m["grain_density"] * PI
+                * (m["grain_outer_radius"] ** 2 - m["grain_inner_radius"] ** 2) * m["grain_height"])
+        name = Path(m["thrust"]).stem.split("_")[-1]
+        lines[i:i + 1] = [
+            f"; import_flights.py: {m['thrust']} has no header line; its first line",
+            f"; ({content!r}) was read by RocketPy as the header and is replaced by one.",
+            "; diameter and length unknown (0); masses: the grains' propellant, no casing.",
+            f"{name} 0 0 0 {prop:.6f} {prop + m['dry_mass']:.6f} unknown",
+        ]
+        return "\n".join(lines) + "\n"
+    return text
 
 
 def thrust_points(text, ext):
@@ -530,8 +593,9 @@ def write_toml(name, f, t, files, log_info):
         w(f'log_source = "{f["log"]["path"]}"  # columns "{f["log"]["time"].strip()}",'
           f' "{f["log"]["alt"].strip()}"' + (" (feet, / 3.281)" if f["log"]["scale"] != 1 else ""))
         if n_kept != n_all:
-            w(f"# log trimmed: every {f['log']['every']}th of {n_all} rows and the highest one,"
-              f" {n_kept} rows")
+            every = f["log"]["every"]
+            kept = f"every {every}th row and the highest one, " if every > 1 else ""
+            w(f"# log: {n_kept} of {n_all} rows ({kept}times strictly increasing)")
         w(f"log_max = {fmt(round(amax, 3))}  # highest altitude in the log, at {tmax:g} s")
     w("")
     w("[site]")
@@ -720,7 +784,10 @@ def main():
         files = {}
         src = f["motor"]["thrust"]
         ext = Path(src).suffix
-        (d / f"thrust{ext}").write_bytes(git_show(repo, src))
+        if ext == ".eng":
+            (d / "thrust.eng").write_text(rasp_with_header(git_show(repo, src).decode(), f))
+        else:
+            copy_curve(repo, src, d / "thrust.csv", "time,thrust")
         files["thrust"] = f"thrust{ext}"
         pts = thrust_points(git_show(repo, src).decode(), ext)
         files["impulse"] = impulse(pts, f["motor"]["burn_time"])
@@ -731,24 +798,22 @@ def main():
                 drag.append(float(val))
             elif isinstance(val, list):
                 fn = "drag.csv"
-                (d / fn).write_text("".join(f"{a!r},{b!r}\n" for a, b in val))
+                (d / fn).write_text("mach,cd\n" + "".join(f"{a!r},{b!r}\n" for a, b in val))
                 drag.append(fn)
                 if key == "power_off":
                     notes.append("drag.csv: the notebook's inline table (a RocketPy Function)")
             else:
                 fn = "drag.csv" if off == on else f"drag_{key}.csv"
-                n = copy_curve(repo, val, d / fn)
+                note = copy_curve(repo, val, d / fn, "mach,cd")
                 drag.append(fn)
                 if key == "power_off" or off != on:
-                    notes.append(f"{fn}: from {val} ({n} points, sorted by Mach, stable)")
+                    notes.append(f"{fn}: from {val} ({note})")
         files["drag"], files["drag_note"] = drag, notes
         fins = f["fins"]
         if fins.get("airfoil"):
             src = fins["airfoil"][0]
-            (d / "airfoil.csv").write_bytes(git_show(repo, src))
-            pts = [tuple(map(float, ln.split(","))) for ln in
-                   (d / "airfoil.csv").read_text().split() if ln.strip()]
-            pts.sort()
+            copy_curve(repo, src, d / "airfoil.csv", "alpha,cl")
+            pts = read_pairs((d / "airfoil.csv").read_text())
             cl = lambda a: next(y0 + (y1 - y0) * (a - x0) / (x1 - x0)  # noqa: E731
                                 for (x0, y0), (x1, y1) in zip(pts, pts[1:]) if x0 <= a <= x1)
             slope = (cl(2e-3) - cl(0.0)) / 2e-3
