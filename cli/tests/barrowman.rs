@@ -368,17 +368,34 @@ fn the_nose_shapes_and_elliptical_fins_agree_with_their_profiles_integrated() {
 
 /// The Calisto components' slopes and centres of pressure (body z) at Mach 0, by the
 /// formulas of this file: nose, fins, tail.
-fn calisto_components() -> [(f64, f64); 3] {
+fn calisto_components(z_fins: f64) -> [(f64, f64); 3] {
     let (fins, x_fins) = barrowman_fins();
     let (tail, x_tail) = barrowman_transition();
     [
         (2.0, Z_NOSE - L_NOSE / 2.0),
-        (fins, Z_FINS - x_fins),
+        (fins, z_fins - x_fins),
         (tail, Z_TAIL - x_tail),
     ]
 }
 
-/// The weathercock. In still air, no gravity, constant ρ, the rocket flies at V along its
+/// The small-angle pitch matrix A of (α, q)' = A (α, q) derived below, for the fins' root
+/// leading edge at `z_fins`, at `speed`.
+fn pitch_matrix(z_fins: f64, speed: f64) -> [[f64; 2]; 2] {
+    let a_ref = PI * D * D / 4.0;
+    let (mut k, mut s1, mut s2) = (0.0, 0.0, 0.0);
+    for (c, z) in calisto_components(z_fins) {
+        let ki = 0.5 * RHO * a_ref * c;
+        k += ki;
+        s1 += ki * (z - Z_CG);
+        s2 += ki * (z - Z_CG).powi(2);
+    }
+    [
+        [-k * speed / MASS, 1.0 + s1 / MASS],
+        [speed * speed * s1 / I_LATERAL, -speed * s2 / I_LATERAL],
+    ]
+}
+
+/// The weathercock (and `pitch_matrix`). In still air, no gravity, constant ρ, the rocket flies at V along its
 /// axis, nudged by α₀ in pitch (about body y). Small angles, in the pitch plane: α the angle
 /// from the velocity of the centre of mass to the body axis, γ the velocity's turn, q = θ̇,
 /// α = θ − γ; component i (slope C_i, centre of pressure z_i from the centre of mass) feels
@@ -404,22 +421,11 @@ fn a_nudged_rocket_weathercocks_at_the_closed_form_frequency_and_damping() {
         ("axes_u,axes_w,axes_q", 4.0, 0.01),
         "barrowman_weathercock.csv",
     );
-    let a_ref = PI * D * D / 4.0;
-    let (mut k, mut s1, mut s2) = (0.0, 0.0, 0.0);
-    for (c, z) in calisto_components() {
-        let ki = 0.5 * RHO * a_ref * c;
-        k += ki;
-        s1 += ki * (z - Z_CG);
-        s2 += ki * (z - Z_CG).powi(2);
-    }
-    let a = [
-        [-k * speed / MASS, 1.0 + s1 / MASS],
-        [speed * speed * s1 / I_LATERAL, -speed * s2 / I_LATERAL],
-    ];
+    let a = pitch_matrix(Z_FINS, speed);
     let sigma = (a[0][0] + a[1][1]) / 2.0;
     let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
     let omega_d = (det - sigma * sigma).sqrt();
-    let omega_0 = (-speed * speed * s1 / I_LATERAL).sqrt();
+    let omega_0 = (-a[1][0]).sqrt();
     let mut worst = 0.0_f64;
     for (i, (u, w)) in columns[0].iter().zip(&columns[1]).enumerate() {
         let t = i as f64 * 0.01;
@@ -492,4 +498,47 @@ fn canted_fins_spin_the_rocket_up_to_the_steady_roll_rate() {
     // Measured: 1.0e-12 (the integration at 1e-12). Bound 1e-10.
     assert!(worst < 1e-10, "{worst:e}");
     assert!(relative(end, steady) < 1e-3, "{end} {steady}");
+}
+
+/// The sign of the static margin. With the fins moved to body z = 0.5 m, above the centre
+/// of mass, the centre of pressure is above it too: the margin is negative, ω₀² = −V² S₁/I
+/// < 0, det A < σ², and the same closed form grows: e^{At} = e^{σt} [cosh μt + sinh(μt)/μ
+/// (A − σ)], μ = √(σ² − det A) (by hand: z_cp = 0.848 m, margin −8.42 calibers, σ + μ = 8.33/s).
+#[test]
+fn with_the_centre_of_pressure_above_the_centre_of_mass_the_margin_is_negative_and_the_nudge_grows()
+{
+    let (speed, alpha0, z_fins) = (100.0, 1e-6, 0.5);
+    let mut sets = calisto_sets(1e12, 0.0, 2.0 * PI);
+    sets.push(("z_fins", z_fins));
+    let columns = fly(
+        "barrowman_airframe.vms",
+        &sets,
+        &calisto_start(alpha0, speed),
+        ("axes_u,axes_w,margin_static_margin", 1.0, 0.01),
+        "barrowman_unstable.csv",
+    );
+    let a = pitch_matrix(z_fins, speed);
+    let sigma = (a[0][0] + a[1][1]) / 2.0;
+    let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    let mu = (sigma * sigma - det).sqrt();
+    let mut worst = 0.0_f64;
+    for (i, (u, w)) in columns[0].iter().zip(&columns[1]).enumerate() {
+        let t = i as f64 * 0.01;
+        let (c, s) = ((mu * t).cosh(), (mu * t).sinh() / mu);
+        let alpha = (sigma * t).exp() * (c + s * (a[0][0] - sigma)) * alpha0;
+        let q = (sigma * t).exp() * s * a[1][0] * alpha0;
+        let alpha_ref = alpha + q * Z_CG / speed;
+        worst = worst.max(((-u).atan2(*w) - alpha_ref).abs() / alpha_ref.abs());
+    }
+    let (margin, end) = (columns[2][0], columns[0].last().expect("rows"));
+    println!(
+        "unstable: margin {margin:.4} calibers, growth σ + μ = {:.4}/s, α(1 s) = {:.3e} rad; \
+         |Δα|/α ≤ {worst:.2e}",
+        sigma + mu,
+        (-end).atan2(*columns[1].last().expect("rows"))
+    );
+    assert!(margin < -1.0, "{margin}");
+    // Measured: 4.1e-8 — the closed form's O(α²) as α grows to 2.1e-3. Bound 1e-6.
+    assert!(worst < 1e-6, "{worst:e}");
+    assert!((-end).atan2(*columns[1].last().expect("rows")).abs() > 1000.0 * alpha0);
 }
