@@ -15,12 +15,12 @@
 
 mod common;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use common::{column, csv, root, written};
 
 /// A table file of ours or RocketPy's: `#` lines, a header, rows of numbers.
-fn rows(path: &PathBuf) -> Vec<Vec<f64>> {
+fn rows(path: &Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
     text.lines()
         .filter(|l| !l.starts_with('#'))
@@ -83,7 +83,7 @@ const RECORD: &str = "altitude,gas_temperature,gas_pressure,gas_rho,gas_a,wind_v
 
 /// The probe run through `dir`'s tables from RocketPy's first altitude, one of its
 /// altitude steps a second: a row per RocketPy altitude, the columns of RECORD.
-fn climb(dir: &PathBuf, reference: &[Vec<f64>], elevation: f64) -> Vec<Vec<f64>> {
+fn climb(dir: &Path, reference: &[Vec<f64>], elevation: f64) -> Vec<Vec<f64>> {
     let file = |name: &str| dir.join(name).display().to_string();
     let (h0, dh) = (reference[0][0], reference[1][0] - reference[0][0]);
     let set = [
@@ -121,7 +121,7 @@ fn climb(dir: &PathBuf, reference: &[Vec<f64>], elevation: f64) -> Vec<Vec<f64>>
 }
 
 /// The flight's elevation, from the header of its tables (`elevation 407.0 m`).
-fn elevation(dir: &PathBuf) -> f64 {
+fn elevation(dir: &Path) -> f64 {
     let text = std::fs::read_to_string(dir.join("temperature.csv")).expect("readable");
     let after = text
         .split("elevation ")
