@@ -311,9 +311,13 @@ def main(argv=None):
     parser.add_argument("--out", required=True, help="the directory of the four CSV files")
     args = parser.parse_args(argv)
     when = utc(args.date, args.timezone)
-    table, notes = read_era5(
-        args.file, when, args.lat, args.lon, args.datum, args.method, args.floor
-    )
+    try:
+        table, notes = read_era5(
+            args.file, when, args.lat, args.lon, args.datum, args.method, args.floor
+        )
+    except (ValueError, OSError) as e:
+        print(f"error: {args.file}: {e}", file=sys.stderr)
+        return 2
     header = [
         f"ERA5 pressure levels: {args.source or pathlib.Path(args.file).name}",
         f"site latitude {args.lat}, longitude {args.lon}; launch {args.date} {args.timezone}",
@@ -321,7 +325,8 @@ def main(argv=None):
         "written by tools/weather/era5_to_csv.py (docs/weather.md); altitude above sea level",
     ]
     write_tables(args.out, table, header)
-    print(f"{args.out}: {len(table)} levels, {table[0, 0]:.1f} to {table[-1, 0]:.1f} m")
+    print(f"{args.out}: {len(table)} rows, {table[0, 0]:.1f} to {table[-1, 0]:.1f} m")
+    return 0
 
 
 if __name__ == "__main__":

@@ -89,7 +89,7 @@ def main(argv=None):
         if args.only and flight[0] not in args.only:
             continue
         out, table = convert(flight, args.weather_dir, args.out, args.method)
-        print(f"{out}: {len(table)} levels, {table[0, 0]:.1f} to {table[-1, 0]:.1f} m")
+        print(f"{out}: {len(table)} rows, {table[0, 0]:.1f} to {table[-1, 0]:.1f} m")
 
 
 if __name__ == "__main__":
