@@ -72,8 +72,8 @@ fn the_scene_lifts_off_its_rail_and_leaves_it_where_the_closed_form_says() {
 }
 
 /// The scene of models/rocket_on_rail.toml with `replace` applied to its text, run from a
-/// scratch copy next to the model; the exit code 2 and the error message.
-fn refused(name: &str, replace: (&str, &str)) -> String {
+/// scratch copy; the exit code `code` expected, stdout and stderr.
+fn changed(name: &str, replace: (&str, &str), code: i32) -> (String, String) {
     let text = std::fs::read_to_string(model("rocket_on_rail.toml")).unwrap();
     assert!(text.contains(replace.0), "the scene has no `{}`", replace.0);
     let text = text.replace(replace.0, replace.1).replace(
@@ -81,8 +81,25 @@ fn refused(name: &str, replace: (&str, &str)) -> String {
         &model("rocket_6dof_quaternion.vms"),
     );
     let path = scratch_file(&format!("{name}.toml"), &text);
-    let (_, stderr) = run(&["run", &path], 2);
-    stderr
+    run(&["run", &path], code)
+}
+
+/// [`changed`], refused: exit 2 and the error message.
+fn refused(name: &str, replace: (&str, &str)) -> String {
+    changed(name, replace, 2).1
+}
+
+#[test]
+fn a_first_phase_ending_at_apogee_is_not_met_while_resting_on_the_rail() {
+    // On the pad z' = 0 exactly and on the rail z' > 0: `z' < 0` is not met before the exit
+    // (review of session 36: a boundary value counted as met refused this scene, exit 2).
+    let phase = "g = 9.81\n\n[[phase]]\nwhen = \"z' < 0\"\nset = { mu = 0.0 }\n";
+    let (summary, _) = changed("rail_apogee_phase", ("g = 9.81\n", phase), 0);
+    assert!(summary.contains("left its rail at t = 13.26"), "{summary}");
+    assert!(
+        summary.contains("stopped at t = 16 in phase 1"),
+        "{summary}"
+    );
 }
 
 #[test]
@@ -132,6 +149,14 @@ fn a_bad_rail_is_a_message_and_exit_2() {
             "rail_moving",
             ("x = 0.0", "x = 0.0\n\"x'\" = 1.0"),
             "must start at rest",
+        ),
+        (
+            "rail_variational",
+            (
+                "method = \"dop853\"",
+                "method = \"variational\"\nstep = 0.01",
+            ),
+            "the variational stepper reads the Lagrange side",
         ),
     ];
     for (name, replace, expected) in cases {

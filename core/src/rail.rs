@@ -18,7 +18,8 @@
 //! with q̈ through M alone (ṗ = M q̈ + terms of q, q̇ and t), so the constrained momentum
 //! rate is the free one plus Q_c: ṗ = ṗ_free + Q_c. On the pad (held at the rail's bottom)
 //! s̈ = 0, so Q_c = −f: the body stays at rest, and the masses (a motor burning on its pad)
-//! and the time-dependent terms of p run on. The pad holds while bᵀ f ≤ 0 (the support
+//! run on; a body with no momentum at rest (checked at the start) keeps p = 0 there, so the
+//! pad's momentum rate is 0 exactly. The pad holds while bᵀ f ≤ 0 (the support
 //! pushes, never pulls) and releases the body where bᵀ f turns positive: [`Rail::push`] is
 //! the lift-off's switching function.
 //!
@@ -62,6 +63,11 @@ pub const BAD_DIRECTION: &str = "a rail's direction must be a unit vector";
 
 /// The error of a rail whose length (the travel to the exit) is not positive and finite.
 pub const BAD_LENGTH: &str = "a rail's length (the travel to its exit) must be positive";
+
+/// The error of a body with momentum at rest (p = ∂L/∂q̇ ≠ 0 at q̇ = 0: a moving frame, a
+/// gyroscopic term), which the pad's p = 0 would not keep.
+pub const MOMENTUM_AT_REST: &str = "a body on a rail must have no momentum at rest (p = ∂L/∂q̇ \
+     at q̇ = 0 must be 0: the pad holds p at 0)";
 
 /// The error of a body that does not start at rest on its rail.
 pub const NOT_AT_REST: &str =
@@ -165,24 +171,35 @@ impl Rail {
         };
         let mut rate = system.state_rate(t, state)?;
         rate.fixed_rows_mut::<N>(0).copy_from(&(b * sliding));
-        let momentum_rate = rate.fixed_rows::<N>(N) + force;
+        // On the pad p stays 0 (checked at the start: no momentum at rest, [`on_rail`]), so
+        // its rate is 0 exactly rather than ṗ_free − f to rounding, which would leave the
+        // resting body velocities of 1e-17 m/s (a condition `z' < 0` met on the pad).
+        let momentum_rate = match self.on_pad {
+            true => SVector::<f64, N>::zeros(),
+            false => rate.fixed_rows::<N>(N) + force,
+        };
         rate.fixed_rows_mut::<N>(N).copy_from(&momentum_rate);
         Ok(rate)
     }
 
     /// The Jacobian of the rail's state rate, from the free one: the coordinate rows
-    /// projected as the rates are (b bᵀ J_q; 0 on the pad), the momentum rows the free ones
-    /// (the derivative of Q_c is left out: the implicit steppers' Newton iteration converges
-    /// with it approximate, to the same solution, since their residual is the exact rate).
+    /// projected as the rates are (b bᵀ J_q; on the pad these and the momentum rows 0), the
+    /// momentum rows on the rail the free ones: the derivative of Q_c is left out. The
+    /// implicit steppers' Newton iteration converges with it approximate to the same
+    /// solution (their residual is the exact rate); their error estimate, filtered through
+    /// (I − hγJ)⁻¹, then reads stiff free momentum rows the rail cancels, which can only
+    /// shrink their steps or slow Newton on a stiff model, not change the rate integrated.
     pub fn jacobian<const N: usize, const S: usize>(
         &self,
         mut jacobian: SMatrix<f64, S, S>,
     ) -> SMatrix<f64, S, S> {
         let b = self.along::<N>();
-        let rows = match self.on_pad {
-            true => SMatrix::<f64, N, S>::zeros(),
-            false => b * (b.transpose() * jacobian.fixed_rows::<N>(0)),
-        };
+        if self.on_pad {
+            jacobian.fixed_rows_mut::<N>(0).fill(0.0);
+            jacobian.fixed_rows_mut::<N>(N).fill(0.0);
+            return jacobian;
+        }
+        let rows = b * (b.transpose() * jacobian.fixed_rows::<N>(0));
         jacobian.fixed_rows_mut::<N>(0).copy_from(&rows);
         jacobian
     }
@@ -271,6 +288,9 @@ where
     let velocities = system.velocities(time, state).map_err(failed)?;
     if velocities.iter().any(|&v| v != 0.0) {
         return Err(refuse(NOT_AT_REST));
+    }
+    if state.fixed_rows::<N>(N).iter().any(|&p| p != 0.0) {
+        return Err(refuse(MOMENTUM_AT_REST));
     }
     let push = rail.push(system, time, state).map_err(failed)?;
     if push.is_nan() {

@@ -33,8 +33,9 @@ Two methods (``--method``):
   WGS-84 normal gravity at the ellipsoid (Somigliana) and R_phi = a/(1 + f + m - 2 f sin^2
   phi) the radius of the free-air gradient (the c of models/lib/gravity_somigliana.vms), so
   h = R_phi Z/((g_phi/g0) R_phi - Z). RocketPy's formula takes g_phi = g0 everywhere: its
-  heights are (g0/g_phi - 1) too high, 0.056 % at 39.4 deg N (5.5 m at 10 km), 0.016 % too
-  low at 47.2 deg N (docs/weather.md gives the measured differences).
+  heights are (1 - g_phi/g0) too low where g_phi < g0, 0.056 % at 39.4 deg N (5.7 m at
+  10 km), and too high where g_phi > g0, 0.016 % at 47.2 deg N (docs/weather.md gives the
+  measured differences).
 
 Reading: the netCDF4 package (it reads both formats the ERA5 files come in, NetCDF3 "64-bit
 offset" and NetCDF4/HDF5, with a libnetcdf in its wheel), imported only to read; the

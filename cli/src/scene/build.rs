@@ -349,7 +349,7 @@ fn railed(
         )));
     }
     let inclination = *entry.inclination.get_ref();
-    if !(inclination > 0.0 && inclination <= 90.0) || !entry.heading.is_finite() {
+    if !(inclination > 0.0 && inclination <= 90.0 && entry.heading.is_finite()) {
         return Err(CliError::Input(format!(
             "{}: a rail's `inclination` is in degrees above the horizontal, in (0, 90], and \
              its `heading` a finite number of degrees (got {inclination}, {})",
@@ -357,11 +357,12 @@ fn railed(
             entry.heading
         )));
     }
-    let length = *entry.length.get_ref();
+    let length = *entry.exit_travel.get_ref();
     if !(length.is_finite() && length > 0.0) {
         return Err(CliError::Input(format!(
-            "{}: a rail's `length` (the travel to its exit, m) must be positive (got {length})",
-            at(entry.length.span().start)
+            "{}: a rail's `exit_travel` (the reference point's travel to the exit, m) must be \
+             positive (got {length})",
+            at(entry.exit_travel.span().start)
         )));
     }
     let (i, h) = (inclination.to_radians(), entry.heading.to_radians());

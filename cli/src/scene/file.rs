@@ -87,7 +87,7 @@ pub struct PhaseEntry {
 /// `[rail]`: the position coordinates of the body's reference point (world axes x east,
 /// y north, z up), the rail's inclination above the horizontal and heading clockwise from
 /// north (degrees, RocketPy's convention), and the travel of the reference point along the
-/// rail until the last rail button leaves it (m).
+/// rail until the last rail button leaves it (`exit_travel`, m).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RailEntry {
@@ -98,8 +98,10 @@ pub struct RailEntry {
     /// Degrees clockwise from north (the y axis) towards which the rail leans.
     #[serde(default)]
     pub heading: f64,
-    /// How far the reference point travels along the rail until the last button leaves it.
-    pub length: Spanned<f64>,
+    /// How far the reference point travels along the rail until the last button leaves it
+    /// (not the rail's length: that less the distance from the lowest point resting on the
+    /// rail to the last button).
+    pub exit_travel: Spanned<f64>,
 }
 
 /// `carry = "separation" | "capture"` (docs/scenes.md).

@@ -254,7 +254,7 @@ fn met_while_held<const N: usize, const S: usize>(
         .skip(1);
     let met = held
         .map(|(&t, y)| (t, until.value(&first.system, t, y)))
-        .find(|&(_, g)| g == 0.0 || g.signum() != g0.signum());
+        .find(|&(_, g)| crossed(until.direction, g0, g));
     let Some((t1, _)) = met else {
         return Ok(());
     };
@@ -267,6 +267,18 @@ fn met_while_held<const N: usize, const S: usize>(
         shown(t0),
         shown(t1)
     )))
+}
+
+/// Whether g, from `g0` at the start of a hold, has crossed its boundary in `direction`:
+/// strictly past it (a body resting at the boundary itself, z = 0 or z' = 0 on its pad,
+/// has not met `z < 0` or `z' < 0`), or, either way, to the other side of it.
+fn crossed(direction: varmass::core::Direction, g0: f64, g: f64) -> bool {
+    use varmass::core::Direction::{Either, Falling, Rising};
+    match direction {
+        Rising => g > 0.0 && g0 <= 0.0,
+        Falling => g < 0.0 && g0 >= 0.0,
+        Either => g != 0.0 && (g0 == 0.0 || g.signum() != g0.signum()),
+    }
 }
 
 /// The speed of the body's reference point along the rail's position coordinates at the
@@ -335,12 +347,15 @@ fn rail_first<const N: usize, const S: usize>(
     let Some(spec) = rail else {
         return Ok(None);
     };
-    if matches!(plan.method, Method::Taylor) {
-        return Err(CliError::Input(
-            "`[rail]` with `method = \"taylor\"`: the motion on the rail has no Taylor \
-             coefficients of its own (docs/scenes.md); fly it with another method, e.g. \"dop853\""
-                .to_string(),
-        ));
+    if matches!(plan.method, Method::Taylor | Method::Variational) {
+        return Err(CliError::Input(format!(
+            "`[rail]` with `method = \"{}\"`: the motion on the rail has no Taylor \
+             coefficients of its own, and the variational stepper reads the Lagrange side, \
+             where the rail's projection onto its line does not act (docs/scenes.md); fly it \
+             with another method, e.g. \"dop853\"",
+            clap::ValueEnum::to_possible_value(&plan.method)
+                .map_or_else(String::new, |v| v.get_name().to_string())
+        )));
     }
     let refused = |e: StepError<S>| match e.kind {
         StepErrorKind::InvalidConfiguration { reason } => {
