@@ -116,7 +116,7 @@ fn fly(name: &str, set: &str) -> Figures {
         .position(|&s| s == t_exit)
         .expect("a row at the exit");
     Figures {
-        // stopped at z' = -1e-9: 1e-10 s and 5e-20 m past the apogee
+        // stopped where z' falls through 0: the apogee, located
         apogee: z[last],
         apogee_time: t[last],
         rail_exit_speed,
