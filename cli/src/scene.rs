@@ -9,6 +9,7 @@
 
 mod build;
 mod file;
+pub mod flight;
 mod fly;
 mod models;
 
@@ -54,6 +55,8 @@ pub struct SceneRun {
     /// When the body left its support (`support = "y"`, docs/scenes.md): the start if it
     /// lifted at once, `None` if it was still held at the end or the scene has no support.
     pub lift_off: Option<f64>,
+    /// The flight of a scene with `[flight]` (docs/scenes.md#flight), unless the run failed.
+    pub flight: Option<flight::Flight>,
 }
 
 /// A change of phase, as the summary prints it.
@@ -81,6 +84,7 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
 pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliError> {
     let read = file::read(path)?;
     let scene = build::build(&read, path, models)?;
+    let flight = flight::prepare(&read, path, &scene, models)?;
     let csv = scene.csv.clone();
     let phases: Vec<(Carry, Vec<(String, Recorded)>)> = scene
         .phases
@@ -124,6 +128,16 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
         let below = below_support(&flown, k);
         summary.insert_str(0, &lift_off_line(support, flown.lift_off, below));
     }
+    let ran = flight::Ran {
+        changes: &changes,
+        stopped_by: stopped_by.as_deref(),
+        // The launch rail's exit (time, speed) goes here when the run has one.
+        rail_exit: None,
+    };
+    let flight = flight.and_then(|prepared| flown_flight(prepared, &mut flown, &ran));
+    if let Some(done) = &flight {
+        summary.push_str(&done.text());
+    }
     Ok(SceneRun {
         table: Table::from_rows(names, rows),
         summary,
@@ -134,7 +148,27 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
         statistics: flown.statistics,
         failure: flown.failure,
         lift_off: flown.lift_off,
+        flight,
     })
+}
+
+/// The flight of a run that did not fail; a role that cannot be evaluated at a point
+/// becomes the run's failure (`flown.failure`).
+fn flown_flight(
+    prepared: flight::Prepared,
+    flown: &mut fly::Flown,
+    ran: &flight::Ran<'_>,
+) -> Option<flight::Flight> {
+    if flown.failure.is_some() {
+        return None;
+    }
+    match flight::finish(prepared, flown, ran) {
+        Ok(done) => Some(done),
+        Err(error) => {
+            flown.failure = Some(error);
+            None
+        }
+    }
 }
 
 /// The summary's line on the support: when the body lifted off it, or that it did not;
@@ -230,14 +264,27 @@ pub fn run(args: &RunArgs, given: &[String]) -> Result<String, CliError> {
     if let Some(failure) = done.failure {
         return Err(failure);
     }
-    if let Some(plot_path) = &args.plot {
-        plot::plot(&done.table, &path.display().to_string(), plot_path)?;
+    let title = path.display().to_string();
+    match (&args.plot, &done.flight) {
+        (Some(plot_path), Some(flight)) => flight.plot(&title, plot_path)?,
+        (Some(plot_path), None) => plot::plot(&done.table, &title, plot_path)?,
+        (None, _) => {}
+    }
+    match (&args.summary_json, &done.flight) {
+        (Some(json), Some(flight)) => flight.write_json(json)?,
+        (Some(_), None) => {
+            return Err(CliError::Input(format!(
+                "--summary-json: `{title}` has no `[flight]` table, so no flight summary \
+                 (docs/scenes.md#flight)"
+            )))
+        }
+        (None, _) => {}
     }
     Ok(done.summary)
 }
 
 /// The flags that go with a scene file: the file itself, and where its output goes.
-const SCENE_FLAGS: [&str; 3] = ["file", "csv", "plot"];
+const SCENE_FLAGS: [&str; 4] = ["file", "csv", "plot", "summary_json"];
 
 /// The flags of a one-phase run have no meaning beside a scene, which gives them itself:
 /// `given` holds the ids of the flags on the command line (a flag given at its default
@@ -246,7 +293,7 @@ fn refuse_one_phase_flags(args: &RunArgs, given: &[String]) -> Result<(), CliErr
     match given.iter().find(|id| !SCENE_FLAGS.contains(&id.as_str())) {
         Some(id) => Err(CliError::Input(format!(
             "--{}: `{}` is a scene file, which gives its own settings (docs/scenes.md); \
-             write it there (only --csv and --plot go with a scene file)",
+             write it there (only --csv, --plot and --summary-json go with a scene file)",
             id.replace('_', "-"),
             args.model.file.display()
         ))),
