@@ -412,3 +412,79 @@ fn the_calisto_example_summarizes_its_flight() {
     let mach = s.max_mach.unwrap();
     assert!((0.8..0.85).contains(&mach.value), "{mach:?}");
 }
+
+/// The defaults of an east-north-up model: `models/rocket_6dof_quaternion.vms` (x, y, z
+/// and a quaternion) upright and not burning (μ = 0), thrown from z = 1 m at (3, −4, 20)
+/// m/s. Its attitude stays put (no moment), so the potential's attitude term is a constant
+/// and the flight is a projectile's: the apex 1 + 20²/(2g) at 20/g, the landing
+/// (`stop_when = "z < 0"`) at t_l = (20 + √(400 + 2g))/g, at east 3t_l, north −4t_l with
+/// z' = −√(400 + 2g); |V| is largest there, √(25 + 400 + 2g), and |a| = g throughout.
+/// The roles left out are √(x'² + y'² + z'²), √(x''² + y''² + z''²), x and y. Measured
+/// 2e-15 relative at the worst; bound 1e-9.
+#[test]
+fn an_east_north_up_model_has_its_defaults() {
+    let mut set = String::new();
+    for (name, value) in [
+        ("mu", 0.0),
+        ("m_d", 60.0),
+        ("A_d", 30.0),
+        ("C_d", 2.0),
+        ("k_a", 0.8),
+        ("k_c", 0.2),
+        ("g_c", 1.0),
+        ("l", 2.0),
+        ("u_e", 2000.0),
+        ("delta", 0.0),
+        ("g", G),
+    ] {
+        set.push_str(&format!("{name} = {value:?}\n"));
+    }
+    let text = format!(
+        "model = \"{}\"\nuntil = 10.0\nmethod = \"dop853\"\ntol = 1e-12\nstop_when = \"z < 0\"\n\
+         [set]\n{set}[init]\nx = 0.0\ny = 0.0\nz = 1.0\n\"x'\" = 3.0\n\"y'\" = -4.0\n\
+         \"z'\" = 20.0\ne0 = 1.0\ne1 = 0.0\ne2 = 0.0\ne3 = 0.0\nm_p = 40.0\n\
+         [flight]\naltitude = \"z\"\n",
+        model("rocket_6dof_quaternion.vms")
+    );
+    let file = scratch_file("flight_enu.toml", &text);
+    let s = run_file(std::path::Path::new(&file))
+        .expect("runs")
+        .flight
+        .expect("a flight")
+        .summary;
+    assert_eq!(s.roles["speed"], "sqrt(x'^2 + y'^2 + z'^2)");
+    assert_eq!(s.roles["acceleration"], "sqrt(x''^2 + y''^2 + z''^2)");
+    assert_eq!(
+        (s.roles["east"].as_str(), s.roles["north"].as_str()),
+        ("x", "y")
+    );
+    let apogee = s.apogee.expect("an apogee");
+    close(
+        "6-dof apogee",
+        apogee.altitude,
+        1.0 + 400.0 / (2.0 * G),
+        1e-9,
+    );
+    close("6-dof apogee time", apogee.time, 20.0 / G, 1e-9);
+    let landing = s.landing.expect("a landing");
+    let down = (400.0 + 2.0 * G).sqrt();
+    let t_l = (20.0 + down) / G;
+    close("6-dof landing time", landing.time, t_l, 1e-9);
+    close("6-dof east", landing.east.unwrap(), 3.0 * t_l, 1e-9);
+    close("6-dof north", landing.north.unwrap(), -4.0 * t_l, 1e-9);
+    close("6-dof landing speed", landing.vertical_speed, -down, 1e-9);
+    let speed = s.max_speed.unwrap();
+    close(
+        "6-dof max speed",
+        speed.value,
+        (25.0 + down * down).sqrt(),
+        1e-9,
+    );
+    assert_eq!(speed.time, landing.time);
+    close(
+        "6-dof max acceleration",
+        s.max_acceleration.unwrap().value,
+        G,
+        1e-9,
+    );
+}

@@ -277,7 +277,8 @@ fn phase_events(
         .collect()
 }
 
-/// The landing: the last row, when the run stopped on a `stop_when` on the altitude.
+/// The landing: the last row, when the run stopped on a `stop_when` on the altitude while
+/// descending (a stop on the way up, `z > 50`, is no landing).
 fn landing(table: &Table, roles: &Roles, stopped_by: Option<&str>) -> Option<Landing> {
     let (name, _, _) = condition(stopped_by?, "stop_when").ok()?;
     if Some(name.trim()) != roles.text(Role::Altitude) {
@@ -285,9 +286,10 @@ fn landing(table: &Table, roles: &Roles, stopped_by: Option<&str>) -> Option<Lan
     }
     let (time, row) = table.last()?;
     let at = |role: Role| roles.index(role).map(|k| row[k]);
+    let vertical_speed = at(Role::VerticalSpeed).filter(|v| *v <= 0.0)?;
     Some(Landing {
         time,
-        vertical_speed: at(Role::VerticalSpeed)?,
+        vertical_speed,
         east: at(Role::East),
         north: at(Role::North),
     })
