@@ -124,6 +124,10 @@ pub struct RunArgs {
     /// Plot the recorded quantities against t (SVG, or PNG with the `png` feature).
     #[arg(long, value_name = "PATH")]
     pub plot: Option<PathBuf>,
+    /// Write a scene's flight summary as JSON (a scene file with a `[flight]` table,
+    /// docs/scenes.md#flight).
+    #[arg(long, value_name = "PATH")]
+    pub summary_json: Option<PathBuf>,
     /// How messages name these settings: as flags, or as the keys of the scene file they
     /// were read from (not a flag).
     #[arg(skip)]

@@ -9,6 +9,7 @@
 
 mod build;
 mod file;
+pub mod flight;
 mod fly;
 mod models;
 
@@ -57,6 +58,8 @@ pub struct SceneRun {
     /// When the body left its rail (`[rail]`, docs/scenes.md#a-launch-rail) and its speed
     /// then (m/s), `None` if it was still on the rail at the end or the scene has no rail.
     pub rail_exit: Option<(f64, f64)>,
+    /// The flight of a scene with `[flight]` (docs/scenes.md#flight), unless the run failed.
+    pub flight: Option<flight::Flight>,
 }
 
 /// A change of phase, as the summary prints it.
@@ -84,6 +87,7 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
 pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliError> {
     let read = file::read(path)?;
     let scene = build::build(&read, path, models)?;
+    let flight = flight::prepare(&read, path, &scene, models)?;
     let csv = scene.csv.clone();
     let phases: Vec<(Carry, Vec<(String, Recorded)>)> = scene
         .phases
@@ -131,6 +135,15 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
     if railed {
         summary.insert_str(0, &rail_lines(flown.lift_off, flown.rail_exit));
     }
+    let ran = flight::Ran {
+        changes: &changes,
+        stopped_by: stopped_by.as_deref(),
+        rail_exit: flown.rail_exit,
+    };
+    let flight = flight.and_then(|prepared| flown_flight(prepared, &mut flown, &ran));
+    if let Some(done) = &flight {
+        summary.push_str(&done.text());
+    }
     Ok(SceneRun {
         table: Table::from_rows(names, rows),
         summary,
@@ -142,7 +155,27 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
         failure: flown.failure,
         lift_off: flown.lift_off,
         rail_exit: flown.rail_exit,
+        flight,
     })
+}
+
+/// The flight of a run that did not fail; a role that cannot be evaluated at a point
+/// becomes the run's failure (`flown.failure`).
+fn flown_flight(
+    prepared: flight::Prepared,
+    flown: &mut fly::Flown,
+    ran: &flight::Ran<'_>,
+) -> Option<flight::Flight> {
+    if flown.failure.is_some() {
+        return None;
+    }
+    match flight::finish(prepared, flown, ran) {
+        Ok(done) => Some(done),
+        Err(error) => {
+            flown.failure = Some(error);
+            None
+        }
+    }
 }
 
 /// The summary's line on the support: when the body lifted off it, or that it did not;
@@ -259,14 +292,27 @@ pub fn run(args: &RunArgs, given: &[String]) -> Result<String, CliError> {
     if let Some(failure) = done.failure {
         return Err(failure);
     }
-    if let Some(plot_path) = &args.plot {
-        plot::plot(&done.table, &path.display().to_string(), plot_path)?;
+    let title = path.display().to_string();
+    match (&args.plot, &done.flight) {
+        (Some(plot_path), Some(flight)) => flight.plot(&title, plot_path)?,
+        (Some(plot_path), None) => plot::plot(&done.table, &title, plot_path)?,
+        (None, _) => {}
+    }
+    match (&args.summary_json, &done.flight) {
+        (Some(json), Some(flight)) => flight.write_json(json)?,
+        (Some(_), None) => {
+            return Err(CliError::Input(format!(
+                "--summary-json: `{title}` has no `[flight]` table, so no flight summary \
+                 (docs/scenes.md#flight)"
+            )))
+        }
+        (None, _) => {}
     }
     Ok(done.summary)
 }
 
 /// The flags that go with a scene file: the file itself, and where its output goes.
-const SCENE_FLAGS: [&str; 3] = ["file", "csv", "plot"];
+const SCENE_FLAGS: [&str; 4] = ["file", "csv", "plot", "summary_json"];
 
 /// The flags of a one-phase run have no meaning beside a scene, which gives them itself:
 /// `given` holds the ids of the flags on the command line (a flag given at its default
@@ -275,7 +321,7 @@ fn refuse_one_phase_flags(args: &RunArgs, given: &[String]) -> Result<(), CliErr
     match given.iter().find(|id| !SCENE_FLAGS.contains(&id.as_str())) {
         Some(id) => Err(CliError::Input(format!(
             "--{}: `{}` is a scene file, which gives its own settings (docs/scenes.md); \
-             write it there (only --csv and --plot go with a scene file)",
+             write it there (only --csv, --plot and --summary-json go with a scene file)",
             id.replace('_', "-"),
             args.model.file.display()
         ))),

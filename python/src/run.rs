@@ -67,6 +67,7 @@ pub fn run_args(file: &str, with: &[String], options: Options) -> Result<RunArgs
         every: options.every,
         csv: None,
         plot: None,
+        summary_json: None,
         words: Words::Python,
     })
 }

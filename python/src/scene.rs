@@ -72,5 +72,24 @@ pub fn run_scene<'py>(
     out.set_item(intern!(py, "changes"), changes)?;
     out.set_item(intern!(py, "statistics"), statistics(py, &done.statistics)?)?;
     out.set_item(intern!(py, "summary"), &done.summary)?;
+    out.set_item(intern!(py, "flight"), flight(py, &done)?)?;
     Ok(out)
+}
+
+/// A scene's flight (`[flight]`, docs/scenes.md#flight) for `varmass._flight`: the summary
+/// as the tool's JSON, the roles' columns as a table, the measured log's times and
+/// altitudes; `None` without `[flight]`.
+fn flight<'py>(py: Python<'py>, done: &SceneRun) -> PyResult<Option<Bound<'py, PyDict>>> {
+    let Some(flight) = &done.flight else {
+        return Ok(None);
+    };
+    let out = PyDict::new(py);
+    out.set_item(intern!(py, "summary"), flight.json())?;
+    out.set_item(intern!(py, "table"), columns(py, &flight.table)?)?;
+    let log = flight
+        .log
+        .as_ref()
+        .map(|l| (l.times.clone(), l.altitudes.clone()));
+    out.set_item(intern!(py, "log"), log)?;
+    Ok(Some(out))
 }

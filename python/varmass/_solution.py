@@ -54,7 +54,7 @@ class Solution:
     phase (:class:`varmass.PhaseChange`); a run's ``changes`` is empty.
     """
 
-    def __init__(self, names, data: bytes, end_time, stopped_by, details, changes=()):
+    def __init__(self, names, data: bytes, end_time, stopped_by, details, changes=(), flight=None):
         # One array of the times and every column (rows), each column a view of it.
         self._data = np.frombuffer(data, dtype=_F8).reshape(len(names) + 1, -1)
         self.t: np.ndarray = self._data[0]
@@ -62,6 +62,8 @@ class Solution:
         self.end_time: float = end_time
         self.stopped_by: Optional[str] = stopped_by
         self.changes: list = list(changes) if changes else []
+        # A scene's flight (``[flight]``): ``varmass._flight.Flight`` or ``None``.
+        self._flight = flight
         # The end state, the statistics and the summary, read when first asked for.
         self._details = details
         self._cache: Dict[str, object] = {}
@@ -78,15 +80,32 @@ class Solution:
     @classmethod
     def _of_scene(cls, raw: dict, changes) -> "Solution":
         """The solution of ``_native.run_scene``'s result (a dict)."""
+        from ._flight import Flight
+
+        flight = Flight(raw["flight"]) if raw.get("flight") is not None else None
         return cls(
-            raw["names"], raw["data"], raw["end_time"], raw["stopped_by"], _Given(raw), changes
+            raw["names"],
+            raw["data"],
+            raw["end_time"],
+            raw["stopped_by"],
+            _Given(raw),
+            changes,
+            flight,
         )
 
     def __reduce__(self):
         # Pickled (a Dask task's result) with its details made: the extension's are not.
         given = {name: self._detail(name) for name in ("end_state", "statistics", "summary")}
         data = self._data.tobytes()
-        args = (self.names, data, self.end_time, self.stopped_by, _Given(given), self.changes)
+        args = (
+            self.names,
+            data,
+            self.end_time,
+            self.stopped_by,
+            _Given(given),
+            self.changes,
+            self._flight,
+        )
         return (Solution, args)
 
     def _detail(self, name: str):
@@ -165,6 +184,32 @@ class Solution:
         ax.set_xlabel("t")
         ax.legend()
         return ax
+
+    def flight_summary(self) -> dict:
+        """A scene's flight summary (its ``[flight]`` table, docs/scenes.md#flight), as a
+        dict with the keys of ``varmass run SCENE.toml --summary-json``: ``apogee`` (time,
+        altitude, their interpolation error bounds, the rows that bracket it), ``max_speed``,
+        ``max_mach``, ``max_qbar``, ``max_acceleration`` (value, time), ``burnout``,
+        ``lift_off``, ``rail_exit``, ``static_margin``, ``phases``, ``landing``, ``end``,
+        ``log`` and ``roles`` (the expression of each role). ``ValueError`` without a
+        flight."""
+        from ._flight import no_flight
+
+        if self._flight is None:
+            raise no_flight()
+        return self._flight.summary()
+
+    def plot_flight(self, log=None, fig=None):
+        """Plots the flight's panels — altitude, speed, attitude, angle of attack, static
+        margin, those its ``[flight]`` has — against t with Matplotlib, and the measured
+        log's altitude over the first: ``log=None`` the scene's ``log``, ``False`` none, a
+        pair ``(t, altitude)``, a CSV path (columns ``Time (s)``, ``Altitude (m)``) or
+        ``{"file": …, "time": …, "altitude": …}``. Returns the Figure."""
+        from ._flight import no_flight, plot_flight
+
+        if self._flight is None:
+            raise no_flight()
+        return plot_flight(self._flight, log=log, fig=fig)
 
     def __repr__(self) -> str:
         how = f"stop_when {self.stopped_by!r}" if self.stopped_by else "until"

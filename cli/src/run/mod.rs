@@ -32,6 +32,13 @@ pub use record::column_name;
 /// Runs the model as `args` say ([`Compiled::execute`]); writes the CSV (up to the failure,
 /// if the run failed) and the plot; returns the summary to print.
 pub fn run(args: &RunArgs) -> Result<String, CliError> {
+    if args.summary_json.is_some() {
+        return Err(CliError::Input(
+            "--summary-json writes a flight summary: it goes with a scene file `SCENE.toml` \
+             that has a `[flight]` table (docs/scenes.md#flight)"
+                .to_string(),
+        ));
+    }
     let model = load(&args.model)?;
     for warning in &model.warnings {
         eprintln!("warning: {warning}");

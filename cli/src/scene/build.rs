@@ -57,6 +57,18 @@ pub struct ScenePhase {
     in_force: InForce,
 }
 
+impl ScenePhase {
+    /// Its tags (a `[flight]` role is resolved with them: scene/flight.rs).
+    pub fn tags(&self) -> &[String] {
+        &self.in_force.with
+    }
+
+    /// Its parameter values.
+    pub fn parameters(&self) -> &[(String, f64)] {
+        &self.in_force.parameters
+    }
+}
+
 /// A scene, checked.
 pub struct Scene {
     /// The phases in order.
@@ -414,6 +426,7 @@ fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String
         every: None,
         csv: None,
         plot: None,
+        summary_json: None,
         words: Words::Scene,
     }
 }
@@ -647,6 +660,7 @@ fn program_from(
         every: None,
         csv: None,
         plot: None,
+        summary_json: None,
         words: Words::Scene,
     };
     let values = crate::run::plan::parameters(&args)?;

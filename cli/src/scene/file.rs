@@ -62,6 +62,9 @@ pub struct SceneFile {
     /// The phases after the first, in order.
     #[serde(default, rename = "phase")]
     pub phases: Vec<PhaseEntry>,
+    /// The roles of the model's quantities in a flight, for its summary and plots
+    /// (docs/scenes.md#flight).
+    pub flight: Option<Spanned<super::flight::FlightTable>>,
 }
 
 /// A phase after the first: when it begins and what changes there.
