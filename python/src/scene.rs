@@ -64,10 +64,10 @@ pub fn run_scene<'py>(
     out.set_item(intern!(py, "end_time"), time)?;
     out.set_item(intern!(py, "end_state"), state)?;
     out.set_item(intern!(py, "stopped_by"), &done.stopped_by)?;
-    let changes: Vec<(usize, f64, &str, f64)> = done
+    let changes: Vec<(usize, f64, &str, f64, Vec<(String, f64)>)> = done
         .changes
         .iter()
-        .map(|c| (c.phase, c.time, c.rule, c.kinetic_energy_removed))
+        .map(|c| (c.phase, c.time, c.rule, c.kinetic_energy_removed, c.set.clone()))
         .collect();
     out.set_item(intern!(py, "changes"), changes)?;
     out.set_item(intern!(py, "statistics"), statistics(py, &done.statistics)?)?;

@@ -161,50 +161,25 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
         .collect();
     let start = start_of::<S>(&plan);
     let held = held_first(&mut phases, support, start, &plan)?;
-    let config = config(&plan, energy_residual);
-    let steps = padded_steps(plan.steps, plan.method, len, S)?;
-    let (from, until) = (plan.from, plan.until);
     let offset = usize::from(held == Some(true));
-    let (timed, watches) = aligned(timed, &ends, offset);
-    macro_rules! phased_with {
-        ($stepper:ident, $settings:expr) => {
-            timed::run(
-                &mut phases,
-                &timed,
-                &watches,
-                offset,
-                |phases, range, before| {
-                    let stepper_for = |system, t, state| {
-                        $stepper::new(system, t, state, $settings)
-                            .map(|s| Watched::new(s, from, until))
-                    };
-                    match before {
-                        None => run_phases_keeping(&phases[range], start, stepper_for, &config),
-                        Some(phased) => {
-                            let system = &phases[range.start - 1].system;
-                            continue_phases_keeping(
-                                phased,
-                                system,
-                                &phases[range],
-                                stepper_for,
-                                &config,
-                            )
-                        }
-                    }
-                },
-            )
-        };
-    }
     let timed::Ran {
         phased,
         error,
         refused,
         sets,
-    } = with_stepper!(plan.method, steps, phased_with);
+    } = fly_phases(
+        &mut phases,
+        aligned(timed, &ends, offset),
+        offset,
+        start,
+        &plan,
+        energy_residual,
+        len,
+    )?;
     if held == Some(true) {
         met_while_held(&phased, &phases, start, &ends)?;
     }
-    let (phased, lift_off) = renumbered(phased, held, from);
+    let (phased, lift_off) = renumbered(phased, held, plan.from);
     let last = phased.phase.last().copied().unwrap_or(0);
     let failure = refused.or_else(|| {
         error.map(|e| {
@@ -219,6 +194,48 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
     flown.lift_off = lift_off;
     flown.sets = sets;
     Ok(flown)
+}
+
+/// Runs the phases with the plan's stepper ([`timed::run`]: a phase that takes values at
+/// its change is continued from the last point once its programs have them).
+fn fly_phases<'a, const N: usize, const S: usize>(
+    phases: &mut [Phase<'a, Supported<TapeSystem<N, S>>, S>],
+    (timed, watches): (
+        Vec<Option<Timed>>,
+        Vec<Option<&std::cell::RefCell<Program>>>,
+    ),
+    offset: usize,
+    start: (f64, SVector<f64, S>),
+    plan: &Plan,
+    energy_residual: bool,
+    len: usize,
+) -> Result<timed::Ran<N, S>, CliError> {
+    let config = config(plan, energy_residual);
+    let steps = padded_steps(plan.steps, plan.method, len, S)?;
+    let (from, until) = (plan.from, plan.until);
+    macro_rules! phased_with {
+        ($stepper:ident, $settings:expr) => {
+            timed::run(phases, &timed, &watches, offset, |phases, range, before| {
+                let stepper_for = |system, t, state| {
+                    $stepper::new(system, t, state, $settings).map(|s| Watched::new(s, from, until))
+                };
+                match before {
+                    None => run_phases_keeping(&phases[range], start, stepper_for, &config),
+                    Some(phased) => {
+                        let system = &phases[range.start - 1].system;
+                        continue_phases_keeping(
+                            phased,
+                            system,
+                            &phases[range],
+                            stepper_for,
+                            &config,
+                        )
+                    }
+                }
+            })
+        };
+    }
+    Ok(with_stepper!(plan.method, steps, phased_with))
 }
 
 /// Each phase's values set at its change and the program watching its end condition,
