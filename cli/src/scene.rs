@@ -288,7 +288,7 @@ fn refuse_one_phase_flags(args: &RunArgs, given: &[String]) -> Result<(), CliErr
 }
 
 /// Where a scene stopped by its `stop_when` stopped (a landing: `stop_when = "z < 0"`): its
-/// coordinates, `, at z = -1.2e-14`; nothing for another end.
+/// coordinates, ` at z = -1.2e-14`; nothing for another end.
 fn stopped_at(
     program: &varmass::interpret::Program,
     state: &[f64],
@@ -300,7 +300,7 @@ fn stopped_at(
     let at: Vec<String> = (program.coordinate_names().zip(state))
         .map(|(name, value)| format!("{name} = {}", shown(*value)))
         .collect();
-    format!(", at {}", at.join(", "))
+    format!(" at {}", at.join(", "))
 }
 
 /// The values a change set by expressions, for its summary line: `; set drogue_t_open = 4.56`.
@@ -332,7 +332,7 @@ fn summary(
         None => "reached until".to_string(),
     };
     let mut out = format!(
-        "stopped at t = {} in phase {} of {phases} ({why}{})\n",
+        "stopped at t = {} in phase {} of {phases} ({why}){}\n",
         shown(*time),
         last + 1,
         stopped_at(&flown.programs[*last], state, stopped_by),
