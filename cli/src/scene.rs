@@ -145,14 +145,17 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
     })
 }
 
+/// Each phase's carry rule and recorded columns.
+type PhaseColumns = Vec<(Carry, Vec<(String, Recorded)>)>;
+
 /// The recorded columns of each phase that took values at its change, resolved again with
 /// them (a recorded expression reads a parameter's value when it is resolved).
 fn recorded_with_sets(
-    mut phases: Vec<(Carry, Vec<(String, Recorded)>)>,
+    mut phases: PhaseColumns,
     flown: &fly::Flown,
     selected: &[Option<varmass::symbolic::parse::ast::SystemAst>],
     entries: &[String],
-) -> Result<Vec<(Carry, Vec<(String, Recorded)>)>, CliError> {
+) -> Result<PhaseColumns, CliError> {
     for set in &flown.sets {
         let k = set.phase;
         if let (Some(Some(ast)), Some(program)) = (selected.get(k), flown.programs.get(k)) {
