@@ -67,7 +67,15 @@ pub fn run_scene<'py>(
     let changes: Vec<(usize, f64, &str, f64, Vec<(String, f64)>)> = done
         .changes
         .iter()
-        .map(|c| (c.phase, c.time, c.rule, c.kinetic_energy_removed, c.set.clone()))
+        .map(|c| {
+            (
+                c.phase,
+                c.time,
+                c.rule,
+                c.kinetic_energy_removed,
+                c.set.clone(),
+            )
+        })
         .collect();
     out.set_item(intern!(py, "changes"), changes)?;
     out.set_item(intern!(py, "statistics"), statistics(py, &done.statistics)?)?;
