@@ -12,6 +12,7 @@ mod file;
 pub mod flight;
 mod fly;
 mod models;
+mod timed;
 
 use std::fmt::Write;
 use std::path::Path;
@@ -73,6 +74,9 @@ pub struct Change {
     pub rule: &'static str,
     /// The kinetic energy the change removed (docs/scenes.md).
     pub kinetic_energy_removed: f64,
+    /// The values set here by expressions of the change's time (`drogue_t_open = "t +
+    /// 1.5"`: docs/scenes.md#a-value-set-at-the-change), as evaluated.
+    pub set: Vec<(String, f64)>,
 }
 
 /// Reads, checks and runs the scene file at `path`. A mistake in the file is an `Err`
@@ -103,7 +107,10 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
     let support = read.scene.support.as_ref().map(|s| s.get_ref().clone());
     let held = scene.support.as_ref().map(|(k, _)| *k);
     let railed = scene.rail.is_some();
+    let selected: Vec<_> = scene.phases.iter().map(|p| p.selected.clone()).collect();
+    let entries = scene.record_entries.clone();
     let mut flown = fly::fly(scene)?;
+    let phases = recorded_with_sets(phases, &flown, &selected, &entries)?;
     let mut names = vec!["phase".to_string()];
     names.extend(phases[0].1.iter().map(|(n, _)| n.clone()));
     if energy {
@@ -121,6 +128,7 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
                 _ => "separation",
             },
             kinetic_energy_removed: change.kinetic_energy_removed,
+            set: set_at(&flown.sets, change.phase),
         })
         .collect();
     let stopped_by = match (flown.stopped, flown.phase.last()) {
@@ -176,6 +184,34 @@ fn flown_flight(
             None
         }
     }
+}
+
+/// Each phase's carry rule and recorded columns.
+type PhaseColumns = Vec<(Carry, Vec<(String, Recorded)>)>;
+
+/// The recorded columns of each phase that took values at its change, resolved again with
+/// them (a recorded expression reads a parameter's value when it is resolved).
+fn recorded_with_sets(
+    mut phases: PhaseColumns,
+    flown: &fly::Flown,
+    selected: &[Option<varmass::symbolic::parse::ast::SystemAst>],
+    entries: &[String],
+) -> Result<PhaseColumns, CliError> {
+    for set in &flown.sets {
+        let k = set.phase;
+        if let (Some(Some(ast)), Some(program)) = (selected.get(k), flown.programs.get(k)) {
+            phases[k].1 = build::record_again(program, ast, &set.values, entries)?;
+        }
+    }
+    Ok(phases)
+}
+
+/// The values set by expressions at the change into `phase` (counted from 0).
+fn set_at(sets: &[timed::SetAt], phase: usize) -> Vec<(String, f64)> {
+    sets.iter()
+        .find(|s| s.phase == phase)
+        .map(|s| s.set.clone())
+        .unwrap_or_default()
 }
 
 /// The summary's line on the support: when the body lifted off it, or that it did not;
@@ -329,6 +365,34 @@ fn refuse_one_phase_flags(args: &RunArgs, given: &[String]) -> Result<(), CliErr
     }
 }
 
+/// Where a scene stopped by its `stop_when` stopped (a landing: `stop_when = "z < 0"`): its
+/// coordinates, ` at z = -1.2e-14`; nothing for another end.
+fn stopped_at(
+    program: &varmass::interpret::Program,
+    state: &[f64],
+    stopped_by: Option<&str>,
+) -> String {
+    if stopped_by.is_none() {
+        return String::new();
+    }
+    let at: Vec<String> = (program.coordinate_names().zip(state))
+        .map(|(name, value)| format!("{name} = {}", shown(*value)))
+        .collect();
+    format!(" at {}", at.join(", "))
+}
+
+/// The values a change set by expressions, for its summary line: `; set drogue_t_open = 4.56`.
+fn set_here(set: &[(String, f64)]) -> String {
+    if set.is_empty() {
+        return String::new();
+    }
+    let values: Vec<String> = set
+        .iter()
+        .map(|(name, value)| format!("{name} = {}", shown(*value)))
+        .collect();
+    format!("; set {}", values.join(", "))
+}
+
 /// The summary: how the scene ended, each change with the kinetic energy it removed, the
 /// final state and the work.
 fn summary(
@@ -346,9 +410,10 @@ fn summary(
         None => "reached until".to_string(),
     };
     let mut out = format!(
-        "stopped at t = {} in phase {} of {phases} ({why})\n",
+        "stopped at t = {} in phase {} of {phases} ({why}){}\n",
         shown(*time),
         last + 1,
+        stopped_at(&flown.programs[*last], state, stopped_by),
     );
     if *last + 1 < phases && flown.failure.is_none() {
         let _ = writeln!(
@@ -361,11 +426,12 @@ fn summary(
     for change in changes {
         let _ = writeln!(
             out,
-            "phase {} began at t = {} ({}); kinetic energy removed: {}",
+            "phase {} began at t = {} ({}); kinetic energy removed: {}{}",
             change.phase,
             shown(change.time),
             change.rule,
-            shown(change.kinetic_energy_removed)
+            shown(change.kinetic_energy_removed),
+            set_here(&change.set)
         );
     }
     out.push_str("state:");

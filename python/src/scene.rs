@@ -41,6 +41,10 @@ impl NativeScene {
     }
 }
 
+/// A change of phase as Python's `PhaseChange` takes it: the phase, time, rule, kinetic
+/// energy removed and the values set by expressions of the change's time.
+type ChangeRow<'a> = (usize, f64, &'a str, f64, Vec<(String, f64)>);
+
 /// Runs the scene file at `path` with the models `scene` derived before: the recorded
 /// columns (`phase` first), the changes of phase, the end, the statistics and the summary
 /// the tool prints. A mistake in the file is the tool's `ValueError`/`ModelError`; a
@@ -64,10 +68,18 @@ pub fn run_scene<'py>(
     out.set_item(intern!(py, "end_time"), time)?;
     out.set_item(intern!(py, "end_state"), state)?;
     out.set_item(intern!(py, "stopped_by"), &done.stopped_by)?;
-    let changes: Vec<(usize, f64, &str, f64)> = done
+    let changes: Vec<ChangeRow<'_>> = done
         .changes
         .iter()
-        .map(|c| (c.phase, c.time, c.rule, c.kinetic_energy_removed))
+        .map(|c| {
+            (
+                c.phase,
+                c.time,
+                c.rule,
+                c.kinetic_energy_removed,
+                c.set.clone(),
+            )
+        })
         .collect();
     out.set_item(intern!(py, "changes"), changes)?;
     out.set_item(intern!(py, "statistics"), statistics(py, &done.statistics)?)?;

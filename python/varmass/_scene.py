@@ -15,14 +15,17 @@ from ._solution import Solution
 
 class PhaseChange(NamedTuple):
     """A change of phase: the phase entered (counted from 1, as the ``phase`` column), its
-    time, how the state was carried (``"separation"`` or ``"capture"``) and the kinetic
+    time, how the state was carried (``"separation"`` or ``"capture"``), the kinetic
     energy the change removed (½ q̇ᵀ (M_before − M_after) q̇ at a separation; the kinetic
-    energy lost in the plastic impact at a capture)."""
+    energy lost in the plastic impact at a capture), and the values the phase set there by
+    expressions of the change's time (``set = { drogue_t_open = "t + 1.5" }`` gives
+    ``{"drogue_t_open": t + 1.5}``; empty when it set none)."""
 
     phase: int
     time: float
     rule: str
     kinetic_energy_removed: float
+    set: dict = {}
 
 
 class Scene:
@@ -64,7 +67,10 @@ class Scene:
         except RunError as error:
             error.points = _partial_points(error)
             raise
-        changes = [PhaseChange(*change) for change in raw["changes"]]
+        changes = [
+            PhaseChange(phase, time, rule, removed, dict(values))
+            for (phase, time, rule, removed, values) in raw["changes"]
+        ]
         return Solution._of_scene(raw, changes)
 
     def _scene(self):

@@ -66,6 +66,13 @@ impl<const N: usize, const S: usize> TapeSystem<N, S> {
         &self.program
     }
 
+    /// The program, to give it other parameter values between runs
+    /// ([`Program::set_parameters`]; the sizes it was fixed with do not change): a scene's
+    /// value set at the time of a change (docs/scenes.md#a-value-set-at-the-change).
+    pub fn program_mut(&mut self) -> &mut Program {
+        &mut self.program
+    }
+
     /// Gives the program back.
     pub fn into_program(self) -> Program {
         self.program

@@ -4,14 +4,16 @@
 //! scene's `stop_when` for the last). A mistake is a [`CliError::Input`] pointing at the
 //! scene file's line.
 
+use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
 use varmass::core::{Carry, Direction};
 use varmass::interpret::Program;
 use varmass::symbolic::parse::ast::SystemAst;
 
-use super::file::{line_column, CarryRule, PhaseEntry, RailEntry, Read, SceneFile};
+use super::file::{line_column, CarryRule, PhaseEntry, RailEntry, Read, SceneFile, SetValue};
 use super::models::Models;
+use super::timed::{SetExpression, Timed};
 use crate::args::{ModelArgs, RunArgs, Words};
 use crate::error::CliError;
 use crate::model::LoadedModel;
@@ -35,8 +37,9 @@ pub struct End {
     /// The condition as written.
     pub text: String,
     /// A program of the phase to evaluate the quantity with (the phase's own is moved into
-    /// its system), when the quantity is not a state entry.
-    pub watch: Option<Program>,
+    /// its system), when the quantity is not a state entry; in a cell, to take the values
+    /// the phase sets at its change (`timed`).
+    pub watch: Option<RefCell<Program>>,
 }
 
 /// One phase, ready to run.
@@ -53,6 +56,12 @@ pub struct ScenePhase {
     pub record: Vec<(String, Recorded)>,
     /// What ends it before the end time.
     pub end: Option<End>,
+    /// What it takes from the run at its change (values set by expressions, its own or
+    /// carried over), if anything.
+    pub timed: Option<Timed>,
+    /// Its model's statements (for recorded expressions read again with the values set at
+    /// the change), when it is `timed`.
+    pub selected: Option<SystemAst>,
     /// Its tags and parameter values.
     in_force: InForce,
 }
@@ -84,6 +93,8 @@ pub struct Scene {
     pub support: Option<(usize, Program)>,
     /// The launch rail the body starts on (`[rail]`).
     pub rail: Option<RailSpec>,
+    /// The `record` entries each phase resolved (for a `timed` phase's, again at its change).
+    pub record_entries: Vec<String>,
 }
 
 /// A scene's `[rail]`, checked: the position coordinates' indices, the rail's unit
@@ -107,6 +118,11 @@ struct InForce {
     with: Vec<String>,
     parameters: Vec<(String, f64)>,
     input: Vec<String>,
+    /// The parameters whose value is set by an expression at a change, this phase's or an
+    /// earlier one's (`parameters` holds a stand-in for each until then).
+    timed: Vec<String>,
+    /// This phase's own sets by expression.
+    expressions: Vec<(String, SetExpression)>,
 }
 
 /// Checks the scene read from `path` and builds its phases.
@@ -163,6 +179,7 @@ pub fn build(read: &Read, path: &Path, models: &mut Models) -> Result<Scene, Cli
         csv: scene.csv.as_ref().map(|c| base.join(c)),
         support,
         rail,
+        record_entries,
     })
 }
 
@@ -241,6 +258,8 @@ fn first_in_force(scene: &SceneFile, base: &Path) -> InForce {
             .iter()
             .map(|(name, law)| format!("{}={}", name.get_ref(), law_at(law, base)))
             .collect(),
+        timed: Vec::new(),
+        expressions: Vec::new(),
     }
 }
 
@@ -269,6 +288,8 @@ fn first_phase(
         state_masses: Vec::new(),
         record: plan.record.clone(),
         end: None,
+        timed: None,
+        selected: None,
         in_force,
     };
     Ok((first, plan))
@@ -324,7 +345,7 @@ fn watch_programs(
         if needs_watch {
             let watch = program_of(model_file, &phase.in_force, models)?;
             if let Some(end) = &mut phase.end {
-                end.watch = Some(watch);
+                end.watch = Some(RefCell::new(watch));
             }
         }
     }
@@ -477,22 +498,71 @@ fn next_in_force(
         .iter()
         .map(|(n, _)| (n.clone(), ()))
         .collect();
+    let has = |n: &String| known.iter().any(|(k, _)| k == n);
     let mut parameters: Vec<(String, f64)> = before
         .parameters
         .into_iter()
-        .filter(|(n, _)| known.iter().any(|(k, _)| k == n))
+        .filter(|(n, _)| has(n))
         .collect();
+    let mut timed: Vec<String> = before.timed.into_iter().filter(has).collect();
     for (name, value) in &entry.set {
         resolve(name.get_ref(), &known, "a parameter")
             .map_err(|e| located(e, &where_(name.span().start)))?;
-        parameters.retain(|(n, _)| n != name.get_ref());
-        parameters.push((name.get_ref().clone(), *value));
+        if let SetValue::Number(value) = value {
+            parameters.retain(|(n, _)| n != name.get_ref());
+            parameters.push((name.get_ref().clone(), *value));
+            timed.retain(|n| n != name.get_ref());
+        }
     }
+    let in_force = model.with_defaults(&parameters);
+    let expressions = set_expressions(entry, &in_force, &mut parameters, &mut timed, where_)?;
     Ok(InForce {
         with,
         parameters,
         input: before.input,
+        timed,
+        expressions,
     })
+}
+
+/// The values `entry` sets by an expression of the change's time, each resolved against
+/// the parameters with a value in force (`in_force`, defaults included); each gets a
+/// stand-in value in `parameters` until the change (its value before, else 0) and is marked
+/// `timed` (docs/scenes.md#a-value-set-at-the-change).
+fn set_expressions(
+    entry: &PhaseEntry,
+    in_force: &[(String, f64)],
+    parameters: &mut Vec<(String, f64)>,
+    timed: &mut Vec<String>,
+    where_: &dyn Fn(usize) -> String,
+) -> Result<Vec<(String, SetExpression)>, CliError> {
+    let mut expressions = Vec::new();
+    for (name, value) in &entry.set {
+        let SetValue::Expression(text) = value else {
+            continue;
+        };
+        let name = name.get_ref();
+        let expression = SetExpression::new(text, in_force).map_err(|e| {
+            let here = where_(
+                entry
+                    .set
+                    .keys()
+                    .find(|k| k.get_ref() == name)
+                    .map_or(0, |k| k.span().start),
+            );
+            located(e, &format!("{here}: `{name}`"))
+        })?;
+        let stand_in = in_force
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(0.0, |(_, v)| *v);
+        parameters.retain(|(n, _)| n != name);
+        parameters.push((name.clone(), stand_in));
+        timed.retain(|n| n != name);
+        timed.push(name.clone());
+        expressions.push((name.clone(), expression));
+    }
+    Ok(expressions)
 }
 
 /// The phase `entry` begins, its coordinates and state masses checked against the first.
@@ -513,6 +583,7 @@ fn phase(
         })
         .map_err(|e| located(e, &here))?;
     let selected = model.selected.clone();
+    let timed = timed_of(&in_force, &model.with_defaults(&in_force.parameters));
     let (program, flows) = program_from(model, &in_force).map_err(|e| located(e, &here))?;
     let same = |p: &Program| {
         let k = p.state_mass_count();
@@ -551,8 +622,38 @@ fn phase(
         state_masses,
         record,
         end: None,
+        selected: timed.is_some().then(|| selected.clone()),
+        timed,
         in_force,
     })
+}
+
+/// What the phase with `in_force` (its values `values`, defaults included) takes from the
+/// run at its change: `None` if it sets nothing by an expression and carries no such value.
+fn timed_of(in_force: &InForce, values: &[(String, f64)]) -> Option<Timed> {
+    if in_force.timed.is_empty() {
+        return None;
+    }
+    let own: Vec<&String> = in_force.expressions.iter().map(|(n, _)| n).collect();
+    Some(Timed {
+        values: values.to_vec(),
+        sets: in_force.expressions.clone(),
+        carried: (in_force.timed.iter())
+            .filter(|n| !own.contains(n))
+            .cloned()
+            .collect(),
+    })
+}
+
+/// The recorded columns of phase `phase` again, with the values its change set: a recorded
+/// expression reads a parameter's value when it is resolved.
+pub fn record_again(
+    program: &Program,
+    selected: &SystemAst,
+    values: &[(String, f64)],
+    record_entries: &[String],
+) -> Result<Vec<(String, Recorded)>, CliError> {
+    record(program, selected, values, record_entries)
 }
 
 /// The state masses `entry` sets, by index, each positive.

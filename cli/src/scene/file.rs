@@ -77,9 +77,10 @@ pub struct PhaseEntry {
     /// How the state enters the phase.
     #[serde(default)]
     pub carry: CarryRule,
-    /// Parameter values changed here (the others carry over).
+    /// Parameter values changed here (the others carry over): numbers, or expressions of
+    /// the change's time `t` evaluated at the change ([`SetValue`]).
     #[serde(default)]
-    pub set: BTreeMap<Spanned<String>, f64>,
+    pub set: BTreeMap<Spanned<String>, SetValue>,
     /// State masses set here (a stage dropped).
     #[serde(default)]
     pub masses: BTreeMap<Spanned<String>, f64>,
@@ -105,6 +106,50 @@ pub struct RailEntry {
     /// (not the rail's length: that less the distance from the lowest point resting on the
     /// rail to the last button).
     pub exit_travel: Spanned<f64>,
+}
+
+/// A value a `[[phase]]` sets: a number, or an expression (a string) of `t`, the time of
+/// the change, numbers and parameters, evaluated when the change happens
+/// (`drogue_t_open = "t + 1.5"`: docs/scenes.md#a-value-set-at-the-change).
+#[derive(Clone, Debug, PartialEq)]
+pub enum SetValue {
+    /// A number.
+    Number(f64),
+    /// An expression, as written.
+    Expression(String),
+}
+
+impl<'de> Deserialize<'de> for SetValue {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_any(SetValueVisitor)
+    }
+}
+
+/// Reads a number (an integer too, as `f64` does) or a string.
+struct SetValueVisitor;
+
+impl serde::de::Visitor<'_> for SetValueVisitor {
+    type Value = SetValue;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a number, or an expression of the change's time `t` in quotes (\"t + 1.5\")")
+    }
+
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<SetValue, E> {
+        Ok(SetValue::Number(v))
+    }
+
+    fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<SetValue, E> {
+        Ok(SetValue::Number(v as f64))
+    }
+
+    fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<SetValue, E> {
+        Ok(SetValue::Number(v as f64))
+    }
+
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<SetValue, E> {
+        Ok(SetValue::Expression(v.to_string()))
+    }
 }
 
 /// `carry = "separation" | "capture"` (docs/scenes.md).

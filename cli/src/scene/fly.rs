@@ -7,17 +7,18 @@ use varmass::core::phases::ALREADY_PAST;
 use varmass::core::rail::{on_rail, pad_phase, slide_phase};
 use varmass::core::support::{held_phase, starts_held};
 use varmass::core::{
-    run_phases_keeping, Event, Phase, PhaseChange, PhasedSolution, Record, RunConfig, Statistics,
-    StepError, StepErrorKind, StopReason, Supported, VariableMassSystem,
+    continue_phases_keeping, run_phases_keeping, Event, Phase, PhaseChange, PhasedSolution, Record,
+    RunConfig, Statistics, StepError, StepErrorKind, StopReason, Supported, VariableMassSystem,
 };
 use varmass::interpret::{Program, TapeSystem};
 
 use super::build::{End, RailSpec, Scene};
+use super::timed::{self, SetAt, Timed};
 use crate::args::Method;
 use crate::error::CliError;
 use crate::run::dispatch::{on_sizes, padded_steps, SizedRun, Sizes};
-use crate::run::integrate::{describe, event, watcher, with_stepper, Watcher};
-use crate::run::names::shown;
+use crate::run::integrate::{describe, event, with_stepper, Watcher};
+use crate::run::names::{evaluate, shown};
 use crate::run::plan::Plan;
 use crate::run::watch::Watched;
 
@@ -47,6 +48,8 @@ pub struct Flown {
     pub rail_exit: Option<(f64, f64)>,
     /// The closest every accepted step of every phase came to a singular attitude, rad.
     pub closest_singular_attitude: Option<f64>,
+    /// The values phases set at their changes by expressions of the change's time.
+    pub sets: Vec<SetAt>,
 }
 
 /// Runs the scene's phases in turn, in the monomorphized code of the first phase's sizes
@@ -131,8 +134,10 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
     let mut ends = Vec::new();
     let mut masses = Vec::new();
     let mut flows = Vec::new();
+    let mut timed: Vec<Option<Timed>> = Vec::new();
     for phase in built {
         flows.push(phase.flows);
+        timed.push(phase.timed);
         let system = TapeSystem::<N, S>::padded(phase.program)
             .map_err(|e| CliError::Input(e.to_string()))?;
         systems.push((Supported::free(system), phase.carry));
@@ -164,22 +169,20 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
     let railed = rail_first(&mut phases, rail, start, &plan)?;
     let inserted =
         usize::from(held == Some(true)) + railed.map_or(0, |on_pad| 1 + usize::from(on_pad));
-    let config = config(&plan, energy_residual);
-    let steps = padded_steps(plan.steps, plan.method, len, S)?;
-    let (from, until) = (plan.from, plan.until);
-    macro_rules! phased_with {
-        ($stepper:ident, $settings:expr) => {
-            run_phases_keeping(
-                &phases,
-                start,
-                |system, t, state| {
-                    $stepper::new(system, t, state, $settings).map(|s| Watched::new(s, from, until))
-                },
-                &config,
-            )
-        };
-    }
-    let (phased, error) = with_stepper!(plan.method, steps, phased_with);
+    let timed::Ran {
+        phased,
+        error,
+        refused,
+        sets,
+    } = fly_phases(
+        &mut phases,
+        aligned(timed, &ends, inserted),
+        inserted,
+        start,
+        &plan,
+        energy_residual,
+        len,
+    )?;
     if inserted > 0 {
         let what = if railed.is_some() {
             "on its `[rail]`"
@@ -194,14 +197,16 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
     let starts_held = held == Some(true) || railed == Some(true);
     let lift_off = match (held.or(railed), starts_held) {
         (None, _) => None,
-        (Some(_), false) => Some(from),
+        (Some(_), false) => Some(plan.from),
         (Some(_), true) => removed.first().copied(),
     };
     let offset = inserted;
     let last = phased.phase.last().copied().unwrap_or(0);
-    let failure = error.map(|e| {
-        let ended = (&phased.changes[..], last);
-        failure::<N, S>(e, ended, &phases[offset..], &ends, &plan, &flows)
+    let failure = refused.or_else(|| {
+        error.map(|e| {
+            let ended = (&phased.changes[..], last);
+            failure::<N, S>(e, ended, &phases[offset..], &ends, &plan, &flows)
+        })
     });
     let stopped = phases.len() == last + 1 + offset
         && phases[last + offset].until.is_some()
@@ -209,7 +214,72 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
     let mut flown = flown(phased, (phases, offset), len, stopped, failure);
     flown.lift_off = lift_off;
     flown.rail_exit = rail_exit;
+    flown.sets = sets;
     Ok(flown)
+}
+
+/// Runs the phases with the plan's stepper ([`timed::run`]: a phase that takes values at
+/// its change is continued from the last point once its programs have them).
+fn fly_phases<'a, const N: usize, const S: usize>(
+    phases: &mut [Phase<'a, Supported<TapeSystem<N, S>>, S>],
+    (timed, watches): (
+        Vec<Option<Timed>>,
+        Vec<Option<&std::cell::RefCell<Program>>>,
+    ),
+    offset: usize,
+    start: (f64, SVector<f64, S>),
+    plan: &Plan,
+    energy_residual: bool,
+    len: usize,
+) -> Result<timed::Ran<N, S>, CliError> {
+    let config = config(plan, energy_residual);
+    let steps = padded_steps(plan.steps, plan.method, len, S)?;
+    let (from, until) = (plan.from, plan.until);
+    macro_rules! phased_with {
+        ($stepper:ident, $settings:expr) => {
+            timed::run(phases, &timed, &watches, offset, |phases, range, before| {
+                let stepper_for = |system, t, state| {
+                    $stepper::new(system, t, state, $settings).map(|s| Watched::new(s, from, until))
+                };
+                match before {
+                    None => run_phases_keeping(&phases[range], start, stepper_for, &config),
+                    Some(phased) => {
+                        let system = &phases[range.start - 1].system;
+                        continue_phases_keeping(
+                            phased,
+                            system,
+                            &phases[range],
+                            stepper_for,
+                            &config,
+                        )
+                    }
+                }
+            })
+        };
+    }
+    Ok(with_stepper!(plan.method, steps, phased_with))
+}
+
+/// Each phase's values set at its change and the program watching its end condition,
+/// aligned with the phases run (`offset` 1 behind a held phase, which sets nothing).
+fn aligned(
+    timed: Vec<Option<Timed>>,
+    ends: &[Option<End>],
+    offset: usize,
+) -> (
+    Vec<Option<Timed>>,
+    Vec<Option<&std::cell::RefCell<Program>>>,
+) {
+    let mut watches: Vec<_> = ends
+        .iter()
+        .map(|e| e.as_ref().and_then(|e| e.watch.as_ref()))
+        .collect();
+    let mut timed = timed;
+    for _ in 0..offset {
+        timed.insert(0, None);
+        watches.insert(0, None);
+    }
+    (timed, watches)
 }
 
 /// The watcher of each phase's end condition (none for a phase without one).
@@ -220,6 +290,23 @@ fn end_watchers<const S: usize>(ends: &[Option<End>]) -> Vec<Option<Watcher<'_, 
                 .and_then(|e| watcher(e.watch.as_ref(), e.observable, e.value))
         })
         .collect()
+}
+
+/// g(t, state) = the observable minus `value` (t − `value` for the time), as
+/// `run::integrate::watcher`, its program in a cell that takes the values set at a change.
+fn watcher<'a, const S: usize>(
+    program: Option<&'a std::cell::RefCell<Program>>,
+    observable: Option<crate::run::names::Observable>,
+    value: f64,
+) -> Option<Watcher<'a, S>> {
+    let Some(observable) = observable else {
+        return Some(Box::new(move |t, _: &SVector<f64, S>| t - value));
+    };
+    let program = program?;
+    Some(Box::new(move |t, state: &SVector<f64, S>| {
+        let program = program.borrow();
+        evaluate(&program, observable, t, state.as_slice()).map_or(f64::NAN, |v| v - value)
+    }))
 }
 
 /// Refuses a scene whose first phase's end condition was met while the body was held on its
@@ -408,6 +495,7 @@ fn flown<const N: usize, const S: usize>(
         lift_off: None,
         rail_exit: None,
         closest_singular_attitude: solution.closest_singular_attitude,
+        sets: Vec::new(),
     }
 }
 
