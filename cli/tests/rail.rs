@@ -103,6 +103,23 @@ fn a_first_phase_ending_at_apogee_is_not_met_while_resting_on_the_rail() {
 }
 
 #[test]
+fn a_value_set_at_a_change_after_the_rail_goes_to_the_scenes_phase() {
+    // The rail's pad and slide are two phases before the scene's: a `set` expression of the
+    // scene's phase 2 must be numbered and given as the scene's (review of session 36: the
+    // offset of the inserted phases, untested). u_e halved at t = 14 s: the thrust 2500 N
+    // from then on, so the run is still flying at 16 s.
+    let phase = "g = 9.81\n\n[[phase]]\nwhen = \"t = 14\"\nset = { u_e = \"t*0 + 500\" }\n";
+    let (summary, _) = changed("rail_set_phase", ("g = 9.81\n", phase), 0);
+    assert!(summary.contains("left its rail at t = 13.26"), "{summary}");
+    assert!(summary.contains("phase 2 began at t = 14 "), "{summary}");
+    assert!(summary.contains("; set u_e = 500"), "{summary}");
+    assert!(
+        summary.contains("stopped at t = 16 in phase 2 of 2"),
+        "{summary}"
+    );
+}
+
+#[test]
 fn a_bad_rail_is_a_message_and_exit_2() {
     let cases = [
         (
@@ -127,13 +144,13 @@ fn a_bad_rail_is_a_message_and_exit_2() {
         ),
         (
             "rail_short",
-            ("length = 5.0", "length = -1.0"),
+            ("exit_travel = 5.0", "exit_travel = -1.0"),
             "must be positive",
         ),
         (
             "rail_key",
-            ("length = 5.0", "length = 5.0\nlenght = 5.0"),
-            "unknown field `lenght`",
+            ("exit_travel = 5.0", "exit_travel = 5.0\nlength = 5.0"),
+            "unknown field `length`",
         ),
         (
             "rail_support",
@@ -153,7 +170,7 @@ fn a_bad_rail_is_a_message_and_exit_2() {
         (
             "rail_variational",
             (
-                "method = \"dop853\"",
+                "method = \"dop853\"\ntol = 1e-12",
                 "method = \"variational\"\nstep = 0.01",
             ),
             "the variational stepper reads the Lagrange side",

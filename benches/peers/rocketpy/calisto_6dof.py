@@ -12,17 +12,28 @@ corrected, LSODA at rtol 1e-9, the rail phase's step bounded) with:
   which it places the aerodynamic surfaces (surfaces_cp_to_cdm, +(position - cdm) csys).
   For Calisto the propellant (grains at body z -0.753 m) is put 0.753 m FORWARD of the dry
   centre in the equations of motion: the aerodynamic forces' moments are taken about a
-  centre of mass 2 |r_CM| (0.213 m, 1.7 calibers at ignition) too far forward. Corrected:
+  centre of mass 2 |r_CM| (0.232 m, 1.83 calibers at ignition, 0.213 m at rail exit) too far
+  forward. Corrected:
   both replaced by their negatives (set after the rocket is built; they are used nowhere
   else in the 6-DOF flight).
+- `vdot`: with `cm_sign`, the translation equation's -(r_CM x w') written for the same
+  convention: u_dot_generalized's v_dot = K (T20/m - (r_CM ^ w_dot)) holds for r_CM the vector
+  from the centre of mass (rigid kinematics: a_O = a_CM - w' x c - w x (w x c) for c the centre
+  of mass from O; RocketPy's own I_CM = I - m [c]^T [c] assumes it); with the offsets' sign
+  corrected it must read (w_dot ^ r_CM). Patched in the method's source (review of session 36:
+  the two sign errors cancel in this one term as RocketPy ships it).
+- `axial`: T04's -m r_CM'' - 2 m' r_CM' dropped: with the propellant at a fixed point of the
+  body its centre of mass moves only because mass vanishes there, and the first moment
+  m r_CM = m_p z_g gives m r_CM'' + 2 m' r_CM' = m'' (z_g - r_CM), the same kind of spurious
+  axial force as the m'' (r_NOZ - r_CM) that `all` removes.
+- `thomson`: T03 = m'(r_NOZ - r_CM) - m r_CM' in place of 2 m'(r_NOZ - r_CM) - 2 m r_CM': the
+  factor 2 is the Coriolis force of the steady internal gas flow, which varmass (Thomson's
+  model, docs/mechanics.md: internal flow of negligible momentum) leaves out. A difference of
+  model, not an error of RocketPy's.
 - `nowind`: the wind set to zero (flight.toml's [weather] wind).
-- `no_rcm_dot`: r_CM's derivatives set to zero where u_dot_generalized takes them (its
-  r_CM_dot and r_CM_ddot: the axial -m r_CM'' - 2 m' r_CM' of its T04, and T03's 2 m r_CM'):
-  with the propellant at a fixed point of the body, its centre of mass moves only because
-  mass vanishes there, and the first moment m r_CM = m_p z_g gives
-  m r_CM'' + 2 m' r_CM' = m'' (z_g - r_CM), the same kind of spurious axial force as the
-  m'' (r_NOZ - r_CM) that `all` removes (a control volume's momentum balance, with the
-  propellant moving with the body, has neither; docs/validation.md).
+- `no_rcm_dot`: r_CM's derivatives set to zero everywhere u_dot_generalized takes them: T04's
+  axial terms (as `axial`) and T03's -2 m r_CM' too (kept for the record: it removes more
+  than the spurious term).
 - `sin_alpha`: every surface's lift coefficient C_N_alpha sin(alpha) in place of
   C_N_alpha alpha (varmass's barrowman_lift.vms is linear in the lateral airspeed).
 
@@ -45,6 +56,10 @@ import calisto  # noqa: E402  (benches/peers/rocketpy/calisto.py)
 
 ROWS = [
     ("all", ()),
+    ("cm_sign_vdot_axial_thomson", ("sign", "vdot", "axial", "thomson")),
+    ("cm_sign_vdot_axial_thomson_nowind", ("sign", "vdot", "axial", "thomson", "nowind")),
+    ("cm_sign_vdot_axial", ("sign", "vdot", "axial")),
+    ("cm_sign_vdot", ("sign", "vdot")),
     ("all_nowind", ("nowind",)),
     ("cm_sign", ("sign",)),
     ("cm_sign_nowind", ("sign", "nowind")),
@@ -53,6 +68,7 @@ ROWS = [
     ("cm_sign_no_rcm_dot_nowind", ("sign", "rdot", "nowind")),
 ]
 WIND = list(calisto.SPEC["weather"]["wind"])
+ORIGINAL = __import__("rocketpy").simulation.flight.Flight.u_dot_generalized
 _BUILD = calisto.build
 
 
@@ -60,6 +76,34 @@ def sine_lift(surface):
     slope = surface.clalpha
     surface.cl = Function(lambda alpha, mach: slope(mach) * np.sin(alpha),
                           ["Alpha (rad)", "Mach"], "Cl")
+
+
+def patched(switches):
+    """Flight.u_dot_generalized with the `vdot`, `axial` and `thomson` edits of its source."""
+    import inspect
+    import re
+    import textwrap
+
+    import rocketpy.simulation.flight as module
+
+    source = textwrap.dedent(inspect.getsource(ORIGINAL)).replace("self.__", "self._Flight__")
+    edits = []
+    if "vdot" in switches:
+        edits.append(("(r_CM ^ w_dot)", "(w_dot ^ r_CM)"))
+    if "thomson" in switches:
+        edits.append(("T03 = 2 * total_mass_dot * (r_NOZ - r_CM) - 2 * total_mass * r_CM_dot",
+                      "T03 = total_mass_dot * (r_NOZ - r_CM) - total_mass * r_CM_dot"))
+    for old, new in edits:
+        assert old in source, old
+        source = source.replace(old, new)
+    if "axial" in switches:
+        shorter = re.sub(r"\n\s*- total_mass \* r_CM_ddot\n\s*- 2 \* total_mass_dot \* r_CM_dot",
+                         "", source)
+        assert len(shorter) < len(source), "T04's r_CM terms not found"
+        source = shorter
+    namespace = dict(vars(module))
+    exec(source, namespace)  # noqa: S102  (RocketPy's own method, edited as listed)
+    return namespace["u_dot_generalized"]
 
 
 def fly(switches):
@@ -76,13 +120,17 @@ def fly(switches):
                 sine_lift(surface)
         return env, rk
 
+    from rocketpy.simulation.flight import Flight
+
     calisto.build = build
     calisto.SPEC["weather"]["wind"] = [0.0, 0.0] if "nowind" in switches else WIND
+    Flight.u_dot_generalized = patched(switches)
     try:
         f, rk, env, _ = calisto.fly("all", rtol=calisto.TIGHT, terminate_on_apogee=True)
     finally:
         calisto.build = _BUILD
         calisto.SPEC["weather"]["wind"] = WIND
+        Flight.u_dot_generalized = ORIGINAL
     return calisto.summary("", f, rk, env)
 
 

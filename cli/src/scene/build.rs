@@ -141,7 +141,12 @@ pub fn build(read: &Read, path: &Path, models: &mut Models) -> Result<Scene, Cli
         false => entries_asked,
     };
     let mut phases = ended_phases(scene, first, &model_file, &record_entries, &at, models)?;
-    first_end_not_yet_true(scene, &phases[0], &plan, &at)?;
+    // With a support or a rail the first phase's conditions are watched from the lift-off
+    // (the exit) on, where the core refuses one already past; during the hold, `fly` reads
+    // them at every point. The free motion from the start is not the scene's.
+    if scene.support.is_none() && scene.rail.is_none() {
+        first_end_not_yet_true(scene, &phases[0], &plan, &at)?;
+    }
     watch_programs(&mut phases, &model_file, models)?;
     let support = match &scene.support {
         Some(name) => {

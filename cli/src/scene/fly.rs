@@ -130,20 +130,13 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
         ..
     } = scene;
     let k = built[0].program.state_mass_count();
-    let mut systems = Vec::new();
-    let mut ends = Vec::new();
-    let mut masses = Vec::new();
-    let mut flows = Vec::new();
-    let mut timed: Vec<Option<Timed>> = Vec::new();
-    for phase in built {
-        flows.push(phase.flows);
-        timed.push(phase.timed);
-        let system = TapeSystem::<N, S>::padded(phase.program)
-            .map_err(|e| CliError::Input(e.to_string()))?;
-        systems.push((Supported::free(system), phase.carry));
-        ends.push(phase.end);
-        masses.push(phase.state_masses);
-    }
+    let Unpacked {
+        systems,
+        ends,
+        masses,
+        flows,
+        timed,
+    } = unpacked::<N, S>(built)?;
     let watchers = end_watchers::<S>(&ends);
     let events: Vec<Option<Event<'_, S>>> = ends
         .iter()
@@ -183,23 +176,12 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
         energy_residual,
         len,
     )?;
-    if inserted > 0 {
-        let what = if railed.is_some() {
-            "on its `[rail]`"
-        } else {
-            "on its `support`"
-        };
-        met_while_held(&phased, (&phases, inserted), start, &ends, what)?;
-    }
-    let exit = railed.and_then(|on_pad| phased.changes.get(usize::from(on_pad)));
-    let rail_exit = exit.map(|change| (change.time, exit_speed(&phased, &phases, change.time)));
-    let (phased, removed) = renumbered(phased, inserted);
-    let starts_held = held == Some(true) || railed == Some(true);
-    let lift_off = match (held.or(railed), starts_held) {
-        (None, _) => None,
-        (Some(_), false) => Some(plan.from),
-        (Some(_), true) => removed.first().copied(),
+    let hold = Hold {
+        inserted,
+        held,
+        railed,
     };
+    let (phased, lift_off, rail_exit) = after_hold(phased, &phases, hold, start, &ends)?;
     let offset = inserted;
     let last = phased.phase.last().copied().unwrap_or(0);
     let failure = refused.or_else(|| {
@@ -216,6 +198,83 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
     flown.rail_exit = rail_exit;
     flown.sets = sets;
     Ok(flown)
+}
+
+/// The scene's phases taken apart: each one's free system and carry rule, end, state
+/// masses set, flows and values set at its change.
+struct Unpacked<const N: usize, const S: usize> {
+    systems: Vec<(Supported<TapeSystem<N, S>>, varmass::core::Carry)>,
+    ends: Vec<Option<End>>,
+    masses: Vec<Vec<(usize, f64)>>,
+    flows: Vec<Vec<String>>,
+    timed: Vec<Option<Timed>>,
+}
+
+/// [`Unpacked`] of the built phases, each program sized to the arm's `N`, `S`.
+fn unpacked<const N: usize, const S: usize>(
+    built: Vec<super::build::ScenePhase>,
+) -> Result<Unpacked<N, S>, CliError> {
+    let mut out = Unpacked {
+        systems: Vec::new(),
+        ends: Vec::new(),
+        masses: Vec::new(),
+        flows: Vec::new(),
+        timed: Vec::new(),
+    };
+    for phase in built {
+        out.flows.push(phase.flows);
+        out.timed.push(phase.timed);
+        let system = TapeSystem::<N, S>::padded(phase.program)
+            .map_err(|e| CliError::Input(e.to_string()))?;
+        out.systems.push((Supported::free(system), phase.carry));
+        out.ends.push(phase.end);
+        out.masses.push(phase.state_masses);
+    }
+    Ok(out)
+}
+
+/// What goes before the scene's phases: how many phases were inserted (a support's held
+/// phase, a rail's pad and slide), and the support's and the rail's "held at the start".
+#[derive(Clone, Copy)]
+struct Hold {
+    inserted: usize,
+    held: Option<bool>,
+    railed: Option<bool>,
+}
+
+/// The run after a hold: the first phase's end condition checked over the hold
+/// ([`met_while_held`]), the rail's exit (time, speed) read, the inserted phases numbered
+/// as the scene's first ([`renumbered`]), and the lift-off time.
+#[allow(clippy::type_complexity)]
+fn after_hold<const N: usize, const S: usize>(
+    phased: PhasedSolution<N, S>,
+    phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
+    hold: Hold,
+    start: (f64, SVector<f64, S>),
+    ends: &[Option<End>],
+) -> Result<(PhasedSolution<N, S>, Option<f64>, Option<(f64, f64)>), CliError> {
+    let Hold {
+        inserted,
+        held,
+        railed,
+    } = hold;
+    if inserted > 0 {
+        let what = match railed {
+            Some(_) => "on its `[rail]`",
+            None => "on its `support`",
+        };
+        met_while_held(&phased, (phases, inserted), start, ends, what)?;
+    }
+    let exit = railed.and_then(|on_pad| phased.changes.get(usize::from(on_pad)));
+    let rail_exit = exit.map(|change| (change.time, exit_speed(&phased, phases, change.time)));
+    let (phased, removed) = renumbered(phased, inserted);
+    let starts_held = held == Some(true) || railed == Some(true);
+    let lift_off = match (held.or(railed), starts_held) {
+        (None, _) => None,
+        (Some(_), false) => Some(start.0),
+        (Some(_), true) => removed.first().copied(),
+    };
+    Ok((phased, lift_off, rail_exit))
 }
 
 /// Runs the phases with the plan's stepper ([`timed::run`]: a phase that takes values at

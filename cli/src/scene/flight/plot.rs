@@ -12,6 +12,7 @@ use super::log::Log;
 use super::roles::{Role, Roles};
 use crate::error::CliError;
 use crate::run::output::Table;
+use crate::run::plot::bounds;
 
 const WIDTH: u32 = 900;
 const PANEL_HEIGHT: u32 = 280;
@@ -136,22 +137,4 @@ fn draw<DB: DrawingBackend>(
             .map_err(error)?;
     }
     area.present().map_err(error)
-}
-
-/// The range of the finite values, widened when it is a single point.
-fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        });
-    if !lo.is_finite() {
-        return (0.0, 1.0);
-    }
-    let pad = if hi > lo {
-        0.05 * (hi - lo)
-    } else {
-        0.5 * lo.abs().max(1.0)
-    };
-    (lo - pad, hi + pad)
 }

@@ -277,15 +277,20 @@ fn phase_events(
         .collect()
 }
 
-/// The landing: the last row, when the run stopped on a `stop_when` on the altitude while
-/// descending (a stop on the way up, `z > 50`, is no landing).
+/// The landing: the last row, when the run stopped on a `stop_when` while descending, back
+/// at or below the launch height (the altitude's first row, to 1e-9 of it): a stop on the
+/// way up (`z > 50`) or in the air (`altitude < 450`) is no landing, and a stop written on
+/// another name of the altitude (`z < 0` where the altitude role is `altitude = z`) is one
+/// (review of session 36: the condition's text was compared with the role's).
 fn landing(table: &Table, roles: &Roles, stopped_by: Option<&str>) -> Option<Landing> {
-    let (name, _, _) = condition(stopped_by?, "stop_when").ok()?;
-    if Some(name.trim()) != roles.text(Role::Altitude) {
-        return None;
-    }
+    condition(stopped_by?, "stop_when").ok()?;
     let (time, row) = table.last()?;
     let at = |role: Role| roles.index(role).map(|k| row[k]);
+    let k = roles.index(Role::Altitude)?;
+    let launch = (table.len() > 0).then(|| table.row(0).1[k])?;
+    if at(Role::Altitude)? > launch + 1e-9 * (1.0 + launch.abs()) {
+        return None;
+    }
     let vertical_speed = at(Role::VerticalSpeed).filter(|v| *v <= 0.0)?;
     Some(Landing {
         time,
