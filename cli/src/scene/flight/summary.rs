@@ -287,7 +287,7 @@ fn landing(table: &Table, roles: &Roles, stopped_by: Option<&str>) -> Option<Lan
     let (time, row) = table.last()?;
     let at = |role: Role| roles.index(role).map(|k| row[k]);
     let k = roles.index(Role::Altitude)?;
-    let launch = (table.len() > 0).then(|| table.row(0).1[k])?;
+    let launch = (!table.is_empty()).then(|| table.row(0).1[k])?;
     if at(Role::Altitude)? > launch + 1e-9 * (1.0 + launch.abs()) {
         return None;
     }
