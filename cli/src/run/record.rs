@@ -299,15 +299,7 @@ fn resolve_term(node: &ExprNode, scope: &Scope<'_>, depth: usize) -> Result<Term
             }
         }
         Expr::Call { func, args } => {
-            let f = Func::from_name(&func.node)
-                .filter(|f| f.arity() == args.len())
-                .ok_or_else(|| {
-                    CliError::Input(format!(
-                        "`{}` with {} argument(s) is not a function of the DSL",
-                        func.node,
-                        args.len()
-                    ))
-                })?;
+            let f = dsl_function(&func.node, args.len())?;
             let args = args
                 .iter()
                 .map(|a| resolve_term(a, scope, depth))
@@ -315,6 +307,30 @@ fn resolve_term(node: &ExprNode, scope: &Scope<'_>, depth: usize) -> Result<Term
             Term::Call(f, args)
         }
     })
+}
+
+/// The DSL's function `name` taking `arity` arguments (`sqrt` aside, which the callers
+/// read first), or the message that there is none: the one lookup of recorded expressions
+/// and of the values a scene sets at a change.
+pub(crate) fn dsl_function(name: &str, arity: usize) -> Result<Func, CliError> {
+    Func::from_name(name)
+        .filter(|f| f.arity() == arity)
+        .ok_or_else(|| {
+            CliError::Input(format!(
+                "`{name}` with {arity} argument(s) is not a function of the DSL"
+            ))
+        })
+}
+
+/// `a op b`, as the derivation's expressions compute it.
+pub(crate) fn binary(op: BinOp, a: f64, b: f64) -> f64 {
+    match op {
+        BinOp::Add => a + b,
+        BinOp::Sub => a - b,
+        BinOp::Mul => a * b,
+        BinOp::Div => a / b,
+        BinOp::Pow => a.powf(b),
+    }
 }
 
 /// A name: a quantity, `t`, `mdot_<mass>`, a parameter or a `let` (resolved in turn).
@@ -410,16 +426,7 @@ impl Term {
                 rates.get(*i).copied().unwrap_or(f64::NAN)
             }
             Term::Neg(a) => -of(a)?,
-            Term::Binary(op, a, b) => {
-                let (a, b) = (of(a)?, of(b)?);
-                match op {
-                    BinOp::Add => a + b,
-                    BinOp::Sub => a - b,
-                    BinOp::Mul => a * b,
-                    BinOp::Div => a / b,
-                    BinOp::Pow => a.powf(b),
-                }
-            }
+            Term::Binary(op, a, b) => binary(*op, of(a)?, of(b)?),
             Term::Call(f, args) => {
                 let args = args.iter().map(of).collect::<Result<Vec<f64>, _>>()?;
                 f.apply(&args)

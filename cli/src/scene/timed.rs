@@ -22,6 +22,7 @@ use varmass::symbolic::parse::parse_expression;
 
 use crate::error::CliError;
 use crate::run::names::{resolve, shown};
+use crate::run::record::{binary, dsl_function};
 
 type Phase<'a, const N: usize, const S: usize> =
     varmass::core::Phase<'a, Supported<TapeSystem<N, S>>, S>;
@@ -106,15 +107,7 @@ fn resolved(node: &ExprNode, known: &[(String, f64)]) -> Result<Term, CliError> 
             Term::Sqrt(boxed(&args[0])?)
         }
         Expr::Call { func, args } => {
-            let f = Func::from_name(&func.node)
-                .filter(|f| f.arity() == args.len())
-                .ok_or_else(|| {
-                    CliError::Input(format!(
-                        "`{}` with {} argument(s) is not a function of the DSL",
-                        func.node,
-                        args.len()
-                    ))
-                })?;
+            let f = dsl_function(&func.node, args.len())?;
             let args = args.iter().map(|a| resolved(a, known));
             Term::Call(f, args.collect::<Result<_, _>>()?)
         }
@@ -164,16 +157,7 @@ fn evaluate(term: &Term, t: f64, values: &[(String, f64)]) -> f64 {
             .find(|(n, _)| n == name)
             .map_or(f64::NAN, |(_, v)| *v),
         Term::Neg(a) => -of(a),
-        Term::Binary(op, a, b) => {
-            let (a, b) = (of(a), of(b));
-            match op {
-                BinOp::Add => a + b,
-                BinOp::Sub => a - b,
-                BinOp::Mul => a * b,
-                BinOp::Div => a / b,
-                BinOp::Pow => a.powf(b),
-            }
-        }
+        Term::Binary(op, a, b) => binary(*op, of(a), of(b)),
         Term::Call(f, args) => f.apply(&args.iter().map(of).collect::<Vec<f64>>()),
         Term::Sqrt(a) => of(a).sqrt(),
     }
