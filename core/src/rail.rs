@@ -152,7 +152,7 @@ impl Rail {
     }
 
     /// The state rate on the rail at `state` `[q, p, m_s]`: the free one with ṗ += Q_c and
-    /// q̇ projected on b (0 on the pad).
+    /// q̇ projected on b; on the pad q̇ = ṗ = 0 and only the masses run.
     pub fn state_rate<Sys, const N: usize, const S: usize>(
         &self,
         system: &Sys,
@@ -162,22 +162,22 @@ impl Rail {
     where
         Sys: VariableMassSystem<N, S>,
     {
+        let mut rate = system.state_rate(t, state)?;
+        if self.on_pad {
+            // p stays 0 (checked at the start: no momentum at rest, [`on_rail`]), so its rate
+            // is 0 exactly rather than ṗ_free − f to rounding, which would leave the resting
+            // body velocities of 1e-17 m/s (a condition `z' < 0` met on the pad); the masses
+            // run on. Nothing of Q_c is needed.
+            rate.fixed_rows_mut::<N>(0).fill(0.0);
+            rate.fixed_rows_mut::<N>(N).fill(0.0);
+            return Ok(rate);
+        }
         let velocity_state = system.velocity_state(t, state)?;
         let force = self.constraint_force(system, t, &velocity_state)?;
         let b = self.along::<N>();
-        let sliding = match self.on_pad {
-            true => 0.0,
-            false => b.dot(&velocity_state.fixed_rows::<N>(N)),
-        };
-        let mut rate = system.state_rate(t, state)?;
+        let sliding = b.dot(&velocity_state.fixed_rows::<N>(N));
         rate.fixed_rows_mut::<N>(0).copy_from(&(b * sliding));
-        // On the pad p stays 0 (checked at the start: no momentum at rest, [`on_rail`]), so
-        // its rate is 0 exactly rather than ṗ_free − f to rounding, which would leave the
-        // resting body velocities of 1e-17 m/s (a condition `z' < 0` met on the pad).
-        let momentum_rate = match self.on_pad {
-            true => SVector::<f64, N>::zeros(),
-            false => rate.fixed_rows::<N>(N) + force,
-        };
+        let momentum_rate = rate.fixed_rows::<N>(N) + force;
         rate.fixed_rows_mut::<N>(N).copy_from(&momentum_rate);
         Ok(rate)
     }
