@@ -15,7 +15,28 @@ const PANEL_HEIGHT: u32 = 260;
 
 /// Draws `table` into `path`; the extension chooses the format.
 pub fn plot(table: &Table, title: &str, path: &Path) -> Result<(), CliError> {
-    let size = (WIDTH, PANEL_HEIGHT * table.names.len().max(1) as u32);
+    let picture = TablePicture { table, title };
+    render(
+        &picture,
+        (WIDTH, PANEL_HEIGHT * table.names.len().max(1) as u32),
+        path,
+    )
+}
+
+/// A picture that can be drawn on any plotters backend.
+pub(crate) trait Picture {
+    /// Draws the picture on `area`.
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String>;
+}
+
+/// Draws `picture` at `size` (pixels) into `path`: SVG, or PNG with the `png` feature, as
+/// the extension says; the one place a plot's format is chosen (`--plot` and a scene's
+/// flight panels).
+pub(crate) fn render(
+    picture: &impl Picture,
+    size: (u32, u32),
+    path: &Path,
+) -> Result<(), CliError> {
     let failed = |reason: String| CliError::Write {
         path: path.to_path_buf(),
         reason,
@@ -25,22 +46,26 @@ pub fn plot(table: &Table, title: &str, path: &Path) -> Result<(), CliError> {
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     match extension.as_deref() {
-        Some("svg") => draw(
-            &SVGBackend::new(path, size).into_drawing_area(),
-            table,
-            title,
-        ),
+        Some("svg") => picture.draw(&SVGBackend::new(path, size).into_drawing_area()),
         #[cfg(feature = "png")]
-        Some("png") => draw(
-            &BitMapBackend::new(path, size).into_drawing_area(),
-            table,
-            title,
-        ),
+        Some("png") => picture.draw(&BitMapBackend::new(path, size).into_drawing_area()),
         #[cfg(not(feature = "png"))]
         Some("png") => Err("PNG needs the tool built with `--features png`; use .svg".to_string()),
         _ => Err("the plot's extension must be .svg or .png".to_string()),
     }
     .map_err(failed)
+}
+
+/// `--plot`'s picture: every recorded column of `table` against t.
+struct TablePicture<'a> {
+    table: &'a Table,
+    title: &'a str,
+}
+
+impl Picture for TablePicture<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        draw(area, self.table, self.title)
+    }
 }
 
 fn draw<DB: DrawingBackend>(

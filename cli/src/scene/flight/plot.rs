@@ -12,7 +12,7 @@ use super::log::Log;
 use super::roles::{Role, Roles};
 use crate::error::CliError;
 use crate::run::output::Table;
-use crate::run::plot::bounds;
+use crate::run::plot::{bounds, render, Picture};
 
 const WIDTH: u32 = 900;
 const PANEL_HEIGHT: u32 = 280;
@@ -43,31 +43,19 @@ pub fn plot(
 ) -> Result<(), CliError> {
     let panels = panels(table, roles, log);
     let size = (WIDTH, PANEL_HEIGHT * panels.len().max(1) as u32);
-    let failed = |reason: String| CliError::Write {
-        path: path.to_path_buf(),
-        reason,
-    };
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match extension.as_deref() {
-        Some("svg") => draw(
-            &SVGBackend::new(path, size).into_drawing_area(),
-            &panels,
-            title,
-        ),
-        #[cfg(feature = "png")]
-        Some("png") => draw(
-            &BitMapBackend::new(path, size).into_drawing_area(),
-            &panels,
-            title,
-        ),
-        #[cfg(not(feature = "png"))]
-        Some("png") => Err("PNG needs the tool built with `--features png`; use .svg".to_string()),
-        _ => Err("the plot's extension must be .svg or .png".to_string()),
+    render(&FlightPicture { panels, title }, size, path)
+}
+
+/// The flight's picture: its panels under `title`.
+struct FlightPicture<'a> {
+    panels: Vec<(&'static str, Vec<Series>)>,
+    title: &'a str,
+}
+
+impl Picture for FlightPicture<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        draw(area, &self.panels, self.title)
     }
-    .map_err(failed)
 }
 
 /// The panels that have at least one series, each with its series.
