@@ -27,8 +27,10 @@ mod rail_support;
 
 use varmass::core::nalgebra::SVector;
 use varmass::core::rail::{phases, times, BAD_DIRECTION, NOT_AT_REST};
+use varmass::core::run::{run, EVENT_NOT_A_NUMBER};
 use varmass::core::steppers::{AdaptiveControl, Dop853, StepControl};
-use varmass::core::{run_phases, RunConfig, StepErrorKind, VariableMassSystem};
+use varmass::core::{run_phases, Direction, Event, EventAction, EventCondition};
+use varmass::core::{RunConfig, StepErrorKind, VariableMassSystem};
 use varmass::prelude::variable_mass_system;
 
 use rail_support::{exit, lift_off, slide, G, INCLINATION, LENGTH, MU, M_D, M_P, U_E};
@@ -169,4 +171,43 @@ fn a_rail_that_is_not_a_unit_direction_or_a_body_not_at_rest_is_refused() {
     let bad = phases(rocket(), ([0, 1, 2], direction), LENGTH, (0.0, &moving));
     assert!(matches!(bad.map(|_| ()).unwrap_err().kind,
         StepErrorKind::InvalidConfiguration { reason } if reason == NOT_AT_REST));
+}
+
+/// A rail's events read the rail: on a system without one their function is not a number,
+/// so they could never trigger. The run refuses them where it starts (before, it ran to its
+/// end as though the event had not happened); an event that turns NaN later is refused
+/// where it does.
+#[test]
+fn a_rail_event_on_a_system_without_a_rail_is_refused_not_passed_silently() {
+    let free = rocket();
+    let control = StepControl::Adaptive(AdaptiveControl::dop853());
+    let refused = |condition| {
+        let mut stepper = Dop853::new(&free, 0.0, start(), control).unwrap();
+        let event = Event {
+            condition,
+            direction: Direction::Rising,
+            action: EventAction::Stop,
+        };
+        run(&mut stepper, &RunConfig::until(16.0), &[event]).map(|_| ())
+    };
+    for condition in [
+        EventCondition::RailLiftOff,
+        EventCondition::RailExit { length: LENGTH },
+    ] {
+        let error = refused(condition).unwrap_err();
+        assert_eq!(error.time, 0.0, "{condition:?}");
+        assert!(matches!(error.kind,
+            StepErrorKind::InvalidConfiguration { reason } if reason == EVENT_NOT_A_NUMBER));
+    }
+    // g(t) = 1 + t until t = 2, NaN after: refused at the first step past t = 2, never
+    // "no crossing".
+    let later = |t: f64, _: &SVector<f64, 15>| if t < 2.0 { 1.0 + t } else { f64::NAN };
+    let error = refused(EventCondition::Function(&later)).unwrap_err();
+    assert!(
+        error.time >= 2.0 && error.time < 16.0,
+        "refused at {}",
+        error.time
+    );
+    assert!(matches!(error.kind,
+        StepErrorKind::InvalidConfiguration { reason } if reason == EVENT_NOT_A_NUMBER));
 }

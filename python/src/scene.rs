@@ -84,6 +84,8 @@ pub fn run_scene<'py>(
     out.set_item(intern!(py, "changes"), changes)?;
     out.set_item(intern!(py, "statistics"), statistics(py, &done.statistics)?)?;
     out.set_item(intern!(py, "summary"), &done.summary)?;
+    out.set_item(intern!(py, "lift_off"), done.lift_off)?;
+    out.set_item(intern!(py, "rail_exit"), done.rail_exit)?;
     out.set_item(intern!(py, "flight"), flight(py, &done)?)?;
     Ok(out)
 }

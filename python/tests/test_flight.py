@@ -107,3 +107,37 @@ def test_plot_flight_without_matplotlib_says_how_to_get_it(tmp_path, monkeypatch
     monkeypatch.setitem(sys.modules, "matplotlib.pyplot", None)
     with pytest.raises(ImportError, match=r"pip install 'varmass\[plot\]'"):
         sol.plot_flight()
+
+
+def test_a_rail_scene_gives_its_lift_off_and_exit(tmp_path):
+    """``models/rocket_on_rail.toml``: 550 kg on a rail 80° above the horizontal, 5000 N of
+    thrust (μ = 5 kg/s at u_e = 1000 m/s) against 5396 N of weight along it. It rests until
+    μ u_e = m g sin i, m = 550 − μ t: t_l = (550 − μ u_e/(g sin i))/μ; then the frozen-mass
+    equation along the rail m s̈ = μ u_e − m g sin i gives, with m_l = 550 − μ t_l and
+    m = m_l − μ τ, ṡ = u_e ln(m_l/m) − g sin i τ and s = u_e (τ + (m/μ) ln(m/m_l)) −
+    g sin i τ²/2; the exit is where s = 5 m (Newton on the closed form below, as
+    tests/rail_support/mod.rs does)."""
+    sol = varmass.Scene.from_file(MODELS / "rocket_on_rail.toml").run()
+    mu, u_e, gs = 5.0, 1000.0, G * math.sin(math.radians(80.0))
+    t_l = (550.0 - mu * u_e / gs) / mu
+    m_l = 550.0 - mu * t_l
+
+    def slide(tau):
+        m = m_l - mu * tau
+        s = u_e * (tau + m / mu * math.log(m / m_l)) - 0.5 * gs * tau * tau
+        return s, u_e * math.log(m_l / m) - gs * tau
+
+    tau = 7.0
+    for _ in range(50):
+        s, v = slide(tau)
+        tau -= (s - 5.0) / v
+    time, speed = sol.rail_exit
+    # tests/rail.rs measures the lift-off 2.5e-14 s off, the exit 1.1e-12 s (the events'
+    # location tolerance), the speed 1.1e-14 relative: bounds 1e-10 s and 1e-9.
+    assert abs(sol.lift_off - t_l) <= 1e-10
+    assert abs(time - (t_l + tau)) <= 1e-10
+    assert abs(speed - slide(tau)[1]) <= 1e-9 * speed
+    assert pickle.loads(pickle.dumps(sol)).rail_exit == sol.rail_exit
+    # A scene without a rail or support, and a plain run, have neither.
+    staged = varmass.Scene.from_file(MODELS / "two_stage_rocket.toml").run()
+    assert staged.rail_exit is None and staged.lift_off is None

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Dict, List, Optional
+from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -37,6 +37,15 @@ class _Given:
     def summary(self):
         return self._raw["summary"]
 
+    def lift_off(self):
+        return self._raw.get("lift_off")
+
+    def rail_exit(self):
+        return self._raw.get("rail_exit")
+
+
+#: The details a solution keeps beside its columns (pickled with it).
+_DETAILS = ("end_state", "statistics", "summary", "lift_off", "rail_exit")
 
 #: Little-endian f64, made once (``np.frombuffer`` would parse ``"<f8"`` at every call).
 _F8 = np.dtype("<f8")
@@ -95,7 +104,7 @@ class Solution:
 
     def __reduce__(self):
         # Pickled (a Dask task's result) with its details made: the extension's are not.
-        given = {name: self._detail(name) for name in ("end_state", "statistics", "summary")}
+        given = {name: self._detail(name) for name in _DETAILS}
         data = self._data.tobytes()
         args = (
             self.names,
@@ -112,7 +121,9 @@ class Solution:
         try:
             return self._cache[name]
         except KeyError:
-            value = self._cache[name] = getattr(self._details, name)()
+            # A plain run's details (``_native.Details``) have no support or rail.
+            made = getattr(self._details, name, None)
+            value = self._cache[name] = made() if made is not None else None
             return value
 
     @property
@@ -130,6 +141,21 @@ class Solution:
     def summary(self) -> str:
         """What ``varmass run`` prints after a run."""
         return self._detail("summary")
+
+    @property
+    def lift_off(self) -> Optional[float]:
+        """When a scene's body left its support or its rail's bottom (``support = "y"``,
+        ``[rail]``: docs/scenes.md): the start if it lifted at once, ``None`` if it was
+        still held at the end, for a scene with neither, and for a plain run."""
+        return self._detail("lift_off")
+
+    @property
+    def rail_exit(self) -> Optional[Tuple[float, float]]:
+        """When a scene's body left its rail (``[rail]``, docs/scenes.md#a-launch-rail) and
+        its speed then (m/s), as ``(time, speed)``; ``None`` if it was still on the rail at
+        the end, for a scene without a rail, and for a plain run."""
+        exit = self._detail("rail_exit")
+        return tuple(exit) if exit is not None else None
 
     def _column(self, name: str) -> np.ndarray:
         """The column ``name`` (a view), or ``None``."""

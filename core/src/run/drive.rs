@@ -283,7 +283,7 @@ where
         let hits = self.recorder.hits();
         let before = hits.len();
         let step = (&self.previous, &past);
-        let Some(hit) = self.watch.check_step(system, step, &line, 0.0, hits) else {
+        let Some(hit) = self.watch.check_step(system, step, &line, 0.0, hits)? else {
             return Err(refused);
         };
         for gap_hit in &mut hits[before..] {

@@ -20,6 +20,7 @@ mod watch;
 
 pub use failure::RunError;
 pub use switching::Switching;
+pub use watch::EVENT_NOT_A_NUMBER;
 
 use crate::error::StepError;
 use crate::events::Event;
@@ -223,7 +224,7 @@ where
     }
     let system = stepper.system();
     Running {
-        watch: EventWatch::start(events, system, &start),
+        watch: EventWatch::start(events, system, &start)?,
         switches: SwitchWatch::start(system, config.switching, &start, config.end_time)?,
         stepper,
         config,
@@ -296,7 +297,7 @@ where
     let before = core::mem::replace(previous, after);
     let hits = recorder.hits();
     let hold = |_| sampled;
-    let hit = watch.check_step(stepper.system(), (&before, previous), &hold, 0.0, hits);
+    let hit = watch.check_step(stepper.system(), (&before, previous), &hold, 0.0, hits)?;
     recorder.push(stepper.system(), previous)?;
     if let Some(hit) = hit {
         return Ok(Sampled::Stopped(StopReason::EventFound {
@@ -420,7 +421,7 @@ where
 {
     let step = (previous, current);
     let hits = recorder.hits();
-    if let Some(hit) = watch.check_step(system, step, interpolate, config.event_tolerance, hits) {
+    if let Some(hit) = watch.check_step(system, step, interpolate, config.event_tolerance, hits)? {
         let needs = Needs {
             rate: false,
             energy: config.needs_energy(),
