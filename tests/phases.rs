@@ -2,7 +2,7 @@
 //! `models/two_stage_rocket.vms` as one scene, separation carrying the velocity.
 
 use varmass::core::steppers::{AdaptiveControl, StepControl};
-use varmass::core::{continue_phases, run_phases, Carry, Phase};
+use varmass::core::{continue_phases, run_phases, Carry, EventAction, Phase};
 use varmass::prelude::*;
 
 #[variable_mass_system(file = "models/two_stage_rocket.vms")]
@@ -429,5 +429,46 @@ fn continuing_failed_phases_is_an_error() {
         ),
         "{:?}",
         failure.kind
+    );
+}
+
+/// A one-way condition standing on its boundary where its phase begins: stage 2 entered at
+/// t = 50 s with an end g(t) = (t − 50)(60 − t), zero at the change, positive, then falling
+/// through zero at t = 60 s. A run does not count its start at zero as a crossing, so the
+/// fall at 60 s is the phase's end (a body lifting off at y = 0 whose phase ends at `y < 0`
+/// is this case). Before, the phase was refused at the change. The same condition with
+/// g(t) = 50 − t leaves zero at once to the side where it holds: it held from the start and
+/// could never trigger, so it is refused at the change (after the phase's run, which is not
+/// kept).
+#[test]
+fn a_one_way_condition_on_its_boundary_at_the_change_waits_for_its_crossing() {
+    let later = |t: f64, _: &SVector<f64, 3>| (t - 50.0) * (60.0 - t);
+    let at_once = |t: f64, _: &SVector<f64, 3>| 50.0 - t;
+    let falling = |g| Event::function(g, Direction::Falling, EventAction::Stop);
+    let run = |end| {
+        run_phases(
+            &two_stages(&[(0, 300.0)], end),
+            (0.0, SVector::from([0.0, 0.0, 1000.0])),
+            |system, t, state| DormandPrince::new(system, t, state, control()),
+            &RunConfig::until(150.0),
+        )
+    };
+    let phased = run(falling(&later)).expect("the fall at t = 60 s ends the phase");
+    let end = phased.solution.times.last().copied().unwrap_or(f64::NAN);
+    // The event is located to its default tolerance; measured 60 to rounding.
+    assert!((end - 60.0).abs() < 1e-9, "ended at {end}");
+    assert_eq!(phased.solution.stop, StopReason::EventFound { index: 0 });
+    let failure = run(falling(&at_once)).expect_err("held from the start");
+    assert!(
+        matches!(failure.kind,
+            StepErrorKind::InvalidConfiguration { reason } if reason == varmass::core::phases::ALREADY_PAST),
+        "{:?}",
+        failure.kind
+    );
+    assert!((failure.time - 50.0).abs() < 1e-9, "{}", failure.time);
+    let kept = failure.partial.times.last().copied().unwrap_or(f64::NAN);
+    assert!(
+        (kept - 50.0).abs() < 1e-9,
+        "the phase's run kept up to {kept}"
     );
 }

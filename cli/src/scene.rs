@@ -263,7 +263,11 @@ fn rail_lines(lift_off: Option<f64>, exit: Option<(f64, f64)>) -> String {
 fn below_support(flown: &fly::Flown, k: usize) -> Option<(f64, f64)> {
     let lift_off = flown.lift_off?;
     let pad = flown.points.first()?.1.get(k).copied()?;
-    let after = flown.points.iter().filter(|(t, _)| *t > lift_off);
+    // A run stopped by its condition ends on the located crossing, which stands within the
+    // location's tolerance on either side of its value: a landing at `y < 0` is not a fall
+    // through the pad.
+    let kept = flown.points.len() - usize::from(flown.stopped);
+    let after = flown.points[..kept].iter().filter(|(t, _)| *t > lift_off);
     let (time, lowest) = after
         .filter_map(|(t, state)| Some((*t, *state.get(k)?)))
         .min_by(|a, b| a.1.total_cmp(&b.1))?;

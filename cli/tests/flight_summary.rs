@@ -390,8 +390,11 @@ fn bad_flight_entries_are_refused() {
 /// The example `models/calisto.toml`: its burnout is the motor's burn time (the .eng's last
 /// knot, 3.9 s: a row), its located apogee is the highest recorded row (the drag's `abs(y')`
 /// is a switch, so the run puts a row at the apex; the bracket is a few roundings wide)
-/// to its reported bound, it lands on `stop_when = "y < 0"`, and its mach and qbar are
-/// the expressions of its `[flight]`.
+/// to its reported bound, it lands on `stop_when = "y < 0"` — in its only phase, whose
+/// condition stands on its boundary at the lift-off (y = 0) and waits for its crossing —
+/// without a warning of a fall through the pad (the located landing stands within the
+/// location's tolerance of y = 0, 1.1e-12 below it), and its mach and qbar are the
+/// expressions of its `[flight]`.
 #[test]
 fn the_calisto_example_summarizes_its_flight() {
     let file = common::root("models/calisto.toml");
@@ -408,6 +411,9 @@ fn the_calisto_example_summarizes_its_flight() {
     assert!((3000.0..3200.0).contains(&apogee.altitude));
     let landing = s.landing.expect("landed");
     assert_eq!(landing.time, s.end.time);
+    assert!(run.changes.is_empty(), "{:?}", run.changes);
+    assert_eq!(run.stopped_by.as_deref(), Some("y < 0"));
+    assert!(!run.summary.contains("went below"), "{}", run.summary);
     assert_eq!(s.roles["mach"], "abs(y')/air_a");
     let mach = s.max_mach.unwrap();
     assert!((0.8..0.85).contains(&mach.value), "{mach:?}");

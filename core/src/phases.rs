@@ -13,7 +13,7 @@ use alloc::vec::Vec;
 use nalgebra::{SMatrix, SVector};
 
 use crate::error::StepError;
-use crate::events::Event;
+use crate::events::{Direction, Event};
 use crate::run::{run, RunConfig, RunError};
 use crate::solution::{Solution, StopReason};
 use crate::stepper::{Checked, Stepper};
@@ -22,7 +22,9 @@ use crate::system::VariableMassSystem;
 /// The error of a phase whose end condition already holds where it begins, or stands
 /// exactly on its boundary there: its event could never trigger (a run does not count a
 /// start at zero, so that a restart does not re-trigger its own event), and the phase would
-/// run silently to the end time instead of handing over to the next.
+/// run silently to the end time instead of handing over to the next. A one-way condition
+/// (rising or falling) on its boundary may begin: refused only if g then leaves 0 to the
+/// side where it holds without a crossing (at the phase's start, after its run).
 pub const ALREADY_PAST: &str = "a phase's end condition already holds (or stands exactly on its \
      boundary) where the phase begins, so it would never trigger";
 
@@ -248,13 +250,10 @@ where
                 kinetic_energy_removed: removed,
             });
         }
-        if let Some(until) = &phase.until {
-            let g = until.value(&phase.system, time, &state);
-            if g == 0.0 || until.already_past(g) {
-                let error = StepError::invalid_configuration(time, state, ALREADY_PAST);
-                return fail(error, phased);
-            }
-        }
+        let on_boundary = match may_begin(phase, time, &state) {
+            Ok(on_boundary) => on_boundary,
+            Err(error) => return fail(error, phased),
+        };
         let mut stepper = match stepper_for(&phase.system, time, state) {
             Ok(stepper) => stepper,
             Err(error) => return fail(error, phased),
@@ -269,6 +268,10 @@ where
             Ok(solution) => (solution, None),
             Err(failure) => (*failure.partial, Some(failure.error)),
         };
+        if on_boundary && failure.is_none() && held_from_start(phase, &solution) {
+            let error = StepError::invalid_configuration(time, state, ALREADY_PAST);
+            return fail(error, phased);
+        }
         append(&mut phased, solution, first + index);
         if let Some(error) = failure {
             return fail(error, phased);
@@ -282,6 +285,47 @@ where
         }
     }
     (phased, None)
+}
+
+/// Whether `phase` may begin at `(time, state)`, and whether it begins exactly on the
+/// boundary of a one-way end condition (g = 0 for a rising or falling event: a body lifting
+/// off at y = 0 whose phase ends when `y < 0`). Refused ([`ALREADY_PAST`]) where the
+/// condition already holds, and on the boundary of an either-way condition, where g may
+/// leave 0 to either side and a run does not count a start at zero: it could never trigger.
+fn may_begin<Sys, const N: usize, const S: usize>(
+    phase: &Phase<'_, Sys, S>,
+    time: f64,
+    state: &SVector<f64, S>,
+) -> Result<bool, StepError<S>>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let Some(until) = &phase.until else {
+        return Ok(false);
+    };
+    let g = until.value(&phase.system, time, state);
+    let one_way = until.direction != Direction::Either;
+    match (g == 0.0 && !one_way) || until.already_past(g) {
+        true => Err(StepError::invalid_configuration(time, *state, ALREADY_PAST)),
+        false => Ok(g == 0.0),
+    }
+}
+
+/// Whether a phase begun on its one-way condition's boundary ran without meeting it and
+/// ended on the side where it holds: g left 0 that way at once (a start at zero is not
+/// counted as a crossing), so the condition held from the start and never triggered.
+fn held_from_start<Sys, const N: usize, const S: usize>(
+    phase: &Phase<'_, Sys, S>,
+    solution: &Solution<N, S>,
+) -> bool
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    let (Some(until), Some((end, last))) = (&phase.until, solution.last()) else {
+        return false;
+    };
+    let found = solution.stop == (StopReason::EventFound { index: 0 });
+    !found && until.already_past(until.value(&phase.system, end, last))
 }
 
 /// A kept failure as a [`RunError`] carrying the solution so far.
