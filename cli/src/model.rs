@@ -3,6 +3,7 @@
 //! `--> FILE:line:column`, the line and a caret, as the macro shows them too).
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use varmass::symbolic::compose::{compose, Composition};
 use varmass::symbolic::parse::ast::{ExprNode, StatementKind, SystemAst};
@@ -21,8 +22,10 @@ use crate::error::CliError;
 pub struct LoadedModel {
     /// The directory the model's table files are read from (the model file's).
     pub base: PathBuf,
-    /// The derivation (parameters inferred: every free name is one).
-    pub derivation: Derivation,
+    /// The derivation (parameters inferred: every free name is one), shared by the copies
+    /// of the model (a scene's phases, an ensemble's members): each program that runs it
+    /// takes its own copy of it.
+    pub derivation: Arc<Derivation>,
     /// The whole model, every tag included: where a parameter of a tag not asked for is
     /// found.
     pub ast: SystemAst,
@@ -99,7 +102,7 @@ pub fn load_source(source: &str, path: &Path, with: &[String]) -> Result<LoadedM
     let warnings = crate::lint::typo_warnings(&derivation, &ast);
     Ok(LoadedModel {
         base,
-        derivation,
+        derivation: Arc::new(derivation),
         ast: full,
         with: with.to_vec(),
         selected: ast,
@@ -121,7 +124,7 @@ impl LoadedModel {
             &self.base,
             laws,
         );
-        self.derivation = derived.map_err(|diagnostics| self.failed(diagnostics))?;
+        self.derivation = Arc::new(derived.map_err(|diagnostics| self.failed(diagnostics))?);
         Ok(self)
     }
 }
@@ -150,7 +153,7 @@ impl LoadedModel {
             Outputs::FULL,
             &self.base,
         );
-        self.derivation = derived.map_err(|diagnostics| self.failed(diagnostics))?;
+        self.derivation = Arc::new(derived.map_err(|diagnostics| self.failed(diagnostics))?);
         Ok(self)
     }
 }

@@ -152,7 +152,7 @@ fn an_exact_size_runs_as_the_bare_interpreter() {
 
     let mut tool = compiled();
     let done = run(&mut tool, &sled(30.0)).unwrap();
-    let derivation = tool.model().derivation.clone();
+    let derivation = (*tool.model().derivation).clone();
     let program = Program::new(derivation, &sled(30.0)).expect("parameters fit");
     let system = TapeSystem::<1, 2>::new(program).expect("sizes");
     let control = StepControl::Adaptive(AdaptiveControl {

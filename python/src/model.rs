@@ -8,7 +8,7 @@ use std::sync::{Mutex, MutexGuard};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use varmass::symbolic::expr::Identity;
-use varmass::symbolic::mechanics::MassKind;
+use varmass::symbolic::mechanics::{Derivation, MassKind};
 use varmass::symbolic::parse::{known_tags, parse_system};
 use varmass_cli::error::CliError;
 use varmass_cli::model::{load_source, LoadedModel};
@@ -47,7 +47,7 @@ impl NativeModel {
     /// The whole derivation as text, or LaTeX (`align*` environments) with `latex`, exactly
     /// as `varmass derive [--latex]` prints it.
     fn derivation(&self, py: Python<'_>, latex: bool) -> String {
-        let mut derivation = self.lock().model().derivation.clone();
+        let mut derivation = Derivation::clone(&self.lock().model().derivation);
         py.detach(|| match latex {
             true => derivation.to_latex(),
             false => derivation.to_text(),

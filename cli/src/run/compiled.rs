@@ -14,6 +14,7 @@
 use std::time::SystemTime;
 
 use varmass::interpret::Program;
+use varmass::symbolic::mechanics::Derivation;
 
 use super::dispatch::dispatch;
 use super::integrate::Outcome;
@@ -62,10 +63,12 @@ impl RunOptions {
 pub struct Compiled {
     /// The model run: as loaded, or with the laws of the last run's `--input`s.
     model: LoadedModel,
-    /// The model as loaded when it declares inputs or tables (each run's laws are put in
-    /// its calls, each run's `--table` files in its tables), and the `--input`s and
-    /// `--table`s the current `model` was derived with.
-    declared: Option<(LoadedModel, Option<RunOptions>)>,
+    /// For a model that declares inputs or tables (each run's laws are put in its calls,
+    /// each run's `--table` files in its tables): the model as loaded, kept once a run's
+    /// laws or files made `model` differ from it (`None` while `model` is it: a run that
+    /// gives none copies nothing), and the `--input`s and `--table`s the current `model`
+    /// was derived with.
+    declared: Option<(Option<LoadedModel>, Option<RunOptions>)>,
     /// The parameters the equations read, found once.
     used: Vec<String>,
     /// `None` before the first run, and after a run that failed before giving it back.
@@ -87,8 +90,7 @@ impl Compiled {
     pub fn new(model: LoadedModel) -> Self {
         let used = model.derivation.used_parameters();
         let d = &model.derivation;
-        let declared =
-            (!d.inputs.is_empty() || !d.tables.is_empty()).then(|| (model.clone(), None));
+        let declared = (!d.inputs.is_empty() || !d.tables.is_empty()).then_some((None, None));
         Self {
             model,
             declared,
@@ -120,6 +122,13 @@ impl Compiled {
         if current.as_ref() == Some(&options) {
             return Ok(());
         }
+        // The model as loaded, with no laws to put in and no files: nothing to derive again.
+        let plain = input.is_empty() && table.is_empty() && self.model.derivation.inputs.is_empty();
+        if declared.is_none() && plain {
+            *current = Some(options);
+            return Ok(());
+        }
+        let declared = declared.get_or_insert_with(|| self.model.clone());
         let tabled = super::tables::apply(declared.clone(), table)?;
         self.model = super::inputs::apply(tabled, input, args.words)?;
         *current = Some(options);
@@ -153,7 +162,7 @@ impl Compiled {
         let mut program = match self.program.take() {
             Some(program) => program,
             None => {
-                let derivation = self.model.derivation.clone();
+                let derivation = Derivation::clone(&self.model.derivation);
                 Program::new(derivation, &borrowed).map_err(|e| self.refused(e, words))?
             }
         };
