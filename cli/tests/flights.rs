@@ -30,7 +30,7 @@
 //!   ignition and burnout (calisto.vms): < 1.1e-5 of the transverse inertia.
 //!
 //! Measured (`cargo test -p varmass-cli --test flights -- --nocapture`, debug, the eight
-//! ascents in 84 s on the shared 2-core machine), ours against the corrected RocketPy,
+//! ascents in 51–84 s on the shared 2-core machine), ours against the corrected RocketPy,
 //! relative: apogee -1.8e-5 (Lince) to +4.1e-5 (NDRT), apogee time -2.7e-5 (Astra) to
 //! +8.4e-6, rail-exit speed within 3.9e-7, max speed (the vertex of the three rows around
 //! the largest) -3.9e-6 to +1.2e-5 (NDRT). Bounds 6e-5, 4e-5, 6e-7, 2e-5.
