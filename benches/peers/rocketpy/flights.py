@@ -26,6 +26,16 @@ or a git directory such as a mirror: the file is then read with `git show`):
     target/venv-rocketpy/bin/pip install -r benches/peers/rocketpy/requirements.txt
     target/venv-rocketpy/bin/python benches/peers/rocketpy/flights.py \\
         --rocketpy-repo PATH/TO/RocketPy [--only andromeda,astra] [--repeat 3]
+
+`--corrected` flies each flight instead with RocketPy's known errors corrected, as the
+Calisto comparison does (docs/flights.md, docs/validation.md#calisto-in-six-degrees-of-freedom):
+calisto.py's `all` (the jet damping's l^2, the axial m''(r_NOZ - r_CM) dropped, the propellant
+mass tabulated densely, the rail phase's step bounded) and calisto_6dof.py's
+`cm_sign_vdot_axial_thomson` (the centre of mass's and the nozzle's offsets with their sign
+corrected, -(w' x r_CM) in the translation, T04's r_CM terms dropped, Thomson's internal
+flow), at rtol 1e-9 to apogee, the Earth's rotation as the toml says; it writes
+flights_corrected.csv (apogee, its time, rail-exit speed and time, max speed to apogee):
+what cli/tests/flights.rs checks varmass's scenes against.
 """
 
 import argparse
@@ -33,6 +43,7 @@ import csv
 import math
 import os
 import subprocess
+import sys
 import tempfile
 import time
 import tomllib
@@ -245,6 +256,94 @@ def run(name, repo, repeat, cache):
     }
 
 
+CORRECTED_COLUMNS = ["name", "apogee", "apogee_time", "rail_exit_speed", "rail_exit_time",
+                     "max_speed", "static_margin_0"]
+
+
+STEPS = [  # cumulative: each row adds one correction to the row before
+    ("as_is", ()),
+    ("all", ("all",)),
+    ("cm_sign", ("all", "sign")),
+    ("vdot", ("all", "sign", "vdot")),
+    ("axial", ("all", "sign", "vdot", "axial")),
+    ("thomson", ("all", "sign", "vdot", "axial", "thomson")),
+]
+
+
+def run_corrected(name, repo, cache, switches=("all", "sign", "vdot", "axial", "thomson")):
+    """One flight with RocketPy's known errors corrected (calisto.py's `all` plus
+    calisto_6dof.py's cm_sign, vdot, axial and thomson; `switches` says which), rtol 1e-9
+    (the rail phase bounded), to apogee."""
+    import calisto  # noqa: PLC0415  (benches/peers/rocketpy/calisto.py: the corrections)
+    import calisto_6dof  # noqa: PLC0415
+    import rocketpy.motors.solid_motor as solid_motor_module  # noqa: PLC0415
+
+    folder = ROOT / "flights" / name
+    spec = tomllib.loads((folder / "flight.toml").read_text())
+    env = environment(spec, repo, cache, folder)
+    if "all" in switches:  # the propellant mass tabulated densely
+        solid_motor_module.integrate = calisto.Integrate
+    try:
+        rk = rocket(spec, folder)
+    finally:
+        solid_motor_module.integrate = calisto._scipy_integrate()
+    if "all" in switches:
+        calisto.correct_jet_damping(rk)
+        calisto.drop_axial_mddot(rk)
+    if "sign" in switches:
+        rk.com_to_cdm_function = -1 * rk.com_to_cdm_function
+        rk.nozzle_to_cdm = -rk.nozzle_to_cdm
+    original = Flight.u_dot_generalized
+    Flight.u_dot_generalized = calisto_6dof.patched(switches)
+    try:
+        np.random.seed(36)
+        f = fly(spec, env, rk, rtol=1e-9)
+    finally:
+        Flight.u_dot_generalized = original
+    return {
+        "name": name, "apogee": f.apogee - env.elevation, "apogee_time": f.apogee_time,
+        "rail_exit_speed": f.out_of_rail_velocity, "rail_exit_time": f.out_of_rail_time,
+        "max_speed": f.max_speed, "static_margin_0": rk.static_margin(0),
+    }
+
+
+def steps(names, repo, out):
+    """Each flight's apogee with the corrections added one by one (STEPS), rtol 1e-9."""
+    rows, cache = [], {}
+    for name in names:
+        row = [name] + [run_corrected(name, repo, cache, sw)["apogee"] for _, sw in STEPS]
+        rows.append(row)
+        print("  ".join([name] + [f"{s} {a:.4f}" for (s, _), a in zip(STEPS, row[1:])]),
+              flush=True)
+    with open(out, "w", newline="") as fh:
+        fh.write(f"# RocketPy {version('rocketpy')}: apogee (m above the pad) at rtol 1e-9 to apogee "
+                 "(rail phase bounded), the corrections added one by one:\n"
+                 "# target/venv-rocketpy/bin/python benches/peers/rocketpy/flights.py "
+                 "--rocketpy-repo PATH/TO/RocketPy --corrected --steps\n")
+        w = csv.writer(fh)
+        w.writerow(["name"] + [s for s, _ in STEPS])
+        for row in rows:
+            w.writerow([row[0]] + [f"{a:.10g}" for a in row[1:]])
+    print(f"wrote {out}")
+
+
+def corrected(names, repo, out):
+    rows, cache = [], {}
+    for name in names:
+        row = run_corrected(name, repo, cache)
+        rows.append(row)
+        print("  ".join(f"{c} {row[c]}" for c in CORRECTED_COLUMNS), flush=True)
+    with open(out, "w", newline="") as fh:
+        fh.write(f"# RocketPy {version('rocketpy')}, known errors corrected, rtol 1e-9, to apogee:\n"
+                 "# target/venv-rocketpy/bin/python benches/peers/rocketpy/flights.py "
+                 "--rocketpy-repo PATH/TO/RocketPy --corrected\n")
+        w = csv.writer(fh)
+        w.writerow(CORRECTED_COLUMNS)
+        for row in rows:
+            w.writerow([row["name"]] + [f"{row[c]:.10g}" for c in CORRECTED_COLUMNS[1:]])
+    print(f"wrote {out} ({len(rows)} flights)")
+
+
 def surfaces(name):
     """RocketPy's lift slope (per radian, on the rocket's reference area, at Mach 0 and 0.5)
     and centre of pressure (our z) of each aerodynamic surface of a flight, and the rocket's."""
@@ -267,7 +366,11 @@ def main():
     ap.add_argument("--rocketpy-repo", required=True)
     ap.add_argument("--only", default="")
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--out", default=str(Path(__file__).with_name("flights.csv")))
+    ap.add_argument("--out", default=None)
+    ap.add_argument("--corrected", action="store_true",
+                    help="RocketPy's known errors corrected, rtol 1e-9 → flights_corrected.csv")
+    ap.add_argument("--steps", action="store_true",
+                    help="with --corrected: the corrections one by one → flights_corrections.csv")
     args = ap.parse_args()
     names = sorted(p.parent.name for p in (ROOT / "flights").glob("*/flight.toml")
                    if p.parent.name != "calisto")  # calisto.py flies Calisto
@@ -275,6 +378,16 @@ def main():
         names = [n for n in names if n in args.only.split(",")]
     os.environ.setdefault("MPLBACKEND", "Agg")
     warnings.simplefilter("ignore")
+    sys.path.insert(0, str(Path(__file__).resolve().parent))  # calisto.py, calisto_6dof.py
+    if args.corrected and args.steps:
+        steps(names, args.rocketpy_repo,
+              args.out or str(Path(__file__).with_name("flights_corrections.csv")))
+        return
+    if args.corrected:
+        corrected(names, args.rocketpy_repo,
+                  args.out or str(Path(__file__).with_name("flights_corrected.csv")))
+        return
+    args.out = args.out or str(Path(__file__).with_name("flights.csv"))
     rows, cache = [], {}
     for name in names:
         row = run(name, args.rocketpy_repo, args.repeat, cache)
