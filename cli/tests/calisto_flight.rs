@@ -12,7 +12,8 @@
 //! airframe's own forces off, and the canopy's added mass m_a = k rho (2/3) pi R^2 h (k =
 //! 1.068 (1 - 1.465 p - 0.25975 p^2 + 1.2626 p^3) = 1.0000 at the porosity p = 0.0432, R = h =
 //! 1.5 m): (m + m_a) a = D + W. After burnout the reference point is the centre of mass, so
-//! this is the particle's motion exactly.
+//! this is the particle's motion exactly, whatever the attitude does (RocketPy freezes it;
+//! here the riser damps the rotation to rest with a time constant of 1 s).
 //!
 //! Terminal speed, derived by hand: the horizontal airspeed decays (the canopy drags the
 //! rocket to the wind's speed), and the vertical descent speed v obeys
