@@ -50,7 +50,7 @@ def main():
         print(f"round {i + 1}: RocketPy {rp[-1]:.4f} s, ours {us[-1] * 1e3:.3f} ms", flush=True)
     for name, f in (("min", min), ("median", statistics.median)):
         a, b = f(rp), f(us)
-        print(f"{name:6s}: RocketPy Flight(...) {a:.4f} s, ours {b * 1e3:.3f} ms, ratio {a / b:.0f}")
+        print(f"{name:6s}: RocketPy Flight(...) {a:.4f} s, ours {b * 1e3:.3f} ms, ratio {a / b:.1f}")
 
 
 if __name__ == "__main__":
