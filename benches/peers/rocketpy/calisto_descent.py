@@ -28,7 +28,7 @@ sampling delays are then drogue_trigger - apogee_time and (800 - main_trigger_he
 main_trigger_vz (the 800 m crossing extrapolated over < 1/105 s, near the terminal speed).
 Written to calisto_descent.csv.
 
-    /tmp/rp/bin/python benches/peers/rocketpy/calisto_descent.py
+    target/venv-rocketpy/bin/python benches/peers/rocketpy/calisto_descent.py
 """
 
 import csv

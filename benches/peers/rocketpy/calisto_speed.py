@@ -11,7 +11,7 @@ Prints both minima and medians and their ratios. `--once` flies RocketPy's fligh
 exits (a whole-process run to time from outside).
 
     cargo bench -p varmass-benches --bench calisto --no-run   # prints the binary's path
-    /tmp/rp/bin/python benches/peers/rocketpy/calisto_speed.py --ours target/release/deps/calisto-HASH
+    target/venv-rocketpy/bin/python benches/peers/rocketpy/calisto_speed.py --ours target/release/deps/calisto-HASH
 """
 
 import argparse
