@@ -23,7 +23,7 @@ by a key of flight.toml so that a reader sees what differs between two flights:
   altitude, z + (K r_cp).z, not the reference point's; so does each Barrowman component here
   (its lateral airspeed u, v less the wind's change between the two heights, in body axes).
   Calisto's wind is the same at every height, so calisto.vms has no such term; NDRT's shear
-  (1.9 m/s per 100 m near its pad) makes it 0.4 m of apogee (docs/validation.md);
+  (1.6–2.0 m/s per 100 m near its pad) makes it 0.4 m of apogee (docs/validation.md);
 * the nose ([nose] kind): "vonKarman" -> barrowman_nose_haack.vms (C = 0), "tangent" ->
   barrowman_nose_ogive.vms (a tangent ogive: RocketPy's centre of pressure L - V/A(L) is the
   library's);
@@ -317,10 +317,14 @@ def centres_of_pressure(spec):
 def check_against_rocketpy(name, cps):
     path = ROOT / "benches" / "peers" / "rocketpy" / "surfaces.csv"
     kinds = {"NoseCone": "nose", "TrapezoidalFins": "fins", "Tail": "tail"}
+    checked = set()
     for line in path.read_text().splitlines()[1:]:
         f = line.split(",")
         if f[0] == name and f[1] in kinds:
             assert abs(cps[kinds[f[1]]] - float(f[4])) < 1e-8, (name, f, cps)
+            checked.add(kinds[f[1]])
+    # Every surface the scene has is checked: a flight missing from surfaces.csv is an error.
+    assert checked == set(cps), (name, sorted(checked), sorted(cps))
 
 
 def local_wind_lines(spec):
@@ -344,8 +348,9 @@ def local_wind_lines(spec):
 def airframe_lines(spec):
     r, nose, fins = spec["rocket"], spec["nose"], spec["fins"]
     kind = nose["kind"].replace(" ", "").lower()
-    cl_alpha = fins.get("airfoil_cl_alpha", 2 * math.pi) if fins["airfoil"] != "none" \
-        else 2 * math.pi
+    if fins["airfoil"] != "none" and "airfoil_cl_alpha" not in fins:
+        raise ValueError(f"fins with the airfoil {fins['airfoil']!r} need airfoil_cl_alpha")
+    cl_alpha = fins["airfoil_cl_alpha"] if fins["airfoil"] != "none" else 2 * math.pi
     lines = [
         "# the airframe (flight.toml's [rocket], [nose], [fins], [tail])",
         f"parameter d_ref = {num(2 * r['radius'])}",
@@ -424,7 +429,8 @@ def drag_and_margin_lines(spec):
         "# the static margin at the flight's Mach number, and at Mach 0 (RocketPy's)",
         'use "../../models/lib/barrowman_margin.vms" as margin: z_cg = z_c, d_ref = d_ref, '
         "cn1 = nose_cn_alpha, z1 = nose_z_cp, cn2 = fins_cn_alpha, z2 = fins_z_cp" + tail,
-        "let fins_cn0 = fins_interference*2*6.283185307179586*fin_span^2/fins_area_ref/"
+        f"let fins_cn0 = fins_interference*{spec['fins']['n']}/2*6.283185307179586*fin_span^2/"
+        "fins_area_ref/"
         "(1 + sqrt(1 + (6.283185307179586*fin_span*fins_mid_chord/(fins_area_fin*"
         "fin_cl_alpha))^2))",
         "units fins_cn0: 1",
