@@ -630,8 +630,9 @@ def write_toml(name, f, t, files, log_info):
         w('kind = "us1976"  # the U.S. Standard Atmosphere 1976 (models/lib/atmosphere_1976.vms)')
         w('table = "atmosphere.csv"  # height ASL (m), pressure (Pa), temperature (K), every 5 m')
         w("# RocketPy reads the table (custom_atmosphere, linear between rows; density p/(R T),")
-        w("# R = 287.05287 J/(kg K) = R*/M0, sound speed sqrt(1.4 R T)); the closed form differs from")
-        w("# the table by < 1e-7 relative")
+        w("# R = 287.05287 J/(kg K), RocketPy's air constant (the 1976 R*/M0 is 287.05307: RocketPy's")
+        w("# density 7.0e-7 above the standard's), sound speed sqrt(1.4 R T)); the closed form differs")
+        w("# from the table by < 1e-7 relative")
         w(f"wind = {fmt([u, v])}  # m/s [East, North], the same at every height")
     else:
         w('kind = "standard"  # RocketPy\'s default: the ISA standard atmosphere, no wind')
