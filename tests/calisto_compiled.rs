@@ -111,3 +111,35 @@ fn the_compiled_and_the_interpreted_calisto_fly_the_same_flight() {
         );
     }
 }
+
+/// The flight the driver flies (and the benches' `calisto` times) is
+/// `flights/calisto/calisto_flight.toml`'s: its rail, start, lags, main height and
+/// tolerance are written in `tests/calisto_support` as numbers, so the scene's lines that
+/// hold them are checked here, and a scene changed without the driver fails (review of
+/// session 37: nothing tied them before).
+#[test]
+fn the_driver_flies_the_scene_file_s_flight() {
+    let scene = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("flights/calisto/calisto_flight.toml"),
+    )
+    .expect("the scene");
+    let lines: Vec<&str> = scene.lines().map(str::trim).collect();
+    let start = calisto_support::start();
+    let mut wanted = vec![
+        "tol = 1e-8".to_string(),
+        format!("inclination = {:?}", calisto_support::INCLINATION),
+        "heading = 0.0".to_string(),
+        format!("exit_travel = {:?}", calisto_support::EXIT_TRAVEL),
+        format!("m_s = {}", start[14]),
+    ];
+    for (k, name) in ["e0", "e1", "e2", "e3"].iter().enumerate() {
+        wanted.push(format!("{name} = {}", start[3 + k]));
+    }
+    for line in &wanted {
+        assert!(lines.contains(&line.as_str()), "the scene has no `{line}`");
+    }
+    let lag = format!("\"t + {}\"", calisto_support::LAG);
+    let main = format!("when = \"z < {}\"", calisto_support::MAIN_HEIGHT);
+    assert_eq!(scene.matches(&lag).count(), 3, "each change's lag {lag}");
+    assert!(lines.iter().any(|l| l.starts_with(&main)), "no `{main}`");
+}

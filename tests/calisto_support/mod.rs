@@ -26,8 +26,8 @@ pub const LAG: f64 = 1.5;
 /// The main's trigger, m above the pad on the way down.
 pub const MAIN_HEIGHT: f64 = 800.0;
 /// The rail: 85° above the horizontal toward North; the reference point's travel to the exit.
-const INCLINATION: f64 = 85.0;
-const EXIT_TRAVEL: f64 = 3.8632;
+pub const INCLINATION: f64 = 85.0;
+pub const EXIT_TRAVEL: f64 = 3.8632;
 
 /// When each canopy opens and the drogue is cut away (s; 1e30 = never): the parameters the
 /// scene's phases set.
