@@ -107,6 +107,7 @@ pub(crate) fn body_frame_rates(
         .collect();
     let (turning, pushing) = body_vectors(model, &motion, &flows, &frozen)?;
     let rest = rest_gradient(model);
+    let gauge = gauge_rates(model, &frozen, flows.is_empty());
     let rotation = model.bodies[0].rigid.as_ref()?.rotation.clone();
     let pool = &mut model.pool;
     let turned = mat_vec(pool, &rotation, &pushing.body);
@@ -125,6 +126,9 @@ pub(crate) fn body_frame_rates(
             let explicit: Vec<Id> = motion.omega.iter().map(|w| pool.diff(*w, q)).collect();
             terms.push(dot(pool, &explicit, &motion.angular));
             terms.push(dot(pool, &axis, &turning));
+        }
+        if let Some(gauge) = &gauge {
+            terms.push(gauge[slot]);
         }
         out[slot] = pool.add(&terms);
     }
@@ -298,6 +302,26 @@ fn rest_gradient(model: &mut Model) -> Vec<Id> {
             pool.reduce_trig(d)
         })
         .collect()
+}
+
+/// The part of ṗ of a quaternion's gauge term T_g (docs/mechanics.md#quaternions), which
+/// the body-frame formulas do not contain, from its generic derivation: ∂T_g/∂q_α, plus
+/// Σ φ̇ ∂(∂T_g/∂q̇_α)/∂φ without flows (with flows, the transport term K takes back the
+/// frozen rates of the body's whole momentum, the gauge's with it). `None` without a gauge.
+fn gauge_rates(model: &mut Model, frozen: &[(Symbol, Id)], without_flows: bool) -> Option<Vec<Id>> {
+    let gauge = model.bodies[0].rigid.as_ref()?.gauge?;
+    let pool = &mut model.pool;
+    let rates = (model.coordinates.iter())
+        .map(|c| {
+            let mut terms = vec![pool.diff(gauge, c.q)];
+            if without_flows {
+                let momentum = pool.diff(gauge, c.velocity);
+                terms.extend(frozen_rate(pool, &[momentum], frozen));
+            }
+            pool.add(&terms)
+        })
+        .collect();
+    Some(rates)
 }
 
 /// Σ_φ φ̇ ∂x/∂φ for each component x (its true rate through the frozen symbols).

@@ -28,10 +28,10 @@
 //! with a velocity in it. Everywhere else q̇ comes from the LDLᵀ of `emit/factor.rs`.
 
 use super::lagrangian::Momenta;
-use super::linear::{cofactor, determinant, mat_vec, Matrix};
+use super::linear::{cofactor, determinant, dot, mat_vec, Matrix};
 use super::model::Model;
 use super::rotation::transpose;
-use crate::expr::{ExprPool, Id, Symbol};
+use crate::expr::{ExprPool, Id, Rational, Symbol};
 
 /// q̇(q, p) for a lone spatial rigid body, and when it holds.
 #[derive(Clone, Debug)]
@@ -66,10 +66,13 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
         .collect();
     let angle_rates: Vec<Symbol> = slots[3..].iter().map(|&i| velocities[i]).collect();
     let pool = &mut model.pool;
-    let metric = Metric::new(pool, &omega, &angle_rates)?;
+    let metric = match rigid.quaternion {
+        Some(e) => Metric::quaternion(pool, &e, &inertia),
+        None => Metric::euler(pool, &omega, &angle_rates)?,
+    };
     let (origin_rates, angle_rates) =
         solve(pool, &metric, &rotation, &inertia, &centre, mass, &momentum);
-    let mut out = vec![pool.int(0); 6];
+    let mut out = vec![pool.int(0); slots.len()];
     for (slot, rate) in slots
         .iter()
         .zip(origin_rates.into_iter().chain(angle_rates))
@@ -78,8 +81,7 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
     }
     let mut guards = vec![(mass, false)];
     guards.extend(pivots(pool, &inertia).into_iter().map(|m| (m, false)));
-    let two = pool.int(2);
-    guards.push((pool.pow(metric.det, two), true));
+    guards.push(metric.guard(pool));
     Some(RigidVelocities {
         velocities: out,
         guards,
@@ -95,8 +97,7 @@ pub(crate) fn own_coordinates(model: &Model) -> Option<Vec<usize>> {
         return None;
     };
     let rigid = body.rigid.as_ref()?;
-    // A quaternion's gauge term is a term of T the closed form does not hold.
-    if rigid.origin.len() != 3 || rigid.gauge.is_some() {
+    if rigid.origin.len() != 3 {
         return None;
     }
     let velocities: Vec<Symbol> = model.coordinates.iter().map(|c| c.velocity).collect();
@@ -108,28 +109,47 @@ pub(crate) fn own_coordinates(model: &Model) -> Option<Vec<usize>> {
         model.coordinates.iter().position(|c| c.q == s)
     };
     let origin: Option<Vec<usize>> = rigid.origin.iter().map(index_of).collect();
-    let angles: Vec<usize> = (0..model.coordinates.len())
-        .filter(|i| (rigid.angular_velocity.iter()).any(|w| pool.contains(*w, velocities[*i])))
-        .collect();
+    // A quaternion's four components in order, each a coordinate (a partial one,
+    // `quaternion(e0, 0, 0, e3)`, is left to the LDLᵀ); Euler angles in coordinate order.
+    let (angles, turning): (Vec<usize>, usize) = match &rigid.quaternion {
+        Some(q) => (q.iter().map(index_of).collect::<Option<_>>()?, 4),
+        None => {
+            let moves = |i: &usize| {
+                (rigid.angular_velocity.iter()).any(|w| pool.contains(*w, velocities[*i]))
+            };
+            ((0..model.coordinates.len()).filter(moves).collect(), 3)
+        }
+    };
     let mut slots = origin?;
     slots.extend(&angles);
     let mut seen = slots.clone();
     seen.sort_unstable();
     seen.dedup();
-    if moving_term || angles.len() != 3 || seen.len() != 6 || model.coordinates.len() != 6 {
+    let count = 3 + turning;
+    if moving_term || angles.len() != turning || seen.len() != count {
+        return None;
+    }
+    if model.coordinates.len() != count {
         return None;
     }
     Some(slots)
 }
 
-/// E = ∂ω/∂η̇ and E⁻¹ = adj(E)/det E, reduced.
-struct Metric {
-    inverse: Matrix,
-    det: Id,
+/// How the attitude's rates and momenta meet ω and h.
+enum Metric {
+    /// Euler angles: E = ∂ω/∂η̇ and E⁻¹ = adj(E)/det E, reduced.
+    Euler { inverse: Matrix, det: Id },
+    /// A quaternion q: G(q) (ω = (2/n) G q̇), q, n = |q|² and λ = (4/3) tr I.
+    Quaternion {
+        g: Matrix,
+        q: Vec<Id>,
+        norm: Id,
+        lambda: Id,
+    },
 }
 
 impl Metric {
-    fn new(pool: &mut ExprPool, omega: &[Id], rates: &[Symbol]) -> Option<Metric> {
+    fn euler(pool: &mut ExprPool, omega: &[Id], rates: &[Symbol]) -> Option<Metric> {
         let e: Matrix = omega
             .iter()
             .map(|w| rates.iter().map(|r| pool.diff(*w, *r)).collect())
@@ -149,7 +169,73 @@ impl Metric {
                 *entry = pool.mul(&[adjugate, inverse_det]);
             }
         }
-        Some(Metric { inverse, det })
+        Some(Metric::Euler { inverse, det })
+    }
+
+    /// G = [[−e1, e0, e3, −e2], [−e2, −e3, e0, e1], [−e3, e2, −e1, e0]] of
+    /// `rotation::quaternion_rates`, and λ of the gauge term (`rigid.rs`, `gauge_term`).
+    fn quaternion(pool: &mut ExprPool, e: &[Id; 4], inertia: &Matrix) -> Metric {
+        let m: Vec<Id> = e.iter().map(|x| pool.neg(*x)).collect();
+        let g = vec![
+            vec![m[1], e[0], e[3], m[2]],
+            vec![m[2], m[3], e[0], e[1]],
+            vec![m[3], e[2], m[1], e[0]],
+        ];
+        let trace: Vec<Id> = (0..3).map(|i| inertia[i][i]).collect();
+        let trace = pool.add(&trace);
+        let (four, three) = (pool.int(4), pool.int(3));
+        let factor = pool.div(four, three);
+        let lambda = pool.mul(&[factor, trace]);
+        let norm = super::rotation::quaternion_norm(pool, e);
+        Metric::Quaternion {
+            g,
+            q: e.to_vec(),
+            norm,
+            lambda,
+        }
+    }
+
+    /// h from p_η: E⁻ᵀ p_η, or ½ G p_q (E p_q = (4/n) h, E = (2/n) G, E q = 0).
+    fn angular(&self, pool: &mut ExprPool, momentum: &[Id]) -> Vec<Id> {
+        match self {
+            Metric::Euler { inverse, .. } => mat_vec(pool, &transpose(inverse), momentum),
+            Metric::Quaternion { g, .. } => {
+                let half = pool.rational(Rational::HALF);
+                let gp = mat_vec(pool, g, momentum);
+                gp.iter().map(|x| pool.mul(&[half, *x])).collect()
+            }
+        }
+    }
+
+    /// η̇ from ω: E⁻¹ ω, or q̇ = ½ Gᵀ ω + (qᵀ p_q / λ) q (qᵀ p_q = λ (q·q̇)/n).
+    fn rates(&self, pool: &mut ExprPool, omega: &[Id], momentum: &[Id]) -> Vec<Id> {
+        match self {
+            Metric::Euler { inverse, .. } => mat_vec(pool, inverse, omega),
+            Metric::Quaternion { g, q, lambda, .. } => {
+                let half = pool.rational(Rational::HALF);
+                let turned = mat_vec(pool, &transpose(g), omega);
+                let along = dot(pool, q, momentum);
+                let radial = pool.div(along, *lambda);
+                (turned.iter().zip(q))
+                    .map(|(t, e)| {
+                        let a = pool.mul(&[half, *t]);
+                        let b = pool.mul(&[radial, *e]);
+                        pool.add(&[a, b])
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// The attitude's guard: det E² above the relative floor (gimbal lock), or n = |q|² > 0.
+    fn guard(&self, pool: &mut ExprPool) -> (Id, bool) {
+        match self {
+            Metric::Euler { det, .. } => {
+                let two = pool.int(2);
+                (pool.pow(*det, two), true)
+            }
+            Metric::Quaternion { norm, .. } => (*norm, false),
+        }
     }
 }
 
@@ -164,7 +250,7 @@ fn solve(
     momentum: &[Id],
 ) -> (Vec<Id>, Vec<Id>) {
     let big_p = mat_vec(pool, &transpose(rotation), &momentum[..3]);
-    let h = mat_vec(pool, &transpose(&metric.inverse), &momentum[3..]);
+    let h = metric.angular(pool, &momentum[3..]);
     let c_x_p = cross(pool, centre, &big_p);
     let excess: Vec<Id> = h
         .iter()
@@ -185,7 +271,7 @@ fn solve(
         })
         .collect();
     let origin_rates = mat_vec(pool, rotation, &velocity);
-    let angle_rates = mat_vec(pool, &metric.inverse, &omega);
+    let angle_rates = metric.rates(pool, &omega, &momentum[3..]);
     (origin_rates, angle_rates)
 }
 
