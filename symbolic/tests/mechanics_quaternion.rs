@@ -75,8 +75,12 @@ fn sources() -> Vec<(&'static str, String)> {
 /// The worst differences of (i) the closed-form q̇ against the q̇ whose momenta p = M q̇ it
 /// is given (M's exact solution) and (ii) ṗ as derived against eq. 14 as derived
 /// (d*p/dt + Σ φ̇ ∂*p/∂φ), normwise relative over the origin's and the quaternion's blocks,
-/// at 1 000 random states of each model. Measured (i) ≤ 4.4e-16... see the assertion's
-/// comment; a wrong sign or factor in any term gives order one.
+/// at 1 000 random states of each model. Measured: q̇ 4.2e-13 (brick), 6.1e-15 (rocket),
+/// 1.2e-13 (changing), p's rounding times cond(M); ṗ 2.7e-14, 4.4e-15, 9.1e-15. Bound 1e-12
+/// (issue 22's tolerance for equivalences): a wrong sign or factor in any term gives order
+/// one (leaving out the gauge's frozen-rate part: 0.27 for the changing body). ṗ is also
+/// held to take under a tenth of eq. 14's operations as derived (744, 702, 667 against
+/// 44 463, 21 987, 51 214): the body form, which the derivation keeps.
 #[test]
 fn quaternion_closed_forms_equal_the_derivation() {
     for (name, source) in sources() {
@@ -103,7 +107,9 @@ fn differences(source: &str) -> (f64, f64) {
         d.pool.operation_count(&eq14),
     );
     eprintln!("ṗ {body} operations, eq. 14 as derived {derived}");
-    assert!(body < derived, "{body} ≥ {derived} operations");
+    // Under a tenth: the body form, not eq. 14 reduced (the rocket's takes 21 761,
+    // `mechanics_rigid.rs`), which would make the comparison below an identity.
+    assert!(10 * body < derived, "{body} against {derived} operations");
     let n = d.pool.symbols().len();
     let mut seed: u64 = 0x5eed;
     let mut uniform = |lo: f64, hi: f64| {

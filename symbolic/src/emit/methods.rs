@@ -255,6 +255,17 @@ impl Emitter<'_> {
             VelocitySolve::Symbolic(v) => self.velocity_lines(v),
             // A lone spatial rigid body: the closed form through E⁻¹ and I⁻¹
             // (`mechanics/rigid_solve.rs`), not the LDLᵀ.
+            VelocitySolve::Numeric
+                if self
+                    .d
+                    .rigid_velocities
+                    .as_ref()
+                    .is_some_and(|r| r.quaternion) =>
+            {
+                vec!["q' from p in closed form: ω = I⁻¹(½ G p_q − c × P), \
+                 ṙ = R(P/m − ω × c), q̇ = ½ Gᵀ ω + (qᵀ p_q/λ) q"
+                    .to_string()]
+            }
             VelocitySolve::Numeric if self.d.rigid_velocities.is_some() => {
                 vec!["q' from p in closed form: ω = I⁻¹(E⁻ᵀ p_η − c × P), \
                  ṙ = R(P/m − ω × c), η̇ = E⁻¹ ω"

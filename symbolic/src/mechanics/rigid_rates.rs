@@ -34,6 +34,12 @@
 //! quantities enter through Σ φ̇ ∂*p/∂φ with p_r = R P and p_η = Eᵀ h:
 //! G = P × V + Σ φ̇ ∂h/∂φ and B = Σ φ̇ ∂P/∂φ.
 //!
+//! A quaternion's components take the place of η unchanged (Ṙ = R [ω]× on every path, so
+//! Rᵀ ∂R/∂e_k = [E_k]× with E_k = ∂ω/∂ė_k; ω depends on q, hence the explicit term), and its
+//! gauge term T_g = ½ λ (q·q̇)²/n², which the formulas above do not hold, adds its own part
+//! from its generic derivation: ∂T_g/∂e_k, plus Σ φ̇ ∂(∂T_g/∂ė_k)/∂φ without flows (with
+//! flows K takes it back with the frozen rates of the rest of the body's momentum).
+//!
 //! Only where it is exact: one body, rigid and spatial, in its own coordinates
 //! (`rigid_solve::own_coordinates`), every flow at a point that is fixed in the body, and
 //! no `thrust` or `impact` load (those are summed into R1 and R2 as given). Q* (forces,

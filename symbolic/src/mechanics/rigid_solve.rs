@@ -23,9 +23,22 @@
 //! are sines and cosines, so det E² is already relative), and a mass or inertia that is not
 //! positive (m ≤ 0 or a pivot of I ≤ 0: M not positive definite) the same way.
 //!
+//! A quaternion q = (e0, e1, e2, e3) in place of η (docs/mechanics.md#quaternions): with
+//! n = qᵀq and G(q) = [[−e1, e0, e3, −e2], [−e2, −e3, e0, e1], [−e3, e2, −e1, e0]],
+//! ω = (2/n) G q̇, G q = 0 and G Gᵀ = n I₃; T gains the gauge term ½ λ s²/n² (s = q·q̇,
+//! λ = (4/3) tr I), so p_q = (2/n) Gᵀ h + λ s q/n², whence G p_q = 2 h and qᵀ p_q = λ s/n:
+//!
+//! ```text
+//! h = ½ G p_q,   q̇ = ½ Gᵀ ω + (qᵀ p_q / λ) q
+//! ```
+//!
+//! (the first part gives (2/n) G q̇ = ω, the second qᵀ q̇ = s), ω and ṙ_O as above. The
+//! state is refused at n ≤ 0, besides m and I's pivots.
+//!
 //! Only where this is M's exact inverse: one body, rigid and spatial, whose position and
-//! angles are the coordinates themselves (each once, all of them) and no other term of L
-//! with a velocity in it. Everywhere else q̇ comes from the LDLᵀ of `emit/factor.rs`.
+//! angles (or the four components of its quaternion) are the coordinates themselves (each
+//! once, all of them) and no other term of L with a velocity in it. Everywhere else q̇
+//! comes from the LDLᵀ of `emit/factor.rs`.
 
 use super::lagrangian::Momenta;
 use super::linear::{cofactor, determinant, dot, mat_vec, Matrix};
@@ -41,6 +54,8 @@ pub struct RigidVelocities {
     /// `(value, relative)`: the state is refused unless each value is above 0, or above
     /// `RELATIVE_PIVOT_FLOOR` when `relative` (m; I's pivots; det E²).
     pub guards: Vec<(Id, bool)>,
+    /// Whether the attitude is a quaternion (q̇ = ½ Gᵀ ω + (qᵀ p_q/λ) q), not Euler angles.
+    pub quaternion: bool,
 }
 
 /// The closed form above when the model is a lone spatial rigid body in its own
@@ -85,6 +100,7 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
     Some(RigidVelocities {
         velocities: out,
         guards,
+        quaternion: rigid.quaternion.is_some(),
     })
 }
 
