@@ -187,16 +187,18 @@ impl Emitter<'_> {
         method_item(docs, signature, body)
     }
 
-    /// `velocities(t, state)`: q̇(q, p), overridden only when it is in closed form.
+    /// `velocities(t, state)`: q̇(q, p), overridden only when it is in closed form: solved
+    /// symbolically, or a lone body turned by a quaternion (`mechanics/rigid_solve.rs`; the
+    /// trait's default would factor its 7×7 M at every call, docs/bench/calisto.md).
     pub(crate) fn velocities(&self) -> TokenStream {
-        let VelocitySolve::Symbolic(v) = &self.d.velocities else {
-            return TokenStream::new();
+        let quaternion = (self.d.rigid_velocities.as_ref()).is_some_and(|r| r.quaternion);
+        let (v, lines) = match &self.d.velocities {
+            VelocitySolve::Symbolic(v) => (v.clone(), self.velocity_lines(v)),
+            VelocitySolve::Numeric if quaternion => (self.velocity_roots(), self.velocity_docs()),
+            VelocitySolve::Numeric => return TokenStream::new(),
         };
-        let docs = self.docs(
-            "q̇(q, p, t) = M⁻¹ (p − b), in closed form.",
-            self.velocity_lines(v),
-        );
-        let body = self.body(Input::State, v, |outs| {
+        let docs = self.docs("q̇(q, p, t) = M⁻¹ (p − b), in closed form.", lines);
+        let body = self.body(Input::State, &v, |outs| {
             let v = self.vector(outs);
             quote!(Ok(#v))
         });
