@@ -187,16 +187,18 @@ impl Emitter<'_> {
         method_item(docs, signature, body)
     }
 
-    /// `velocities(t, state)`: q̇(q, p), overridden only when it is in closed form.
+    /// `velocities(t, state)`: q̇(q, p), overridden only when it is in closed form: solved
+    /// symbolically, or a lone body turned by a quaternion (`mechanics/rigid_solve.rs`; the
+    /// trait's default would factor its 7×7 M at every call, docs/bench/calisto.md).
     pub(crate) fn velocities(&self) -> TokenStream {
-        let VelocitySolve::Symbolic(v) = &self.d.velocities else {
-            return TokenStream::new();
+        let quaternion = (self.d.rigid_velocities.as_ref()).is_some_and(|r| r.quaternion);
+        let (v, lines) = match &self.d.velocities {
+            VelocitySolve::Symbolic(v) => (v.clone(), self.velocity_lines(v)),
+            VelocitySolve::Numeric if quaternion => (self.velocity_roots(), self.velocity_docs()),
+            VelocitySolve::Numeric => return TokenStream::new(),
         };
-        let docs = self.docs(
-            "q̇(q, p, t) = M⁻¹ (p − b), in closed form.",
-            self.velocity_lines(v),
-        );
-        let body = self.body(Input::State, v, |outs| {
+        let docs = self.docs("q̇(q, p, t) = M⁻¹ (p − b), in closed form.", lines);
+        let body = self.body(Input::State, &v, |outs| {
             let v = self.vector(outs);
             quote!(Ok(#v))
         });
@@ -255,6 +257,17 @@ impl Emitter<'_> {
             VelocitySolve::Symbolic(v) => self.velocity_lines(v),
             // A lone spatial rigid body: the closed form through E⁻¹ and I⁻¹
             // (`mechanics/rigid_solve.rs`), not the LDLᵀ.
+            VelocitySolve::Numeric
+                if self
+                    .d
+                    .rigid_velocities
+                    .as_ref()
+                    .is_some_and(|r| r.quaternion) =>
+            {
+                vec!["q' from p in closed form: ω = I⁻¹(½ G p_q − c × P), \
+                 ṙ = R(P/m − ω × c), q̇ = ½ Gᵀ ω + (qᵀ p_q/λ) q"
+                    .to_string()]
+            }
             VelocitySolve::Numeric if self.d.rigid_velocities.is_some() => {
                 vec!["q' from p in closed form: ω = I⁻¹(E⁻ᵀ p_η − c × P), \
                  ṙ = R(P/m − ω × c), η̇ = E⁻¹ ω"

@@ -86,6 +86,8 @@ pub struct Rigid {
     /// With a quaternion, the kinetic term of its radial rate that makes M regular
     /// (docs/mechanics.md#quaternions), zero on every motion from a q·q̇ = 0 start.
     pub gauge: Option<Id>,
+    /// With a quaternion, its components (e0, e1, e2, e3): coordinates or `0`.
+    pub quaternion: Option<[Id; 4]>,
     /// The inertia about the centre of mass in body components (1×1 in the plane), frozen.
     pub inertia: Matrix,
     /// c: the centre of mass from the reference point, body components, frozen.

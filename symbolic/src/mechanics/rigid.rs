@@ -20,6 +20,8 @@ struct Turned {
     euler_middle: Option<(Id, bool)>,
     /// A quaternion's (q·q̇, |q|²), for the gauge term of T ([`gauge_term`]).
     radial: Option<(Id, Id)>,
+    /// A quaternion's components.
+    quaternion: Option<[Id; 4]>,
 }
 
 impl Builder {
@@ -66,6 +68,7 @@ impl Builder {
                 angular_velocity: turned.angular_velocity,
                 euler_middle: turned.euler_middle,
                 gauge,
+                quaternion: turned.quaternion,
                 inertia,
                 centre,
             }),
@@ -142,6 +145,7 @@ impl Builder {
                 angular_velocity: vec![*rate],
                 euler_middle: None,
                 radial: None,
+                quaternion: None,
             }),
             (None, [a, b, c, d], [da, db, dc, dd]) => {
                 let (e, rates) = ([*a, *b, *c, *d], [*da, *db, *dc, *dd]);
@@ -156,6 +160,7 @@ impl Builder {
                     angular_velocity: rotation::quaternion_rates(pool, &e, &rates),
                     euler_middle: None,
                     radial: Some((along, rotation::quaternion_norm(pool, &e))),
+                    quaternion: Some(e),
                 })
             }
             (Some(axes), [a, b, c], [da, db, dc]) => {
@@ -165,6 +170,7 @@ impl Builder {
                     angular_velocity: rotation::body_rates(pool, axes, &angles, &[*da, *db, *dc]),
                     euler_middle: Some((*b, axes[0] == axes[2])),
                     radial: None,
+                    quaternion: None,
                 })
             }
             _ => None,

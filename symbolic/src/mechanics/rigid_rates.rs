@@ -34,6 +34,12 @@
 //! quantities enter through Σ φ̇ ∂*p/∂φ with p_r = R P and p_η = Eᵀ h:
 //! G = P × V + Σ φ̇ ∂h/∂φ and B = Σ φ̇ ∂P/∂φ.
 //!
+//! A quaternion's components take the place of η unchanged (Ṙ = R [ω]× on every path, so
+//! Rᵀ ∂R/∂e_k = [E_k]× with E_k = ∂ω/∂ė_k; ω depends on q, hence the explicit term), and its
+//! gauge term T_g = ½ λ (q·q̇)²/n², which the formulas above do not hold, adds its own part
+//! from its generic derivation: ∂T_g/∂e_k, plus Σ φ̇ ∂(∂T_g/∂ė_k)/∂φ without flows (with
+//! flows K takes it back with the frozen rates of the rest of the body's momentum).
+//!
 //! Only where it is exact: one body, rigid and spatial, in its own coordinates
 //! (`rigid_solve::own_coordinates`), every flow at a point that is fixed in the body, and
 //! no `thrust` or `impact` load (those are summed into R1 and R2 as given). Q* (forces,
@@ -107,6 +113,7 @@ pub(crate) fn body_frame_rates(
         .collect();
     let (turning, pushing) = body_vectors(model, &motion, &flows, &frozen)?;
     let rest = rest_gradient(model);
+    let gauge = gauge_rates(model, &frozen, flows.is_empty());
     let rotation = model.bodies[0].rigid.as_ref()?.rotation.clone();
     let pool = &mut model.pool;
     let turned = mat_vec(pool, &rotation, &pushing.body);
@@ -125,6 +132,9 @@ pub(crate) fn body_frame_rates(
             let explicit: Vec<Id> = motion.omega.iter().map(|w| pool.diff(*w, q)).collect();
             terms.push(dot(pool, &explicit, &motion.angular));
             terms.push(dot(pool, &axis, &turning));
+        }
+        if let Some(gauge) = &gauge {
+            terms.push(gauge[slot]);
         }
         out[slot] = pool.add(&terms);
     }
@@ -298,6 +308,26 @@ fn rest_gradient(model: &mut Model) -> Vec<Id> {
             pool.reduce_trig(d)
         })
         .collect()
+}
+
+/// The part of ṗ of a quaternion's gauge term T_g (docs/mechanics.md#quaternions), which
+/// the body-frame formulas do not contain, from its generic derivation: ∂T_g/∂q_α, plus
+/// Σ φ̇ ∂(∂T_g/∂q̇_α)/∂φ without flows (with flows, the transport term K takes back the
+/// frozen rates of the body's whole momentum, the gauge's with it). `None` without a gauge.
+fn gauge_rates(model: &mut Model, frozen: &[(Symbol, Id)], without_flows: bool) -> Option<Vec<Id>> {
+    let gauge = model.bodies[0].rigid.as_ref()?.gauge?;
+    let pool = &mut model.pool;
+    let rates = (model.coordinates.iter())
+        .map(|c| {
+            let mut terms = vec![pool.diff(gauge, c.q)];
+            if without_flows {
+                let momentum = pool.diff(gauge, c.velocity);
+                terms.extend(frozen_rate(pool, &[momentum], frozen));
+            }
+            pool.add(&terms)
+        })
+        .collect();
+    Some(rates)
 }
 
 /// Σ_φ φ̇ ∂x/∂φ for each component x (its true rate through the frozen symbols).

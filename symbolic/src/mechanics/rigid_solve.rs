@@ -23,15 +23,28 @@
 //! are sines and cosines, so det E² is already relative), and a mass or inertia that is not
 //! positive (m ≤ 0 or a pivot of I ≤ 0: M not positive definite) the same way.
 //!
+//! A quaternion q = (e0, e1, e2, e3) in place of η (docs/mechanics.md#quaternions): with
+//! n = qᵀq and G(q) = [[−e1, e0, e3, −e2], [−e2, −e3, e0, e1], [−e3, e2, −e1, e0]],
+//! ω = (2/n) G q̇, G q = 0 and G Gᵀ = n I₃; T gains the gauge term ½ λ s²/n² (s = q·q̇,
+//! λ = (4/3) tr I), so p_q = (2/n) Gᵀ h + λ s q/n², whence G p_q = 2 h and qᵀ p_q = λ s/n:
+//!
+//! ```text
+//! h = ½ G p_q,   q̇ = ½ Gᵀ ω + (qᵀ p_q / λ) q
+//! ```
+//!
+//! (the first part gives (2/n) G q̇ = ω, the second qᵀ q̇ = s), ω and ṙ_O as above. The
+//! state is refused at n ≤ 0, besides m and I's pivots.
+//!
 //! Only where this is M's exact inverse: one body, rigid and spatial, whose position and
-//! angles are the coordinates themselves (each once, all of them) and no other term of L
-//! with a velocity in it. Everywhere else q̇ comes from the LDLᵀ of `emit/factor.rs`.
+//! angles (or the four components of its quaternion) are the coordinates themselves (each
+//! once, all of them) and no other term of L with a velocity in it. Everywhere else q̇
+//! comes from the LDLᵀ of `emit/factor.rs`.
 
 use super::lagrangian::Momenta;
-use super::linear::{cofactor, determinant, mat_vec, Matrix};
+use super::linear::{cofactor, determinant, dot, mat_vec, Matrix};
 use super::model::Model;
 use super::rotation::transpose;
-use crate::expr::{ExprPool, Id, Symbol};
+use crate::expr::{ExprPool, Id, Rational, Symbol};
 
 /// q̇(q, p) for a lone spatial rigid body, and when it holds.
 #[derive(Clone, Debug)]
@@ -41,6 +54,8 @@ pub struct RigidVelocities {
     /// `(value, relative)`: the state is refused unless each value is above 0, or above
     /// `RELATIVE_PIVOT_FLOOR` when `relative` (m; I's pivots; det E²).
     pub guards: Vec<(Id, bool)>,
+    /// Whether the attitude is a quaternion (q̇ = ½ Gᵀ ω + (qᵀ p_q/λ) q), not Euler angles.
+    pub quaternion: bool,
 }
 
 /// The closed form above when the model is a lone spatial rigid body in its own
@@ -66,10 +81,13 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
         .collect();
     let angle_rates: Vec<Symbol> = slots[3..].iter().map(|&i| velocities[i]).collect();
     let pool = &mut model.pool;
-    let metric = Metric::new(pool, &omega, &angle_rates)?;
+    let metric = match rigid.quaternion {
+        Some(e) => Metric::quaternion(pool, &e, &inertia),
+        None => Metric::euler(pool, &omega, &angle_rates)?,
+    };
     let (origin_rates, angle_rates) =
         solve(pool, &metric, &rotation, &inertia, &centre, mass, &momentum);
-    let mut out = vec![pool.int(0); 6];
+    let mut out = vec![pool.int(0); slots.len()];
     for (slot, rate) in slots
         .iter()
         .zip(origin_rates.into_iter().chain(angle_rates))
@@ -78,11 +96,11 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
     }
     let mut guards = vec![(mass, false)];
     guards.extend(pivots(pool, &inertia).into_iter().map(|m| (m, false)));
-    let two = pool.int(2);
-    guards.push((pool.pow(metric.det, two), true));
+    guards.push(metric.guard(pool));
     Some(RigidVelocities {
         velocities: out,
         guards,
+        quaternion: rigid.quaternion.is_some(),
     })
 }
 
@@ -95,8 +113,7 @@ pub(crate) fn own_coordinates(model: &Model) -> Option<Vec<usize>> {
         return None;
     };
     let rigid = body.rigid.as_ref()?;
-    // A quaternion's gauge term is a term of T the closed form does not hold.
-    if rigid.origin.len() != 3 || rigid.gauge.is_some() {
+    if rigid.origin.len() != 3 {
         return None;
     }
     let velocities: Vec<Symbol> = model.coordinates.iter().map(|c| c.velocity).collect();
@@ -108,28 +125,47 @@ pub(crate) fn own_coordinates(model: &Model) -> Option<Vec<usize>> {
         model.coordinates.iter().position(|c| c.q == s)
     };
     let origin: Option<Vec<usize>> = rigid.origin.iter().map(index_of).collect();
-    let angles: Vec<usize> = (0..model.coordinates.len())
-        .filter(|i| (rigid.angular_velocity.iter()).any(|w| pool.contains(*w, velocities[*i])))
-        .collect();
+    // A quaternion's four components in order, each a coordinate (a partial one,
+    // `quaternion(e0, 0, 0, e3)`, is left to the LDLᵀ); Euler angles in coordinate order.
+    let (angles, turning): (Vec<usize>, usize) = match &rigid.quaternion {
+        Some(q) => (q.iter().map(index_of).collect::<Option<_>>()?, 4),
+        None => {
+            let moves = |i: &usize| {
+                (rigid.angular_velocity.iter()).any(|w| pool.contains(*w, velocities[*i]))
+            };
+            ((0..model.coordinates.len()).filter(moves).collect(), 3)
+        }
+    };
     let mut slots = origin?;
     slots.extend(&angles);
     let mut seen = slots.clone();
     seen.sort_unstable();
     seen.dedup();
-    if moving_term || angles.len() != 3 || seen.len() != 6 || model.coordinates.len() != 6 {
+    let count = 3 + turning;
+    if moving_term || angles.len() != turning || seen.len() != count {
+        return None;
+    }
+    if model.coordinates.len() != count {
         return None;
     }
     Some(slots)
 }
 
-/// E = ∂ω/∂η̇ and E⁻¹ = adj(E)/det E, reduced.
-struct Metric {
-    inverse: Matrix,
-    det: Id,
+/// How the attitude's rates and momenta meet ω and h.
+enum Metric {
+    /// Euler angles: E = ∂ω/∂η̇ and E⁻¹ = adj(E)/det E, reduced.
+    Euler { inverse: Matrix, det: Id },
+    /// A quaternion q: G(q) (ω = (2/n) G q̇), q, n = |q|² and λ = (4/3) tr I.
+    Quaternion {
+        g: Matrix,
+        q: Vec<Id>,
+        norm: Id,
+        lambda: Id,
+    },
 }
 
 impl Metric {
-    fn new(pool: &mut ExprPool, omega: &[Id], rates: &[Symbol]) -> Option<Metric> {
+    fn euler(pool: &mut ExprPool, omega: &[Id], rates: &[Symbol]) -> Option<Metric> {
         let e: Matrix = omega
             .iter()
             .map(|w| rates.iter().map(|r| pool.diff(*w, *r)).collect())
@@ -149,7 +185,73 @@ impl Metric {
                 *entry = pool.mul(&[adjugate, inverse_det]);
             }
         }
-        Some(Metric { inverse, det })
+        Some(Metric::Euler { inverse, det })
+    }
+
+    /// G = [[−e1, e0, e3, −e2], [−e2, −e3, e0, e1], [−e3, e2, −e1, e0]] of
+    /// `rotation::quaternion_rates`, and λ of the gauge term (`rigid.rs`, `gauge_term`).
+    fn quaternion(pool: &mut ExprPool, e: &[Id; 4], inertia: &Matrix) -> Metric {
+        let m: Vec<Id> = e.iter().map(|x| pool.neg(*x)).collect();
+        let g = vec![
+            vec![m[1], e[0], e[3], m[2]],
+            vec![m[2], m[3], e[0], e[1]],
+            vec![m[3], e[2], m[1], e[0]],
+        ];
+        let trace: Vec<Id> = (0..3).map(|i| inertia[i][i]).collect();
+        let trace = pool.add(&trace);
+        let (four, three) = (pool.int(4), pool.int(3));
+        let factor = pool.div(four, three);
+        let lambda = pool.mul(&[factor, trace]);
+        let norm = super::rotation::quaternion_norm(pool, e);
+        Metric::Quaternion {
+            g,
+            q: e.to_vec(),
+            norm,
+            lambda,
+        }
+    }
+
+    /// h from p_η: E⁻ᵀ p_η, or ½ G p_q (E p_q = (4/n) h, E = (2/n) G, E q = 0).
+    fn angular(&self, pool: &mut ExprPool, momentum: &[Id]) -> Vec<Id> {
+        match self {
+            Metric::Euler { inverse, .. } => mat_vec(pool, &transpose(inverse), momentum),
+            Metric::Quaternion { g, .. } => {
+                let half = pool.rational(Rational::HALF);
+                let gp = mat_vec(pool, g, momentum);
+                gp.iter().map(|x| pool.mul(&[half, *x])).collect()
+            }
+        }
+    }
+
+    /// η̇ from ω: E⁻¹ ω, or q̇ = ½ Gᵀ ω + (qᵀ p_q / λ) q (qᵀ p_q = λ (q·q̇)/n).
+    fn rates(&self, pool: &mut ExprPool, omega: &[Id], momentum: &[Id]) -> Vec<Id> {
+        match self {
+            Metric::Euler { inverse, .. } => mat_vec(pool, inverse, omega),
+            Metric::Quaternion { g, q, lambda, .. } => {
+                let half = pool.rational(Rational::HALF);
+                let turned = mat_vec(pool, &transpose(g), omega);
+                let along = dot(pool, q, momentum);
+                let radial = pool.div(along, *lambda);
+                (turned.iter().zip(q))
+                    .map(|(t, e)| {
+                        let a = pool.mul(&[half, *t]);
+                        let b = pool.mul(&[radial, *e]);
+                        pool.add(&[a, b])
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// The attitude's guard: det E² above the relative floor (gimbal lock), or n = |q|² > 0.
+    fn guard(&self, pool: &mut ExprPool) -> (Id, bool) {
+        match self {
+            Metric::Euler { det, .. } => {
+                let two = pool.int(2);
+                (pool.pow(*det, two), true)
+            }
+            Metric::Quaternion { norm, .. } => (*norm, false),
+        }
     }
 }
 
@@ -164,7 +266,7 @@ fn solve(
     momentum: &[Id],
 ) -> (Vec<Id>, Vec<Id>) {
     let big_p = mat_vec(pool, &transpose(rotation), &momentum[..3]);
-    let h = mat_vec(pool, &transpose(&metric.inverse), &momentum[3..]);
+    let h = metric.angular(pool, &momentum[3..]);
     let c_x_p = cross(pool, centre, &big_p);
     let excess: Vec<Id> = h
         .iter()
@@ -185,7 +287,7 @@ fn solve(
         })
         .collect();
     let origin_rates = mat_vec(pool, rotation, &velocity);
-    let angle_rates = mat_vec(pool, &metric.inverse, &omega);
+    let angle_rates = metric.rates(pool, &omega, &momentum[3..]);
     (origin_rates, angle_rates)
 }
 
