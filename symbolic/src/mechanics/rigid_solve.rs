@@ -52,7 +52,9 @@ pub struct RigidVelocities {
     /// q̇ in coordinate order, in the momentum symbols (`p_x`), q and the masses.
     pub velocities: Vec<Id>,
     /// `(value, relative)`: the state is refused unless each value is above 0, or above
-    /// `RELATIVE_PIVOT_FLOOR` when `relative` (m; I's pivots; det E²).
+    /// `RELATIVE_PIVOT_FLOOR` when `relative` (m; I's pivots; det E² for Euler angles, n = |q|²
+    /// for a quaternion — absolute: an n that overflowed to infinity would pass it, which a
+    /// run cannot reach, |q| drifting by rounding only).
     pub guards: Vec<(Id, bool)>,
     /// Whether the attitude is a quaternion (q̇ = ½ Gᵀ ω + (qᵀ p_q/λ) q), not Euler angles.
     pub quaternion: bool,
@@ -105,7 +107,7 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
 }
 
 /// The slots of a lone spatial rigid body's own coordinates, the origin's three then the
-/// three angles (indices into the coordinates), when the model is that body alone: its
+/// three angles or the quaternion's four (indices into the coordinates), when the model is that body alone: its
 /// position and angles are the coordinates themselves (each once, all of them), and no
 /// other term of L has a velocity in it, so p = ∂T_b/∂q̇ is the body's own momentum.
 pub(crate) fn own_coordinates(model: &Model) -> Option<Vec<usize>> {
