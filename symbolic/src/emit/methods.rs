@@ -188,14 +188,13 @@ impl Emitter<'_> {
     }
 
     /// `velocities(t, state)`: q̇(q, p), overridden only when it is in closed form: solved
-    /// symbolically, or a lone spatial rigid body (`mechanics/rigid_solve.rs`; the trait's
-    /// default would compute the momenta and factor M at every call, docs/bench/calisto.md).
+    /// symbolically, or a lone body turned by a quaternion (`mechanics/rigid_solve.rs`; the
+    /// trait's default would factor its 7×7 M at every call, docs/bench/calisto.md).
     pub(crate) fn velocities(&self) -> TokenStream {
+        let quaternion = (self.d.rigid_velocities.as_ref()).is_some_and(|r| r.quaternion);
         let (v, lines) = match &self.d.velocities {
             VelocitySolve::Symbolic(v) => (v.clone(), self.velocity_lines(v)),
-            VelocitySolve::Numeric if self.d.rigid_velocities.is_some() => {
-                (self.velocity_roots(), self.velocity_docs())
-            }
+            VelocitySolve::Numeric if quaternion => (self.velocity_roots(), self.velocity_docs()),
             VelocitySolve::Numeric => return TokenStream::new(),
         };
         let docs = self.docs("q̇(q, p, t) = M⁻¹ (p − b), in closed form.", lines);
@@ -256,8 +255,8 @@ impl Emitter<'_> {
     fn velocity_docs(&self) -> Vec<String> {
         match &self.d.velocities {
             VelocitySolve::Symbolic(v) => self.velocity_lines(v),
-            // A lone spatial rigid body: the closed form (`mechanics/rigid_solve.rs`), not the
-            // LDLᵀ: through ½ G for a quaternion, through E⁻¹ for Euler angles.
+            // A lone spatial rigid body: the closed form through E⁻¹ and I⁻¹
+            // (`mechanics/rigid_solve.rs`), not the LDLᵀ.
             VelocitySolve::Numeric
                 if self
                     .d
