@@ -145,10 +145,8 @@ impl Emitter<'_> {
     }
 
     /// `accelerations(t, velocity_state)`: q̈ in closed form, or M q̈ = rhs solved by the
-    /// straight-line LDLᵀ of `factor.rs`.
+    /// closed form of M⁻¹ (a lone quaternion body) or the straight-line LDLᵀ of `factor.rs`.
     pub(crate) fn accelerations(&self) -> TokenStream {
-        let runtime = &self.target.runtime;
-        let n_lit = self.sizes().coordinates_literal();
         let (docs, body) = match &self.d.accelerations {
             Some(acc) => (
                 self.docs(
@@ -160,31 +158,49 @@ impl Emitter<'_> {
                     quote!(Ok(#v))
                 }),
             ),
-            None => {
-                let mut roots: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
-                let m = roots.len();
-                roots.extend(&self.d.acceleration_rhs);
-                let docs = self.docs(
-                    "Lagrange-form accelerations: solves M q̈ = rhs (eq. 6, masses frozen) with",
-                    self.quantity_lines(Quantity::AccelerationRhs, &self.d.acceleration_rhs),
-                );
-                let zero = self.zero_pattern();
-                let body = self.body(Input::VelocityState, &roots, |outs| {
-                    let (matrix, rhs) = outs.split_at(m);
-                    let names: Vec<Ident> = (0..rhs.len())
-                        .map(|i| format_ident!("__ldl_x{}", i))
-                        .collect();
-                    let solve = ldlt_solve(matrix, &zero, rhs, &names, runtime);
-                    quote! {
-                        #solve
-                        Ok(#runtime::nalgebra::SVector::<f64, #n_lit>::from([#(#names),*]))
-                    }
-                });
-                (docs, body)
-            }
+            None => match self.rigid_acceleration_body() {
+                Some(body) => (self.rigid_acceleration_docs(), body),
+                None => self.ldlt_accelerations(),
+            },
         };
         let signature = self.signature(Method::Accelerations);
         method_item(docs, signature, body)
+    }
+
+    /// The docs of q̈ as the rate of the closed form of q̇ (a lone quaternion body).
+    fn rigid_acceleration_docs(&self) -> TokenStream {
+        let line = "q'' = d/dt q'(q, p, t, m) along the motion = Σ ∂q'/∂q_j q'_j + q'(q, ṗ) \
+             + ∂q'/∂t + Σ ∂q'/∂m_k ṁ_k, q' in closed form (velocities), p = M q'";
+        self.docs(
+            "Lagrange-form accelerations (eq. 6): the rate of q̇ in closed form, equal to M⁻¹ rhs.",
+            [line.to_string()],
+        )
+    }
+
+    /// The docs and body of q̈ from M q̈ = rhs by the straight-line LDLᵀ.
+    fn ldlt_accelerations(&self) -> (TokenStream, TokenStream) {
+        let runtime = &self.target.runtime;
+        let n_lit = self.sizes().coordinates_literal();
+        let mut roots: Vec<Id> = self.d.mass_matrix.iter().flatten().copied().collect();
+        let m = roots.len();
+        roots.extend(&self.d.acceleration_rhs);
+        let docs = self.docs(
+            "Lagrange-form accelerations: solves M q̈ = rhs (eq. 6, masses frozen) with",
+            self.quantity_lines(Quantity::AccelerationRhs, &self.d.acceleration_rhs),
+        );
+        let zero = self.zero_pattern();
+        let body = self.body(Input::VelocityState, &roots, |outs| {
+            let (matrix, rhs) = outs.split_at(m);
+            let names: Vec<Ident> = (0..rhs.len())
+                .map(|i| format_ident!("__ldl_x{}", i))
+                .collect();
+            let solve = ldlt_solve(matrix, &zero, rhs, &names, runtime);
+            quote! {
+                #solve
+                Ok(#runtime::nalgebra::SVector::<f64, #n_lit>::from([#(#names),*]))
+            }
+        });
+        (docs, body)
     }
 
     /// `velocities(t, state)`: q̇(q, p), overridden only when it is in closed form: solved

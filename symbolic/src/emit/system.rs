@@ -35,6 +35,30 @@ fn lookups(input: Input) -> Lookups {
 /// Turns the rendered first-stage values into the `let`s that bind q̇.
 type Bridge<'a> = Box<dyn FnOnce(Vec<TokenStream>) -> Vec<TokenStream> + 'a>;
 
+/// The checks that refuse a state with `SingularMassMatrix` unless each guard's value is
+/// above 0, or above the relative pivot floor where `relative`.
+fn guard_checks(
+    values: &[TokenStream],
+    relative: &[bool],
+    runtime: &TokenStream,
+) -> Vec<TokenStream> {
+    let checks = values.iter().zip(relative);
+    checks
+        .map(|(value, relative)| {
+            let floor = if *relative {
+                quote!(#runtime::system::RELATIVE_PIVOT_FLOOR)
+            } else {
+                quote!(0.0)
+            };
+            quote! {
+                if !((#value) > #floor) {
+                    return Err(#runtime::SystemError::SingularMassMatrix);
+                }
+            }
+        })
+        .collect()
+}
+
 /// Which vector a method receives.
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Input {
@@ -285,22 +309,7 @@ impl Emitter<'_> {
         let relative: Vec<bool> = rigid.guards.iter().map(|(_, r)| *r).collect();
         let bridge = move |values: Vec<TokenStream>| {
             let (rates, guards) = values.split_at(names.len());
-            let mut out: Vec<TokenStream> = guards
-                .iter()
-                .zip(&relative)
-                .map(|(value, relative)| {
-                    let floor = if *relative {
-                        quote!(#runtime::system::RELATIVE_PIVOT_FLOOR)
-                    } else {
-                        quote!(0.0)
-                    };
-                    quote! {
-                        if !((#value) > #floor) {
-                            return Err(#runtime::SystemError::SingularMassMatrix);
-                        }
-                    }
-                })
-                .collect();
+            let mut out = guard_checks(guards, &relative, runtime);
             out.extend(
                 names
                     .iter()
@@ -310,6 +319,45 @@ impl Emitter<'_> {
             out
         };
         (first, Box::new(bridge))
+    }
+
+    /// `accelerations(t, velocity_state)` of a lone body turned by a quaternion, `None`
+    /// for any other system: q̈ as the total derivative of its closed-form q̇ = F(q, p, t, m)
+    /// (`mechanics/rigid_solve.rs`, `quaternion_accelerations`), with p = M q̇ (the
+    /// momenta, free of an offset) bound first. The same guards refuse the same states as
+    /// `velocities` (m, I's pivots, n = |q|² ≤ 0).
+    pub(crate) fn rigid_acceleration_body(&self) -> Option<TokenStream> {
+        let rigid = (self.d.rigid_velocities.as_ref()).filter(|r| r.quaternion)?;
+        let runtime = &self.target.runtime;
+        let momenta = self.code_all(&self.d.momenta);
+        let mut roots = self.code_all(&rigid.accelerations);
+        roots.extend(rigid.guards.iter().map(|(value, _)| self.code(*value)));
+        let mut used = self.used(&momenta);
+        used.extend(self.used(&roots));
+        let bound: Vec<Symbol> = self.d.coordinates.iter().map(|c| c.momentum).collect();
+        let names: Vec<Ident> = (bound.iter())
+            .map(|p| symbol_ident(&self.d.pool, *p))
+            .collect();
+        let bridge = move |values: Vec<TokenStream>| {
+            let lets = names.iter().zip(values);
+            lets.map(|(name, value)| quote!(let #name = #value;))
+                .collect()
+        };
+        let stage = Stage {
+            first: &momenta,
+            bound: &bound,
+            bridge,
+        };
+        let lookups = lookups(Input::VelocityState);
+        let b = staged_block(&self.d.pool, stage, &roots, "t", runtime, lookups);
+        let relative: Vec<bool> = rigid.guards.iter().map(|(_, r)| *r).collect();
+        let (rates, guards) = b.outputs.split_at(bound.len());
+        let mut code = self.prologue(&used, Input::VelocityState);
+        code.extend(b.lets);
+        code.extend(guard_checks(guards, &relative, runtime));
+        let v = self.vector(rates.to_vec());
+        code.extend(quote!(Ok(#v)));
+        Some(code)
     }
 
     /// Which entries of M (row-major) are identically zero.

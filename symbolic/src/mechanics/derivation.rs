@@ -20,7 +20,7 @@ use super::masses::{closed_laws, flow_rates, mass_rates};
 use super::model::{Coordinate, Mass, MassKind, Model};
 use super::outputs::Outputs;
 use super::rigid_rates::body_frame_rates;
-use super::rigid_solve::rigid_velocities;
+use super::rigid_solve::{quaternion_accelerations, rigid_velocities};
 use crate::expr::{ExprPool, Id, Symbol};
 use crate::parse::Diagnostic;
 use crate::quantity::Quantity;
@@ -346,7 +346,11 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
     let inverse_mass = accelerations.inverse_mass.as_ref();
     let hamiltonian = hamiltonian(model, lagrangian, &momenta, inverse_mass);
     let rigid_velocities = match hamiltonian.velocities {
-        VelocitySolve::Numeric => rigid_velocities(model, &momenta),
+        VelocitySolve::Numeric => rigid_velocities(model, &momenta).map(|mut rigid| {
+            rigid.accelerations =
+                quaternion_accelerations(model, &rigid, &rates.total, &mass_rates);
+            rigid
+        }),
         VelocitySolve::Symbolic(_) => None,
     };
     let power = power(model, lagrangian, &rates, &mass_rates);
