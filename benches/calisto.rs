@@ -64,7 +64,6 @@ fn times(k: usize) -> Vec<f64> {
     seconds
 }
 
-/// The cost of one state rate (s), at the start and on the descent, fastest of 5 × 10⁵.
 /// The cost of one state rate and of one `accelerations` (q̈ from [q, q̇, m_s], which the
 /// rail's sliding phase calls at each of its rate evaluations), at the start's state.
 fn rate_cost() -> (f64, f64) {

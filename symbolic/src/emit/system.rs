@@ -323,13 +323,13 @@ impl Emitter<'_> {
 
     /// `accelerations(t, velocity_state)` of a lone body turned by a quaternion, `None`
     /// for any other system: q̈ as the total derivative of its closed-form q̇ = F(q, p, t, m)
-    /// (`mechanics/rigid_solve.rs`, `quaternion_accelerations`), with p = M q̇ (the
-    /// momenta, free of an offset) bound first. The same guards refuse the same states as
-    /// `velocities` (m, I's pivots, n = |q|² ≤ 0).
+    /// (`mechanics/rigid_solve.rs`, `quaternion_accelerations`), with p = M q̇ bound first
+    /// from the body's closed form (`quaternion_momenta`, free of an offset). The same
+    /// guards refuse the same states as `velocities` (m, I's pivots, n = |q|² ≤ √ε).
     pub(crate) fn rigid_acceleration_body(&self) -> Option<TokenStream> {
         let rigid = (self.d.rigid_velocities.as_ref()).filter(|r| r.quaternion)?;
         let runtime = &self.target.runtime;
-        let momenta = self.code_all(&self.d.momenta);
+        let momenta = self.code_all(&rigid.momenta);
         let mut roots = self.code_all(&rigid.accelerations);
         roots.extend(rigid.guards.iter().map(|(value, _)| self.code(*value)));
         let mut used = self.used(&momenta);

@@ -33,7 +33,8 @@
 //! ```
 //!
 //! (the first part gives (2/n) G q̇ = ω, the second qᵀ q̇ = s), ω and ṙ_O as above. The
-//! state is refused at n ≤ 0, besides m and I's pivots.
+//! state is refused at n ≤ √ε (|q| ≤ 1.2e-4: `RELATIVE_PIVOT_FLOOR`), besides m and I's
+//! pivots.
 //!
 //! Only where this is M's exact inverse: one body, rigid and spatial, whose position and
 //! angles (or the four components of its quaternion) are the coordinates themselves (each
@@ -52,15 +53,21 @@ pub struct RigidVelocities {
     /// q̇ in coordinate order, in the momentum symbols (`p_x`), q and the masses.
     pub velocities: Vec<Id>,
     /// `(value, relative)`: the state is refused unless each value is above 0, or above
-    /// `RELATIVE_PIVOT_FLOOR` when `relative` (m; I's pivots; det E² for Euler angles, n = |q|²
-    /// for a quaternion — absolute: an n that overflowed to infinity would pass it, which a
-    /// run cannot reach, |q| drifting by rounding only).
+    /// `RELATIVE_PIVOT_FLOOR` when `relative` (m and I's pivots absolute; det E² for Euler
+    /// angles and n = |q|² for a quaternion relative, both dimensionless: an n below the
+    /// floor, |q| ≤ 1.2e-4, is refused — q̈'s 1/n³ would overflow for n below about 1e-100
+    /// — and an n that overflowed to infinity would pass, which a run cannot reach, |q|
+    /// drifting by rounding only).
     pub guards: Vec<(Id, bool)>,
     /// Whether the attitude is a quaternion (q̇ = ½ Gᵀ ω + (qᵀ p_q/λ) q), not Euler angles.
     pub quaternion: bool,
     /// q̈ of a quaternion body ([`quaternion_accelerations`]), in q, q̇, p, t and the masses
     /// (p = M q̇ bound by the generated code); empty for Euler angles.
     pub accelerations: Vec<Id>,
+    /// p = M q̇ of a quaternion body in closed form, in q, q̇ and the masses, coordinate
+    /// order ([`quaternion_momenta`]; a third of the derived momenta's operations): what
+    /// its `accelerations` binds p from. Empty for Euler angles.
+    pub momenta: Vec<Id>,
 }
 
 /// q̈ of a lone body turned by a quaternion from its closed-form q̇ = F(q, p, t, m): the
@@ -71,9 +78,10 @@ pub struct RigidVelocities {
 /// ```
 ///
 /// (F is linear in p: ∂F/∂p ṗ = F(q, ṗ)), with ṗ the true momentum rate and ṁ the masses'
-/// rates. It equals eq. 6's M⁻¹ rhs — both are the motion's acceleration — in some 2 000
-/// operations where rhs alone, d*p/dt − (d*p/dt at q̈ = 0) expanded, takes 57 000
-/// (docs/bench/calisto.md). Empty for Euler angles, whose q̈ stays eq. 6's LDLᵀ.
+/// rates. It equals eq. 6's M⁻¹ rhs — both are the motion's acceleration: for Calisto 4 118
+/// operations (ṗ's 2 339 among them) where rhs alone, d*p/dt − (d*p/dt at q̈ = 0) expanded,
+/// takes 56 829 (docs/bench/calisto.md). Empty for Euler angles, whose q̈ stays eq. 6's
+/// LDLᵀ.
 pub(crate) fn quaternion_accelerations(
     model: &mut Model,
     rigid: &RigidVelocities,
@@ -135,6 +143,19 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
     };
     let (origin_rates, angle_rates) =
         solve(pool, &metric, &rotation, &inertia, &centre, mass, &momentum);
+    let momenta = match &metric {
+        Metric::Quaternion { .. } => {
+            let rates: Vec<Id> = slots.iter().map(|&i| pool.sym(velocities[i])).collect();
+            let body = (&rotation, &omega[..], &inertia, &centre[..], mass);
+            let (linear, turning) = quaternion_momenta(pool, &metric, body, &rates);
+            let mut out = vec![pool.int(0); slots.len()];
+            for (slot, p) in slots.iter().zip(linear.into_iter().chain(turning)) {
+                out[*slot] = p;
+            }
+            out
+        }
+        Metric::Euler { .. } => Vec::new(),
+    };
     let mut out = vec![pool.int(0); slots.len()];
     for (slot, rate) in slots
         .iter()
@@ -150,6 +171,7 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
         guards,
         quaternion: rigid.quaternion.is_some(),
         accelerations: Vec::new(),
+        momenta,
     })
 }
 
@@ -292,16 +314,60 @@ impl Metric {
         }
     }
 
-    /// The attitude's guard: det E² above the relative floor (gimbal lock), or n = |q|² > 0.
+    /// The attitude's guard: det E² above the relative floor (gimbal lock), or n = |q|²
+    /// above it too (n is dimensionless; q̈ holds 1/n³, which overflows to ∞ and, times a
+    /// zero, to NaN for n below about 1e-100).
     fn guard(&self, pool: &mut ExprPool) -> (Id, bool) {
         match self {
             Metric::Euler { det, .. } => {
                 let two = pool.int(2);
                 (pool.pow(*det, two), true)
             }
-            Metric::Quaternion { norm, .. } => (*norm, false),
+            Metric::Quaternion { norm, .. } => (*norm, true),
         }
     }
+}
+
+/// p = ∂T/∂q̇ of a lone quaternion body forwards (the module's comment), from the rates
+/// `rates` = [ṙ_O, q̇] in slot order: w = Rᵀ ṙ_O + ω × c, P = m w, h = I ω + c × P and
+/// s = q·q̇ give p_r = R P and p_q = (2/n) Gᵀ h + λ s q/n². Empty for Euler angles.
+fn quaternion_momenta(
+    pool: &mut ExprPool,
+    metric: &Metric,
+    (rotation, omega, inertia, centre, mass): (&Matrix, &[Id], &Matrix, &[Id], Id),
+    rates: &[Id],
+) -> (Vec<Id>, Vec<Id>) {
+    let Metric::Quaternion { g, q, norm, lambda } = metric else {
+        return (Vec::new(), Vec::new());
+    };
+    let along = mat_vec(pool, &transpose(rotation), &rates[..3]);
+    let w_x_c = cross(pool, omega, centre);
+    let big_p: Vec<Id> = (along.iter().zip(&w_x_c))
+        .map(|(v, wc)| {
+            let w = pool.add(&[*v, *wc]);
+            pool.mul(&[mass, w])
+        })
+        .collect();
+    let spin = mat_vec(pool, inertia, omega);
+    let c_x_p = cross(pool, centre, &big_p);
+    let h: Vec<Id> = (spin.iter().zip(&c_x_p))
+        .map(|(a, b)| pool.add(&[*a, *b]))
+        .collect();
+    let linear = mat_vec(pool, rotation, &big_p);
+    let turned = mat_vec(pool, &transpose(g), &h);
+    let s = dot(pool, q, &rates[3..]);
+    let (two, minus_one, minus_two) = (pool.int(2), pool.int(-1), pool.int(-2));
+    let (inverse, inverse_square) = (pool.pow(*norm, minus_one), pool.pow(*norm, minus_two));
+    let two_over_n = pool.mul(&[two, inverse]);
+    let gauge = pool.mul(&[*lambda, s, inverse_square]);
+    let turning = (turned.iter().zip(q))
+        .map(|(t, e)| {
+            let a = pool.mul(&[two_over_n, *t]);
+            let b = pool.mul(&[gauge, *e]);
+            pool.add(&[a, b])
+        })
+        .collect();
+    (linear, turning)
 }
 
 /// ṙ_O and η̇ from p_r and p_η (the formulas of the module's comment).
