@@ -229,6 +229,11 @@ pub enum SystemError {
         /// The value it gave.
         value: f64,
     },
+    /// Sensitivities to a parameter were asked of a system that names its parameters but
+    /// gives no `parameter_jacobian` (generated code gives both with `emit = [...,
+    /// "sensitivities"]`).
+    #[error("the system gives no parameter Jacobian for its sensitivities")]
+    NoParameterJacobian,
 }
 
 /// Whether every component of a vector is finite.

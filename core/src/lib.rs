@@ -125,6 +125,8 @@ pub mod rail;
 #[cfg(feature = "run")]
 pub mod run;
 #[cfg(feature = "run")]
+pub mod sensitivity;
+#[cfg(feature = "run")]
 pub mod solution;
 #[cfg(feature = "run")]
 pub mod support;

@@ -341,6 +341,26 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(jacobian)
     }
 
+    /// ∂(state rate)/∂θ at a fixed state `[q, p, m_s]` for the parameters θ named by
+    /// [`Self::parameter_names`], row-major S × P into `out` (of length S · P): what forward
+    /// sensitivities integrate with ([`crate::sensitivity`]). `Ok(false)` when the system
+    /// does not provide it, the default (generated code does with `emit = [...,
+    /// "sensitivities"]`).
+    fn parameter_jacobian(
+        &self,
+        _t: f64,
+        _state: &SVector<f64, S>,
+        _out: &mut [f64],
+    ) -> Result<bool, SystemError> {
+        Ok(false)
+    }
+
+    /// The names of the parameters θ, the columns of [`Self::parameter_jacobian`]; none by
+    /// default.
+    fn parameter_names(&self) -> &'static [&'static str] {
+        &[]
+    }
+
     /// The Taylor coefficients y\[k\] = y⁽ᵏ⁾(t)/k! of the solution through `(t, state)`,
     /// k = 0 … `coefficients.len() − 1`, into `coefficients`: what the
     /// [`Taylor`](crate::steppers::Taylor) stepper integrates with. `None` when the system
@@ -408,7 +428,8 @@ impl<const S: usize> StepError<S> {
             SystemError::NonPositiveMass { .. }
             | SystemError::TableOutside { .. }
             | SystemError::SampledInputNotFinite { .. }
-            | SystemError::SupportCoupled { .. } => error,
+            | SystemError::SupportCoupled { .. }
+            | SystemError::NoParameterJacobian => error,
         };
         Self::new(time, state, StepErrorKind::System(error))
     }

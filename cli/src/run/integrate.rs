@@ -481,6 +481,12 @@ impl Advice {
                     self.words.setting("--input")
                 ),
             ),
+            // The tool's runs carry no sensitivities yet (docs/sensitivities.md).
+            SystemError::NoParameterJacobian => (
+                what,
+                "the model gives no parameter Jacobian: derive it with its sensitivities"
+                    .to_string(),
+            ),
         }
     }
 

@@ -400,6 +400,86 @@ impl Emitter<'_> {
         let signature = self.signature(Method::Jacobian);
         method_item(docs, signature, body)
     }
+
+    /// `parameter_jacobian(t, state, out)` and `parameter_names()` (`emit = [...,
+    /// "sensitivities"]`): ∂[q̇, ṗ, ṁ_s, held]/∂θ at a fixed state [q, p, m_s], row-major
+    /// S × P into `out`, θ the parameters in `PARAMETERS` order. q̇ = M⁻¹ (p − b(q, θ)) moves
+    /// with θ at fixed p: J_θ = F_θ − F_v M⁻¹ P_θ, F_θ and P_θ at fixed q̇ (mass laws
+    /// followed), the q̇ rows −M⁻¹ P_θ, the held inputs' rows 0.
+    pub(crate) fn parameter_jacobian(&self) -> TokenStream {
+        let runtime = &self.target.runtime;
+        let sizes = self.sizes();
+        let (n, k) = (sizes.coordinates, sizes.state_masses);
+        let Some(j) = &self.d.jacobian else {
+            return TokenStream::new();
+        };
+        let p = self.d.parameters.len();
+        let names: Vec<&str> = self
+            .d
+            .parameters
+            .iter()
+            .map(|(name, _)| name.as_str())
+            .collect();
+        let blocks: [&Vec<Vec<Id>>; 4] = [
+            &j.rate_wrt_parameter,
+            &j.rate_wrt_velocity,
+            &j.momentum_wrt_parameter,
+            &self.d.mass_matrix,
+        ];
+        let lens: Vec<usize> = blocks.iter().map(|b| b.iter().flatten().count()).collect();
+        let roots: Vec<Id> = blocks
+            .iter()
+            .flat_map(|b| b.iter().flatten().copied())
+            .collect();
+        let (n_lit, nk) = (
+            Literal::usize_unsuffixed(n),
+            Literal::usize_unsuffixed(n + k),
+        );
+        let (p_lit, s) = (Literal::usize_unsuffixed(p), sizes.state_literal());
+        let docs = self.docs(
+            "∂[q̇, ṗ, ṁ_s, held]/∂θ at a fixed state, row-major S × P into `out` (θ in \
+             `PARAMETERS` order): J_θ = F_θ − F_v M⁻¹ P_θ.",
+            Vec::<String>::new(),
+        );
+        let body = self.body(Input::State, &roots, |outs| {
+            let (ft, rest) = outs.split_at(lens[0]);
+            let (fv, rest) = rest.split_at(lens[1]);
+            let (pt, mm) = rest.split_at(lens[2]);
+            let na = quote!(#runtime::nalgebra);
+            quote! {
+                let __ft = #na::SMatrix::<f64, #nk, #p_lit>::from_row_slice(&[#(#ft),*]);
+                let __fv = #na::SMatrix::<f64, #nk, #n_lit>::from_row_slice(&[#(#fv),*]);
+                let __pt = #na::SMatrix::<f64, #n_lit, #p_lit>::from_row_slice(&[#(#pt),*]);
+                let __mass_matrix = #na::SMatrix::<f64, #n_lit, #n_lit>::from_row_slice(&[#(#mm),*]);
+                let __dv_dt = -(__mass_matrix
+                    .cholesky()
+                    .ok_or(#runtime::SystemError::SingularMassMatrix)?
+                    .solve(&__pt));
+                let mut __j = #na::SMatrix::<f64, #s, #p_lit>::zeros();
+                __j.fixed_view_mut::<#n_lit, #p_lit>(0, 0).copy_from(&__dv_dt);
+                __j.fixed_view_mut::<#nk, #p_lit>(#n_lit, 0).copy_from(&(__ft + __fv * __dv_dt));
+                for (slot, value) in out.iter_mut().zip(__j.transpose().iter()) {
+                    *slot = *value;
+                }
+                Ok(true)
+            }
+        });
+        let signature = quote! {
+            fn parameter_jacobian(
+                &self,
+                t: f64,
+                state: &#runtime::nalgebra::SVector<f64, #s>,
+                out: &mut [f64],
+            ) -> ::core::result::Result<bool, #runtime::SystemError>
+        };
+        let mut code = method_item(docs, signature, body);
+        code.extend(quote! {
+            fn parameter_names(&self) -> &'static [&'static str] {
+                &[#(#names),*]
+            }
+        });
+        code
+    }
 }
 
 impl Emitter<'_> {

@@ -130,7 +130,7 @@ fn trait_methods(
     outputs: Outputs,
     (switches, table_switches, time_tables): Stops<'_>,
     head: TokenStream,
-) -> [TokenStream; 24] {
+) -> [TokenStream; 25] {
     let (d, target) = (emitter.d, emitter.target);
     [
         emitter.mass(),
@@ -149,7 +149,10 @@ fn trait_methods(
         emitter.canonical_rates(),
         emitter.state_rate(),
         optional(outputs.power, || emitter.power()),
-        optional(outputs.jacobian, || emitter.jacobian()),
+        optional(outputs.jacobian || outputs.sensitivities, || {
+            emitter.jacobian()
+        }),
+        optional(outputs.sensitivities, || emitter.parameter_jacobian()),
         emitter.switching_functions(switches, table_switches),
         optional(outputs.taylor, || {
             taylor::taylor_method(d, &target.runtime, &target.name)
@@ -167,7 +170,7 @@ fn trait_methods(
 fn trait_impl(
     d: &Derivation,
     target: &Target,
-    methods: [TokenStream; 24],
+    methods: [TokenStream; 25],
     statics: Option<TokenStream>,
 ) -> TokenStream {
     let (name, runtime) = (&target.name, &target.runtime);

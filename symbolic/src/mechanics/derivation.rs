@@ -59,6 +59,12 @@ pub struct JacobianParts {
     pub momentum_wrt_q: Matrix,
     /// P_m = ∂p/∂[m_s, u_held] at fixed q̇, N × (K + HELD).
     pub momentum_wrt_state_mass: Matrix,
+    /// F_θ = ∂[ṗ; ṁ_s]/∂θ at fixed q and q̇, the mass laws followed, (N + K) × P with a column
+    /// per parameter in [`Derivation::parameters`] order; no columns unless
+    /// `Outputs::sensitivities`.
+    pub rate_wrt_parameter: Matrix,
+    /// P_θ = ∂p/∂θ at fixed q and q̇, N × P (no columns unless `Outputs::sensitivities`).
+    pub momentum_wrt_parameter: Matrix,
 }
 
 /// The outcome of one `check`.
@@ -230,13 +236,16 @@ impl Derivation {
             head.extend(self.hamiltonian);
         }
         let mut roots = self.equation_roots(head, false);
-        if let Some(j) = self.jacobian.as_ref().filter(|_| outputs.jacobian) {
+        let asked = outputs.jacobian || outputs.sensitivities;
+        if let Some(j) = self.jacobian.as_ref().filter(|_| asked) {
             for matrix in [
                 &j.rate_wrt_q,
                 &j.rate_wrt_velocity,
                 &j.rate_wrt_state_mass,
                 &j.momentum_wrt_q,
                 &j.momentum_wrt_state_mass,
+                &j.rate_wrt_parameter,
+                &j.momentum_wrt_parameter,
             ] {
                 roots.extend(matrix.iter().flatten());
             }
@@ -354,7 +363,7 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
         VelocitySolve::Symbolic(_) => None,
     };
     let power = power(model, lagrangian, &rates, &mass_rates);
-    let jacobian = outputs.jacobian.then(|| {
+    let jacobian = (outputs.jacobian || outputs.sensitivities).then(|| {
         jacobian_parts(
             model,
             &closed_laws,
@@ -362,6 +371,7 @@ fn derive_equations(model: &mut Model, outputs: Outputs) -> Result<Equations, Ve
             &rates.total,
             &mass_rates,
             &velocities,
+            outputs.sensitivities,
         )
     });
     Ok(Equations {

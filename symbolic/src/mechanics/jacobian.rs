@@ -29,6 +29,7 @@ pub(crate) fn jacobian_parts(
     momentum_rate: &[Id],
     rates: &[Id],
     velocities: &[Symbol],
+    sensitivities: bool,
 ) -> JacobianParts {
     let law_masses: Vec<(Symbol, Id)> = model
         .masses
@@ -49,6 +50,11 @@ pub(crate) fn jacobian_parts(
         .chain(model.inputs.iter().filter_map(|i| i.held))
         .collect();
     let coordinates: Vec<Symbol> = model.coordinates.iter().map(|c| c.q).collect();
+    // The parameters' columns only for sensitivities (`Outputs::sensitivities`).
+    let parameters: Vec<Symbol> = match sensitivities {
+        true => model.parameters.iter().map(|(_, s)| *s).collect(),
+        false => Vec::new(),
+    };
     let pool = &mut model.pool;
     let rows: Vec<Id> = momentum_rate
         .iter()
@@ -76,5 +82,7 @@ pub(crate) fn jacobian_parts(
         rate_wrt_state_mass: block(pool, &rows, &state_masses, true),
         momentum_wrt_q: block(pool, momenta, &coordinates, true),
         momentum_wrt_state_mass: block(pool, momenta, &state_masses, true),
+        rate_wrt_parameter: block(pool, &rows, &parameters, true),
+        momentum_wrt_parameter: block(pool, momenta, &parameters, true),
     }
 }

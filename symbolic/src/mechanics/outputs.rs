@@ -8,7 +8,7 @@
 //! rate; no `DERIVATION` text).
 
 /// The optional outputs of a system. [`Outputs::FULL`] (the default) has all of them but the
-/// opt-in `taylor`, `head` and `lanes`.
+/// opt-in `taylor`, `head`, `lanes` and `sensitivities`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Outputs {
     /// The closed-form `hamiltonian` method.
@@ -28,6 +28,10 @@ pub struct Outputs {
     /// The state rate over double-double dual numbers (`taylor_head`, for the Taylor
     /// stepper's head, `Taylor::with_head`). Opt-in, with `taylor`.
     pub head: bool,
+    /// The Jacobian of the state rate with respect to the parameters
+    /// (`parameter_jacobian`, for forward sensitivities, docs/sensitivities.md); it brings
+    /// the state Jacobian with it. Opt-in.
+    pub sensitivities: bool,
 }
 
 /// The name of an output that does not exist.
@@ -41,7 +45,7 @@ pub struct UnknownOutput {
 }
 
 impl Outputs {
-    /// Every output but the opt-in Taylor recurrences, head and lanes.
+    /// Every output but the opt-in Taylor recurrences, head, lanes and sensitivities.
     pub const FULL: Outputs = Outputs {
         hamiltonian: true,
         power: true,
@@ -50,6 +54,7 @@ impl Outputs {
         taylor: false,
         lanes: false,
         head: false,
+        sensitivities: false,
     };
 
     /// Only what the steppers need.
@@ -61,10 +66,11 @@ impl Outputs {
         taylor: false,
         lanes: false,
         head: false,
+        sensitivities: false,
     };
 
     /// The names of the optional outputs, as [`Outputs::from_names`] reads them.
-    pub const NAMES: [&'static str; 7] = [
+    pub const NAMES: [&'static str; 8] = [
         "hamiltonian",
         "power",
         "jacobian",
@@ -72,6 +78,7 @@ impl Outputs {
         "taylor",
         "lanes",
         "head",
+        "sensitivities",
     ];
 
     /// The outputs named (the others left out): `[]` is [`Outputs::MINIMAL`].
@@ -94,6 +101,7 @@ impl Outputs {
                 "taylor" => outputs.taylor = true,
                 "lanes" => outputs.lanes = true,
                 "head" => outputs.head = true,
+                "sensitivities" => outputs.sensitivities = true,
                 other => unknown.push(UnknownOutput {
                     name: other.to_string(),
                     index,

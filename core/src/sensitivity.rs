@@ -1,0 +1,333 @@
+//! Forward sensitivities (docs/sensitivities.md): the derivatives of the state with respect
+//! to parameters and to entries of the initial state, integrated with it.
+//!
+//! For y' = f(t, y, θ) with y(t₀) = y₀(θ), a column s = ∂y/∂w of the sensitivity matrix (w a
+//! parameter θ_j or an initial entry y₀,i) obeys the variational equation
+//!
+//! ```text
+//! s' = J_y s + ∂f/∂w,     s(t₀) = ∂y₀/∂w
+//! ```
+//!
+//! with ∂f/∂w = column j of [`VariableMassSystem::parameter_jacobian`] for a parameter and 0
+//! for an initial entry, and s(t₀) = 0 for a parameter (the initial state is given as a
+//! state `[q, p, m_s]`, fixed) and the unit vector e_i for the initial entry i. [`Sensitive`]
+//! makes the system whose state is `[y, s₁, …, s_K]` (`SA = S (1 + K)`, K columns), so that
+//! every stepper of the crate integrates both with one step-size control, the error
+//! control covering the sensitivities too (CVODES's `errconS = true`).
+//!
+//! What is not handled yet is refused at construction, never integrated wrongly: a system
+//! with switching functions (a switch that moves with θ makes s jump) or sampled inputs (a
+//! sample replaces state entries). Knots of tables of t are fixed times: s is continuous
+//! across them.
+
+use alloc::vec::Vec;
+use core::cell::RefCell;
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::system::{SystemError, VariableMassSystem};
+
+/// A column of the sensitivity matrix: what the state is differentiated with respect to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Column {
+    /// A parameter, by its name in [`VariableMassSystem::parameter_names`].
+    Parameter(&'static str),
+    /// An entry of the initial state `[q, p, m_s]`, by its index.
+    Initial(usize),
+}
+
+/// Why a [`Sensitive`] system cannot be made.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SensitivityError {
+    /// `SA` is not `S · (1 + K)` for the K columns asked.
+    #[error("the augmented state has {augmented} entries, but {columns} columns of a state of {state} need {}", state * (1 + columns))]
+    Size {
+        /// The system's S.
+        state: usize,
+        /// K.
+        columns: usize,
+        /// The SA given.
+        augmented: usize,
+    },
+    /// A parameter the system does not name (or a system without `emit = ["sensitivities"]`).
+    #[error("no parameter `{name}` (the system's parameters with sensitivities: {known:?})")]
+    UnknownParameter {
+        /// The name asked for.
+        name: &'static str,
+        /// The names the system has.
+        known: &'static [&'static str],
+    },
+    /// An initial entry past the state.
+    #[error("initial entry {index} is past the state's {state} entries")]
+    UnknownEntry {
+        /// The index asked for.
+        index: usize,
+        /// S.
+        state: usize,
+    },
+    /// The system has switching functions or sampled inputs, whose jumps the sensitivities
+    /// do not follow yet.
+    #[error("sensitivities across {0} are not supported yet")]
+    Unsupported(&'static str),
+}
+
+/// `Sys` with the sensitivity columns after its state: `[y, s₁, …, s_K]`, `SA = S (1 + K)`.
+/// Every method but the state rate (and the Jacobian, left to the trait's differences)
+/// reads the first S entries and forwards to `Sys`.
+pub struct Sensitive<Sys, const S: usize> {
+    system: Sys,
+    /// Per column: `Some(j)`, the parameter's column of the parameter Jacobian, or `None`
+    /// for an initial entry.
+    parameters: Vec<Option<usize>>,
+    /// The initial entry of each column (`None` for a parameter).
+    initial: Vec<Option<usize>>,
+    /// The parameter Jacobian's S × P, kept between calls.
+    scratch: RefCell<Vec<f64>>,
+}
+
+impl<Sys, const S: usize> Sensitive<Sys, S> {
+    /// The system itself.
+    pub fn system(&self) -> &Sys {
+        &self.system
+    }
+
+    /// The number of columns K.
+    pub fn columns(&self) -> usize {
+        self.parameters.len()
+    }
+}
+
+/// The first S entries of an augmented state.
+fn head<const S: usize, const SA: usize>(state: &SVector<f64, SA>) -> SVector<f64, S> {
+    state.fixed_rows::<S>(0).into_owned()
+}
+
+impl<Sys, const S: usize> Sensitive<Sys, S> {
+    /// `system` with the sensitivity `columns`, checked against `SA` (the augmented state's
+    /// length) and what the system provides.
+    pub fn new<const N: usize, const SA: usize>(
+        system: Sys,
+        columns: &[Column],
+    ) -> Result<Self, SensitivityError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        if SA != S * (1 + columns.len()) {
+            return Err(SensitivityError::Size {
+                state: S,
+                columns: columns.len(),
+                augmented: SA,
+            });
+        }
+        if system.switch_count() > 0 {
+            return Err(SensitivityError::Unsupported("switches"));
+        }
+        if Sys::HELD > 0 {
+            return Err(SensitivityError::Unsupported("sampled inputs"));
+        }
+        let known = system.parameter_names();
+        let mut parameters = Vec::new();
+        let mut initial = Vec::new();
+        for column in columns {
+            match *column {
+                Column::Parameter(name) => {
+                    let j = known.iter().position(|k| *k == name);
+                    let j = j.ok_or(SensitivityError::UnknownParameter { name, known })?;
+                    parameters.push(Some(j));
+                    initial.push(None);
+                }
+                Column::Initial(index) if index < S => {
+                    parameters.push(None);
+                    initial.push(Some(index));
+                }
+                Column::Initial(index) => {
+                    return Err(SensitivityError::UnknownEntry { index, state: S })
+                }
+            }
+        }
+        let scratch = RefCell::new(alloc::vec![0.0; S * known.len()]);
+        Ok(Sensitive {
+            system,
+            parameters,
+            initial,
+            scratch,
+        })
+    }
+
+    /// The augmented initial state of `state`: s(t₀) = 0 for a parameter, e_i for the
+    /// initial entry i.
+    pub fn start<const SA: usize>(&self, state: &SVector<f64, S>) -> SVector<f64, SA> {
+        let mut out = SVector::<f64, SA>::zeros();
+        out.fixed_rows_mut::<S>(0).copy_from(state);
+        for (c, entry) in self.initial.iter().enumerate() {
+            if let Some(i) = entry {
+                out[S * (1 + c) + i] = 1.0;
+            }
+        }
+        out
+    }
+
+    /// ∂y_i/∂w_c of an augmented state: entry `i` of column `c`.
+    pub fn sensitivity<const SA: usize>(
+        &self,
+        state: &SVector<f64, SA>,
+        i: usize,
+        c: usize,
+    ) -> f64 {
+        state[S * (1 + c) + i]
+    }
+
+    /// At a crossing of state entry `i` through a fixed value at `(t, state)` — where an
+    /// [`Event::state_reaches`](crate::Event::state_reaches) ended a run, say the apogee
+    /// (a vertical momentum reaching 0) — for each column w the crossing time's derivative
+    /// and the state's there: with g = y_i − value (g_y = e_i, g_w = 0),
+    ///
+    /// ```text
+    /// dτ/dw = −s_i / f_i,     d y(τ)/dw = s + f dτ/dw
+    /// ```
+    ///
+    /// (g(τ(w), y(τ(w); w)) = 0 differentiated). `Ok(None)` where f_i = 0: the crossing is
+    /// tangent and τ has no derivative.
+    pub fn at_crossing<const N: usize, const SA: usize>(
+        &self,
+        t: f64,
+        state: &SVector<f64, SA>,
+        i: usize,
+    ) -> Result<Option<Vec<(f64, SVector<f64, S>)>>, SystemError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let rate = self.system.state_rate(t, &head::<S, SA>(state))?;
+        if rate[i] == 0.0 {
+            return Ok(None);
+        }
+        let columns = (0..self.columns()).map(|c| {
+            let s = state.fixed_rows::<S>(S * (1 + c)).into_owned();
+            let dt = -s[i] / rate[i];
+            (dt, s + rate * dt)
+        });
+        Ok(Some(columns.collect()))
+    }
+
+    /// [y', J_y s_c + ∂f/∂w_c for each column].
+    fn augmented_rate<const N: usize, const SA: usize>(
+        &self,
+        t: f64,
+        state: &SVector<f64, SA>,
+    ) -> Result<SVector<f64, SA>, SystemError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let y = head::<S, SA>(state);
+        let rate = self.system.state_rate(t, &y)?;
+        let jacobian: SMatrix<f64, S, S> = self.system.jacobian(t, &y)?;
+        let mut scratch = self.scratch.borrow_mut();
+        let count = scratch.len() / S.max(1);
+        if self.parameters.iter().any(Option::is_some)
+            && !self.system.parameter_jacobian(t, &y, &mut scratch)?
+        {
+            return Err(SystemError::NoParameterJacobian);
+        }
+        let mut out = SVector::<f64, SA>::zeros();
+        out.fixed_rows_mut::<S>(0).copy_from(&rate);
+        for (c, parameter) in self.parameters.iter().enumerate() {
+            let column = state.fixed_rows::<S>(S * (1 + c));
+            let mut ds = jacobian * column;
+            if let Some(j) = parameter {
+                for (i, d) in ds.iter_mut().enumerate() {
+                    *d += scratch[i * count + j];
+                }
+            }
+            out.fixed_rows_mut::<S>(S * (1 + c)).copy_from(&ds);
+        }
+        Ok(out)
+    }
+}
+
+/// Methods that read the first S entries of a state or velocity state, forwarded to `Sys`.
+macro_rules! on_head {
+    ($($(#[$doc:meta])* fn $name:ident(&self $(, $arg:ident: $ty:ty)*; $vector:ident) -> $out:ty;)*) => {$(
+        $(#[$doc])*
+        fn $name(&self $(, $arg: $ty)*, $vector: &SVector<f64, SA>) -> $out {
+            self.system.$name($($arg,)* &head::<S, SA>($vector))
+        }
+    )*};
+}
+
+/// `Sys` on the first S entries; the state rate augmented with the variational equations.
+/// The trait's finite-difference Jacobian serves the implicit steppers over all SA entries;
+/// the Taylor stepper refuses the system (no recurrences for the sensitivities yet).
+impl<Sys, const N: usize, const S: usize, const SA: usize> VariableMassSystem<N, SA>
+    for Sensitive<Sys, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    const COORDINATES: [&'static str; N] = Sys::COORDINATES;
+    const MASSES: &'static [&'static str] = Sys::MASSES;
+    /// The sensitivity columns sit where held values would, after the state masses, so that
+    /// `STATE_MASSES` stays the system's; no sample ever replaces them (`new` refuses a
+    /// system with sampled inputs).
+    const HELD: usize = SA - S;
+
+    on_head! {
+        fn mass(&self, index: usize, t: f64; state) -> f64;
+        fn mass_rate(&self, index: usize, t: f64; velocity_state) -> f64;
+        fn mass_matrix(&self, t: f64; state) -> SMatrix<f64, N, N>;
+        fn momenta(&self, t: f64; velocity_state) -> SVector<f64, N>;
+        fn lagrangian(&self, t: f64; velocity_state) -> f64;
+        fn lagrangian_gradient(&self, t: f64; velocity_state) -> SVector<f64, N>;
+        fn active_force(&self, t: f64; velocity_state) -> SVector<f64, N>;
+        fn reactive_thrust(&self, t: f64; velocity_state) -> SVector<f64, N>;
+        fn impact_force(&self, t: f64; velocity_state) -> SVector<f64, N>;
+        fn mass_flux_force(&self, t: f64; velocity_state) -> SVector<f64, N>;
+        fn accelerations(&self, t: f64; velocity_state) -> Result<SVector<f64, N>, SystemError>;
+        fn singular_attitude_distance(&self, t: f64; state) -> Option<f64>;
+        fn flow_rate(&self, index: usize, t: f64; velocity_state) -> f64;
+        fn frozen_force(&self, t: f64; velocity_state) -> SVector<f64, N>;
+        fn generalized_force(&self, t: f64; velocity_state) -> SVector<f64, N>;
+        fn check_masses(&self, t: f64; state) -> Result<(), SystemError>;
+        fn velocities(&self, t: f64; state) -> Result<SVector<f64, N>, SystemError>;
+        fn hamiltonian(&self, t: f64; state) -> Result<f64, SystemError>;
+        fn canonical_rates(&self, t: f64; state)
+            -> Result<(SVector<f64, N>, SVector<f64, N>), SystemError>;
+        fn power(&self, t: f64; state) -> Result<f64, SystemError>;
+    }
+
+    fn next_stop_time(&self, after: f64) -> Option<f64> {
+        self.system.next_stop_time(after)
+    }
+
+    fn flow_count(&self) -> usize {
+        self.system.flow_count()
+    }
+
+    fn flow_name(&self, index: usize) -> Option<&str> {
+        self.system.flow_name(index)
+    }
+
+    fn velocity_state(
+        &self,
+        t: f64,
+        state: &SVector<f64, SA>,
+    ) -> Result<SVector<f64, SA>, SystemError> {
+        let mut out = *state;
+        let head = self.system.velocity_state(t, &head::<S, SA>(state))?;
+        out.fixed_rows_mut::<S>(0).copy_from(&head);
+        Ok(out)
+    }
+
+    fn momentum_state(&self, t: f64, velocity_state: &SVector<f64, SA>) -> SVector<f64, SA> {
+        let mut out = *velocity_state;
+        let head = (self.system).momentum_state(t, &head::<S, SA>(velocity_state));
+        out.fixed_rows_mut::<S>(0).copy_from(&head);
+        out
+    }
+
+    fn state_rate(
+        &self,
+        t: f64,
+        state: &SVector<f64, SA>,
+    ) -> Result<SVector<f64, SA>, SystemError> {
+        self.augmented_rate(t, state)
+    }
+}
