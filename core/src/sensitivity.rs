@@ -36,6 +36,15 @@ pub enum Column {
     Initial(usize),
 }
 
+/// The derivatives at a crossing with respect to one column w ([`Sensitive::at_crossing`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AtCrossing<const S: usize> {
+    /// dτ/dw, the crossing time's.
+    pub time: f64,
+    /// d y(τ)/dw, the state's there (the crossing's motion included).
+    pub state: SVector<f64, S>,
+}
+
 /// Why a [`Sensitive`] system cannot be made.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum SensitivityError {
@@ -193,7 +202,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         t: f64,
         state: &SVector<f64, SA>,
         i: usize,
-    ) -> Result<Option<Vec<(f64, SVector<f64, S>)>>, SystemError>
+    ) -> Result<Option<Vec<AtCrossing<S>>>, SystemError>
     where
         Sys: VariableMassSystem<N, S>,
     {
@@ -203,8 +212,11 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         }
         let columns = (0..self.columns()).map(|c| {
             let s = state.fixed_rows::<S>(S * (1 + c)).into_owned();
-            let dt = -s[i] / rate[i];
-            (dt, s + rate * dt)
+            let time = -s[i] / rate[i];
+            AtCrossing {
+                time,
+                state: s + rate * time,
+            }
         });
         Ok(Some(columns.collect()))
     }
