@@ -342,3 +342,105 @@ fn the_sleds_speed_sensitivity_to_c_at_50_m_meets_eq_24() {
     eprintln!("∂v/∂c at 50 m: {ours:.15e} (eq. 24: {by_hand:.15e}), {error:e}; v {speed} ({v})");
     assert!(error <= 1e-9, "{error:e}");
 }
+
+/// A rocket whose propellant is a state mass burnt at μ (`tests/burn_to_zero.rs`'s tank).
+#[variable_mass_system(
+    r#"
+    coordinates y
+    mass m_p: state, rate -mu
+    mass m_d = m_dry
+    body tank: mass m_p, position [y]
+    body hull: mass m_d, position [y]
+    force tank: [-m_p*g]
+    force hull: [-m_d*g]
+    outflow tank: rate mu, relative_velocity [-u_e]
+"#,
+    emit = ["sensitivities"]
+)]
+#[derive(Clone, Copy)]
+struct Tank {
+    mu: f64,
+    u_e: f64,
+    g: f64,
+    m_dry: f64,
+}
+
+/// The apex after a burnout, through the switch from the burn to the coast at m_p = 0,
+/// whose time t_b = m_p0/μ moves with μ. With m0 = m_d + m_p0 and L = ln(m0/m_d), the burn
+/// ends at v_b = u_e L − g t_b, y_b = u_e (t_b − (m_d/μ) L) − ½ g t_b² (the rocket of the
+/// closed-form test above), and the coast reaches its apex at τ = t_b + v_b/g and
+/// h = y_b + v_b²/(2g). Simplified (m_d/μ + t_b = m0/μ):
+///
+/// ```text
+/// τ = u_e L/g,     h = (u_e/μ)(m_p0 − m0 L) + u_e² L²/(2g)
+/// dτ/du_e = L/g,   dh/du_e = (m_p0 − m0 L)/μ + u_e L²/g
+/// dτ/dμ = 0,       dh/dμ = (u_e/μ²)(m0 L − m_p0)
+/// ```
+///
+/// Ours: the burn to the event m_p = 0, `Sensitive::across` to the coast (μ's column
+/// `Elsewhere` there: the coast's own μ is 0), the coast to the event p = 0, `at_crossing`.
+/// Without the jump, dh/dμ would miss (f⁻ − f⁺) dτ/dμ. Measured: τ, h, dτ/du_e and dh/du_e
+/// within 5e-14–1.1e-13 relative, dh/dμ 2.2e-11 (m0 L − m_p0 is a difference), and dτ/dμ
+/// −1.6e-10 where its two cancelling parts (dt_b/dμ and dv_b/dμ/g) are t_b/μ = 9 each;
+/// bounds 1e-9 (the issue's) and 1e-9 t_b/μ.
+#[test]
+fn the_apex_after_a_burnout_has_the_derivatives_of_its_closed_form() {
+    let burn = Tank {
+        mu: 10.0,
+        u_e: 2500.0,
+        g: 9.81,
+        m_dry: 100.0,
+    };
+    let coast = Tank { mu: 0.0, ..burn };
+    let m_p0 = 900.0;
+    let columns = [Column::Parameter("u_e"), Column::Parameter("mu")];
+    let burning: Sensitive<Tank, 3> = Sensitive::new::<1, 9>(burn, &columns).expect("fits");
+    let coasting: Sensitive<Tank, 3> =
+        Sensitive::new::<1, 9>(coast, &[Column::Parameter("u_e"), Column::Elsewhere])
+            .expect("fits");
+    let control = StepControl::Adaptive(AdaptiveControl {
+        relative_tolerance: 1e-12,
+        absolute_tolerance: 1e-12,
+        ..AdaptiveControl::dop853()
+    });
+    let start: SVector<f64, 9> = burning.start(&SVector::from([0.0, 0.0, m_p0]));
+    let mut stepper = Dop853::new(&burning, 0.0, start, control).expect("a stepper");
+    let empty = Event::state_reaches(2, 0.0, Direction::Falling);
+    let first = run(&mut stepper, &RunConfig::until(200.0), &[empty]).expect("the burn");
+    let (t_b, end) = first.last().expect("points");
+    let after = burning
+        .across(&coasting, t_b, end, 2)
+        .expect("a transversal switch");
+    let mut stepper = Dop853::new(&coasting, t_b, after, control).expect("a stepper");
+    let apex = Event::state_reaches(1, 0.0, Direction::Falling);
+    let second = run(&mut stepper, &RunConfig::until(1e4), &[apex]).expect("the coast");
+    let (t, state) = second.last().expect("points");
+    let at = coasting
+        .at_crossing(t, state, 1)
+        .expect("a state")
+        .expect("a crossing");
+    let (mu, u_e, g, m_d) = (burn.mu, burn.u_e, burn.g, burn.m_dry);
+    let m0 = m_d + m_p0;
+    let l = (m0 / m_d).ln();
+    let tau = u_e * l / g;
+    let height = u_e / mu * (m_p0 - m0 * l) + (u_e * l).powi(2) / (2.0 * g);
+    let relative = |a: f64, b: f64| ((a - b) / b).abs();
+    let gaps = [
+        relative(t, tau),
+        relative(state[0], height),
+        relative(at[0].time, l / g),
+        relative(at[0].state[0], (m_p0 - m0 * l) / mu + u_e * l * l / g),
+        relative(at[1].state[0], u_e / mu.powi(2) * (m0 * l - m_p0)),
+    ];
+    let worst = gaps.iter().copied().fold(0f64, f64::max);
+    eprintln!(
+        "apex {t} s, {} m; gaps {gaps:?}; dτ/dμ {:e}",
+        state[0], at[1].time
+    );
+    assert!(worst <= 1e-9, "{gaps:?}");
+    assert!(
+        at[1].time.abs() <= 1e-9 * t_b / mu,
+        "dτ/dμ {:e}",
+        at[1].time
+    );
+}

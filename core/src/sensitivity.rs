@@ -34,6 +34,10 @@ pub enum Column {
     Parameter(&'static str),
     /// An entry of the initial state `[q, p, m_s]`, by its index.
     Initial(usize),
+    /// A parameter of another phase's system that this system's equations do not hold
+    /// (∂f/∂w = 0 here): the burn rate in a coast that follows the burn, say, whose own
+    /// `mu` is 0 and not the burn's (`Sensitive::across` carries the column over).
+    Elsewhere,
 }
 
 /// The derivatives at a crossing with respect to one column w ([`Sensitive::at_crossing`]).
@@ -43,6 +47,20 @@ pub struct AtCrossing<const S: usize> {
     pub time: f64,
     /// d y(τ)/dw, the state's there (the crossing's motion included).
     pub state: SVector<f64, S>,
+}
+
+/// Why [`Sensitive::across`] cannot carry the sensitivities over a switch.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum CrossingError {
+    /// A system could not be evaluated at the crossing.
+    #[error(transparent)]
+    System(#[from] SystemError),
+    /// The crossing is tangent (f_i = 0): its time has no derivative.
+    #[error("the crossing is tangent: its time has no derivative")]
+    Tangent,
+    /// The two systems' columns differ in number.
+    #[error("the systems have {0} and {1} columns")]
+    Columns(usize, usize),
 }
 
 /// Why a [`Sensitive`] system cannot be made.
@@ -152,6 +170,10 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
                 Column::Initial(index) => {
                     return Err(SensitivityError::UnknownEntry { index, state: S })
                 }
+                Column::Elsewhere => {
+                    parameters.push(None);
+                    initial.push(None);
+                }
             }
         }
         let scratch = RefCell::new(alloc::vec![0.0; S * known.len()]);
@@ -219,6 +241,49 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             }
         });
         Ok(Some(columns.collect()))
+    }
+
+    /// Across a switch from this system to `next` where state entry `i` crosses a fixed
+    /// value at `(t, state)` — a phase change on an event, the state carried unchanged, as
+    /// a burn that ends when the propellant (a state mass) reaches 0 — the augmented state
+    /// to start `next` from: the switch time moves with w (dτ/dw = −s_i⁻/f_i⁻, f⁻ this
+    /// system's rate there), and the state after it with it, so each column jumps:
+    ///
+    /// ```text
+    /// s⁺ = s⁻ + (f⁻ − f⁺) dτ/dw
+    /// ```
+    ///
+    /// (y(τ + δ) before and after the switch differ by (f⁻ − f⁺) δ to first order). The
+    /// columns must mean the same in both systems (the same list, a parameter that `next`
+    /// does not hold given as [`Column::Elsewhere`] there).
+    pub fn across<Next, const N: usize, const SA: usize>(
+        &self,
+        next: &Sensitive<Next, S>,
+        t: f64,
+        state: &SVector<f64, SA>,
+        i: usize,
+    ) -> Result<SVector<f64, SA>, CrossingError>
+    where
+        Sys: VariableMassSystem<N, S>,
+        Next: VariableMassSystem<N, S>,
+    {
+        if self.columns() != next.columns() {
+            return Err(CrossingError::Columns(self.columns(), next.columns()));
+        }
+        let y = head::<S, SA>(state);
+        let before = self.system.state_rate(t, &y)?;
+        let after = next.system.state_rate(t, &y)?;
+        if before[i] == 0.0 {
+            return Err(CrossingError::Tangent);
+        }
+        let mut out = *state;
+        for c in 0..self.columns() {
+            let s = state.fixed_rows::<S>(S * (1 + c)).into_owned();
+            let dt = -s[i] / before[i];
+            let jumped = s + (before - after) * dt;
+            out.fixed_rows_mut::<S>(S * (1 + c)).copy_from(&jumped);
+        }
+        Ok(out)
     }
 
     /// [y', J_y s_c + ∂f/∂w_c for each column].
