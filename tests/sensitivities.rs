@@ -444,3 +444,95 @@ fn the_apex_after_a_burnout_has_the_derivatives_of_its_closed_form() {
         at[1].time
     );
 }
+
+/// One burn to m_p = 0 and the coast to the apex of `tank` from rest with m_p0, DOP853 at
+/// `tolerance`, with the sensitivity columns `columns`: the apex's time and augmented state.
+fn burn_and_coast<const SA: usize>(
+    tank: Tank,
+    m_p0: f64,
+    columns: (&[Column], &[Column]),
+    tolerance: f64,
+) -> Result<(f64, SVector<f64, SA>, Sensitive<Tank, 3>), StepError<SA>> {
+    let burning: Sensitive<Tank, 3> = Sensitive::new::<1, SA>(tank, columns.0).expect("fits");
+    let coast = Tank { mu: 0.0, ..tank };
+    let coasting: Sensitive<Tank, 3> = Sensitive::new::<1, SA>(coast, columns.1).expect("fits");
+    let control = StepControl::Adaptive(AdaptiveControl {
+        relative_tolerance: tolerance,
+        absolute_tolerance: tolerance,
+        ..AdaptiveControl::dop853()
+    });
+    let start: SVector<f64, SA> = burning.start(&SVector::from([0.0, 0.0, m_p0]));
+    let mut stepper = Dop853::new(&burning, 0.0, start, control)?;
+    let empty = Event::state_reaches(2, 0.0, Direction::Falling);
+    let first = run(&mut stepper, &RunConfig::until(1e3), &[empty])?;
+    let (t_b, end) = first.last().expect("points");
+    let after = burning
+        .across(&coasting, t_b, end, 2)
+        .expect("a transversal switch");
+    let mut stepper = Dop853::new(&coasting, t_b, after, control)?;
+    let apex = Event::state_reaches(1, 0.0, Direction::Falling);
+    let second = run(&mut stepper, &RunConfig::until(1e5), &[apex])?;
+    let (t, state) = second.last().expect("points");
+    Ok((t, *state, coasting))
+}
+
+/// The linear apex variance σ_h² = Σ (dh/dw)² σ_w² from the sensitivities (u_e and μ
+/// independent and Gaussian, 1 % each) against a 10⁴-member Monte Carlo ensemble of the
+/// same burn and coast without sensitivities (ChaCha8 streams, Box–Muller). The sample
+/// variance's own standard error is √(2/N) = 1.4 %, and the apex is quadratic in u_e, which
+/// moves the variance by O(σ²) = 1e-4 relative. Measured: σ_h 30 475 m linear against
+/// 30 374 m, the variances 0.67 % apart; bound 5 % (the issue's), about 3.5 standard errors.
+#[test]
+fn the_linear_apex_variance_meets_a_monte_carlo_ensemble() {
+    use varmass::core::ensemble::rand::RngExt;
+    use varmass::core::ensemble::{Ensemble, SummaryConfig};
+    let nominal = Tank {
+        mu: 10.0,
+        u_e: 2500.0,
+        g: 9.81,
+        m_dry: 100.0,
+    };
+    let (m_p0, sigma) = (900.0, [25.0, 0.1]);
+    let burn = [Column::Parameter("u_e"), Column::Parameter("mu")];
+    let coast = [Column::Parameter("u_e"), Column::Elsewhere];
+    let (t, state, coasting) =
+        burn_and_coast::<9>(nominal, m_p0, (&burn, &coast), 1e-11).expect("the flight");
+    let at = coasting
+        .at_crossing(t, &state, 1)
+        .expect("a state")
+        .expect("a crossing");
+    let linear: f64 = (at.iter().zip(sigma))
+        .map(|(column, s)| (column.state[0] * s).powi(2))
+        .sum();
+    let gaussian = |rng: &mut varmass::core::ensemble::MemberRng| -> [f64; 2] {
+        let (u, v): (f64, f64) = (rng.random_range(0.0..1.0), rng.random_range(0.0..1.0));
+        let radius = (-2.0 * (1.0 - u).ln()).sqrt();
+        let angle = 2.0 * std::f64::consts::PI * v;
+        [radius * angle.cos(), radius * angle.sin()]
+    };
+    let sample = |rng: &mut varmass::core::ensemble::MemberRng| {
+        let z = gaussian(rng);
+        Tank {
+            u_e: nominal.u_e + sigma[0] * z[0],
+            mu: nominal.mu + sigma[1] * z[1],
+            ..nominal
+        }
+    };
+    let fly = |tank: &Tank| -> Result<[f64; 1], StepError<3>> {
+        let (_, state, _) = burn_and_coast::<3>(*tank, m_p0, (&[], &[]), 1e-9)?;
+        Ok([state[0]])
+    };
+    let partial = Ensemble::new(38, ["apex"], sample, fly).run(0..10_000);
+    assert!(partial.failures().is_empty());
+    let summary = partial
+        .summary("apex", &SummaryConfig::default())
+        .expect("statistics");
+    let monte_carlo = summary.standard_deviation.powi(2);
+    let gap = (linear / monte_carlo - 1.0).abs();
+    eprintln!(
+        "apex σ: linear {:.3} m, Monte Carlo {:.3} m (10⁴ members); variances differ by {gap:.2e}",
+        linear.sqrt(),
+        summary.standard_deviation
+    );
+    assert!(gap <= 0.05, "{gap:e}");
+}
