@@ -208,6 +208,39 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         state[S * (1 + c) + i]
     }
 
+    /// ∂q̇/∂w for every column at an augmented state: q̇ = q̇(y, θ) (q̇ = M⁻¹ (p − b)), so
+    /// ∂q̇/∂w = (∂q̇/∂y) s + ∂q̇/∂w|_y, the first N rows of the Jacobian and of the parameter
+    /// Jacobian (0 for an initial entry or a parameter held elsewhere).
+    pub fn velocity_sensitivities<const N: usize, const SA: usize>(
+        &self,
+        t: f64,
+        state: &SVector<f64, SA>,
+    ) -> Result<Vec<SVector<f64, N>>, SystemError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let y = head::<S, SA>(state);
+        let jacobian: SMatrix<f64, S, S> = self.system.jacobian(t, &y)?;
+        let mut scratch = self.scratch.borrow_mut();
+        let count = scratch.len() / S.max(1);
+        if self.parameters.iter().any(Option::is_some)
+            && !self.system.parameter_jacobian(t, &y, &mut scratch)?
+        {
+            return Err(SystemError::NoParameterJacobian);
+        }
+        let columns = self.parameters.iter().enumerate().map(|(c, parameter)| {
+            let s = state.fixed_rows::<S>(S * (1 + c));
+            let mut dv: SVector<f64, N> = jacobian.fixed_rows::<N>(0) * s;
+            if let Some(j) = parameter {
+                for (i, d) in dv.iter_mut().enumerate() {
+                    *d += scratch[i * count + j];
+                }
+            }
+            dv
+        });
+        Ok(columns.collect())
+    }
+
     /// At a crossing of state entry `i` through a fixed value at `(t, state)` — where an
     /// [`Event::state_reaches`](crate::Event::state_reaches) ended a run, say the apogee
     /// (a vertical momentum reaching 0) — for each column w the crossing time's derivative
