@@ -540,3 +540,54 @@ fn the_linear_apex_variance_meets_a_monte_carlo_ensemble() {
     );
     assert!(gap <= 0.05, "{gap:e}");
 }
+
+/// `run_phases` would carry the columns unchanged across its changes, where they jump
+/// (`Sensitive::across`): it refuses a `Sensitive` system at the first change, with the
+/// time of the change, instead of returning sensitivities silently wrong after it.
+#[test]
+fn a_run_of_phases_refuses_to_carry_sensitivities() {
+    use varmass::core::phases::NOT_CARRIED;
+    use varmass::core::{run_phases, Carry, Phase};
+    let burn = Tank {
+        mu: 10.0,
+        u_e: 2500.0,
+        g: 9.81,
+        m_dry: 100.0,
+    };
+    let columns = [Column::Parameter("u_e")];
+    let make = |tank: Tank| Sensitive::<Tank, 3>::new::<1, 6>(tank, &columns).expect("fits");
+    let phases = [
+        Phase {
+            system: make(burn),
+            carry: Carry::Capture,
+            state_masses: &[],
+            until: Some(Event::state_reaches(2, 0.0, Direction::Falling)),
+        },
+        Phase {
+            system: make(Tank { mu: 0.0, ..burn }),
+            carry: Carry::Capture,
+            state_masses: &[],
+            until: None,
+        },
+    ];
+    let start: SVector<f64, 6> = phases[0].system.start(&SVector::from([0.0, 0.0, 900.0]));
+    let control = StepControl::Adaptive(AdaptiveControl::dop853());
+    let refused = run_phases(
+        &phases,
+        (0.0, start),
+        |system: &Sensitive<Tank, 3>, t, y| Dop853::new(system, t, y, control),
+        &RunConfig::until(200.0),
+    )
+    .expect_err("refused at the change");
+    assert_eq!(
+        refused.error.kind,
+        StepErrorKind::InvalidConfiguration {
+            reason: NOT_CARRIED
+        }
+    );
+    assert!(
+        (refused.error.time - 90.0).abs() <= 1e-9,
+        "{}",
+        refused.error.time
+    );
+}

@@ -33,6 +33,11 @@ pub const ALREADY_PAST: &str = "a phase's end condition already holds (or stands
 pub const BAD_STATE_MASS: &str =
     "a phase sets a state mass the system does not have, or to a value that is not positive";
 
+/// The error of a change between systems whose state a change cannot carry as it carries
+/// the mechanics (forward sensitivities jump at a change: `sensitivity::Sensitive::across`).
+pub const NOT_CARRIED: &str = "a run of phases cannot carry sensitivities across a change: \
+     run the phases one by one and carry them with Sensitive::across";
+
 /// The error of a change whose masses move against its carry rule: a separation whose mass
 /// matrix grows (mass cannot leave and arrive at once) or a capture whose mass matrix
 /// shrinks (mass cannot arrive and leave). Either would create kinetic energy at the change
@@ -353,6 +358,9 @@ where
     Before: VariableMassSystem<N, S>,
     Sys: VariableMassSystem<N, S>,
 {
+    if !(before.carried_by_phases() && phase.system.carried_by_phases()) {
+        return Err(StepError::invalid_configuration(time, *state, NOT_CARRIED));
+    }
     let to_step_error = |error| StepError::from_system(before, error, time, state);
     let velocity_state = before.velocity_state(time, state).map_err(to_step_error)?;
     let mut entered = *state;

@@ -440,4 +440,9 @@ where
     ) -> Result<SVector<f64, SA>, SystemError> {
         self.augmented_rate(t, state)
     }
+
+    /// `run_phases` would carry the columns unchanged across a change, where they jump.
+    fn carried_by_phases(&self) -> bool {
+        false
+    }
 }

@@ -337,6 +337,7 @@ where
             &self, t: f64, velocity_state: &SVector<f64, S>, anchors: &[f64], values: &mut [f64]
         );
         fn next_stop_time(&self, after: f64) -> Option<f64>;
+        fn carried_by_phases(&self) -> bool;
         /// Without it a supported spatial body's run would report no approach to gimbal
         /// lock (the trait's default), silently.
         fn singular_attitude_distance(&self, t: f64, state: &SVector<f64, S>) -> Option<f64>;

@@ -341,6 +341,14 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(jacobian)
     }
 
+    /// Whether a run of phases (`run_phases`) may carry this system's state across a change
+    /// as it carries the mechanics (q, p or q̇, the state masses): `false` for a state with
+    /// parts that jump at a change otherwise (forward sensitivities:
+    /// `sensitivity::Sensitive::across`), which `run_phases` then refuses. `true` by default.
+    fn carried_by_phases(&self) -> bool {
+        true
+    }
+
     /// ∂(state rate)/∂θ at a fixed state `[q, p, m_s]` for the parameters θ named by
     /// [`Self::parameter_names`], row-major S × P into `out` (of length S · P): what forward
     /// sensitivities integrate with ([`crate::sensitivity`]). `Ok(false)` when the system
