@@ -358,7 +358,7 @@ where
     Before: VariableMassSystem<N, S>,
     Sys: VariableMassSystem<N, S>,
 {
-    if !(before.carried_by_phases() && phase.system.carried_by_phases()) {
+    if before.has_rate_only_state() || phase.system.has_rate_only_state() {
         return Err(StepError::invalid_configuration(time, *state, NOT_CARRIED));
     }
     let to_step_error = |error| StepError::from_system(before, error, time, state);

@@ -12,13 +12,17 @@
 //! for an initial entry, and s(t₀) = 0 for a parameter (the initial state is given as a
 //! state `[q, p, m_s]`, fixed) and the unit vector e_i for the initial entry i. [`Sensitive`]
 //! makes the system whose state is `[y, s₁, …, s_K]` (`SA = S (1 + K)`, K columns), so that
-//! every stepper of the crate integrates both with one step-size control, the error
-//! control covering the sensitivities too (CVODES's `errconS = true`).
+//! the Runge–Kutta steppers, explicit and implicit, integrate both with one step-size
+//! control, the error control covering the sensitivities too (CVODES's `errconS = true`).
 //!
-//! What is not handled yet is refused at construction, never integrated wrongly: a system
-//! with switching functions (a switch that moves with θ makes s jump) or sampled inputs (a
-//! sample replaces state entries). Knots of tables of t are fixed times: s is continuous
-//! across them.
+//! What is not handled yet is refused, never integrated wrongly: at construction a system
+//! with switching functions (a switch that moves with θ makes s jump), sampled inputs (a
+//! sample replaces state entries) or what its [`VariableMassSystem::sensitivity_obstacle`]
+//! names (no symbolic Jacobians, inputs, a table of t whose knots move with a parameter, a
+//! support); the Taylor stepper (no recurrences for s) and the variational one (it
+//! integrates the Lagrange side) at theirs; a run of phases at its first change
+//! ([`VariableMassSystem::has_rate_only_state`]). Knots of tables of t at fixed times
+//! (their slope and offset free of the parameters) leave s continuous.
 
 use alloc::vec::Vec;
 use core::cell::RefCell;
@@ -61,6 +65,9 @@ pub enum CrossingError {
     /// The two systems' columns differ in number.
     #[error("the systems have {0} and {1} columns")]
     Columns(usize, usize),
+    /// The entry is past the state.
+    #[error("entry {0} is past the state")]
+    Entry(usize),
 }
 
 /// Why a [`Sensitive`] system cannot be made.
@@ -149,6 +156,9 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         if system.switch_count() > 0 {
             return Err(SensitivityError::Unsupported("switches"));
         }
+        if let Some(reason) = system.sensitivity_obstacle() {
+            return Err(SensitivityError::Unsupported(reason));
+        }
         if Sys::HELD > 0 {
             return Err(SensitivityError::Unsupported("sampled inputs"));
         }
@@ -198,14 +208,15 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         out
     }
 
-    /// ∂y_i/∂w_c of an augmented state: entry `i` of column `c`.
+    /// ∂y_i/∂w_c of an augmented state: entry `i` of column `c`; `None` past the state or
+    /// the columns.
     pub fn sensitivity<const SA: usize>(
         &self,
         state: &SVector<f64, SA>,
         i: usize,
         c: usize,
-    ) -> f64 {
-        state[S * (1 + c) + i]
+    ) -> Option<f64> {
+        (i < S && c < self.columns()).then(|| state[S * (1 + c) + i])
     }
 
     /// ∂q̇/∂w for every column at an augmented state: q̇ = q̇(y, θ) (q̇ = M⁻¹ (p − b)), so
@@ -250,8 +261,8 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     /// dτ/dw = −s_i / f_i,     d y(τ)/dw = s + f dτ/dw
     /// ```
     ///
-    /// (g(τ(w), y(τ(w); w)) = 0 differentiated). `Ok(None)` where f_i = 0: the crossing is
-    /// tangent and τ has no derivative.
+    /// (g(τ(w), y(τ(w); w)) = 0 differentiated). `Ok(None)` where f_i = 0 (the crossing is
+    /// tangent and τ has no derivative) or `i` is past the state.
     pub fn at_crossing<const N: usize, const SA: usize>(
         &self,
         t: f64,
@@ -261,6 +272,9 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     where
         Sys: VariableMassSystem<N, S>,
     {
+        if i >= S {
+            return Ok(None);
+        }
         let rate = self.system.state_rate(t, &head::<S, SA>(state))?;
         if rate[i] == 0.0 {
             return Ok(None);
@@ -302,6 +316,9 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     {
         if self.columns() != next.columns() {
             return Err(CrossingError::Columns(self.columns(), next.columns()));
+        }
+        if i >= S {
+            return Err(CrossingError::Entry(i));
         }
         let y = head::<S, SA>(state);
         let before = self.system.state_rate(t, &y)?;
@@ -441,8 +458,9 @@ where
         self.augmented_rate(t, state)
     }
 
-    /// `run_phases` would carry the columns unchanged across a change, where they jump.
-    fn carried_by_phases(&self) -> bool {
-        false
+    /// `run_phases` would carry the columns unchanged across a change, where they jump,
+    /// and the variational stepper would hold them (it integrates the Lagrange side).
+    fn has_rate_only_state(&self) -> bool {
+        true
     }
 }

@@ -319,6 +319,11 @@ where
     const MASSES: &'static [&'static str] = Sys::MASSES;
     const HELD: usize = Sys::HELD;
 
+    /// The lift-off and the rail exit are switches whose times move with the parameters.
+    fn sensitivity_obstacle(&self) -> Option<&'static str> {
+        Some("a support (its lift-off and rail exit are switches)")
+    }
+
     forwarded! {
         fn mass(&self, index: usize, t: f64, state: &SVector<f64, S>) -> f64;
         fn mass_rate(&self, index: usize, t: f64, velocity_state: &SVector<f64, S>) -> f64;
@@ -337,7 +342,7 @@ where
             &self, t: f64, velocity_state: &SVector<f64, S>, anchors: &[f64], values: &mut [f64]
         );
         fn next_stop_time(&self, after: f64) -> Option<f64>;
-        fn carried_by_phases(&self) -> bool;
+        fn has_rate_only_state(&self) -> bool;
         /// Without it a supported spatial body's run would report no approach to gimbal
         /// lock (the trait's default), silently.
         fn singular_attitude_distance(&self, t: f64, state: &SVector<f64, S>) -> Option<f64>;

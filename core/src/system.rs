@@ -341,12 +341,22 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(jacobian)
     }
 
-    /// Whether a run of phases (`run_phases`) may carry this system's state across a change
-    /// as it carries the mechanics (q, p or q̇, the state masses): `false` for a state with
-    /// parts that jump at a change otherwise (forward sensitivities:
-    /// `sensitivity::Sensitive::across`), which `run_phases` then refuses. `true` by default.
-    fn carried_by_phases(&self) -> bool {
-        true
+    /// Whether the state has entries past the mechanics (q, p, m_s, held inputs) that only
+    /// the state rate evolves: forward sensitivities (`sensitivity::Sensitive`), which jump
+    /// at a phase change. A run of phases refuses such a system at its first change, and
+    /// the variational stepper, which integrates the Lagrange side, at construction.
+    /// `false` by default.
+    fn has_rate_only_state(&self) -> bool {
+        false
+    }
+
+    /// What of this system forward sensitivities cannot follow, if anything
+    /// (`sensitivity::Sensitive::new` refuses it with this reason). By default every system
+    /// is refused: the sensitivities need the symbolic Jacobians, which generated code
+    /// gives with `emit = [..., "sensitivities"]` (and then names what it still cannot
+    /// follow: inputs, a table of t whose knots move with a parameter).
+    fn sensitivity_obstacle(&self) -> Option<&'static str> {
+        Some("a system without the symbolic Jacobians of emit = [\"sensitivities\"]")
     }
 
     /// ∂(state rate)/∂θ at a fixed state `[q, p, m_s]` for the parameters θ named by

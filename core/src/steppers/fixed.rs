@@ -23,6 +23,11 @@ pub trait FixedMethod<const N: usize, const S: usize>: Sized {
     /// The new state of `step`, its work counted in `step.statistics`; the stepper checks
     /// it (finite, masses positive) before accepting it.
     fn advance<Sys: VariableMassSystem<N, S>>(&self, step: Step<'_, Sys, S>) -> NewState<S>;
+
+    /// Whether the method can integrate `system` at all; every system by default.
+    fn accepts<Sys: VariableMassSystem<N, S>>(_system: &Sys) -> Result<(), ConfigError> {
+        Ok(())
+    }
 }
 
 /// The new state a method computes, or why it could not.
@@ -96,6 +101,7 @@ where
         config: M::Config,
     ) -> Result<Self, StepError<S>> {
         let progress = Progress::new(system, time, state)?;
+        M::accepts(system).map_err(|e| e.at(time, &state))?;
         let (step, method) = M::configure(config).map_err(|e| e.at(time, &state))?;
         Ok(Self {
             system,

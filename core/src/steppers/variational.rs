@@ -131,7 +131,8 @@ impl<Sys, const S: usize> DiscreteStep<'_, Sys, S> {
         Ok((momenta, impulse))
     }
 
-    /// r(z) = [p₀(z) − p₀, z_p, m₁ − m₀ − h ṁ(mid)]: zero at the solution of the step.
+    /// r(z) = [p₀(z) − p₀, z_p, m₁ − m₀ − h ṁ(mid), u₁ − u₀]: zero at the solution of the
+    /// step, the held values u of sampled inputs constant over it (their rate is 0).
     fn residual<const N: usize>(
         &self,
         z: &SVector<f64, S>,
@@ -149,6 +150,9 @@ impl<Sys, const S: usize> DiscreteStep<'_, Sys, S> {
         for k in 0..Sys::STATE_MASSES {
             let index = 2 * N + k;
             r[index] = z[index] - self.y0[index] - self.h * self.system.mass_rate(k, t_mid, &mid);
+        }
+        for index in 2 * N + Sys::STATE_MASSES..S {
+            r[index] = z[index] - self.y0[index];
         }
         Ok(r)
     }
@@ -181,6 +185,18 @@ impl<Sys, const S: usize> DiscreteStep<'_, Sys, S> {
 
 impl<const N: usize, const S: usize> FixedMethod<N, S> for VariationalMethod {
     type Config = VariationalConfig;
+
+    /// It integrates the Lagrange side: state entries that only the state rate evolves
+    /// (forward sensitivities) it would hold constant.
+    fn accepts<Sys: VariableMassSystem<N, S>>(system: &Sys) -> Result<(), ConfigError> {
+        match system.has_rate_only_state() {
+            true => Err(ConfigError {
+                reason: "the variational stepper integrates the Lagrange side: it cannot \
+                         carry sensitivities (use a Runge–Kutta stepper)",
+            }),
+            false => Ok(()),
+        }
+    }
 
     fn configure(config: VariationalConfig) -> Result<(f64, Self), ConfigError> {
         let step = FixedStep::validated(config.step)?;

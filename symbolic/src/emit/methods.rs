@@ -7,7 +7,7 @@ use super::factor::ldlt_solve;
 use super::signature::Method;
 use super::system::{count_and_names, method_item, Emitter, Input};
 use crate::expr::Id;
-use crate::mechanics::{Of, VelocitySolve};
+use crate::mechanics::{Of, TimeTable, VelocitySolve};
 use crate::quantity::Quantity;
 
 impl Emitter<'_> {
@@ -406,7 +406,7 @@ impl Emitter<'_> {
     /// S × P into `out`, θ the parameters in `PARAMETERS` order. q̇ = M⁻¹ (p − b(q, θ)) moves
     /// with θ at fixed p: J_θ = F_θ − F_v M⁻¹ P_θ, F_θ and P_θ at fixed q̇ (mass laws
     /// followed), the q̇ rows −M⁻¹ P_θ, the held inputs' rows 0.
-    pub(crate) fn parameter_jacobian(&self) -> TokenStream {
+    pub(crate) fn parameter_jacobian(&self, time_tables: &[TimeTable]) -> TokenStream {
         let runtime = &self.target.runtime;
         let sizes = self.sizes();
         let (n, k) = (sizes.coordinates, sizes.state_masses);
@@ -473,12 +473,40 @@ impl Emitter<'_> {
             ) -> ::core::result::Result<bool, #runtime::SystemError>
         };
         let mut code = method_item(docs, signature, body);
+        let obstacle = match self.sensitivity_obstacle(time_tables) {
+            Some(reason) => quote!(::core::option::Option::Some(#reason)),
+            None => quote!(::core::option::Option::None),
+        };
         code.extend(quote! {
             fn parameter_names(&self) -> &'static [&'static str] {
                 &[#(#names),*]
             }
+            fn sensitivity_obstacle(&self) -> ::core::option::Option<&'static str> {
+                #obstacle
+            }
         });
         code
+    }
+
+    /// What of the model the sensitivities cannot follow yet, if anything: an input (a
+    /// parameter its Rust function reads is invisible to ∂f/∂θ, its partials are central
+    /// differences) or a table of t whose knots move with a parameter (`F(t - t_ign)`: f
+    /// jumps there at a time that moves with θ). Switches and sampled inputs the runtime
+    /// refuses by itself (`switch_count`, `HELD`).
+    fn sensitivity_obstacle(&self, time_tables: &[TimeTable]) -> Option<&'static str> {
+        if !self.d.inputs.is_empty() {
+            return Some("inputs (their Rust functions' parameters)");
+        }
+        let parameters: Vec<crate::expr::Symbol> =
+            self.d.parameters.iter().map(|(_, s)| *s).collect();
+        let moves = |e: Id| {
+            let free = self.d.pool.free_symbols(e);
+            parameters.iter().any(|p| free.contains(p))
+        };
+        let moving = time_tables
+            .iter()
+            .any(|t| moves(t.slope) || moves(t.offset));
+        moving.then_some("a table of t whose knots move with a parameter")
     }
 }
 

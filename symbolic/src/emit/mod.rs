@@ -152,7 +152,9 @@ fn trait_methods(
         optional(outputs.jacobian || outputs.sensitivities, || {
             emitter.jacobian()
         }),
-        optional(outputs.sensitivities, || emitter.parameter_jacobian()),
+        optional(outputs.sensitivities, || {
+            emitter.parameter_jacobian(time_tables)
+        }),
         emitter.switching_functions(switches, table_switches),
         optional(outputs.taylor, || {
             taylor::taylor_method(d, &target.runtime, &target.name)
