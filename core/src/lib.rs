@@ -108,6 +108,7 @@ pub mod stepper;
 pub mod steppers;
 pub mod system;
 pub mod table;
+pub mod tangent;
 pub mod tolerance;
 
 #[cfg(feature = "ensemble")]

@@ -373,6 +373,21 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(false)
     }
 
+    /// The state rate over [`Tangent`](crate::tangent::Tangent)s: at `state` (values y,
+    /// tangents s_c) with parameter j moved by 1 in direction c where `seeds[c] = Some(j)`,
+    /// the values f and the tangents J_y s_c + ∂f/∂θ_j — forward sensitivities without a
+    /// Jacobian formed ([`crate::sensitivity`]). `None` when the system has no such form, the
+    /// default (generated code has one with `emit = [..., "sensitivities"]` for a state
+    /// rate without tables, inputs or `sign`).
+    fn state_rate_tangents<const W: usize>(
+        &self,
+        _t: f64,
+        _state: &[crate::tangent::Tangent<W>; S],
+        _seeds: &[Option<usize>; W],
+    ) -> Option<Result<[crate::tangent::Tangent<W>; S], SystemError>> {
+        None
+    }
+
     /// The names of the parameters θ, the columns of [`Self::parameter_jacobian`]; none by
     /// default.
     fn parameter_names(&self) -> &'static [&'static str] {

@@ -18,6 +18,7 @@ mod stops;
 mod switches;
 mod system;
 mod tables;
+mod tangents;
 mod taylor;
 
 use proc_macro2::{Literal, TokenStream};
@@ -74,13 +75,17 @@ pub fn emit_system_for(
         true => head::head_items(&emitter, outputs.taylor),
         false => Default::default(),
     };
+    let tangents = match outputs.sensitivities {
+        true => tangents::tangent_items(&emitter),
+        false => Default::default(),
+    };
     let stops = (&switches[..], &table_switches[..], &time_tables[..]);
-    let methods = trait_methods(&emitter, outputs, stops, head.0);
+    let methods = trait_methods(&emitter, outputs, stops, (head.0, tangents.0));
     let lanes = optional(outputs.lanes, || lanes::lanes_impl(&emitter));
     let trait_impl = trait_impl(d, target, methods, statics);
     let inherent = inherent_items(d, source, texts, constructors);
     let name = &target.name;
-    let head_struct = head.1;
+    let (head_struct, tangents_struct) = (head.1, tangents.1);
     quote! {
         impl #name {
             #inherent
@@ -89,6 +94,7 @@ pub fn emit_system_for(
         #trait_impl
         #lanes
         #head_struct
+        #tangents_struct
     }
 }
 
@@ -124,13 +130,14 @@ fn code_forms(d: &mut Derivation, outputs: Outputs) -> FxHashMap<Id, Id> {
 /// of time, as the mechanics found them.
 type Stops<'a> = (&'a [Id], &'a [TableSwitch], &'a [TimeTable]);
 
-/// Every method of the trait impl, in the trait's order; `head` the head's methods.
+/// Every method of the trait impl, in the trait's order; `head` the head's methods,
+/// `tangents` the state rate over tangents.
 fn trait_methods(
     emitter: &Emitter<'_>,
     outputs: Outputs,
     (switches, table_switches, time_tables): Stops<'_>,
-    head: TokenStream,
-) -> [TokenStream; 25] {
+    (head, tangents): (TokenStream, TokenStream),
+) -> [TokenStream; 26] {
     let (d, target) = (emitter.d, emitter.target);
     [
         emitter.mass(),
@@ -155,6 +162,7 @@ fn trait_methods(
         optional(outputs.sensitivities, || {
             emitter.parameter_jacobian(time_tables)
         }),
+        tangents,
         emitter.switching_functions(switches, table_switches),
         optional(outputs.taylor, || {
             taylor::taylor_method(d, &target.runtime, &target.name)
@@ -172,7 +180,7 @@ fn trait_methods(
 fn trait_impl(
     d: &Derivation,
     target: &Target,
-    methods: [TokenStream; 25],
+    methods: [TokenStream; 26],
     statics: Option<TokenStream>,
 ) -> TokenStream {
     let (name, runtime) = (&target.name, &target.runtime);

@@ -1,0 +1,283 @@
+//! Forward-mode dual numbers with `W` tangents: a value and its derivatives in `W` directions
+//! at once. The generated state rate evaluated over them (`emit = [..., "sensitivities"]`,
+//! `VariableMassSystem::state_rate_tangents`) gives f and `W` directional derivatives
+//! J_y s + ∂f/∂θ e in one pass, with no Jacobian formed ([`crate::sensitivity`]).
+//!
+//! The operators take an `f64` or a `Tangent` on either side, so that the state rate's
+//! printed text (`2f64 * x`, `1.0 / d`, `x.powi(2)`, `x.sin()`) compiles unchanged over it;
+//! comparisons read the value alone (the pivot and mass guards).
+
+use core::cmp::Ordering;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+use nalgebra::{ComplexField, RealField};
+
+/// A value `v` and its derivatives `d` in `W` directions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tangent<const W: usize> {
+    /// The value.
+    pub v: f64,
+    /// The derivatives.
+    pub d: [f64; W],
+}
+
+impl<const W: usize> Tangent<W> {
+    /// A constant: no derivative.
+    pub fn constant(v: f64) -> Self {
+        Self { v, d: [0.0; W] }
+    }
+
+    /// f(v) with f'(v) = `slope`: the chain rule on every direction.
+    fn chain(self, value: f64, slope: f64) -> Self {
+        Self {
+            v: value,
+            d: self.d.map(|x| slope * x),
+        }
+    }
+
+    /// sin.
+    pub fn sin(self) -> Self {
+        self.chain(ComplexField::sin(self.v), ComplexField::cos(self.v))
+    }
+    /// cos.
+    pub fn cos(self) -> Self {
+        self.chain(ComplexField::cos(self.v), -ComplexField::sin(self.v))
+    }
+    /// tan.
+    pub fn tan(self) -> Self {
+        let t = ComplexField::tan(self.v);
+        self.chain(t, 1.0 + t * t)
+    }
+    /// exp.
+    pub fn exp(self) -> Self {
+        let e = ComplexField::exp(self.v);
+        self.chain(e, e)
+    }
+    /// ln.
+    pub fn ln(self) -> Self {
+        self.chain(ComplexField::ln(self.v), 1.0 / self.v)
+    }
+    /// sqrt.
+    pub fn sqrt(self) -> Self {
+        let r = ComplexField::sqrt(self.v);
+        self.chain(r, 0.5 / r)
+    }
+    /// cbrt.
+    pub fn cbrt(self) -> Self {
+        let r = ComplexField::cbrt(self.v);
+        self.chain(r, 1.0 / (3.0 * r * r))
+    }
+    /// x^n.
+    pub fn powi(self, n: i32) -> Self {
+        let slope = match n {
+            0 => 0.0,
+            _ => f64::from(n) * ComplexField::powi(self.v, n - 1),
+        };
+        self.chain(ComplexField::powi(self.v, n), slope)
+    }
+    /// x^y.
+    pub fn powf(self, y: impl Into<Tangent<W>>) -> Self {
+        let y = y.into();
+        let value = ComplexField::powf(self.v, y.v);
+        let along_x = y.v * ComplexField::powf(self.v, y.v - 1.0);
+        let along_y = if self.v > 0.0 {
+            value * ComplexField::ln(self.v)
+        } else {
+            0.0
+        };
+        let mut d = [0.0; W];
+        for (k, slot) in d.iter_mut().enumerate() {
+            *slot = along_x * self.d[k] + along_y * y.d[k];
+        }
+        Self { v: value, d }
+    }
+    /// tanh.
+    pub fn tanh(self) -> Self {
+        let t = ComplexField::tanh(self.v);
+        self.chain(t, 1.0 - t * t)
+    }
+    /// sinh.
+    pub fn sinh(self) -> Self {
+        self.chain(ComplexField::sinh(self.v), ComplexField::cosh(self.v))
+    }
+    /// cosh.
+    pub fn cosh(self) -> Self {
+        self.chain(ComplexField::cosh(self.v), ComplexField::sinh(self.v))
+    }
+    /// asin.
+    pub fn asin(self) -> Self {
+        self.chain(
+            ComplexField::asin(self.v),
+            1.0 / ComplexField::sqrt(1.0 - self.v * self.v),
+        )
+    }
+    /// acos.
+    pub fn acos(self) -> Self {
+        self.chain(
+            ComplexField::acos(self.v),
+            -1.0 / ComplexField::sqrt(1.0 - self.v * self.v),
+        )
+    }
+    /// atan.
+    pub fn atan(self) -> Self {
+        self.chain(ComplexField::atan(self.v), 1.0 / (1.0 + self.v * self.v))
+    }
+    /// atan2(self, x).
+    pub fn atan2(self, x: impl Into<Tangent<W>>) -> Self {
+        let x = x.into();
+        let r2 = self.v * self.v + x.v * x.v;
+        let mut d = [0.0; W];
+        for (k, slot) in d.iter_mut().enumerate() {
+            *slot = (x.v * self.d[k] - self.v * x.d[k]) / r2;
+        }
+        Self {
+            v: RealField::atan2(self.v, x.v),
+            d,
+        }
+    }
+}
+
+impl<const W: usize> From<f64> for Tangent<W> {
+    fn from(v: f64) -> Self {
+        Self::constant(v)
+    }
+}
+
+impl<const W: usize> PartialEq<f64> for Tangent<W> {
+    fn eq(&self, other: &f64) -> bool {
+        self.v == *other
+    }
+}
+
+impl<const W: usize> PartialOrd for Tangent<W> {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        self.v.partial_cmp(&other.v)
+    }
+}
+
+impl<const W: usize> PartialOrd<f64> for Tangent<W> {
+    fn partial_cmp(&self, other: &f64) -> Option<Ordering> {
+        self.v.partial_cmp(other)
+    }
+}
+
+impl<const W: usize> Neg for Tangent<W> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Self {
+            v: -self.v,
+            d: self.d.map(|x| -x),
+        }
+    }
+}
+
+impl<const W: usize> Add for Tangent<W> {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        let mut d = self.d;
+        for (a, b) in d.iter_mut().zip(o.d) {
+            *a += b;
+        }
+        Self { v: self.v + o.v, d }
+    }
+}
+
+impl<const W: usize> Sub for Tangent<W> {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        let mut d = self.d;
+        for (a, b) in d.iter_mut().zip(o.d) {
+            *a -= b;
+        }
+        Self { v: self.v - o.v, d }
+    }
+}
+
+impl<const W: usize> Mul for Tangent<W> {
+    type Output = Self;
+    fn mul(self, o: Self) -> Self {
+        let mut d = [0.0; W];
+        for (k, slot) in d.iter_mut().enumerate() {
+            *slot = self.d[k] * o.v + self.v * o.d[k];
+        }
+        Self { v: self.v * o.v, d }
+    }
+}
+
+impl<const W: usize> Div for Tangent<W> {
+    type Output = Self;
+    fn div(self, o: Self) -> Self {
+        let v = self.v / o.v;
+        let inverse = 1.0 / o.v;
+        let mut d = [0.0; W];
+        for (k, slot) in d.iter_mut().enumerate() {
+            *slot = (self.d[k] - v * o.d[k]) * inverse;
+        }
+        Self { v, d }
+    }
+}
+
+/// `Tangent ∘ f64` and `f64 ∘ Tangent` for each operator, through the constant.
+macro_rules! with_f64 {
+    ($($trait:ident $method:ident),*) => {$(
+        impl<const W: usize> $trait<f64> for Tangent<W> {
+            type Output = Tangent<W>;
+            fn $method(self, o: f64) -> Tangent<W> {
+                self.$method(Tangent::constant(o))
+            }
+        }
+        impl<const W: usize> $trait<Tangent<W>> for f64 {
+            type Output = Tangent<W>;
+            fn $method(self, o: Tangent<W>) -> Tangent<W> {
+                Tangent::constant(self).$method(o)
+            }
+        }
+    )*};
+}
+
+with_f64!(Add add, Sub sub, Mul mul, Div div);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rule over tangents beside its f64 function.
+    type Rule = (fn(Tangent<1>) -> Tangent<1>, fn(f64) -> f64);
+
+    /// Each rule against a central difference of its f64 function at a point.
+    #[test]
+    fn each_rule_meets_a_central_difference() {
+        let x = 0.37;
+        let h = 1e-6;
+        let seed = Tangent::<1> { v: x, d: [1.0] };
+        let rules: [Rule; 12] = [
+            (|t| t.sin(), f64::sin),
+            (|t| t.cos(), f64::cos),
+            (|t| t.tan(), f64::tan),
+            (|t| t.exp(), f64::exp),
+            (|t| t.ln(), f64::ln),
+            (|t| t.sqrt(), f64::sqrt),
+            (|t| t.cbrt(), f64::cbrt),
+            (|t| t.powi(3), |x| x.powi(3)),
+            (|t| t.powf(2.5), |x| x.powf(2.5)),
+            (|t| t.atan2(0.8), |x| x.atan2(0.8)),
+            (
+                |t| 2.0 / (t * t - 1.5) + 3.0 * t,
+                |x| 2.0 / (x * x - 1.5) + 3.0 * x,
+            ),
+            (
+                |t| t.asin() + t.acos() * t.atan() + t.tanh(),
+                |x| x.asin() + x.acos() * x.atan() + x.tanh(),
+            ),
+        ];
+        for (k, (tangent, plain)) in rules.iter().enumerate() {
+            let ours = tangent(seed);
+            let difference = (plain(x + h) - plain(x - h)) / (2.0 * h);
+            assert_eq!(ours.v, plain(x), "rule {k}");
+            assert!(
+                (ours.d[0] - difference).abs() <= 1e-8 * difference.abs().max(1.0),
+                "rule {k}"
+            );
+        }
+    }
+}

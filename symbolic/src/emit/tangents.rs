@@ -1,0 +1,113 @@
+//! `emit = [..., "sensitivities"]`: the state rate over forward-mode tangents
+//! (`varmass_core::tangent::Tangent<W>`), the `state_rate_tangents` method forward
+//! sensitivities integrate with (`core::sensitivity`): f and W directional derivatives
+//! J_y s + ∂f/∂θ e in one pass, no Jacobian formed.
+//!
+//! As for lanes and the head, the body is the scalar `state_rate`'s, printed by the same walk:
+//! its text (`f64` literals, `+ - * /`, `.sqrt()`, `.powi(n)`, `.sin()`, the LDLᵀ's
+//! `if !(d > floor)` guards) compiles unchanged over `Tangent<W>`, whose operators take an
+//! `f64` on either side and whose comparisons read the value. The parameters become a
+//! companion struct `__<Name>Tangents<W>` of tangents, seeded with 1 in the directions that
+//! move them. A state rate with tables, inputs or `sign` (their runtime functions take an
+//! `f64`) gets no tangent form: the trait's default `None`, and the sensitivities go through
+//! the whole Jacobians instead.
+
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::{format_ident, quote};
+
+use super::system::{Emitter, Input};
+use crate::expr::{Func, Id, Node};
+
+impl Emitter<'_> {
+    /// Whether the state rate has a tangent form: no tables, no inputs, no `sign`.
+    fn has_tangents(&self, roots: &[Id]) -> bool {
+        let d = self.d;
+        if d.pool.table_count() > 0 || !d.inputs.is_empty() {
+            return false;
+        }
+        let mut scanned = roots.to_vec();
+        scanned.extend(d.mass_matrix.iter().flatten());
+        scanned.extend(&d.momentum_offset);
+        scanned.extend(d.closed_laws.iter().flatten());
+        if let Some(rigid) = &d.rigid_velocities {
+            scanned.extend(&rigid.velocities);
+            scanned.extend(rigid.guards.iter().map(|(value, _)| *value));
+        }
+        let reachable = d.pool.reachable(&scanned, true).into_iter();
+        !reachable
+            .into_iter()
+            .any(|id| matches!(d.pool.node(id), Node::Call(Func::Sign, _)))
+    }
+}
+
+/// `state_rate_tangents` inside the trait impl, and the companion struct with the state
+/// rate over tangents beside it; both empty without a tangent form.
+pub(crate) fn tangent_items(emitter: &Emitter<'_>) -> (TokenStream, TokenStream) {
+    let roots = emitter.state_rate_roots();
+    if !emitter.has_tangents(&roots) {
+        return Default::default();
+    }
+    let runtime = &emitter.target.runtime;
+    let name = &emitter.target.name;
+    let tangents_name = format_ident!("__{}Tangents", name);
+    let s_lit = emitter.sizes().state_literal();
+    let fields: Vec<Ident> = (emitter.d.parameters.iter())
+        .map(|(p, _)| Ident::new(p, Span::call_site()))
+        .collect();
+    let indices = 0..fields.len();
+    let tangent = quote!(#runtime::tangent::Tangent<W>);
+    let body = emitter.body(Input::State, &roots, |outs| {
+        let outs = outs
+            .into_iter()
+            .map(|o| quote!(#runtime::tangent::Tangent::<W>::from(#o)));
+        quote!(::core::result::Result::Ok([#(#outs),*]))
+    });
+    let doc =
+        format!("The parameters of a `{name}` as tangents (`emit = [..., \"sensitivities\"]`).");
+    let method = quote! {
+        /// The state rate over tangents (`emit = [..., "sensitivities"]`).
+        #[inline]
+        fn state_rate_tangents<const W: usize>(
+            &self,
+            t: f64,
+            state: &[#tangent; #s_lit],
+            seeds: &[::core::option::Option<usize>; W],
+        ) -> ::core::option::Option<::core::result::Result<[#tangent; #s_lit], #runtime::SystemError>> {
+            let seeded = |j: usize, value: f64| {
+                let mut d = [0.0; W];
+                for (slot, seed) in d.iter_mut().zip(seeds) {
+                    if *seed == ::core::option::Option::Some(j) {
+                        *slot = 1.0;
+                    }
+                }
+                #runtime::tangent::Tangent { v: value, d }
+            };
+            let parameters = #tangents_name {
+                #(#fields: seeded(#indices, self.#fields),)*
+            };
+            ::core::option::Option::Some(parameters.state_rate(t, state))
+        }
+    };
+    let items = quote! {
+        #[doc = #doc]
+        #[doc(hidden)]
+        #[derive(Clone, Copy, Debug)]
+        pub struct #tangents_name<const W: usize> {
+            #(#fields: #tangent,)*
+        }
+
+        #[allow(unused_variables, non_snake_case, clippy::all)]
+        impl<const W: usize> #tangents_name<W> {
+            /// `state_rate` over tangents.
+            #[inline]
+            fn state_rate(
+                &self,
+                t: f64,
+                state: &[#tangent; #s_lit],
+            ) -> ::core::result::Result<[#tangent; #s_lit], #runtime::SystemError> {
+                #body
+            }
+        }
+    };
+    (method, items)
+}
