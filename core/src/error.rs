@@ -234,6 +234,11 @@ pub enum SystemError {
     /// "sensitivities"]`).
     #[error("the system gives no parameter Jacobian for its sensitivities")]
     NoParameterJacobian,
+    /// A support (a pad's hold, a rail) was asked to hold or guide a system with
+    /// sensitivities: it clamps the mechanics' rows only, so the columns would move as if
+    /// the body were free.
+    #[error("a support cannot hold or guide a system with sensitivities")]
+    SupportedSensitivities,
 }
 
 /// Whether every component of a vector is finite.

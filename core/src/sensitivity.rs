@@ -348,6 +348,12 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     where
         Sys: VariableMassSystem<N, S>,
     {
+        if self.columns() == 0 {
+            let mut out = SVector::<f64, SA>::zeros();
+            let rate = self.system.state_rate(t, &head::<S, SA>(state))?;
+            out.fixed_rows_mut::<S>(0).copy_from(&rate);
+            return Ok(out);
+        }
         match self.rate_by_tangents::<N, SA>(t, state) {
             Some(rate) => rate,
             None => self.rate_by_jacobians::<N, SA>(t, state),

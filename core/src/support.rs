@@ -129,6 +129,10 @@ impl<Sys> Supported<Sys> {
     where
         Sys: VariableMassSystem<N, S>,
     {
+        let constrained = self.held.is_some() || self.rail.is_some();
+        if constrained && self.system.has_rate_only_state() {
+            return Err(SystemError::SupportedSensitivities);
+        }
         match self.held_below::<N>() {
             Some(k) if coupled(&self.system, k, t, state, HELD_COUPLING) => {
                 Err(SystemError::SupportCoupled { index: k })

@@ -378,7 +378,8 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// the values f and the tangents J_y s_c + ∂f/∂θ_j — forward sensitivities without a
     /// Jacobian formed ([`crate::sensitivity`]). `None` when the system has no such form, the
     /// default (generated code has one with `emit = [..., "sensitivities"]` for a state
-    /// rate without tables, inputs or `sign`).
+    /// rate without tables, inputs, `sign`, `abs`, `min`, `max`, or a `powf` or `atan2` of a
+    /// constant or of t alone: `emit/tangents.rs`).
     fn state_rate_tangents<const W: usize>(
         &self,
         _t: f64,
@@ -462,7 +463,8 @@ impl<const S: usize> StepError<S> {
             | SystemError::TableOutside { .. }
             | SystemError::SampledInputNotFinite { .. }
             | SystemError::SupportCoupled { .. }
-            | SystemError::NoParameterJacobian => error,
+            | SystemError::NoParameterJacobian
+            | SystemError::SupportedSensitivities => error,
         };
         Self::new(time, state, StepErrorKind::System(error))
     }

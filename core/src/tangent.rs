@@ -12,8 +12,18 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use nalgebra::{ComplexField, RealField};
 
-/// A value `v` and its derivatives `d` in `W` directions.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// `slope · x`, 0 where x is 0 whatever the slope (a direction that does not move).
+fn times(slope: f64, x: f64) -> f64 {
+    if x == 0.0 {
+        0.0
+    } else {
+        slope * x
+    }
+}
+
+/// A value `v` and its derivatives `d` in `W` directions. Equality and order read the value
+/// alone, as the generated code's guards do.
+#[derive(Clone, Copy, Debug)]
 pub struct Tangent<const W: usize> {
     /// The value.
     pub v: f64,
@@ -27,11 +37,13 @@ impl<const W: usize> Tangent<W> {
         Self { v, d: [0.0; W] }
     }
 
-    /// f(v) with f'(v) = `slope`: the chain rule on every direction.
+    /// f(v) with f'(v) = `slope`: the chain rule on every direction. A direction that does
+    /// not move the argument does not move the value, even where the slope is infinite
+    /// (√ at 0 of a parameter the direction does not seed): 0, not ∞ × 0 = NaN.
     fn chain(self, value: f64, slope: f64) -> Self {
         Self {
             v: value,
-            d: self.d.map(|x| slope * x),
+            d: self.d.map(|x| times(slope, x)),
         }
     }
 
@@ -75,7 +87,8 @@ impl<const W: usize> Tangent<W> {
         };
         self.chain(ComplexField::powi(self.v, n), slope)
     }
-    /// x^y.
+    /// x^y. Along y the slope x^y ln x exists for x > 0 only: NaN elsewhere where the
+    /// direction moves y (as the symbolic derivative gives), nothing where it does not.
     pub fn powf(self, y: impl Into<Tangent<W>>) -> Self {
         let y = y.into();
         let value = ComplexField::powf(self.v, y.v);
@@ -83,11 +96,11 @@ impl<const W: usize> Tangent<W> {
         let along_y = if self.v > 0.0 {
             value * ComplexField::ln(self.v)
         } else {
-            0.0
+            f64::NAN
         };
         let mut d = [0.0; W];
         for (k, slot) in d.iter_mut().enumerate() {
-            *slot = along_x * self.d[k] + along_y * y.d[k];
+            *slot = times(along_x, self.d[k]) + times(along_y, y.d[k]);
         }
         Self { v: value, d }
     }
@@ -140,6 +153,12 @@ impl<const W: usize> Tangent<W> {
 impl<const W: usize> From<f64> for Tangent<W> {
     fn from(v: f64) -> Self {
         Self::constant(v)
+    }
+}
+
+impl<const W: usize> PartialEq for Tangent<W> {
+    fn eq(&self, other: &Self) -> bool {
+        self.v == other.v
     }
 }
 

@@ -482,9 +482,10 @@ impl Advice {
                 ),
             ),
             // The tool's runs carry no sensitivities yet (docs/sensitivities.md).
-            SystemError::NoParameterJacobian => (
+            SystemError::NoParameterJacobian | SystemError::SupportedSensitivities => (
                 what,
-                "the model gives no parameter Jacobian: derive it with its sensitivities"
+                "the model gives no parameter Jacobian, or a support holds it: derive it with \
+                 its sensitivities and fly it free"
                     .to_string(),
             ),
         }

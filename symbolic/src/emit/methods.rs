@@ -473,19 +473,24 @@ impl Emitter<'_> {
             ) -> ::core::result::Result<bool, #runtime::SystemError>
         };
         let mut code = method_item(docs, signature, body);
+        code.extend(self.sensitivity_names(&names, time_tables));
+        code
+    }
+
+    /// `parameter_names` and `sensitivity_obstacle`, beside `parameter_jacobian`.
+    fn sensitivity_names(&self, names: &[&str], time_tables: &[TimeTable]) -> TokenStream {
         let obstacle = match self.sensitivity_obstacle(time_tables) {
             Some(reason) => quote!(::core::option::Option::Some(#reason)),
             None => quote!(::core::option::Option::None),
         };
-        code.extend(quote! {
+        quote! {
             fn parameter_names(&self) -> &'static [&'static str] {
                 &[#(#names),*]
             }
             fn sensitivity_obstacle(&self) -> ::core::option::Option<&'static str> {
                 #obstacle
             }
-        });
-        code
+        }
     }
 
     /// What of the model the sensitivities cannot follow yet, if anything: an input (a

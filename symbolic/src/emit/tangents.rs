@@ -8,9 +8,10 @@
 //! `if !(d > floor)` guards) compiles unchanged over `Tangent<W>`, whose operators take an
 //! `f64` on either side and whose comparisons read the value. The parameters become a
 //! companion struct `__<Name>Tangents<W>` of tangents, seeded with 1 in the directions that
-//! move them. A state rate with tables, inputs or `sign` (their runtime functions take an
-//! `f64`) gets no tangent form: the trait's default `None`, and the sensitivities go through
-//! the whole Jacobians instead.
+//! move them. A state rate with tables, inputs, `sign`, `abs`, `min` or `max`, or a `powf`
+//! or `atan2` of a constant or of t alone (their functions take an `f64`) gets no tangent
+//! form: the trait's default `None`, and the sensitivities go through the whole Jacobians
+//! instead (or, with a switch, are refused).
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -19,7 +20,9 @@ use super::system::{Emitter, Input};
 use crate::expr::{Func, Id, Node};
 
 impl Emitter<'_> {
-    /// Whether the state rate has a tangent form: no tables, no inputs, no `sign`.
+    /// Whether the state rate has a tangent form: no tables, no inputs, no `sign`, `abs`,
+    /// `min` or `max` (switches, which the sensitivities refuse anyway), no `powf` or
+    /// `atan2` whose receiver is printed as an `f64` (a constant or a function of t alone).
     fn has_tangents(&self, roots: &[Id]) -> bool {
         let d = self.d;
         if d.pool.table_count() > 0 || !d.inputs.is_empty() {
@@ -33,10 +36,17 @@ impl Emitter<'_> {
             scanned.extend(&rigid.velocities);
             scanned.extend(rigid.guards.iter().map(|(value, _)| *value));
         }
-        let reachable = d.pool.reachable(&scanned, true).into_iter();
-        !reachable
-            .into_iter()
-            .any(|id| matches!(d.pool.node(id), Node::Call(Func::Sign, _)))
+        let time = d.time;
+        // An argument with no symbol but t is printed as an f64, whose own `powf` and
+        // `atan2` take no tangent.
+        let plain = |e: &Id| d.pool.free_symbols(*e).iter().all(|s| *s == time);
+        let reachable = d.pool.reachable(&scanned, true);
+        !reachable.into_iter().any(|id| match d.pool.node(id) {
+            Node::Call(Func::Sign | Func::Abs | Func::Min | Func::Max, _) => true,
+            Node::Call(Func::Atan2, args) => args.first().is_some_and(plain),
+            Node::Pow(base, exponent) => d.pool.as_rational(*exponent).is_none() && plain(base),
+            _ => false,
+        })
     }
 }
 
