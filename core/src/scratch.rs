@@ -61,6 +61,7 @@ impl Scratch {
     /// the rows are not fresh ([`Scratch::parts`]), the rows still hold those constants
     /// and generated code does not recompute them: the sled's sin θ and cos θ were 6 % of
     /// its run (issue 38). A NaN parameter never matches (its constants are recomputed).
+    #[inline]
     pub fn same_constants(&mut self, key: &[f64]) -> bool {
         let same = self.constants.len() == key.len()
             && self
@@ -78,6 +79,7 @@ impl Scratch {
     /// The first `F` rows and `factor` entries of the factor, grown if shorter, for the
     /// generated code `owner`; `true` when that code did not use them last (its rows set
     /// at order 0 alone must then be zeroed).
+    #[inline]
     pub fn parts<const F: usize>(
         &mut self,
         factor: usize,
