@@ -672,6 +672,34 @@ the target is above the error of that side's loosest run (1e-4); "–": no ratio
 
 {speed}
 
+### Why the sled and the rocket were slower, and what changed (issue 38, item 3)
+
+Both sides take the same steps at the same orders (J&Z's rule on both: p = ⌈−½ ln ε + 1⌉,
+the step from the last two coefficients): the sled 12, 13, 14, 14 steps at 1e-6, 1e-9,
+1e-12, 1e-14 (orders 8, 12, 15, 18), the rocket 10, 9, 9, 9, Kepler 87, 94, 97, 100, with
+errors equal to two digits. The gap was the cost of a step. Profiled before the change
+(`perf record -e cpu-clock` on `peers -- only sled taylor 1e-9 300000`; the sled 2.72 µs
+for 13 steps, 209 ns a step, against heyoka's net 157 ns): the recurrences 53 %, the two
+powers of ρₚ₋₁ and ρₚ 15.5 %, the step's own work 18 % (its Horner sum of the increment
+7 %), sin θ and cos θ recomputed at every expansion 6 % (heyoka's sled has the drive
+g (sin θ − f_d cos θ) as a number), the finite check 2.5 %; restart and stop time 0.05 %
+(no fixed cost to speak of: the runs are all steps). The rocket at 1e-12 (1.92 µs for 9
+steps): the recurrences 56 %, the powers 14 %, the step 21 %. The recurrences are a chain
+of dependent orders, so their latency counts, not their operations: the chain of an order
+ran through additions of rows known to be constant (m0 in m = m0 + c x, μ u_e in ṗ) and
+through the three additions that end a sum's four partial sums, and the rocket's p/m
+convolved over every coefficient of m, which has two. Changed (the emitter and the
+stepper, one copy each): each row's degree in t is derived (`Degrees` in
+`symbolic/src/emit/taylor.rs`: t is of degree 1, m = m0 − μ t and a state mass at a
+constant rate too) and the terms that read coefficients above it are left out (constant
+rows are no addition at k ≥ 1; p/m at order k is one product); a sum adds its two newest
+terms last; the step takes exp(min(ln ρ)) for the two powers; the increment is summed as
+two Horner chains in h²; constants of the parameters alone are kept in the scratch while
+the parameters are the same bits. What is left: heyoka compiles for this CPU (FMA, AVX-512
+here), so its multiply–adds are one fused operation, where ours are built for baseline
+x86-64 (Rust never fuses a · b + c by itself); and its jet lives in registers, ours in the
+scratch, each order's result stored and loaded back by the next.
+
 ## Construction
 
 heyoka JIT-compiles each integrator (one per problem and tolerance, as the order follows

@@ -278,7 +278,7 @@ fn only(args: &[String]) {
     };
     let Some((problem, method, tolerance, runs)) = parsed else {
         eprintln!(
-            "usage: only <sled|kepler|pendulum3> <taylor|taylor-head|dop853> <tolerance> <runs> \
+            "usage: only <sled|kepler|rocket|pendulum3> <taylor|taylor-head|dop853> <tolerance> <runs> \
              (taylor-head on kepler only)"
         );
         std::process::exit(2);
@@ -303,6 +303,12 @@ fn only(args: &[String]) {
             let start = (kepler.initial_state(), kepler.end_time());
             let (elapsed, (y, steps)) = run(kepler.system(), start, point, timing);
             show((elapsed, (kepler.error(start.1, &y), steps)))
+        }
+        "rocket" => {
+            let rocket = RocketProblem::standard();
+            let start = (rocket.initial_state(), rocket.end_time());
+            let (elapsed, (y, steps)) = run(rocket.system(), start, point, timing);
+            show((elapsed, (rocket.error(start.1, &y), steps)))
         }
         _ => {
             let reference = pendulum_reference(1.0 / 200.0);

@@ -32,6 +32,9 @@ pub struct Scratch {
     factor: Vec<f64>,
     /// The generated code that used the rows last (a type of its own, local to it).
     owner: Option<TypeId>,
+    /// The bits of the parameters its constants were last computed from
+    /// ([`Scratch::same_constants`]).
+    constants: Vec<u64>,
 }
 
 impl Scratch {
@@ -48,12 +51,35 @@ impl Scratch {
             rows: vec![[value; LEN]; rows],
             factor: vec![value; factor],
             owner: None,
+            constants: Vec::new(),
         }
+    }
+
+    /// Whether `key`, the parameters generated code computes its constants from (the rows
+    /// of its order-0 instructions, which read no input: sin θ of a parameter θ, say), is
+    /// bit for bit the key of its last call; the key is kept for the next. When it is, and
+    /// the rows are not fresh ([`Scratch::parts`]), the rows still hold those constants
+    /// and generated code does not recompute them: the sled's sin θ and cos θ were 6 % of
+    /// its run (issue 38). A NaN parameter never matches (its constants are recomputed).
+    #[inline]
+    pub fn same_constants(&mut self, key: &[f64]) -> bool {
+        let same = self.constants.len() == key.len()
+            && self
+                .constants
+                .iter()
+                .zip(key)
+                .all(|(a, b)| *a == b.to_bits() && !b.is_nan());
+        if !same {
+            self.constants.clear();
+            self.constants.extend(key.iter().map(|x| x.to_bits()));
+        }
+        same
     }
 
     /// The first `F` rows and `factor` entries of the factor, grown if shorter, for the
     /// generated code `owner`; `true` when that code did not use them last (its rows set
     /// at order 0 alone must then be zeroed).
+    #[inline]
     pub fn parts<const F: usize>(
         &mut self,
         factor: usize,

@@ -101,3 +101,38 @@ fn fixed_order_one_is_explicit_euler() {
     // Both compute y + h f(y) with f from the same formulas, so agree to rounding.
     assert!((taylor - euler).norm() < 1e-13, "{taylor} vs {euler}");
 }
+
+#[test]
+fn the_first_step_is_jorba_and_zous_from_the_last_two_coefficients() {
+    // The oscillator m = 2, k = 8 (ω = 2) from x = 1, p = 0: x = cos 2t, p = −4 sin 2t, so
+    // the coefficients at t = 0 are x[j] = ±2ʲ/j! (j even) and p[j] = ±4·2ʲ/j! (j odd), and
+    // ‖y[j]‖∞ is the one that is not 0. ‖y‖∞ = 1, so rtol ‖y‖∞ ≤ atol: absolute mode,
+    // ρⱼ = (1/‖y[j]‖∞)^(1/j), and J&Z's step (eqs. 3.9–3.12) is
+    // h = min(ρₚ₋₁, ρₚ) e⁻² e^(−0.7/(p−1)), p = ⌈−½ ln ε + 1⌉ (8, 12, 15 below). The
+    // stepper takes it as exp(min(ln ρ)) times the factor (issue 38); pow and exp(ln)
+    // agree to a few ulps (measured: 1.6e-16, 0 and 1.5e-16 relative; bound 2e-15).
+    let problem = OscillatorProblem::standard();
+    for (tolerance, order) in [(1e-6, 8), (1e-9, 12), (1e-12, 15)] {
+        let factorial = |j: usize| (1..=j).map(|i| i as f64).product::<f64>();
+        let norm = |j: usize| {
+            let scale = if j.is_multiple_of(2) { 1.0 } else { 4.0 };
+            scale * 2f64.powi(j as i32) / factorial(j)
+        };
+        let radius = |j: usize| (1.0 / norm(j)).powf(1.0 / j as f64);
+        let p = order as f64;
+        let expected = radius(order - 1).min(radius(order)) * (-2.0 - 0.7 / (p - 1.0)).exp();
+        let control = TaylorControl::adaptive(
+            Tolerance::for_floor(tolerance, tolerance, Floor::Taylor).unwrap(),
+        );
+        let mut stepper = Taylor::new(&problem.system, 0.0, problem.exact(0.0), control).unwrap();
+        stepper.step().unwrap();
+        assert_eq!(stepper.order(), order, "tolerance {tolerance:e}");
+        let h = stepper.time();
+        let gap = (h - expected).abs() / expected;
+        eprintln!("tolerance {tolerance:e}: h {h}, J&Z {expected}, relative gap {gap:e}");
+        assert!(
+            gap <= 2e-15,
+            "tolerance {tolerance:e}: h {h} against {expected} ({gap:e})"
+        );
+    }
+}

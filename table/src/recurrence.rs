@@ -43,16 +43,35 @@ impl Scalar for f64 {
     }
 }
 
-/// Σ `term(j)` for j in `start..end`, in four interleaved partial sums (term i of the range
-/// into sum i mod 4) added pairwise at the end, ((s₀ + s₁) + (s₂ + s₃)). A recurrence's sum
-/// is a chain of k dependent additions: four independent chains let the processor overlap
-/// them (heyoka sums its recurrences pairwise for the same reason), and the error bound
-/// shrinks with the depth. The partial sums start at −0 (see [`Scalar::NEG_ZERO`]; not
+/// Σ `term(j)` for j in `start..end`: the terms between the two ends in four interleaved
+/// partial sums (term i of them into sum i mod 4) added pairwise, ((s₀ + s₁) + (s₂ + s₃)),
+/// then `term(start)`, then `term(end − 1)` (a range of fewer than three terms: all in the
+/// partial sums).
+///
+/// Why the ends last: an expansion is one long chain of dependent orders, and in every
+/// rule's convolution Σ aⱼ b₍ₖ₋ⱼ₎ the coefficients computed last sit at the ends of the
+/// range (a product's a\[0\] b\[k\] and a\[k\] b\[0\]; a quotient's d\[1\] w\[k−1\] and
+/// d\[k\] w\[0\]), while the terms between read coefficients settled orders before. Added
+/// last, the newest term waits on one product and one addition, not on a product and the
+/// three additions that ended the four partial sums (issue 38: the sled's and the rocket's
+/// expansions 4–6 % faster). The four partial sums let the processor overlap the dependent
+/// additions of the rest (heyoka sums its recurrences pairwise for the same reason), and
+/// the error bound shrinks with the depth. They start at −0 (see [`Scalar::NEG_ZERO`]; not
 /// +0: −0 + 0 = +0), so the compiler drops the first addition of each: 9 % of the 3-link
 /// pendulum's instructions at 1e-9 (callgrind). `#[inline(always)]`: generated code unrolls
 /// it at every order.
 #[inline(always)]
 pub fn sum<S: Scalar>(start: usize, end: usize, term: impl Fn(usize) -> S) -> S {
+    if end >= start + 3 {
+        (chains(start + 1, end - 1, &term) + term(start)) + term(end - 1)
+    } else {
+        chains(start, end, &term)
+    }
+}
+
+/// Σ `term(j)` for j in `start..end` in four interleaved partial sums ([`sum`]).
+#[inline(always)]
+fn chains<S: Scalar>(start: usize, end: usize, term: &impl Fn(usize) -> S) -> S {
     let mut s = [S::NEG_ZERO; 4];
     let mut j = start;
     while j + 4 <= end {
@@ -108,7 +127,28 @@ pub fn affine<S: Scalar>(a: impl Fn(usize) -> S, k: usize, (scale, offset): (f64
 /// w = a b: the Cauchy product (every k, order 0 included).
 #[inline(always)]
 pub fn mul<S: Scalar>(a: impl Fn(usize) -> S, b: impl Fn(usize) -> S, k: usize) -> S {
-    sum(0, k + 1, |j| a(j) * b(k - j))
+    mul_bounded(a, b, k, (usize::MAX, usize::MAX))
+}
+
+/// w = a b for a of degree at most `da` in t and b at most `db` (their coefficients above
+/// those orders 0, exactly): the Cauchy product with the terms that read such a
+/// coefficient left out (an exact −0 in the same sum, so the result is [`mul`]'s bit for
+/// bit, but for a zero's sign and for a non-finite coefficient times a known 0). With k,
+/// `da` and `db` constants (generated code) the compiler drops those terms.
+#[inline(always)]
+pub fn mul_bounded<S: Scalar>(
+    a: impl Fn(usize) -> S,
+    b: impl Fn(usize) -> S,
+    k: usize,
+    (da, db): (usize, usize),
+) -> S {
+    sum(0, k + 1, |j| {
+        if j <= da && k - j <= db {
+            a(j) * b(k - j)
+        } else {
+            S::NEG_ZERO
+        }
+    })
 }
 
 /// w = a²: the Cauchy product, each cross term once and doubled (every k).
@@ -141,7 +181,28 @@ pub fn div<S: Scalar>(
     k: usize,
     inverse: S,
 ) -> S {
-    (a(k) - sum(1, k + 1, |j| d(j) * w(k - j))) * inverse
+    div_bounded(a, d, w, k, inverse, usize::MAX)
+}
+
+/// [`div`] for d of degree at most `dd` in t: the terms that read a coefficient of d above
+/// it (0) left out, as [`mul_bounded`] leaves them.
+#[inline(always)]
+pub fn div_bounded<S: Scalar>(
+    a: impl Fn(usize) -> S,
+    d: impl Fn(usize) -> S,
+    w: impl Fn(usize) -> S,
+    k: usize,
+    inverse: S,
+    dd: usize,
+) -> S {
+    let term = |j: usize| {
+        if j <= dd {
+            d(j) * w(k - j)
+        } else {
+            S::NEG_ZERO
+        }
+    };
+    (a(k) - sum(1, k + 1, term)) * inverse
 }
 
 /// w² = a, k ≥ 1.
@@ -301,16 +362,20 @@ mod tests {
     use super::{exp, sin_cos, sum, Scalar};
     use core::ops::{Add, Div, Mul, Neg, Sub};
 
-    /// The order of the additions, which generated code and the tapes share: terms 0 and 4
-    /// go to one chain, 1 and 5 to the next, then ((s₀ + s₁) + (s₂ + s₃)). With 2⁵³ and 1
-    /// groupings round differently: s₀ = 2⁵³ + 1 → 2⁵³, s₁ = −2⁵³ + 1 (exact), s₂ = s₃ = 1,
-    /// so (2⁵³ + (1 − 2⁵³)) + 2 = 3, where left to right 2⁵³ − 2⁵³ + 1 + 1 + 1 + 1 = 4.
+    /// The order of the additions, which generated code and the tapes share: the terms
+    /// between the ends in four chains, ((s₀ + s₁) + (s₂ + s₃)), then the first term, then
+    /// the last. With 2⁵³ and 1 groupings round differently: for [2⁵³, 1, 1, 1, 1, −2⁵³]
+    /// the chains give 4 exactly, 2⁵³ + 4 is exact, and − 2⁵³ leaves 4; left to right each
+    /// 1 is lost against 2⁵³ (0), and the four chains over all six terms (the order before
+    /// issue 38) give s₀ = 2⁵³ + 1 → 2⁵³, s₁ = 1 − 2⁵³ (exact), so 1 + 2 = 3.
     #[test]
     fn adds_in_four_chains_then_pairwise() {
         let big = 2f64.powi(53);
-        let terms = [big, -big, 1.0, 1.0, 1.0, 1.0];
-        assert_eq!(sum(0, 6, |j| terms[j]), 3.0);
-        assert_eq!(terms.iter().fold(0.0, |s, t| s + t), 4.0);
+        let terms = [big, 1.0, 1.0, 1.0, 1.0, -big];
+        assert_eq!(sum(0, 6, |j| terms[j]), 4.0);
+        assert_eq!(terms.iter().fold(0.0, |s, t| s + t), 0.0);
+        let (s0, s1) = (terms[0] + terms[4], terms[1] + terms[5]);
+        assert_eq!((s0 + s1) + (terms[2] + terms[3]), 3.0);
         // Empty: −0, the identity of addition.
         assert!(sum(3, 3, |_| 1.0).to_bits() == (-0.0f64).to_bits());
     }

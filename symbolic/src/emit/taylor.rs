@@ -86,6 +86,8 @@ struct Method<'a> {
     velocities: Names<'a>,
     rates: Names<'a>,
     runtime: &'a TokenStream,
+    /// Each row's degree in t ([`degrees`]).
+    degrees: &'a Degrees,
 }
 
 /// The `taylor_coefficients` method of `d`'s system `name`, with the runtime at `runtime`.
@@ -99,12 +101,14 @@ struct Method<'a> {
 /// is that of the loop over a run-time k (`tests/taylor_emitted.rs`).
 pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident) -> TokenStream {
     let st = d.taylor_stages();
-    let m = Method::new(d, &st, runtime);
+    let degrees = degrees(&st);
+    let m = Method::new(d, &st, runtime, &degrees);
     let fields = m.fields();
     let (solve, factor_size) = m.velocity_solve();
     let factor_size = factor_size.unwrap_or_else(|| Literal::usize_unsuffixed(0));
     let order_k = m.order_k(name, &fields, solve);
     let start = m.start(&fields);
+    let same_constants = m.same_constants();
     let out = (0..m.layout.state_len()).map(|j| {
         let from = input(m.layout.state(j));
         quote!(c[#j] = #from[k];)
@@ -134,6 +138,7 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
             /// This code's own type: the scratch knows whether this code used it last.
             struct Owner;
             let owner = ::core::any::TypeId::of::<Owner>();
+            #same_constants
             let (jet, factor, fresh) = scratch.parts::<#rows>(#factor_size, owner);
             {
                 #start
@@ -158,9 +163,15 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
 }
 
 impl<'a> Method<'a> {
-    fn new(d: &'a Derivation, st: &'a TaylorStages, runtime: &'a TokenStream) -> Self {
+    fn new(
+        d: &'a Derivation,
+        st: &'a TaylorStages,
+        runtime: &'a TokenStream,
+        degrees: &'a Degrees,
+    ) -> Self {
         let names = |tape, prefix| Names { tape, prefix };
         Method {
+            degrees,
             d,
             st,
             layout: st.layout,
@@ -215,7 +226,7 @@ impl<'a> Method<'a> {
     fn stages(&self, fixed: bool) -> [TokenStream; 3] {
         let k = if fixed { quote!(0) } else { quote!(k) };
         [&self.laws, &self.velocities, &self.rates]
-            .map(|names| ops(self.d, names, fixed, &k, self.runtime))
+            .map(|names| ops((self.d, self.degrees), names, fixed, &k, self.runtime))
     }
 
     /// Order 0 of the jet: the rows no series writes zeroed if the scratch is new to this
@@ -238,8 +249,43 @@ impl<'a> Method<'a> {
             #time[0] = t;
             #time[1] = 1.0;
             #(#state)*
-            #(#fixed)*
+            if fresh || !same {
+                #(#fixed)*
+            }
         }
+    }
+
+    /// `same`: whether the rows of the order-0 instructions still hold what they compute
+    /// (`series::Scratch::same_constants`, keyed on the parameters they read); always
+    /// `false` when one of them reads a table (its key would be the table itself).
+    fn same_constants(&self) -> TokenStream {
+        let fixed = || {
+            [&self.laws, &self.velocities, &self.rates]
+                .into_iter()
+                .flat_map(|names| names.tape.fixed_instructions())
+        };
+        if fixed().any(|i| matches!(i.op, Op::Table { .. })) {
+            return quote!(let same = false;);
+        }
+        let mut read: Vec<usize> = fixed()
+            .filter_map(|i| match i.op {
+                Op::Param(index) => Some(index),
+                _ => None,
+            })
+            .collect();
+        read.sort_unstable();
+        read.dedup();
+        let key = read.iter().map(|index| {
+            let field = self.d.parameters.iter().find(|(_, s)| s.index() == *index);
+            match field {
+                Some((name, _)) => {
+                    let field = Ident::new(name, Span::call_site());
+                    quote!(this.#field)
+                }
+                None => quote!(f64::NAN),
+            }
+        });
+        quote!(let same = scratch.same_constants(&[#(#key),*]);)
     }
 
     /// `order_k::<K>`, order K of every stage, then coefficient K + 1 of the state from
@@ -332,7 +378,7 @@ impl<'a> Method<'a> {
 
 /// The statements of one tape's fixed (order-0) or series instructions at order `k`.
 fn ops(
-    d: &Derivation,
+    (d, degrees): (&Derivation, &Degrees),
     names: &Names,
     fixed: bool,
     k: &TokenStream,
@@ -343,7 +389,7 @@ fn ops(
     } else {
         names.tape.series_instructions()
     };
-    let statements = list.iter().map(|i| op(d, names, i, k, runtime));
+    let statements = list.iter().map(|i| op((d, degrees), names, i, k, runtime));
     quote!(#(#statements)*)
 }
 
@@ -379,13 +425,16 @@ fn value(f: Func, x: TokenStream, runtime: &TokenStream) -> TokenStream {
 }
 
 fn op(
-    d: &Derivation,
+    (d, degrees): (&Derivation, &Degrees),
     names: &Names,
     instr: &Instr,
     k: &TokenStream,
     rt: &TokenStream,
 ) -> TokenStream {
     let ts = quote!(#rt::steppers::taylor::series);
+    if let Some(statement) = bounded(degrees, names, instr, k, &ts) {
+        return statement;
+    }
     let w = names.of(instr.out);
     let n = |s: usize| names.of(s);
     // `w[k] = series::f(operands…, [w,] k)`: the recurrences whose only result is w, some
@@ -449,6 +498,52 @@ fn op(
             piece,
             ..
         } => table_op(d, (w, n(a), n(h)), (table, order), piece, names, k, rt),
+    }
+}
+
+/// The recurrences that would read a polynomial operand's coefficients above its degree
+/// ([`Degrees`]), with those terms left out: a sum's as an exact −0, which the compiler
+/// drops (the constant m0 of m = m0 + c x is no addition at k ≥ 1), a product's and a
+/// quotient's by `series::mul_bounded` and `series::div_bounded`; `None` when no operand
+/// is a polynomial.
+fn bounded(
+    degrees: &Degrees,
+    names: &Names,
+    instr: &Instr,
+    k: &TokenStream,
+    ts: &TokenStream,
+) -> Option<TokenStream> {
+    let (w, n) = (names.of(instr.out), |s: usize| names.of(s));
+    let degree = |s: usize| degrees.of(names, s);
+    let literal = Literal::usize_unsuffixed;
+    match instr.op {
+        Op::Add { start, len } => {
+            let slots = names.tape.operand_slots(start, len);
+            if slots.iter().all(|s| degree(*s) >= FULL) {
+                return None;
+            }
+            let terms = slots.iter().map(|s| {
+                let t = n(*s);
+                match degree(*s) {
+                    FULL => quote!(#t[#k]),
+                    d => {
+                        let d = literal(d);
+                        quote!(if #k <= #d { #t[#k] } else { -0.0f64 })
+                    }
+                }
+            });
+            Some(quote!(#w[#k] = #ts::add([#(#terms),*]);))
+        }
+        Op::Mul(a, b) if degree(a).min(degree(b)) < FULL => {
+            let (da, db) = (literal(degree(a)), literal(degree(b)));
+            let (a, b) = (n(a), n(b));
+            Some(quote!(#w[#k] = #ts::mul_bounded(&*#a, &*#b, #k, (#da, #db));))
+        }
+        Op::Div(a, den) if degree(den) < FULL => {
+            let (a, den, dd) = (n(a), n(den), literal(degree(den)));
+            Some(quote!(#w[#k] = #ts::div_bounded(&*#a, &*#den, &*#w, #k, #dd);))
+        }
+        _ => None,
     }
 }
 
@@ -516,4 +611,131 @@ fn table_op(
         #h[#k] = __h;
         #w[#k] = __w;
     }}
+}
+
+/// A row's degree in t that stands for "a full series" (any degree from the highest order
+/// up: no coefficient is known to vanish).
+const FULL: usize = ORDERS;
+
+/// Each row's degree in t over a step, by name: every coefficient above it is 0, exactly.
+/// A product's convolution leaves out the terms that read one of those
+/// (`series::mul_bounded`, `series::div_bounded`): the rocket's m = m0 − μt, or its state
+/// mass at the constant rate −μ, is of degree 1, so p/m at order k is one product, not k
+/// (issue 38).
+struct Degrees(std::collections::HashMap<String, usize>);
+
+impl Degrees {
+    /// The degree of `slot` of the tape `names` names ([`FULL`] when unknown).
+    fn of(&self, names: &Names, slot: usize) -> usize {
+        let name = names.field(slot).to_string();
+        self.0.get(&name).copied().unwrap_or(FULL)
+    }
+}
+
+/// The degree of an instruction's result from its operands' (`of`): sums and constant
+/// multiples keep it, products add, a quotient by a constant keeps the numerator's, abs
+/// and sign (on one branch over the step) keep it or make it 0, min and max take one
+/// argument's series; everything else is a full series unless every operand is constant.
+fn op_degree(tape: &TaylorTape, op: &Op, of: impl Fn(usize) -> usize) -> usize {
+    let full_unless_constant = |slots: &[usize]| {
+        if slots.iter().all(|s| of(*s) == 0) {
+            0
+        } else {
+            FULL
+        }
+    };
+    let degree = match *op {
+        Op::Const(_) | Op::Param(_) | Op::Sign(_) => 0,
+        Op::Add { start, len } => (tape.operand_slots(start, len).iter())
+            .map(|s| of(*s))
+            .max()
+            .unwrap_or(0),
+        Op::Scale(_, a) | Op::Affine { a, .. } | Op::Abs(a) => of(a),
+        Op::Mul(a, b) => of(a) + of(b),
+        Op::Square(a) => 2 * of(a),
+        Op::Div(a, d) if of(d) == 0 => of(a),
+        Op::Min(a, b) | Op::Max(a, b) => of(a).max(of(b)),
+        Op::Div(a, d) => full_unless_constant(&[a, d]),
+        Op::Recip(a) | Op::Sqrt(a) | Op::Exp(a) => full_unless_constant(&[a]),
+        Op::Pow(a, e) => full_unless_constant(&[a, e]),
+        _ => FULL,
+    };
+    degree.min(FULL)
+}
+
+/// Every row's degree ([`Degrees`]): t is of degree 1, a constant row 0; a state
+/// component's degree is its rate's plus one, q's its velocity's plus one, a law mass's
+/// its law's, q̇ solved numerically a full series. The state's degrees are unknown before
+/// the rates are, so they start at 0 and the three stages are evaluated again until no
+/// degree grows (at most [`FULL`] times: each pass raises one at least, and a degree stops
+/// at [`FULL`]): the least fixed point, which bounds the true degrees (by induction on
+/// the order, every coefficient above a row's degree is computed from coefficients above
+/// its operands' degrees, 0).
+fn degrees(st: &TaylorStages) -> Degrees {
+    let l = st.layout;
+    let names = [
+        Names {
+            tape: &st.laws,
+            prefix: "l",
+        },
+        Names {
+            tape: &st.velocities,
+            prefix: "v",
+        },
+        Names {
+            tape: &st.rates,
+            prefix: "v",
+        },
+    ];
+    let mut degree: std::collections::HashMap<String, usize> = Default::default();
+    let set = |degree: &mut std::collections::HashMap<String, usize>, name: Ident, d: usize| {
+        degree.insert(name.to_string(), d.min(FULL));
+    };
+    for i in 0..l.len() {
+        set(&mut degree, input(i), FULL);
+    }
+    set(&mut degree, input(TaylorLayout::TIME), 1);
+    for j in 0..l.state_len() {
+        set(&mut degree, input(l.state(j)), 0);
+    }
+    for _ in 0..=FULL + 1 {
+        let before = degree.clone();
+        for names in &names {
+            for instr in names.tape.fixed_instructions() {
+                set(&mut degree, names.field(instr.out), 0);
+            }
+            for instr in names.tape.series_instructions() {
+                let of = |slot: usize| degree.get(&names.field(slot).to_string()).copied();
+                let d = op_degree(names.tape, &instr.op, |slot| of(slot).unwrap_or(FULL));
+                set(&mut degree, names.field(instr.out), d);
+            }
+            if std::ptr::eq(names.tape, &st.laws) {
+                for (i, mass) in st.law_masses.iter().enumerate() {
+                    let d = degree.get(&names.output(i).to_string()).copied();
+                    set(&mut degree, input(l.mass(*mass)), d.unwrap_or(FULL));
+                }
+            }
+            if std::ptr::eq(names.tape, &st.velocities) {
+                for a in 0..l.n {
+                    let d = degree.get(&names.output(a).to_string()).copied();
+                    let d = if st.numeric { FULL } else { d.unwrap_or(FULL) };
+                    set(&mut degree, input(l.velocity(a)), d);
+                }
+            }
+        }
+        for j in 0..2 * l.n + l.state_masses {
+            let rate = if j < l.n {
+                input(l.velocity(j)).to_string()
+            } else {
+                names[2].output(j - l.n).to_string()
+            };
+            let d = degree.get(&rate).copied().unwrap_or(FULL);
+            set(&mut degree, input(l.state(j)), d.saturating_add(1));
+        }
+        if degree == before {
+            return Degrees(degree);
+        }
+    }
+    // No fixed point reached (it always is): no row is known to be a polynomial.
+    Degrees(std::collections::HashMap::new())
 }

@@ -47,6 +47,13 @@ pub fn mul(a: &[f64; LEN], b: &[f64; LEN], k: usize) -> f64 {
     rule::mul(|j| a[j], |j| b[j], k)
 }
 
+/// w = a b for a of degree at most `da` in t and b at most `db` ([`rule::mul_bounded`]).
+#[inline(always)]
+pub fn mul_bounded(a: &[f64; LEN], b: &[f64; LEN], k: usize, bounds: (usize, usize)) -> f64 {
+    let k = k.min(LEN - 1);
+    rule::mul_bounded(|j| a[j], |j| b[j], k, bounds)
+}
+
 /// w = a².
 #[inline(always)]
 pub fn square(a: &[f64; LEN], k: usize) -> f64 {
@@ -73,6 +80,17 @@ pub fn div(a: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
     }
     let k = k.min(LEN - 1);
     rule::div(|j| a[j], |j| d[j], |j| w[j], k, inverse)
+}
+
+/// [`div`] for d of degree at most `dd` in t ([`rule::div_bounded`]).
+#[inline(always)]
+pub fn div_bounded(a: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize, dd: usize) -> f64 {
+    let inverse = 1.0 / d[0];
+    if k == 0 {
+        return a[0] * inverse;
+    }
+    let k = k.min(LEN - 1);
+    rule::div_bounded(|j| a[j], |j| d[j], |j| w[j], k, inverse, dd)
 }
 
 /// w² = a.
