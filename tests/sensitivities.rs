@@ -5,6 +5,15 @@
 use varmass::core::sensitivity::{Column, Sensitive, SensitivityError};
 use varmass::prelude::*;
 
+/// DOP853's control at relative and absolute tolerance `tolerance`.
+fn dop853(tolerance: f64) -> StepControl {
+    StepControl::Adaptive(AdaptiveControl {
+        relative_tolerance: tolerance,
+        absolute_tolerance: tolerance,
+        ..AdaptiveControl::dop853()
+    })
+}
+
 /// Tsiolkovsky's rocket going up: m = m0 − μ t, exhaust at u_e backwards, weight m g.
 #[variable_mass_system(
     r#"
@@ -87,11 +96,7 @@ fn the_rockets_sensitivities_meet_their_closed_forms() {
     let sensitive: Sensitive<Rocket, 2> =
         Sensitive::new::<1, 10>(ROCKET, &COLUMNS).expect("the columns fit");
     let start: SVector<f64, 10> = sensitive.start(&SVector::from([0.0, 0.0]));
-    let control = StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: 1e-12,
-        absolute_tolerance: 1e-12,
-        ..AdaptiveControl::dop853()
-    });
+    let control = dop853(1e-12);
     let mut stepper = Dop853::new(&sensitive, 0.0, start, control).expect("a stepper");
     let t = 10.0;
     let solution = run(&mut stepper, &RunConfig::until(t), &[]).expect("the burn runs");
@@ -124,11 +129,7 @@ fn the_rockets_sensitivities_meet_their_closed_forms() {
 fn the_rockets_sensitivities_meet_central_differences() {
     let sensitive: Sensitive<Rocket, 2> =
         Sensitive::new::<1, 10>(ROCKET, &COLUMNS).expect("the columns fit");
-    let control = StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: 1e-13,
-        absolute_tolerance: 1e-13,
-        ..AdaptiveControl::dop853()
-    });
+    let control = dop853(1e-13);
     let t = 10.0;
     let fly = |r: &Rocket, p0: f64| -> SVector<f64, 2> {
         let mut stepper =
@@ -256,11 +257,7 @@ fn the_apex_times_and_heights_sensitivities_meet_their_closed_forms() {
         Sensitive::new::<1, 8>(Stone { ..stone }, &columns).expect("the columns fit");
     let p0 = 30.0;
     let start: SVector<f64, 8> = sensitive.start(&SVector::from([0.0, p0]));
-    let control = StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: 1e-12,
-        absolute_tolerance: 1e-12,
-        ..AdaptiveControl::dop853()
-    });
+    let control = dop853(1e-12);
     let mut stepper = Dop853::new(&sensitive, 0.0, start, control).expect("a stepper");
     let apex = Event::state_reaches(1, 0.0, Direction::Falling);
     let solution = run(&mut stepper, &RunConfig::until(100.0), &[apex]).expect("the throw runs");
@@ -329,11 +326,7 @@ fn the_sleds_speed_sensitivity_to_c_at_50_m_meets_eq_24() {
     let sensitive: Sensitive<Sled, 2> =
         Sensitive::new::<1, 4>(sled, &[Column::Parameter("c")]).expect("the column fits");
     let start: SVector<f64, 4> = sensitive.start(&SVector::zeros());
-    let control = StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: 1e-12,
-        absolute_tolerance: 1e-12,
-        ..AdaptiveControl::dop853()
-    });
+    let control = dop853(1e-12);
     let mut stepper = Dop853::new(&sensitive, 0.0, start, control).expect("a stepper");
     let at_50_m = Event::state_reaches(0, x, Direction::Rising);
     let solution = run(&mut stepper, &RunConfig::until(1e3), &[at_50_m]).expect("the sled runs");
@@ -405,11 +398,7 @@ fn the_apex_after_a_burnout_has_the_derivatives_of_its_closed_form() {
     let coasting: Sensitive<Tank, 3> =
         Sensitive::new::<1, 9>(coast, &[Column::Parameter("u_e"), Column::Elsewhere])
             .expect("fits");
-    let control = StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: 1e-12,
-        absolute_tolerance: 1e-12,
-        ..AdaptiveControl::dop853()
-    });
+    let control = dop853(1e-12);
     let start: SVector<f64, 9> = burning.start(&SVector::from([0.0, 0.0, m_p0]));
     let mut stepper = Dop853::new(&burning, 0.0, start, control).expect("a stepper");
     let empty = Event::state_reaches(2, 0.0, Direction::Falling);
@@ -463,11 +452,7 @@ fn burn_and_coast<const SA: usize>(
     let burning: Sensitive<Tank, 3> = Sensitive::new::<1, SA>(tank, columns.0).expect("fits");
     let coast = Tank { mu: 0.0, ..tank };
     let coasting: Sensitive<Tank, 3> = Sensitive::new::<1, SA>(coast, columns.1).expect("fits");
-    let control = StepControl::Adaptive(AdaptiveControl {
-        relative_tolerance: tolerance,
-        absolute_tolerance: tolerance,
-        ..AdaptiveControl::dop853()
-    });
+    let control = dop853(tolerance);
     let start: SVector<f64, SA> = burning.start(&SVector::from([0.0, 0.0, m_p0]));
     let mut stepper = Dop853::new(&burning, 0.0, start, control)?;
     let empty = Event::state_reaches(2, 0.0, Direction::Falling);

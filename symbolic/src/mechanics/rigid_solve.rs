@@ -61,11 +61,11 @@ pub struct RigidVelocities {
     pub guards: Vec<(Id, bool)>,
     /// Whether the attitude is a quaternion (q̇ = ½ Gᵀ ω + (qᵀ p_q/λ) q), not Euler angles.
     pub quaternion: bool,
-    /// q̈ of a quaternion body ([`quaternion_accelerations`]), in q, q̇, p, t and the masses
+    /// q̈ of a quaternion body (`quaternion_accelerations`), in q, q̇, p, t and the masses
     /// (p = M q̇ bound by the generated code); empty for Euler angles.
     pub accelerations: Vec<Id>,
     /// p = M q̇ of a quaternion body in closed form, in q, q̇ and the masses, coordinate
-    /// order ([`quaternion_momenta`]; a third of the derived momenta's operations): what
+    /// order (`quaternion_momenta`; a third of the derived momenta's operations): what
     /// its `accelerations` binds p from. Empty for Euler angles.
     pub momenta: Vec<Id>,
 }
