@@ -25,7 +25,7 @@
 //! (their slope and offset free of the parameters) leave s continuous.
 
 use alloc::vec::Vec;
-use core::cell::RefCell;
+use core::cell::{RefCell, RefMut};
 
 use nalgebra::{SMatrix, SVector};
 
@@ -100,10 +100,31 @@ pub enum SensitivityError {
         /// S.
         state: usize,
     },
-    /// The system has switching functions or sampled inputs, whose jumps the sensitivities
-    /// do not follow yet.
+    /// The system has what the sensitivities do not follow yet: switching functions,
+    /// sampled inputs, or what its [`VariableMassSystem::sensitivity_obstacle`] names.
     #[error("sensitivities across {0} are not supported yet")]
     Unsupported(&'static str),
+}
+
+/// A column as the system resolves it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Resolved {
+    /// The parameter's column of the parameter Jacobian.
+    Parameter(usize),
+    /// The initial entry.
+    Initial(usize),
+    /// A parameter held elsewhere: nothing here.
+    Elsewhere,
+}
+
+impl Resolved {
+    /// The parameter's column, if the column is a parameter's.
+    fn parameter(self) -> Option<usize> {
+        match self {
+            Resolved::Parameter(j) => Some(j),
+            Resolved::Initial(_) | Resolved::Elsewhere => None,
+        }
+    }
 }
 
 /// `Sys` with the sensitivity columns after its state: `[y, s₁, …, s_K]`, `SA = S (1 + K)`.
@@ -111,11 +132,8 @@ pub enum SensitivityError {
 /// reads the first S entries and forwards to `Sys`.
 pub struct Sensitive<Sys, const S: usize> {
     system: Sys,
-    /// Per column: `Some(j)`, the parameter's column of the parameter Jacobian, or `None`
-    /// for an initial entry.
-    parameters: Vec<Option<usize>>,
-    /// The initial entry of each column (`None` for a parameter).
-    initial: Vec<Option<usize>>,
+    /// The columns, resolved against the system's parameters.
+    columns: Vec<Resolved>,
     /// The parameter Jacobian's S × P, kept between calls.
     scratch: RefCell<Vec<f64>>,
 }
@@ -128,13 +146,23 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
 
     /// The number of columns K.
     pub fn columns(&self) -> usize {
-        self.parameters.len()
+        self.columns.len()
+    }
+
+    /// Whether any column is a parameter's (then the parameter Jacobian is needed).
+    fn has_parameters(&self) -> bool {
+        self.columns.iter().any(|c| c.parameter().is_some())
     }
 }
 
 /// The first S entries of an augmented state.
 fn head<const S: usize, const SA: usize>(state: &SVector<f64, SA>) -> SVector<f64, S> {
     state.fixed_rows::<S>(0).into_owned()
+}
+
+/// Column `c` of an augmented state, s_c = ∂y/∂w_c.
+fn column<const S: usize, const SA: usize>(state: &SVector<f64, SA>, c: usize) -> SVector<f64, S> {
+    state.fixed_rows::<S>(S * (1 + c)).into_owned()
 }
 
 impl<Sys, const S: usize> Sensitive<Sys, S> {
@@ -164,34 +192,19 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             return Err(SensitivityError::Unsupported("sampled inputs"));
         }
         let known = system.parameter_names();
-        let mut parameters = Vec::new();
-        let mut initial = Vec::new();
-        for column in columns {
-            match *column {
-                Column::Parameter(name) => {
-                    let j = known.iter().position(|k| *k == name);
-                    let j = j.ok_or(SensitivityError::UnknownParameter { name, known })?;
-                    parameters.push(Some(j));
-                    initial.push(None);
-                }
-                Column::Initial(index) if index < S => {
-                    parameters.push(None);
-                    initial.push(Some(index));
-                }
-                Column::Initial(index) => {
-                    return Err(SensitivityError::UnknownEntry { index, state: S })
-                }
-                Column::Elsewhere => {
-                    parameters.push(None);
-                    initial.push(None);
-                }
-            }
-        }
+        let resolve = |column: &Column| match *column {
+            Column::Parameter(name) => (known.iter().position(|k| *k == name))
+                .map(Resolved::Parameter)
+                .ok_or(SensitivityError::UnknownParameter { name, known }),
+            Column::Initial(index) if index < S => Ok(Resolved::Initial(index)),
+            Column::Initial(index) => Err(SensitivityError::UnknownEntry { index, state: S }),
+            Column::Elsewhere => Ok(Resolved::Elsewhere),
+        };
+        let columns = columns.iter().map(resolve).collect::<Result<_, _>>()?;
         let scratch = RefCell::new(alloc::vec![0.0; S * known.len()]);
         Ok(Sensitive {
             system,
-            parameters,
-            initial,
+            columns,
             scratch,
         })
     }
@@ -201,8 +214,8 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     pub fn start<const SA: usize>(&self, state: &SVector<f64, S>) -> SVector<f64, SA> {
         let mut out = SVector::<f64, SA>::zeros();
         out.fixed_rows_mut::<S>(0).copy_from(state);
-        for (c, entry) in self.initial.iter().enumerate() {
-            if let Some(i) = entry {
+        for (c, resolved) in self.columns.iter().enumerate() {
+            if let Resolved::Initial(i) = resolved {
                 out[S * (1 + c) + i] = 1.0;
             }
         }
@@ -231,26 +244,50 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        let y = head::<S, SA>(state);
-        let jacobian: SMatrix<f64, S, S> = self.system.jacobian(t, &y)?;
-        let mut scratch = self.scratch.borrow_mut();
-        let count = scratch.len() / S.max(1);
-        if self.parameters.iter().any(Option::is_some)
-            && !self.system.parameter_jacobian(t, &y, &mut scratch)?
-        {
-            return Err(SystemError::NoParameterJacobian);
-        }
-        let columns = self.parameters.iter().enumerate().map(|(c, parameter)| {
-            let s = state.fixed_rows::<S>(S * (1 + c));
-            let mut dv: SVector<f64, N> = jacobian.fixed_rows::<N>(0) * s;
-            if let Some(j) = parameter {
-                for (i, d) in dv.iter_mut().enumerate() {
-                    *d += scratch[i * count + j];
-                }
-            }
+        let (jacobian, scratch) = self.jacobians::<N, SA>(t, state)?;
+        let rows = jacobian.fixed_rows::<N>(0);
+        let columns = (0..self.columns()).map(|c| {
+            let mut dv: SVector<f64, N> = rows * column::<S, SA>(state, c);
+            self.add_parameter(c, &scratch, dv.iter_mut());
             dv
         });
         Ok(columns.collect())
+    }
+
+    /// J_y and, when a column is a parameter's, the parameter Jacobian (S × P, row-major,
+    /// in the scratch) at the state part of `state`.
+    fn jacobians<const N: usize, const SA: usize>(
+        &self,
+        t: f64,
+        state: &SVector<f64, SA>,
+    ) -> Result<(SMatrix<f64, S, S>, RefMut<'_, Vec<f64>>), SystemError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let y = head::<S, SA>(state);
+        let jacobian = self.system.jacobian(t, &y)?;
+        let mut scratch = self.scratch.borrow_mut();
+        if self.has_parameters() && !self.system.parameter_jacobian(t, &y, &mut scratch)? {
+            return Err(SystemError::NoParameterJacobian);
+        }
+        Ok((jacobian, scratch))
+    }
+
+    /// Adds ∂f/∂w_c (column c's parameter's column of the parameter Jacobian in `scratch`,
+    /// nothing for another column) to the rows `rows` iterates, from the first on.
+    fn add_parameter<'a>(
+        &self,
+        c: usize,
+        scratch: &[f64],
+        rows: impl Iterator<Item = &'a mut f64>,
+    ) {
+        let Some(j) = self.columns[c].parameter() else {
+            return;
+        };
+        let count = scratch.len() / S.max(1);
+        for (i, d) in rows.enumerate() {
+            *d += scratch[i * count + j];
+        }
     }
 
     /// At a crossing of state entry `i` through a fixed value at `(t, state)` — where an
@@ -281,7 +318,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             return Ok(None);
         }
         let columns = (0..self.columns()).map(|c| {
-            let s = state.fixed_rows::<S>(S * (1 + c)).into_owned();
+            let s = column::<S, SA>(state, c);
             let time = -s[i] / rate[i];
             AtCrossing {
                 time,
@@ -329,7 +366,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         }
         let mut out = *state;
         for c in 0..self.columns() {
-            let s = state.fixed_rows::<S>(S * (1 + c)).into_owned();
+            let s = column::<S, SA>(state, c);
             let dt = -s[i] / before[i];
             let jumped = s + (before - after) * dt;
             out.fixed_rows_mut::<S>(S * (1 + c)).copy_from(&jumped);
@@ -411,7 +448,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             entry.v = state[i];
         }
         for (lane, c) in columns.clone() {
-            seeds[lane] = self.parameters[c];
+            seeds[lane] = self.columns[c].parameter();
             for (i, entry) in y.iter_mut().enumerate() {
                 entry.d[lane] = state[S * (1 + c) + i];
             }
@@ -440,26 +477,13 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        let y = head::<S, SA>(state);
-        let rate = self.system.state_rate(t, &y)?;
-        let jacobian: SMatrix<f64, S, S> = self.system.jacobian(t, &y)?;
-        let mut scratch = self.scratch.borrow_mut();
-        let count = scratch.len() / S.max(1);
-        if self.parameters.iter().any(Option::is_some)
-            && !self.system.parameter_jacobian(t, &y, &mut scratch)?
-        {
-            return Err(SystemError::NoParameterJacobian);
-        }
+        let rate = self.system.state_rate(t, &head::<S, SA>(state))?;
+        let (jacobian, scratch) = self.jacobians::<N, SA>(t, state)?;
         let mut out = SVector::<f64, SA>::zeros();
         out.fixed_rows_mut::<S>(0).copy_from(&rate);
-        for (c, parameter) in self.parameters.iter().enumerate() {
-            let column = state.fixed_rows::<S>(S * (1 + c));
-            let mut ds = jacobian * column;
-            if let Some(j) = parameter {
-                for (i, d) in ds.iter_mut().enumerate() {
-                    *d += scratch[i * count + j];
-                }
-            }
+        for c in 0..self.columns() {
+            let mut ds = jacobian * column::<S, SA>(state, c);
+            self.add_parameter(c, &scratch, ds.iter_mut());
             out.fixed_rows_mut::<S>(S * (1 + c)).copy_from(&ds);
         }
         Ok(out)
