@@ -22,7 +22,8 @@ use crate::expr::{Func, Id, Node};
 impl Emitter<'_> {
     /// Whether the state rate has a tangent form: no tables, no inputs, no `sign`, `abs`,
     /// `min` or `max` (switches, which the sensitivities refuse anyway), no `powf` or
-    /// `atan2` whose receiver is printed as an `f64` (a constant or a function of t alone).
+    /// `atan2` whose receiver is printed as an `f64` (a constant, a function of t alone, a
+    /// law mass of t alone).
     fn has_tangents(&self, roots: &[Id]) -> bool {
         let d = self.d;
         if d.pool.table_count() > 0 || !d.inputs.is_empty() {
@@ -36,10 +37,17 @@ impl Emitter<'_> {
             scanned.extend(&rigid.velocities);
             scanned.extend(rigid.guards.iter().map(|(value, _)| *value));
         }
-        let time = d.time;
-        // An argument with no symbol but t is printed as an f64, whose own `powf` and
-        // `atan2` take no tangent.
-        let plain = |e: &Id| d.pool.free_symbols(*e).iter().all(|s| *s == time);
+        // An argument with no symbol but t and the law masses of t alone (`mass m = 2 + t`,
+        // bound to an f64) is printed as an f64, whose own `powf` and `atan2` take no
+        // tangent.
+        let mut floats = vec![d.time];
+        for (mass, law) in d.masses.iter().zip(&d.closed_laws) {
+            let of_time = |law: &Id| d.pool.free_symbols(*law).iter().all(|s| *s == d.time);
+            if law.as_ref().is_some_and(of_time) {
+                floats.push(mass.symbol);
+            }
+        }
+        let plain = |e: &Id| d.pool.free_symbols(*e).iter().all(|s| floats.contains(s));
         let reachable = d.pool.reachable(&scanned, true);
         !reachable.into_iter().any(|id| match d.pool.node(id) {
             Node::Call(Func::Sign | Func::Abs | Func::Min | Func::Max, _) => true,
