@@ -954,3 +954,38 @@ fn what_the_tangents_cannot_print_goes_through_the_jacobians_and_a_root_at_zero_
         "{tangents} {jacobians}"
     );
 }
+
+/// A stone thrown up at a given speed v0 (not a given momentum): its apex τ = v0/g and
+/// h = v0²/(2g) do not depend on its mass, though p₀ = m0 v0 does. `start_at_velocities`
+/// seeds ∂p₀/∂m0 = v0 (= −M ∂q̇/∂m0 at a fixed state); `start` would hold p₀ and give
+/// dh/dm0 = −v0²/(m0 g). Measured: dτ/dm0 and dh/dm0 within 4.7e-16 of 0 (against their
+/// scales v0/(m0 g) and v0²/(m0 g)), dτ/dg and dh/dg 1.1e-15 relative; bounds 1e-12.
+#[test]
+fn a_start_at_given_velocities_moves_its_momenta_with_the_mass() {
+    let stone = Stone { m0: 2.0, g: 9.81 };
+    let columns = [Column::Parameter("m0"), Column::Parameter("g")];
+    let sensitive: Sensitive<Stone, 2> =
+        Sensitive::new::<1, 6>(Stone { ..stone }, &columns).expect("fits");
+    let v0 = 15.0;
+    let start: SVector<f64, 6> = sensitive
+        .start_at_velocities(0.0, &SVector::from([0.0, v0]))
+        .expect("a state");
+    // −M (−M⁻¹ P_θ): P_θ = v0 to a rounding of the solve (measured 2.4e-16 relative).
+    assert!((start[3] - v0).abs() <= 1e-14 * v0, "∂p₀/∂m0 {}", start[3]);
+    let mut stepper = Dop853::new(&sensitive, 0.0, start, dop853(1e-12)).expect("a stepper");
+    let apex = Event::state_reaches(1, 0.0, Direction::Falling);
+    let solution = run(&mut stepper, &RunConfig::until(100.0), &[apex]).expect("the throw");
+    let (t, state) = solution.last().expect("points");
+    let at = sensitive
+        .at_crossing(t, state, 1)
+        .expect("a state")
+        .expect("a crossing");
+    let (m0, g) = (stone.m0, stone.g);
+    let mass_gap = (at[0].time.abs() * m0 * g / v0).max(at[0].state[0].abs() * m0 * g / v0.powi(2));
+    let relative = |a: f64, b: f64| ((a - b) / b).abs();
+    let gravity_gap = relative(at[1].time, -v0 / g.powi(2))
+        .max(relative(at[1].state[0], -v0.powi(2) / (2.0 * g.powi(2))));
+    eprintln!("mass {mass_gap:e}, gravity {gravity_gap:e}");
+    assert!(mass_gap <= 1e-12, "{mass_gap:e}");
+    assert!(gravity_gap <= 1e-12, "{gravity_gap:e}");
+}

@@ -209,8 +209,9 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         })
     }
 
-    /// The augmented initial state of `state`: s(t₀) = 0 for a parameter, e_i for the
-    /// initial entry i.
+    /// The augmented initial state of `state`: s(t₀) = 0 for a parameter (the state
+    /// `[q, p, m_s]` held fixed: a start given by its velocities, whose momenta move with a
+    /// mass parameter, is [`Self::start_at_velocities`]), e_i for the initial entry i.
     pub fn start<const SA: usize>(&self, state: &SVector<f64, S>) -> SVector<f64, SA> {
         let mut out = SVector::<f64, SA>::zeros();
         out.fixed_rows_mut::<S>(0).copy_from(state);
@@ -220,6 +221,38 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             }
         }
         out
+    }
+
+    /// The augmented initial state from a velocity state `[q, q̇, m_s]` held fixed: the
+    /// momenta p₀ = P(q, q̇, θ) then move with the parameters (a mass times a given speed),
+    /// ∂p₀/∂θ = P_θ = −M (∂q̇/∂θ at a fixed state), from the mass matrix and the parameter
+    /// Jacobian's q̇ rows (q̇ = M⁻¹ (p − b(θ)) gives ∂q̇/∂θ = −M⁻¹ P_θ); an initial entry's
+    /// column is e_i of the state `[q, p, m_s]` as in [`Self::start`], which holds p₀
+    /// fixed instead.
+    pub fn start_at_velocities<const N: usize, const SA: usize>(
+        &self,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+    ) -> Result<SVector<f64, SA>, SystemError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let state = self.system.momentum_state(t, velocity_state);
+        let mut out: SVector<f64, SA> = self.start(&state);
+        let mut scratch = self.scratch.borrow_mut();
+        if self.has_parameters() && !self.system.parameter_jacobian(t, &state, &mut scratch)? {
+            return Err(SystemError::NoParameterJacobian);
+        }
+        let mass = self.system.mass_matrix(t, &state);
+        for c in 0..self.columns() {
+            let mut dv = SVector::<f64, N>::zeros();
+            self.add_parameter(c, &scratch, dv.iter_mut());
+            let dp = mass * dv;
+            for (i, value) in dp.iter().enumerate() {
+                out[S * (1 + c) + N + i] -= value;
+            }
+        }
+        Ok(out)
     }
 
     /// ∂y_i/∂w_c of an augmented state: entry `i` of column `c`; `None` past the state or
