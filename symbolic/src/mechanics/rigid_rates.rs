@@ -80,7 +80,7 @@ struct Push {
 }
 
 /// The body's motion in body axes, as functions of q and q̇.
-struct Motion {
+pub(super) struct Motion {
     /// V = Rᵀ ṙ_O.
     origin: Vec<Id>,
     /// ω.
@@ -88,9 +88,9 @@ struct Motion {
     /// ω × c.
     turn: Vec<Id>,
     /// w = V + ω × c.
-    centre: Vec<Id>,
+    pub(super) centre: Vec<Id>,
     /// h = I ω + c × P.
-    angular: Vec<Id>,
+    pub(super) angular: Vec<Id>,
 }
 
 /// ṗ in coordinate order by the formulas of the module's comment, `None` where they do not
@@ -171,8 +171,9 @@ fn body_vectors(
     Some((Vectors(pool).sum(&twist, &turning), pushing))
 }
 
-/// V, ω, w, P and h of the module's comment.
-fn motion(model: &mut Model, slots: &[usize]) -> Option<Motion> {
+/// V, ω, w, P and h of the module's comment (also what a quaternion body's momenta are
+/// built from, `rigid_solve::quaternion_momenta`).
+pub(super) fn motion(model: &mut Model, slots: &[usize]) -> Option<Motion> {
     let body = &model.bodies[0];
     let rigid = body.rigid.as_ref()?;
     let mass = model.pool.sym(model.masses[body.mass].symbol);

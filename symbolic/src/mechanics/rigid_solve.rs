@@ -121,6 +121,11 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
     if !momenta.offset.iter().all(|b| model.pool.is_zero(*b)) {
         return None;
     }
+    // w and h as functions of q and q̇, for a quaternion body's momenta forwards.
+    let motion = match model.bodies[0].rigid.as_ref()?.quaternion {
+        Some(_) => Some(super::rigid_rates::motion(model, &slots)?),
+        None => None,
+    };
     let body = &model.bodies[0];
     let rigid = body.rigid.as_ref()?;
     let velocities: Vec<Symbol> = model.coordinates.iter().map(|c| c.velocity).collect();
@@ -143,18 +148,21 @@ pub(crate) fn rigid_velocities(model: &mut Model, momenta: &Momenta) -> Option<R
     };
     let (origin_rates, angle_rates) =
         solve(pool, &metric, &rotation, &inertia, &centre, mass, &momentum);
-    let momenta = match &metric {
-        Metric::Quaternion { .. } => {
-            let rates: Vec<Id> = slots.iter().map(|&i| pool.sym(velocities[i])).collect();
-            let body = (&rotation, &omega[..], &inertia, &centre[..], mass);
-            let (linear, turning) = quaternion_momenta(pool, &metric, body, &rates);
+    let momenta = match &motion {
+        Some(motion) => {
+            let rates: Vec<Id> = slots[3..]
+                .iter()
+                .map(|&i| pool.sym(velocities[i]))
+                .collect();
+            let (linear, turning) =
+                quaternion_momenta(pool, &metric, (&rotation, mass), motion, &rates);
             let mut out = vec![pool.int(0); slots.len()];
             for (slot, p) in slots.iter().zip(linear.into_iter().chain(turning)) {
                 out[*slot] = p;
             }
             out
         }
-        Metric::Euler { .. } => Vec::new(),
+        None => Vec::new(),
     };
     let mut out = vec![pool.int(0); slots.len()];
     for (slot, rate) in slots
@@ -328,34 +336,27 @@ impl Metric {
     }
 }
 
-/// p = ∂T/∂q̇ of a lone quaternion body forwards (the module's comment), from the rates
-/// `rates` = [ṙ_O, q̇] in slot order: w = Rᵀ ṙ_O + ω × c, P = m w, h = I ω + c × P and
-/// s = q·q̇ give p_r = R P and p_q = (2/n) Gᵀ h + λ s q/n². Empty for Euler angles.
+/// p = ∂T/∂q̇ of a lone quaternion body forwards (the module's comment), from the body's
+/// motion (w and h, `rigid_rates::motion`) and the quaternion's rates `rates`: p_r = R (m w)
+/// and p_q = (2/n) Gᵀ h + λ s q/n² with s = q·q̇. Empty for Euler angles.
 fn quaternion_momenta(
     pool: &mut ExprPool,
     metric: &Metric,
-    (rotation, omega, inertia, centre, mass): (&Matrix, &[Id], &Matrix, &[Id], Id),
+    (rotation, mass): (&Matrix, Id),
+    motion: &super::rigid_rates::Motion,
     rates: &[Id],
 ) -> (Vec<Id>, Vec<Id>) {
     let Metric::Quaternion { g, q, norm, lambda } = metric else {
         return (Vec::new(), Vec::new());
     };
-    let along = mat_vec(pool, &transpose(rotation), &rates[..3]);
-    let w_x_c = cross(pool, omega, centre);
-    let big_p: Vec<Id> = (along.iter().zip(&w_x_c))
-        .map(|(v, wc)| {
-            let w = pool.add(&[*v, *wc]);
-            pool.mul(&[mass, w])
-        })
-        .collect();
-    let spin = mat_vec(pool, inertia, omega);
-    let c_x_p = cross(pool, centre, &big_p);
-    let h: Vec<Id> = (spin.iter().zip(&c_x_p))
-        .map(|(a, b)| pool.add(&[*a, *b]))
+    let big_p: Vec<Id> = motion
+        .centre
+        .iter()
+        .map(|w| pool.mul(&[mass, *w]))
         .collect();
     let linear = mat_vec(pool, rotation, &big_p);
-    let turned = mat_vec(pool, &transpose(g), &h);
-    let s = dot(pool, q, &rates[3..]);
+    let turned = mat_vec(pool, &transpose(g), &motion.angular);
+    let s = dot(pool, q, rates);
     let (two, minus_one, minus_two) = (pool.int(2), pool.int(-1), pool.int(-2));
     let (inverse, inverse_square) = (pool.pow(*norm, minus_one), pool.pow(*norm, minus_two));
     let two_over_n = pool.mul(&[two, inverse]);
