@@ -84,7 +84,7 @@ pub enum SensitivityError {
         /// The SA given.
         augmented: usize,
     },
-    /// A parameter the system does not name (or a system without `emit = ["sensitivities"]`).
+    /// A parameter the system does not name.
     #[error("no parameter `{name}` (the system's parameters with sensitivities: {known:?})")]
     UnknownParameter {
         /// The name asked for.

@@ -115,13 +115,15 @@ impl<Sys> Supported<Sys> {
         }
     }
 
-    /// [`SystemError::SupportCoupled`] where the held coordinate couples with another at
+    /// [`SystemError::SupportedSensitivities`] while held or on a rail for a system with
+    /// state only its rate evolves (sensitivities: the clamp would leave their rows free),
+    /// and [`SystemError::SupportCoupled`] where the held coordinate couples with another at
     /// `(t, state)` above [`HELD_COUPLING`]: uncoupled at the start ([`phases`] checks, M_kj
     /// and p_k at rest exactly 0), the coupling may appear as the other coordinates move
     /// (M_yθ = g_c m_p sin θ of a pitching rocket is 0 at θ = 0 only), and the clamp of p_k
     /// would then be a wrong motion, silently (review of session 33: θ 0.8 rad off at 3 s,
     /// exit 0). Checked at every held evaluation (the mass matrix once, only while held).
-    fn still_uncoupled<const N: usize, const S: usize>(
+    fn checked_hold<const N: usize, const S: usize>(
         &self,
         t: f64,
         state: &SVector<f64, S>,
@@ -252,7 +254,7 @@ where
     Ok(())
 }
 
-/// The coupling that ends a hold ([`Supported::still_uncoupled`]): |M_kj| above this
+/// The coupling that ends a hold ([`Supported::checked_hold`]): |M_kj| above this
 /// fraction of √(M_kk M_jj). Not 0: a coupling that grows from 0 (sin θ) would be refused
 /// at every state past the start, and the step controller, which takes a refused stage
 /// for a step too long, would shrink its steps towards t₀ for ever (10⁷ steps to
@@ -381,7 +383,7 @@ where
         t: f64,
         velocity_state: &SVector<f64, S>,
     ) -> Result<SVector<f64, N>, SystemError> {
-        self.still_uncoupled(t, velocity_state)?;
+        self.checked_hold(t, velocity_state)?;
         if let Some(rail) = &self.rail {
             return rail.accelerations(&self.system, t, velocity_state);
         }
@@ -400,7 +402,7 @@ where
     }
 
     fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
-        self.still_uncoupled(t, state)?;
+        self.checked_hold(t, state)?;
         if let Some(rail) = &self.rail {
             return rail.state_rate(&self.system, t, state);
         }
