@@ -3,9 +3,10 @@
 //! interpreted from the same file (`TapeSystem`), both flown by one driver through the
 //! core's Rust API (tests/calisto_support): the two formulations of the same equations —
 //! generated Rust against the interpreter's tapes, which round differently — agree on the
-//! apogee, the 800 m crossing, the landing time and point. Measured (release, with the
-//! quaternion fast path): apogee +5.0e-12 m, the crossing -1.1e-11 s, the landing -1.3e-10 s,
-//! -3.9e-10 m East, +5.3e-10 m North (the steps differ from the rounding); bounds 1e-9 m,
+//! apogee, the 800 m crossing, the landing time and point. Measured (test profile, with the
+//! quaternion's closed-form q̈ and p forwards): apogee +5.5e-12 m, the crossing +2.1e-12 s,
+//! the landing +1.4e-10 s, +4.1e-10 m East, −5.3e-10 m North (the steps differ from the
+//! rounding; they move between builds by a few e-12 m and e-10 s); bounds 1e-9 m,
 //! 1e-9 s, 1e-8 s, 1e-7 s, 1e-6 m, the tolerance's order over the descent (1e-8 of 295 s is
 //! 3e-6 s). The tool's run of the scene (`varmass run flights/calisto/calisto_flight.toml`)
 //! lands at 295.0393395410205 s, 4e-10 s from both. The benches' `calisto` bench times the
