@@ -28,6 +28,28 @@ use crate::input::Sampling;
 /// A literal because `f64::powf` is not available without `std`.
 const CBRT_EPSILON: f64 = 6.055_454_452_393_343e-6;
 
+/// The Jacobian of `rate` at `(t, state)` by central differences, step ∛ε·max(|yⱼ|, 1):
+/// [`VariableMassSystem::jacobian`]'s default, and the fallback of a system whose symbolic
+/// Jacobian is optional (the interpreter's).
+pub fn central_jacobian<const S: usize>(
+    t: f64,
+    state: &SVector<f64, S>,
+    rate: impl Fn(f64, &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError>,
+) -> Result<SMatrix<f64, S, S>, SystemError> {
+    let mut jacobian = SMatrix::<f64, S, S>::zeros();
+    let mut probe = *state;
+    for j in 0..S {
+        let h = CBRT_EPSILON * state[j].abs().max(1.0);
+        probe[j] = state[j] + h;
+        let forward = rate(t, &probe)?;
+        probe[j] = state[j] - h;
+        let backward = rate(t, &probe)?;
+        probe[j] = state[j];
+        jacobian.set_column(j, &((forward - backward) / (2.0 * h)));
+    }
+    Ok(jacobian)
+}
+
 /// A holonomic variable-mass system in the sense of Zhang Jiuzhu (2015): generalized
 /// coordinates q, frozen masses mᵢ(q, t) or state masses, a Lagrangian L = T − V, and
 /// generalized forces Q* (active, non-potential), R1 (reactive thrust) and R2 (impact).
@@ -327,18 +349,7 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
     /// The Jacobian ∂(state rate)/∂(state) for implicit steppers. The default uses central
     /// differences; generated systems return the symbolic Jacobian.
     fn jacobian(&self, t: f64, state: &SVector<f64, S>) -> Result<SMatrix<f64, S, S>, SystemError> {
-        let mut jacobian = SMatrix::<f64, S, S>::zeros();
-        let mut probe = *state;
-        for j in 0..S {
-            let h = CBRT_EPSILON * state[j].abs().max(1.0);
-            probe[j] = state[j] + h;
-            let forward = self.state_rate(t, &probe)?;
-            probe[j] = state[j] - h;
-            let backward = self.state_rate(t, &probe)?;
-            probe[j] = state[j];
-            jacobian.set_column(j, &((forward - backward) / (2.0 * h)));
-        }
-        Ok(jacobian)
+        central_jacobian(t, state, |t, y| self.state_rate(t, y))
     }
 
     /// Whether the state has entries past the mechanics (q, p, m_s, held inputs) that only

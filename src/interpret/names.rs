@@ -20,3 +20,21 @@ pub(crate) fn intern(name: &str) -> &'static str {
     names.insert(leaked);
     leaked
 }
+
+/// The `'static` copy of a list of names (each [`intern`]ed), leaked on its first use only:
+/// a run-time model's parameter names for
+/// [`VariableMassSystem::parameter_names`](varmass_core::VariableMassSystem::parameter_names).
+pub(crate) fn intern_list(list: &[&str]) -> &'static [&'static str] {
+    static LISTS: OnceLock<Mutex<BTreeSet<&'static [&'static str]>>> = OnceLock::new();
+    let lists = LISTS.get_or_init(|| Mutex::new(BTreeSet::new()));
+    let interned: Vec<&'static str> = list.iter().map(|name| intern(name)).collect();
+    let mut lists = lists
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    if let Some(known) = lists.get(interned.as_slice()) {
+        return known;
+    }
+    let leaked: &'static [&'static str] = Box::leak(interned.into_boxed_slice());
+    lists.insert(leaked);
+    leaked
+}

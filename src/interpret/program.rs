@@ -18,6 +18,9 @@ use super::error::ProgramError;
 use super::taylor::TaylorProgram;
 
 mod held;
+mod jacobians;
+
+use jacobians::Jacobians;
 
 /// How each group of quantities is evaluated.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -93,6 +96,9 @@ pub struct Program {
     held_symbols: Vec<Symbol>,
     held_laws: Vec<Stage>,
     periods: Vec<f64>,
+    /// The symbolic Jacobians (`jacobians.rs`), when the derivation has the parameter
+    /// Jacobian (`Outputs::sensitivities`).
+    jacobians: Option<Jacobians>,
     scratch: RefCell<Scratch>,
 }
 
@@ -121,6 +127,7 @@ impl Program {
             .map(|&i| d.masses[i].symbol.index());
         let law_slots = law_slots.collect();
         let (switch_roots, switch_names, switch_tables) = switches(&mut d);
+        let jacobians = Jacobians::new(&mut d);
         let code = d.code_roots(Outputs::FULL);
         let (tables, stop_roots) = stop_tables(
             &mut d,
@@ -168,6 +175,7 @@ impl Program {
             held_symbols: d.held(),
             held_laws,
             periods,
+            jacobians,
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),

@@ -3,6 +3,7 @@
 
 use varmass_core::input::Sampling;
 use varmass_core::nalgebra::{SMatrix, SVector};
+use varmass_core::system::central_jacobian;
 use varmass_core::{SystemError, VariableMassSystem};
 
 use super::error::ProgramError;
@@ -228,6 +229,42 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
             self.program
                 .accelerations(t, velocity_state.as_slice(), out)
         })
+    }
+
+    /// The symbolic Jacobian when the program has it ([`Program::has_jacobians`]), the
+    /// padding's rows and columns 0; else the trait's central differences.
+    fn jacobian(&self, t: f64, state: &SVector<f64, S>) -> Result<SMatrix<f64, S, S>, SystemError> {
+        let len = self.program.state_len();
+        let mut entries = vec![0.0; len * len];
+        if !self.program.jacobian(t, state.as_slice(), &mut entries)? {
+            return central_jacobian(t, state, |t, y| self.state_rate(t, y));
+        }
+        Ok(SMatrix::<f64, S, S>::from_fn(|i, j| match i < len && j < len {
+            true => entries[i * len + j],
+            false => 0.0,
+        }))
+    }
+
+    fn sensitivity_obstacle(&self) -> Option<&'static str> {
+        self.program.sensitivity_obstacle()
+    }
+
+    fn parameter_jacobian(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+        out: &mut [f64],
+    ) -> Result<bool, SystemError> {
+        let rows = self.program.state_len() * self.parameter_names().len();
+        out.iter_mut().for_each(|x| *x = 0.0);
+        let Some(model_rows) = out.get_mut(..rows) else {
+            return Ok(false);
+        };
+        self.program.parameter_jacobian(t, state.as_slice(), model_rows)
+    }
+
+    fn parameter_names(&self) -> &'static [&'static str] {
+        self.program.parameter_names()
     }
 
     fn switch_count(&self) -> usize {

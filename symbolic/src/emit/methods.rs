@@ -479,7 +479,7 @@ impl Emitter<'_> {
 
     /// `parameter_names` and `sensitivity_obstacle`, beside `parameter_jacobian`.
     fn sensitivity_names(&self, names: &[&str], time_tables: &[TimeTable]) -> TokenStream {
-        let obstacle = match self.sensitivity_obstacle(time_tables) {
+        let obstacle = match crate::mechanics::sensitivity_obstacle(self.d, time_tables) {
             Some(reason) => quote!(::core::option::Option::Some(#reason)),
             None => quote!(::core::option::Option::None),
         };
@@ -491,27 +491,6 @@ impl Emitter<'_> {
                 #obstacle
             }
         }
-    }
-
-    /// What of the model the sensitivities cannot follow yet, if anything: an input (a
-    /// parameter its Rust function reads is invisible to ∂f/∂θ, its partials are central
-    /// differences) or a table of t whose knots move with a parameter (`F(t - t_ign)`: f
-    /// jumps there at a time that moves with θ). Switches and sampled inputs the runtime
-    /// refuses by itself (`switch_count`, `HELD`).
-    fn sensitivity_obstacle(&self, time_tables: &[TimeTable]) -> Option<&'static str> {
-        if !self.d.inputs.is_empty() {
-            return Some("inputs (their Rust functions' parameters)");
-        }
-        let parameters: Vec<crate::expr::Symbol> =
-            self.d.parameters.iter().map(|(_, s)| *s).collect();
-        let moves = |e: Id| {
-            let free = self.d.pool.free_symbols(e);
-            parameters.iter().any(|p| free.contains(p))
-        };
-        let moving = time_tables
-            .iter()
-            .any(|t| moves(t.slope) || moves(t.offset));
-        moving.then_some("a table of t whose knots move with a parameter")
     }
 }
 

@@ -65,6 +65,8 @@ pub struct JacobianParts {
     pub rate_wrt_parameter: Matrix,
     /// P_θ = ∂p/∂θ at fixed q and q̇, N × P (no columns unless `Outputs::sensitivities`).
     pub momentum_wrt_parameter: Matrix,
+    /// Whether F_θ and P_θ were derived (`Outputs::sensitivities`).
+    pub with_parameters: bool,
 }
 
 /// The outcome of one `check`.

@@ -84,5 +84,6 @@ pub(crate) fn jacobian_parts(
         momentum_wrt_state_mass: block(pool, momenta, &state_masses, true),
         rate_wrt_parameter: block(pool, &rows, &parameters, true),
         momentum_wrt_parameter: block(pool, momenta, &parameters, true),
+        with_parameters: sensitivities,
     }
 }

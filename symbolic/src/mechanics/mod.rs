@@ -61,7 +61,7 @@ pub(crate) use render::Of;
 pub use resolve::{is_reserved, Parameters};
 pub use rigid_solve::RigidVelocities;
 pub use stages::{RateStages, TaylorLayout, TaylorStages};
-pub use stops::{time_tables, TimeTable};
+pub use stops::{sensitivity_obstacle, time_tables, TimeTable};
 pub use switches::{switching_functions, table_switches, TableSwitch};
 pub(crate) use tables::check_smooth_enough;
 pub use tables::{read_points, runtime_placeholder, ModelTable};

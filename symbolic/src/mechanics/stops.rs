@@ -73,3 +73,24 @@ pub(crate) fn affine_in_time(d: &mut Derivation, argument: Id) -> Option<(Id, Id
     (!d.pool.is_zero(slope) && only_parameters(d, slope) && only_parameters(d, offset))
         .then_some((slope, offset))
 }
+
+/// What of the model forward sensitivities cannot follow yet, if anything
+/// (docs/sensitivities.md): an input (a parameter its Rust function reads is invisible to
+/// ∂f/∂θ) or a table of t whose knots move with a parameter (`F(t - t_ign)`: f jumps there
+/// at a time that moves with θ). Generated code's `sensitivity_obstacle` and the
+/// interpreter's both ask this. Switches and sampled inputs the runtime refuses by itself
+/// (`switch_count`, the held values).
+pub fn sensitivity_obstacle(d: &Derivation, time_tables: &[TimeTable]) -> Option<&'static str> {
+    if !d.inputs.is_empty() {
+        return Some("inputs (their Rust functions' parameters)");
+    }
+    let parameters: Vec<crate::expr::Symbol> = d.parameters.iter().map(|(_, s)| *s).collect();
+    let moves = |e: Id| {
+        let free = d.pool.free_symbols(e);
+        parameters.iter().any(|p| free.contains(p))
+    };
+    let moving = time_tables
+        .iter()
+        .any(|t| moves(t.slope) || moves(t.offset));
+    moving.then_some("a table of t whose knots move with a parameter")
+}
