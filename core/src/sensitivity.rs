@@ -224,11 +224,13 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     }
 
     /// The augmented initial state from a velocity state `[q, q̇, m_s]` held fixed: the
-    /// momenta p₀ = P(q, q̇, θ) then move with the parameters (a mass times a given speed),
+    /// momenta p₀ = P(q, q̇, θ) then move with what moves the start. For a parameter,
     /// ∂p₀/∂θ = P_θ = −M (∂q̇/∂θ at a fixed state), from the mass matrix and the parameter
-    /// Jacobian's q̇ rows (q̇ = M⁻¹ (p − b(θ)) gives ∂q̇/∂θ = −M⁻¹ P_θ); an initial entry's
-    /// column is e_i of the state `[q, p, m_s]` as in [`Self::start`], which holds p₀
-    /// fixed instead.
+    /// Jacobian's q̇ rows (q̇ = M⁻¹ (p − b(θ)) gives ∂q̇/∂θ = −M⁻¹ P_θ). For an initial
+    /// entry, [`Column::Initial`]`(i)` is entry i of the *velocity* state: a velocity q̇_a
+    /// moves p₀ by M e_a; a coordinate or a state mass moves itself and p₀ by
+    /// −M (∂q̇/∂y_i at fixed p), the Jacobian's q̇ rows. ([`Self::start`] holds p₀ fixed
+    /// instead, its entries those of `[q, p, m_s]`.)
     pub fn start_at_velocities<const N: usize, const SA: usize>(
         &self,
         t: f64,
@@ -238,18 +240,31 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         Sys: VariableMassSystem<N, S>,
     {
         let state = self.system.momentum_state(t, velocity_state);
-        let mut out: SVector<f64, SA> = self.start(&state);
-        let mut scratch = self.scratch.borrow_mut();
-        if self.has_parameters() && !self.system.parameter_jacobian(t, &state, &mut scratch)? {
-            return Err(SystemError::NoParameterJacobian);
-        }
+        let mut out = SVector::<f64, SA>::zeros();
+        out.fixed_rows_mut::<S>(0).copy_from(&state);
+        let (jacobian, scratch) = self.jacobians::<N, SA>(t, &out)?;
         let mass = self.system.mass_matrix(t, &state);
         for c in 0..self.columns() {
+            // The entry the column moves directly, and ∂q̇/∂w at a fixed state `[q, p, m_s]`.
             let mut dv = SVector::<f64, N>::zeros();
-            self.add_parameter(c, &scratch, dv.iter_mut());
-            let dp = mass * dv;
-            for (i, value) in dp.iter().enumerate() {
-                out[S * (1 + c) + N + i] -= value;
+            let mut own = None;
+            match self.columns[c] {
+                Resolved::Initial(i) if (N..2 * N).contains(&i) => dv[i - N] = -1.0,
+                Resolved::Initial(i) => {
+                    own = Some(i);
+                    dv = jacobian.fixed_view::<N, 1>(0, i).into_owned();
+                }
+                Resolved::Parameter(_) | Resolved::Elsewhere => {
+                    self.add_parameter(c, &scratch, dv.iter_mut())
+                }
+            }
+            let first = S * (1 + c);
+            if let Some(i) = own {
+                out[first + i] = 1.0;
+            }
+            let dp = -(mass * dv);
+            for (a, value) in dp.iter().enumerate() {
+                out[first + N + a] = *value;
             }
         }
         Ok(out)

@@ -48,5 +48,5 @@ mod system;
 mod taylor;
 
 pub use error::ProgramError;
-pub use program::{Evaluation, Program, Quantity};
+pub use program::{Direction, Evaluation, Program, Quantity};
 pub use system::TapeSystem;

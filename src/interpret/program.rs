@@ -17,9 +17,11 @@ use super::cholesky::cholesky_solve;
 use super::error::ProgramError;
 use super::taylor::TaylorProgram;
 
+mod gradients;
 mod held;
 mod jacobians;
 
+pub use gradients::Direction;
 use jacobians::Jacobians;
 
 /// How each group of quantities is evaluated.
@@ -99,6 +101,8 @@ pub struct Program {
     /// The symbolic Jacobians (`jacobians.rs`), when the derivation has the parameter
     /// Jacobian (`Outputs::sensitivities`).
     jacobians: Option<Jacobians>,
+    /// The gradients of recorded expressions (`gradients.rs`), compiled when asked.
+    gradients: Vec<(Id, Stage)>,
     scratch: RefCell<Scratch>,
 }
 
@@ -176,6 +180,7 @@ impl Program {
             held_laws,
             periods,
             jacobians,
+            gradients: Vec::new(),
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),

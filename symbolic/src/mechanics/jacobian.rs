@@ -4,6 +4,7 @@
 use super::derivation::JacobianParts;
 use super::linear::Matrix;
 use super::model::{MassKind, Model};
+use super::Derivation;
 use crate::expr::{ExprPool, Id, Symbol};
 
 /// Total derivative at fixed q̇ with the mass laws followed: ∂e/∂w + Σ ∂e/∂mᵢ ∂mᵢ/∂w.
@@ -86,4 +87,27 @@ pub(crate) fn jacobian_parts(
         momentum_wrt_parameter: block(pool, momenta, &parameters, true),
         with_parameters: sensitivities,
     }
+}
+
+/// The gradient of `e` — an expression of t, q, q̇, the masses and the parameters, such as
+/// a [`crate::quantity::Quantity`]'s entry — with respect to [t, q, q̇, m_s, θ]
+/// (1 + 2N + K + P entries, θ in [`Derivation::parameters`] order), each a total
+/// derivative at fixed q̇ with the mass laws followed, as the Jacobian's blocks are: what
+/// the derivative of a recorded quantity along the sensitivities reads
+/// (docs/sensitivities.md).
+pub fn gradient(d: &mut Derivation, e: Id) -> Vec<Id> {
+    let law_masses: Vec<(Symbol, Id)> = (d.masses.iter())
+        .zip(&d.closed_laws)
+        .filter_map(|(m, law)| law.map(|l| (m.symbol, l)))
+        .collect();
+    let state_masses = (d.masses.iter()).filter(|m| matches!(m.kind, MassKind::State { .. }));
+    let wrt: Vec<Symbol> = std::iter::once(d.time)
+        .chain(d.coordinates.iter().map(|c| c.q))
+        .chain(d.coordinates.iter().map(|c| c.velocity))
+        .chain(state_masses.map(|m| m.symbol))
+        .chain(d.parameters.iter().map(|(_, s)| *s))
+        .collect();
+    (wrt.into_iter())
+        .map(|w| total_diff(&mut d.pool, e, w, &law_masses))
+        .collect()
 }

@@ -51,6 +51,7 @@ pub use derivation::{
 };
 pub(crate) use inputs::check_not_differentiated;
 pub use inputs::ModelInput;
+pub use jacobian::gradient;
 pub use linear::Matrix;
 pub use model::{
     Body, Check, Coordinate, Flow, FlowVelocityValue, Load, LoadKind, LoadTarget, Mass, MassKind,
