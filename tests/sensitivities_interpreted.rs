@@ -105,12 +105,22 @@ fn the_interpreters_jacobians_equal_generated_codes() {
         let (ours, theirs) = (ours.expect("regular"), theirs.expect("regular"));
         worst = worst.max((ours - theirs).abs().max() / theirs.abs().max());
         let (mut ours, mut theirs) = (vec![0.0; 2 * names.len()], vec![0.0; 2 * compiled.len()]);
-        assert!(tape.parameter_jacobian(t, &state, &mut ours).expect("regular"));
-        assert!(ROCKET.parameter_jacobian(t, &state, &mut theirs).expect("regular"));
+        assert!(tape
+            .parameter_jacobian(t, &state, &mut ours)
+            .expect("regular"));
+        assert!(ROCKET
+            .parameter_jacobian(t, &state, &mut theirs)
+            .expect("regular"));
         for (j, name) in names.iter().enumerate() {
-            let k = compiled.iter().position(|c| c == name).expect("the same parameters");
+            let k = compiled
+                .iter()
+                .position(|c| c == name)
+                .expect("the same parameters");
             for row in 0..2 {
-                let (a, b) = (ours[row * names.len() + j], theirs[row * compiled.len() + k]);
+                let (a, b) = (
+                    ours[row * names.len() + j],
+                    theirs[row * compiled.len() + k],
+                );
                 worst = worst.max((a - b).abs() / b.abs().max(1e-300));
             }
         }
@@ -129,12 +139,19 @@ fn the_coupled_models_jacobians_meet_central_differences() {
     let base = program(COUPLED_SOURCE, &COUPLED_VALUES);
     let names = base.parameter_names();
     let tape = TapeSystem::<2, 5>::new(base).expect("sizes");
-    let mut shifted = TapeSystem::<2, 5>::new(program(COUPLED_SOURCE, &COUPLED_VALUES)).expect("sizes");
+    let mut shifted =
+        TapeSystem::<2, 5>::new(program(COUPLED_SOURCE, &COUPLED_VALUES)).expect("sizes");
     let mut worst = 0f64;
     for i in 0..20 {
         let f = f64::from(i);
         let t = 0.17 * f;
-        let state = SVector::from([0.3 - 0.05 * f, 0.9 - 0.1 * f, 0.4 + 0.1 * f, -0.7 + 0.2 * f, 3.0]);
+        let state = SVector::from([
+            0.3 - 0.05 * f,
+            0.9 - 0.1 * f,
+            0.4 + 0.1 * f,
+            -0.7 + 0.2 * f,
+            3.0,
+        ]);
         let exact = tape.jacobian(t, &state).expect("regular");
         let rate = |y: &SVector<f64, 5>| tape.state_rate(t, y).expect("regular");
         for j in 0..5 {
@@ -147,16 +164,34 @@ fn the_coupled_models_jacobians_meet_central_differences() {
             worst = worst.max(gap / exact.abs().max());
         }
         let mut exact = vec![0.0; 5 * names.len()];
-        assert!(tape.parameter_jacobian(t, &state, &mut exact).expect("regular"));
+        assert!(tape
+            .parameter_jacobian(t, &state, &mut exact)
+            .expect("regular"));
         for (j, name) in names.iter().enumerate() {
             let mut moved = |sign: f64| {
                 let values: Vec<(&str, f64)> = (COUPLED_VALUES.iter())
                     .filter(|(n, _)| names.contains(n))
-                    .map(|&(n, v)| (n, if n == *name { v * (1.0 + sign * 1e-5) } else { v }))
+                    .map(|&(n, v)| {
+                        (
+                            n,
+                            if n == *name {
+                                v * (1.0 + sign * 1e-5)
+                            } else {
+                                v
+                            },
+                        )
+                    })
                     .collect();
-                let value = COUPLED_VALUES.iter().find(|(n, _)| n == name).expect("given").1;
+                let value = COUPLED_VALUES
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .expect("given")
+                    .1;
                 shifted.program_mut().set_parameters(&values).expect("fits");
-                (shifted.state_rate(t, &state).expect("regular"), value * 1e-5)
+                (
+                    shifted.state_rate(t, &state).expect("regular"),
+                    value * 1e-5,
+                )
             };
             let ((up, h), (down, _)) = (moved(1.0), moved(-1.0));
             let column = (up - down) / (2.0 * h);

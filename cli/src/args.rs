@@ -115,6 +115,13 @@ pub struct RunArgs {
     /// coordinates, velocities and state masses.
     #[arg(long, value_name = "NAMES")]
     pub record: Vec<String>,
+    /// Record the derivatives of the recorded quantities with respect to a parameter
+    /// NAME, or to an initial value `init:x`, `init:x'` or `init:m` (a coordinate, a
+    /// velocity, a state mass), integrated with the run (forward sensitivities,
+    /// docs/sensitivities.md): columns `d(X)/d(NAME)`, and `d(t)/d(NAME)`, non-zero where a
+    /// --stop-when event ends the run. Repeatable, up to 6; Dormand–Prince or DOP853.
+    #[arg(long = "sensitivity", value_name = "NAME")]
+    pub sensitivity: Vec<String>,
     /// Record every DT seconds instead of at every accepted step.
     #[arg(long, value_name = "DT", allow_hyphen_values = true)]
     pub every: Option<f64>,

@@ -41,6 +41,9 @@ pub struct LoadedModel {
     /// Where the statements of its components came from (docs/components.md), to locate
     /// their diagnostics at the use sites.
     composition: Composition,
+    /// What was derived: [`Outputs::FULL`], with the parameter Jacobian for a run with
+    /// sensitivities ([`LoadedModel::with_sensitivities`]).
+    outputs: Outputs,
 }
 
 /// The tag, among those not asked for (`with`), whose statements make `name` a parameter
@@ -109,6 +112,7 @@ pub fn load_source(source: &str, path: &Path, with: &[String]) -> Result<LoadedM
         warnings,
         source: (source.to_string(), path.to_path_buf()),
         composition,
+        outputs: Outputs::FULL,
     })
 }
 
@@ -120,7 +124,7 @@ impl LoadedModel {
         let derived = derive_with_laws(
             &self.selected,
             Parameters::Inferred,
-            Outputs::FULL,
+            self.outputs,
             &self.base,
             laws,
         );
@@ -150,7 +154,31 @@ impl LoadedModel {
         let derived = derive_in(
             &self.selected,
             Parameters::Inferred,
-            Outputs::FULL,
+            self.outputs,
+            &self.base,
+        );
+        self.derivation = Arc::new(derived.map_err(|diagnostics| self.failed(diagnostics))?);
+        Ok(self)
+    }
+
+    /// Whether the model was derived with its parameter Jacobian (forward sensitivities,
+    /// docs/sensitivities.md).
+    pub fn has_sensitivities(&self) -> bool {
+        self.outputs.sensitivities
+    }
+
+    /// The model derived again with (`true`) or without its parameter Jacobian: a run with
+    /// `--sensitivity` needs it, and a run without is derived as it always was (its
+    /// implicit steppers' Jacobian by differences), whatever ran before.
+    pub fn with_sensitivities(mut self, sensitivities: bool) -> Result<LoadedModel, CliError> {
+        if self.outputs.sensitivities == sensitivities {
+            return Ok(self);
+        }
+        self.outputs.sensitivities = sensitivities;
+        let derived = derive_in(
+            &self.selected,
+            Parameters::Inferred,
+            self.outputs,
             &self.base,
         );
         self.derivation = Arc::new(derived.map_err(|diagnostics| self.failed(diagnostics))?);

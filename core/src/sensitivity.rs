@@ -144,6 +144,11 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         &self.system
     }
 
+    /// Gives the system back.
+    pub fn into_system(self) -> Sys {
+        self.system
+    }
+
     /// The number of columns K.
     pub fn columns(&self) -> usize {
         self.columns.len()

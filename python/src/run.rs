@@ -30,6 +30,7 @@ pub struct Options {
     step: Option<f64>,
     record: Vec<String>,
     every: Option<f64>,
+    sensitivity: Vec<String>,
     inputs: Vec<(String, String)>,
     tables: Vec<(String, String)>,
 }
@@ -64,6 +65,7 @@ pub fn run_args(file: &str, with: &[String], options: Options) -> Result<RunArgs
         max_steps: 10_000_000,
         max_seconds: None,
         record: options.record,
+        sensitivity: options.sensitivity,
         every: options.every,
         csv: None,
         plot: None,

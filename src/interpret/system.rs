@@ -239,9 +239,11 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         if !self.program.jacobian(t, state.as_slice(), &mut entries)? {
             return central_jacobian(t, state, |t, y| self.state_rate(t, y));
         }
-        Ok(SMatrix::<f64, S, S>::from_fn(|i, j| match i < len && j < len {
-            true => entries[i * len + j],
-            false => 0.0,
+        Ok(SMatrix::<f64, S, S>::from_fn(|i, j| {
+            match i < len && j < len {
+                true => entries[i * len + j],
+                false => 0.0,
+            }
         }))
     }
 
@@ -260,7 +262,8 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         let Some(model_rows) = out.get_mut(..rows) else {
             return Ok(false);
         };
-        self.program.parameter_jacobian(t, state.as_slice(), model_rows)
+        self.program
+            .parameter_jacobian(t, state.as_slice(), model_rows)
     }
 
     fn parameter_names(&self) -> &'static [&'static str] {

@@ -138,6 +138,30 @@ impl Compiled {
         Ok(())
     }
 
+    /// Derives the model again with or without its parameter Jacobian, as the run asks
+    /// (`--sensitivity`, [`LoadedModel::with_sensitivities`]); a model with laws or tables
+    /// has them put in again by `apply_laws`, which follows.
+    fn match_sensitivities(&mut self, wanted: bool) -> Result<(), CliError> {
+        if self.model.has_sensitivities() == wanted {
+            return Ok(());
+        }
+        match &mut self.declared {
+            Some((Some(declared), current)) => {
+                *declared = declared.clone().with_sensitivities(wanted)?;
+                *current = None;
+            }
+            Some((None, current)) => {
+                self.model = self.model.clone().with_sensitivities(wanted)?;
+                *current = None;
+            }
+            None => self.model = self.model.clone().with_sensitivities(wanted)?,
+        }
+        self.used = self.model.derivation.used_parameters();
+        self.program = None;
+        self.planned = None;
+        Ok(())
+    }
+
     /// The derived model.
     pub fn model(&self) -> &LoadedModel {
         &self.model
@@ -191,6 +215,7 @@ impl Compiled {
         values: Vec<(String, f64)>,
         warn: impl FnMut(&str),
     ) -> Result<(Program, &mut Plan), CliError> {
+        self.match_sensitivities(!args.sensitivity.is_empty())?;
         self.apply_laws(args)?;
         let program = self.program(&values, args.words, warn)?;
         match self.plan(args, values, &program) {
@@ -247,8 +272,11 @@ impl Compiled {
         values: Vec<(String, f64)>,
         warn: impl FnMut(&str),
     ) -> Result<(Outcome, &Plan), CliError> {
-        let (program, plan) = self.prepare(args, values, warn)?;
+        let (mut program, plan) = self.prepare(args, values, warn)?;
         plan.progress = progress;
+        if !plan.sensitivities.is_empty() {
+            super::sensitivity::prepare(&mut program, plan)?;
+        }
         Ok((dispatch(program, plan)?, plan))
     }
 
@@ -389,7 +417,12 @@ fn recorded(outcome: &mut Outcome, plan: &Plan) -> Result<Table, Failed> {
         error,
         table: Some(table),
     };
-    match output::table(&outcome.program, &plan.record, outcome.points.iter()) {
+    let table = output::table(&outcome.program, &plan.record, outcome.points.iter());
+    let table = match plan.sensitivities.is_empty() {
+        true => table,
+        false => table.map(|t| super::sensitivity::with_derivatives(t, plan, &outcome.derivatives)),
+    };
+    match table {
         Err(partial) => Err(failed(partial.with_run_failure(outcome.failure.take()))),
         Ok(table) => match outcome.failure.take() {
             Some(error) => Err(failed((table, error))),

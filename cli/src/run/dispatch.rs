@@ -81,11 +81,22 @@ impl Sizes {
 /// then runs `job` in the arm of its exact size when `exact` and the table has it, else in
 /// the arm of its number of coordinates padded to `MAX_STATE_MASSES` state masses.
 pub fn on_sizes<J: SizedRun>(sizes: Sizes, exact: bool, job: J) -> Result<J::Output, CliError> {
+    check_sizes(sizes)?;
+    let (n, len) = (sizes.coordinates, sizes.len);
+    sizes!(job, n, len, exact;
+        exact (1, 2), (1, 3), (2, 4), (2, 5), (3, 6), (3, 7);
+        padded (1, 5), (2, 7), (3, 9), (4, 11), (5, 13), (6, 15), (7, 17), (8, 19),
+    )
+}
+
+/// Whether a program of `sizes` fits the table of the monomorphized sizes (its held inputs
+/// count against the state masses' places); else the error naming the limits.
+pub fn check_sizes(sizes: Sizes) -> Result<(), CliError> {
     let Sizes {
         coordinates: n,
         state_masses: k,
         held: h,
-        len,
+        ..
     } = sizes;
     if !(1..=MAX_COORDINATES).contains(&n) || k + h > MAX_STATE_MASSES {
         let held = match h {
@@ -98,10 +109,7 @@ pub fn on_sizes<J: SizedRun>(sizes: Sizes, exact: bool, job: J) -> Result<J::Out
              (use the #[variable_mass_system] macro for larger ones)"
         )));
     }
-    sizes!(job, n, len, exact;
-        exact (1, 2), (1, 3), (2, 4), (2, 5), (3, 6), (3, 7);
-        padded (1, 5), (2, 7), (3, 9), (4, 11), (5, 13), (6, 15), (7, 17), (8, 19),
-    )
+    Ok(())
 }
 
 /// One run of `program` as `plan` says.
@@ -128,6 +136,9 @@ impl SizedRun for Single<'_> {
 /// table has it, else its number of coordinates padded to `MAX_STATE_MASSES` state masses
 /// (the points come back unpadded).
 pub fn dispatch(program: Program, plan: &Plan) -> Result<Outcome, CliError> {
+    if !plan.sensitivities.is_empty() {
+        return super::sensitivity::dispatch(program, plan);
+    }
     on_sizes(Sizes::of(&program), true, Single { program, plan })
 }
 
@@ -163,7 +174,7 @@ pub fn padded_steps(
 
 /// `plan` for the padded state: the initial state with zeros after the model's own
 /// entries, and the tolerance of [`padded_steps`].
-fn padded_plan(plan: &Plan, len: usize, padded: usize) -> Result<Plan, CliError> {
+pub(crate) fn padded_plan(plan: &Plan, len: usize, padded: usize) -> Result<Plan, CliError> {
     let mut initial_state = plan.initial_state.clone();
     initial_state.resize(padded, 0.0);
     Ok(Plan {
@@ -181,5 +192,6 @@ fn padded_plan(plan: &Plan, len: usize, padded: usize) -> Result<Plan, CliError>
         parameters: plan.parameters.clone(),
         flows: plan.flows.clone(),
         words: plan.words,
+        sensitivities: plan.sensitivities.clone(),
     })
 }

@@ -34,6 +34,9 @@ pub struct Outcome {
     /// The closest every accepted step (not only the kept points) came to a singular
     /// attitude of the model's Euler sequences, rad (`Solution::closest_singular_attitude`).
     pub closest_singular_attitude: Option<f64>,
+    /// With `--sensitivity`, the derivative columns at each point
+    /// (`sensitivity::column_names`); empty otherwise.
+    pub derivatives: Vec<Vec<f64>>,
 }
 
 /// Integrates `program` (with `N` coordinates and state length `S`) as `plan` says.
@@ -57,7 +60,7 @@ pub fn integrate<const N: usize, const S: usize>(
     macro_rules! drive_with {
         ($stepper:ident, $settings:expr) => {
             drive(
-                &system,
+                system.program(),
                 $stepper::new(&system, t0, start, $settings).map_err(fail)?,
                 plan,
             )
@@ -77,6 +80,7 @@ pub fn integrate<const N: usize, const S: usize>(
         failure: error.map(fail),
         program: system.into_program(),
         closest_singular_attitude,
+        derivatives: Vec::new(),
     })
 }
 
@@ -159,12 +163,12 @@ pub(crate) fn step(steps: Steps) -> f64 {
 /// What [`drive`] gives back: the points (up to the failure, if the run failed), the
 /// `--stop-when` condition that ended it, the work, the closest approach to gimbal lock
 /// over every accepted step of every output interval, and the error of a failed run.
-struct Driven<const S: usize> {
-    points: Points,
-    stopped_by: Option<usize>,
-    statistics: Statistics,
-    closest_singular_attitude: Option<f64>,
-    error: Option<StepError<S>>,
+pub(crate) struct Driven<const S: usize> {
+    pub(crate) points: Points,
+    pub(crate) stopped_by: Option<usize>,
+    pub(crate) statistics: Statistics,
+    pub(crate) closest_singular_attitude: Option<f64>,
+    pub(crate) error: Option<StepError<S>>,
 }
 
 /// An event function g(t, state).
@@ -174,16 +178,18 @@ pub(crate) type Watcher<'a, const S: usize> = Box<EventFunction<'a, S>>;
 
 /// Runs `stepper` to the end or a stopping event: one run over every accepted step, or
 /// with `--every` one run to each output time in turn (the stepper lands on each). A
-/// failed run gives back the points up to the failure with the error.
-fn drive<St, const N: usize, const S: usize>(
-    system: &TapeSystem<N, S>,
+/// failed run gives back the points up to the failure with the error. `program` is the
+/// model the stepper's system evaluates (the `--stop-when` conditions read it): a
+/// [`TapeSystem`]'s, or, with sensitivities, the one under their columns (its state the
+/// first entries of the stepper's).
+pub(crate) fn drive<St, const N: usize, const S: usize>(
+    program: &Program,
     stepper: St,
     plan: &Plan,
 ) -> Driven<S>
 where
-    St: Stepper<N, S, System = TapeSystem<N, S>>,
+    St: Stepper<N, S>,
 {
-    let program = system.program();
     let watchers: Vec<Option<Watcher<'_, S>>> = plan
         .stop_when
         .iter()
@@ -604,6 +610,7 @@ mod tests {
             parameters: Vec::new(),
             flows: Vec::new(),
             words: Default::default(),
+            sensitivities: Vec::new(),
         }
     }
 

@@ -14,6 +14,7 @@ pub(crate) mod output;
 pub(crate) mod plan;
 pub(crate) mod plot;
 pub(crate) mod record;
+pub(crate) mod sensitivity;
 pub(crate) mod tables;
 pub(crate) mod watch;
 

@@ -67,6 +67,8 @@ pub struct Plan {
     pub flows: Vec<String>,
     /// How messages name the settings: flags, or a scene file's keys.
     pub words: Words,
+    /// The `--sensitivity` columns (docs/sensitivities.md).
+    pub sensitivities: Vec<super::sensitivity::Sensitivity>,
 }
 
 /// The default tolerance of the adaptive methods when `--tol` is not given.
@@ -174,6 +176,7 @@ pub fn plan_with(
         parameters,
         flows: program.derivation().flow_names.clone(),
         words: args.words,
+        sensitivities: super::sensitivity::resolve(args, program)?,
     })
 }
 

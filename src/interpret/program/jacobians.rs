@@ -130,7 +130,9 @@ impl<'a> Blocks<'a> {
         for row in 0..n + k {
             for c in 0..columns {
                 let direct = fx.map_or(0.0, |f| f[row * columns + c]);
-                let through: f64 = (0..n).map(|b| self.fv[row * n + b] * v[b * columns + c]).sum();
+                let through: f64 = (0..n)
+                    .map(|b| self.fv[row * n + b] * v[b * columns + c])
+                    .sum();
                 out.push(direct + through);
             }
         }
@@ -181,7 +183,11 @@ impl Program {
         let parts = [
             (blocks.columns(blocks.pq, Some(blocks.fq), (n, k), n)?, n, 0),
             (blocks.columns(&minus_identity, None, (n, k), n)?, n, n),
-            (blocks.columns(blocks.pm, Some(blocks.fm), (n, k), c)?, c, 2 * n),
+            (
+                blocks.columns(blocks.pm, Some(blocks.fm), (n, k), c)?,
+                c,
+                2 * n,
+            ),
         ];
         out.iter_mut().take(len * len).for_each(|x| *x = 0.0);
         for (part, width, first) in parts {
@@ -205,7 +211,9 @@ impl Program {
         let values = self.jacobian_values(t, state)?;
         let blocks = Blocks::split(&values, sizes).ok_or(SystemError::SingularMassMatrix)?;
         let part = blocks.columns(blocks.pt, Some(blocks.ft), (n, k), p)?;
-        out.iter_mut().take(self.state_len() * p).for_each(|x| *x = 0.0);
+        out.iter_mut()
+            .take(self.state_len() * p)
+            .for_each(|x| *x = 0.0);
         place(out, p, &part, p, 0);
         Ok(true)
     }
@@ -236,7 +244,11 @@ impl Program {
 /// Writes the row-major `part` (`width` columns) into the row-major `out` of `stride`
 /// columns, from its column `first` and row 0.
 fn place(out: &mut [f64], stride: usize, part: &[f64], width: usize, first: usize) {
-    for (row, values) in part.chunks(width.max(1)).enumerate().take_while(|_| width > 0) {
+    for (row, values) in part
+        .chunks(width.max(1))
+        .enumerate()
+        .take_while(|_| width > 0)
+    {
         for (c, value) in values.iter().enumerate() {
             if let Some(slot) = out.get_mut(row * stride + first + c) {
                 *slot = *value;

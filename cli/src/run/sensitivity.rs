@@ -1,0 +1,456 @@
+//! `--sensitivity NAME`: forward sensitivities of a run (docs/sensitivities.md). The state
+//! and its columns s = ∂[q, p, m_s]/∂w are integrated together by the core's
+//! [`Sensitive`] over the run-time model (its symbolic Jacobians), and every recorded
+//! quantity X gets a column `d(X)/d(w)`: at a point, the point moves with w along the
+//! direction (dt, s_q, ∂q̇/∂w, s_m, dθ), and X by its gradient along it
+//! ([`Program::derivative_along`]). Where a `--stop-when` condition X = c ends the run, its
+//! time moves too: dτ/dw = −dX_w / Ẋ, and the last point's direction gains dτ/dw times the
+//! motion (1, q̇, q̈, ṁ_s, 0), so that `d(y)/d(u_e)` there is the derivative of the height
+//! at the event (an apogee's, a landing's), and `d(t)/d(w)` its time's.
+
+use varmass::core::nalgebra::SVector;
+use varmass::core::sensitivity::{Column, Sensitive};
+use varmass::core::{StepError, SystemError, VariableMassSystem};
+use varmass::interpret::{Direction, Program, Quantity, TapeSystem};
+use varmass::symbolic::expr::Id;
+
+use super::dispatch::{check_sizes, padded_plan, padded_steps, Sizes};
+use super::integrate::{describe, drive, Driven, Outcome};
+use super::names::{shown, Observable};
+use super::output::Table;
+use super::plan::Plan;
+use super::record::Recorded;
+use crate::args::{Method, RunArgs};
+use crate::error::CliError;
+
+/// The most `--sensitivity` columns a run may have: each arm of the dispatch integrates
+/// this many (the unused ones stay 0).
+pub const MAX_SENSITIVITIES: usize = 6;
+
+/// A column asked for: the name as given and what it differentiates by.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sensitivity {
+    /// `u_e`, `init:y'`.
+    pub name: String,
+    /// A parameter, or an entry of the initial velocity state `[q, q̇, m_s]`.
+    pub column: Column,
+}
+
+/// The `--sensitivity` names of `args` resolved against `program`: a parameter, or
+/// `init:x`, `init:x'`, `init:m` (a coordinate, its velocity, a state mass).
+pub fn resolve(args: &RunArgs, program: &Program) -> Result<Vec<Sensitivity>, CliError> {
+    let names = &args.sensitivity;
+    if names.len() > MAX_SENSITIVITIES {
+        return Err(CliError::Input(format!(
+            "--sensitivity is given {} times; a run integrates at most {MAX_SENSITIVITIES} \
+             columns (run again for the others)",
+            names.len()
+        )));
+    }
+    let mut resolved: Vec<Sensitivity> = Vec::new();
+    for name in names {
+        let column = column(name.trim(), program)?;
+        if resolved.iter().any(|r| r.column == column) {
+            return Err(CliError::Input(format!(
+                "--sensitivity {name} is given twice; give each once"
+            )));
+        }
+        resolved.push(Sensitivity {
+            name: name.trim().to_string(),
+            column,
+        });
+    }
+    Ok(resolved)
+}
+
+/// The column `name` means.
+fn column(name: &str, program: &Program) -> Result<Column, CliError> {
+    if let Some(entry) = name.strip_prefix("init:") {
+        return initial_entry(entry.trim(), program).map(Column::Initial);
+    }
+    let parameters = program.parameter_names();
+    if let Some(known) = parameters.iter().find(|p| **p == name) {
+        return Ok(Column::Parameter(known));
+    }
+    let known: Vec<(String, ())> = parameters.iter().map(|p| (p.to_string(), ())).collect();
+    super::names::resolve(name, &known, "a parameter")
+        .map(|_| unreachable!("a known parameter was found above"))
+        .map_err(|e| CliError::Input(format!("--sensitivity: {e}; or init:x, init:x', init:m")))
+}
+
+/// The index in `[q, q̇, m_s]` of the initial value `entry` names.
+fn initial_entry(entry: &str, program: &Program) -> Result<usize, CliError> {
+    let n = program.coordinate_count();
+    let mut known: Vec<(String, usize)> = Vec::new();
+    for (a, x) in program.coordinate_names().enumerate() {
+        known.push((x.to_string(), a));
+        known.push((format!("{x}'"), n + a));
+    }
+    let state_masses = program.mass_names().take(program.state_mass_count());
+    for (k, m) in state_masses.enumerate() {
+        known.push((m.to_string(), 2 * n + k));
+    }
+    super::names::resolve(
+        entry,
+        &known,
+        "an initial value (a coordinate, a velocity, a state mass)",
+    )
+    .map_err(|e| CliError::Input(format!("--sensitivity init:{entry}: {e}")))
+}
+
+/// Checks that the run can follow its sensitivities — an adaptive Runge–Kutta method, no
+/// recorded expression (only the model's quantities have gradients), a model the
+/// sensitivities follow — and compiles the gradients of what is recorded and watched.
+pub fn prepare(program: &mut Program, plan: &Plan) -> Result<(), CliError> {
+    if !matches!(plan.method, Method::DormandPrince | Method::Dop853) {
+        return Err(CliError::Input(format!(
+            "--sensitivity runs with --method dormand-prince or dop853 (the sensitivities of \
+             the other methods are not integrated yet), not {:?}",
+            plan.method
+        )));
+    }
+    if let Some(reason) = program.sensitivity_obstacle() {
+        return Err(CliError::Input(format!(
+            "--sensitivity: the sensitivities of this model cannot be integrated yet: it has \
+             {reason} (docs/sensitivities.md)"
+        )));
+    }
+    if program.switch_count() > 0 {
+        return Err(CliError::Input(
+            "--sensitivity: the model has switches, whose times move with the parameters; \
+             their jumps are not applied yet (docs/sensitivities.md)"
+                .to_string(),
+        ));
+    }
+    let watched = plan.stop_when.iter().map(|c| Some(c.observable));
+    let recorded = plan.record.iter().map(|(name, recorded)| match recorded {
+        Recorded::Quantity(o) => Ok(Some(*o)),
+        Recorded::Expression(_) => Err(CliError::Input(format!(
+            "--sensitivity: `{name}` is an expression, whose derivative is not recorded yet; \
+             record the model's quantities it reads"
+        ))),
+    });
+    for observable in watched.map(Ok).chain(recorded) {
+        let Some(observable) = observable? else {
+            continue;
+        };
+        match root(program, observable) {
+            Ok(Some(id)) => program.prepare_derivative(id),
+            Ok(None) => {}
+            Err(what) => {
+                return Err(CliError::Input(format!(
+                    "--sensitivity: {what} has no derivative here"
+                )))
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The expression of `observable` whose gradient its derivative reads: `None` for a state
+/// entry or a velocity (read from the columns), an error for what has none.
+fn root(program: &Program, observable: Observable) -> Result<Option<Id>, String> {
+    let d = program.derivation();
+    match observable {
+        Observable::Coordinate(_) | Observable::Velocity(_) => Ok(None),
+        Observable::Mass(i) if i < program.state_mass_count() => Ok(None),
+        Observable::Mass(i) => d
+            .closed_laws
+            .get(i)
+            .copied()
+            .flatten()
+            .map(Some)
+            .ok_or(format!("mass {i}")),
+        Observable::Held(_) => Err("a sampled input".to_string()),
+        Observable::Quantity(q, index) => match d.quantity(q).get(index) {
+            Some(id) => Ok(Some(*id)),
+            None if q == Quantity::Accelerations => {
+                Err("q'' (solved numerically for this model)".to_string())
+            }
+            None => Err(format!("{q:?}")),
+        },
+    }
+}
+
+/// dX of `observable` (t for `None`) at the velocity state `(t, velocity_state)` along
+/// `direction`.
+fn derivative(
+    program: &Program,
+    observable: Option<Observable>,
+    t: f64,
+    velocity_state: &[f64],
+    direction: &Direction,
+) -> Result<f64, SystemError> {
+    let n = program.coordinate_count();
+    let entry = |i: usize| direction.velocity_state.get(i).copied().unwrap_or(f64::NAN);
+    match observable {
+        None => Ok(direction.time),
+        Some(Observable::Coordinate(a)) => Ok(entry(a)),
+        Some(Observable::Velocity(a)) => Ok(entry(n + a)),
+        Some(Observable::Mass(i)) if i < program.state_mass_count() => Ok(entry(2 * n + i)),
+        Some(o) => {
+            let id = root(program, o).ok().flatten();
+            let along =
+                id.and_then(|id| program.derivative_along(id, t, velocity_state, direction));
+            along.unwrap_or(Ok(f64::NAN))
+        }
+    }
+}
+
+/// One monomorphized arm of [`dispatch`]: the model's `N`, its padded state `S` and the
+/// augmented state `SA = S (1 + MAX_SENSITIVITIES)`.
+macro_rules! arms {
+    ($program:ident, $plan:ident, $n:expr; $(($an:literal, $as:literal, $asa:literal)),* $(,)?) => {
+        match $n {
+            $($an => integrate::<$an, $as, $asa>($program, $plan),)*
+            _ => unreachable!("sizes are checked before"),
+        }
+    };
+}
+
+/// Integrates `program` with the sensitivities of `plan` in the monomorphized code of its
+/// number of coordinates (every model padded to `MAX_STATE_MASSES` state masses and
+/// `MAX_SENSITIVITIES` columns).
+pub fn dispatch(program: Program, plan: &Plan) -> Result<Outcome, CliError> {
+    let sizes = Sizes::of(&program);
+    check_sizes(sizes)?;
+    arms!(program, plan, sizes.coordinates;
+        (1, 5, 35), (2, 7, 49), (3, 9, 63), (4, 11, 77), (5, 13, 91), (6, 15, 105),
+        (7, 17, 119), (8, 19, 133),
+    )
+}
+
+/// The run with sensitivities in the arm `(N, S, SA)`.
+fn integrate<const N: usize, const S: usize, const SA: usize>(
+    program: Program,
+    plan: &Plan,
+) -> Result<Outcome, CliError> {
+    let len = program.state_len();
+    let parameters = program.parameter_names().len();
+    let system = TapeSystem::<N, S>::padded(program).map_err(|e| CliError::Input(e.to_string()))?;
+    let mut columns: Vec<Column> = plan.sensitivities.iter().map(|s| s.column).collect();
+    let asked = columns.len();
+    columns.resize(MAX_SENSITIVITIES, Column::Elsewhere);
+    let sensitive = Sensitive::<_, S>::new::<N, SA>(system, &columns)
+        .map_err(|e| CliError::Input(format!("--sensitivity: {e}")))?;
+    let mut padded = padded_plan(plan, len, S)?;
+    let entries = (len * (1 + asked), S * (1 + MAX_SENSITIVITIES));
+    padded.steps = padded_steps(plan.steps, plan.method, entries.0, entries.1)?;
+    let fail = |e: StepError<S>| describe(sensitive.system(), &padded, &padded.flows, e);
+    let head = |e: StepError<SA>| StepError {
+        time: e.time,
+        state: e.state.fixed_rows::<S>(0).into_owned(),
+        kind: e.kind,
+    };
+    let t0 = plan.from;
+    let initial = SVector::<f64, S>::from_column_slice(&padded.initial_state);
+    let system = sensitive.system();
+    let at_start = |e| fail(StepError::from_system(system, e, t0, &initial));
+    let velocity_state = system.velocity_state(t0, &initial).map_err(at_start)?;
+    let start: SVector<f64, SA> =
+        (sensitive.start_at_velocities(t0, &velocity_state)).map_err(at_start)?;
+    macro_rules! drive_with {
+        ($stepper:ident, $settings:expr) => {{
+            let stepper =
+                $stepper::new(&sensitive, t0, start, $settings).map_err(|e| fail(head(e)))?;
+            drive(sensitive.system().program(), stepper, &padded)
+        }};
+    }
+    let driven: Driven<SA> =
+        super::integrate::with_stepper!(padded.method, padded.steps, drive_with);
+    let derivatives = derivatives::<N, S, SA>(&sensitive, plan, &driven, parameters);
+    let Driven {
+        points,
+        stopped_by,
+        statistics,
+        closest_singular_attitude,
+        error,
+    } = driven;
+    let (derivatives, failure) = match (derivatives, error) {
+        (_, Some(e)) => (Vec::new(), Some(fail(head(e)))),
+        (Ok(rows), None) => (rows, None),
+        (Err(e), None) => (Vec::new(), Some(e)),
+    };
+    Ok(Outcome {
+        points: points.narrowed(len),
+        stopped_by,
+        statistics,
+        failure,
+        program: sensitive.into_system().into_program(),
+        closest_singular_attitude,
+        derivatives,
+    })
+}
+
+/// The derivative columns at every point of `driven`: for each recorded quantity, then t,
+/// each column in turn (`d(X)/d(w)` for X in the plan's record order, then `d(t)/d(w)`,
+/// column by column).
+fn derivatives<const N: usize, const S: usize, const SA: usize>(
+    sensitive: &Sensitive<TapeSystem<N, S>, S>,
+    plan: &Plan,
+    driven: &Driven<SA>,
+    parameters: usize,
+) -> Result<Vec<Vec<f64>>, CliError> {
+    let last = driven.points.len().saturating_sub(1);
+    let mut rows = Vec::with_capacity(driven.points.len());
+    for (i, (t, state)) in driven.points.iter().enumerate() {
+        let state = SVector::<f64, SA>::from_column_slice(state);
+        let event = match (i == last, driven.stopped_by) {
+            (true, Some(index)) => plan.stop_when.get(index).map(|c| c.observable),
+            _ => None,
+        };
+        let row = point_derivatives(sensitive, plan, t, &state, event, parameters);
+        rows.push(row.map_err(|e| {
+            CliError::Run(format!(
+                "cannot record the sensitivities at t = {}: {e}",
+                shown(t)
+            ))
+        })?);
+    }
+    Ok(rows)
+}
+
+/// The derivative columns at one point; `event` is the observable of the condition that
+/// ended the run there, if one did.
+fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
+    sensitive: &Sensitive<TapeSystem<N, S>, S>,
+    plan: &Plan,
+    t: f64,
+    state: &SVector<f64, SA>,
+    event: Option<Observable>,
+    parameters: usize,
+) -> Result<Vec<f64>, String> {
+    let system = sensitive.system();
+    let program = system.program();
+    let head: SVector<f64, S> = state.fixed_rows::<S>(0).into_owned();
+    let velocity_state = system.velocity_state(t, &head).map_err(|e| e.to_string())?;
+    let dv = sensitive
+        .velocity_sensitivities::<N, SA>(t, state)
+        .map_err(|e| e.to_string())?;
+    let motion = match event {
+        Some(_) => Some(motion(system, t, &head, &velocity_state, parameters)?),
+        None => None,
+    };
+    let vs = velocity_state.as_slice();
+    let mut row = Vec::new();
+    let mut times = Vec::new();
+    for (c, sensitivity) in plan.sensitivities.iter().enumerate() {
+        let mut direction = Direction {
+            time: 0.0,
+            velocity_state: (0..S)
+                .map(|i| match (N..2 * N).contains(&i) {
+                    true => dv[c][i - N],
+                    false => state[S * (1 + c) + i],
+                })
+                .collect(),
+            parameters: (0..parameters)
+                .map(|j| match sensitivity.column {
+                    Column::Parameter(name) => f64::from(program.parameter_names()[j] == name),
+                    _ => 0.0,
+                })
+                .collect(),
+        };
+        if let (Some(observable), Some(motion)) = (event, &motion) {
+            moved(program, observable, t, vs, &mut direction, motion)?;
+        }
+        for (_, recorded) in &plan.record {
+            let Recorded::Quantity(o) = recorded else {
+                return Err("an expression has no derivative".to_string());
+            };
+            let value =
+                derivative(program, Some(*o), t, vs, &direction).map_err(|e| e.to_string())?;
+            row.push(value);
+        }
+        times.push(direction.time);
+    }
+    // The time columns after the quantities', in the names' order (`column_names`).
+    let quantities = plan.record.len();
+    let mut ordered = Vec::with_capacity(row.len() + times.len());
+    for (c, time) in times.into_iter().enumerate() {
+        ordered.extend_from_slice(&row[c * quantities..(c + 1) * quantities]);
+        ordered.push(time);
+    }
+    Ok(ordered)
+}
+
+/// The motion's direction at the point: (1, q̇, q̈, ṁ_s, 0).
+fn motion<const N: usize, const S: usize>(
+    system: &TapeSystem<N, S>,
+    t: f64,
+    head: &SVector<f64, S>,
+    velocity_state: &SVector<f64, S>,
+    parameters: usize,
+) -> Result<Direction, String> {
+    let rate = system.state_rate(t, head).map_err(|e| e.to_string())?;
+    let accelerations = system
+        .accelerations(t, velocity_state)
+        .map_err(|e| e.to_string())?;
+    Ok(Direction {
+        time: 1.0,
+        velocity_state: (0..S)
+            .map(|i| match (N..2 * N).contains(&i) {
+                true => accelerations[i - N],
+                false => rate[i],
+            })
+            .collect(),
+        parameters: vec![0.0; parameters],
+    })
+}
+
+/// Moves `direction` with the time of the event on `observable`: dτ = −dX/Ẋ, then
+/// direction += dτ · motion.
+fn moved(
+    program: &Program,
+    observable: Observable,
+    t: f64,
+    velocity_state: &[f64],
+    direction: &mut Direction,
+    motion: &Direction,
+) -> Result<(), String> {
+    let along = derivative(program, Some(observable), t, velocity_state, direction);
+    let rate = derivative(program, Some(observable), t, velocity_state, motion);
+    let (along, rate) = (
+        along.map_err(|e| e.to_string())?,
+        rate.map_err(|e| e.to_string())?,
+    );
+    if rate == 0.0 || !rate.is_finite() {
+        return Err(format!(
+            "the stop condition is met tangentially (its rate is {rate}): the event's time has \
+             no derivative"
+        ));
+    }
+    let dt = -along / rate;
+    direction.time += dt;
+    for (d, m) in direction
+        .velocity_state
+        .iter_mut()
+        .zip(&motion.velocity_state)
+    {
+        *d += dt * m;
+    }
+    Ok(())
+}
+
+/// The names of the derivative columns of `plan`, in [`derivatives`]' order.
+pub fn column_names(plan: &Plan) -> Vec<String> {
+    let mut names = Vec::new();
+    for s in &plan.sensitivities {
+        for (name, _) in &plan.record {
+            names.push(format!("d({name})/d({})", s.name));
+        }
+        names.push(format!("d(t)/d({})", s.name));
+    }
+    names
+}
+
+/// `table` with the derivative columns of `plan` after its own, row by row (`rows` one per
+/// point, as many as the table's or fewer after a failure).
+pub fn with_derivatives(table: Table, plan: &Plan, rows: &[Vec<f64>]) -> Table {
+    let mut names = table.names.clone();
+    names.extend(column_names(plan));
+    let joined = table.rows().zip(rows).map(|((t, mut values), extra)| {
+        values.extend_from_slice(extra);
+        (t, values)
+    });
+    Table::from_rows(names, joined.collect::<Vec<_>>())
+}
