@@ -23,6 +23,9 @@ pub enum Command {
     /// Integrate the model from an initial state with one of the core's steppers, or run a
     /// scene file (`varmass run SCENE.toml`: phases, docs/scenes.md).
     Run(Box<RunArgs>),
+    /// Fit parameters (and initial values) of a model to measured data by weighted least
+    /// squares, with their standard errors and correlations (docs/sensitivities.md#fitting).
+    Fit(Box<crate::fit::FitArgs>),
 }
 
 /// The model file and the optional effects it is built with.
@@ -139,6 +142,10 @@ pub struct RunArgs {
     /// were read from (not a flag).
     #[arg(skip)]
     pub words: Words,
+    /// Output times instead of every accepted step, increasing (not a flag: `varmass fit`
+    /// sets its data's times).
+    #[arg(skip)]
+    pub at: Vec<f64>,
 }
 
 /// Where a run's settings were written, so that a message names what its user wrote: the

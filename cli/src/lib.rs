@@ -11,6 +11,7 @@
 pub mod args;
 pub mod commands;
 pub mod error;
+pub mod fit;
 pub mod lint;
 pub mod model;
 pub mod run;

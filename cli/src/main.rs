@@ -28,6 +28,7 @@ fn main() -> ExitCode {
         Command::Derive(a) => commands::derive::derive(&a.model, a.latex),
         Command::Run(a) if scene::is_scene(&a.model.file) => scene::run(&a, &given(&matches)),
         Command::Run(a) => run::run(&a),
+        Command::Fit(a) => varmass_cli::fit::run(&a),
     };
     match result {
         Ok(text) => {

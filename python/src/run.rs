@@ -66,6 +66,7 @@ pub fn run_args(file: &str, with: &[String], options: Options) -> Result<RunArgs
         max_seconds: None,
         record: options.record,
         sensitivity: options.sensitivity,
+        at: Vec::new(),
         every: options.every,
         csv: None,
         plot: None,

@@ -119,6 +119,7 @@ RUN_KEYWORDS = {
     "step": None,
     "record": None,
     "every": None,
+    "sensitivity": None,
     "inputs": None,
     "tables": None,
 }
@@ -155,6 +156,7 @@ def run_options(given: Mapping, motors: Iterable[str] = ()) -> dict:
         "step": step,
         "record": names("record", o["record"]),
         "every": optional_number("every", o["every"], positive=True),
+        "sensitivity": names("sensitivity", o["sensitivity"]),
         "inputs": input_laws(o["inputs"]),
         "tables": _tables.table_options(o["tables"], motors),
     }

@@ -152,6 +152,7 @@ class Model:
         step=None,
         record=None,
         every=None,
+        sensitivity=None,
         inputs: Optional[Mapping] = None,
         tables: Optional[Mapping] = None,
     ) -> Solution:
@@ -164,7 +165,11 @@ class Model:
         methods, default 1e-9, from the method's floor, 2.2e-14 or 1e-15 for
         ``"taylor"``, to 0.1) or ``step`` (fixed step); ``record``: the quantities to
         record (default coordinates, velocities and state masses); ``every``: output
-        spacing instead of every accepted step; ``inputs``: a law for each ``input`` of
+        spacing instead of every accepted step; ``sensitivity``: a parameter's name or an
+        initial value's (``"init:y"``, ``"init:y'"``, ``"init:m"``), or a list of up to 6,
+        whose derivatives are recorded with the run (forward sensitivities,
+        docs/sensitivities.md: ``sol.sensitivity("y", "u_e")``; ``"dormand-prince"`` or
+        ``"dop853"``); ``inputs``: a law for each ``input`` of
         the model, ``{"u": "g + kp*(y_ref - y) - kd*y'"}``, as ``--input`` takes it
         (docs/inputs.md), or its data as a table of its first argument: a ``.csv``/``.eng``
         file or a pair of arrays ``(arguments, values)`` (linear, an error outside);

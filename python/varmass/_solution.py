@@ -175,6 +175,24 @@ class Solution:
             )
         return column
 
+    def sensitivity(self, quantity: str, wrt: str) -> np.ndarray:
+        """The derivative of the recorded ``quantity`` (``"t"`` too) with respect to
+        ``wrt``, a name the run's ``sensitivity=`` gave (a parameter, ``"init:y'"``), at
+        every output time: the column ``d(quantity)/d(wrt)``. Where a ``stop_when``
+        condition ended the run, the last value is the derivative at the event, whose time
+        moves with ``wrt`` (``sensitivity("t", wrt)`` there is the event time's)."""
+        name = f"d({quantity})/d({wrt})"
+        column = self._column(name)
+        if column is None:
+            asked = sorted({n.split("/d(", 1)[1][:-1] for n in self.names if n.startswith("d(") and "/d(" in n})
+            raise KeyError(
+                f"no sensitivity of {quantity!r} to {wrt!r}: the run recorded "
+                f"{', '.join(n for n in self.names if not n.startswith('d('))} with "
+                f"sensitivity to {', '.join(asked) if asked else 'nothing'} "
+                "(ask with sensitivity=[...])"
+            )
+        return column
+
     def __contains__(self, name: object) -> bool:
         return name == "t" or name in self.names
 

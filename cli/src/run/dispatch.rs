@@ -193,5 +193,6 @@ pub(crate) fn padded_plan(plan: &Plan, len: usize, padded: usize) -> Result<Plan
         flows: plan.flows.clone(),
         words: plan.words,
         sensitivities: plan.sensitivities.clone(),
+        at: plan.at.clone(),
     })
 }

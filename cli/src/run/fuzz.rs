@@ -308,6 +308,10 @@ fn one(
                 Err(e) => Err(e.clone()),
             }
         }
+        Command::Fit(a) => {
+            let key = format!("fit {a:?}");
+            once(commands, key, || crate::fit::run(&a).map(|_| ()))
+        }
     }
 }
 

@@ -239,9 +239,9 @@ where
             closest = Some(closest.map_or(distance, |c: f64| c.min(distance)));
         }
         let mut fresh = solution.times.iter().zip(&solution.states).skip(1);
-        let kept: &mut dyn Iterator<Item = _> = match plan.every {
-            None => &mut fresh,
-            Some(_) => &mut fresh.last().into_iter(),
+        let kept: &mut dyn Iterator<Item = _> = match plan.every.is_some() || !plan.at.is_empty() {
+            false => &mut fresh,
+            true => &mut fresh.last().into_iter(),
         };
         for (t, s) in kept {
             points.push(*t, s.as_slice());
@@ -256,8 +256,16 @@ where
     driven(points, None, stepper.statistics(), closest, None)
 }
 
-/// The end times of the runs: the end, or every `--every` step and the end.
+/// The end times of the runs: the end, or every `--every` step and the end, or the given
+/// output times after the start and the end (a fit's data times).
 fn output_times(plan: &Plan) -> Vec<f64> {
+    if !plan.at.is_empty() {
+        let mut times: Vec<f64> = (plan.at.iter().copied())
+            .filter(|t| *t > plan.from && *t < plan.until)
+            .collect();
+        times.push(plan.until);
+        return times;
+    }
     let Some(every) = plan.every else {
         return vec![plan.until];
     };
@@ -611,6 +619,7 @@ mod tests {
             flows: Vec::new(),
             words: Default::default(),
             sensitivities: Vec::new(),
+            at: Vec::new(),
         }
     }
 

@@ -13,6 +13,7 @@ use crate::error::CliError;
 /// The recorded quantities: names, and the value of each at every output time, stored by
 /// column (the times, then one `Vec` per name): recording a point allocates nothing, and a
 /// library caller hands each column on whole (the Python package's NumPy arrays).
+#[derive(Clone, Debug)]
 pub struct Table {
     /// The column names (without `t`).
     pub names: Vec<String>,
@@ -118,6 +119,11 @@ impl Points {
     /// The number of points.
     pub fn len(&self) -> usize {
         self.times.len()
+    }
+
+    /// Whether there is no point.
+    pub fn is_empty(&self) -> bool {
+        self.times.is_empty()
     }
 
     /// The point `i`: its time and state.

@@ -69,6 +69,9 @@ pub struct Plan {
     pub words: Words,
     /// The `--sensitivity` columns (docs/sensitivities.md).
     pub sensitivities: Vec<super::sensitivity::Sensitivity>,
+    /// Output times instead of every accepted step (a fit's data times, `RunArgs::at`):
+    /// increasing, the run lands on each.
+    pub at: Vec<f64>,
 }
 
 /// The default tolerance of the adaptive methods when `--tol` is not given.
@@ -177,6 +180,7 @@ pub fn plan_with(
         flows: program.derivation().flow_names.clone(),
         words: args.words,
         sensitivities: super::sensitivity::resolve(args, program)?,
+        at: output_at(args, from, until)?,
     })
 }
 
@@ -441,6 +445,32 @@ fn every(dt: f64, args: &RunArgs, until: f64) -> Result<f64, CliError> {
         )));
     }
     Ok(dt)
+}
+
+/// The output times of `args.at` (a fit's data times), checked: increasing, finite, in
+/// [`from`, `until`], and not with --every.
+fn output_at(args: &RunArgs, from: f64, until: f64) -> Result<Vec<f64>, CliError> {
+    if args.at.is_empty() {
+        return Ok(Vec::new());
+    }
+    if args.every.is_some() {
+        return Err(CliError::Input(
+            "--every and the data's times both set the output times: give one".to_string(),
+        ));
+    }
+    let increasing = args.at.windows(2).all(|w| w[0] < w[1]);
+    let inside = args
+        .at
+        .iter()
+        .all(|t| t.is_finite() && (from..=until).contains(t));
+    match increasing && inside {
+        true => Ok(args.at.clone()),
+        false => Err(CliError::Input(format!(
+            "the output times must increase within [{}, {}]",
+            shown(from),
+            shown(until)
+        ))),
+    }
 }
 
 /// A count of steps or output times as a message gives it: past f64's range (a subnormal

@@ -1,0 +1,446 @@
+//! `varmass fit`: a model's parameters (and initial values) fitted to measured data by
+//! weighted least squares (docs/sensitivities.md#fitting). Each evaluation is one run of the
+//! model with `--sensitivity` for every unknown, landing on the data's times, so that the
+//! residuals r = (X(tᵢ; θ) − Xᵢ)/σ and their Jacobian ∂r/∂θ = (dX/dθ)(tᵢ)/σ come from one
+//! integration; Levenberg–Marquardt ([`lm`]) moves θ. At the minimum the covariance of θ
+//! is (JᵀJ)⁻¹, times the residuals' variance ‖r‖²/(m − n) when the data's σ is not given.
+
+pub mod data;
+pub mod lm;
+mod plot;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use clap::Args;
+use varmass::core::nalgebra::{DMatrix, DVector};
+
+use crate::args::RunArgs;
+use crate::error::CliError;
+use crate::run::names::{named, number, shown};
+use crate::run::{Compiled, Table};
+pub use data::Series;
+
+/// `varmass fit`'s arguments: a run's (the model, `--set` start values, `--init`, the
+/// method and tolerance), the data and what to fit.
+#[derive(Clone, Debug, Args)]
+pub struct FitArgs {
+    /// The run: its `--set` values are the start of the fitted ones (and the fixed values
+    /// of the others); `--until` defaults to the data's last time.
+    #[command(flatten)]
+    pub run: RunArgs,
+    /// The measured data: a CSV file with a header (`--time`'s column, then any others).
+    #[arg(long, value_name = "PATH")]
+    pub data: PathBuf,
+    /// A model quantity and the data column that measures it, `y=Altitude (m)`
+    /// (repeatable).
+    #[arg(long = "column", value_name = "QUANTITY=COLUMN")]
+    pub column: Vec<String>,
+    /// The data's time column (default: the first).
+    #[arg(long, value_name = "COLUMN")]
+    pub time: Option<String>,
+    /// A parameter to fit, or an initial value `init:x` (`init:x'`, `init:m`), optionally
+    /// bounded, `k_d=0:1` (repeatable, up to 6).
+    #[arg(long = "fit", value_name = "NAME[=LO:HI]")]
+    pub fit: Vec<String>,
+    /// The standard deviation of a quantity's data, `y=2.5` (weights 1/σ²; without it the
+    /// errors are scaled by the residuals' own spread).
+    #[arg(long = "sigma", value_name = "QUANTITY=VALUE")]
+    pub sigma: Vec<String>,
+}
+
+/// An unknown: a parameter or an initial value (`init:x`), with its bounds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unknown {
+    /// The name as `--sensitivity` takes it.
+    pub name: String,
+    /// Lower and upper bounds (±∞ for none).
+    pub bounds: (f64, f64),
+}
+
+impl Unknown {
+    /// Parses `NAME` or `NAME=LO:HI`.
+    pub fn parse(text: &str) -> Result<Self, CliError> {
+        let Some((name, range)) = text.split_once('=') else {
+            return Ok(Self {
+                name: text.trim().to_string(),
+                bounds: (f64::NEG_INFINITY, f64::INFINITY),
+            });
+        };
+        let bad = || CliError::Input(format!("--fit {text}: expected NAME or NAME=LO:HI"));
+        let (lo, hi) = range.split_once(':').ok_or_else(bad)?;
+        let (lo, hi) = (number(lo.trim(), "--fit")?, number(hi.trim(), "--fit")?);
+        if lo >= hi {
+            return Err(bad());
+        }
+        Ok(Self {
+            name: name.trim().to_string(),
+            bounds: (lo, hi),
+        })
+    }
+}
+
+/// A fit's outcome.
+#[derive(Clone, Debug)]
+pub struct Fit {
+    /// The unknowns.
+    pub unknowns: Vec<Unknown>,
+    /// Their start values.
+    pub start: Vec<f64>,
+    /// Their fitted values.
+    pub values: Vec<f64>,
+    /// Their standard errors.
+    pub errors: Vec<f64>,
+    /// Their correlations (n × n).
+    pub correlation: DMatrix<f64>,
+    /// The weighted residuals r at the fitted values, series by series.
+    pub residuals: Vec<Vec<f64>>,
+    /// The runs made.
+    pub evaluations: usize,
+    /// Whether Levenberg–Marquardt converged.
+    pub converged: bool,
+    /// The fitted run's table (the data's quantities and their derivatives at its times).
+    pub table: Table,
+}
+
+/// What a fit holds fixed between evaluations.
+struct Problem<'a> {
+    args: &'a RunArgs,
+    values: &'a [(String, f64)],
+    series: &'a [Series],
+    unknowns: &'a [Unknown],
+}
+
+impl Problem<'_> {
+    /// The run's arguments and parameter values at θ.
+    fn at(&self, theta: &DVector<f64>) -> (RunArgs, Vec<(String, f64)>) {
+        let mut args = self.args.clone();
+        let mut values = self.values.to_vec();
+        for (u, x) in self.unknowns.iter().zip(theta.iter()) {
+            match u.name.strip_prefix("init:") {
+                Some(entry) => {
+                    args.init
+                        .retain(|i| i.split_once('=').is_none_or(|(n, _)| n.trim() != entry));
+                    args.init.push(format!("{entry}={x:?}"));
+                }
+                None => match values.iter_mut().find(|(n, _)| *n == u.name) {
+                    Some(slot) => slot.1 = *x,
+                    None => values.push((u.name.clone(), *x)),
+                },
+            }
+        }
+        args.sensitivity = self.unknowns.iter().map(|u| u.name.clone()).collect();
+        let mut record: Vec<String> = Vec::new();
+        for s in self.series {
+            if !record.contains(&s.quantity) {
+                record.push(s.quantity.clone());
+            }
+        }
+        args.record = vec![record.join(",")];
+        let mut times: Vec<f64> = self
+            .series
+            .iter()
+            .flat_map(|s| s.times.iter().copied())
+            .collect();
+        times.sort_by(f64::total_cmp);
+        times.dedup();
+        if args.until.is_none() {
+            args.until = times.last().copied();
+        }
+        args.at = times;
+        (args, values)
+    }
+
+    /// The weighted residuals and their Jacobian at θ, and the run's table.
+    fn evaluate(
+        &self,
+        compiled: &mut Compiled,
+        theta: &DVector<f64>,
+    ) -> Result<(DVector<f64>, DMatrix<f64>, Table), String> {
+        let (args, values) = self.at(theta);
+        let done = compiled.execute(&args, false, values, |_| {});
+        let table = done.map_err(|failed| failed.error.to_string())?.table;
+        let n = self.unknowns.len();
+        let (mut r, mut j) = (Vec::new(), Vec::new());
+        for s in self.series {
+            let sigma = s.sigma.unwrap_or(1.0);
+            let column = |name: &str| table.names.iter().position(|c| c == name);
+            let value = column(&s.quantity).ok_or("the quantity was not recorded")?;
+            let derivatives: Vec<usize> = (self.unknowns.iter())
+                .map(|u| column(&format!("d({})/d({})", s.quantity, u.name)))
+                .collect::<Option<_>>()
+                .ok_or("a derivative was not recorded")?;
+            for (t, x) in s.times.iter().zip(&s.values) {
+                let row = row_at(&table, *t)?;
+                r.push((table.column(value)[row] - x) / sigma);
+                j.extend(derivatives.iter().map(|d| table.column(*d)[row] / sigma));
+            }
+        }
+        let m = r.len();
+        Ok((
+            DVector::from_vec(r),
+            DMatrix::from_row_slice(m, n, &j),
+            table,
+        ))
+    }
+}
+
+/// The row of `table` at the time `t` (the run lands on every datum's time).
+fn row_at(table: &Table, t: f64) -> Result<usize, String> {
+    let times = table.times();
+    match times.binary_search_by(|x| x.total_cmp(&t)) {
+        Ok(row) => Ok(row),
+        Err(_) => Err(format!(
+            "the run has no point at the datum's time {} (it ended at {}: a --stop-when \
+             before the data's end?)",
+            shown(t),
+            shown(times.last().copied().unwrap_or(f64::NAN))
+        )),
+    }
+}
+
+/// Fits `unknowns` of the model `compiled` to `series`: the run `args` with the parameter
+/// values `values` (the unknowns' start among them, or the model's defaults).
+pub fn fit(
+    compiled: &mut Compiled,
+    args: &RunArgs,
+    values: Vec<(String, f64)>,
+    series: &[Series],
+    unknowns: &[Unknown],
+) -> Result<Fit, CliError> {
+    let values = compiled.model().with_defaults(&values);
+    let start = start_values(args, &values, unknowns)?;
+    let problem = Problem {
+        args,
+        values: &values,
+        series,
+        unknowns,
+    };
+    let data: usize = series.iter().map(|s| s.times.len()).sum();
+    if data <= unknowns.len() {
+        return Err(CliError::Input(format!(
+            "{data} data cannot determine {} unknowns",
+            unknowns.len()
+        )));
+    }
+    let mut first_error = None;
+    let bounds: (DVector<f64>, DVector<f64>) = (
+        DVector::from_iterator(unknowns.len(), unknowns.iter().map(|u| u.bounds.0)),
+        DVector::from_iterator(unknowns.len(), unknowns.iter().map(|u| u.bounds.1)),
+    );
+    let minimum = lm::minimize(
+        |theta| {
+            let evaluated = problem.evaluate(compiled, theta).map(|(r, j, _)| (r, j));
+            if let (Err(e), None) = (&evaluated, &first_error) {
+                first_error = Some(e.clone());
+            }
+            evaluated
+        },
+        DVector::from_vec(start.clone()),
+        (&bounds.0, &bounds.1),
+        lm::Settings::default(),
+    )
+    .map_err(|e| CliError::Run(format!("the fit's first run failed: {e}")))?;
+    let (_, _, table) = problem
+        .evaluate(compiled, &minimum.theta)
+        .map_err(CliError::Run)?;
+    summarize(minimum, problem, start, table)
+}
+
+/// The unknowns' start values: a parameter's from `values`, an initial value's from
+/// `args.init`.
+fn start_values(
+    args: &RunArgs,
+    values: &[(String, f64)],
+    unknowns: &[Unknown],
+) -> Result<Vec<f64>, CliError> {
+    let missing = |name: &str, flag: &str| {
+        CliError::Input(format!("--fit {name}: give its start value with {flag}"))
+    };
+    let mut start = Vec::new();
+    for u in unknowns {
+        let value = match u.name.strip_prefix("init:") {
+            Some(entry) => args
+                .init
+                .iter()
+                .filter_map(|i| i.split_once('='))
+                .find(|(n, _)| n.trim() == entry)
+                .map(|(n, v)| named(&u.name, "--init", n, v).map(|(_, v)| v))
+                .transpose()?
+                .ok_or_else(|| missing(&u.name, &format!("--init {entry}=VALUE")))?,
+            None => (values.iter().find(|(n, _)| *n == u.name))
+                .map(|(_, v)| *v)
+                .ok_or_else(|| missing(&u.name, &format!("--set {}=VALUE", u.name)))?,
+        };
+        start.push(value.clamp(u.bounds.0, u.bounds.1));
+    }
+    Ok(start)
+}
+
+/// The fit's values, errors and correlations from the minimum.
+fn summarize(
+    minimum: lm::Minimum,
+    problem: Problem<'_>,
+    start: Vec<f64>,
+    table: Table,
+) -> Result<Fit, CliError> {
+    let (m, n) = minimum.jacobian.shape();
+    let normal = minimum.jacobian.transpose() * &minimum.jacobian;
+    let inverse = normal
+        .clone()
+        .try_inverse()
+        .filter(|i| i.iter().all(|x| x.is_finite()));
+    let Some(mut covariance) = inverse else {
+        let names: Vec<&str> = problem.unknowns.iter().map(|u| u.name.as_str()).collect();
+        return Err(CliError::Run(format!(
+            "the data do not determine {} separately: JᵀJ is singular at the fit",
+            names.join(", ")
+        )));
+    };
+    if problem.series.iter().any(|s| s.sigma.is_none()) {
+        covariance *= minimum.residuals.norm_squared() / (m - n) as f64;
+    }
+    let errors: Vec<f64> = covariance
+        .diagonal()
+        .iter()
+        .map(|v| v.max(0.0).sqrt())
+        .collect();
+    let correlation = DMatrix::from_fn(n, n, |i, j| covariance[(i, j)] / (errors[i] * errors[j]));
+    let mut residuals = Vec::new();
+    let mut rest = minimum.residuals.as_slice();
+    for s in problem.series {
+        let (head, tail) = rest.split_at(s.times.len());
+        residuals.push(head.to_vec());
+        rest = tail;
+    }
+    Ok(Fit {
+        unknowns: problem.unknowns.to_vec(),
+        start,
+        values: minimum.theta.iter().copied().collect(),
+        errors,
+        correlation,
+        residuals,
+        evaluations: minimum.evaluations + 1,
+        converged: minimum.converged,
+        table,
+    })
+}
+
+/// `varmass fit`: reads the data, fits, writes the fitted run's CSV and the plot of the fit
+/// over the data if asked; returns the report.
+pub fn run(args: &FitArgs) -> Result<String, CliError> {
+    if args.fit.is_empty() || args.column.is_empty() {
+        return Err(CliError::Input(
+            "a fit needs --fit NAME (what to fit) and --column QUANTITY=COLUMN (what the data \
+             measure)"
+                .to_string(),
+        ));
+    }
+    let text = std::fs::read_to_string(&args.data).map_err(|source| CliError::Read {
+        path: args.data.clone(),
+        source,
+    })?;
+    let pairs: Vec<(String, String)> = (args.column.iter())
+        .map(|c| {
+            c.split_once('=')
+                .map(|(q, c)| (q.trim().to_string(), c.trim().to_string()))
+        })
+        .collect::<Option<_>>()
+        .ok_or_else(|| CliError::Input("--column: expected QUANTITY=COLUMN".to_string()))?;
+    let mut series = data::read(&text, &args.data, args.time.as_deref(), &pairs)?;
+    for sigma in &args.sigma {
+        let (quantity, value) = crate::run::names::assignment(sigma, "--sigma")?;
+        let s = (series.iter_mut().find(|s| s.quantity == quantity)).ok_or_else(|| {
+            CliError::Input(format!(
+                "--sigma {sigma}: `{quantity}` is no --column quantity"
+            ))
+        })?;
+        s.sigma = Some(value);
+    }
+    let unknowns: Vec<Unknown> = args
+        .fit
+        .iter()
+        .map(|f| Unknown::parse(f))
+        .collect::<Result<_, _>>()?;
+    let model = crate::model::load(&args.run.model)?;
+    let values = crate::run::plan::parameters(&args.run)?;
+    let mut compiled = Compiled::new(model);
+    let fitted = fit(&mut compiled, &args.run, values, &series, &unknowns)?;
+    if let Some(path) = &args.run.csv {
+        crate::run::output::write_csv(&fitted.table, path)?;
+    }
+    if let Some(path) = &args.run.plot {
+        plot::plot(
+            &fitted,
+            &series,
+            &args.run.model.file.display().to_string(),
+            path,
+        )?;
+    }
+    Ok(report(&fitted, &series))
+}
+
+/// `value ± error`, the error to two significant digits and the value to the same decimal
+/// place (`300.78 ± 0.95`), in exponent form beyond 1e-4…1e7.
+fn with_error(value: f64, error: f64) -> String {
+    if !(error.is_finite() && error > 0.0) {
+        return format!("{} ± {}", shown(value), shown(error));
+    }
+    let decimals = 1 - error.log10().floor() as i32;
+    if (0..=8).contains(&decimals) && value.abs() < 1e7 {
+        let d = decimals as usize;
+        return format!("{value:.d$} ± {error:.d$}");
+    }
+    format!("{value:.3e} ± {error:.1e}")
+}
+
+/// The report `varmass fit` prints.
+pub fn report(fit: &Fit, series: &[Series]) -> String {
+    let mut out = String::new();
+    let data: usize = series.iter().map(|s| s.times.len()).sum();
+    let state = if fit.converged {
+        "converged"
+    } else {
+        "did NOT converge"
+    };
+    let _ = writeln!(
+        out,
+        "fitted {} unknowns to {data} data in {} runs ({state}):",
+        fit.values.len(),
+        fit.evaluations
+    );
+    for (i, u) in fit.unknowns.iter().enumerate() {
+        let bound = match fit.values[i] == u.bounds.0 || fit.values[i] == u.bounds.1 {
+            true => "  (at its bound: the error assumes it free)",
+            false => "",
+        };
+        let _ = writeln!(
+            out,
+            "  {} = {} (start {}){bound}",
+            u.name,
+            with_error(fit.values[i], fit.errors[i]),
+            shown(fit.start[i])
+        );
+    }
+    if fit.values.len() > 1 {
+        let _ = writeln!(out, "correlations:");
+        for (i, u) in fit.unknowns.iter().enumerate() {
+            let row: Vec<String> = (0..fit.values.len())
+                .map(|j| format!("{:+.3}", fit.correlation[(i, j)]))
+                .collect();
+            let _ = writeln!(out, "  {:>12}  {}", u.name, row.join("  "));
+        }
+    }
+    for (s, r) in series.iter().zip(&fit.residuals) {
+        let sigma = s.sigma.unwrap_or(1.0);
+        let rms = (r.iter().map(|x| x * x).sum::<f64>() / r.len() as f64).sqrt() * sigma;
+        let _ = writeln!(
+            out,
+            "residuals of {}: rms {} over {} data",
+            s.quantity,
+            shown(rms),
+            r.len()
+        );
+    }
+    out
+}

@@ -1,0 +1,209 @@
+//! `varmass fit` (docs/sensitivities.md#fitting): the fit recovers known parameters from
+//! synthetic data with Gaussian noise, and its reported standard errors cover the truth as
+//! often as they say (the coverage test); the command line's report, CSV and plot.
+
+mod common;
+
+use common::{scratch, scratch_file, varmass};
+use varmass_cli::args::{Cli, Command};
+use varmass_cli::fit::{fit, Series, Unknown};
+use varmass_cli::model::load;
+use varmass_cli::run::Compiled;
+
+use clap::Parser;
+
+/// The altitude of `models/rocket.vms` from rest at m(0) = m0 (Tsiolkovsky with gravity,
+/// derived in tests/sensitivities.rs): y = u_e (t − (m/μ) ln(m0/m)) − ½ g t², m = m0 − μ t.
+fn altitude(u_e: f64, mu: f64, t: f64) -> f64 {
+    let (m0, g) = (100.0, 9.81);
+    let m = m0 - mu * t;
+    u_e * (t - m / mu * (m0 / m).ln()) - 0.5 * g * t * t
+}
+
+/// A small deterministic generator (xorshift64*) and Box–Muller: the same noise on every
+/// machine.
+struct Noise(u64);
+
+impl Noise {
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        ((self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+
+    fn gaussian(&mut self) -> f64 {
+        let (a, b) = (self.uniform(), self.uniform());
+        (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
+    }
+}
+
+/// The run's arguments: the rocket from rest, DOP853 at 1e-10, the start values.
+fn rocket_args(start: (f64, f64)) -> (varmass_cli::args::RunArgs, Vec<(String, f64)>) {
+    let model = common::model("rocket.vms");
+    let argv = [
+        "varmass", "run", &model, "--init", "y=0", "--init", "y'=0", "--init", "m=100",
+    ];
+    let argv = argv
+        .into_iter()
+        .chain(["--method", "dop853", "--tol", "1e-10"]);
+    let Command::Run(args) = Cli::try_parse_from(argv).expect("parses").command else {
+        unreachable!("a run")
+    };
+    let values = vec![
+        ("u_e".to_string(), start.0),
+        ("mu".to_string(), start.1),
+        ("g".to_string(), 9.81),
+    ];
+    (*args, values)
+}
+
+/// Over 400 draws of noise (σ = 2 m on 61 altitudes over the 15 s burn, u_e = 300 m/s,
+/// μ = 5 kg/s), the fit from (250, 4) lands within its reported 1σ of the truth in
+/// 68 ± 5 % of the draws for each parameter (the coverage test, asked over 200
+/// draws: their binomial spread, ±3.3 %, puts 68.3 % ± 5 % at 1.5 spreads, where one seed
+/// in eight would fail; over 400 the bound is 2.2 spreads), and the mean error is small
+/// against 1/√400 of σ. Measured: u_e 69.0 %, μ 69.8 % (the first 200 draws: 73.0 %,
+/// 72.5 %; 1000 draws of this seed 70.4 %, 70.6 %, of seed 12345 66.6 %, 66.3 %: 68.5 %
+/// over the 2000, as a linear model's 68.3 %); bound 63–73 %. `FIT_DRAWS` and `FIT_SEED`
+/// set the draws and the seed.
+#[test]
+fn the_fits_errors_cover_the_truth_as_often_as_they_say() {
+    let (u_e, mu, sigma) = (300.0, 5.0, 2.0);
+    let times: Vec<f64> = (0..61).map(|i| 0.25 * f64::from(i)).collect();
+    let (args, values) = rocket_args((250.0, 4.0));
+    let model = load(&args.model).expect("loads");
+    let mut compiled = Compiled::new(model);
+    let unknowns = [
+        Unknown::parse("u_e").unwrap(),
+        Unknown::parse("mu=0.1:20").unwrap(),
+    ];
+    let seed = std::env::var("FIT_SEED")
+        .ok()
+        .and_then(|d| d.parse().ok())
+        .unwrap_or(0x9e37_79b9_7f4a_7c15);
+    let mut noise = Noise(seed);
+    let draws: usize = std::env::var("FIT_DRAWS")
+        .ok()
+        .and_then(|d| d.parse().ok())
+        .unwrap_or(400);
+    let mut covered = [0usize; 2];
+    let mut mean = [0f64; 2];
+    for _ in 0..draws {
+        let data: Vec<f64> = (times.iter())
+            .map(|t| altitude(u_e, mu, *t) + sigma * noise.gaussian())
+            .collect();
+        let series = [Series {
+            quantity: "y".to_string(),
+            times: times.clone(),
+            values: data,
+            sigma: Some(sigma),
+        }];
+        let fitted = fit(&mut compiled, &args, values.clone(), &series, &unknowns).expect("fits");
+        assert!(fitted.converged);
+        for (k, truth) in [u_e, mu].into_iter().enumerate() {
+            let gap = fitted.values[k] - truth;
+            mean[k] += gap / (fitted.errors[k] * draws as f64);
+            covered[k] += usize::from(gap.abs() <= fitted.errors[k]);
+        }
+    }
+    let rates = covered.map(|c| c as f64 / draws as f64);
+    eprintln!(
+        "coverage u_e {:.3}, mu {:.3}; mean error in σ: {mean:?}",
+        rates[0], rates[1]
+    );
+    for rate in rates {
+        assert!((0.63..=0.73).contains(&rate), "{rates:?}");
+    }
+    // The mean of 400 errors in units of σ: spread 1/√400 = 0.05 around 0 (measured 0.024,
+    // −0.030).
+    assert!(mean.iter().all(|m| m.abs() <= 0.2), "{mean:?}");
+}
+
+/// The command line: a log CSV with a quoted header, the fit's report (values with their
+/// errors, the correlations, the residuals), the fitted run's CSV and the plot. Noise-free
+/// data: the fit recovers u_e and μ to 1e-6 relative from a start 17 % and 20 % off.
+#[test]
+fn varmass_fit_reports_the_fitted_values() {
+    let mut log = String::from("\"Time (s)\",Altitude (m)\n");
+    for i in 0..41 {
+        let t = 0.25 * f64::from(i);
+        log.push_str(&format!("{t},{:?}\n", altitude(300.0, 5.0, t)));
+    }
+    let data = scratch_file("fit_log.csv", &log);
+    let (csv, plot) = (scratch("fit_run.csv"), scratch("fit_plot.svg"));
+    let (csv, plot) = (csv.display().to_string(), plot.display().to_string());
+    let (stdout, _) = varmass(
+        &[
+            "fit",
+            "../models/rocket.vms",
+            "--data",
+            &data,
+            "--column",
+            "y=Altitude (m)",
+            "--fit",
+            "u_e",
+            "--fit",
+            "mu=1:10",
+            "--set",
+            "u_e=250",
+            "--set",
+            "mu=4",
+            "--set",
+            "g=9.81",
+            "--init",
+            "y=0",
+            "--init",
+            "y'=0",
+            "--init",
+            "m=100",
+            "--method",
+            "dop853",
+            "--tol",
+            "1e-11",
+            "--csv",
+            &csv,
+            "--plot",
+            &plot,
+        ],
+        0,
+    );
+    assert!(stdout.contains("(converged)"), "{stdout}");
+    let value = |name: &str| -> f64 {
+        let line = stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("{name} = ")))
+            .expect(name);
+        line.split('=')
+            .nth(1)
+            .unwrap()
+            .split('±')
+            .next()
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    assert!((value("u_e") - 300.0).abs() <= 300.0 * 1e-6, "{stdout}");
+    assert!((value("mu") - 5.0).abs() <= 5.0 * 1e-6, "{stdout}");
+    assert!(
+        stdout.contains("correlations:") && stdout.contains("residuals of y"),
+        "{stdout}"
+    );
+    assert!(std::fs::read_to_string(&csv)
+        .unwrap()
+        .starts_with("t,y,d(y)/d(u_e)"));
+    assert!(std::fs::read_to_string(&plot).unwrap().contains("<svg"));
+    let (_, stderr) = varmass(
+        &[
+            "fit",
+            "../models/rocket.vms",
+            "--data",
+            &data,
+            "--fit",
+            "u_e",
+        ],
+        2,
+    );
+    assert!(stderr.contains("--column"), "{stderr}");
+}
