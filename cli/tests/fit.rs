@@ -121,8 +121,10 @@ fn the_fits_errors_cover_the_truth_as_often_as_they_say() {
 }
 
 /// The command line: a log CSV with a quoted header, the fit's report (values with their
-/// errors, the correlations, the residuals), the fitted run's CSV and the plot. Noise-free
-/// data: the fit recovers u_e and μ to 1e-6 relative from a start 17 % and 20 % off.
+/// errors, the correlations, the residuals), the fitted run's CSV and the plot; two data
+/// series without σ refused. Noise-free data: the fit recovers u_e and μ to 1e-6 relative
+/// from a start 17 % and 20 % off (the report prints each value to its error's second
+/// digit).
 #[test]
 fn varmass_fit_reports_the_fitted_values() {
     let mut log = String::from("\"Time (s)\",Altitude (m)\n");
@@ -206,4 +208,12 @@ fn varmass_fit_reports_the_fitted_values() {
         2,
     );
     assert!(stderr.contains("--column"), "{stderr}");
+    // Two series without σ: their residuals would be added in their own units.
+    let column = "y=Altitude (m)";
+    let mut two = vec!["fit", "../models/rocket.vms", "--data", &data];
+    two.extend(["--column", column, "--column", column, "--fit", "u_e"]);
+    two.extend(["--set", "u_e=250", "--set", "mu=4", "--set", "g=9.81"]);
+    two.extend(["--init", "y=0", "--init", "y'=0", "--init", "m=100"]);
+    let (_, stderr) = varmass(&two, 2);
+    assert!(stderr.contains("give --sigma"), "{stderr}");
 }

@@ -37,7 +37,9 @@ use crate::tangent::Tangent;
 pub enum Column {
     /// A parameter, by its name in [`VariableMassSystem::parameter_names`].
     Parameter(&'static str),
-    /// An entry of the initial state `[q, p, m_s]`, by its index.
+    /// An entry of the initial state, by its index: of `[q, p, m_s]` for
+    /// [`Sensitive::start`] (p₀ given), of the velocity state `[q, q̇, m_s]` for
+    /// [`Sensitive::start_at_velocities`] (q̇₀ given).
     Initial(usize),
     /// A parameter of another phase's system that this system's equations do not hold
     /// (∂f/∂w = 0 here): the burn rate in a coast that follows the burn, say, whose own

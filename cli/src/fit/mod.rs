@@ -117,7 +117,7 @@ impl Problem<'_> {
         let mut args = self.args.clone();
         let mut values = self.values.to_vec();
         for (u, x) in self.unknowns.iter().zip(theta.iter()) {
-            match u.name.strip_prefix("init:") {
+            match u.name.strip_prefix("init:").map(str::trim) {
                 Some(entry) => {
                     args.init
                         .retain(|i| i.split_once('=').is_none_or(|(n, _)| n.trim() != entry));
@@ -216,6 +216,7 @@ pub fn fit(
         series,
         unknowns,
     };
+    weights_known(series)?;
     let data: usize = series.iter().map(|s| s.times.len()).sum();
     if data <= unknowns.len() {
         return Err(CliError::Input(format!(
@@ -241,10 +242,36 @@ pub fn fit(
         lm::Settings::default(),
     )
     .map_err(|e| CliError::Run(format!("the fit's first run failed: {e}")))?;
+    if !minimum.converged {
+        if let Some(e) = first_error {
+            return Err(CliError::Run(format!(
+                "the fit did not converge in {} runs; a trial run failed: {e}",
+                minimum.evaluations
+            )));
+        }
+    }
     let (_, _, table) = problem
         .evaluate(compiled, &minimum.theta)
         .map_err(CliError::Run)?;
     summarize(minimum, problem, start, table)
+}
+
+/// Refuses series whose weights cannot be compared: without σ a series is weighed in its
+/// own units, so several series need theirs (`--sigma`); one series alone without σ has
+/// its σ estimated from the residuals (the covariance scaled by ‖r‖²/(m − n)).
+fn weights_known(series: &[Series]) -> Result<(), CliError> {
+    let unknown: Vec<&str> = (series.iter())
+        .filter(|s| s.sigma.is_none())
+        .map(|s| s.quantity.as_str())
+        .collect();
+    match series.len() > 1 && !unknown.is_empty() {
+        true => Err(CliError::Input(format!(
+            "several data columns are weighed against each other by their σ: give --sigma \
+             for {}",
+            unknown.join(", ")
+        ))),
+        false => Ok(()),
+    }
 }
 
 /// The unknowns' start values: a parameter's from `values`, an initial value's from
@@ -259,7 +286,7 @@ fn start_values(
     };
     let mut start = Vec::new();
     for u in unknowns {
-        let value = match u.name.strip_prefix("init:") {
+        let value = match u.name.strip_prefix("init:").map(str::trim) {
             Some(entry) => args
                 .init
                 .iter()
@@ -350,12 +377,16 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
     let mut series = data::read(&text, &args.data, args.time.as_deref(), &pairs)?;
     for sigma in &args.sigma {
         let (quantity, value) = crate::run::names::assignment(sigma, "--sigma")?;
-        let s = (series.iter_mut().find(|s| s.quantity == quantity)).ok_or_else(|| {
-            CliError::Input(format!(
+        let mut measured = series
+            .iter_mut()
+            .filter(|s| s.quantity == quantity)
+            .peekable();
+        if measured.peek().is_none() {
+            return Err(CliError::Input(format!(
                 "--sigma {sigma}: `{quantity}` is no --column quantity"
-            ))
-        })?;
-        s.sigma = Some(value);
+            )));
+        }
+        measured.for_each(|s| s.sigma = Some(value));
     }
     let unknowns: Vec<Unknown> = args
         .fit
@@ -383,7 +414,7 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
 /// `value ± error`, the error to two significant digits and the value to the same decimal
 /// place (`300.78 ± 0.95`), in exponent form beyond 1e-4…1e7.
 fn with_error(value: f64, error: f64) -> String {
-    if !(error.is_finite() && error > 0.0) {
+    if !(error.is_finite() && error > 0.0 && value.is_finite()) {
         return format!("{} ± {}", shown(value), shown(error));
     }
     let decimals = 1 - error.log10().floor() as i32;
@@ -391,7 +422,10 @@ fn with_error(value: f64, error: f64) -> String {
         let d = decimals as usize;
         return format!("{value:.d$} ± {error:.d$}");
     }
-    format!("{value:.3e} ± {error:.1e}")
+    // As many significant digits of the value as reach the error's second.
+    let magnitude = value.abs().max(error).log10().floor() as i32;
+    let digits = (magnitude - error.log10().floor() as i32 + 1).clamp(1, 16) as usize;
+    format!("{value:.digits$e} ± {error:.1e}")
 }
 
 /// The report `varmass fit` prints.

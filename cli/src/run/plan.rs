@@ -458,18 +458,22 @@ fn output_at(args: &RunArgs, from: f64, until: f64) -> Result<Vec<f64>, CliError
             "--every and the data's times both set the output times: give one".to_string(),
         ));
     }
-    let increasing = args.at.windows(2).all(|w| w[0] < w[1]);
-    let inside = args
-        .at
-        .iter()
-        .all(|t| t.is_finite() && (from..=until).contains(t));
-    match increasing && inside {
-        true => Ok(args.at.clone()),
-        false => Err(CliError::Input(format!(
-            "the output times must increase within [{}, {}]",
+    if let Some(t) = (args.at.iter()).find(|t| !(t.is_finite() && (from..=until).contains(*t))) {
+        return Err(CliError::Input(format!(
+            "the datum at t = {} is outside the run, from {} to {}: set {} and {} around \
+             the data",
+            shown(*t),
             shown(from),
-            shown(until)
-        ))),
+            shown(until),
+            args.words.setting("--from"),
+            args.words.setting("--until")
+        )));
+    }
+    match args.at.windows(2).all(|w| w[0] < w[1]) {
+        true => Ok(args.at.clone()),
+        false => Err(CliError::Input(
+            "the data's times must increase".to_string(),
+        )),
     }
 }
 

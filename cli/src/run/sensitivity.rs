@@ -258,7 +258,7 @@ fn integrate<const N: usize, const S: usize, const SA: usize>(
     }
     let driven: Driven<SA> =
         super::integrate::with_stepper!(padded.method, padded.steps, drive_with);
-    let derivatives = derivatives::<N, S, SA>(&sensitive, plan, &driven, parameters);
+    let (derivatives, unrecorded) = derivatives::<N, S, SA>(&sensitive, plan, &driven, parameters);
     let Driven {
         points,
         stopped_by,
@@ -266,11 +266,9 @@ fn integrate<const N: usize, const S: usize, const SA: usize>(
         closest_singular_attitude,
         error,
     } = driven;
-    let (derivatives, failure) = match (derivatives, error) {
-        (_, Some(e)) => (Vec::new(), Some(fail(head(e)))),
-        (Ok(rows), None) => (rows, None),
-        (Err(e), None) => (Vec::new(), Some(e)),
-    };
+    // The rows up to the first point without its derivatives are kept (the table is cut
+    // there); the run's own failure comes first.
+    let failure = error.map(|e| fail(head(e))).or(unrecorded);
     Ok(Outcome {
         points: points.narrowed(len),
         stopped_by,
@@ -282,15 +280,16 @@ fn integrate<const N: usize, const S: usize, const SA: usize>(
     })
 }
 
-/// The derivative columns at every point of `driven`: for each recorded quantity, then t,
-/// each column in turn (`d(X)/d(w)` for X in the plan's record order, then `d(t)/d(w)`,
-/// column by column).
+/// The derivative columns at every point of `driven`: for each column in turn, each
+/// recorded quantity's (`d(X)/d(w)` in the plan's record order) then `d(t)/d(w)`
+/// ([`column_names`]). At the first point where they cannot be had (a tangential event, a
+/// value that is not finite), the rows before it and the error.
 fn derivatives<const N: usize, const S: usize, const SA: usize>(
     sensitive: &Sensitive<TapeSystem<N, S>, S>,
     plan: &Plan,
     driven: &Driven<SA>,
     parameters: usize,
-) -> Result<Vec<Vec<f64>>, CliError> {
+) -> (Vec<Vec<f64>>, Option<CliError>) {
     let last = driven.points.len().saturating_sub(1);
     let mut rows = Vec::with_capacity(driven.points.len());
     for (i, (t, state)) in driven.points.iter().enumerate() {
@@ -300,14 +299,23 @@ fn derivatives<const N: usize, const S: usize, const SA: usize>(
             _ => None,
         };
         let row = point_derivatives(sensitive, plan, t, &state, event, parameters);
-        rows.push(row.map_err(|e| {
-            CliError::Run(format!(
-                "cannot record the sensitivities at t = {}: {e}",
-                shown(t)
-            ))
-        })?);
+        let row = row.and_then(|row| match row.iter().all(|x| x.is_finite()) {
+            true => Ok(row),
+            false => Err("a derivative is not a finite number".to_string()),
+        });
+        match row {
+            Ok(row) => rows.push(row),
+            Err(e) => {
+                let error = CliError::Run(format!(
+                    "cannot record the sensitivities at t = {}: {e}; the points before this \
+                     time are recorded",
+                    shown(t)
+                ));
+                return (rows, Some(error));
+            }
+        }
     }
-    Ok(rows)
+    (rows, None)
 }
 
 /// The derivative columns at one point; `event` is the observable of the condition that

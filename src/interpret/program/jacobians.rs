@@ -176,7 +176,7 @@ impl Program {
         let (n, k, c, _) = sizes;
         let len = self.state_len();
         let values = self.jacobian_values(t, state)?;
-        let blocks = Blocks::split(&values, sizes).ok_or(SystemError::SingularMassMatrix)?;
+        let blocks = Blocks::split(&values, sizes).ok_or(SystemError::NoParameterJacobian)?;
         let minus_identity: Vec<f64> = (0..n * n)
             .map(|i| if i / n == i % n { -1.0 } else { 0.0 })
             .collect();
@@ -209,7 +209,7 @@ impl Program {
         };
         let (n, k, _, p) = sizes;
         let values = self.jacobian_values(t, state)?;
-        let blocks = Blocks::split(&values, sizes).ok_or(SystemError::SingularMassMatrix)?;
+        let blocks = Blocks::split(&values, sizes).ok_or(SystemError::NoParameterJacobian)?;
         let part = blocks.columns(blocks.pt, Some(blocks.ft), (n, k), p)?;
         out.iter_mut()
             .take(self.state_len() * p)
