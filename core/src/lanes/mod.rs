@@ -10,7 +10,9 @@
 //! transcendental functions stay one call per lane.
 //!
 //! [`LaneSystem`] is what `emit = [..., "lanes"]` adds to a system: its parameters as
-//! lanes and its state rate over lanes. [`dormand_prince`] integrates with it.
+//! lanes and its state rate over lanes (and, with `"taylor"`, its Taylor recurrences over
+//! lanes). [`run_lanes`] integrates with it: Dormand–Prince ([`dormand_prince`]) or
+//! Taylor's method (`taylor.rs`), by the control it is given.
 
 #[cfg(feature = "run")]
 pub mod dormand_prince;
@@ -18,6 +20,8 @@ pub mod dormand_prince;
 mod events;
 #[cfg(feature = "run")]
 mod member;
+#[cfg(feature = "run")]
+mod taylor;
 
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub};
 
@@ -31,7 +35,7 @@ use crate::system::VariableMassSystem;
 use varmass_table::recurrence::Scalar;
 
 #[cfg(feature = "run")]
-pub use dormand_prince::{run_lanes, run_lanes_with, LaneEnd, LaneJob, LaneKernel};
+pub use dormand_prince::{run_lanes, run_lanes_with, LaneEnd, LaneJob, LaneKernel, LaneMethod};
 
 /// W `f64`s, one per lane, with arithmetic and functions applied lane by lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
