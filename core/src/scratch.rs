@@ -5,6 +5,8 @@
 
 use core::any::TypeId;
 
+use crate::steppers::taylor::series::Coefficient;
+
 /// The highest order the stepper expands to (a tolerance of 1e-16 asks for 20).
 pub const MAX_ORDER: usize = 32;
 
@@ -26,15 +28,29 @@ pub const LEN: usize = MAX_ORDER + 1;
 /// So what a scratch held before, another system's rows included, never reaches a result
 /// (`tests/taylor_emitted.rs` and `tests/taylor_tables.rs` run on scratches filled with
 /// NaN, reused).
-#[derive(Clone, Debug, Default)]
-pub struct Scratch {
-    rows: Vec<[f64; LEN]>,
+///
+/// Its rows are of `f64` for the scalar stepper, of [`Lanes<W>`](crate::lanes::Lanes) for
+/// the Taylor stepper in lanes (`emit = [..., "taylor", "lanes"]`).
+#[derive(Clone, Debug)]
+pub struct Scratch<T = f64> {
+    rows: Vec<[T; LEN]>,
     factor: Vec<f64>,
     /// The generated code that used the rows last (a type of its own, local to it).
     owner: Option<TypeId>,
     /// The bits of the parameters its constants were last computed from
     /// ([`Scratch::same_constants`]).
     constants: Vec<u64>,
+}
+
+impl<T> Default for Scratch<T> {
+    fn default() -> Self {
+        Self {
+            rows: Vec::new(),
+            factor: Vec::new(),
+            owner: None,
+            constants: Vec::new(),
+        }
+    }
 }
 
 impl Scratch {
@@ -54,24 +70,34 @@ impl Scratch {
             constants: Vec::new(),
         }
     }
+}
 
+impl<T: Coefficient> Scratch<T> {
     /// Whether `key`, the parameters generated code computes its constants from (the rows
     /// of its order-0 instructions, which read no input: sin θ of a parameter θ, say), is
     /// bit for bit the key of its last call; the key is kept for the next. When it is, and
     /// the rows are not fresh ([`Scratch::parts`]), the rows still hold those constants
     /// and generated code does not recompute them: the sled's sin θ and cos θ were 6 % of
     /// its run (issue 38). A NaN parameter never matches (its constants are recomputed).
+    /// Over lanes the key is every lane's parameters: one lane's change (a lane refilled
+    /// with another member) recomputes them all, to the same bits for the others.
     #[inline]
-    pub fn same_constants(&mut self, key: &[f64]) -> bool {
-        let same = self.constants.len() == key.len()
-            && self
-                .constants
-                .iter()
-                .zip(key)
-                .all(|(a, b)| *a == b.to_bits() && !b.is_nan());
+    pub fn same_constants(&mut self, key: &[T]) -> bool {
+        let mut same = self.constants.len() == key.len() * T::WIDTH;
+        if same {
+            for (kept, x) in self.constants.chunks_exact(T::WIDTH).zip(key) {
+                for (i, a) in kept.iter().enumerate() {
+                    let b = x.lane(i);
+                    same &= *a == b.to_bits() && !b.is_nan();
+                }
+            }
+        }
         if !same {
             self.constants.clear();
-            self.constants.extend(key.iter().map(|x| x.to_bits()));
+            for x in key {
+                self.constants
+                    .extend((0..T::WIDTH).map(|i| x.lane(i).to_bits()));
+            }
         }
         same
     }
@@ -84,10 +110,10 @@ impl Scratch {
         &mut self,
         factor: usize,
         owner: TypeId,
-    ) -> (&mut [[f64; LEN]; F], &mut [f64], bool) {
+    ) -> (&mut [[T; LEN]; F], &mut [f64], bool) {
         let fresh = self.owner != Some(owner) || self.rows.len() < F;
         if self.rows.len() < F {
-            self.rows.resize(F, [0.0; LEN]);
+            self.rows.resize(F, [T::splat(0.0); LEN]);
         }
         if self.factor.len() < factor {
             self.factor.resize(factor, 0.0);

@@ -31,14 +31,17 @@ use nalgebra::SVector;
 use super::events::after_step;
 use super::member::{start, Last, Member};
 pub use super::member::{LaneEnd, LaneJob};
+use super::taylor::run_taylor;
 use super::{lane, set_lane, LaneState, LaneSystem, Lanes};
 use crate::error::{is_finite, StepError, StepErrorKind};
 use crate::run::RunConfig;
 use crate::stepper::Checked;
-use crate::steppers::control::{AdaptiveControl, Mode, StepControl};
+use crate::steppers::control::{AdaptiveControl, Controlled, Mode, StepControl};
+use crate::steppers::dormand_prince::Dense;
 use crate::steppers::dp_tableau::{ERROR_WEIGHTS, STAGE_ROWS, WEIGHTS};
 use crate::steppers::explicit::{self, Rates};
 use crate::steppers::step_size::{step_after_acceptance, ClampedErrors};
+use crate::steppers::TaylorControl;
 use crate::tolerance::Tolerance;
 
 /// The inputs of one attempt in every lane, and the stages it computes.
@@ -60,26 +63,50 @@ pub(super) struct Attempt<const S: usize, const W: usize> {
     error: Lanes<W>,
 }
 
-/// Runs every job to its first stopping event or `config.end_time` with Dormand–Prince
-/// under `control`, W members at a time, and returns each member's end in job order: lane
-/// by lane what `run(&mut DormandPrince::new(&job.system, job.time, job.state, control)?,
-/// config, job.events)` ends with (its last point), or its error.
+/// Runs every job to its first stopping event or `config.end_time`, W members at a time,
+/// and returns each member's end in job order: lane by lane what the scalar run ends with
+/// (its last point), or its error. The method is the control's: a [`StepControl`] flies
+/// Dormand–Prince, lane by lane `run(&mut DormandPrince::new(&job.system, job.time,
+/// job.state, control)?, config, job.events)`; a [`TaylorControl`] flies Taylor's method
+/// (`emit = [..., "taylor", "lanes"]`), lane by lane `run(&mut Taylor::new(..)?, ..)`
+/// (see `lanes/taylor.rs`).
 ///
-/// Only what that needs is supported: an adaptive control, nothing recorded, no energy
-/// guard, and systems without switches or stop times (a member that has them fails with a
+/// Only what that needs is supported: an adaptive control (Dormand–Prince), nothing
+/// recorded, no energy guard, and systems without switches or stop times (a member that has them fails with a
 /// configuration error: run it on the scalar path).
 ///
 /// The lanes' arithmetic runs with AVX where the CPU has it (x86-64 with `std`), otherwise
 /// with what the build targets; both give the same bits.
 pub fn run_lanes<Sys, const N: usize, const S: usize, const W: usize>(
     jobs: &[LaneJob<'_, Sys, S>],
-    control: StepControl,
+    control: impl Into<LaneMethod>,
     config: &RunConfig,
 ) -> Vec<Result<LaneEnd<S>, StepError<S>>>
 where
     Sys: LaneSystem<N, S, W>,
 {
     run_lanes_with(jobs, control, config, LaneKernel::Detected)
+}
+
+/// The method [`run_lanes`] flies the members with, and its control.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LaneMethod {
+    /// Dormand–Prince 5(4), adaptive.
+    DormandPrince(StepControl),
+    /// Taylor's method (the system's `emit = [..., "taylor", "lanes"]`).
+    Taylor(TaylorControl),
+}
+
+impl From<StepControl> for LaneMethod {
+    fn from(control: StepControl) -> Self {
+        Self::DormandPrince(control)
+    }
+}
+
+impl From<TaylorControl> for LaneMethod {
+    fn from(control: TaylorControl) -> Self {
+        Self::Taylor(control)
+    }
 }
 
 /// Which compilation of the lanes' arithmetic [`run_lanes_with`] runs: for tests of the
@@ -95,7 +122,7 @@ pub enum LaneKernel {
 
 /// Which compilation of the lanes' arithmetic runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kernel {
+pub(super) enum Kernel {
     /// For the build's target (SSE2 in a default x86-64 build: two lanes per instruction).
     Portable,
     /// For AVX (four lanes per instruction), which the CPU was found to have.
@@ -119,7 +146,7 @@ impl Kernel {
 #[doc(hidden)]
 pub fn run_lanes_with<Sys, const N: usize, const S: usize, const W: usize>(
     jobs: &[LaneJob<'_, Sys, S>],
-    control: StepControl,
+    control: impl Into<LaneMethod>,
     config: &RunConfig,
     kernel: LaneKernel,
 ) -> Vec<Result<LaneEnd<S>, StepError<S>>>
@@ -127,6 +154,22 @@ where
     Sys: LaneSystem<N, S, W>,
 {
     let kernel = Kernel::detect(kernel);
+    match control.into() {
+        LaneMethod::DormandPrince(control) => run_dormand_prince(jobs, control, config, kernel),
+        LaneMethod::Taylor(control) => run_taylor(jobs, control, config, kernel),
+    }
+}
+
+/// [`run_lanes`] with Dormand–Prince.
+fn run_dormand_prince<Sys, const N: usize, const S: usize, const W: usize>(
+    jobs: &[LaneJob<'_, Sys, S>],
+    control: StepControl,
+    config: &RunConfig,
+    kernel: Kernel,
+) -> Vec<Result<LaneEnd<S>, StepError<S>>>
+where
+    Sys: LaneSystem<N, S, W>,
+{
     let mut results: Vec<Option<Result<LaneEnd<S>, StepError<S>>>> =
         (0..jobs.len()).map(|_| None).collect();
     let Some(first) = jobs.first() else {
@@ -531,7 +574,17 @@ where
     memory.last_step = h;
     memory.propose(next, reaches_stop, control.max_step);
     member.last = Last::Accepted;
-    after_step(member, &attempt.k, index, outcome, config)
+    // The lane's stages read out of the lanes only if an event needs them, for
+    // `DormandPrince`'s dense output over its last step.
+    let dense = |core: &Controlled<'_, Sys, S>| {
+        let k = core::array::from_fn(|i| lane(&attempt.k[i], index));
+        let start = (
+            core.progress.previous_time(),
+            core.progress.previous_state(),
+        );
+        Dense::new(start, core.progress.state(), core.memory.last_step, &k)
+    };
+    after_step::<Sys, _, _, N, S, W>(member, dense, outcome, config)
 }
 
 /// A trial state outside the domain (non-finite, a mass not positive): a step too long,

@@ -1,39 +1,76 @@
 //! A lane's run after an accepted step — the flow check of the new point, its events, its
 //! end — as the scalar run's (`run`'s `drive` and `EventWatch`): g at the new point, a
-//! sign change located (`locate_root`) on the lane's dense output, read out of the lanes
-//! only then.
+//! sign change located (`locate_root`) on the lane's dense output (the method's: made only
+//! then, for Dormand–Prince out of the lanes).
 
 use alloc::vec::Vec;
 
-use super::member::{end_at, LaneEnd, Member};
-use super::{lane, LaneState, LaneSystem};
+use nalgebra::SVector;
+
+use super::member::{end_at, LaneCore, LaneEnd, Member};
+use super::LaneSystem;
 use crate::error::{StepError, StepErrorKind};
 use crate::events::{locate_root, Event, EventAction, EventCondition};
 use crate::run::RunConfig;
 use crate::stepper::{Checked, StepOutcome};
 use crate::steppers::dormand_prince::Dense;
+use crate::steppers::Taylor;
 use crate::system::VariableMassSystem;
+
+/// A method's dense output over its last step, as the scalar run reads it.
+pub(super) trait Interpolant<const S: usize> {
+    /// The state at `time`.
+    fn at(&self, time: f64) -> SVector<f64, S>;
+    /// Component `j` of the state at `time` (the bits of `at(time)[j]`).
+    fn component_at(&self, j: usize, time: f64) -> f64;
+}
+
+impl<const S: usize> Interpolant<S> for Dense<S> {
+    fn at(&self, time: f64) -> SVector<f64, S> {
+        Dense::at(self, time)
+    }
+    fn component_at(&self, j: usize, time: f64) -> f64 {
+        Dense::component_at(self, j, time)
+    }
+}
+
+/// The Taylor stepper's series, the dense output the scalar run locates events on.
+impl<Sys, const N: usize, const S: usize> Interpolant<S> for &Taylor<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    fn at(&self, time: f64) -> SVector<f64, S> {
+        self.interpolate(time)
+    }
+    fn component_at(&self, j: usize, time: f64) -> f64 {
+        self.interpolate(time)[j]
+    }
+}
 
 /// The run's bookkeeping after an accepted step (`run`'s `drive` and `EventWatch`): the flow
 /// check of the new point, the events located on the lane's dense output, the end time.
 /// `Ok(None)` while the run goes on.
+/// `dense` makes the method's dense output of the step, only when an event needs it.
 #[inline]
-pub(super) fn after_step<Sys, const N: usize, const S: usize, const W: usize>(
-    member: &mut Member<'_, '_, Sys, S>,
-    stages: &[LaneState<S, W>; 7],
-    index: usize,
+pub(super) fn after_step<'c, Sys, C, D, const N: usize, const S: usize, const W: usize>(
+    member: &'c mut Member<'_, '_, Sys, S, C>,
+    dense: impl FnOnce(&'c C) -> D,
     outcome: StepOutcome,
     config: &RunConfig,
 ) -> Result<Option<LaneEnd<S>>, StepError<S>>
 where
     Sys: LaneSystem<N, S, W>,
+    C: LaneCore<Sys, S>,
+    D: Interpolant<S>,
 {
-    let core = &member.core;
-    let system = core.system;
-    let (time, state) = (core.progress.time(), *core.progress.state());
-    system.check_flows(time, &state)?;
+    let (time, state) = {
+        let progress = member.core.parts().1;
+        (progress.time(), *progress.state())
+    };
+    member.core.parts().0.check_flows(time, &state)?;
     // The events whose g changed sign, with g before.
     let mut changed: Vec<(usize, f64)> = Vec::new();
+    let system = member.core.parts().0;
     for (event_index, (event, before)) in member.events.iter().zip(&mut member.values).enumerate() {
         let after = event.value(system, time, &state);
         if event.triggered(*before, after) {
@@ -41,24 +78,24 @@ where
         }
         *before = after;
     }
+    // Counted before the events are located: a stop there ends the member anyway.
+    member.steps += 1;
+    let member: &'c Member<'_, '_, Sys, S, C> = member;
     if !changed.is_empty() {
-        // The lane's stages read out of the lanes only now, for `DormandPrince`'s dense
-        // output over its last step.
-        let k = core::array::from_fn(|i| lane(&stages[i], index));
-        let start = (
-            core.progress.previous_time(),
-            core.progress.previous_state(),
-        );
-        let dense = Dense::new(start, &state, core.memory.last_step, &k);
+        let dense = dense(&member.core);
         if let Some((hit, event_index)) = first_stop(member, &changed, &dense, config) {
             let hit_state = dense.at(hit);
             system.check_flows(hit, &hit_state)?;
-            return Ok(Some(end_at(core, hit, hit_state, Some(event_index))));
+            return Ok(Some(end_at(
+                &member.core,
+                hit,
+                hit_state,
+                Some(event_index),
+            )));
         }
     }
-    member.steps += 1;
     if outcome == StepOutcome::ReachedStopTime && time >= config.end_time {
-        return Ok(Some(end_at(core, time, state, None)));
+        return Ok(Some(end_at(&member.core, time, state, None)));
     }
     if member.steps >= config.max_steps {
         let kind = StepErrorKind::TooManySteps {
@@ -71,18 +108,19 @@ where
 
 /// The earliest located stopping event among the `changed` ones (index, g before), each
 /// located in place: `EventWatch::check_step`'s choice.
-fn first_stop<Sys, const N: usize, const S: usize, const W: usize>(
-    member: &Member<'_, '_, Sys, S>,
+fn first_stop<Sys, C, const N: usize, const S: usize, const W: usize>(
+    member: &Member<'_, '_, Sys, S, C>,
     changed: &[(usize, f64)],
-    dense: &Dense<S>,
+    dense: &impl Interpolant<S>,
     config: &RunConfig,
 ) -> Option<(f64, usize)>
 where
     Sys: LaneSystem<N, S, W>,
+    C: LaneCore<Sys, S>,
 {
-    let core = &member.core;
-    let (system, time) = (core.system, core.progress.time());
-    let start_time = core.progress.previous_time();
+    let (system, progress) = member.core.parts();
+    let time = progress.time();
+    let start_time = progress.previous_time();
     let mut located: Vec<(f64, usize)> = changed
         .iter()
         .map(|&(event_index, before)| {

@@ -1,7 +1,10 @@
 //! A member of a run in lanes: its job (system, initial value, events), the checks of its
-//! start (the scalar run's), its bookkeeping between steps and its end.
+//! start (the scalar run's), its bookkeeping between steps and its end, over the scalar
+//! stepper state of its method (its [`LaneCore`]: Dormand–Prince's controller, or a
+//! `Taylor` stepper).
 
 use alloc::vec::Vec;
+use core::marker::PhantomData;
 
 use nalgebra::SVector;
 
@@ -10,8 +13,40 @@ use crate::error::{StepError, StepErrorKind};
 use crate::events::Event;
 use crate::run::RunConfig;
 use crate::solution::Record;
-use crate::stepper::{Checked, Statistics};
+use crate::stepper::{Checked, Progress, Statistics, Stepper};
 use crate::steppers::control::{Controlled, Mode, StepControl};
+use crate::steppers::Taylor;
+use crate::system::VariableMassSystem;
+
+/// What a member's method keeps of its run: the system and the progress (time, state,
+/// statistics, stop time).
+pub(super) trait LaneCore<Sys, const S: usize> {
+    /// The system and the progress.
+    fn parts(&self) -> (&Sys, &Progress<S>);
+    /// Lands the method's steps on `time`.
+    fn set_stop_time(&mut self, time: f64) -> Result<(), StepError<S>>;
+}
+
+impl<Sys, const S: usize> LaneCore<Sys, S> for Controlled<'_, Sys, S> {
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        (self.system, &self.progress)
+    }
+    fn set_stop_time(&mut self, time: f64) -> Result<(), StepError<S>> {
+        self.progress.set_stop_time(time)
+    }
+}
+
+impl<Sys, const N: usize, const S: usize> LaneCore<Sys, S> for Taylor<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    fn parts(&self) -> (&Sys, &Progress<S>) {
+        Stepper::parts(self)
+    }
+    fn set_stop_time(&mut self, time: f64) -> Result<(), StepError<S>> {
+        Stepper::set_stop_time(self, time)
+    }
+}
 
 /// One member's run: its system, its initial value and the events that end it (as
 /// [`run`](crate::run::run)'s `events`).
@@ -41,16 +76,18 @@ pub struct LaneEnd<const S: usize> {
     pub statistics: Statistics,
 }
 
-/// A member in its lane: the scalar controller and the run's bookkeeping.
-pub(super) struct Member<'s, 'e, Sys, const S: usize> {
+/// A member in its lane: its method's scalar state (`core`) and the run's bookkeeping.
+pub(super) struct Member<'s, 'e, Sys, const S: usize, C = Controlled<'s, Sys, S>> {
     pub(super) job: usize,
-    pub(super) core: Controlled<'s, Sys, S>,
+    pub(super) core: C,
     pub(super) events: &'e [Event<'e, S>],
     /// g of each event at the last point.
     pub(super) values: Vec<f64>,
     pub(super) steps: usize,
     /// How the member's last attempt ended, which says where its next one starts.
     pub(super) last: Last,
+    /// The system `core` steps (borrowed for `'s`).
+    system: PhantomData<&'s Sys>,
 }
 
 /// How a member's last attempt ended.
@@ -65,17 +102,42 @@ pub(super) enum Last {
     Rejected,
 }
 
-/// A member at the start of its run, with the scalar run's checks; `Err` holds the member's
-/// result when it ends before any step (a failed check, or a run of zero length).
-#[allow(clippy::type_complexity)]
+/// What [`start`] returns: the member, or its result when it ends before any step.
+pub(super) type Started<'s, 'e, Sys, const S: usize, C> =
+    Result<Member<'s, 'e, Sys, S, C>, Result<LaneEnd<S>, StepError<S>>>;
+
+/// A Dormand–Prince member at the start of its run ([`start_with`]), its control adaptive.
 pub(super) fn start<'s, 'e, Sys, const N: usize, const S: usize, const W: usize>(
     jobs: &'s [LaneJob<'e, Sys, S>],
     job: usize,
     control: StepControl,
     config: &RunConfig,
-) -> Result<Member<'s, 'e, Sys, S>, Result<LaneEnd<S>, StepError<S>>>
+) -> Started<'s, 'e, Sys, S, Controlled<'s, Sys, S>>
 where
     Sys: LaneSystem<N, S, W>,
+{
+    start_with::<Sys, _, N, S, W>(jobs, job, config, |system, time, state| {
+        let core = Controlled::new::<N>(system, time, state, control)?;
+        if !matches!(core.mode, Mode::Adaptive(..)) {
+            let reason = "lanes: only adaptive steps run in lanes";
+            return Err(StepError::invalid_configuration(time, state, reason));
+        }
+        Ok(core)
+    })
+}
+
+/// A member at the start of its run, its method's state made by `make` (which checks what
+/// the scalar stepper's constructor checks), with the scalar run's checks; `Err` holds the
+/// member's result when it ends before any step (a failed check, or a run of zero length).
+pub(super) fn start_with<'s, 'e, Sys, C, const N: usize, const S: usize, const W: usize>(
+    jobs: &'s [LaneJob<'e, Sys, S>],
+    job: usize,
+    config: &RunConfig,
+    make: impl FnOnce(&'s Sys, f64, SVector<f64, S>) -> Result<C, StepError<S>>,
+) -> Started<'s, 'e, Sys, S, C>
+where
+    Sys: LaneSystem<N, S, W>,
+    C: LaneCore<Sys, S>,
 {
     let LaneJob {
         system,
@@ -83,11 +145,8 @@ where
         state,
         events,
     } = &jobs[job];
-    let mut core = Controlled::new::<N>(system, *time, *state, control).map_err(Err)?;
+    let mut core = make(system, *time, *state).map_err(Err)?;
     let invalid = |reason| Err(StepError::invalid_configuration(*time, *state, reason));
-    if !matches!(core.mode, Mode::Adaptive(..)) {
-        return Err(invalid("lanes: only adaptive steps run in lanes"));
-    }
     let supported = config.record == Record::default()
         && config.energy_tolerance.is_none()
         && !config.event_tolerance.is_nan()
@@ -108,7 +167,7 @@ where
             .validate::<Sys, N>()
             .map_err(|error| invalid(error.reason))?;
     }
-    core.progress.set_stop_time(config.end_time).map_err(Err)?;
+    core.set_stop_time(config.end_time).map_err(Err)?;
     system.check_flows(*time, state).map_err(Err)?;
     if config.end_time == *time {
         return Err(Ok(end_at(&core, *time, *state, None)));
@@ -128,12 +187,13 @@ where
         values,
         steps: 0,
         last: Last::Started,
+        system: PhantomData,
     })
 }
 
 /// The member's end at `(time, state)`, stopped by `event` (`None`: at the end time).
 pub(super) fn end_at<Sys, const S: usize>(
-    core: &Controlled<'_, Sys, S>,
+    core: &impl LaneCore<Sys, S>,
     time: f64,
     state: SVector<f64, S>,
     event: Option<usize>,
@@ -142,6 +202,6 @@ pub(super) fn end_at<Sys, const S: usize>(
         time,
         state,
         event,
-        statistics: *core.progress.statistics(),
+        statistics: *core.parts().1.statistics(),
     }
 }

@@ -10,7 +10,9 @@
 //! transcendental functions stay one call per lane.
 //!
 //! [`LaneSystem`] is what `emit = [..., "lanes"]` adds to a system: its parameters as
-//! lanes and its state rate over lanes. [`dormand_prince`] integrates with it.
+//! lanes and its state rate over lanes (and, with `"taylor"`, its Taylor recurrences over
+//! lanes). [`run_lanes`] integrates with it: Dormand–Prince ([`dormand_prince`]) or
+//! Taylor's method (`taylor.rs`), by the control it is given.
 
 #[cfg(feature = "run")]
 pub mod dormand_prince;
@@ -18,16 +20,22 @@ pub mod dormand_prince;
 mod events;
 #[cfg(feature = "run")]
 mod member;
+#[cfg(feature = "run")]
+mod taylor;
 
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub};
 
 use nalgebra::{ComplexField, RealField, SVector};
 
+use crate::error::SystemError;
+use crate::scratch::Scratch;
 use crate::steppers::explicit::{Lane, Vector};
+use crate::steppers::taylor::series::Coefficient;
 use crate::system::VariableMassSystem;
+use varmass_table::recurrence::Scalar;
 
 #[cfg(feature = "run")]
-pub use dormand_prince::{run_lanes, run_lanes_with, LaneEnd, LaneJob, LaneKernel};
+pub use dormand_prince::{run_lanes, run_lanes_with, LaneEnd, LaneJob, LaneKernel, LaneMethod};
 
 /// W `f64`s, one per lane, with arithmetic and functions applied lane by lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -291,6 +299,38 @@ impl<const W: usize> Lane for Lanes<W> {
     }
 }
 
+/// A number of the Taylor recurrences (`varmass_table::recurrence`) over W lanes: each
+/// operation the `f64` one, lane by lane.
+impl<const W: usize> Scalar for Lanes<W> {
+    const NEG_ZERO: Self = Self([-0.0; W]);
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        Self::splat(x)
+    }
+}
+
+/// A Taylor coefficient of W members (`steppers::taylor::series`, `emit = [..., "taylor",
+/// "lanes"]`).
+impl<const W: usize> Coefficient for Lanes<W> {
+    const WIDTH: usize = W;
+    #[inline(always)]
+    fn lane(self, i: usize) -> f64 {
+        self.0[i]
+    }
+    #[inline(always)]
+    fn from_fn(f: impl FnMut(usize) -> f64) -> Self {
+        Self::from_fn(f)
+    }
+    #[inline(always)]
+    fn set_lane(&mut self, i: usize, x: f64) {
+        self.0[i] = x;
+    }
+    #[inline(always)]
+    fn singular(_: Self, _: &[Self]) -> bool {
+        false
+    }
+}
+
 /// A state of the explicit core over W lanes: each operation component by component, lane
 /// by lane (plain loops, which the compiler vectorizes).
 impl<const S: usize, const W: usize> Vector<Lanes<W>> for LaneState<S, W> {
@@ -383,6 +423,24 @@ pub trait LaneSystem<const N: usize, const S: usize, const W: usize>:
         t: Lanes<W>,
         state: &LaneState<S, W>,
     ) -> LaneState<S, W>;
+
+    /// The Taylor coefficients of W members at once (`coefficients[k]` is y\[k\] in every
+    /// lane, k up to `coefficients.len() − 1`): the generated scalar
+    /// `taylor_coefficients`' recurrences, instantiated over lanes, so that lane i is that
+    /// method's expansion of the system in lane i, bit for bit, to whatever order it is
+    /// truncated. `None` unless generated (`emit = [..., "taylor", "lanes"]`). Nothing is
+    /// checked: a lane whose coefficients are not finite is expanded again alone by the
+    /// caller for the scalar error.
+    fn taylor_coefficients_lanes(
+        parameters: &Self::Parameters,
+        t: Lanes<W>,
+        state: &LaneState<S, W>,
+        coefficients: &mut [LaneState<S, W>],
+        scratch: &mut Scratch<Lanes<W>>,
+    ) -> Option<Result<(), SystemError>> {
+        let _ = (parameters, t, state, coefficients, scratch);
+        None
+    }
 }
 
 #[cfg(test)]

@@ -435,22 +435,74 @@ where
     }
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
-        let t0 = self.progress.time();
-        let (order, nominal) = match self.control {
-            TaylorControl::Fixed { order, step } => {
-                self.expand(order)?;
-                (order, step)
-            }
-            TaylorControl::Adaptive {
-                tolerance,
-                max_step,
-            } => {
-                // Relative when rtol‖y‖∞ > atol (J&Z's ε is then rtol).
+        let plan = self.plan();
+        self.expand(plan.order)?;
+        self.take_step(plan)
+    }
+}
+
+/// What a step expands to before it is taken: the order, and for adaptive control whether
+/// the step rule is relative.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Plan {
+    pub(crate) order: usize,
+    relative_mode: bool,
+}
+
+impl<Sys, const N: usize, const S: usize> Taylor<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    /// The order of the next step's expansion: fixed, or the absolute or relative rule's
+    /// (relative when rtol‖y‖∞ > atol: J&Z's ε is then rtol).
+    pub(crate) fn plan(&self) -> Plan {
+        match self.control {
+            TaylorControl::Fixed { order, .. } => Plan {
+                order,
+                relative_mode: false,
+            },
+            TaylorControl::Adaptive { tolerance, .. } => {
                 let relative_mode =
                     tolerance.relative() * self.progress.state().amax() > tolerance.absolute();
-                let rule = self.rules[usize::from(relative_mode)];
-                self.expand(rule.0)?;
-                (rule.0, self.adaptive_step(rule, relative_mode, max_step))
+                Plan {
+                    order: self.rules[usize::from(relative_mode)].0,
+                    relative_mode,
+                }
+            }
+        }
+    }
+
+    /// The expansion of the next step made elsewhere (in lanes): coefficient k is
+    /// `coefficient(k)`, k ≤ `order`, counted and checked as [`Self::expand`] counts and
+    /// checks its own. Where one is not finite the member is expanded again here, alone,
+    /// for the scalar expansion's own error (a singular mass matrix, say).
+    pub(crate) fn expanded_elsewhere(
+        &mut self,
+        order: usize,
+        coefficient: impl Fn(usize) -> SVector<f64, S>,
+    ) -> Result<(), StepError<S>> {
+        let mut finite = true;
+        for (k, c) in self.coefficients[..=order].iter_mut().enumerate() {
+            *c = coefficient(k);
+            finite &= c.iter().all(|x| x.is_finite());
+        }
+        if !finite {
+            return self.expand(order);
+        }
+        self.progress.statistics.rate_evaluations += 1;
+        Ok(())
+    }
+
+    /// The step from the expansion to `plan`'s order now in the coefficients: its size by
+    /// the control, the series summed, the new state accepted.
+    pub(crate) fn take_step(&mut self, plan: Plan) -> Result<StepOutcome, StepError<S>> {
+        let t0 = self.progress.time();
+        let order = plan.order;
+        let nominal = match self.control {
+            TaylorControl::Fixed { step, .. } => step,
+            TaylorControl::Adaptive { max_step, .. } => {
+                let rule = self.rules[usize::from(plan.relative_mode)];
+                self.adaptive_step(rule, plan.relative_mode, max_step)
             }
         };
         let (h, reaches_stop) = self.progress.next_step(nominal)?;

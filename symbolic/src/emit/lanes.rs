@@ -27,7 +27,15 @@ impl Emitter<'_> {
         roots
     }
 
-    /// Why the state rate has no lane form, if it has none.
+    /// Whether the state rate (and so its Taylor recurrences) has a lane form.
+    pub(super) fn has_lanes(&self) -> bool {
+        self.without_lanes(&self.state_rate_roots()).is_none()
+    }
+
+    /// Why the state rate has no lane form, if it has none. The Taylor recurrences have one
+    /// exactly when the state rate has: their arithmetic is generic over the coefficient,
+    /// a function's value and the selection rules (abs, min, max) go lane by lane, and what
+    /// the state rate refuses (tables, inputs, `sign`, a numeric solve) they refuse too.
     fn without_lanes(&self, roots: &[Id]) -> Option<&'static str> {
         let d = self.d;
         if d.pool.table_count() > 0 {
@@ -49,16 +57,27 @@ impl Emitter<'_> {
 }
 
 /// The companion struct of lane parameters and the `LaneSystem` impl for `emitter`'s
-/// system (see the module docs).
-pub(crate) fn lanes_impl(emitter: &Emitter<'_>) -> TokenStream {
+/// system (see the module docs); with `taylor`, the Taylor recurrences over lanes too
+/// (`taylor_coefficients_lanes`, for `run_lanes` with a `TaylorControl`).
+pub(crate) fn lanes_impl(emitter: &Emitter<'_>, taylor: bool) -> TokenStream {
     let roots = emitter.state_rate_roots();
     if let Some(reason) = emitter.without_lanes(&roots) {
+        let what = match taylor {
+            true => "emit \"lanes\" (with \"taylor\": Taylor's method in lanes)",
+            false => "emit \"lanes\"",
+        };
         let message = format!(
-            "varmass: emit \"lanes\" is not available for a model with {reason}; \
+            "varmass: {what} is not available for a model with {reason}; \
              run its ensemble on the scalar path"
         );
         return quote!(::core::compile_error!(#message););
     }
+    let (taylor_helper, taylor_method) = match taylor {
+        true => {
+            super::taylor::taylor_lanes(emitter.d, &emitter.target.runtime, &emitter.target.name)
+        }
+        false => Default::default(),
+    };
     let runtime = &emitter.target.runtime;
     let name = &emitter.target.name;
     let lanes_name = format_ident!("__{}Lanes", name);
@@ -117,7 +136,11 @@ pub(crate) fn lanes_impl(emitter: &Emitter<'_>) -> TokenStream {
             ) -> [#lane; #s_lit] {
                 parameters.state_rate(t, state)
             }
+
+            #taylor_method
         }
+
+        #taylor_helper
     }
 }
 

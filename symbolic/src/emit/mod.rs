@@ -81,7 +81,9 @@ pub fn emit_system_for(
     };
     let stops = (&switches[..], &table_switches[..], &time_tables[..]);
     let methods = trait_methods(&emitter, outputs, stops, (head.0, tangents.0));
-    let lanes = optional(outputs.lanes, || lanes::lanes_impl(&emitter));
+    let lanes = optional(outputs.lanes, || {
+        lanes::lanes_impl(&emitter, outputs.taylor)
+    });
     let trait_impl = trait_impl(d, target, methods, statics);
     let inherent = inherent_items(d, source, texts, constructors);
     let name = &target.name;
@@ -165,7 +167,9 @@ fn trait_methods(
         tangents,
         emitter.switching_functions(switches, table_switches),
         optional(outputs.taylor, || {
-            taylor::taylor_method(d, &target.runtime, &target.name)
+            // With lanes, the per-order function is shared with the lanes' method.
+            let generic = outputs.lanes && emitter.has_lanes();
+            taylor::taylor_method(d, &target.runtime, &target.name, generic)
         }),
         head,
         emitter.flow_rates(),

@@ -88,6 +88,10 @@ struct Method<'a> {
     runtime: &'a TokenStream,
     /// Each row's degree in t ([`degrees`]).
     degrees: &'a Degrees,
+    /// Whether the per-order function is generic over the coefficient (`T`: `f64` for the
+    /// scalar method, `Lanes<W>` for the lanes', `emit = [..., "taylor", "lanes"]`) and an
+    /// inherent function of the system (`__taylor_order`), or the scalar method's own.
+    generic: bool,
 }
 
 /// The `taylor_coefficients` method of `d`'s system `name`, with the runtime at `runtime`.
@@ -99,24 +103,21 @@ struct Method<'a> {
 /// straight-line code with constant offsets and no bounds checks (heyoka compiles one
 /// function per order for the same reason); the arithmetic, and so every bit of the result,
 /// is that of the loop over a run-time k (`tests/taylor_emitted.rs`).
-pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident) -> TokenStream {
+///
+/// With `generic` (the Taylor method in lanes is emitted too, [`taylor_lanes`]) the
+/// per-order function is generic over the coefficient as well and lives beside the impl,
+/// where both methods call it: one set of recurrences for `f64` and for `Lanes<W>`.
+pub(crate) fn taylor_method(
+    d: &Derivation,
+    runtime: &TokenStream,
+    name: &Ident,
+    generic: bool,
+) -> TokenStream {
     let st = d.taylor_stages();
     let degrees = degrees(&st);
-    let m = Method::new(d, &st, runtime, &degrees);
-    let fields = m.fields();
-    let (solve, factor_size) = m.velocity_solve();
-    let factor_size = factor_size.unwrap_or_else(|| Literal::usize_unsuffixed(0));
-    let order_k = m.order_k(name, &fields, solve);
-    let start = m.start(&fields);
-    let same_constants = m.same_constants();
-    let out = (0..m.layout.state_len()).map(|j| {
-        let from = input(m.layout.state(j));
-        quote!(c[#j] = #from[k];)
-    });
-    let orders = (0..ORDERS).map(Literal::usize_unsuffixed);
-    let orders_len = Literal::usize_unsuffixed(ORDERS);
-    let rows = Literal::usize_unsuffixed(fields.len());
+    let m = Method::new(d, &st, runtime, &degrees, generic);
     let (ts, system, vector) = m.paths();
+    let body = m.expansion(name, quote!(self), quote!(f64));
     quote! {
         /// The Taylor coefficients y[k] = y⁽ᵏ⁾(t)/k! of the solution through `(t, state)`
         /// (k ≤ `steppers::taylor::MAX_ORDER`), by the recurrences of automatic
@@ -129,12 +130,117 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
             coefficients: &mut [#vector],
             scratch: &mut #ts::Scratch,
         ) -> ::core::option::Option<::core::result::Result<(), #system>> {
+            #body
+        }
+    }
+}
+
+/// What `emit = [..., "taylor", "lanes"]` adds: the per-order function generic over the
+/// coefficient (`.0`, an inherent function of `name`, which [`taylor_method`] calls with
+/// `f64`), and `LaneSystem::taylor_coefficients_lanes` (`.1`), the same expansion with
+/// `Lanes<W>` coefficients and the lanes' parameters.
+pub(crate) fn taylor_lanes(
+    d: &Derivation,
+    runtime: &TokenStream,
+    name: &Ident,
+) -> (TokenStream, TokenStream) {
+    let st = d.taylor_stages();
+    let degrees = degrees(&st);
+    let m = Method::new(d, &st, runtime, &degrees, true);
+    let (ts, system, _) = m.paths();
+    let fields = m.fields();
+    let (solve, _) = m.velocity_solve();
+    let order_k = m.order_k(name, &fields, solve);
+    let lane = quote!(#runtime::lanes::Lanes<W>);
+    let s = Literal::usize_unsuffixed(m.layout.state_len());
+    let body = m.expansion(name, quote!(parameters), lane.clone());
+    let method = quote! {
+        #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
+        fn taylor_coefficients_lanes(
+            parameters: &Self::Parameters,
+            t: #lane,
+            state: &[#lane; #s],
+            coefficients: &mut [[#lane; #s]],
+            scratch: &mut #ts::Scratch<#lane>,
+        ) -> ::core::option::Option<::core::result::Result<(), #system>> {
+            #body
+        }
+    };
+    let helper = quote! {
+        #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
+        impl #name {
+            #order_k
+        }
+    };
+    (helper, method)
+}
+
+impl<'a> Method<'a> {
+    fn new(
+        d: &'a Derivation,
+        st: &'a TaylorStages,
+        runtime: &'a TokenStream,
+        degrees: &'a Degrees,
+        generic: bool,
+    ) -> Self {
+        let names = |tape, prefix| Names { tape, prefix };
+        Method {
+            generic,
+            degrees,
+            d,
+            st,
+            layout: st.layout,
+            laws: names(&st.laws, "l"),
+            // q̇ and the rates share their slots (`ExprPool::compile_taylor_stages`): one
+            // name each, declared once.
+            velocities: names(&st.velocities, "v"),
+            rates: names(&st.rates, "v"),
+            runtime,
+        }
+    }
+
+    /// The body of an expansion over coefficients `element`, the parameters read from
+    /// `this` (the system, or the lanes' parameters): order 0, the loop over the orders,
+    /// the state's coefficients out.
+    fn expansion(&self, name: &Ident, this: TokenStream, element: TokenStream) -> TokenStream {
+        let fields = self.fields();
+        let (solve, factor_size) = self.velocity_solve();
+        let factor_size = factor_size.unwrap_or_else(|| Literal::usize_unsuffixed(0));
+        let start = self.start(&fields);
+        let same_constants = self.same_constants();
+        let out = (0..self.layout.state_len()).map(|j| {
+            let from = input(self.layout.state(j));
+            quote!(c[#j] = #from[k];)
+        });
+        let orders = (0..ORDERS).map(Literal::usize_unsuffixed);
+        let orders_len = Literal::usize_unsuffixed(ORDERS);
+        let rows = Literal::usize_unsuffixed(fields.len());
+        let (ts, ..) = self.paths();
+        // Generic: the system's `__taylor_order` (the state a slice of the lanes' array or
+        // of the vector); otherwise the method's own `order_k` over its `Jet`.
+        let (order_k, arms): (TokenStream, Vec<TokenStream>) = if self.generic {
+            let state = match element.to_string() == "f64" {
+                true => quote!(state.as_slice()),
+                false => quote!(&state[..]),
+            };
+            let arms = orders.map(
+                |k| quote!(#k => #name::__taylor_order::<#element, #k>(jet, factor, #state, last),),
+            );
+            (TokenStream::new(), arms.collect())
+        } else {
+            let order_k = self.order_k(name, &fields, solve);
+            let arms = orders.map(|k| quote!(#k => order_k::<#k>(this, jet, factor, state, last),));
+            let jet = quote! {
+                /// One row of coefficients per subexpression, bound by name below.
+                type Jet = [[f64; #ts::LEN]; #rows];
+            };
+            (quote!(#jet #order_k), arms.collect())
+        };
+        quote! {
             const _: () = assert!(#ts::LEN == #orders_len, "one instance per order");
-            /// One row of coefficients per subexpression, bound by name below.
-            type Jet = [[f64; #ts::LEN]; #rows];
             #order_k
             let order = coefficients.len().checked_sub(1)?.min(#ts::LEN - 1);
-            let this = self;
+            let this = #this;
             /// This code's own type: the scratch knows whether this code used it last.
             struct Owner;
             let owner = ::core::any::TypeId::of::<Owner>();
@@ -146,7 +252,7 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
             for k in 0..=order {
                 let last = k == order;
                 let failed = match k {
-                    #(#orders => order_k::<#orders>(this, jet, factor, state, last),)*
+                    #(#arms)*
                     _ => None,
                 };
                 if failed.is_some() {
@@ -158,29 +264,6 @@ pub(crate) fn taylor_method(d: &Derivation, runtime: &TokenStream, name: &Ident)
                 #(#out)*
             }
             Some(Ok(()))
-        }
-    }
-}
-
-impl<'a> Method<'a> {
-    fn new(
-        d: &'a Derivation,
-        st: &'a TaylorStages,
-        runtime: &'a TokenStream,
-        degrees: &'a Degrees,
-    ) -> Self {
-        let names = |tape, prefix| Names { tape, prefix };
-        Method {
-            degrees,
-            d,
-            st,
-            layout: st.layout,
-            laws: names(&st.laws, "l"),
-            // q̇ and the rates share their slots (`ExprPool::compile_taylor_stages`): one
-            // name each, declared once.
-            velocities: names(&st.velocities, "v"),
-            rates: names(&st.rates, "v"),
-            runtime,
         }
     }
 
@@ -244,10 +327,10 @@ impl<'a> Method<'a> {
         quote! {
             let [#(#fields),*] = &mut *jet;
             if fresh {
-                #(*#zeroed = [0.0f64; #ts::LEN];)*
+                #(*#zeroed = [#ts::splat(0.0f64); #ts::LEN];)*
             }
             #time[0] = t;
-            #time[1] = 1.0;
+            #time[1] = #ts::splat(1.0f64);
             #(#state)*
             if fresh || !same {
                 #(#fixed)*
@@ -275,6 +358,7 @@ impl<'a> Method<'a> {
             .collect();
         read.sort_unstable();
         read.dedup();
+        let (ts, ..) = self.paths();
         let key = read.iter().map(|index| {
             let field = self.d.parameters.iter().find(|(_, s)| s.index() == *index);
             match field {
@@ -282,7 +366,7 @@ impl<'a> Method<'a> {
                     let field = Ident::new(name, Span::call_site());
                     quote!(this.#field)
                 }
-                None => quote!(f64::NAN),
+                None => quote!(#ts::splat(f64::NAN)),
             }
         });
         quote!(let same = scratch.same_constants(&[#(#key),*]);)
@@ -309,16 +393,33 @@ impl<'a> Method<'a> {
             quote!(#to[k + 1] = #from[k] * next;)
         });
         let (ts, system, vector) = self.paths();
+        let signature = if self.generic {
+            let rows = Literal::usize_unsuffixed(fields.len());
+            quote! {
+                #[doc(hidden)]
+                #[inline]
+                fn __taylor_order<T: #ts::Coefficient, const K: usize>(
+                    jet: &mut [[T; #ts::LEN]; #rows],
+                    factor: &mut [f64],
+                    state: &[T],
+                    last: bool,
+                ) -> ::core::option::Option<::core::result::Result<(), #system>>
+            }
+        } else {
+            quote! {
+                fn order_k<const K: usize>(
+                    this: &#name,
+                    jet: &mut Jet,
+                    factor: &mut [f64],
+                    state: &#vector,
+                    last: bool,
+                ) -> ::core::option::Option<::core::result::Result<(), #system>>
+            }
+        };
         quote! {
             /// Order `K` of every stage; `Some` ends the expansion with an error.
             #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
-            fn order_k<const K: usize>(
-                this: &#name,
-                jet: &mut Jet,
-                factor: &mut [f64],
-                state: &#vector,
-                last: bool,
-            ) -> ::core::option::Option<::core::result::Result<(), #system>> {
+            #signature {
                 let [#(#fields),*] = jet;
                 let k = K;
                 #law_series
@@ -343,12 +444,16 @@ impl<'a> Method<'a> {
         let (l, names, runtime) = (self.layout, &self.velocities, self.runtime);
         let velocity = |a: usize| input(l.velocity(a));
         let singular = quote!(return Some(Err(#runtime::SystemError::SingularMassMatrix)););
+        let state = match self.generic {
+            true => quote!(state),
+            false => quote!(state.as_slice()),
+        };
         if !self.st.numeric {
             let copies = (0..l.n).map(|a| {
                 let (to, from) = (velocity(a), names.output(a));
                 quote! {
                     #to[k] = #from[k];
-                    if k == 0 && !#to[0].is_finite() && state.iter().all(|x| x.is_finite()) {
+                    if k == 0 && #runtime::steppers::taylor::series::Coefficient::singular(#to[0], #state) {
                         #singular
                     }
                 }
@@ -448,9 +553,9 @@ fn op(
     match instr.op {
         Op::Const(c) => {
             let c = number(c);
-            quote!(#w[0] = #c;)
+            quote!(#w[0] = #ts::splat(#c);)
         }
-        Op::Param(index) => parameter(d, &w, index),
+        Op::Param(index) => parameter(d, &w, index, &ts),
         Op::Add { start, len } => {
             let terms = names.tape.operand_slots(start, len).iter().map(|s| n(*s));
             quote!(#w[#k] = #ts::add([#(#terms[#k]),*]);)
@@ -478,7 +583,7 @@ fn op(
         Op::Quotient { a, d: den, sign, f } => quotient(&ts, (&w, n(a), n(den)), (sign, f), k, rt),
         Op::Atan2 { y, x, d: den } if den == usize::MAX => {
             let (y, x) = (n(y), n(x));
-            quote!(#w[0] = #y[0].atan2(#x[0]);)
+            quote!(#w[0] = #ts::value2(#y[0], #x[0], |y: f64, x: f64| y.atan2(x));)
         }
         Op::Atan2 { y, x, d: den } => {
             let (y, x, den) = (n(y), n(x), n(den));
@@ -528,7 +633,7 @@ fn bounded(
                     FULL => quote!(#t[#k]),
                     d => {
                         let d = literal(d);
-                        quote!(if #k <= #d { #t[#k] } else { -0.0f64 })
+                        quote!(if #k <= #d { #t[#k] } else { #ts::splat(-0.0f64) })
                     }
                 }
             });
@@ -548,7 +653,7 @@ fn bounded(
 }
 
 /// A parameter's value at order 0 (`this.field`; NaN for a slot that names none).
-fn parameter(d: &Derivation, w: &TokenStream, index: usize) -> TokenStream {
+fn parameter(d: &Derivation, w: &TokenStream, index: usize, ts: &TokenStream) -> TokenStream {
     let field = d
         .parameters
         .iter()
@@ -556,12 +661,12 @@ fn parameter(d: &Derivation, w: &TokenStream, index: usize) -> TokenStream {
         .map(|(name, _)| Ident::new(name, Span::call_site()));
     match field {
         Some(field) => quote!(#w[0] = this.#field;),
-        None => quote!(#w[0] = f64::NAN;),
+        None => quote!(#w[0] = #ts::splat(f64::NAN);),
     }
 }
 
 /// w = f(a) by the quotient recurrence w′ den = sign·a′ (`Op::Quotient`: ln, asin, acos,
-/// atan), its value at order 0 f(a\[0\]).
+/// atan), its value at order 0 f(a\[0\]) (a closure over `f64`, applied lane by lane).
 fn quotient(
     ts: &TokenStream,
     (w, a, den): (&TokenStream, TokenStream, TokenStream),
@@ -570,9 +675,9 @@ fn quotient(
     rt: &TokenStream,
 ) -> TokenStream {
     let sign = number(sign);
-    let at_zero = value(f, quote!(#a[0]), rt);
+    let at_zero = value(f, quote!(x), rt);
     quote! {
-        #w[#k] = #ts::quotient(&*#a, &*#den, &*#w, #k, (#sign, if #k == 0 { #at_zero } else { 0.0 }));
+        #w[#k] = #ts::quotient(&*#a, &*#den, &*#w, #k, (#sign, |x: f64| #at_zero));
     }
 }
 

@@ -5,6 +5,15 @@
 //! `varmass_table::recurrence`, the one the run-time tapes (`varmass_symbolic::expr::TaylorTape`)
 //! call too, so the two cannot differ (`tests/taylor_emitted.rs` checks the values at order
 //! 0 and the whole series).
+//!
+//! Each function is generic over the [`Coefficient`]: `f64` for the scalar Taylor stepper,
+//! [`Lanes<W>`](crate::lanes::Lanes) for W members at once (`emit = [..., "taylor",
+//! "lanes"]`). The arithmetic rules run over the coefficient as it is (lane by lane, each
+//! lane the `f64` operation); a function's value at order 0 and the selection rules (abs,
+//! min, max), which branch, are the `f64` ones applied to each lane in turn. So a lane's
+//! coefficients are the scalar expansion's, bit for bit (`tests/taylor_lanes.rs`).
+
+use core::ops::Mul;
 
 use nalgebra::{ComplexField, RealField};
 
@@ -20,6 +29,68 @@ pub use varmass_table::sum;
 /// live below the trait, which names the scratch, in `crate::scratch`).
 pub use crate::scratch::{Scratch, LEN};
 
+/// The number a Taylor coefficient is: `f64`, or W of them side by side
+/// ([`Lanes<W>`](crate::lanes::Lanes)), each lane read and written as an `f64`.
+pub trait Coefficient: rule::Scalar + Mul<f64, Output = Self> + PartialEq {
+    /// How many `f64`s it holds.
+    const WIDTH: usize;
+    /// Lane `i`.
+    fn lane(self, i: usize) -> f64;
+    /// Lane `i` is `f(i)`.
+    fn from_fn(f: impl FnMut(usize) -> f64) -> Self;
+    /// Sets lane `i` to `x`.
+    fn set_lane(&mut self, i: usize, x: f64);
+    /// Whether a non-finite velocity at order 0 ends the expansion with a singular mass
+    /// matrix (the scalar code's check, when the state is finite). Never for lanes: a lane's
+    /// non-finite coefficient is found by the caller, which expands that member alone
+    /// again for the scalar error.
+    fn singular(velocity: Self, state: &[Self]) -> bool;
+}
+
+impl Coefficient for f64 {
+    const WIDTH: usize = 1;
+    #[inline(always)]
+    fn lane(self, _: usize) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> f64 {
+        f(0)
+    }
+    #[inline(always)]
+    fn set_lane(&mut self, _: usize, x: f64) {
+        *self = x;
+    }
+    #[inline(always)]
+    fn singular(velocity: f64, state: &[f64]) -> bool {
+        !velocity.is_finite() && state.iter().all(|x| x.is_finite())
+    }
+}
+
+/// `x` in every lane: a constant of generated code.
+#[inline(always)]
+pub fn splat<T: Coefficient>(x: f64) -> T {
+    T::splat(x)
+}
+
+/// `f` of each lane of `x`: a function's value at order 0.
+#[inline(always)]
+pub fn value<T: Coefficient>(x: T, f: impl Fn(f64) -> f64) -> T {
+    T::from_fn(|i| f(x.lane(i)))
+}
+
+/// `f` of each lane of `y` and `x`: a two-argument function's value at order 0.
+#[inline(always)]
+pub fn value2<T: Coefficient>(y: T, x: T, f: impl Fn(f64, f64) -> f64) -> T {
+    T::from_fn(|i| f(y.lane(i), x.lane(i)))
+}
+
+/// atan2(y, x) lane by lane.
+#[inline(always)]
+pub fn atan2_value<T: Coefficient>(y: T, x: T) -> T {
+    T::from_fn(|i| RealField::atan2(y.lane(i), x.lane(i)))
+}
+
 /// Coefficient arrays of several subexpressions (rows of M, offsets, momenta).
 pub type Arrays<'a> = &'a [&'a [f64; LEN]];
 
@@ -28,44 +99,49 @@ pub use varmass_table::recurrence::add;
 
 /// w = c a for a constant c.
 #[inline(always)]
-pub fn scale(c: &[f64; LEN], a: &[f64; LEN], k: usize) -> f64 {
+pub fn scale<T: Coefficient>(c: &[T; LEN], a: &[T; LEN], k: usize) -> T {
     let k = k.min(LEN - 1);
     rule::scale(|j| c[j], |j| a[j], k)
 }
 
 /// w = offset + scale·a.
 #[inline(always)]
-pub fn affine(a: &[f64; LEN], k: usize, (scale, offset): (f64, f64)) -> f64 {
+pub fn affine<T: Coefficient>(a: &[T; LEN], k: usize, (scale, offset): (f64, f64)) -> T {
     let k = k.min(LEN - 1);
     rule::affine(|j| a[j], k, (scale, offset))
 }
 
 /// w = a b.
 #[inline(always)]
-pub fn mul(a: &[f64; LEN], b: &[f64; LEN], k: usize) -> f64 {
+pub fn mul<T: Coefficient>(a: &[T; LEN], b: &[T; LEN], k: usize) -> T {
     let k = k.min(LEN - 1);
     rule::mul(|j| a[j], |j| b[j], k)
 }
 
 /// w = a b for a of degree at most `da` in t and b at most `db` ([`rule::mul_bounded`]).
 #[inline(always)]
-pub fn mul_bounded(a: &[f64; LEN], b: &[f64; LEN], k: usize, bounds: (usize, usize)) -> f64 {
+pub fn mul_bounded<T: Coefficient>(
+    a: &[T; LEN],
+    b: &[T; LEN],
+    k: usize,
+    bounds: (usize, usize),
+) -> T {
     let k = k.min(LEN - 1);
     rule::mul_bounded(|j| a[j], |j| b[j], k, bounds)
 }
 
 /// w = a².
 #[inline(always)]
-pub fn square(a: &[f64; LEN], k: usize) -> f64 {
+pub fn square<T: Coefficient>(a: &[T; LEN], k: usize) -> T {
     let k = k.min(LEN - 1);
     rule::square(|j| a[j], k)
 }
 
 /// w a = 1 (times w\[0\] = 1/a\[0\], [`rule::recip`] says why).
 #[inline(always)]
-pub fn recip(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+pub fn recip<T: Coefficient>(a: &[T; LEN], w: &[T; LEN], k: usize) -> T {
     if k == 0 {
-        return 1.0 / a[0];
+        return T::splat(1.0) / a[0];
     }
     let k = k.min(LEN - 1);
     rule::recip(|j| a[j], |j| w[j], k)
@@ -73,8 +149,8 @@ pub fn recip(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
 
 /// w d = a, times 1/d\[0\] as `recip` multiplies: one sum where 1/d and a product took two.
 #[inline(always)]
-pub fn div(a: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
-    let inverse = 1.0 / d[0];
+pub fn div<T: Coefficient>(a: &[T; LEN], d: &[T; LEN], w: &[T; LEN], k: usize) -> T {
+    let inverse = T::splat(1.0) / d[0];
     if k == 0 {
         return a[0] * inverse;
     }
@@ -84,8 +160,14 @@ pub fn div(a: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
 
 /// [`div`] for d of degree at most `dd` in t ([`rule::div_bounded`]).
 #[inline(always)]
-pub fn div_bounded(a: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize, dd: usize) -> f64 {
-    let inverse = 1.0 / d[0];
+pub fn div_bounded<T: Coefficient>(
+    a: &[T; LEN],
+    d: &[T; LEN],
+    w: &[T; LEN],
+    k: usize,
+    dd: usize,
+) -> T {
+    let inverse = T::splat(1.0) / d[0];
     if k == 0 {
         return a[0] * inverse;
     }
@@ -95,9 +177,9 @@ pub fn div_bounded(a: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize, dd:
 
 /// w² = a.
 #[inline(always)]
-pub fn sqrt_of(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+pub fn sqrt_of<T: Coefficient>(a: &[T; LEN], w: &[T; LEN], k: usize) -> T {
     if k == 0 {
-        return sqrt(a[0]);
+        return value(a[0], sqrt);
     }
     let k = k.min(LEN - 1);
     rule::sqrt(|j| a[j], |j| w[j], k)
@@ -105,10 +187,10 @@ pub fn sqrt_of(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
 
 /// w = a^α for the constant α = e\[0\].
 #[inline(always)]
-pub fn pow(a: &[f64; LEN], e: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+pub fn pow<T: Coefficient>(a: &[T; LEN], e: &[T; LEN], w: &[T; LEN], k: usize) -> T {
     let alpha = e[0];
     if k == 0 {
-        return power(a[0], alpha);
+        return T::from_fn(|i| power(a[0].lane(i), alpha.lane(i)));
     }
     let k = k.min(LEN - 1);
     rule::pow(|j| a[j], alpha, |j| w[j], k)
@@ -127,9 +209,9 @@ fn power(b: f64, e: f64) -> f64 {
 
 /// w = eᵃ.
 #[inline(always)]
-pub fn exp(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+pub fn exp<T: Coefficient>(a: &[T; LEN], w: &[T; LEN], k: usize) -> T {
     if k == 0 {
-        return crate::math::exp(a[0]);
+        return value(a[0], crate::math::exp);
     }
     let k = k.min(LEN - 1);
     rule::exp(|j| a[j], |j| w[j], k)
@@ -137,13 +219,29 @@ pub fn exp(a: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
 
 /// (sin a, cos a), or (sinh a, cosh a) for `hyperbolic`.
 #[inline(always)]
-pub fn sin_cos(a: &[f64; LEN], s: &mut [f64; LEN], c: &mut [f64; LEN], k: usize, hyperbolic: bool) {
+pub fn sin_cos<T: Coefficient>(
+    a: &[T; LEN],
+    s: &mut [T; LEN],
+    c: &mut [T; LEN],
+    k: usize,
+    hyperbolic: bool,
+) {
     if k == 0 {
-        (s[0], c[0]) = if hyperbolic {
-            (ComplexField::sinh(a[0]), ComplexField::cosh(a[0]))
-        } else {
-            ComplexField::sin_cos(a[0])
+        let each = |i| {
+            let x = a[0].lane(i);
+            if hyperbolic {
+                (ComplexField::sinh(x), ComplexField::cosh(x))
+            } else {
+                ComplexField::sin_cos(x)
+            }
         };
+        let mut cosine = T::splat(0.0);
+        s[0] = T::from_fn(|i| {
+            let (sine, cos) = each(i);
+            cosine.set_lane(i, cos);
+            sine
+        });
+        c[0] = cosine;
         return;
     }
     let k = k.min(LEN - 1);
@@ -153,12 +251,18 @@ pub fn sin_cos(a: &[f64; LEN], s: &mut [f64; LEN], c: &mut [f64; LEN], k: usize,
 
 /// tan (or tanh for `hyperbolic`) into w, and v = 1 ± w² beside it.
 #[inline(always)]
-pub fn tan(a: &[f64; LEN], w: &mut [f64; LEN], v: &mut [f64; LEN], k: usize, hyperbolic: bool) {
+pub fn tan<T: Coefficient>(
+    a: &[T; LEN],
+    w: &mut [T; LEN],
+    v: &mut [T; LEN],
+    k: usize,
+    hyperbolic: bool,
+) {
     w[k] = if k == 0 {
         if hyperbolic {
-            ComplexField::tanh(a[0])
+            value(a[0], ComplexField::tanh)
         } else {
-            ComplexField::tan(a[0])
+            value(a[0], ComplexField::tan)
         }
     } else {
         let k = k.min(LEN - 1);
@@ -170,17 +274,17 @@ pub fn tan(a: &[f64; LEN], w: &mut [f64; LEN], v: &mut [f64; LEN], k: usize, hyp
 }
 
 /// w′ d = sign·a′ for k ≥ 1 (ln: d = a; asin, acos: d = √(1 − a²); atan: d = 1 + a²);
-/// `value` = f(a\[0\]) at k = 0.
+/// at k = 0 `f`(a\[0\]), lane by lane.
 #[inline(always)]
-pub fn quotient(
-    a: &[f64; LEN],
-    d: &[f64; LEN],
-    w: &[f64; LEN],
+pub fn quotient<T: Coefficient>(
+    a: &[T; LEN],
+    d: &[T; LEN],
+    w: &[T; LEN],
     k: usize,
-    (sign, value): (f64, f64),
-) -> f64 {
+    (sign, f): (f64, impl Fn(f64) -> f64),
+) -> T {
     if k == 0 {
-        return value;
+        return value(a[0], f);
     }
     let k = k.min(LEN - 1);
     rule::quotient(|j| a[j], |j| d[j], |j| w[j], k, sign)
@@ -188,9 +292,15 @@ pub fn quotient(
 
 /// w = atan2(y, x), with d = x² + y².
 #[inline(always)]
-pub fn atan2(y: &[f64; LEN], x: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: usize) -> f64 {
+pub fn atan2<T: Coefficient>(
+    y: &[T; LEN],
+    x: &[T; LEN],
+    d: &[T; LEN],
+    w: &[T; LEN],
+    k: usize,
+) -> T {
     if k == 0 {
-        return RealField::atan2(y[0], x[0]);
+        return atan2_value(y[0], x[0]);
     }
     let k = k.min(LEN - 1);
     rule::atan2((|j| y[j], |j| x[j]), |j| d[j], |j| w[j], k)
@@ -198,29 +308,29 @@ pub fn atan2(y: &[f64; LEN], x: &[f64; LEN], d: &[f64; LEN], w: &[f64; LEN], k: 
 
 /// |a| on the branch of a\[0\]'s sign (at 0: of a's first non-zero coefficient).
 #[inline(always)]
-pub fn abs(a: &[f64; LEN], k: usize) -> f64 {
+pub fn abs<T: Coefficient>(a: &[T; LEN], k: usize) -> T {
     if k == 0 {
-        return ComplexField::abs(a[0]);
+        return value(a[0], ComplexField::abs);
     }
     let k = k.min(LEN - 1);
-    rule::abs(|j| a[j], k)
+    T::from_fn(|i| rule::abs(|j| a[j].lane(i), k))
 }
 
 /// sign a\[0\], constant over the step.
 #[inline(always)]
-pub fn sign(a: &[f64; LEN], k: usize) -> f64 {
+pub fn sign<T: Coefficient>(a: &[T; LEN], k: usize) -> T {
     if k == 0 {
-        crate::math::sign(a[0])
+        value(a[0], crate::math::sign)
     } else {
-        0.0
+        T::splat(0.0)
     }
 }
 
 /// The smaller (`larger` false) or larger argument at order 0, NaN-propagating there.
 #[inline(always)]
-pub fn min_max(a: &[f64; LEN], b: &[f64; LEN], k: usize, larger: bool) -> f64 {
+pub fn min_max<T: Coefficient>(a: &[T; LEN], b: &[T; LEN], k: usize, larger: bool) -> T {
     let k = k.min(LEN - 1);
-    rule::min_max(|j| a[j], |j| b[j], k, larger)
+    T::from_fn(|i| rule::min_max(|j| a[j].lane(i), |j| b[j].lane(i), k, larger))
 }
 
 /// Coefficient k of q̇ from M q̇ = p − b, n coordinates: M\[0\] q̇\[k\] = p\[k\] − b\[k\] −
