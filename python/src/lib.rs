@@ -11,6 +11,7 @@
 
 mod ensemble;
 mod errors;
+mod fit;
 mod model;
 mod run;
 mod sample;
@@ -25,6 +26,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::load, m)?)?;
     m.add_function(wrap_pyfunction!(run::options, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit, m)?)?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
     m.add_class::<model::NativeModel>()?;
     m.add_class::<run::RunFlags>()?;

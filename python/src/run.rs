@@ -82,6 +82,13 @@ pub struct RunFlags {
     args: RunArgs,
 }
 
+impl RunFlags {
+    /// The tool's arguments.
+    pub(crate) fn args(&self) -> &RunArgs {
+        &self.args
+    }
+}
+
 /// The arguments of a run of the model `file` with the tags `with` and `options`.
 #[pyfunction]
 pub fn options(
@@ -227,7 +234,7 @@ pub fn columns<'py>(py: Python<'py>, table: &Table) -> PyResult<Bound<'py, PyDic
 }
 
 /// The times of `table`, then each column in turn, as one block of little-endian bytes.
-fn table_block<'py>(py: Python<'py>, table: &Table) -> PyResult<Bound<'py, PyBytes>> {
+pub(crate) fn table_block<'py>(py: Python<'py>, table: &Table) -> PyResult<Bound<'py, PyBytes>> {
     let columns = (0..table.names.len()).map(|k| table.column(k));
     block(
         py,

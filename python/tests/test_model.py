@@ -317,3 +317,28 @@ def test_sensitivities_of_the_sled_at_50_m_meet_eq_24(sled):
         sol.sensitivity("x", "m0")
     with pytest.raises(ValueError, match="dormand-prince or dop853"):
         sled.run(set=SLED, init={"x": 0}, until=1, method="rk4", step=0.1, sensitivity="c")
+
+
+def test_a_fit_recovers_the_rockets_exhaust_speed_and_burn_rate():
+    """``Model.fit`` on noise-free altitudes of ``models/rocket.vms`` (y = u_e (t − (m/μ)
+    ln(m0/m)) − ½ g t², m = m0 − μ t, derived in tests/sensitivities.rs) from a start 17 %
+    and 20 % off: u_e and μ to 1e-6 relative; a mistaken argument is a TypeError."""
+    rocket = varmass.Model.from_file(str(MODELS / "rocket.vms"))
+    t = np.linspace(0.0, 10.0, 41)
+    m = 100.0 - 5.0 * t
+    y = 300.0 * (t - m / 5.0 * np.log(100.0 / m)) - 0.5 * 9.81 * t**2
+    fit = rocket.fit(
+        {"y": (t, y)},
+        {"u_e": None, "mu": (1.0, 10.0)},
+        set={"u_e": 250.0, "mu": 4.0, "g": 9.81},
+        init={"y": 0.0, "m": 100.0},
+        tol=1e-11,
+    )
+    assert fit.converged, fit
+    assert abs(fit.values["u_e"] - 300.0) <= 300.0 * 1e-6, fit
+    assert abs(fit.values["mu"] - 5.0) <= 5.0 * 1e-6, fit
+    assert fit.correlation.shape == (2, 2)
+    assert np.allclose(fit.solution["y"], y, rtol=1e-6, atol=1e-6)
+    assert fit.residuals["y"].shape == t.shape
+    with pytest.raises(TypeError, match="pair"):
+        rocket.fit({"y": t}, "u_e", set={"u_e": 250.0, "mu": 4.0, "g": 9.81}, init={"m": 100.0})

@@ -14,6 +14,7 @@ code (the run-time interpreter and the core's steppers), reached without a proce
 from ._checks import METHODS
 from ._ensemble import Distribution, Ensemble, EnsembleResult, Failure, normal, uniform
 from ._errors import Diagnostic, ModelError, ModelWarning, RunError, VarmassError
+from ._fit import FitResult
 from ._model import Check, Model
 from ._scene import PhaseChange, Scene, run_scene
 from ._solution import Solution
@@ -26,6 +27,7 @@ __all__ = [
     "Ensemble",
     "EnsembleResult",
     "Failure",
+    "FitResult",
     "Model",
     "ModelError",
     "ModelWarning",

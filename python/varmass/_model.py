@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import os
 import warnings
-from typing import List, Mapping, NamedTuple, Optional, Tuple
+from typing import Iterable, List, Mapping, NamedTuple, Optional, Tuple
+
+import numpy as np
 
 from . import _checks, _native
 from ._errors import ModelWarning, RunError
@@ -204,6 +206,77 @@ class Model:
             raise
         return Solution._of_run(raw, made[2])
 
+    def fit(
+        self,
+        data: Mapping,
+        fit,
+        *,
+        sigma: Optional[Mapping] = None,
+        set: Optional[Mapping] = None,
+        init: Optional[Mapping] = None,
+        from_=0.0,
+        until=None,
+        method: str = "dop853",
+        tol=None,
+    ):
+        """Fits parameters (and start values) of the model to measured data by weighted
+        least squares, as ``varmass fit`` does (docs/sensitivities.md#fitting).
+
+        ``data``: a mapping of model quantities to ``(times, values)`` arrays
+        (``{"y": (t, altitude)}``); ``fit``: a name, a list of names (a parameter, or a
+        start value ``"init:y'"``) or a mapping of names to ``(lo, hi)`` bounds (``None``
+        for none); ``sigma``: each quantity's standard deviation (without it the errors
+        are scaled by the residuals' spread; several quantities need theirs); ``set``:
+        the parameter values, the fitted ones' start among them; ``init``, ``from_``,
+        ``method`` (``"dop853"`` or ``"dormand-prince"``) and ``tol`` as :meth:`run`;
+        ``until`` defaults to the data's last time. Returns a :class:`FitResult`.
+        """
+        from ._fit import FitResult
+        from ._solution import _Given
+
+        if not isinstance(data, Mapping) or not data:
+            raise TypeError("data must be a non-empty mapping of quantities to (times, values)")
+        weights = dict(_checks.values("sigma", sigma))
+        series = []
+        for quantity, pair in data.items():
+            quantity = _checks.name("data", quantity)
+            try:
+                times, measured = pair
+            except (TypeError, ValueError):
+                raise TypeError(f"data[{quantity!r}] must be a pair (times, values)") from None
+            times = np.asarray(times, dtype=float).ravel()
+            measured = np.asarray(measured, dtype=float).ravel()
+            if times.shape != measured.shape or times.size == 0:
+                raise ValueError(f"data[{quantity!r}]: times and values must be equally long, not empty")
+            if not (np.all(np.isfinite(times)) and np.all(np.isfinite(measured))):
+                raise ValueError(f"data[{quantity!r}]: times and values must be finite")
+            if np.any(np.diff(times) <= 0):
+                raise ValueError(f"data[{quantity!r}]: the times must increase")
+            series.append((quantity, times.tolist(), measured.tolist(), weights.pop(quantity, None)))
+        if weights:
+            raise ValueError(f"sigma: {', '.join(weights)} is no quantity of data")
+        unknowns = _unknowns(fit)
+        last = max(s[1][-1] for s in series)
+        options = _checks.run_options(
+            {
+                "init": init,
+                "from_": from_,
+                "until": last if until is None else until,
+                "method": method,
+                "tol": tol,
+            },
+            self._facts["motors"],
+        )
+        args = _native.options(self._file, self._with, options)
+        pairs = _checks.unique_values("set", set)
+        raw = _native.fit(self._native(), pairs, args, series, unknowns)
+        names, block = raw[6], raw[7]
+        times = np.frombuffer(block, dtype="<f8").reshape(len(names) + 1, -1)[0]
+        details = _Given({"end_state": None, "statistics": None, "summary": None})
+        solution = Solution(names, block, float(times[-1]), None, details)
+        return FitResult([u[0] for u in unknowns], raw[:6], [s[0] for s in series], solution)
+
+
     def ensemble(self, seed: int, **options):
         """An ensemble of runs of this model (see :class:`varmass.Ensemble`, which takes
         ``options``)."""
@@ -220,3 +293,30 @@ def _partial_points(error):
         return None
     t, columns = table(partial)
     return {"t": t, **columns}
+
+
+def _unknowns(fit) -> list:
+    """``fit`` as (name, lo, hi) triples: a name, a list of names, or a mapping of names to
+    ``(lo, hi)`` bounds or ``None``."""
+    inf = float("inf")
+    if isinstance(fit, str):
+        return [(_checks.name("fit", fit), -inf, inf)]
+    if isinstance(fit, Mapping):
+        out = []
+        for key, bounds in fit.items():
+            if bounds is None:
+                out.append((_checks.name("fit", key), -inf, inf))
+                continue
+            try:
+                lo, hi = bounds
+            except (TypeError, ValueError):
+                raise TypeError(f"fit[{key!r}] must be (lo, hi) or None") from None
+            lo = -inf if lo is None else float(lo)
+            hi = inf if hi is None else float(hi)
+            if not lo < hi:
+                raise ValueError(f"fit[{key!r}]: lo must be below hi")
+            out.append((_checks.name("fit", key), lo, hi))
+        return out
+    if isinstance(fit, Iterable):
+        return [(_checks.name("fit", name), -inf, inf) for name in fit]
+    raise TypeError(f"fit must be a name, a list of names or a mapping, not {type(fit).__name__}")

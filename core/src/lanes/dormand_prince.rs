@@ -153,6 +153,7 @@ pub fn run_lanes_with<Sys, const N: usize, const S: usize, const W: usize>(
 where
     Sys: LaneSystem<N, S, W>,
 {
+    const { assert!(W >= 1, "a lane job needs at least one lane") };
     let kernel = Kernel::detect(kernel);
     match control.into() {
         LaneMethod::DormandPrince(control) => run_dormand_prince(jobs, control, config, kernel),

@@ -72,7 +72,8 @@ where
     let mut changed: Vec<(usize, f64)> = Vec::new();
     let system = member.core.parts().0;
     for (event_index, (event, before)) in member.events.iter().zip(&mut member.values).enumerate() {
-        let after = event.value(system, time, &state);
+        // A g that is not a number is the scalar run's error too (`run::watch`).
+        let after = crate::run::watch::read(event, system, (time, &state))?;
         if event.triggered(*before, after) {
             changed.push((event_index, *before));
         }

@@ -178,8 +178,9 @@ where
     }
     let values = events
         .iter()
-        .map(|event| event.value(system, *time, state))
-        .collect();
+        .map(|event| crate::run::watch::read(event, system, (*time, state)))
+        .collect::<Result<_, _>>()
+        .map_err(Err)?;
     Ok(Member {
         job,
         core,

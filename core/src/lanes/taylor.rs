@@ -237,8 +237,12 @@ impl<const S: usize, const W: usize> Expansion<S, W> {
         }
     }
 
-    /// The expansion of every lane to `order`, compiled for AVX where the CPU has it (as
-    /// the Dormand–Prince lanes' kernel; never FMA).
+    /// The expansion of every lane to `order`, called from a frame compiled for AVX where
+    /// the CPU has it (as the Dormand–Prince lanes' kernel; never FMA). The generated
+    /// `taylor_coefficients_lanes` is not inlined into it, so the expansion itself is
+    /// compiled for the default target (SSE2's two lanes) either way: the AVX entry gains
+    /// nothing yet (the review of session 39 found no ymm instruction in the bench binary's
+    /// expansion).
     fn kernel<Sys, const N: usize>(
         &mut self,
         kernel: Kernel,

@@ -16,7 +16,7 @@ pub(crate) mod point;
 mod record;
 mod stall;
 mod switching;
-mod watch;
+pub(crate) mod watch;
 
 pub use failure::RunError;
 pub use switching::Switching;

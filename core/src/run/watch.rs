@@ -17,8 +17,9 @@ pub const EVENT_NOT_A_NUMBER: &str = "an event's function is not a number here, 
      could never be found (a rail's event on a system without a rail, or a quantity that \
      cannot be evaluated)";
 
-/// g of `event` at `(time, state)`, or the run's error there if it is not a number.
-fn read<Sys, const N: usize, const S: usize>(
+/// g of `event` at `(time, state)`, or the run's error there if it is not a number (the
+/// lanes read their members' events through it too).
+pub(crate) fn read<Sys, const N: usize, const S: usize>(
     event: &Event<'_, S>,
     system: &Sys,
     (time, state): (f64, &SVector<f64, S>),
