@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use crate::error::CliError;
+use crate::run::output::csv_fields as fields;
 
 /// One measured quantity: the model's name for it and its (time, value) pairs.
 #[derive(Clone, Debug, PartialEq)]
@@ -18,26 +19,6 @@ pub struct Series {
     /// The standard deviation of each value (weights 1/σ²); `None`: unknown, estimated
     /// from the residuals.
     pub sigma: Option<f64>,
-}
-
-/// Splits one CSV line into fields (`"…"` quoting, `""` inside for a quote).
-fn fields(line: &str) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut field = String::new();
-    let (mut quoted, mut chars) = (false, line.chars().peekable());
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                field.push('"');
-                chars.next();
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => out.push(std::mem::take(&mut field)),
-            (c, _) => field.push(c),
-        }
-    }
-    out.push(field);
-    out.into_iter().map(|f| f.trim().to_string()).collect()
 }
 
 /// Reads the series `columns` ((quantity, CSV column) pairs) from the CSV text `text` (named

@@ -249,6 +249,26 @@ pub fn write_csv(table: &Table, path: &Path) -> Result<(), CliError> {
 
 /// A header field as CSV (RFC 4180): quoted, its quotes doubled, when it holds a comma or a
 /// quote (a recorded expression such as `atan2(y, x)`).
+/// The fields of a CSV line (RFC 4180 quotes, `""` inside for a quote; each field
+/// trimmed): how the tool reads a flight log (`[flight] log`) and `varmass fit`'s data.
+pub(crate) fn csv_fields(line: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let (mut field, mut quoted, mut chars) = (String::new(), false, line.chars().peekable());
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => out.push(std::mem::take(&mut field).trim().to_string()),
+            _ => field.push(c),
+        }
+    }
+    out.push(field.trim().to_string());
+    out
+}
+
 fn csv_field(name: &str) -> String {
     if name.contains([',', '"', '\n']) {
         format!("\"{}\"", name.replace('"', "\"\""))

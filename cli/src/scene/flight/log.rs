@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::roles::LogEntry;
 use crate::error::CliError;
+use crate::run::output::csv_fields as fields;
 
 /// The log's times and altitudes, in the file's order.
 #[derive(Clone, Debug)]
@@ -88,25 +89,6 @@ pub fn read(entry: &LogEntry, base: &Path, at: &dyn Fn(usize) -> String) -> Resu
         )));
     }
     Ok(log)
-}
-
-/// The fields of a CSV line (RFC 4180 quotes; each field trimmed).
-fn fields(line: &str) -> Vec<String> {
-    let mut out = Vec::new();
-    let (mut field, mut quoted, mut chars) = (String::new(), false, line.chars().peekable());
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                field.push('"');
-                chars.next();
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => out.push(std::mem::take(&mut field).trim().to_string()),
-            _ => field.push(c),
-        }
-    }
-    out.push(field.trim().to_string());
-    out
 }
 
 fn quoted(names: &[String]) -> String {
