@@ -56,21 +56,26 @@ impl Emitter<'_> {
     }
 }
 
+/// The compile error of a model whose state rate has no lane form, for `reason`.
+fn refused(reason: &str, taylor: bool) -> TokenStream {
+    let what = match taylor {
+        true => "emit \"lanes\" (with \"taylor\": Taylor's method in lanes)",
+        false => "emit \"lanes\"",
+    };
+    let message = format!(
+        "varmass: {what} is not available for a model with {reason}; \
+         run its ensemble on the scalar path"
+    );
+    quote!(::core::compile_error!(#message);)
+}
+
 /// The companion struct of lane parameters and the `LaneSystem` impl for `emitter`'s
 /// system (see the module docs); with `taylor`, the Taylor recurrences over lanes too
 /// (`taylor_coefficients_lanes`, for `run_lanes` with a `TaylorControl`).
 pub(crate) fn lanes_impl(emitter: &Emitter<'_>, taylor: bool) -> TokenStream {
     let roots = emitter.state_rate_roots();
     if let Some(reason) = emitter.without_lanes(&roots) {
-        let what = match taylor {
-            true => "emit \"lanes\" (with \"taylor\": Taylor's method in lanes)",
-            false => "emit \"lanes\"",
-        };
-        let message = format!(
-            "varmass: {what} is not available for a model with {reason}; \
-             run its ensemble on the scalar path"
-        );
-        return quote!(::core::compile_error!(#message););
+        return refused(reason, taylor);
     }
     let (taylor_helper, taylor_method) = match taylor {
         true => {
