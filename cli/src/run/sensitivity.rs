@@ -68,13 +68,11 @@ fn column(name: &str, program: &Program) -> Result<Column, CliError> {
     if let Some(entry) = name.strip_prefix("init:") {
         return initial_entry(entry.trim(), program).map(Column::Initial);
     }
-    let parameters = program.parameter_names();
-    if let Some(known) = parameters.iter().find(|p| **p == name) {
-        return Ok(Column::Parameter(known));
-    }
-    let known: Vec<(String, ())> = parameters.iter().map(|p| (p.to_string(), ())).collect();
+    let known: Vec<(String, &'static str)> = (program.parameter_names().iter())
+        .map(|p| (p.to_string(), *p))
+        .collect();
     super::names::resolve(name, &known, "a parameter")
-        .map(|_| unreachable!("a known parameter was found above"))
+        .map(Column::Parameter)
         .map_err(|e| CliError::Input(format!("--sensitivity: {e}; or init:x, init:x', init:m")))
 }
 
@@ -340,8 +338,8 @@ fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
         None => None,
     };
     let vs = velocity_state.as_slice();
-    let mut row = Vec::new();
-    let mut times = Vec::new();
+    // Column by column: each recorded quantity's derivative, then t's (`column_names`).
+    let mut row = Vec::with_capacity(plan.sensitivities.len() * (plan.record.len() + 1));
     for (c, sensitivity) in plan.sensitivities.iter().enumerate() {
         let mut direction = Direction {
             time: 0.0,
@@ -351,11 +349,8 @@ fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
                     false => state[S * (1 + c) + i],
                 })
                 .collect(),
-            parameters: (0..parameters)
-                .map(|j| match sensitivity.column {
-                    Column::Parameter(name) => f64::from(program.parameter_names()[j] == name),
-                    _ => 0.0,
-                })
+            parameters: (program.parameter_names().iter())
+                .map(|name| f64::from(sensitivity.column == Column::Parameter(name)))
                 .collect(),
         };
         if let (Some(observable), Some(motion)) = (event, &motion) {
@@ -369,16 +364,9 @@ fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
                 derivative(program, Some(*o), t, vs, &direction).map_err(|e| e.to_string())?;
             row.push(value);
         }
-        times.push(direction.time);
+        row.push(direction.time);
     }
-    // The time columns after the quantities', in the names' order (`column_names`).
-    let quantities = plan.record.len();
-    let mut ordered = Vec::with_capacity(row.len() + times.len());
-    for (c, time) in times.into_iter().enumerate() {
-        ordered.extend_from_slice(&row[c * quantities..(c + 1) * quantities]);
-        ordered.push(time);
-    }
-    Ok(ordered)
+    Ok(row)
 }
 
 /// The motion's direction at the point: (1, q̇, q̈, ṁ_s, 0).

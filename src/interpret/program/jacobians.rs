@@ -16,7 +16,7 @@
 use varmass_core::SystemError;
 use varmass_symbolic::mechanics::{sensitivity_obstacle, time_tables, Derivation, Outputs};
 
-use super::super::cholesky::cholesky_solve;
+use super::super::cholesky::{cholesky_factor, cholesky_substitute};
 use super::super::names::intern_list;
 use super::{Program, Stage};
 
@@ -112,14 +112,18 @@ impl<'a> Blocks<'a> {
         (n, k): (usize, usize),
         columns: usize,
     ) -> Result<Vec<f64>, SystemError> {
+        // M factored once, each column substituted.
+        let mut factor = self.mass.to_vec();
+        if !cholesky_factor(&mut factor, n) {
+            return Err(SystemError::SingularMassMatrix);
+        }
         let mut v = vec![0.0; n * columns];
         let mut column = vec![0.0; n];
         for c in 0..columns {
             for a in 0..n {
                 column[a] = -px[a * columns + c];
             }
-            let mut mass = self.mass.to_vec();
-            if !cholesky_solve(&mut mass, &mut column, n) {
+            if !cholesky_substitute(&factor, &mut column, n) {
                 return Err(SystemError::SingularMassMatrix);
             }
             for a in 0..n {
