@@ -216,4 +216,18 @@ fn varmass_fit_reports_the_fitted_values() {
     two.extend(["--init", "y=0", "--init", "y'=0", "--init", "m=100"]);
     let (_, stderr) = varmass(&two, 2);
     assert!(stderr.contains("give --sigma"), "{stderr}");
+    // Seven unknowns: one more than a run's sensitivity columns.
+    let mut seven = vec![
+        "fit",
+        "../models/rocket.vms",
+        "--data",
+        &data,
+        "--column",
+        column,
+    ];
+    for name in ["u_e", "mu", "g", "init:y", "init:y'", "init:m", "u_e"] {
+        seven.extend(["--fit", name]);
+    }
+    let (_, stderr) = varmass(&seven, 2);
+    assert!(stderr.contains("at most 6"), "{stderr}");
 }

@@ -208,6 +208,14 @@ pub fn fit(
     series: &[Series],
     unknowns: &[Unknown],
 ) -> Result<Fit, CliError> {
+    let most = crate::run::sensitivity::MAX_SENSITIVITIES;
+    if unknowns.len() > most {
+        return Err(CliError::Input(format!(
+            "--fit is given {} times; a fit takes at most {most} unknowns (each is a \
+             sensitivity column of every run)",
+            unknowns.len()
+        )));
+    }
     let values = compiled.model().with_defaults(&values);
     let start = start_values(args, &values, unknowns)?;
     let problem = Problem {

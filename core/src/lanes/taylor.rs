@@ -218,8 +218,10 @@ impl<const S: usize, const W: usize> Expansion<S, W> {
         Sys::taylor_coefficients_lanes(parameters, t, &y, probe, &mut self.scratch).is_some()
     }
 
-    /// Each member's point into its lane; an empty lane repeats an occupied one's (its
-    /// result unread), so that it computes nothing out of the domain.
+    /// Each member's point into its lane; an empty lane repeats an occupied one's point
+    /// (its result unread). Its parameters stay those of the member it last held, so its
+    /// expansion may leave the domain (a NaN, never read: each lane's stepper reads only its
+    /// own lane).
     fn load<Sys, const N: usize>(&mut self, lanes: &[Option<TaylorMember<'_, '_, Sys, N, S>>; W])
     where
         Sys: LaneSystem<N, S, W>,
