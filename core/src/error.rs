@@ -234,6 +234,30 @@ pub enum SystemError {
     /// "sensitivities"]`).
     #[error("the system gives no parameter Jacobian for its sensitivities")]
     NoParameterJacobian,
+    /// Forward sensitivities crossed a switch whose gradient the system does not give
+    /// ([`VariableMassSystem::switch_gradient`](crate::VariableMassSystem::switch_gradient)).
+    #[error("the system gives no gradient of switch {switch} for its sensitivities")]
+    NoSwitchGradient {
+        /// The switch's index.
+        switch: usize,
+    },
+    /// Forward sensitivities met a switch crossed tangentially (dg/dt = 0 along the motion
+    /// there): its time has no derivative with respect to the parameters.
+    #[error("switch {switch} is crossed tangentially: its time has no derivative")]
+    TangentSwitch {
+        /// The switch's index.
+        switch: usize,
+    },
+    /// Forward sensitivities met two switches crossed in one step over rounding whose times
+    /// move differently with a column: which comes first depends on the column's sign, and
+    /// the state has no derivative there.
+    #[error("switches {first} and {second} cross together and move apart with a column")]
+    SwitchesTogether {
+        /// The first switch's index.
+        first: usize,
+        /// The second's.
+        second: usize,
+    },
     /// A support (a pad's hold, a rail) was asked to hold or guide a system with
     /// sensitivities: it clamps the mechanics' rows only, so the columns would move as if
     /// the body were free.

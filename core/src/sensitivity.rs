@@ -15,9 +15,14 @@
 //! the Runge–Kutta steppers, explicit and implicit, integrate both with one step-size
 //! control, the error control covering the sensitivities too (CVODES's `errconS = true`).
 //!
+//! At a switch of the equations (`sign`, `abs`, `min`, `max`, a table of the state's knots)
+//! whose time moves with a column, the run hands the crossing to
+//! [`VariableMassSystem::cross_switches`] and the columns jump (`switches.rs`), from the
+//! switches' gradients the system gives ([`VariableMassSystem::switch_gradient`]).
+//!
 //! What is not handled yet is refused, never integrated wrongly: at construction a system
-//! with switching functions (a switch that moves with θ makes s jump), sampled inputs (a
-//! sample replaces state entries) or what its [`VariableMassSystem::sensitivity_obstacle`]
+//! with switching functions but no gradients of them (generated code, as yet), sampled
+//! inputs (a sample replaces state entries) or what its [`VariableMassSystem::sensitivity_obstacle`]
 //! names (no symbolic Jacobians, inputs, a table of t whose knots move with a parameter, a
 //! support); the Taylor stepper (no recurrences for s) and the variational one (it
 //! integrates the Lagrange side) at theirs; a run of phases at its first change
@@ -31,6 +36,8 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::system::{SystemError, VariableMassSystem};
 use crate::tangent::Tangent;
+
+mod switches;
 
 /// A column of the sensitivity matrix: what the state is differentiated with respect to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -189,7 +196,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
                 augmented: SA,
             });
         }
-        if system.switch_count() > 0 {
+        if system.switch_count() > 0 && !system.has_switch_gradients() {
             return Err(SensitivityError::Unsupported("switches"));
         }
         if let Some(reason) = system.sensitivity_obstacle() {
@@ -596,6 +603,43 @@ where
 
     fn next_stop_time(&self, after: f64) -> Option<f64> {
         self.system.next_stop_time(after)
+    }
+
+    fn switch_count(&self) -> usize {
+        self.system.switch_count()
+    }
+
+    fn switch_name(&self, index: usize) -> Option<&str> {
+        self.system.switch_name(index)
+    }
+
+    fn switching_functions(&self, t: f64, velocity_state: &SVector<f64, SA>, values: &mut [f64]) {
+        (self.system).switching_functions(t, &head::<S, SA>(velocity_state), values);
+    }
+
+    fn switch_anchors(&self, t: f64, velocity_state: &SVector<f64, SA>, anchors: &mut [f64]) {
+        (self.system).switch_anchors(t, &head::<S, SA>(velocity_state), anchors);
+    }
+
+    fn anchored_switching_functions(
+        &self,
+        t: f64,
+        velocity_state: &SVector<f64, SA>,
+        anchors: &[f64],
+        values: &mut [f64],
+    ) {
+        let head = head::<S, SA>(velocity_state);
+        (self.system).anchored_switching_functions(t, &head, anchors, values);
+    }
+
+    /// The columns jump where a switch's time moves with them (`switches.rs`).
+    fn cross_switches(
+        &self,
+        crossed: &[usize],
+        before: (f64, &SVector<f64, SA>, &SVector<f64, SA>),
+        after: (f64, &mut SVector<f64, SA>),
+    ) -> Result<(), SystemError> {
+        self.jump_at_switches::<N, SA>(crossed, before, after)
     }
 
     fn flow_count(&self) -> usize {

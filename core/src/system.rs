@@ -154,6 +154,43 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         self.switching_functions(t, velocity_state, values);
     }
 
+    /// Whether [`Self::switch_gradient`] gives the switches' gradients (what forward
+    /// sensitivities need to move a switch's time with a parameter, `sensitivity::Sensitive`).
+    /// `false` by default; a run-time model derived with sensitivities has them.
+    fn has_switch_gradients(&self) -> bool {
+        false
+    }
+
+    /// The gradient of switching function `index` at a velocity state,
+    /// `[g_t, g_q, g_q̇, g_{m_s}, g_θ]` into `out` (1 + 2N + state masses + the
+    /// [`Self::parameter_names`] count entries; total derivatives, the mass laws followed).
+    /// An anchored switch's is its argument's: g = ±(argument − knot) near a crossing, and
+    /// its sign cancels in the time's derivative. `Ok(false)` when the system has none, the
+    /// default.
+    fn switch_gradient(
+        &self,
+        _index: usize,
+        _t: f64,
+        _velocity_state: &SVector<f64, S>,
+        _out: &mut [f64],
+    ) -> Result<bool, SystemError> {
+        Ok(false)
+    }
+
+    /// Where a run crossed the switches `crossed` from `before` (its time, state and state
+    /// rate there, on the side the run came from) to `after` (the far end of the crossing,
+    /// by one Euler step over rounding): a system whose state carries more than the motion
+    /// moves it there — forward sensitivities jump by (f⁻ − f⁺) dτ/dw
+    /// (`sensitivity::Sensitive`). Nothing by default.
+    fn cross_switches(
+        &self,
+        _crossed: &[usize],
+        _before: (f64, &SVector<f64, S>, &SVector<f64, S>),
+        _after: (f64, &mut SVector<f64, S>),
+    ) -> Result<(), SystemError> {
+        Ok(())
+    }
+
     /// The first time after `after` at which the state rate is not smooth in t (a knot of a
     /// table of t, a sample of a held input), which runs land on exactly and restart at.
     /// None by default.
@@ -475,7 +512,10 @@ impl<const S: usize> StepError<S> {
             | SystemError::SampledInputNotFinite { .. }
             | SystemError::SupportCoupled { .. }
             | SystemError::NoParameterJacobian
-            | SystemError::SupportedSensitivities => error,
+            | SystemError::SupportedSensitivities
+            | SystemError::NoSwitchGradient { .. }
+            | SystemError::TangentSwitch { .. }
+            | SystemError::SwitchesTogether { .. } => error,
         };
         Self::new(time, state, StepErrorKind::System(error))
     }

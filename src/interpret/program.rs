@@ -103,6 +103,9 @@ pub struct Program {
     jacobians: Option<Jacobians>,
     /// The gradients of recorded expressions (`gradients.rs`), compiled when asked.
     gradients: Vec<(Id, Stage)>,
+    /// The switching functions' gradients, one after the other (`gradients.rs`), with the
+    /// Jacobians: what the sensitivities jump by at a switch.
+    switch_gradients: Option<Stage>,
     scratch: RefCell<Scratch>,
 }
 
@@ -132,6 +135,9 @@ impl Program {
         let law_slots = law_slots.collect();
         let (switch_roots, switch_names, switch_tables) = switches(&mut d);
         let jacobians = Jacobians::new(&mut d);
+        let switch_gradients = jacobians
+            .as_ref()
+            .map(|_| gradients::switch_gradients(&mut d, &switch_roots));
         let code = d.code_roots(Outputs::FULL);
         let (tables, stop_roots) = stop_tables(
             &mut d,
@@ -181,6 +187,7 @@ impl Program {
             periods,
             jacobians,
             gradients: Vec::new(),
+            switch_gradients,
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),

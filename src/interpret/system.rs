@@ -270,6 +270,35 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         self.program.parameter_names()
     }
 
+    fn has_switch_gradients(&self) -> bool {
+        self.program.has_switch_gradients()
+    }
+
+    /// The program's gradient, the velocity state's part padded to S entries.
+    fn switch_gradient(
+        &self,
+        index: usize,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+        out: &mut [f64],
+    ) -> Result<bool, SystemError> {
+        let moved = 2 * self.program.coordinate_count() + self.program.state_mass_count();
+        let parameters = self.parameter_names().len();
+        let mut model = vec![0.0; 1 + moved + parameters];
+        if !(self.program).switch_gradient(index, t, velocity_state.as_slice(), &mut model)? {
+            return Ok(false);
+        }
+        out.iter_mut().for_each(|x| *x = 0.0);
+        let (head, theta) = model.split_at(1 + moved);
+        let places = (0..head.len()).chain((1 + S)..(1 + S + parameters));
+        for (place, value) in places.zip(head.iter().chain(theta)) {
+            if let Some(o) = out.get_mut(place) {
+                *o = *value;
+            }
+        }
+        Ok(true)
+    }
+
     fn switch_count(&self) -> usize {
         self.program.switch_count()
     }

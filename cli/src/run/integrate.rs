@@ -496,7 +496,17 @@ impl Advice {
                 ),
             ),
             // The tool's runs carry no sensitivities yet (docs/sensitivities.md).
-            SystemError::NoParameterJacobian | SystemError::SupportedSensitivities => (
+            SystemError::TangentSwitch { .. } | SystemError::SwitchesTogether { .. } => (
+                what,
+                format!(
+                    "the derivatives do not exist where a switch is grazed or two cross at \
+                     once: end the run before it ({until}, {stop_when}), or drop the \
+                     sensitivity that moves it"
+                ),
+            ),
+            SystemError::NoParameterJacobian
+            | SystemError::SupportedSensitivities
+            | SystemError::NoSwitchGradient { .. } => (
                 what,
                 "the model gives no parameter Jacobian, or a support holds it: derive it with \
                  its sensitivities and fly it free"

@@ -113,13 +113,6 @@ pub fn prepare(program: &mut Program, plan: &Plan) -> Result<(), CliError> {
              {reason} (docs/sensitivities.md)"
         )));
     }
-    if program.switch_count() > 0 {
-        return Err(CliError::Input(
-            "--sensitivity: the model has switches, whose times move with the parameters; \
-             their jumps are not applied yet (docs/sensitivities.md)"
-                .to_string(),
-        ));
-    }
     let watched = plan.stop_when.iter().map(|c| Some(c.observable));
     let recorded = plan.record.iter().map(|(name, recorded)| match recorded {
         Recorded::Quantity(o) => Ok(Some(*o)),

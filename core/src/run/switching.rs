@@ -16,6 +16,12 @@
 //! `near` too early (a state-dependent switch), the landing finds no change of sign across
 //! the bracket and the run simply goes on from `near`: the next crossing step is shorter.
 //!
+//! Where the state carries more than the motion (forward sensitivities), the crossing step
+//! hands it to [`VariableMassSystem::cross_switches`], which jumps it: the columns move by
+//! (f⁻ − f⁺) dτ/dw (`sensitivity/switches.rs`). A start standing on a switch applies no
+//! jump: the columns are then the derivatives for the perturbations that keep the start on
+//! the side the motion enters (the other side's crossing would move the switch's time).
+//!
 //! A switch crossed [`Switching::chatter_crossings`] times within
 //! [`Switching::chatter_window`] of the run's span chatters: the run ends with
 //! [`StepErrorKind::Chattering`].
@@ -317,9 +323,10 @@ impl SwitchWatch {
                         // its end so that the switch watches the bracket the run is in
                         // (kept on the old one, its g would keep the sign it changed to
                         // and never change again).
+                        let crossed = self.crossed_by(&after);
                         self.keep(&after);
                         self.anchor(system, end.time, &end.state)?;
-                        Ok(Crossing::None)
+                        self.carried_across(system, (start, end), &crossed)
                     }
                     other => other,
                 }
@@ -332,6 +339,44 @@ impl SwitchWatch {
         };
         self.scratch = after;
         result
+    }
+
+    /// The switches whose g changed sign from the last point to `after`.
+    fn crossed_by(&self, after: &[f64]) -> Vec<usize> {
+        (self.values.iter().zip(after).enumerate())
+            .filter(|(_, (&before, &after))| changed_sign(before, after))
+            .map(|(index, _)| index)
+            .collect()
+    }
+
+    /// A step that stands across the switches `crossed`: for a system whose state carries
+    /// more than the motion (sensitivities), that part jumps at the step's end, from the
+    /// motion at its start (first order in the step: the crossing is not located), and the
+    /// stepper restarts there; else the step simply stands.
+    fn carried_across<Sys, const N: usize, const S: usize>(
+        &self,
+        system: &Sys,
+        (start, end): (&Point<S>, &Point<S>),
+        crossed: &[usize],
+    ) -> Result<Crossing<S>, StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        if crossed.is_empty() || !system.has_rate_only_state() {
+            return Ok(Crossing::None);
+        }
+        let rate = match start.rate {
+            Some(rate) => rate,
+            None => rate_at(system, start.time, &start.state)?,
+        };
+        let mut state = end.state;
+        let before = (start.time, &start.state, &rate);
+        (system.cross_switches(crossed, before, (end.time, &mut state)))
+            .map_err(|error| StepError::from_system(system, error, end.time, &end.state))?;
+        Ok(Crossing::Cross {
+            time: end.time,
+            state,
+        })
     }
 
     /// Takes `after` as g at the last point, except where it is exactly zero: there the
@@ -477,13 +522,10 @@ impl SwitchWatch {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        let (time, state) = (point.time + step, point.state + rate * step);
+        let (time, mut state) = (point.time + step, point.state + rate * step);
         let mut after = vec![0.0; self.values.len()];
         self.evaluate(system, time, &state, &mut after)?;
-        let crossings: Vec<usize> = (self.values.iter().zip(&after).enumerate())
-            .filter(|(_, (&before, &after))| changed_sign(before, after))
-            .map(|(index, _)| index)
-            .collect();
+        let crossings = self.crossed_by(&after);
         for &index in &crossings {
             self.count(index, time, &state)?;
         }
@@ -491,6 +533,10 @@ impl SwitchWatch {
         if !crossed {
             return Ok(None);
         }
+        // What the state carries past the motion (sensitivities) jumps here.
+        let before = (point.time, &point.state, rate);
+        (system.cross_switches(&crossings, before, (time, &mut state)))
+            .map_err(|error| StepError::from_system(system, error, time, &state))?;
         self.keep(&after);
         self.anchor(system, time, &state)?;
         Ok(Some(Crossing::Cross { time, state }))
