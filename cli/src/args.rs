@@ -146,6 +146,11 @@ pub struct RunArgs {
     /// sets its data's times).
     #[arg(skip)]
     pub at: Vec<f64>,
+    /// Also the rates `d(X)/d(t)` of the recorded quantities along the motion, beside the
+    /// sensitivities' columns (not a flag: `varmass fit` fits a log's time offset with
+    /// them).
+    #[arg(skip)]
+    pub rates: bool,
 }
 
 /// Where a run's settings were written, so that a message names what its user wrote: the

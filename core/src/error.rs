@@ -241,6 +241,13 @@ pub enum SystemError {
         /// The switch's index.
         switch: usize,
     },
+    /// Forward sensitivities met a switch the run could not locate (a step was left standing
+    /// across it, `run/switching.rs`): the columns' jump there is unknown.
+    #[error("switch {switch} was crossed where the run could not locate it: the sensitivities' jump there is unknown")]
+    UnlocatedSwitch {
+        /// The switch's index.
+        switch: usize,
+    },
     /// Forward sensitivities met a switch crossed tangentially (dg/dt = 0 along the motion
     /// there): its time has no derivative with respect to the parameters.
     #[error("switch {switch} is crossed tangentially: its time has no derivative")]

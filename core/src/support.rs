@@ -349,6 +349,19 @@ where
         );
         fn next_stop_time(&self, after: f64) -> Option<f64>;
         fn has_rate_only_state(&self) -> bool;
+        /// Free, a system with sensitivities jumps its columns at a switch (held or on a
+        /// rail it is refused, `SupportedSensitivities`): without these the trait's no-op
+        /// would cross the switches without the jump, silently.
+        fn has_switch_gradients(&self) -> bool;
+        fn switch_gradient(
+            &self, index: usize, t: f64, velocity_state: &SVector<f64, S>, out: &mut [f64]
+        ) -> Result<bool, SystemError>;
+        fn cross_switches(
+            &self,
+            crossed: &[usize],
+            before: (f64, &SVector<f64, S>, &SVector<f64, S>),
+            after: (f64, &mut SVector<f64, S>)
+        ) -> Result<(), SystemError>;
         /// Without it a supported spatial body's run would report no approach to gimbal
         /// lock (the trait's default), silently.
         fn singular_attitude_distance(&self, t: f64, state: &SVector<f64, S>) -> Option<f64>;

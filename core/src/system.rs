@@ -514,6 +514,7 @@ impl<const S: usize> StepError<S> {
             | SystemError::NoParameterJacobian
             | SystemError::SupportedSensitivities
             | SystemError::NoSwitchGradient { .. }
+            | SystemError::UnlocatedSwitch { .. }
             | SystemError::TangentSwitch { .. }
             | SystemError::SwitchesTogether { .. } => error,
         };

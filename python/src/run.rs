@@ -67,6 +67,7 @@ pub fn run_args(file: &str, with: &[String], options: Options) -> Result<RunArgs
         record: options.record,
         sensitivity: options.sensitivity,
         at: Vec::new(),
+        rates: false,
         every: options.every,
         csv: None,
         plot: None,

@@ -21,6 +21,22 @@ pub struct Series {
     pub sigma: Option<f64>,
 }
 
+/// Keeps the data at times from `from` to `until` (the run's span: the ascent of a flight
+/// log, say); returns how many were left out.
+pub fn window(series: &mut [Series], from: f64, until: Option<f64>) -> usize {
+    let inside = |t: f64| t >= from && until.is_none_or(|u| t <= u);
+    let mut left_out = 0;
+    for s in series {
+        let kept: Vec<(f64, f64)> = (s.times.iter().zip(&s.values))
+            .filter(|(t, _)| inside(**t))
+            .map(|(t, x)| (*t, *x))
+            .collect();
+        left_out += s.times.len() - kept.len();
+        (s.times, s.values) = kept.into_iter().unzip();
+    }
+    left_out
+}
+
 /// Reads the series `columns` ((quantity, CSV column) pairs) from the CSV text `text` (named
 /// `path` in messages), with the times in `time` (default: the first column).
 pub fn read(

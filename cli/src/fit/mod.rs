@@ -8,6 +8,7 @@
 pub mod data;
 pub mod lm;
 mod plot;
+mod predict;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -47,9 +48,21 @@ pub struct FitArgs {
     /// errors are scaled by the residuals' own spread).
     #[arg(long = "sigma", value_name = "QUANTITY=VALUE")]
     pub sigma: Vec<String>,
+    /// After the fit, run the fitted model on to this condition (`"z' < 0"`: the apogee)
+    /// and report the data's quantities there with their standard errors.
+    #[arg(long, value_name = "CONDITION")]
+    pub predict: Option<String>,
+    /// How long the prediction's run may go (default: ten times the data's span).
+    #[arg(long, value_name = "T", requires = "predict")]
+    pub predict_until: Option<f64>,
 }
 
-/// An unknown: a parameter or an initial value (`init:x`), with its bounds.
+/// The unknown that is the data's time offset, t_data = t_model + offset (a log whose
+/// clock started before ignition): `--fit data:offset=LO:HI`.
+pub const OFFSET: &str = "data:offset";
+
+/// An unknown: a parameter, an initial value (`init:x`) or the data's time offset
+/// ([`OFFSET`]), with its bounds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Unknown {
     /// The name as `--sensitivity` takes it.
@@ -112,11 +125,22 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
-    /// The run's arguments and parameter values at θ.
+    /// The data's time offset at θ (0 when it is not fitted).
+    fn offset(&self, theta: &DVector<f64>) -> f64 {
+        (self.unknowns.iter().zip(theta.iter()))
+            .find(|(u, _)| u.name == OFFSET)
+            .map_or(0.0, |(_, x)| *x)
+    }
+
+    /// The run's arguments and parameter values at θ: the unknowns' sensitivities, and the
+    /// quantities' rates when the offset is fitted (∂X(tᵢ − δ)/∂δ = −Ẋ).
     fn at(&self, theta: &DVector<f64>) -> (RunArgs, Vec<(String, f64)>) {
         let mut args = self.args.clone();
         let mut values = self.values.to_vec();
         for (u, x) in self.unknowns.iter().zip(theta.iter()) {
+            if u.name == OFFSET {
+                continue;
+            }
             match u.name.strip_prefix("init:").map(str::trim) {
                 Some(entry) => {
                     args.init
@@ -129,7 +153,11 @@ impl Problem<'_> {
                 },
             }
         }
-        args.sensitivity = self.unknowns.iter().map(|u| u.name.clone()).collect();
+        args.sensitivity = (self.unknowns.iter())
+            .filter(|u| u.name != OFFSET)
+            .map(|u| u.name.clone())
+            .collect();
+        args.rates = self.unknowns.iter().any(|u| u.name == OFFSET);
         let mut record: Vec<String> = Vec::new();
         for s in self.series {
             if !record.contains(&s.quantity) {
@@ -137,16 +165,17 @@ impl Problem<'_> {
             }
         }
         args.record = vec![record.join(",")];
-        let mut times: Vec<f64> = self
-            .series
-            .iter()
-            .flat_map(|s| s.times.iter().copied())
+        let offset = self.offset(theta);
+        let mut times: Vec<f64> = (self.series.iter())
+            .flat_map(|s| s.times.iter().map(|t| t - offset))
             .collect();
         times.sort_by(f64::total_cmp);
         times.dedup();
-        if args.until.is_none() {
-            args.until = times.last().copied();
-        }
+        // A run at least as long as the data (the offset may move them past `--until`).
+        args.until = match (args.until, times.last()) {
+            (Some(until), Some(last)) => Some(until.max(*last)),
+            (until, last) => until.or(last.copied()),
+        };
         args.at = times;
         (args, values)
     }
@@ -158,6 +187,7 @@ impl Problem<'_> {
         theta: &DVector<f64>,
     ) -> Result<(DVector<f64>, DMatrix<f64>, Table), String> {
         let (args, values) = self.at(theta);
+        let offset = self.offset(theta);
         let done = compiled.execute(&args, false, values, |_| {});
         let table = done.map_err(|failed| failed.error.to_string())?.table;
         let n = self.unknowns.len();
@@ -166,14 +196,21 @@ impl Problem<'_> {
             let sigma = s.sigma.unwrap_or(1.0);
             let column = |name: &str| table.names.iter().position(|c| c == name);
             let value = column(&s.quantity).ok_or("the quantity was not recorded")?;
-            let derivatives: Vec<usize> = (self.unknowns.iter())
-                .map(|u| column(&format!("d({})/d({})", s.quantity, u.name)))
+            // ∂r/∂δ = −Ẋ(tᵢ − δ)/σ for the offset, (dX/dw)(tᵢ − δ)/σ for the others.
+            let derivatives: Vec<(usize, f64)> = (self.unknowns.iter())
+                .map(|u| match u.name == OFFSET {
+                    true => column(&format!("d({})/d(t)", s.quantity)).map(|c| (c, -1.0)),
+                    false => column(&format!("d({})/d({})", s.quantity, u.name)).map(|c| (c, 1.0)),
+                })
                 .collect::<Option<_>>()
                 .ok_or("a derivative was not recorded")?;
             for (t, x) in s.times.iter().zip(&s.values) {
-                let row = row_at(&table, *t)?;
+                let row = row_at(&table, t - offset)?;
                 r.push((table.column(value)[row] - x) / sigma);
-                j.extend(derivatives.iter().map(|d| table.column(*d)[row] / sigma));
+                let jacobian = derivatives
+                    .iter()
+                    .map(|(d, sign)| sign * table.column(*d)[row]);
+                j.extend(jacobian.map(|d| d / sigma));
             }
         }
         let m = r.len();
@@ -294,6 +331,10 @@ fn start_values(
     };
     let mut start = Vec::new();
     for u in unknowns {
+        if u.name == OFFSET {
+            start.push(0.0_f64.clamp(u.bounds.0, u.bounds.1));
+            continue;
+        }
         let value = match u.name.strip_prefix("init:").map(str::trim) {
             Some(entry) => args
                 .init
@@ -382,7 +423,20 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
         })
         .collect::<Option<_>>()
         .ok_or_else(|| CliError::Input("--column: expected QUANTITY=COLUMN".to_string()))?;
+    let unknowns: Vec<Unknown> = args
+        .fit
+        .iter()
+        .map(|f| Unknown::parse(f))
+        .collect::<Result<_, _>>()?;
     let mut series = data::read(&text, &args.data, args.time.as_deref(), &pairs)?;
+    // The window is the run's span at the offset's start (0, or its bound nearest 0).
+    let shift = (unknowns.iter().find(|u| u.name == OFFSET))
+        .map_or(0.0, |u| 0.0_f64.clamp(u.bounds.0, u.bounds.1));
+    let left_out = data::window(
+        &mut series,
+        args.run.from + shift,
+        args.run.until.map(|u| u + shift),
+    );
     for sigma in &args.sigma {
         let (quantity, value) = crate::run::names::assignment(sigma, "--sigma")?;
         let mut measured = series
@@ -396,15 +450,10 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
         }
         measured.for_each(|s| s.sigma = Some(value));
     }
-    let unknowns: Vec<Unknown> = args
-        .fit
-        .iter()
-        .map(|f| Unknown::parse(f))
-        .collect::<Result<_, _>>()?;
     let model = crate::model::load(&args.run.model)?;
     let values = crate::run::plan::parameters(&args.run)?;
     let mut compiled = Compiled::new(model);
-    let fitted = fit(&mut compiled, &args.run, values, &series, &unknowns)?;
+    let fitted = fit(&mut compiled, &args.run, values.clone(), &series, &unknowns)?;
     if let Some(path) = &args.run.csv {
         crate::run::output::write_csv(&fitted.table, path)?;
     }
@@ -416,7 +465,30 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
             path,
         )?;
     }
-    Ok(report(&fitted, &series))
+    let mut out = report(&fitted, &series);
+    if let Some(condition) = &args.predict {
+        let values = compiled.model().with_defaults(&values);
+        let problem = Problem {
+            args: &args.run,
+            values: &values,
+            series: &series,
+            unknowns: &unknowns,
+        };
+        let span = (series.iter().flat_map(|s| s.times.iter()))
+            .fold(args.run.from, |end, t| end.max(*t))
+            - args.run.from;
+        let until = (args.predict_until).unwrap_or(args.run.from + 10.0 * span.max(1.0));
+        out += &predict::report(&mut compiled, &problem, &fitted, condition, until)?;
+    }
+    if left_out > 0 {
+        let until = args.run.until.map_or("the data's end".to_string(), shown);
+        let _ = writeln!(
+            out,
+            "{left_out} data outside the run (--from {} to --until {until}) were left out",
+            shown(args.run.from)
+        );
+    }
+    Ok(out)
 }
 
 /// `value ± error`, the error to two significant digits and the value to the same decimal

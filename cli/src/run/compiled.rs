@@ -215,7 +215,7 @@ impl Compiled {
         values: Vec<(String, f64)>,
         warn: impl FnMut(&str),
     ) -> Result<(Program, &mut Plan), CliError> {
-        self.match_sensitivities(!args.sensitivity.is_empty())?;
+        self.match_sensitivities(!args.sensitivity.is_empty() || args.rates)?;
         self.apply_laws(args)?;
         let program = self.program(&values, args.words, warn)?;
         match self.plan(args, values, &program) {
@@ -274,7 +274,7 @@ impl Compiled {
     ) -> Result<(Outcome, &Plan), CliError> {
         let (mut program, plan) = self.prepare(args, values, warn)?;
         plan.progress = progress;
-        if !plan.sensitivities.is_empty() {
+        if plan.differentiated() {
             super::sensitivity::prepare(&mut program, plan)?;
         }
         Ok((dispatch(program, plan)?, plan))
@@ -418,7 +418,7 @@ fn recorded(outcome: &mut Outcome, plan: &Plan) -> Result<Table, Failed> {
         table: Some(table),
     };
     let table = output::table(&outcome.program, &plan.record, outcome.points.iter());
-    let table = match plan.sensitivities.is_empty() {
+    let table = match !plan.differentiated() {
         true => table,
         false => table.map(|t| super::sensitivity::with_derivatives(t, plan, &outcome.derivatives)),
     };

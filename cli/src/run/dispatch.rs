@@ -136,7 +136,7 @@ impl SizedRun for Single<'_> {
 /// table has it, else its number of coordinates padded to `MAX_STATE_MASSES` state masses
 /// (the points come back unpadded).
 pub fn dispatch(program: Program, plan: &Plan) -> Result<Outcome, CliError> {
-    if !plan.sensitivities.is_empty() {
+    if plan.differentiated() {
         return super::sensitivity::dispatch(program, plan);
     }
     on_sizes(Sizes::of(&program), true, Single { program, plan })
@@ -194,5 +194,6 @@ pub(crate) fn padded_plan(plan: &Plan, len: usize, padded: usize) -> Result<Plan
         words: plan.words,
         sensitivities: plan.sensitivities.clone(),
         at: plan.at.clone(),
+        rates: plan.rates,
     })
 }

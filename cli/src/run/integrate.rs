@@ -495,7 +495,6 @@ impl Advice {
                     self.words.setting("--input")
                 ),
             ),
-            // The tool's runs carry no sensitivities yet (docs/sensitivities.md).
             SystemError::TangentSwitch { .. } | SystemError::SwitchesTogether { .. } => (
                 what,
                 format!(
@@ -504,9 +503,20 @@ impl Advice {
                      sensitivity that moves it"
                 ),
             ),
-            SystemError::NoParameterJacobian
-            | SystemError::SupportedSensitivities
-            | SystemError::NoSwitchGradient { .. } => (
+            SystemError::UnlocatedSwitch { .. } => (
+                what,
+                "a tighter --tol lets the run locate the switch, where the sensitivities jump"
+                    .to_string(),
+            ),
+            SystemError::NoSwitchGradient { .. } => (
+                what,
+                "the model gives no gradients of its switches: derive it with its \
+                 sensitivities (the tool's runs do)"
+                    .to_string(),
+            ),
+            // A support holds the mechanics' rows only; the parameter Jacobian comes with
+            // the sensitivities' derivation.
+            SystemError::NoParameterJacobian | SystemError::SupportedSensitivities => (
                 what,
                 "the model gives no parameter Jacobian, or a support holds it: derive it with \
                  its sensitivities and fly it free"
@@ -630,6 +640,7 @@ mod tests {
             words: Default::default(),
             sensitivities: Vec::new(),
             at: Vec::new(),
+            rates: false,
         }
     }
 

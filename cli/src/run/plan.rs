@@ -72,6 +72,9 @@ pub struct Plan {
     /// Output times instead of every accepted step (a fit's data times, `RunArgs::at`):
     /// increasing, the run lands on each.
     pub at: Vec<f64>,
+    /// Whether the rates `d(X)/d(t)` of the recorded quantities are recorded too
+    /// (`RunArgs::rates`), beside the sensitivities' columns.
+    pub rates: bool,
 }
 
 /// The default tolerance of the adaptive methods when `--tol` is not given.
@@ -181,6 +184,7 @@ pub fn plan_with(
         words: args.words,
         sensitivities: super::sensitivity::resolve(args, program)?,
         at: output_at(args, from, until)?,
+        rates: args.rates,
     })
 }
 
@@ -273,6 +277,12 @@ pub fn refresh(
 }
 
 impl Plan {
+    /// Whether the run records derivative columns (sensitivities or rates): it runs on the
+    /// path of `run/sensitivity.rs`.
+    pub fn differentiated(&self) -> bool {
+        !self.sensitivities.is_empty() || self.rates
+    }
+
     /// Whether [`refresh`] can give this plan other parameter values: it records no
     /// expression (an expression holds the values of the parameters it reads).
     pub fn refreshable(&self) -> bool {

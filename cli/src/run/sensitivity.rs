@@ -326,9 +326,9 @@ fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
     let dv = sensitive
         .velocity_sensitivities::<N, SA>(t, state)
         .map_err(|e| e.to_string())?;
-    let motion = match event {
-        Some(_) => Some(motion(system, t, &head, &velocity_state, parameters)?),
-        None => None,
+    let motion = match event.is_some() || plan.rates {
+        true => Some(motion(system, t, &head, &velocity_state, parameters)?),
+        false => None,
     };
     let vs = velocity_state.as_slice();
     // Column by column: each recorded quantity's derivative, then t's (`column_names`).
@@ -358,6 +358,15 @@ fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
             row.push(value);
         }
         row.push(direction.time);
+    }
+    if let (true, Some(motion)) = (plan.rates, &motion) {
+        for (_, recorded) in &plan.record {
+            let Recorded::Quantity(o) = recorded else {
+                return Err("an expression has no rate".to_string());
+            };
+            let rate = derivative(program, Some(*o), t, vs, motion).map_err(|e| e.to_string())?;
+            row.push(rate);
+        }
     }
     Ok(row)
 }
@@ -428,6 +437,13 @@ pub fn column_names(plan: &Plan) -> Vec<String> {
             names.push(format!("d({name})/d({})", s.name));
         }
         names.push(format!("d(t)/d({})", s.name));
+    }
+    if plan.rates {
+        names.extend(
+            plan.record
+                .iter()
+                .map(|(name, _)| format!("d({name})/d(t)")),
+        );
     }
     names
 }

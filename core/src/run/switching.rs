@@ -35,7 +35,7 @@ use super::point::Point;
 use crate::error::{StepError, StepErrorKind};
 use crate::events::locate_bracket;
 use crate::stepper::Checked;
-use crate::system::VariableMassSystem;
+use crate::system::{SystemError, VariableMassSystem};
 
 /// How a run treats the system's switching functions. On by default.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -326,7 +326,7 @@ impl SwitchWatch {
                         let crossed = self.crossed_by(&after);
                         self.keep(&after);
                         self.anchor(system, end.time, &end.state)?;
-                        self.carried_across(system, (start, end), &crossed)
+                        self.carried_across(system, end, &crossed)
                     }
                     other => other,
                 }
@@ -349,34 +349,26 @@ impl SwitchWatch {
             .collect()
     }
 
-    /// A step that stands across the switches `crossed`: for a system whose state carries
-    /// more than the motion (sensitivities), that part jumps at the step's end, from the
-    /// motion at its start (first order in the step: the crossing is not located), and the
-    /// stepper restarts there; else the step simply stands.
+    /// A step that stands across the switches `crossed` (their crossing not located): for
+    /// a system whose state carries more than the motion (sensitivities), whose jump needs
+    /// the crossing's point, a typed error at the step's end, never the jump missed or
+    /// guessed from the step's start; else the step simply stands.
     fn carried_across<Sys, const N: usize, const S: usize>(
         &self,
         system: &Sys,
-        (start, end): (&Point<S>, &Point<S>),
+        end: &Point<S>,
         crossed: &[usize],
     ) -> Result<Crossing<S>, StepError<S>>
     where
         Sys: VariableMassSystem<N, S>,
     {
-        if crossed.is_empty() || !system.has_rate_only_state() {
-            return Ok(Crossing::None);
+        match crossed.first() {
+            Some(&switch) if system.has_rate_only_state() => {
+                let error = SystemError::UnlocatedSwitch { switch };
+                Err(StepError::from_system(system, error, end.time, &end.state))
+            }
+            _ => Ok(Crossing::None),
         }
-        let rate = match start.rate {
-            Some(rate) => rate,
-            None => rate_at(system, start.time, &start.state)?,
-        };
-        let mut state = end.state;
-        let before = (start.time, &start.state, &rate);
-        (system.cross_switches(crossed, before, (end.time, &mut state)))
-            .map_err(|error| StepError::from_system(system, error, end.time, &end.state))?;
-        Ok(Crossing::Cross {
-            time: end.time,
-            state,
-        })
     }
 
     /// Takes `after` as g at the last point, except where it is exactly zero: there the
@@ -534,12 +526,50 @@ impl SwitchWatch {
             return Ok(None);
         }
         // What the state carries past the motion (sensitivities) jumps here.
-        let before = (point.time, &point.state, rate);
-        (system.cross_switches(&crossings, before, (time, &mut state)))
-            .map_err(|error| StepError::from_system(system, error, time, &state))?;
+        if system.has_rate_only_state() {
+            let (t0, y0, f0) = self.side_before(system, point, rate, &crossings)?;
+            (system.cross_switches(&crossings, (t0, &y0, &f0), (time, &mut state)))
+                .map_err(|error| StepError::from_system(system, error, time, &state))?;
+        }
         self.keep(&after);
         self.anchor(system, time, &state)?;
         Ok(Some(Crossing::Cross { time, state }))
+    }
+
+    /// A point on the side the switches `crossed` come from, and its rate: `point` itself,
+    /// unless one of them stands exactly on zero there (a run landed on a stop time at the
+    /// switch, `sign(t_b − t)` at a thrust table's last knot: the rate there is the kink's,
+    /// sign(0) = 0, half the jump), then the first of the backward probes
+    /// `point − rate·s`, s = 4ε·max(|t|, 1)·2ᵏ, up to a million roundings, where each such
+    /// switch has the sign it had before (the watch keeps it, `keep`). Else `point`.
+    fn side_before<Sys, const N: usize, const S: usize>(
+        &self,
+        system: &Sys,
+        point: &Point<S>,
+        rate: &SVector<f64, S>,
+        crossed: &[usize],
+    ) -> Result<(f64, SVector<f64, S>, SVector<f64, S>), StepError<S>>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let mut now = vec![0.0; self.values.len()];
+        self.evaluate(system, point.time, &point.state, &mut now)?;
+        let on_zero: Vec<usize> = crossed.iter().copied().filter(|&i| now[i] == 0.0).collect();
+        if on_zero.is_empty() {
+            return Ok((point.time, point.state, *rate));
+        }
+        let rounding = 4.0 * f64::EPSILON * point.time.abs().max(1.0);
+        let mut step = rounding;
+        while step <= 1e6 * rounding {
+            let (time, state) = (point.time - step, point.state - rate * step);
+            self.evaluate(system, time, &state, &mut now)?;
+            let before = |&i: &usize| now[i] * self.values[i] > 0.0;
+            if on_zero.iter().all(before) {
+                return Ok((time, state, rate_at(system, time, &state)?));
+            }
+            step *= 2.0;
+        }
+        Ok((point.time, point.state, *rate))
     }
 
     /// The first root ahead of any g along the tangent t ↦ (t, y + (t − t₀) f) from
