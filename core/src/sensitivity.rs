@@ -21,7 +21,7 @@
 //! switches' gradients the system gives ([`VariableMassSystem::switch_gradient`]).
 //!
 //! What is not handled yet is refused, never integrated wrongly: at construction a system
-//! with switching functions but no gradients of them (generated code, as yet), sampled
+//! with switching functions but no gradients of them (a hand-written system), sampled
 //! inputs (a sample replaces state entries) or what its [`VariableMassSystem::sensitivity_obstacle`]
 //! names (no symbolic Jacobians, inputs, a table of t whose knots move with a parameter, a
 //! support); the Taylor stepper (no recurrences for s) and the variational one (it

@@ -60,6 +60,10 @@ pub fn emit_system_for(
     let for_code = code_forms(d, outputs);
     let switches = crate::mechanics::switching_functions(d);
     let table_switches = crate::mechanics::table_switches(d);
+    let switch_gradients = match outputs.sensitivities {
+        true => switches::gradients(d, &switches, &table_switches),
+        false => Vec::new(),
+    };
     let time_tables = crate::mechanics::time_tables(d, &d.code_roots(outputs));
     let runtime = &target.runtime;
     let statics = (d.pool.table_count() > 0).then(|| tables::statics(&d.pool, runtime));
@@ -79,7 +83,12 @@ pub fn emit_system_for(
         true => tangents::tangent_items(&emitter),
         false => Default::default(),
     };
-    let stops = (&switches[..], &table_switches[..], &time_tables[..]);
+    let stops = (
+        &switches[..],
+        &table_switches[..],
+        &time_tables[..],
+        &switch_gradients[..],
+    );
     let methods = trait_methods(&emitter, outputs, stops, (head.0, tangents.0));
     let lanes = optional(outputs.lanes, || {
         lanes::lanes_impl(&emitter, outputs.taylor)
@@ -129,15 +138,16 @@ fn code_forms(d: &mut Derivation, outputs: Outputs) -> FxHashMap<Id, Id> {
 }
 
 /// The switching functions, the tables' anchored switches and the stop times of tables
-/// of time, as the mechanics found them.
-type Stops<'a> = (&'a [Id], &'a [TableSwitch], &'a [TimeTable]);
+/// of time, as the mechanics found them, and the switches' gradients (with the
+/// sensitivities).
+type Stops<'a> = (&'a [Id], &'a [TableSwitch], &'a [TimeTable], &'a [Id]);
 
 /// Every method of the trait impl, in the trait's order; `head` the head's methods,
 /// `tangents` the state rate over tangents.
 fn trait_methods(
     emitter: &Emitter<'_>,
     outputs: Outputs,
-    (switches, table_switches, time_tables): Stops<'_>,
+    (switches, table_switches, time_tables, gradients): Stops<'_>,
     (head, tangents): (TokenStream, TokenStream),
 ) -> [TokenStream; 26] {
     let (d, target) = (emitter.d, emitter.target);
@@ -165,7 +175,7 @@ fn trait_methods(
             emitter.parameter_jacobian(time_tables)
         }),
         tangents,
-        emitter.switching_functions(switches, table_switches),
+        emitter.switching_functions(switches, table_switches, gradients),
         optional(outputs.taylor, || {
             // With lanes, the per-order function is shared with the lanes' method.
             let generic = outputs.lanes && emitter.has_lanes();

@@ -14,12 +14,14 @@ use crate::mechanics::TableSwitch;
 
 impl Emitter<'_> {
     /// `switch_count`, `switch_name` and `switching_functions(t, velocity_state, values)`,
-    /// and with tables of the state `switch_anchors` and `anchored_switching_functions`.
-    /// Nothing when there are no switches (the trait's defaults).
+    /// and with tables of the state `switch_anchors` and `anchored_switching_functions`;
+    /// with the sensitivities ([`gradients`] non-empty) `switch_gradient`. Nothing when
+    /// there are no switches (the trait's defaults).
     pub(crate) fn switching_functions(
         &self,
         switches: &[Id],
         tables: &[TableSwitch],
+        gradients: &[Id],
     ) -> TokenStream {
         if switches.is_empty() && tables.is_empty() {
             return TokenStream::new();
@@ -64,6 +66,54 @@ impl Emitter<'_> {
         let signature = self.signature(Method::SwitchingFunctions);
         code.extend(method_item(docs, signature, plain));
         code.extend(anchored);
+        code.extend(self.switch_gradient(gradients, switches.len() + tables.len()));
+        code
+    }
+
+    /// `has_switch_gradients` and `switch_gradient(index, t, velocity_state, out)`: the
+    /// gradients of the `count` switches, [g_t, g_q, g_q̇, g_m_s, g_θ] each, one after the
+    /// other in `gradients`; nothing without them.
+    fn switch_gradient(&self, gradients: &[Id], count: usize) -> TokenStream {
+        if gradients.is_empty() || count == 0 {
+            return TokenStream::new();
+        }
+        let runtime = &self.target.runtime;
+        let s = self.sizes().state_literal();
+        let width = Literal::usize_unsuffixed(gradients.len() / count);
+        let count = Literal::usize_unsuffixed(count);
+        let body = self.body(Input::VelocityState, gradients, |outs| {
+            quote! {
+                if index >= #count {
+                    return ::core::result::Result::Ok(false);
+                }
+                let __all = [#(#outs),*];
+                let __own = &__all[index * #width..(index + 1) * #width];
+                for (slot, value) in out.iter_mut().zip(__own) {
+                    *slot = *value;
+                }
+                ::core::result::Result::Ok(true)
+            }
+        });
+        let docs = self.docs(
+            "The switches' gradients [g_t, g_q, g_q̇, g_m_s, g_θ] (an anchored switch's: its \
+             argument's), for the sensitivities' jumps.",
+            Vec::<String>::new(),
+        );
+        let signature = quote! {
+            fn switch_gradient(
+                &self,
+                index: usize,
+                t: f64,
+                velocity_state: &#runtime::nalgebra::SVector<f64, #s>,
+                out: &mut [f64],
+            ) -> ::core::result::Result<bool, #runtime::SystemError>
+        };
+        let mut code = quote! {
+            fn has_switch_gradients(&self) -> bool {
+                true
+            }
+        };
+        code.extend(method_item(docs, signature, body));
         code
     }
 
@@ -111,4 +161,20 @@ impl Emitter<'_> {
         }
         code
     }
+}
+
+/// The gradients of the switching functions and of the tables of the state's arguments
+/// (`mechanics::gradient`: [g_t, g_q, g_q̇, g_m_s, g_θ] each, total derivatives with the
+/// mass laws followed), one after the other: what `switch_gradient` emits.
+pub(crate) fn gradients(
+    d: &mut crate::mechanics::Derivation,
+    switches: &[Id],
+    tables: &[TableSwitch],
+) -> Vec<Id> {
+    let roots: Vec<Id> = (switches.iter().copied())
+        .chain(tables.iter().map(|s| s.argument))
+        .collect();
+    (roots.into_iter())
+        .flat_map(|g| crate::mechanics::gradient(d, g))
+        .collect()
 }
