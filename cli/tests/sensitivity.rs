@@ -253,6 +253,22 @@ struct Moves {
     end_mass: f64,
 }
 
+impl From<(&'static str, f64, f64, f64, f64, f64)> for Moves {
+    /// (name, ∂u_e, ∂μ, ∂m0, ∂t_b, ∂m_b).
+    fn from(
+        (name, exhaust, rate, start, end_time, end_mass): (&'static str, f64, f64, f64, f64, f64),
+    ) -> Self {
+        Moves {
+            name,
+            exhaust,
+            rate,
+            start,
+            end_time,
+            end_mass,
+        }
+    }
+}
+
 /// Flies `source` from rest with m0 = 100, μ = 5, u_e = 300, g = 9.81 and `set` to its
 /// apex (y' falling through 0) with the sensitivities to `moves`, and compares the apex's
 /// time and height derivatives with the closed form, the burn ending at (t_b, m_b):
@@ -319,14 +335,7 @@ fn the_apex_follows_a_burnout_at_a_time_that_is_a_parameter() {
         ("t_b", 0.0, 0.0, 0.0, 1.0, -mu),
         ("init:m", 0.0, 0.0, 1.0, 0.0, 1.0),
     ]
-    .map(|(name, exhaust, rate, start, end_time, end_mass)| Moves {
-        name,
-        exhaust,
-        rate,
-        start,
-        end_time,
-        end_mass,
-    });
+    .map(Moves::from);
     let worst = apex_against_closed_form(TIMED_BURN, ["--set", "t_b=8"], (t_b, 60.0), &moves);
     eprintln!("worst {worst:e}");
     assert!(worst <= 1e-9, "{worst:e}");
@@ -352,14 +361,7 @@ fn the_apex_follows_a_burnout_where_the_state_reaches_a_value() {
         ("m_f", 0.0, 0.0, 0.0, -1.0 / mu, 1.0),
         ("init:m", 0.0, 0.0, 1.0, 1.0 / mu, 0.0),
     ]
-    .map(|(name, exhaust, rate, start, end_time, end_mass)| Moves {
-        name,
-        exhaust,
-        rate,
-        start,
-        end_time,
-        end_mass,
-    });
+    .map(Moves::from);
     let worst = apex_against_closed_form(EMPTIED_BURN, ["--set", "m_f=60"], (t_b, 60.0), &moves);
     eprintln!("worst {worst:e}");
     assert!(worst <= 1e-9, "{worst:e}");
