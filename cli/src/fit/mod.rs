@@ -132,6 +132,14 @@ impl Problem<'_> {
             .map_or(0.0, |(_, x)| *x)
     }
 
+    /// The model time of the datum at `t` on the data's clock, offset by `offset`: t − δ,
+    /// or the run's start where that is before it (a log's samples before ignition, the
+    /// rocket on its pad, compared with the start's values: else an offset that moves the
+    /// first data before `--from` would fail its trial run, a bound the fit did not name).
+    fn model_time(&self, t: f64, offset: f64) -> f64 {
+        (t - offset).max(self.args.from)
+    }
+
     /// The run's arguments and parameter values at θ: the unknowns' sensitivities, and the
     /// quantities' rates when the offset is fitted (∂X(tᵢ − δ)/∂δ = −Ẋ).
     fn at(&self, theta: &DVector<f64>) -> (RunArgs, Vec<(String, f64)>) {
@@ -167,7 +175,7 @@ impl Problem<'_> {
         args.record = vec![record.join(",")];
         let offset = self.offset(theta);
         let mut times: Vec<f64> = (self.series.iter())
-            .flat_map(|s| s.times.iter().map(|t| t - offset))
+            .flat_map(|s| s.times.iter().map(|t| self.model_time(*t, offset)))
             .collect();
         times.sort_by(f64::total_cmp);
         times.dedup();
@@ -205,11 +213,17 @@ impl Problem<'_> {
                 .collect::<Option<_>>()
                 .ok_or("a derivative was not recorded")?;
             for (t, x) in s.times.iter().zip(&s.values) {
-                let row = row_at(&table, t - offset)?;
+                let time = self.model_time(*t, offset);
+                let row = row_at(&table, time)?;
                 r.push((table.column(value)[row] - x) / sigma);
+                // Held at the start, a datum does not move with the offset.
+                let held = time > t - offset;
                 let jacobian = derivatives
                     .iter()
-                    .map(|(d, sign)| sign * table.column(*d)[row]);
+                    .map(|(d, sign)| match held && *sign < 0.0 {
+                        true => 0.0,
+                        false => sign * table.column(*d)[row],
+                    });
                 j.extend(jacobian.map(|d| d / sigma));
             }
         }
@@ -423,6 +437,12 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
         })
         .collect::<Option<_>>()
         .ok_or_else(|| CliError::Input("--column: expected QUANTITY=COLUMN".to_string()))?;
+    if let Some((_, pair)) = (pairs.iter().enumerate()).find(|(i, p)| pairs[..*i].contains(p)) {
+        return Err(CliError::Input(format!(
+            "--column {}={} is given twice: its data would count twice (errors √2 too small)",
+            pair.0, pair.1
+        )));
+    }
     let unknowns: Vec<Unknown> = args
         .fit
         .iter()
@@ -432,11 +452,8 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
     // The window is the run's span at the offset's start (0, or its bound nearest 0).
     let shift = (unknowns.iter().find(|u| u.name == OFFSET))
         .map_or(0.0, |u| 0.0_f64.clamp(u.bounds.0, u.bounds.1));
-    let left_out = data::window(
-        &mut series,
-        args.run.from + shift,
-        args.run.until.map(|u| u + shift),
-    );
+    let window = (args.run.from + shift, args.run.until.map(|u| u + shift));
+    let left_out = data::window(&mut series, window.0, window.1);
     for sigma in &args.sigma {
         let (quantity, value) = crate::run::names::assignment(sigma, "--sigma")?;
         let mut measured = series
@@ -478,14 +495,18 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
             .fold(args.run.from, |end, t| end.max(*t))
             - args.run.from;
         let until = (args.predict_until).unwrap_or(args.run.from + 10.0 * span.max(1.0));
-        out += &predict::report(&mut compiled, &problem, &fitted, condition, until)?;
+        match predict::report(&mut compiled, &problem, &fitted, condition, until) {
+            Ok(prediction) => out += &prediction,
+            // The fit stands: its report is not lost with the prediction.
+            Err(e) => return Err(CliError::Run(format!("{out}--predict `{condition}`: {e}"))),
+        }
     }
     if left_out > 0 {
-        let until = args.run.until.map_or("the data's end".to_string(), shown);
+        let until = window.1.map_or("the data's end".to_string(), shown);
         let _ = writeln!(
             out,
-            "{left_out} data outside the run (--from {} to --until {until}) were left out",
-            shown(args.run.from)
+            "{left_out} data outside the run ({} to {until} on the data's clock) were left out",
+            shown(window.0)
         );
     }
     Ok(out)

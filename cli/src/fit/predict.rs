@@ -9,7 +9,6 @@ use std::fmt::Write as _;
 use varmass::core::nalgebra::{DMatrix, DVector};
 
 use super::{with_error, Fit, Problem, OFFSET};
-use crate::args::RunArgs;
 use crate::error::CliError;
 use crate::run::names::shown;
 use crate::run::Compiled;
@@ -40,23 +39,34 @@ pub fn report(
     let last = table.times().len() - 1;
     let read =
         |name: &str| (table.names.iter().position(|c| c == name)).map(|c| table.column(c)[last]);
-    let (names, covariance) = model_covariance(fit, &args);
-    let spread = |quantity: &str| -> Option<f64> {
-        let g: Vec<f64> = (names.iter())
-            .map(|w| read(&format!("d({quantity})/d({w})")))
-            .collect::<Option<_>>()?;
-        let g = DVector::from_vec(g);
-        Some((g.transpose() * &covariance * &g)[(0, 0)].max(0.0).sqrt())
+    let covariance = DMatrix::from_fn(fit.values.len(), fit.values.len(), |i, j| {
+        fit.correlation[(i, j)] * fit.errors[i] * fit.errors[j]
+    });
+    // √(gᵀ Σ g) over every unknown: g_w = d(X)/d(w), and for the offset `on_clock` (1 for
+    // the event's time on the data's clock, t + δ; 0 for the model's quantities).
+    let spread = |quantity: &str, on_clock: f64| -> f64 {
+        let g = (fit.unknowns.iter()).map(|u| match u.name == OFFSET {
+            true => Some(on_clock),
+            false => read(&format!("d({quantity})/d({})", u.name)),
+        });
+        match g.collect::<Option<Vec<f64>>>() {
+            Some(g) => {
+                let g = DVector::from_vec(g);
+                (g.transpose() * &covariance * &g)[(0, 0)].max(0.0).sqrt()
+            }
+            None => f64::NAN,
+        }
     };
-    let spread = |quantity: &str| spread(quantity).unwrap_or(f64::NAN);
     let mut out = format!("predicted where `{condition}`:\n");
     let time = table.times()[last];
-    let offset = problem.offset(&theta);
-    let clock = match offset != 0.0 {
-        true => format!(" (the data's clock: {})", shown(time + offset)),
-        false => String::new(),
-    };
-    let _ = writeln!(out, "  t = {}{clock}", with_error(time, spread("t")));
+    let _ = write!(out, "  t = {}", with_error(time, spread("t", 0.0)));
+    match fit.unknowns.iter().any(|u| u.name == OFFSET) {
+        true => {
+            let clock = with_error(time + problem.offset(&theta), spread("t", 1.0));
+            let _ = writeln!(out, " (the data's clock: {clock})");
+        }
+        false => out.push('\n'),
+    }
     let mut seen: Vec<&str> = Vec::new();
     for s in problem.series {
         if seen.contains(&s.quantity.as_str()) {
@@ -64,23 +74,8 @@ pub fn report(
         }
         seen.push(&s.quantity);
         let value = read(&s.quantity).ok_or_else(|| CliError::Run("not recorded".to_string()))?;
-        let shown = with_error(value, spread(&s.quantity));
+        let shown = with_error(value, spread(&s.quantity, 0.0));
         let _ = writeln!(out, "  {} = {shown}", s.quantity);
     }
     Ok(out)
-}
-
-/// The unknowns the run differentiates by (all but the offset) and their covariance, from
-/// the fit's errors and correlations.
-fn model_covariance(fit: &Fit, args: &RunArgs) -> (Vec<String>, DMatrix<f64>) {
-    let kept: Vec<usize> = (0..fit.unknowns.len())
-        .filter(|&i| fit.unknowns[i].name != OFFSET)
-        .collect();
-    let names = kept.iter().map(|&i| fit.unknowns[i].name.clone()).collect();
-    debug_assert_eq!(args.sensitivity.len(), kept.len());
-    let covariance = DMatrix::from_fn(kept.len(), kept.len(), |a, b| {
-        let (i, j) = (kept[a], kept[b]);
-        fit.correlation[(i, j)] * fit.errors[i] * fit.errors[j]
-    });
-    (names, covariance)
 }

@@ -541,7 +541,8 @@ impl SwitchWatch {
     /// switch, `sign(t_b − t)` at a thrust table's last knot: the rate there is the kink's,
     /// sign(0) = 0, half the jump), then the first of the backward probes
     /// `point − rate·s`, s = 4ε·max(|t|, 1)·2ᵏ, up to a million roundings, where each such
-    /// switch has the sign it had before (the watch keeps it, `keep`). Else `point`.
+    /// switch has the sign it had before (the watch keeps it, `keep`); none within reach is
+    /// [`SystemError::UnlocatedSwitch`].
     fn side_before<Sys, const N: usize, const S: usize>(
         &self,
         system: &Sys,
@@ -569,7 +570,15 @@ impl SwitchWatch {
             }
             step *= 2.0;
         }
-        Ok((point.time, point.state, *rate))
+        // The rate there would be the kink's, half the jump: never guessed.
+        let switch = on_zero[0];
+        let error = SystemError::UnlocatedSwitch { switch };
+        Err(StepError::from_system(
+            system,
+            error,
+            point.time,
+            &point.state,
+        ))
     }
 
     /// The first root ahead of any g along the tangent t ↦ (t, y + (t − t₀) f) from
