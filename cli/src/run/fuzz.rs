@@ -188,6 +188,14 @@ fn option() -> impl Strategy<Value = Vec<String>> {
         flagged("--method", methods().boxed()),
         flagged("--record", pick(RECORDS).boxed()),
         flagged("--stop-when", pick(CONDITIONS).boxed()),
+        flagged(
+            "--sensitivity",
+            pick(&[
+                "c", "u_e", "mu", "g", "m0", "k_d", "init:x", "init:x'", "init:y", "init:y'",
+                "init:m", "init:q", "init:", "x", "", "u_e "
+            ])
+            .boxed()
+        ),
         flagged("--csv", pick(&["/dev/null"]).boxed()),
         pick(JUNK).prop_map(|j| vec![j]),
         Just(vec!["--latex".to_string()]),
