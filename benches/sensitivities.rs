@@ -1,7 +1,7 @@
 //! The cost of forward sensitivities (issue 37; docs/sensitivities.md): the 6-dof rocket of
 //! `models/rocket_6dof.vms` (zyx angles, S = 13) burning for 3.9 s, DOP853 at rtol = atol =
 //! 1e-8, plain against `Sensitive` with k = 1, 3 and 6 parameter columns (the error control
-//! over the sensitivities too), the fastest of several runs each, the sides interleaved
+//! over the sensitivities too, and without them: `with_error_control(false)`), the fastest of several runs each, the sides interleaved
 //! round by round. The issue's target: ≤ 0.6 (1 + k) times the plain run.
 //!
 //! ```sh
@@ -104,18 +104,31 @@ fn main() {
     let one: Sensitive<Rocket, 13> = Sensitive::new::<6, 26>(ROCKET, &COLUMNS[..1]).unwrap();
     let three: Sensitive<Rocket, 13> = Sensitive::new::<6, 52>(ROCKET, &COLUMNS[..3]).unwrap();
     let six: Sensitive<Rocket, 13> = Sensitive::new::<6, 91>(ROCKET, &COLUMNS).unwrap();
+    // The columns left out of the error control (CVODES's errconS = false).
+    let one_free: Sensitive<Rocket, 13> = Sensitive::new::<6, 26>(ROCKET, &COLUMNS[..1])
+        .unwrap()
+        .with_error_control(false);
+    let three_free: Sensitive<Rocket, 13> = Sensitive::new::<6, 52>(ROCKET, &COLUMNS[..3])
+        .unwrap()
+        .with_error_control(false);
+    let six_free: Sensitive<Rocket, 13> = Sensitive::new::<6, 91>(ROCKET, &COLUMNS)
+        .unwrap()
+        .with_error_control(false);
     let starts = (
         one.start::<26>(&plain_start),
         three.start::<52>(&plain_start),
         six.start::<91>(&plain_start),
     );
-    let mut best = [(0usize, f64::INFINITY); 4];
+    let mut best = [(0usize, f64::INFINITY); 7];
     for _ in 0..5 {
         let rounds = [
             fastest(&ROCKET, plain_start, 5),
             fastest(&one, starts.0, 5),
             fastest(&three, starts.1, 5),
             fastest(&six, starts.2, 5),
+            fastest(&one_free, starts.0, 5),
+            fastest(&three_free, starts.1, 5),
+            fastest(&six_free, starts.2, 5),
         ];
         for (b, r) in best.iter_mut().zip(rounds) {
             *b = (r.0, b.1.min(r.1));
@@ -124,9 +137,18 @@ fn main() {
     let plain = best[0].1;
     println!("6-dof rocket, 3.9 s burn, DOP853 at 1e-8, the fastest of 25 runs each, interleaved");
     println!("plain: {} steps, {:.3} ms", best[0].0, plain * 1e3);
-    for (k, (steps, t)) in [1usize, 3, 6].iter().zip(&best[1..]) {
+    let rows = [1usize, 3, 6, 1, 3, 6]
+        .into_iter()
+        .zip(&best[1..])
+        .enumerate();
+    for (row, (k, (steps, t))) in rows {
+        let columns = if row < 3 {
+            "controlled"
+        } else {
+            "uncontrolled"
+        };
         println!(
-            "k = {k}: {steps} steps, {:.3} ms, {:.2} × plain (target ≤ {:.1})",
+            "k = {k}, columns {columns}: {steps} steps, {:.3} ms, {:.2} × plain (target ≤ {:.1})",
             t * 1e3,
             t / plain,
             0.6 * (1 + k) as f64

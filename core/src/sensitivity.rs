@@ -13,7 +13,8 @@
 //! state `[q, p, m_s]`, fixed) and the unit vector e_i for the initial entry i. [`Sensitive`]
 //! makes the system whose state is `[y, s₁, …, s_K]` (`SA = S (1 + K)`, K columns), so that
 //! the Runge–Kutta steppers, explicit and implicit, integrate both with one step-size
-//! control, the error control covering the sensitivities too (CVODES's `errconS = true`).
+//! control, the error control covering the sensitivities too (CVODES's `errconS = true`;
+//! [`Sensitive::with_error_control`] leaves them out).
 //!
 //! At a switch of the equations (`sign`, `abs`, `min`, `max`, a table of the state's knots)
 //! whose time moves with a column, the run hands the crossing to
@@ -145,6 +146,8 @@ pub struct Sensitive<Sys, const S: usize> {
     columns: Vec<Resolved>,
     /// The parameter Jacobian's S × P, kept between calls.
     scratch: RefCell<Vec<f64>>,
+    /// Whether the adaptive steppers' error control weighs the columns too (the default).
+    error_control: bool,
 }
 
 impl<Sys, const S: usize> Sensitive<Sys, S> {
@@ -220,7 +223,20 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             system,
             columns,
             scratch,
+            error_control: true,
         })
+    }
+
+    /// This system with the columns in the adaptive steppers' error control (`true`, the
+    /// default: CVODES's `errconS = true`) or left out of it (`false`: the steps are those
+    /// of the state alone, the columns' own error unchecked — cheaper where the columns
+    /// would ask for smaller steps than the state, which docs/sensitivities.md#cost
+    /// measures).
+    pub fn with_error_control(self, columns: bool) -> Self {
+        Self {
+            error_control: columns,
+            ..self
+        }
     }
 
     /// The augmented initial state of `state`: s(t₀) = 0 for a parameter (the state
@@ -607,6 +623,14 @@ where
 
     fn switch_count(&self) -> usize {
         self.system.switch_count()
+    }
+
+    /// SA, or S without the columns' error control ([`Sensitive::with_error_control`]).
+    fn controlled_entries(&self) -> usize {
+        match self.error_control {
+            true => SA,
+            false => S,
+        }
     }
 
     fn switch_name(&self, index: usize) -> Option<&str> {

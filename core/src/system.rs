@@ -154,6 +154,14 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         self.switching_functions(t, velocity_state, values);
     }
 
+    /// How many leading entries of the state the adaptive steppers' error control weighs:
+    /// all by default; forward sensitivities without their columns' error control
+    /// (`sensitivity::Sensitive::with_error_control(false)`, CVODES's `errconS = false`)
+    /// weigh the state's only.
+    fn controlled_entries(&self) -> usize {
+        S
+    }
+
     /// Whether [`Self::switch_gradient`] gives the switches' gradients (what forward
     /// sensitivities need to move a switch's time with a parameter, `sensitivity::Sensitive`).
     /// `false` by default; a run-time model derived with sensitivities has them.

@@ -136,6 +136,8 @@ impl Floor {
 pub struct Tolerance {
     relative: f64,
     absolute: f64,
+    /// How many leading components an error norm weighs ([`Tolerance::controlling`]).
+    entries: usize,
 }
 
 impl Tolerance {
@@ -165,7 +167,26 @@ impl Tolerance {
             });
         }
         floor.check(relative)?;
-        Ok(Self { relative, absolute })
+        Ok(Self {
+            relative,
+            absolute,
+            entries: usize::MAX,
+        })
+    }
+
+    /// This tolerance weighing only the first `entries` components of an error (all by
+    /// default): forward sensitivities' columns left out of the error control, CVODES's
+    /// `errconS = false` (`sensitivity::Sensitive::with_error_control`). At least one.
+    pub fn controlling(self, entries: usize) -> Self {
+        Self {
+            entries: entries.max(1),
+            ..self
+        }
+    }
+
+    /// How many leading components an error norm weighs (of a vector of `len`).
+    pub fn entries(&self, len: usize) -> usize {
+        self.entries.min(len)
     }
 
     /// The relative tolerance rtol.
@@ -190,7 +211,14 @@ impl Tolerance {
         values: &SVector<f64, D>,
         magnitude: impl Fn(usize) -> f64,
     ) -> f64 {
-        weighted_rms(values, |i| self.weight(magnitude(i)))
+        let entries = self.entries(D);
+        if entries == D {
+            return weighted_rms(values, |i| self.weight(magnitude(i)));
+        }
+        let sum: f64 = (0..entries)
+            .map(|i| scaled_square(values[i], |v| v / self.weight(magnitude(i))))
+            .sum();
+        sqrt(sum / entries as f64)
     }
 
     /// The mean squares Σᵢ (aᵢ/wᵢ)²/D and Σᵢ (bᵢ/wᵢ)²/D of two vectors against the same
@@ -203,12 +231,13 @@ impl Tolerance {
         magnitude: impl Fn(usize) -> f64,
     ) -> (f64, f64) {
         let (mut sum_a, mut sum_b) = (0.0, 0.0);
-        for i in 0..D {
+        let entries = self.entries(D);
+        for i in 0..entries {
             let inverse = 1.0 / self.weight(magnitude(i));
             sum_a += scaled_square(a[i], |v| v * inverse);
             sum_b += scaled_square(b[i], |v| v * inverse);
         }
-        (sum_a / D as f64, sum_b / D as f64)
+        (sum_a / entries as f64, sum_b / entries as f64)
     }
 }
 

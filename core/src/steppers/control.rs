@@ -15,7 +15,7 @@ use crate::error::{ConfigError, StepError, StepErrorKind};
 use crate::math::powf;
 use crate::stepper::{state_rate, Progress, StepOutcome};
 use crate::system::VariableMassSystem;
-use crate::tolerance::{weighted_rms, Tolerance};
+use crate::tolerance::Tolerance;
 
 /// The error-control settings of the adaptive mode. Defaults are those of Hairer's `dopri5`
 /// with tolerances 1e-6 (relative) and 1e-9 (absolute); [`AdaptiveControl::dop853`] and
@@ -311,7 +311,8 @@ where
     // here: it does not vote (its value is taken as 0, which counts 0).
     let norm = |v: &SVector<f64, S>| {
         let voting = SVector::<f64, S>::from_fn(|i, _| if weight(i) > 0.0 { v[i] } else { 0.0 });
-        weighted_rms(&voting, weight)
+        // Over the components the error control weighs (`Tolerance::controlling`).
+        tolerance.norm(&voting, |i| y0[i].abs())
     };
     let rate_norm = norm(k1) * unit;
     let state_norm = norm(&y0);
@@ -376,7 +377,12 @@ impl<'a, Sys, const S: usize> Controlled<'a, Sys, S> {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        let mode = control.validated().map_err(|e| e.at(time, &state))?;
+        let mode = match control.validated().map_err(|e| e.at(time, &state))? {
+            Mode::Adaptive(settings, tolerance) => {
+                Mode::Adaptive(settings, tolerance.controlling(system.controlled_entries()))
+            }
+            fixed => fixed,
+        };
         Ok(Self {
             system,
             progress: Progress::new(system, time, state)?,

@@ -297,14 +297,15 @@ where
     let absolute = T::splat(tolerance.absolute());
     let relative = T::splat(tolerance.relative());
     let mut sum = T::splat(0.0);
-    for j in 0..V::LEN {
+    let entries = tolerance.entries(V::LEN);
+    for j in 0..entries {
         let value = estimate.component(j);
         let magnitude = y0.component(j).abs().max(y1.component(j).abs());
         // `Tolerance::weight`: atol + rtol·m.
         let scaled = value / (absolute + relative * magnitude);
         sum = sum + T::zero_where_zero(value, scaled * scaled);
     }
-    (sum / V::LEN as f64).sqrt()
+    (sum / entries as f64).sqrt()
 }
 
 #[cfg(test)]
