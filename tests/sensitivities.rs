@@ -152,6 +152,36 @@ fn the_columns_may_be_left_out_of_the_error_control() {
     eprintln!("with the columns: {with} steps, {worst_with:e}; without: {without} steps, {worst_without:e}");
     assert!(without <= with, "{without} {with}");
     assert!(worst_without <= 1e-9, "{worst_without:e}");
+    // SDIRK4's error norm too (the review of 2026-12-07 found it weighing every entry):
+    // with the columns left out it takes the plain run's steps (measured: 83, and 80 with
+    // the columns; before the fix the columns counted either way).
+    let sdirk = |sensitive: &Sensitive<Rocket, 2>, start: SVector<f64, 10>| {
+        let control = StepControl::Adaptive(AdaptiveControl {
+            relative_tolerance: 1e-8,
+            absolute_tolerance: 1e-8,
+            ..AdaptiveControl::sdirk4()
+        });
+        let mut stepper = Sdirk4::new(sensitive, 0.0, start, control).expect("a stepper");
+        let solution = run(&mut stepper, &RunConfig::until(10.0), &[]).expect("the burn runs");
+        solution.statistics.accepted_steps
+    };
+    let sensitive: Sensitive<Rocket, 2> =
+        Sensitive::new::<1, 10>(ROCKET, &COLUMNS).expect("the columns fit");
+    let start: SVector<f64, 10> = sensitive.start(&SVector::from([0.0, 0.0]));
+    let with = sdirk(&sensitive, start);
+    let without = sdirk(&sensitive.with_error_control(false), start);
+    let plain = {
+        let control = StepControl::Adaptive(AdaptiveControl {
+            relative_tolerance: 1e-8,
+            absolute_tolerance: 1e-8,
+            ..AdaptiveControl::sdirk4()
+        });
+        let mut stepper = Sdirk4::new(&ROCKET, 0.0, SVector::from([0.0, 0.0]), control).unwrap();
+        let solution = run(&mut stepper, &RunConfig::until(10.0), &[]).expect("the burn runs");
+        solution.statistics.accepted_steps
+    };
+    eprintln!("SDIRK4: with the columns {with} steps, without {without}, the plain run {plain}");
+    assert_eq!(without, plain);
 }
 
 /// Each column against central differences of the whole run (a second formulation: the

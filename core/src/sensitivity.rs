@@ -625,11 +625,12 @@ where
         self.system.switch_count()
     }
 
-    /// SA, or S without the columns' error control ([`Sensitive::with_error_control`]).
+    /// SA, or without the columns' error control ([`Sensitive::with_error_control`]) the
+    /// system's own (S unless it leaves some out too).
     fn controlled_entries(&self) -> usize {
         match self.error_control {
             true => SA,
-            false => S,
+            false => self.system.controlled_entries().min(S),
         }
     }
 

@@ -29,7 +29,8 @@ def thrust_curve(path):
     """(t, F) points of a RASP .eng (a (0, 0) point before its first) or a CSV."""
     text = path.read_text().splitlines()
     if path.suffix == ".eng":
-        rows = [l.split() for l in text if l.strip() and not l.startswith(";")][1:]
+        lines = [l.split(";")[0].strip() for l in text]
+        rows = [l.split() for l in lines if l][1:]
         points = [(0.0, 0.0)] + [(float(t), float(f)) for t, f in rows]
     else:
         rows = list(csv.reader(text))[1:]
@@ -54,7 +55,7 @@ def gravity(site):
         return float(g)
     import math
     s2 = math.sin(math.radians(float(site["latitude"]))) ** 2
-    return 9.7803253359 * (1 + 0.00193185265241 * s2) / math.sqrt(1 - 0.00669437999013 * s2)
+    return 9.7803253359 * (1 + 0.00193185265241 * s2) / math.sqrt(1 - 0.00669437999014 * s2)
 
 
 def drag_lines(spec):
@@ -71,8 +72,15 @@ def drag_lines(spec):
 
 
 def apogee_time(log):
+    """The time and altitude of the log's highest point, of its five-sample running median:
+    a logger's spike or dropout is no apogee (Lince's log jumps to 3668.5 m at 28.89 s,
+    off its 0.2 s grid, between 3030.7 and 3553.1; its top is 3586.9 m at 26.05 s,
+    flight.toml's measured 3587)."""
     rows = [(float(r["time"]), float(r["altitude"])) for r in csv.DictReader(log.open())]
-    return max(rows, key=lambda r: r[1])
+    median = [sorted(z for _, z in rows[max(i - 2, 0):i + 3])[len(rows[max(i - 2, 0):i + 3]) // 2]
+              for i in range(len(rows))]
+    i = max(range(len(rows)), key=lambda i: median[i])
+    return rows[i][0], median[i]
 
 
 def ascent(name, spec):
@@ -94,7 +102,7 @@ def ascent(name, spec):
         "#",
         f"#   varmass fit flights/{name}/ascent.vms --data flights/{name}/flight_log.csv \\",
         f"#       --time time --column \"z=altitude\" --from {t_off} --until {t_apogee} \\",
-        "#       --fit s_F=0.5:1.5 --fit s_D=0.2:5 --fit data:offset=-1:1 --predict \"z' < 0\" \\",
+        "#       --fit s_F=0.7:1.5 --fit s_D=0.2:5 --fit data:offset=-1:1 --predict \"z' < 0\" \\",
         f"#       --init z=0 --init \"z'=0\" --init m_s={num(s0)} --method dop853 --tol 1e-10",
         "#",
         f"# (--from {t_off}: where the thrust first reaches 1.5 times the weight, so that a",
@@ -139,7 +147,7 @@ def ascent(name, spec):
     args = [
         "fit", f"flights/{name}/ascent.vms", "--data", f"flights/{name}/flight_log.csv",
         "--time", "time", "--column", "z=altitude", "--from", str(t_off),
-        "--until", str(t_apogee), "--fit", "s_F=0.5:1.5", "--fit", "s_D=0.2:5",
+        "--until", str(t_apogee), "--fit", "s_F=0.7:1.5", "--fit", "s_D=0.2:5",
         "--fit", "data:offset=-1:1", "--predict", "z' < 0", "--init", "z=0",
         "--init", "z'=0", "--init", f"m_s={num(s0)}", "--method", "dop853", "--tol", "1e-10",
     ]
@@ -172,7 +180,8 @@ def main():
             done = subprocess.run([varmass, *args], cwd=ROOT, capture_output=True, text=True)
             out = done.stdout + done.stderr
             apogee = spec["apogee"]
-            rows.append((spec["source"]["name"], apogee.get("log_max"), apogee.get("published_sim"),
+            top = apogee_time(toml.parent / "flight_log.csv")[1]
+            rows.append((spec["source"]["name"], top, apogee.get("published_sim"),
                          reported(out, "z"), reported(out, "s_F"), reported(out, "s_D"),
                          reported(out, "data:offset"),
                          next((l.split("rms ")[1].split(" ")[0] for l in out.splitlines()

@@ -426,47 +426,12 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
                 .to_string(),
         ));
     }
-    let text = std::fs::read_to_string(&args.data).map_err(|source| CliError::Read {
-        path: args.data.clone(),
-        source,
-    })?;
-    let pairs: Vec<(String, String)> = (args.column.iter())
-        .map(|c| {
-            c.split_once('=')
-                .map(|(q, c)| (q.trim().to_string(), c.trim().to_string()))
-        })
-        .collect::<Option<_>>()
-        .ok_or_else(|| CliError::Input("--column: expected QUANTITY=COLUMN".to_string()))?;
-    if let Some((_, pair)) = (pairs.iter().enumerate()).find(|(i, p)| pairs[..*i].contains(p)) {
-        return Err(CliError::Input(format!(
-            "--column {}={} is given twice: its data would count twice (errors √2 too small)",
-            pair.0, pair.1
-        )));
-    }
     let unknowns: Vec<Unknown> = args
         .fit
         .iter()
         .map(|f| Unknown::parse(f))
         .collect::<Result<_, _>>()?;
-    let mut series = data::read(&text, &args.data, args.time.as_deref(), &pairs)?;
-    // The window is the run's span at the offset's start (0, or its bound nearest 0).
-    let shift = (unknowns.iter().find(|u| u.name == OFFSET))
-        .map_or(0.0, |u| 0.0_f64.clamp(u.bounds.0, u.bounds.1));
-    let window = (args.run.from + shift, args.run.until.map(|u| u + shift));
-    let left_out = data::window(&mut series, window.0, window.1);
-    for sigma in &args.sigma {
-        let (quantity, value) = crate::run::names::assignment(sigma, "--sigma")?;
-        let mut measured = series
-            .iter_mut()
-            .filter(|s| s.quantity == quantity)
-            .peekable();
-        if measured.peek().is_none() {
-            return Err(CliError::Input(format!(
-                "--sigma {sigma}: `{quantity}` is no --column quantity"
-            )));
-        }
-        measured.for_each(|s| s.sigma = Some(value));
-    }
+    let (series, left_out, window) = series_of(args, &unknowns)?;
     let model = crate::model::load(&args.run.model)?;
     let values = crate::run::plan::parameters(&args.run)?;
     let mut compiled = Compiled::new(model);
@@ -510,6 +475,54 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
         );
     }
     Ok(out)
+}
+
+/// The span of the data kept, on the data's clock: from, until (`None`: the data's end).
+type Window = (f64, Option<f64>);
+
+/// The data series of `args` (`--data`, `--column`, `--time`, `--sigma`), kept within the
+/// run's span on the data's clock (at the offset's start value, 0 or its bound nearest 0):
+/// the series, how many data were left out, and that window.
+fn series_of(
+    args: &FitArgs,
+    unknowns: &[Unknown],
+) -> Result<(Vec<Series>, usize, Window), CliError> {
+    let text = std::fs::read_to_string(&args.data).map_err(|source| CliError::Read {
+        path: args.data.clone(),
+        source,
+    })?;
+    let pairs: Vec<(String, String)> = (args.column.iter())
+        .map(|c| {
+            c.split_once('=')
+                .map(|(q, c)| (q.trim().to_string(), c.trim().to_string()))
+        })
+        .collect::<Option<_>>()
+        .ok_or_else(|| CliError::Input("--column: expected QUANTITY=COLUMN".to_string()))?;
+    if let Some((_, pair)) = (pairs.iter().enumerate()).find(|(i, p)| pairs[..*i].contains(p)) {
+        return Err(CliError::Input(format!(
+            "--column {}={} is given twice: its data would count twice (errors √2 too small)",
+            pair.0, pair.1
+        )));
+    }
+    let mut series = data::read(&text, &args.data, args.time.as_deref(), &pairs)?;
+    let shift = (unknowns.iter().find(|u| u.name == OFFSET))
+        .map_or(0.0, |u| 0.0_f64.clamp(u.bounds.0, u.bounds.1));
+    let window = (args.run.from + shift, args.run.until.map(|u| u + shift));
+    let left_out = data::window(&mut series, window.0, window.1);
+    for sigma in &args.sigma {
+        let (quantity, value) = crate::run::names::assignment(sigma, "--sigma")?;
+        let mut measured = series
+            .iter_mut()
+            .filter(|s| s.quantity == quantity)
+            .peekable();
+        if measured.peek().is_none() {
+            return Err(CliError::Input(format!(
+                "--sigma {sigma}: `{quantity}` is no --column quantity"
+            )));
+        }
+        measured.for_each(|s| s.sigma = Some(value));
+    }
+    Ok((series, left_out, window))
 }
 
 /// `value ± error`, the error to two significant digits and the value to the same decimal

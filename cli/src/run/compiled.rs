@@ -257,9 +257,14 @@ impl Compiled {
     /// Every check a run makes before its first step (`Compiled::prepare`), nothing
     /// integrated; the program is kept for the next run.
     pub fn check(&mut self, args: &RunArgs, values: Vec<(String, f64)>) -> Result<(), CliError> {
-        let (program, _) = self.prepare(args, values, |_| {})?;
+        let (mut program, plan) = self.prepare(args, values, |_| {})?;
+        // The sensitivities' own checks (the method, recorded expressions), as `integrate`.
+        let checked = match plan.differentiated() {
+            true => super::sensitivity::prepare(&mut program, plan),
+            false => Ok(()),
+        };
         self.program = Some(program);
-        Ok(())
+        checked
     }
 
     /// The program and plan ([`Compiled::prepare`]), then the integration in the

@@ -495,33 +495,34 @@ impl Advice {
                     self.words.setting("--input")
                 ),
             ),
-            SystemError::TangentSwitch { .. } | SystemError::SwitchesTogether { .. } => (
-                what,
-                format!(
-                    "the derivatives do not exist where a switch is grazed or two cross at \
-                     once: end the run before it ({until}, {stop_when}), or drop the \
-                     sensitivity that moves it"
-                ),
+            SystemError::TangentSwitch { .. }
+            | SystemError::SwitchesTogether { .. }
+            | SystemError::UnlocatedSwitch { .. }
+            | SystemError::NoSwitchGradient { .. }
+            | SystemError::NoParameterJacobian
+            | SystemError::SupportedSensitivities => (what, self.sensitivity_advice(error)),
+        }
+    }
+
+    /// The help of the errors only a run with sensitivities meets.
+    fn sensitivity_advice(&self, error: SystemError) -> String {
+        let (until, stop_when) = (&self.until, &self.stop_when);
+        match error {
+            SystemError::TangentSwitch { .. } | SystemError::SwitchesTogether { .. } => format!(
+                "the derivatives do not exist where a switch is grazed or two cross at once: \
+                 end the run before it ({until}, {stop_when}), or drop the sensitivity that \
+                 moves it"
             ),
-            SystemError::UnlocatedSwitch { .. } => (
-                what,
+            SystemError::UnlocatedSwitch { .. } => {
                 "a tighter --tol lets the run locate the switch, where the sensitivities jump"
-                    .to_string(),
-            ),
-            SystemError::NoSwitchGradient { .. } => (
-                what,
-                "the model gives no gradients of its switches: derive it with its \
-                 sensitivities (the tool's runs do)"
-                    .to_string(),
-            ),
-            // A support holds the mechanics' rows only; the parameter Jacobian comes with
-            // the sensitivities' derivation.
-            SystemError::NoParameterJacobian | SystemError::SupportedSensitivities => (
-                what,
-                "the model gives no parameter Jacobian, or a support holds it: derive it with \
+                    .to_string()
+            }
+            SystemError::NoSwitchGradient { .. } => "the model gives no gradients of its \
+                 switches: derive it with its sensitivities (the tool's runs do)"
+                .to_string(),
+            _ => "the model gives no parameter Jacobian, or a support holds it: derive it with \
                  its sensitivities and fly it free"
-                    .to_string(),
-            ),
+                .to_string(),
         }
     }
 

@@ -330,12 +330,18 @@ where
             .map_err(StageFailure::Rate)?;
         let embedded = combination(&tableau.embedded, &w, M);
         let estimate = context.lu.solve(w[M - 1] - embedded);
-        let weights = self.weights(&y0.zip_map(&state, |a, b| a.abs().max(b.abs())));
+        let magnitudes = y0.zip_map(&state, |a, b| a.abs().max(b.abs()));
+        // Adaptive, over the entries the tolerance weighs (`Tolerance::controlling`: a
+        // sensitivity run's columns may be left out); the same weights atol + rtol·m.
+        let error = match &self.core.mode {
+            Mode::Adaptive(_, tolerance) => tolerance.norm(&estimate, |i| magnitudes[i]),
+            Mode::Fixed(_) => weighted_norm(&estimate, &self.weights(&magnitudes)),
+        };
         Ok(Attempt {
             last_rate: (w[M - 1] - explicit) / (h * tableau.gamma),
             increments: w,
             state,
-            error: weighted_norm(&estimate, &weights).max(1e-10),
+            error: error.max(1e-10),
             last_iterations,
             slowest_rate,
         })
