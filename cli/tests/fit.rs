@@ -171,23 +171,14 @@ fn varmass_fit_reports_the_fitted_values() {
         0,
     );
     assert!(stdout.contains("(converged)"), "{stdout}");
-    let value = |name: &str| -> f64 {
-        let line = stdout
-            .lines()
-            .find(|l| l.trim_start().starts_with(&format!("{name} = ")))
-            .expect(name);
-        line.split('=')
-            .nth(1)
-            .unwrap()
-            .split('±')
-            .next()
-            .unwrap()
-            .trim()
-            .parse()
-            .unwrap()
-    };
-    assert!((value("u_e") - 300.0).abs() <= 300.0 * 1e-6, "{stdout}");
-    assert!((value("mu") - 5.0).abs() <= 5.0 * 1e-6, "{stdout}");
+    assert!(
+        (reported(&stdout, "u_e") - 300.0).abs() <= 300.0 * 1e-6,
+        "{stdout}"
+    );
+    assert!(
+        (reported(&stdout, "mu") - 5.0).abs() <= 5.0 * 1e-6,
+        "{stdout}"
+    );
     assert!(
         stdout.contains("correlations:") && stdout.contains("residuals of y"),
         "{stdout}"

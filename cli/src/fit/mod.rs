@@ -132,6 +132,17 @@ impl Problem<'_> {
             .map_or(0.0, |(_, x)| *x)
     }
 
+    /// The data's quantities, each once, in the series' order.
+    fn quantities(&self) -> Vec<&str> {
+        let mut quantities: Vec<&str> = Vec::new();
+        for s in self.series {
+            if !quantities.contains(&s.quantity.as_str()) {
+                quantities.push(&s.quantity);
+            }
+        }
+        quantities
+    }
+
     /// The model time of the datum at `t` on the data's clock, offset by `offset`: t − δ,
     /// or the run's start where that is before it (a log's samples before ignition, the
     /// rocket on its pad, compared with the start's values: else an offset that moves the
@@ -166,13 +177,7 @@ impl Problem<'_> {
             .map(|u| u.name.clone())
             .collect();
         args.rates = self.unknowns.iter().any(|u| u.name == OFFSET);
-        let mut record: Vec<String> = Vec::new();
-        for s in self.series {
-            if !record.contains(&s.quantity) {
-                record.push(s.quantity.clone());
-            }
-        }
-        args.record = vec![record.join(",")];
+        args.record = vec![self.quantities().join(",")];
         let offset = self.offset(theta);
         let mut times: Vec<f64> = (self.series.iter())
             .flat_map(|s| s.times.iter().map(|t| self.model_time(*t, offset)))
@@ -204,11 +209,14 @@ impl Problem<'_> {
             let sigma = s.sigma.unwrap_or(1.0);
             let column = |name: &str| table.names.iter().position(|c| c == name);
             let value = column(&s.quantity).ok_or("the quantity was not recorded")?;
-            // ∂r/∂δ = −Ẋ(tᵢ − δ)/σ for the offset, (dX/dw)(tᵢ − δ)/σ for the others.
-            let derivatives: Vec<(usize, f64)> = (self.unknowns.iter())
+            // ∂r/∂δ = −Ẋ(tᵢ − δ)/σ for the offset, (dX/dw)(tᵢ − δ)/σ for the others:
+            // each unknown's column and whether it is the offset.
+            let derivatives: Vec<(usize, bool)> = (self.unknowns.iter())
                 .map(|u| match u.name == OFFSET {
-                    true => column(&format!("d({})/d(t)", s.quantity)).map(|c| (c, -1.0)),
-                    false => column(&format!("d({})/d({})", s.quantity, u.name)).map(|c| (c, 1.0)),
+                    true => column(&format!("d({})/d(t)", s.quantity)).map(|c| (c, true)),
+                    false => {
+                        column(&format!("d({})/d({})", s.quantity, u.name)).map(|c| (c, false))
+                    }
                 })
                 .collect::<Option<_>>()
                 .ok_or("a derivative was not recorded")?;
@@ -218,12 +226,11 @@ impl Problem<'_> {
                 r.push((table.column(value)[row] - x) / sigma);
                 // Held at the start, a datum does not move with the offset.
                 let held = time > t - offset;
-                let jacobian = derivatives
-                    .iter()
-                    .map(|(d, sign)| match held && *sign < 0.0 {
-                        true => 0.0,
-                        false => sign * table.column(*d)[row],
-                    });
+                let jacobian = derivatives.iter().map(|&(d, offset)| match (offset, held) {
+                    (true, true) => 0.0,
+                    (true, false) => -table.column(d)[row],
+                    (false, _) => table.column(d)[row],
+                });
                 j.extend(jacobian.map(|d| d / sigma));
             }
         }

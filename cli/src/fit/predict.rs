@@ -67,15 +67,10 @@ pub fn report(
         }
         false => out.push('\n'),
     }
-    let mut seen: Vec<&str> = Vec::new();
-    for s in problem.series {
-        if seen.contains(&s.quantity.as_str()) {
-            continue;
-        }
-        seen.push(&s.quantity);
-        let value = read(&s.quantity).ok_or_else(|| CliError::Run("not recorded".to_string()))?;
-        let shown = with_error(value, spread(&s.quantity, 0.0));
-        let _ = writeln!(out, "  {} = {shown}", s.quantity);
+    for quantity in problem.quantities() {
+        let value = read(quantity).ok_or_else(|| CliError::Run("not recorded".to_string()))?;
+        let shown = with_error(value, spread(quantity, 0.0));
+        let _ = writeln!(out, "  {quantity} = {shown}");
     }
     Ok(out)
 }

@@ -161,10 +161,8 @@ impl SwitchWatch {
             Some(rate) => rate,
             None => rate_at(system, point.time, &point.state)?,
         };
-        let rounding = 4.0 * f64::EPSILON * point.time.abs().max(1.0);
         let mut after = vec![0.0; self.values.len()];
-        let mut step = rounding;
-        while step <= 1e6 * rounding {
+        for step in slivers(point.time) {
             let time = point.time + step;
             let predicted = point.state + rate * step;
             let state = point.state + rate_at(system, time, &predicted)? * step;
@@ -181,7 +179,6 @@ impl SwitchWatch {
                 self.anchor(system, time, &state)?;
                 return Ok(Some(Crossing::Cross { time, state }));
             }
-            step *= 2.0;
         }
         Ok(None)
     }
@@ -559,16 +556,13 @@ impl SwitchWatch {
         if on_zero.is_empty() {
             return Ok((point.time, point.state, *rate));
         }
-        let rounding = 4.0 * f64::EPSILON * point.time.abs().max(1.0);
-        let mut step = rounding;
-        while step <= 1e6 * rounding {
+        for step in slivers(point.time) {
             let (time, state) = (point.time - step, point.state - rate * step);
             self.evaluate(system, time, &state, &mut now)?;
             let before = |&i: &usize| now[i] * self.values[i] > 0.0;
             if on_zero.iter().all(before) {
                 return Ok((time, state, rate_at(system, time, &state)?));
             }
-            step *= 2.0;
         }
         // The rate there would be the kink's, half the jump: never guessed.
         let switch = on_zero[0];
@@ -657,6 +651,14 @@ where
     system
         .state_rate(time, state)
         .map_err(|error| StepError::from_system(system, error, time, state))
+}
+
+/// The probe steps 4ε·max(|t|, 1)·2ᵏ at `t`, from one rounding of t up to a million of
+/// them: how far `leave_zero` and `side_before` look off a switch standing on zero.
+fn slivers(t: f64) -> impl Iterator<Item = f64> {
+    let rounding = 4.0 * f64::EPSILON * t.abs().max(1.0);
+    core::iter::successors(Some(rounding), |s| Some(s * 2.0))
+        .take_while(move |s| *s <= 1e6 * rounding)
 }
 
 /// Whether g went from `before` strictly to the other side of zero at `after` (a zero is
