@@ -1,8 +1,10 @@
 //! The cost of forward sensitivities (issue 37; docs/sensitivities.md): the 6-dof rocket of
 //! `models/rocket_6dof.vms` (zyx angles, S = 13) burning for 3.9 s, DOP853 at rtol = atol =
 //! 1e-8, plain against `Sensitive` with k = 1, 3 and 6 parameter columns (the error control
-//! over the sensitivities too, and without them: `with_error_control(false)`), the fastest of several runs each, the sides interleaved
-//! round by round. The issue's target: ≤ 0.6 (1 + k) times the plain run.
+//! over the sensitivities too, and without them: `with_error_control(false)`), the fastest of
+//! several runs each, the sides interleaved round by round. The issue's target: ≤ 0.6 (1 + k)
+//! times the plain run. Then the state rate alone, plain and augmented, and the evaluations
+//! of a run: what the rest of a step (the stepper's arithmetic over S (1 + k) entries) costs.
 //!
 //! ```sh
 //! cargo bench -p varmass-benches --bench sensitivities
@@ -99,6 +101,54 @@ fn fastest<Sys: VariableMassSystem<6, SA>, const SA: usize>(
         })
 }
 
+/// The fastest mean time of one state rate of `system` at `state`, in ns.
+fn rate_time<Sys: VariableMassSystem<6, SA>, const SA: usize>(
+    system: &Sys,
+    state: SVector<f64, SA>,
+) -> f64 {
+    let calls = 100_000;
+    (0..5)
+        .map(|_| {
+            let begin = Instant::now();
+            for i in 0..calls {
+                let t = black_box(i as f64 * 1e-9);
+                black_box(system.state_rate(t, black_box(&state)).expect("a rate"));
+            }
+            begin.elapsed().as_secs_f64() / calls as f64 * 1e9
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The state rate alone, plain and with 1, 3, 6 columns (filled with made-up values), and
+/// the evaluations a run takes.
+fn rates_alone(
+    systems: (
+        &Sensitive<Rocket, 13>,
+        &Sensitive<Rocket, 13>,
+        &Sensitive<Rocket, 13>,
+    ),
+) {
+    let (one, three, six) = systems;
+    let mut filled = six.start::<91>(&start());
+    for i in 13..91 {
+        filled[i] = 0.01 * i as f64;
+    }
+    let plain = rate_time(&ROCKET, start());
+    let k1 = rate_time(one, SVector::<f64, 26>::from_fn(|i, _| filled[i]));
+    let k3 = rate_time(three, SVector::<f64, 52>::from_fn(|i, _| filled[i]));
+    let k6 = rate_time(six, filled);
+    let mut stepper = Dop853::new(&ROCKET, 0.0, start(), control()).expect("a stepper");
+    let solution = run(&mut stepper, &RunConfig::until(3.9), &[]).expect("the burn");
+    let evaluations = solution.statistics.rate_evaluations;
+    println!("the state rate alone: plain {plain:.0} ns, k = 1/3/6 {k1:.0}/{k3:.0}/{k6:.0} ns");
+    println!(
+        "({:.2}/{:.2}/{:.2} × plain); {evaluations} evaluations in the plain run",
+        k1 / plain,
+        k3 / plain,
+        k6 / plain
+    );
+}
+
 fn main() {
     let plain_start = start();
     let one: Sensitive<Rocket, 13> = Sensitive::new::<6, 26>(ROCKET, &COLUMNS[..1]).unwrap();
@@ -114,6 +164,7 @@ fn main() {
     let six_free: Sensitive<Rocket, 13> = Sensitive::new::<6, 91>(ROCKET, &COLUMNS)
         .unwrap()
         .with_error_control(false);
+    rates_alone((&one, &three, &six));
     let starts = (
         one.start::<26>(&plain_start),
         three.start::<52>(&plain_start),

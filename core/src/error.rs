@@ -270,6 +270,25 @@ pub enum SystemError {
     /// the body were free.
     #[error("a support cannot hold or guide a system with sensitivities")]
     SupportedSensitivities,
+    /// Forward sensitivities met a phase that ends where its end condition's state entry
+    /// stands still (its rate 0 there): the change's time has no derivative.
+    #[error(
+        "a phase ends where state entry {entry} stands still: the change's time has no derivative"
+    )]
+    TangentPhaseEnd {
+        /// The state entry of the end condition.
+        entry: usize,
+    },
+    /// Forward sensitivities carried into a phase whose system has other columns than the
+    /// phase before (every phase needs the same list, a parameter another phase holds given
+    /// as `Column::Elsewhere`).
+    #[error("a phase with {after} sensitivity columns follows one with {before}")]
+    PhaseColumns {
+        /// The columns before the change.
+        before: usize,
+        /// The columns after it.
+        after: usize,
+    },
 }
 
 /// Whether every component of a vector is finite.

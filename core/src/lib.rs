@@ -99,6 +99,7 @@ extern crate alloc;
 
 pub mod cholesky;
 pub mod dd;
+pub mod departure;
 pub mod error;
 pub mod input;
 pub mod lanes;

@@ -13,7 +13,7 @@ use alloc::vec::Vec;
 use nalgebra::{SMatrix, SVector};
 
 use crate::error::StepError;
-use crate::events::{Direction, Event};
+use crate::events::{Direction, Event, EventCondition};
 use crate::run::{run, RunConfig, RunError};
 use crate::solution::{Solution, StopReason};
 use crate::stepper::{Checked, Stepper};
@@ -34,9 +34,13 @@ pub const BAD_STATE_MASS: &str =
     "a phase sets a state mass the system does not have, or to a value that is not positive";
 
 /// The error of a change between systems whose state a change cannot carry as it carries
-/// the mechanics (forward sensitivities jump at a change: `sensitivity::Sensitive::across`).
-pub const NOT_CARRIED: &str = "a run of phases cannot carry sensitivities across a change: \
-     run the phases one by one and carry them with Sensitive::across";
+/// the mechanics: forward sensitivities are carried (`sensitivity/phases.rs`) only out of a
+/// phase that ends at an event on a state entry or a state mass, whose gradient gives the
+/// change's time its derivative, and into a system that takes them.
+pub const NOT_CARRIED: &str = "a run of phases carries sensitivities across a change only \
+     where the phase before ends at an event on a state entry or a state mass reaching a \
+     value (its time's derivative needs the event's gradient), between systems that both \
+     have them";
 
 /// The error of a change whose masses move against its carry rule: a separation whose mass
 /// matrix grows (mass cannot leave and arrive at once) or a capture whose mass matrix
@@ -238,8 +242,12 @@ where
     let first = phased.phase.last().map_or(0, |last| last + 1);
     for (index, phase) in phases.iter().enumerate() {
         let carried = match (index.checked_sub(1), entry) {
-            (Some(previous), _) => Some(carry(&phases[previous].system, phase, time, &state)),
-            (None, Some(before)) => Some(carry(before, phase, time, &state)),
+            (Some(previous), _) => {
+                let before = &phases[previous];
+                let ended_by = before.until.as_ref().map(|event| &event.condition);
+                Some(carry((&before.system, ended_by), phase, time, &state))
+            }
+            (None, Some(before)) => Some(carry((before, None), phase, time, &state)),
             (None, None) => None,
         };
         let carried_in = carried.is_some();
@@ -349,6 +357,62 @@ fn into_result<const N: usize, const S: usize>(
 /// The state entering `phase` from `before`'s `state` at `time`, and the kinetic energy
 /// the change removed.
 fn carry<Before, Sys, const N: usize, const S: usize>(
+    (before, ended_by): (&Before, Option<&EventCondition<'_, S>>),
+    phase: &Phase<'_, Sys, S>,
+    time: f64,
+    state: &SVector<f64, S>,
+) -> Result<(SVector<f64, S>, f64), StepError<S>>
+where
+    Before: VariableMassSystem<N, S>,
+    Sys: VariableMassSystem<N, S>,
+{
+    let (entered, removed) = carry_motion(before, phase, time, state)?;
+    if !(before.has_rate_only_state() || phase.system.has_rate_only_state()) {
+        return Ok((entered, removed));
+    }
+    let entered = carry_columns((before, ended_by), phase, time, (state, entered))?;
+    Ok((entered, removed))
+}
+
+/// The entries past the motion (forward sensitivities) carried from `state` before the
+/// change into `entered` after it ([`VariableMassSystem::depart`] and
+/// [`VariableMassSystem::arrive`]); refused ([`NOT_CARRIED`]) unless the phase before ended
+/// on a state entry or a state mass and both systems carry such entries.
+fn carry_columns<Before, Sys, const N: usize, const S: usize>(
+    (before, ended_by): (&Before, Option<&EventCondition<'_, S>>),
+    phase: &Phase<'_, Sys, S>,
+    time: f64,
+    (state, mut entered): (&SVector<f64, S>, SVector<f64, S>),
+) -> Result<SVector<f64, S>, StepError<S>>
+where
+    Before: VariableMassSystem<N, S>,
+    Sys: VariableMassSystem<N, S>,
+{
+    let refused = || StepError::invalid_configuration(time, *state, NOT_CARRIED);
+    let entry = match ended_by {
+        Some(EventCondition::StateComponent { index, .. }) => *index,
+        Some(EventCondition::Mass { index, .. }) if *index < Before::STATE_MASSES => 2 * N + index,
+        _ => return Err(refused()),
+    };
+    let departure = match before.depart(time, state, entry) {
+        Some(departure) => departure.map_err(|e| StepError::from_system(before, e, time, state))?,
+        None => return Err(refused()),
+    };
+    let reset: Vec<usize> = (phase.state_masses.iter())
+        .map(|(k, _)| 2 * N + k)
+        .collect();
+    let capture = phase.carry == Carry::Capture;
+    let system = &phase.system;
+    match system.arrive(time, &mut entered, &departure, capture, &reset) {
+        Some(arrived) => arrived.map_err(|e| StepError::from_system(system, e, time, &entered))?,
+        None => return Err(refused()),
+    }
+    Ok(entered)
+}
+
+/// The motion carried into `phase` from `before`'s `state` at `time` by the phase's rule
+/// (every entry past it copied), and the kinetic energy the change removed.
+fn carry_motion<Before, Sys, const N: usize, const S: usize>(
     before: &Before,
     phase: &Phase<'_, Sys, S>,
     time: f64,
@@ -358,9 +422,6 @@ where
     Before: VariableMassSystem<N, S>,
     Sys: VariableMassSystem<N, S>,
 {
-    if before.has_rate_only_state() || phase.system.has_rate_only_state() {
-        return Err(StepError::invalid_configuration(time, *state, NOT_CARRIED));
-    }
     let to_step_error = |error| StepError::from_system(before, error, time, state);
     let velocity_state = before.velocity_state(time, state).map_err(to_step_error)?;
     let mut entered = *state;

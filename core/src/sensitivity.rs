@@ -38,6 +38,7 @@ use nalgebra::{SMatrix, SVector};
 use crate::system::{SystemError, VariableMassSystem};
 use crate::tangent::Tangent;
 
+mod phases;
 mod switches;
 
 /// A column of the sensitivity matrix: what the state is differentiated with respect to.
@@ -475,9 +476,12 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         }
     }
 
-    /// The augmented rate over tangents, `None` without them (or without columns): passes
-    /// of 1, 2, 4 or 8 columns, the widest that the columns left fill, so that no lane is
-    /// wasted below 8 columns but for 3, 5, 6 and 7.
+    /// The augmented rate over tangents, `None` without them (or without columns): one
+    /// column in one pass of 1, more in passes of 2 (the last with a lane unseeded when K is
+    /// odd). One width per run: the state rate over tangents is a large function, and two
+    /// widths called in turn evict each other from the instruction cache (6-dof rocket,
+    /// `benches/sensitivities.rs`: K = 3 in passes of 2 + 1 took 640 ns a rate, in 2 + 2
+    /// 490 ns; K = 6 in one pass of 8 1110 ns, in three of 2 720 ns, one of 1 200 ns).
     fn rate_by_tangents<const N: usize, const SA: usize>(
         &self,
         t: f64,
@@ -493,11 +497,9 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         let mut out = SVector::<f64, SA>::zeros();
         let mut first = 0;
         while first < k {
-            let pass = match k - first {
+            let pass = match k {
                 1 => self.pass::<N, SA, 1>(t, state, first, &mut out),
-                2 => self.pass::<N, SA, 2>(t, state, first, &mut out),
-                3 | 4 => self.pass::<N, SA, 4>(t, state, first, &mut out),
-                _ => self.pass::<N, SA, 8>(t, state, first, &mut out),
+                _ => self.pass::<N, SA, 2>(t, state, first, &mut out),
             };
             match pass? {
                 Ok(done) => first += done,
@@ -701,9 +703,31 @@ where
         self.augmented_rate(t, state)
     }
 
-    /// `run_phases` would carry the columns unchanged across a change, where they jump,
-    /// and the variational stepper would hold them (it integrates the Lagrange side).
+    /// The variational stepper would hold the columns (it integrates the Lagrange side);
+    /// a run of phases carries them by [`Self::depart`] and [`Self::arrive`].
     fn has_rate_only_state(&self) -> bool {
         true
+    }
+
+    /// The columns leaving a phase (`sensitivity/phases.rs`).
+    fn depart(
+        &self,
+        t: f64,
+        state: &SVector<f64, SA>,
+        entry: usize,
+    ) -> Option<Result<crate::departure::Departure, SystemError>> {
+        Some(self.departure::<N, SA>(t, state, entry))
+    }
+
+    /// The columns entering a phase (`sensitivity/phases.rs`).
+    fn arrive(
+        &self,
+        t: f64,
+        state: &mut SVector<f64, SA>,
+        departure: &crate::departure::Departure,
+        keep_momenta: bool,
+        reset: &[usize],
+    ) -> Option<Result<(), SystemError>> {
+        Some(self.arrival::<N, SA>(t, state, departure, keep_momenta, reset))
     }
 }

@@ -349,6 +349,18 @@ where
         );
         fn next_stop_time(&self, after: f64) -> Option<f64>;
         fn has_rate_only_state(&self) -> bool;
+        /// Free, a system with sensitivities carries its columns across a phase change.
+        fn depart(
+            &self, t: f64, state: &SVector<f64, S>, entry: usize
+        ) -> Option<Result<crate::departure::Departure, SystemError>>;
+        fn arrive(
+            &self,
+            t: f64,
+            state: &mut SVector<f64, S>,
+            departure: &crate::departure::Departure,
+            keep_momenta: bool,
+            reset: &[usize]
+        ) -> Option<Result<(), SystemError>>;
         /// Free, a system with sensitivities jumps its columns at a switch (held or on a
         /// rail it is refused, `SupportedSensitivities`): without these the trait's no-op
         /// would cross the switches without the jump, silently.

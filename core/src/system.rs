@@ -199,6 +199,36 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(())
     }
 
+    /// Where a phase of this system ends at `(t, state)` on state entry `entry` crossing a
+    /// fixed value (an event on a coordinate, a momentum or a state mass): what a state
+    /// carrying more than the motion (forward sensitivities, `sensitivity/phases.rs`) hands
+    /// to the next phase's system ([`Self::arrive`]). `None` for a system without such
+    /// entries, the default.
+    fn depart(
+        &self,
+        _t: f64,
+        _state: &SVector<f64, S>,
+        _entry: usize,
+    ) -> Option<Result<crate::departure::Departure, SystemError>> {
+        None
+    }
+
+    /// Where a phase of this system begins at `(t, state)`, the motion already carried into
+    /// `state` (q̇ continuous, or p with `keep_momenta`: a capture), from what the phase
+    /// before handed over ([`Self::depart`]): the entries past the motion set. `reset` are
+    /// the state entries the phase sets to constants (its state masses). `None` for a
+    /// system without such entries, the default.
+    fn arrive(
+        &self,
+        _t: f64,
+        _state: &mut SVector<f64, S>,
+        _departure: &crate::departure::Departure,
+        _keep_momenta: bool,
+        _reset: &[usize],
+    ) -> Option<Result<(), SystemError>> {
+        None
+    }
+
     /// The first time after `after` at which the state rate is not smooth in t (a knot of a
     /// table of t, a sample of a held input), which runs land on exactly and restart at.
     /// None by default.
@@ -524,7 +554,9 @@ impl<const S: usize> StepError<S> {
             | SystemError::NoSwitchGradient { .. }
             | SystemError::UnlocatedSwitch { .. }
             | SystemError::TangentSwitch { .. }
-            | SystemError::SwitchesTogether { .. } => error,
+            | SystemError::SwitchesTogether { .. }
+            | SystemError::TangentPhaseEnd { .. }
+            | SystemError::PhaseColumns { .. } => error,
         };
         Self::new(time, state, StepErrorKind::System(error))
     }

@@ -500,7 +500,9 @@ impl Advice {
             | SystemError::UnlocatedSwitch { .. }
             | SystemError::NoSwitchGradient { .. }
             | SystemError::NoParameterJacobian
-            | SystemError::SupportedSensitivities => (what, self.sensitivity_advice(error)),
+            | SystemError::SupportedSensitivities
+            | SystemError::TangentPhaseEnd { .. }
+            | SystemError::PhaseColumns { .. } => (what, self.sensitivity_advice(error)),
         }
     }
 
@@ -508,6 +510,14 @@ impl Advice {
     fn sensitivity_advice(&self, error: SystemError) -> String {
         let (until, stop_when) = (&self.until, &self.stop_when);
         match error {
+            SystemError::TangentPhaseEnd { .. } => format!(
+                "the derivatives do not exist where a phase's end condition is only touched: \
+                 end that phase on another condition, or drop the sensitivity that moves it \
+                 ({until}, {stop_when})"
+            ),
+            SystemError::PhaseColumns { .. } => "every phase carries the same sensitivities: \
+                 this is a bug of the scene's set-up, please report it"
+                .to_string(),
             SystemError::TangentSwitch { .. } | SystemError::SwitchesTogether { .. } => format!(
                 "the derivatives do not exist where a switch is grazed or two cross at once: \
                  end the run before it ({until}, {stop_when}), or drop the sensitivity that \
