@@ -232,8 +232,8 @@ fn the_rockets_sensitivities_meet_central_differences() {
 }
 
 /// What is not handled is refused, never integrated wrongly: an unknown parameter, an
-/// entry past the state, a size that does not fit, the Taylor stepper (no recurrences for
-/// the sensitivities yet). A system with switches is followed when it gives their
+/// entry past the state, a size that does not fit, the Taylor stepper on a system derived
+/// without its recurrences (`emit = ["taylor"]`; with them: tests/sensitivities_taylor.rs). A system with switches is followed when it gives their
 /// gradients (generated code does with `emit = ["sensitivities"]`; the jumps:
 /// tests/sensitivities_switches.rs).
 #[test]
@@ -837,7 +837,8 @@ where
 /// The tangent path (the state rate printed over `Tangent<W>`) against the Jacobians (the
 /// symbolic J_y and J_θ, a second formulation: other expressions, a Cholesky inverse) on the
 /// two 6-dof rockets, at 100 random states each (the quaternion off |q| = 1): the zyx one with
-/// 1, 2, 4, 7 and 9 columns (passes of W = 1, 2, 4, 8 and 8 + 1), the quaternion one with
+/// 1, 2, 4, 7 and 9 columns (a pass of 1; passes of 2, the last with a lane unseeded for
+/// an odd count), the quaternion one with
 /// seven (six parameters and an initial entry). Measured: 4.8e-15 (zyx, the worst width)
 /// and 9.4e-15 (quaternion) normwise relative per block; bound 1e-11.
 #[test]

@@ -1,4 +1,4 @@
-//! Forward sensitivities across a phase change (docs/sensitivities.md#phases): the two-stage
+//! Forward sensitivities across a phase change (docs/sensitivities.md#in-a-run-of-phases-a-two-stage-rocket): the two-stage
 //! rocket of `models/two_stage_rocket.vms` run by `run_phases` with its columns, against the
 //! closed form of the flight.
 //!
@@ -24,6 +24,8 @@
 //!
 //! and y's derivatives from the closed form by a fourth-order central difference (its
 //! truncation and rounding below 1e-11 relative at the step used).
+
+#![allow(clippy::result_large_err)] // the stepper closure's StepError<45> carries the state
 
 use varmass::core::sensitivity::{Column, Sensitive};
 use varmass::core::steppers::{AdaptiveControl, StepControl};
@@ -193,8 +195,10 @@ fn the_columns_cross_a_separation_whose_time_moves() {
                 ours[i], expected[i]
             );
             assert!(error <= 1e-10, "column {c}, quantity {i}: {error:e}");
-            // The written-out derivatives and the difference agree too.
-            assert!((difference[i] - expected[i]).abs() <= 1e-7 * scale);
+            // The written-out derivatives of v and m and the difference agree too.
+            if i > 0 {
+                assert!((difference[i] - expected[i]).abs() <= 1e-7 * scale);
+            }
             worst = worst.max(error);
         }
     }
@@ -294,4 +298,255 @@ fn a_change_at_an_event_without_a_gradient_is_refused() {
     assert!(message.contains("event on a state entry"), "{message}");
     let (time, _) = failure.partial.last().expect("stage 1's points");
     assert!((time - 50.0).abs() < 1e-9, "{time}");
+}
+
+/// A model where the separation's every term counts (a review's check, kept): a law mass
+/// b = b0 + c x + k t of the state and of t, a body at [x + a y sin(w t), y] (a momentum map
+/// with t explicit, off-diagonal M), parameters in the momentum map, other values in each
+/// phase, columns shared, held elsewhere and an initial entry's.
+#[variable_mass_system(
+    r#"
+    coordinates x, y
+    mass m: state, rate -mu
+    mass b = b0 + c*x + k*t
+    body rocket: mass m, position [x, y]
+    body cart: mass b, position [x + a*y*sin(w*t), y]
+    potential (m + b)*g*y + 1/2*kk*(x^2 + y^2)
+    outflow rocket: rate mu, relative_velocity [-u_e, -u_e]
+"#,
+    emit = ["sensitivities"]
+)]
+#[derive(Clone, Copy, Debug)]
+struct Cart {
+    mu: f64,
+    u_e: f64,
+    b0: f64,
+    c: f64,
+    k: f64,
+    w: f64,
+    g: f64,
+    kk: f64,
+    a: f64,
+}
+
+const CART: Cart = Cart {
+    mu: 2.0,
+    u_e: 20.0,
+    b0: 5.0,
+    c: 0.05,
+    k: 0.2,
+    w: 1.5,
+    g: 9.81,
+    kk: 30.0,
+    a: 0.3,
+};
+
+/// Each phase's μ and b0 its own; k, w, c shared (one perturbation of both phases); ẏ(0).
+const CART_COLUMNS: [[Column; 8]; 2] = [
+    [
+        Column::Parameter("mu"),
+        Column::Elsewhere,
+        Column::Parameter("b0"),
+        Column::Elsewhere,
+        Column::Parameter("k"),
+        Column::Parameter("w"),
+        Column::Parameter("c"),
+        Column::Initial(3),
+    ],
+    [
+        Column::Elsewhere,
+        Column::Parameter("mu"),
+        Column::Elsewhere,
+        Column::Parameter("b0"),
+        Column::Parameter("k"),
+        Column::Parameter("w"),
+        Column::Parameter("c"),
+        Column::Initial(3),
+    ],
+];
+
+/// The start [x, y, ẋ, ẏ, m] and the end.
+const CART_START: [f64; 5] = [0.5, 0.0, 1.0, 2.0, 20.0];
+const CART_END: f64 = 9.0;
+
+/// The two phases' systems with column `c` moved by h (an initial speed's move returned).
+fn moved(second: Cart, c: usize, h: f64) -> (Cart, Cart, f64) {
+    let (mut a, mut b, mut speed) = (CART, second, 0.0);
+    match c {
+        0 => a.mu += h,
+        1 => b.mu += h,
+        2 => a.b0 += h,
+        3 => b.b0 += h,
+        4 => (a.k, b.k) = (a.k + h, b.k + h),
+        5 => (a.w, b.w) = (a.w + h, b.w + h),
+        6 => (a.c, b.c) = (a.c + h, b.c + h),
+        _ => speed = h,
+    }
+    (a, b, speed)
+}
+
+/// Where the first phase ends: its propellant down to 10 kg, or y rising through 1 m.
+#[derive(Clone, Copy, Debug)]
+enum Until {
+    Burnout,
+    Rising,
+}
+
+impl Until {
+    fn event<const S: usize>(self) -> Event<'static, S> {
+        match self {
+            Until::Burnout => Event::mass_reaches(0, 10.0),
+            Until::Rising => Event::state_reaches(1, 1.0, Direction::Rising),
+        }
+    }
+}
+
+/// The phases of `systems`, the second entered by `carry` at `until` with m = 6 kg (a
+/// separation) or 15 kg (a capture: mass arrives).
+fn cart_phases<Sys, const S: usize>(
+    [first, second]: [Sys; 2],
+    carry: Carry,
+    until: Until,
+) -> [Phase<'static, Sys, S>; 2] {
+    [
+        Phase {
+            system: first,
+            carry: Carry::Separation,
+            state_masses: &[],
+            until: Some(until.event()),
+        },
+        Phase {
+            system: second,
+            carry,
+            state_masses: match carry {
+                Carry::Separation => &[(0, 6.0)],
+                Carry::Capture => &[(0, 15.0)],
+            },
+            until: None,
+        },
+    ]
+}
+
+/// The end state of the plain flight of `systems` from the start with ẏ moved by `speed`.
+fn plain_end(systems: [Cart; 2], speed: f64, carry: Carry, until: Until) -> [f64; 5] {
+    let mut start = SVector::from(CART_START);
+    start[3] += speed;
+    let start = VariableMassSystem::<2, 5>::momentum_state(&systems[0], 0.0, &start);
+    let phases = cart_phases(systems, carry, until);
+    let stepper = |system, t, state| Dop853::new(system, t, state, control());
+    let phased = run_phases(&phases, (0.0, start), stepper, &RunConfig::until(CART_END))
+        .expect("the plain flight");
+    assert_eq!(phased.changes.len(), 1);
+    (*phased.solution.last().expect("points").1).into()
+}
+
+/// Every column at the end against a fourth-order central difference of whole plain runs
+/// (h = 1e-4); the largest error relative to the entry (absolute below 1).
+fn cart_error(second: Cart, carry: Carry, until: Until) -> f64 {
+    let [first_columns, second_columns] = &CART_COLUMNS;
+    let first = Sensitive::new::<2, 45>(CART, first_columns).expect("phase 1's columns");
+    let second_system = Sensitive::new::<2, 45>(second, second_columns).expect("phase 2's");
+    let start =
+        (first.start_at_velocities::<2, 45>(0.0, &SVector::from(CART_START))).expect("the start");
+    let phases = cart_phases([first, second_system], carry, until);
+    let stepper = |system, t, state| Dop853::new(system, t, state, control());
+    let phased = run_phases(&phases, (0.0, start), stepper, &RunConfig::until(CART_END))
+        .expect("the flight with its columns");
+    let end = *phased.solution.last().expect("points").1;
+    let h = 1e-4;
+    let mut worst = 0f64;
+    for c in 0..8 {
+        let at = |k: f64| {
+            let (a, b, speed) = moved(second, c, k * h);
+            plain_end([a, b], speed, carry, until)
+        };
+        let (down2, down, up, up2) = (at(-2.0), at(-1.0), at(1.0), at(2.0));
+        for i in 0..5 {
+            let difference = (down2[i] - 8.0 * down[i] + 8.0 * up[i] - up2[i]) / (12.0 * h);
+            let ours = end[5 * (1 + c) + i];
+            worst = worst.max((ours - difference).abs() / difference.abs().max(1.0));
+        }
+    }
+    worst
+}
+
+/// Separation at a mass event, separation at a coordinate's event, capture at a
+/// coordinate's event, each against central differences of whole runs. Measured: at most
+/// 3.2e-9 (the differences' own accuracy); bound 1e-7.
+#[test]
+fn the_columns_cross_changes_of_a_model_with_every_term() {
+    let separated = Cart {
+        mu: 1.0,
+        u_e: 30.0,
+        b0: 3.0,
+        k: 0.1,
+        ..CART
+    };
+    let captured = Cart {
+        b0: 7.0,
+        k: 0.3,
+        ..separated
+    };
+    for (second, carry, until) in [
+        (separated, Carry::Separation, Until::Burnout),
+        (separated, Carry::Separation, Until::Rising),
+        (captured, Carry::Capture, Until::Rising),
+    ] {
+        let error = cart_error(second, carry, until);
+        eprintln!("{carry:?} at {until:?}: {error:.1e}");
+        assert!(error <= 1e-7, "{carry:?} at {until:?}: {error:e}");
+    }
+}
+
+/// A column that is one initial entry's before the change and another's after it would
+/// change its meaning there: refused at the change with the column.
+#[test]
+fn a_column_that_changes_its_initial_entry_is_refused() {
+    let [mu1, u1, mu2, u2, m1, v0] = INPUTS;
+    let mut after = COLUMNS_2;
+    after[4] = Column::Initial(0);
+    let first = Sensitive::new::<1, 21>(
+        Stage {
+            mu: mu1,
+            u_e: u1,
+            g: G,
+        },
+        &COLUMNS_1,
+    )
+    .unwrap();
+    let second = Sensitive::new::<1, 21>(
+        Stage {
+            mu: mu2,
+            u_e: u2,
+            g: G,
+        },
+        &after,
+    )
+    .unwrap();
+    let start = first
+        .start_at_velocities::<1, 21>(0.0, &SVector::from([0.0, v0, m1]))
+        .unwrap();
+    let phases = [
+        Phase {
+            system: first,
+            carry: Carry::Separation,
+            state_masses: &[],
+            until: Some(Event::mass_reaches(0, BURNOUT)),
+        },
+        Phase {
+            system: second,
+            carry: Carry::Separation,
+            state_masses: &[(0, SECOND_STAGE)],
+            until: None,
+        },
+    ];
+    let failure = run_phases(
+        &phases,
+        (0.0, start),
+        |system, t, state| Dop853::new(system, t, state, control()),
+        &RunConfig::until(END),
+    )
+    .expect_err("refused");
+    let expected = SystemError::PhaseColumnDiffers { column: 4 };
+    assert_eq!(failure.error.kind, StepErrorKind::System(expected));
 }

@@ -18,6 +18,9 @@ pub struct Departure {
     pub state: Vec<f64>,
     /// σ + ẋ dτ/dw for each column (σ = ∂[q, q̇, m_s]/∂w, ẋ the velocity state's rate).
     pub velocity_state: Vec<f64>,
+    /// For each column, the initial entry it is the derivative with respect to, if it is
+    /// one: the next phase's columns must name the same.
+    pub initial: Vec<Option<usize>>,
 }
 
 impl Departure {

@@ -289,6 +289,14 @@ pub enum SystemError {
         /// The columns after it.
         after: usize,
     },
+    /// Forward sensitivities carried into a phase whose column `column` is another initial
+    /// entry's (or a parameter's where the phase before had an initial entry's): the
+    /// derivative would change its meaning at the change.
+    #[error("sensitivity column {column} is the derivative with respect to another initial entry (or a parameter) after the phase change than before it")]
+    PhaseColumnDiffers {
+        /// The column.
+        column: usize,
+    },
 }
 
 /// Whether every component of a vector is finite.

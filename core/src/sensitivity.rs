@@ -25,9 +25,10 @@
 //! with switching functions but no gradients of them (a hand-written system), sampled
 //! inputs (a sample replaces state entries) or what its [`VariableMassSystem::sensitivity_obstacle`]
 //! names (no symbolic Jacobians, inputs, a table of t whose knots move with a parameter, a
-//! support); the Taylor stepper (no recurrences for s) and the variational one (it
-//! integrates the Lagrange side) at theirs; a run of phases at its first change
-//! ([`VariableMassSystem::has_rate_only_state`]). Knots of tables of t at fixed times
+//! support); the Taylor stepper on a system without recurrences over tangents and the
+//! variational one (it integrates the Lagrange side) at theirs; a run of phases at a change
+//! it cannot carry the columns across (`phases.rs`: an event without a gradient).
+//! Knots of tables of t at fixed times
 //! (their slope and offset free of the parameters) leave s continuous.
 
 use alloc::vec::Vec;
@@ -40,6 +41,7 @@ use crate::tangent::Tangent;
 
 mod phases;
 mod switches;
+mod taylor;
 
 /// A column of the sensitivity matrix: what the state is differentiated with respect to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -149,6 +151,8 @@ pub struct Sensitive<Sys, const S: usize> {
     scratch: RefCell<Vec<f64>>,
     /// Whether the adaptive steppers' error control weighs the columns too (the default).
     error_control: bool,
+    /// The Taylor passes' working memory (`sensitivity/taylor.rs`).
+    taylor: taylor::TaylorPasses<S>,
 }
 
 impl<Sys, const S: usize> Sensitive<Sys, S> {
@@ -225,6 +229,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             columns,
             scratch,
             error_control: true,
+            taylor: Default::default(),
         })
     }
 
@@ -454,7 +459,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     }
 
     /// [y', J_y s_c + ∂f/∂w_c for each column]: over tangents when the system has them
-    /// ([`VariableMassSystem::state_rate_tangents`], up to 8 columns a pass), else
+    /// ([`VariableMassSystem::state_rate_tangents`], one or two columns a pass), else
     /// through the whole Jacobians ([`Self::rate_by_jacobians`]).
     fn augmented_rate<const N: usize, const SA: usize>(
         &self,
@@ -582,7 +587,7 @@ macro_rules! on_head {
 
 /// `Sys` on the first S entries; the state rate augmented with the variational equations.
 /// The trait's finite-difference Jacobian serves the implicit steppers over all SA entries;
-/// the Taylor stepper refuses the system (no recurrences for the sensitivities yet).
+/// the Taylor stepper expands it by the system's recurrences over tangents.
 impl<Sys, const N: usize, const S: usize, const SA: usize> VariableMassSystem<N, SA>
     for Sensitive<Sys, S>
 where
@@ -703,6 +708,19 @@ where
         self.augmented_rate(t, state)
     }
 
+    /// The Taylor coefficients of the augmented state, by the system's recurrences over
+    /// tangents (`sensitivity/taylor.rs`); `None` (the Taylor stepper refuses the system)
+    /// where it has none.
+    fn taylor_coefficients(
+        &self,
+        t: f64,
+        state: &SVector<f64, SA>,
+        coefficients: &mut [SVector<f64, SA>],
+        _scratch: &mut crate::scratch::Scratch,
+    ) -> Option<Result<(), SystemError>> {
+        self.augmented_taylor::<N, SA>(t, state, coefficients)
+    }
+
     /// The variational stepper would hold the columns (it integrates the Lagrange side);
     /// a run of phases carries them by [`Self::depart`] and [`Self::arrive`].
     fn has_rate_only_state(&self) -> bool {
@@ -716,7 +734,8 @@ where
         state: &SVector<f64, SA>,
         entry: usize,
     ) -> Option<Result<crate::departure::Departure, SystemError>> {
-        Some(self.departure::<N, SA>(t, state, entry))
+        // An event on a column's entry has no gradient here: refused by the run.
+        (entry < S).then(|| self.departure::<N, SA>(t, state, entry))
     }
 
     /// The columns entering a phase (`sensitivity/phases.rs`).

@@ -429,8 +429,8 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
 
     /// Whether the state has entries past the mechanics (q, p, m_s, held inputs) that only
     /// the state rate evolves: forward sensitivities (`sensitivity::Sensitive`), which jump
-    /// at a phase change. A run of phases refuses such a system at its first change, and
-    /// the variational stepper, which integrates the Lagrange side, at construction.
+    /// at a phase change ([`Self::depart`], [`Self::arrive`]). The variational stepper,
+    /// which integrates the Lagrange side, refuses such a system at construction.
     /// `false` by default.
     fn has_rate_only_state(&self) -> bool {
         false
@@ -472,6 +472,23 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         _state: &[crate::tangent::Tangent<W>; S],
         _seeds: &[Option<usize>; W],
     ) -> Option<Result<[crate::tangent::Tangent<W>; S], SystemError>> {
+        None
+    }
+
+    /// The Taylor coefficients of the solution through `(t, state)` over tangents: the
+    /// expansion of [`Self::taylor_coefficients`] with the state's entries and the
+    /// parameters `seeds` names moved in W directions, whose derivatives are then the
+    /// Taylor coefficients of the sensitivities (`sensitivity::Sensitive` on the Taylor
+    /// stepper). `None` by default (generated code has it with `emit = [..., "taylor",
+    /// "sensitivities"]` where the state rate has tangents and no numeric solve of q̇).
+    fn taylor_coefficients_tangents<const W: usize>(
+        &self,
+        _t: f64,
+        _state: &[crate::tangent::Tangent<W>; S],
+        _seeds: &[Option<usize>; W],
+        _coefficients: &mut [[crate::tangent::Tangent<W>; S]],
+        _scratch: &mut crate::scratch::Scratch<crate::tangent::Tangent<W>>,
+    ) -> Option<Result<(), SystemError>> {
         None
     }
 
@@ -556,7 +573,8 @@ impl<const S: usize> StepError<S> {
             | SystemError::TangentSwitch { .. }
             | SystemError::SwitchesTogether { .. }
             | SystemError::TangentPhaseEnd { .. }
-            | SystemError::PhaseColumns { .. } => error,
+            | SystemError::PhaseColumns { .. }
+            | SystemError::PhaseColumnDiffers { .. } => error,
         };
         Self::new(time, state, StepErrorKind::System(error))
     }

@@ -12,6 +12,8 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use nalgebra::{ComplexField, RealField};
 
+use crate::steppers::taylor::series::{power, Coefficient};
+
 /// `slope · x`, 0 where x is 0 whatever the slope (a direction that does not move).
 fn times(slope: f64, x: f64) -> f64 {
     if x == 0.0 {
@@ -239,8 +241,10 @@ impl<const W: usize> Div for Tangent<W> {
 }
 
 /// `Tangent ∘ f64` and `f64 ∘ Tangent`: the constant's derivatives are zero, so each
-/// operator skips their terms (the same values as through [`Tangent::constant`], with fewer
-/// operations: generated code is full of constants).
+/// operator skips their terms (generated code is full of constants). For finite values the
+/// same as through [`Tangent::constant`] but for the sign of a zero; where a value is
+/// infinite or NaN the derivatives are no longer poisoned by it (∞ · 0 = NaN): `∞ * 2` moves
+/// with d·2, as its limit does.
 impl<const W: usize> Add<f64> for Tangent<W> {
     type Output = Tangent<W>;
     fn add(self, o: f64) -> Tangent<W> {
@@ -321,6 +325,77 @@ impl<const W: usize> Div<Tangent<W>> for f64 {
             v,
             d: o.d.map(|x| -(v * x) * inverse),
         }
+    }
+}
+
+/// A tangent as a Taylor coefficient: the Taylor stepper's recurrences over tangents
+/// (`VariableMassSystem::taylor_coefficients_tangents`) expand the solution and, in the
+/// tangents' directions, its derivatives with respect to the columns (Taylor sensitivities,
+/// [`crate::sensitivity`]). Its "lanes", for the scratch's key of constants, are the value
+/// and the derivatives; a function's value at order 0 follows the chain rule.
+impl<const W: usize> varmass_table::recurrence::Scalar for Tangent<W> {
+    const NEG_ZERO: Self = Self {
+        v: -0.0,
+        d: [-0.0; W],
+    };
+    fn splat(x: f64) -> Self {
+        Self::constant(x)
+    }
+}
+
+impl<const W: usize> Coefficient for Tangent<W> {
+    const WIDTH: usize = 1 + W;
+    fn lane(self, i: usize) -> f64 {
+        match i {
+            0 => self.v,
+            i => self.d[i - 1],
+        }
+    }
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> Self {
+        Self {
+            v: f(0),
+            d: core::array::from_fn(|i| f(i + 1)),
+        }
+    }
+    fn set_lane(&mut self, i: usize, x: f64) {
+        match i {
+            0 => self.v = x,
+            i => self.d[i - 1] = x,
+        }
+    }
+    fn singular(velocity: Self, state: &[Self]) -> bool {
+        !velocity.v.is_finite() && state.iter().all(|x| x.v.is_finite())
+    }
+    fn map(self, f: impl Fn(f64) -> f64, slope: impl Fn(f64, f64) -> f64) -> Self {
+        let value = f(self.v);
+        self.chain(value, slope(self.v, value))
+    }
+    fn map_atan2(y: Self, x: Self) -> Self {
+        y.atan2(x)
+    }
+    fn map_power(self, alpha: Self) -> Self {
+        let value = power(self.v, alpha.v);
+        let along_x = match alpha.v {
+            0.0 => 0.0,
+            e => e * power(self.v, e - 1.0),
+        };
+        let along_alpha = match self.v > 0.0 {
+            true => value * ComplexField::ln(self.v),
+            false => f64::NAN,
+        };
+        let mut d = [0.0; W];
+        for (k, slot) in d.iter_mut().enumerate() {
+            *slot = times(along_x, self.d[k]) + times(along_alpha, alpha.d[k]);
+        }
+        Self { v: value, d }
+    }
+    fn map_sin_cos(self, hyperbolic: bool) -> (Self, Self) {
+        let (sine, cosine) = match hyperbolic {
+            true => (ComplexField::sinh(self.v), ComplexField::cosh(self.v)),
+            false => ComplexField::sin_cos(self.v),
+        };
+        let sign = if hyperbolic { 1.0 } else { -1.0 };
+        (self.chain(sine, cosine), self.chain(cosine, sign * sine))
     }
 }
 

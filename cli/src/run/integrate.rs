@@ -502,7 +502,8 @@ impl Advice {
             | SystemError::NoParameterJacobian
             | SystemError::SupportedSensitivities
             | SystemError::TangentPhaseEnd { .. }
-            | SystemError::PhaseColumns { .. } => (what, self.sensitivity_advice(error)),
+            | SystemError::PhaseColumns { .. }
+            | SystemError::PhaseColumnDiffers { .. } => (what, self.sensitivity_advice(error)),
         }
     }
 
@@ -515,9 +516,11 @@ impl Advice {
                  end that phase on another condition, or drop the sensitivity that moves it \
                  ({until}, {stop_when})"
             ),
-            SystemError::PhaseColumns { .. } => "every phase carries the same sensitivities: \
+            SystemError::PhaseColumns { .. } | SystemError::PhaseColumnDiffers { .. } => {
+                "every phase carries the same sensitivities: \
                  this is a bug of the scene's set-up, please report it"
-                .to_string(),
+                    .to_string()
+            }
             SystemError::TangentSwitch { .. } | SystemError::SwitchesTogether { .. } => format!(
                 "the derivatives do not exist where a switch is grazed or two cross at once: \
                  end the run before it ({until}, {stop_when}), or drop the sensitivity that \

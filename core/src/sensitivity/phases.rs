@@ -1,4 +1,4 @@
-//! Forward sensitivities across a phase change (docs/sensitivities.md#phases): a phase of
+//! Forward sensitivities across a phase change (docs/sensitivities.md#in-a-run-of-phases-a-two-stage-rocket): a phase of
 //! system A ends at τ where state entry i crosses a fixed value (a burn-out, an apogee), and
 //! system B's phase begins with the motion carried by a rule (`phases.rs`): a separation
 //! keeps q and q̇ and recomputes p through B's momentum map; a capture keeps q and p; either
@@ -32,7 +32,7 @@ use alloc::vec::Vec;
 
 use nalgebra::SVector;
 
-use super::{column, head, Sensitive};
+use super::{column, head, Resolved, Sensitive};
 use crate::departure::Departure;
 use crate::system::{SystemError, VariableMassSystem};
 
@@ -58,6 +58,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         let velocities = self.velocity_sensitivities::<N, SA>(t, state)?;
         let mut departure = Departure {
             entries: S,
+            initial: self.initial_entries(),
             ..Departure::default()
         };
         for (c, velocity) in velocities.iter().enumerate() {
@@ -90,6 +91,10 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         if departure.columns() != self.columns() || departure.entries != S {
             let (before, after) = (departure.columns(), self.columns());
             return Err(SystemError::PhaseColumns { before, after });
+        }
+        let initial = self.initial_entries();
+        if let Some(column) = (0..initial.len()).find(|&c| initial[c] != departure.initial[c]) {
+            return Err(SystemError::PhaseColumnDiffers { column });
         }
         let y = head::<S, SA>(state);
         let rate = self.system.state_rate(t, &y)?;
@@ -158,6 +163,15 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             entered
         });
         Ok(entered.collect())
+    }
+
+    /// For each column, its initial entry if it is one's.
+    fn initial_entries(&self) -> Vec<Option<usize>> {
+        let initial = |c: &Resolved| match *c {
+            Resolved::Initial(i) => Some(i),
+            Resolved::Parameter(_) | Resolved::Elsewhere => None,
+        };
+        self.columns.iter().map(initial).collect()
     }
 
     /// ẋ = [q̇, q̈, ṁ_s], the velocity state's rate at the state `y` whose rate is `rate`.

@@ -192,7 +192,7 @@ impl<const N: usize, const S: usize> FixedMethod<N, S> for VariationalMethod {
         match system.has_rate_only_state() {
             true => Err(ConfigError {
                 reason: "the variational stepper integrates the Lagrange side: it cannot \
-                         carry sensitivities (use a Runge–Kutta stepper)",
+                         carry sensitivities (use a Runge–Kutta or the Taylor stepper)",
             }),
             false => Ok(()),
         }

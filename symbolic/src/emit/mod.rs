@@ -79,17 +79,25 @@ pub fn emit_system_for(
         true => head::head_items(&emitter, outputs.taylor),
         false => Default::default(),
     };
+    let lanes_taylor = outputs.taylor && outputs.lanes && emitter.has_lanes();
+    let taylor_tangents = outputs.taylor && tangents::has_taylor_tangents(&emitter);
     let tangents = match outputs.sensitivities {
-        true => tangents::tangent_items(&emitter),
+        true => tangents::tangent_items(&emitter, (taylor_tangents, !lanes_taylor)),
         false => Default::default(),
     };
+    let generic_taylor = lanes_taylor || (outputs.sensitivities && taylor_tangents);
     let stops = (
         &switches[..],
         &table_switches[..],
         &time_tables[..],
         &switch_gradients[..],
     );
-    let methods = trait_methods(&emitter, outputs, stops, (head.0, tangents.0));
+    let methods = trait_methods(
+        &emitter,
+        (outputs, generic_taylor),
+        stops,
+        (head.0, tangents.0),
+    );
     let lanes = optional(outputs.lanes, || {
         lanes::lanes_impl(&emitter, outputs.taylor)
     });
@@ -146,7 +154,7 @@ type Stops<'a> = (&'a [Id], &'a [TableSwitch], &'a [TimeTable], &'a [Id]);
 /// `tangents` the state rate over tangents.
 fn trait_methods(
     emitter: &Emitter<'_>,
-    outputs: Outputs,
+    (outputs, generic_taylor): (Outputs, bool),
     (switches, table_switches, time_tables, gradients): Stops<'_>,
     (head, tangents): (TokenStream, TokenStream),
 ) -> [TokenStream; 26] {
@@ -177,9 +185,8 @@ fn trait_methods(
         tangents,
         emitter.switching_functions(switches, table_switches, gradients),
         optional(outputs.taylor, || {
-            // With lanes, the per-order function is shared with the lanes' method.
-            let generic = outputs.lanes && emitter.has_lanes();
-            taylor::taylor_method(d, &target.runtime, &target.name, generic)
+            // With lanes or tangents, the per-order function is shared with their methods.
+            taylor::taylor_method(d, &target.runtime, &target.name, generic_taylor)
         }),
         head,
         emitter.flow_rates(),

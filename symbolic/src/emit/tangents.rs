@@ -18,6 +18,7 @@ use quote::{format_ident, quote};
 
 use super::system::{Emitter, Input};
 use crate::expr::{Func, Id, Node};
+use crate::mechanics::VelocitySolve;
 
 impl Emitter<'_> {
     /// Whether the state rate has a tangent form: no tables, no inputs, no `sign`, `abs`,
@@ -58,9 +59,23 @@ impl Emitter<'_> {
     }
 }
 
+/// Whether the Taylor recurrences have a tangent form (`taylor_coefficients_tangents`):
+/// the state rate has one and q̇ is in closed form (the numeric solve of M q̇ = p − b is
+/// written for `f64` coefficients).
+pub(crate) fn has_taylor_tangents(emitter: &Emitter<'_>) -> bool {
+    let numeric = matches!(emitter.d.velocities, VelocitySolve::Numeric);
+    !numeric && emitter.has_tangents(&emitter.state_rate_roots())
+}
+
 /// `state_rate_tangents` inside the trait impl, and the companion struct with the state
-/// rate over tangents beside it; both empty without a tangent form.
-pub(crate) fn tangent_items(emitter: &Emitter<'_>) -> (TokenStream, TokenStream) {
+/// rate over tangents beside it; both empty without a tangent form. With `taylor` (the
+/// Taylor recurrences have a tangent form, [`has_taylor_tangents`]) the trait gets
+/// `taylor_coefficients_tangents` too, and with `helper` the generic per-order function
+/// it calls (when the lanes do not emit it).
+pub(crate) fn tangent_items(
+    emitter: &Emitter<'_>,
+    (taylor, helper): (bool, bool),
+) -> (TokenStream, TokenStream) {
     let roots = emitter.state_rate_roots();
     if !emitter.has_tangents(&roots) {
         return Default::default();
@@ -91,21 +106,15 @@ pub(crate) fn tangent_items(emitter: &Emitter<'_>) -> (TokenStream, TokenStream)
             state: &[#tangent; #s_lit],
             seeds: &[::core::option::Option<usize>; W],
         ) -> ::core::option::Option<::core::result::Result<[#tangent; #s_lit], #runtime::SystemError>> {
-            let seeded = |j: usize, value: f64| {
-                let mut d = [0.0; W];
-                for (slot, seed) in d.iter_mut().zip(seeds) {
-                    if *seed == ::core::option::Option::Some(j) {
-                        *slot = 1.0;
-                    }
-                }
-                #runtime::tangent::Tangent { v: value, d }
-            };
-            let parameters = #tangents_name {
-                #(#fields: seeded(#indices, self.#fields),)*
-            };
+            let parameters = #tangents_name::<W>::seeded(self, seeds);
             ::core::option::Option::Some(parameters.state_rate(t, state))
         }
     };
+    let d = emitter.d;
+    let taylor_method =
+        taylor.then(|| super::taylor::taylor_tangents(d, runtime, (name, &tangents_name)));
+    let taylor_helper = (taylor && helper).then(|| super::taylor::order_helper(d, runtime, name));
+    let method = quote!(#method #taylor_method);
     let items = quote! {
         #[doc = #doc]
         #[doc(hidden)]
@@ -116,6 +125,23 @@ pub(crate) fn tangent_items(emitter: &Emitter<'_>) -> (TokenStream, TokenStream)
 
         #[allow(unused_variables, non_snake_case, clippy::all)]
         impl<const W: usize> #tangents_name<W> {
+            /// The system's parameters as tangents, 1 in the directions `seeds` names.
+            #[inline]
+            fn seeded(system: &#name, seeds: &[::core::option::Option<usize>; W]) -> Self {
+                let seeded = |j: usize, value: f64| {
+                    let mut d = [0.0; W];
+                    for (slot, seed) in d.iter_mut().zip(seeds) {
+                        if *seed == ::core::option::Option::Some(j) {
+                            *slot = 1.0;
+                        }
+                    }
+                    #runtime::tangent::Tangent { v: value, d }
+                };
+                Self {
+                    #(#fields: seeded(#indices, system.#fields),)*
+                }
+            }
+
             /// `state_rate` over tangents.
             #[inline]
             fn state_rate(
@@ -127,5 +153,5 @@ pub(crate) fn tangent_items(emitter: &Emitter<'_>) -> (TokenStream, TokenStream)
             }
         }
     };
-    (method, items)
+    (method, quote!(#items #taylor_helper))
 }

@@ -148,9 +148,6 @@ pub(crate) fn taylor_lanes(
     let degrees = degrees(&st);
     let m = Method::new(d, &st, runtime, &degrees, true);
     let (ts, system, _) = m.paths();
-    let fields = m.fields();
-    let (solve, _) = m.velocity_solve();
-    let order_k = m.order_k(name, &fields, solve);
     let lane = quote!(#runtime::lanes::Lanes<W>);
     let s = Literal::usize_unsuffixed(m.layout.state_len());
     let body = m.expansion(name, quote!(parameters), lane.clone());
@@ -166,13 +163,58 @@ pub(crate) fn taylor_lanes(
             #body
         }
     };
-    let helper = quote! {
+    (order_helper(d, runtime, name), method)
+}
+
+/// `impl name { __taylor_order }`: the per-order function generic over the coefficient,
+/// which the scalar method, the lanes' and the tangents' call.
+pub(crate) fn order_helper(d: &Derivation, runtime: &TokenStream, name: &Ident) -> TokenStream {
+    let st = d.taylor_stages();
+    let degrees = degrees(&st);
+    let m = Method::new(d, &st, runtime, &degrees, true);
+    let fields = m.fields();
+    let (solve, _) = m.velocity_solve();
+    let order_k = m.order_k(name, &fields, solve);
+    quote! {
         #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
         impl #name {
             #order_k
         }
-    };
-    (helper, method)
+    }
+}
+
+/// `taylor_coefficients_tangents` (`emit = [..., "taylor", "sensitivities"]`): the
+/// expansion over `Tangent<W>` coefficients, t a constant and the parameters the tangents'
+/// companion struct `tangents` seeded as the state rate over tangents seeds them; the
+/// per-order function is the generic one ([`order_helper`]).
+pub(crate) fn taylor_tangents(
+    d: &Derivation,
+    runtime: &TokenStream,
+    (name, tangents): (&Ident, &Ident),
+) -> TokenStream {
+    let st = d.taylor_stages();
+    let degrees = degrees(&st);
+    let m = Method::new(d, &st, runtime, &degrees, true);
+    let (ts, system, _) = m.paths();
+    let tangent = quote!(#runtime::tangent::Tangent<W>);
+    let s = Literal::usize_unsuffixed(m.layout.state_len());
+    let body = m.expansion(name, quote!(parameters), tangent.clone());
+    quote! {
+        /// The Taylor coefficients over tangents (`emit = [..., "taylor", "sensitivities"]`).
+        #[allow(unused_mut, unused_assignments, unused_variables, clippy::all)]
+        fn taylor_coefficients_tangents<const W: usize>(
+            &self,
+            t: f64,
+            state: &[#tangent; #s],
+            seeds: &[::core::option::Option<usize>; W],
+            coefficients: &mut [[#tangent; #s]],
+            scratch: &mut #ts::Scratch<#tangent>,
+        ) -> ::core::option::Option<::core::result::Result<(), #system>> {
+            let parameters = #tangents::<W>::seeded(self, seeds);
+            let t = #runtime::tangent::Tangent::<W>::constant(t);
+            #body
+        }
+    }
 }
 
 impl<'a> Method<'a> {
@@ -583,7 +625,7 @@ fn op(
         Op::Quotient { a, d: den, sign, f } => quotient(&ts, (&w, n(a), n(den)), (sign, f), k, rt),
         Op::Atan2 { y, x, d: den } if den == usize::MAX => {
             let (y, x) = (n(y), n(x));
-            quote!(#w[0] = #ts::value2(#y[0], #x[0], |y: f64, x: f64| y.atan2(x));)
+            quote!(#w[0] = #ts::atan2_value(#y[0], #x[0]);)
         }
         Op::Atan2 { y, x, d: den } => {
             let (y, x, den) = (n(y), n(x), n(den));

@@ -45,6 +45,47 @@ pub trait Coefficient: rule::Scalar + Mul<f64, Output = Self> + PartialEq {
     /// non-finite coefficient is found by the caller, which expands that member alone
     /// again for the scalar error.
     fn singular(velocity: Self, state: &[Self]) -> bool;
+
+    /// f(x) at order 0, lane by lane, where f′(x) = `slope`(x, f(x)): the lanes' and
+    /// `f64`'s value ignores the slope; a tangent's derivatives follow it (the chain rule,
+    /// [`Tangent`](crate::tangent::Tangent)).
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64, slope: impl Fn(f64, f64) -> f64) -> Self {
+        let _ = slope;
+        Self::from_fn(|i| f(self.lane(i)))
+    }
+
+    /// atan2(y, x) at order 0, lane by lane.
+    #[inline(always)]
+    fn map_atan2(y: Self, x: Self) -> Self {
+        Self::from_fn(|i| RealField::atan2(y.lane(i), x.lane(i)))
+    }
+
+    /// xᵅ at order 0 as the value tape computes it ([`power`]), lane by lane.
+    #[inline(always)]
+    fn map_power(self, alpha: Self) -> Self {
+        Self::from_fn(|i| power(self.lane(i), alpha.lane(i)))
+    }
+
+    /// (sin x, cos x), or (sinh x, cosh x) for `hyperbolic`, at order 0, lane by lane.
+    #[inline(always)]
+    fn map_sin_cos(self, hyperbolic: bool) -> (Self, Self) {
+        let each = |i| {
+            let x = self.lane(i);
+            if hyperbolic {
+                (ComplexField::sinh(x), ComplexField::cosh(x))
+            } else {
+                ComplexField::sin_cos(x)
+            }
+        };
+        let mut cosine = Self::splat(0.0);
+        let sine = Self::from_fn(|i| {
+            let (sine, cos) = each(i);
+            cosine.set_lane(i, cos);
+            sine
+        });
+        (sine, cosine)
+    }
 }
 
 impl Coefficient for f64 {
@@ -85,10 +126,10 @@ pub fn value2<T: Coefficient>(y: T, x: T, f: impl Fn(f64, f64) -> f64) -> T {
     T::from_fn(|i| f(y.lane(i), x.lane(i)))
 }
 
-/// atan2(y, x) lane by lane.
+/// atan2(y, x) lane by lane ([`Coefficient::map_atan2`]).
 #[inline(always)]
 pub fn atan2_value<T: Coefficient>(y: T, x: T) -> T {
-    T::from_fn(|i| RealField::atan2(y.lane(i), x.lane(i)))
+    T::map_atan2(y, x)
 }
 
 /// Coefficient arrays of several subexpressions (rows of M, offsets, momenta).
@@ -179,7 +220,7 @@ pub fn div_bounded<T: Coefficient>(
 #[inline(always)]
 pub fn sqrt_of<T: Coefficient>(a: &[T; LEN], w: &[T; LEN], k: usize) -> T {
     if k == 0 {
-        return value(a[0], sqrt);
+        return a[0].map(sqrt, |_, w| 0.5 / w);
     }
     let k = k.min(LEN - 1);
     rule::sqrt(|j| a[j], |j| w[j], k)
@@ -190,14 +231,14 @@ pub fn sqrt_of<T: Coefficient>(a: &[T; LEN], w: &[T; LEN], k: usize) -> T {
 pub fn pow<T: Coefficient>(a: &[T; LEN], e: &[T; LEN], w: &[T; LEN], k: usize) -> T {
     let alpha = e[0];
     if k == 0 {
-        return T::from_fn(|i| power(a[0].lane(i), alpha.lane(i)));
+        return a[0].map_power(alpha);
     }
     let k = k.min(LEN - 1);
     rule::pow(|j| a[j], alpha, |j| w[j], k)
 }
 
 /// bᵉ as the value tape computes it: `powi` for integer exponents, √ for ½.
-fn power(b: f64, e: f64) -> f64 {
+pub(crate) fn power(b: f64, e: f64) -> f64 {
     if e == 0.5 {
         sqrt(b)
     } else if e == (e as i32) as f64 {
@@ -211,7 +252,7 @@ fn power(b: f64, e: f64) -> f64 {
 #[inline(always)]
 pub fn exp<T: Coefficient>(a: &[T; LEN], w: &[T; LEN], k: usize) -> T {
     if k == 0 {
-        return value(a[0], crate::math::exp);
+        return a[0].map(crate::math::exp, |_, w| w);
     }
     let k = k.min(LEN - 1);
     rule::exp(|j| a[j], |j| w[j], k)
@@ -227,21 +268,7 @@ pub fn sin_cos<T: Coefficient>(
     hyperbolic: bool,
 ) {
     if k == 0 {
-        let each = |i| {
-            let x = a[0].lane(i);
-            if hyperbolic {
-                (ComplexField::sinh(x), ComplexField::cosh(x))
-            } else {
-                ComplexField::sin_cos(x)
-            }
-        };
-        let mut cosine = T::splat(0.0);
-        s[0] = T::from_fn(|i| {
-            let (sine, cos) = each(i);
-            cosine.set_lane(i, cos);
-            sine
-        });
-        c[0] = cosine;
+        (s[0], c[0]) = a[0].map_sin_cos(hyperbolic);
         return;
     }
     let k = k.min(LEN - 1);
@@ -260,9 +287,9 @@ pub fn tan<T: Coefficient>(
 ) {
     w[k] = if k == 0 {
         if hyperbolic {
-            value(a[0], ComplexField::tanh)
+            a[0].map(ComplexField::tanh, |_, w| 1.0 - w * w)
         } else {
-            value(a[0], ComplexField::tan)
+            a[0].map(ComplexField::tan, |_, w| 1.0 + w * w)
         }
     } else {
         let k = k.min(LEN - 1);
@@ -284,7 +311,9 @@ pub fn quotient<T: Coefficient>(
     (sign, f): (f64, impl Fn(f64) -> f64),
 ) -> T {
     if k == 0 {
-        return value(a[0], f);
+        // w′ d = sign·a′ at order 0 too: f′(a) = sign/d.
+        let den = d[0].lane(0);
+        return a[0].map(f, move |_, _| sign / den);
     }
     let k = k.min(LEN - 1);
     rule::quotient(|j| a[j], |j| d[j], |j| w[j], k, sign)
