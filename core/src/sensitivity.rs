@@ -645,6 +645,11 @@ where
         self.system.switch_name(index)
     }
 
+    /// The mechanics' state and each column apart (the Taylor stepper's step rule).
+    fn measured_block(&self) -> usize {
+        S
+    }
+
     fn switching_functions(&self, t: f64, velocity_state: &SVector<f64, SA>, values: &mut [f64]) {
         (self.system).switching_functions(t, &head::<S, SA>(velocity_state), values);
     }

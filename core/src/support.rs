@@ -366,6 +366,7 @@ where
         /// would cross the switches without the jump, silently.
         fn has_switch_gradients(&self) -> bool;
         fn controlled_entries(&self) -> usize;
+        fn measured_block(&self) -> usize;
         fn switch_gradient(
             &self, index: usize, t: f64, velocity_state: &SVector<f64, S>, out: &mut [f64]
         ) -> Result<bool, SystemError>;

@@ -162,6 +162,15 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         S
     }
 
+    /// The length of the blocks of the state that the Taylor stepper's step rule measures
+    /// one by one (each its own norm and scale, the step the smallest any block allows): the
+    /// whole state by default; forward sensitivities measure the mechanics' state and each
+    /// column apart (`sensitivity::Sensitive`), so that a column that grows large does not
+    /// loosen the state's tolerance.
+    fn measured_block(&self) -> usize {
+        S
+    }
+
     /// Whether [`Self::switch_gradient`] gives the switches' gradients (what forward
     /// sensitivities need to move a switch's time with a parameter, `sensitivity::Sensitive`).
     /// `false` by default; a run-time model derived with sensitivities has them.

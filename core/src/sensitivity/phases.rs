@@ -88,7 +88,8 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        if departure.columns() != self.columns() || departure.entries != S {
+        let complete = departure.initial.len() == departure.columns();
+        if departure.columns() != self.columns() || departure.entries != S || !complete {
             let (before, after) = (departure.columns(), self.columns());
             return Err(SystemError::PhaseColumns { before, after });
         }

@@ -222,7 +222,8 @@ where
                     time,
                     state,
                     "the system provides no Taylor coefficients (generate them with \
-                     emit = [..., \"taylor\"])",
+                     emit = [..., \"taylor\"]; with sensitivities the recurrences need a \
+                     tangent form: q' in closed form, no tables, inputs or switches)",
                 ))
             }
             Some(Err(error)) => return Err(StepError::from_system(system, error, time, &state)),
@@ -278,6 +279,10 @@ where
         relative_mode: bool,
         max_step: f64,
     ) -> f64 {
+        let block = self.system.measured_block();
+        if block < S {
+            return self.blockwise_step((order, safety), relative_mode, max_step, block);
+        }
         let scale = if relative_mode {
             self.progress.state().amax()
         } else {
@@ -462,8 +467,9 @@ where
                 relative_mode: false,
             },
             TaylorControl::Adaptive { tolerance, .. } => {
-                let relative_mode =
-                    tolerance.relative() * self.progress.state().amax() > tolerance.absolute();
+                let block = self.system.measured_block().min(S);
+                let size = self.progress.state().rows(0, block).amax();
+                let relative_mode = tolerance.relative() * size > tolerance.absolute();
                 Plan {
                     order: self.rules[usize::from(relative_mode)].0,
                     relative_mode,
@@ -527,5 +533,76 @@ where
         self.order = order;
         self.last_step = h;
         Ok(outcome)
+    }
+}
+
+impl<Sys, const N: usize, const S: usize> Taylor<'_, Sys, N, S>
+where
+    Sys: VariableMassSystem<N, S>,
+{
+    /// [`Self::adaptive_step`] over a state of blocks of `block` entries
+    /// ([`VariableMassSystem::measured_block`]: forward sensitivities' state and columns),
+    /// those the error control weighs ([`VariableMassSystem::controlled_entries`]): each
+    /// block's radius from its own coefficients, held to its own tolerance
+    /// max(rtol ‖y_b‖, atol) (a column of size 10⁶ to rtol of it, one still 0 to atol): the
+    /// scale is that tolerance over the mode's ε, so the first block's is `adaptive_step`'s
+    /// (‖y‖ relative, 1 absolute). A block whose last two coefficients vanish (a column
+    /// polynomial in t, its series exact) bounds nothing; if none bounds the step, the first
+    /// block's lower orders do, as in `adaptive_step`. The step the smallest radius allows.
+    fn blockwise_step(
+        &self,
+        (order, safety): (usize, f64),
+        relative_mode: bool,
+        max_step: f64,
+        block: usize,
+    ) -> f64 {
+        let controlled = self.system.controlled_entries().clamp(block.min(S), S);
+        let (rtol, atol) = match self.control {
+            TaylorControl::Adaptive { tolerance, .. } => {
+                (tolerance.relative(), tolerance.absolute())
+            }
+            TaylorControl::Fixed { .. } => (0.0, 1.0),
+        };
+        let state = self.progress.state();
+        let norm =
+            |v: &SVector<f64, S>, first: usize| v.rows(first, block.min(controlled - first)).amax();
+        let scale = |first: usize| {
+            let size = norm(state, first);
+            let relative = rtol * size > atol;
+            match (relative_mode, relative) {
+                (true, true) => size,
+                (true, false) => atol / rtol,
+                (false, true) => size * (rtol / atol),
+                (false, false) => 1.0,
+            }
+        };
+        let radius = |first: usize, j: usize| {
+            powf(
+                scale(first) / norm(&self.coefficients[j], first),
+                1.0 / j as f64,
+            )
+        };
+        // As `adaptive_step` computes it (the same bits for one block).
+        let log_radius = |first: usize, j: usize| {
+            let inverse = 1.0 / j as f64;
+            ln(scale(first) / norm(&self.coefficients[j], first)) * inverse
+        };
+        let bounded = (0..controlled)
+            .step_by(block.max(1))
+            .map(|first| exp(log_radius(first, order - 1).min(log_radius(first, order))));
+        let mut rho = bounded.fold(f64::INFINITY, f64::min);
+        if rho.is_infinite() {
+            rho = (1..order - 1)
+                .map(|j| radius(0, j))
+                .fold(f64::INFINITY, f64::min);
+        }
+        let step = rho * safety;
+        if step.is_finite() {
+            step.min(max_step)
+        } else if max_step.is_finite() {
+            max_step
+        } else {
+            1.0 + self.progress.time().abs()
+        }
     }
 }

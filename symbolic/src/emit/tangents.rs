@@ -84,10 +84,6 @@ pub(crate) fn tangent_items(
     let name = &emitter.target.name;
     let tangents_name = format_ident!("__{}Tangents", name);
     let s_lit = emitter.sizes().state_literal();
-    let fields: Vec<Ident> = (emitter.d.parameters.iter())
-        .map(|(p, _)| Ident::new(p, Span::call_site()))
-        .collect();
-    let indices = 0..fields.len();
     let tangent = quote!(#runtime::tangent::Tangent<W>);
     let body = emitter.body(Input::State, &roots, |outs| {
         let outs = outs
@@ -95,8 +91,6 @@ pub(crate) fn tangent_items(
             .map(|o| quote!(#runtime::tangent::Tangent::<W>::from(#o)));
         quote!(::core::result::Result::Ok([#(#outs),*]))
     });
-    let doc =
-        format!("The parameters of a `{name}` as tangents (`emit = [..., \"sensitivities\"]`).");
     let method = quote! {
         /// The state rate over tangents (`emit = [..., "sensitivities"]`).
         #[inline]
@@ -115,16 +109,33 @@ pub(crate) fn tangent_items(
         taylor.then(|| super::taylor::taylor_tangents(d, runtime, (name, &tangents_name)));
     let taylor_helper = (taylor && helper).then(|| super::taylor::order_helper(d, runtime, name));
     let method = quote!(#method #taylor_method);
-    let items = quote! {
+    let items = companion(emitter, &tangents_name, body);
+    (method, quote!(#items #taylor_helper))
+}
+
+/// The companion struct `tangents` of the parameters as tangents: `seeded` from the system
+/// and `state_rate` (whose `body` is the state rate printed over tangents).
+fn companion(emitter: &Emitter<'_>, tangents: &Ident, body: TokenStream) -> TokenStream {
+    let runtime = &emitter.target.runtime;
+    let name = &emitter.target.name;
+    let s_lit = emitter.sizes().state_literal();
+    let fields: Vec<Ident> = (emitter.d.parameters.iter())
+        .map(|(p, _)| Ident::new(p, Span::call_site()))
+        .collect();
+    let indices = 0..fields.len();
+    let tangent = quote!(#runtime::tangent::Tangent<W>);
+    let doc =
+        format!("The parameters of a `{name}` as tangents (`emit = [..., \"sensitivities\"]`).");
+    quote! {
         #[doc = #doc]
         #[doc(hidden)]
         #[derive(Clone, Copy, Debug)]
-        pub struct #tangents_name<const W: usize> {
+        pub struct #tangents<const W: usize> {
             #(#fields: #tangent,)*
         }
 
         #[allow(unused_variables, non_snake_case, clippy::all)]
-        impl<const W: usize> #tangents_name<W> {
+        impl<const W: usize> #tangents<W> {
             /// The system's parameters as tangents, 1 in the directions `seeds` names.
             #[inline]
             fn seeded(system: &#name, seeds: &[::core::option::Option<usize>; W]) -> Self {
@@ -152,6 +163,5 @@ pub(crate) fn tangent_items(
                 #body
             }
         }
-    };
-    (method, quote!(#items #taylor_helper))
+    }
 }

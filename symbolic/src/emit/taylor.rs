@@ -718,8 +718,32 @@ fn quotient(
 ) -> TokenStream {
     let sign = number(sign);
     let at_zero = value(f, quote!(x), rt);
+    let slope = slope(f);
     quote! {
-        #w[#k] = #ts::quotient(&*#a, &*#den, &*#w, #k, (#sign, |x: f64| #at_zero));
+        #w[#k] = #ts::quotient(
+            &*#a, &*#den, &*#w, #k,
+            (#sign, |x: f64| #at_zero, |x: f64, w: f64| #slope),
+        );
+    }
+}
+
+/// f′(x) written with x and w = f(x), for a tangent's derivative at order 0 (`quotient`);
+/// NaN for a function without one here (`sign`, `abs` and the two-argument functions never
+/// reach it: a tangent through NaN is a non-finite coefficient, not a wrong one).
+fn slope(f: Func) -> TokenStream {
+    match f {
+        Func::Sin => quote!(x.cos()),
+        Func::Cos => quote!(-x.sin()),
+        Func::Tan => quote!(1.0 + w * w),
+        Func::Exp => quote!(w),
+        Func::Ln => quote!(1.0 / x),
+        Func::Tanh => quote!(1.0 - w * w),
+        Func::Sinh => quote!(x.cosh()),
+        Func::Cosh => quote!(x.sinh()),
+        Func::Asin => quote!(1.0 / (1.0 - x * x).sqrt()),
+        Func::Acos => quote!(-1.0 / (1.0 - x * x).sqrt()),
+        Func::Atan => quote!(1.0 / (1.0 + x * x)),
+        _ => quote!(f64::NAN),
     }
 }
 

@@ -8,7 +8,10 @@
 //!
 //! Each function is generic over the [`Coefficient`]: `f64` for the scalar Taylor stepper,
 //! [`Lanes<W>`](crate::lanes::Lanes) for W members at once (`emit = [..., "taylor",
-//! "lanes"]`). The arithmetic rules run over the coefficient as it is (lane by lane, each
+//! "lanes"]`), [`Tangent<W>`](crate::tangent::Tangent) for the sensitivities (`emit = [...,
+//! "taylor", "sensitivities"]`: a function's value at order 0 by the chain rule,
+//! [`Coefficient::map`]; `abs`, `sign`, `min` and `max` go lane by lane and would be wrong
+//! over tangents, which the emitter never gives them). The arithmetic rules run over the coefficient as it is (lane by lane, each
 //! lane the `f64` operation); a function's value at order 0 and the selection rules (abs,
 //! min, max), which branch, are the `f64` ones applied to each lane in turn. So a lane's
 //! coefficients are the scalar expansion's, bit for bit (`tests/taylor_lanes.rs`).
@@ -301,19 +304,20 @@ pub fn tan<T: Coefficient>(
 }
 
 /// w′ d = sign·a′ for k ≥ 1 (ln: d = a; asin, acos: d = √(1 − a²); atan: d = 1 + a²);
-/// at k = 0 `f`(a\[0\]), lane by lane.
+/// at k = 0 `f`(a\[0\]) lane by lane, with f′(x) = `slope`(x, f(x)) for a tangent's
+/// derivatives. The slope is the function's own, not sign/d: the tape also writes a call
+/// of a constant (sin θ of a parameter) as this op with d = a, whose recurrence is never
+/// run (its higher coefficients are 0) but whose derivative at order 0 is f′, not 1/a.
 #[inline(always)]
 pub fn quotient<T: Coefficient>(
     a: &[T; LEN],
     d: &[T; LEN],
     w: &[T; LEN],
     k: usize,
-    (sign, f): (f64, impl Fn(f64) -> f64),
+    (sign, f, slope): (f64, impl Fn(f64) -> f64, impl Fn(f64, f64) -> f64),
 ) -> T {
     if k == 0 {
-        // w′ d = sign·a′ at order 0 too: f′(a) = sign/d.
-        let den = d[0].lane(0);
-        return a[0].map(f, move |_, _| sign / den);
+        return a[0].map(f, slope);
     }
     let k = k.min(LEN - 1);
     rule::quotient(|j| a[j], |j| d[j], |j| w[j], k, sign)
