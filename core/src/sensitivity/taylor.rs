@@ -6,7 +6,8 @@
 //! the expansion over tangents seeded with the columns gives both, exactly, in passes of
 //! one width per run: 1 for one column, 2 for two, 4 for more (the state's recurrences are
 //! computed once a pass: Kepler's four columns over three orbits at 1e-12 took 318 µs in
-//! two passes of 2 and 270 µs in one of 4, `benches/peers/ours_sensitivities.rs`).
+//! two passes of 2 and 270 µs in one of 4, interleaved, `benches/peers/ours_sensitivities.rs`,
+//! before the step rule measured each column apart).
 
 use alloc::vec::Vec;
 use core::cell::RefCell;

@@ -280,7 +280,7 @@ where
         max_step: f64,
     ) -> f64 {
         let block = self.system.measured_block();
-        if block < S {
+        if block > 0 && block < S {
             return self.blockwise_step((order, safety), relative_mode, max_step, block);
         }
         let scale = if relative_mode {
@@ -546,9 +546,12 @@ where
     /// block's radius from its own coefficients, held to its own tolerance
     /// max(rtol ‖y_b‖, atol) (a column of size 10⁶ to rtol of it, one still 0 to atol): the
     /// scale is that tolerance over the mode's ε, so the first block's is `adaptive_step`'s
-    /// (‖y‖ relative, 1 absolute). A block whose last two coefficients vanish (a column
-    /// polynomial in t, its series exact) bounds nothing; if none bounds the step, the first
-    /// block's lower orders do, as in `adaptive_step`. The step the smallest radius allows.
+    /// (‖y‖ relative, 1 absolute). A block whose last two coefficients vanish bounds nothing;
+    /// if none bounds the step, the first block's lower orders do, as in `adaptive_step`.
+    /// That assumes such a block's series is exact over the step (a column polynomial in t,
+    /// ∂m/∂μ = −t; or identically 0): two consecutive coefficients of every entry of a
+    /// block vanish exactly by structure, not by a coincidence of the point (an extremum
+    /// zeroes one coefficient of one entry). The step the smallest radius allows.
     fn blockwise_step(
         &self,
         (order, safety): (usize, f64),
@@ -566,11 +569,14 @@ where
         let state = self.progress.state();
         let norm =
             |v: &SVector<f64, S>, first: usize| v.rows(first, block.min(controlled - first)).amax();
+        // A block held to a tolerance of 0 (rtol alone, the block still 0) bounds nothing
+        // yet: its scale is infinite, as a block whose coefficients vanish.
         let scale = |first: usize| {
             let size = norm(state, first);
             let relative = rtol * size > atol;
             match (relative_mode, relative) {
                 (true, true) => size,
+                (_, false) if atol == 0.0 => f64::INFINITY,
                 (true, false) => atol / rtol,
                 (false, true) => size * (rtol / atol),
                 (false, false) => 1.0,

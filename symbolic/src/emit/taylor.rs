@@ -727,9 +727,10 @@ fn quotient(
     }
 }
 
-/// f′(x) written with x and w = f(x), for a tangent's derivative at order 0 (`quotient`);
-/// NaN for a function without one here (`sign`, `abs` and the two-argument functions never
-/// reach it: a tangent through NaN is a non-finite coefficient, not a wrong one).
+/// f′(x) written with x and w = f(x), for a tangent's derivative at order 0 (`quotient`:
+/// ln, asin, acos, atan of the state, and any one-argument function of constants but exp,
+/// abs and sign, which have ops of their own); NaN for any other, which never reaches it (a
+/// tangent through NaN would be a non-finite coefficient, not a wrong one).
 fn slope(f: Func) -> TokenStream {
     match f {
         Func::Sin => quote!(x.cos()),
