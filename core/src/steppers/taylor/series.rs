@@ -64,7 +64,8 @@ pub trait Coefficient: rule::Scalar + Mul<f64, Output = Self> + PartialEq {
         Self::from_fn(|i| RealField::atan2(y.lane(i), x.lane(i)))
     }
 
-    /// xᵅ at order 0 as the value tape computes it ([`power`]), lane by lane.
+    /// xᵅ at order 0 as the value tape computes it (`power`: `powi` for integer exponents,
+    /// √ for ½), lane by lane.
     #[inline(always)]
     fn map_power(self, alpha: Self) -> Self {
         Self::from_fn(|i| power(self.lane(i), alpha.lane(i)))
