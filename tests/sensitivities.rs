@@ -2,6 +2,9 @@
 //! the state with respect to parameters and initial entries, integrated with the state,
 //! against closed forms derived by hand.
 
+mod sensitivity_support;
+
+use sensitivity_support::rocket_by_hand;
 use varmass::core::sensitivity::{Column, Sensitive, SensitivityError};
 use varmass::prelude::*;
 
@@ -47,32 +50,10 @@ const COLUMNS: [Column; 4] = [
     Column::Initial(1),
 ];
 
-/// ∂(y, v)/∂(u_e, μ, m0, p0) at t from rest at y = 0, by hand. With m = m0 − μ t and
-/// L = ln(m0/m): v = u_e L − g t, y = u_e (t − (m/μ) L) − ½ g t² (dy/dt = u_e (1 + L − 1) − g t,
-/// since d/dt[(m/μ) L] = −L + 1). Then, with ∂m/∂μ = −t, ∂L/∂μ = t/m, ∂(m/μ)/∂μ = −m0/μ²,
-/// ∂m/∂m0 = 1 and ∂L/∂m0 = 1/m0 − 1/m:
-///
-/// ```text
-/// ∂v/∂u_e = L                   ∂y/∂u_e = t − (m/μ) L
-/// ∂v/∂μ   = u_e t/m             ∂y/∂μ   = u_e ((m0/μ²) L − t/μ)
-/// ∂v/∂m0  = u_e (1/m0 − 1/m)    ∂y/∂m0  = −(u_e/μ) (L + m/m0 − 1)
-/// ```
-///
-/// (each ∂y/∂w's t-derivative is the ∂v/∂w beside it, and both vanish at t = 0). A change δ
-/// of p(0) = m0 v(0) moves v by δ/m0 for ever (v' does not depend on v): ∂v/∂p0 = 1/m0,
-/// ∂y/∂p0 = t/m0.
+/// ∂(y, v)/∂(u_e, μ, m0, p0) at t from rest, by hand (derived in
+/// `sensitivity_support::rocket_by_hand`).
 fn by_hand(r: &Rocket, t: f64) -> [(f64, f64); 4] {
-    let m = r.m0 - r.mu * t;
-    let l = (r.m0 / m).ln();
-    [
-        (t - m / r.mu * l, l),
-        (r.u_e * (r.m0 / r.mu.powi(2) * l - t / r.mu), r.u_e * t / m),
-        (
-            -(r.u_e / r.mu) * (l + m / r.m0 - 1.0),
-            r.u_e * (1.0 / r.m0 - 1.0 / m),
-        ),
-        (t / r.m0, 1.0 / r.m0),
-    ]
+    rocket_by_hand((r.m0, r.mu, r.u_e), t)
 }
 
 /// ∂v/∂w from the state's columns: v = p/m, so ∂v/∂w = (∂p/∂w − v ∂m/∂w)/m, with ∂m/∂w =

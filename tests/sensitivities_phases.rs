@@ -110,7 +110,16 @@ fn control() -> StepControl {
 }
 
 /// The flight with its columns, stage 2 entered with mass `m_2` by `carry`.
-fn fly((m_2, carry): (f64, Carry)) -> Result<PhasedSolution<1, 21>, RunError<1, 21>> {
+fn fly(stage_2: (f64, Carry)) -> Result<PhasedSolution<1, 21>, RunError<1, 21>> {
+    fly_with(stage_2, Event::mass_reaches(0, BURNOUT), &COLUMNS_2)
+}
+
+/// The flight with stage 1 ended by `until` and stage 2's columns `columns_2`.
+fn fly_with(
+    (m_2, carry): (f64, Carry),
+    until: Event<'_, 21>,
+    columns_2: &[Column],
+) -> Result<PhasedSolution<1, 21>, RunError<1, 21>> {
     let [mu1, u1, mu2, u2, m1, v0] = INPUTS;
     let stage_1 = Stage {
         mu: mu1,
@@ -123,7 +132,7 @@ fn fly((m_2, carry): (f64, Carry)) -> Result<PhasedSolution<1, 21>, RunError<1, 
         g: G,
     };
     let first = Sensitive::new::<1, 21>(stage_1, &COLUMNS_1).expect("stage 1's columns");
-    let second = Sensitive::new::<1, 21>(stage_2, &COLUMNS_2).expect("stage 2's columns");
+    let second = Sensitive::new::<1, 21>(stage_2, columns_2).expect("stage 2's columns");
     let start = first
         .start_at_velocities::<1, 21>(0.0, &SVector::from([0.0, v0, m1]))
         .expect("the start");
@@ -132,7 +141,7 @@ fn fly((m_2, carry): (f64, Carry)) -> Result<PhasedSolution<1, 21>, RunError<1, 
             system: first,
             carry: Carry::Separation,
             state_masses: &[],
-            until: Some(Event::mass_reaches(0, BURNOUT)),
+            until: Some(until),
         },
         Phase {
             system: second,
@@ -246,54 +255,10 @@ fn the_columns_cross_a_capture() {
 /// columns: the run stops at the change with the reason, the first stage's points kept.
 #[test]
 fn a_change_at_an_event_without_a_gradient_is_refused() {
-    let [mu1, u1, mu2, u2, m1, v0] = INPUTS;
-    let first = Sensitive::new::<1, 21>(
-        Stage {
-            mu: mu1,
-            u_e: u1,
-            g: G,
-        },
-        &COLUMNS_1,
-    )
-    .unwrap();
-    let second = Sensitive::new::<1, 21>(
-        Stage {
-            mu: mu2,
-            u_e: u2,
-            g: G,
-        },
-        &COLUMNS_2,
-    )
-    .unwrap();
-    let start = first
-        .start_at_velocities::<1, 21>(0.0, &SVector::from([0.0, v0, m1]))
-        .unwrap();
     let burnout = |_: f64, state: &SVector<f64, 21>| state[2] - BURNOUT;
-    let phases = [
-        Phase {
-            system: first,
-            carry: Carry::Separation,
-            state_masses: &[],
-            until: Some(Event::function(
-                &burnout,
-                Direction::Falling,
-                EventAction::Stop,
-            )),
-        },
-        Phase {
-            system: second,
-            carry: Carry::Separation,
-            state_masses: &[(0, SECOND_STAGE)],
-            until: None,
-        },
-    ];
-    let failure = run_phases(
-        &phases,
-        (0.0, start),
-        |system, t, state| Dop853::new(system, t, state, control()),
-        &RunConfig::until(END),
-    )
-    .expect_err("refused");
+    let until = Event::function(&burnout, Direction::Falling, EventAction::Stop);
+    let failure =
+        fly_with((SECOND_STAGE, Carry::Separation), until, &COLUMNS_2).expect_err("refused");
     let message = failure.error.to_string();
     assert!(message.contains("event on a state entry"), "{message}");
     let (time, _) = failure.partial.last().expect("stage 1's points");
@@ -502,51 +467,10 @@ fn the_columns_cross_changes_of_a_model_with_every_term() {
 /// change its meaning there: refused at the change with the column.
 #[test]
 fn a_column_that_changes_its_initial_entry_is_refused() {
-    let [mu1, u1, mu2, u2, m1, v0] = INPUTS;
     let mut after = COLUMNS_2;
     after[4] = Column::Initial(0);
-    let first = Sensitive::new::<1, 21>(
-        Stage {
-            mu: mu1,
-            u_e: u1,
-            g: G,
-        },
-        &COLUMNS_1,
-    )
-    .unwrap();
-    let second = Sensitive::new::<1, 21>(
-        Stage {
-            mu: mu2,
-            u_e: u2,
-            g: G,
-        },
-        &after,
-    )
-    .unwrap();
-    let start = first
-        .start_at_velocities::<1, 21>(0.0, &SVector::from([0.0, v0, m1]))
-        .unwrap();
-    let phases = [
-        Phase {
-            system: first,
-            carry: Carry::Separation,
-            state_masses: &[],
-            until: Some(Event::mass_reaches(0, BURNOUT)),
-        },
-        Phase {
-            system: second,
-            carry: Carry::Separation,
-            state_masses: &[(0, SECOND_STAGE)],
-            until: None,
-        },
-    ];
-    let failure = run_phases(
-        &phases,
-        (0.0, start),
-        |system, t, state| Dop853::new(system, t, state, control()),
-        &RunConfig::until(END),
-    )
-    .expect_err("refused");
+    let until = Event::mass_reaches(0, BURNOUT);
+    let failure = fly_with((SECOND_STAGE, Carry::Separation), until, &after).expect_err("refused");
     let expected = SystemError::PhaseColumnDiffers { column: 4 };
     assert_eq!(failure.error.kind, StepErrorKind::System(expected));
 }

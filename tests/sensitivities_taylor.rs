@@ -3,6 +3,9 @@
 //! (`emit = ["sensitivities", "taylor"]`, `taylor_coefficients_tangents`), against the
 //! closed forms of `tests/sensitivities.rs` and the scalar expansion.
 
+mod sensitivity_support;
+
+use sensitivity_support::rocket_by_hand;
 use varmass::core::scratch::Scratch;
 use varmass::core::sensitivity::{Column, Sensitive};
 use varmass::prelude::*;
@@ -45,27 +48,10 @@ fn taylor(tolerance: f64) -> TaylorControl {
     TaylorControl::adaptive(Tolerance::for_floor(tolerance, tolerance, Floor::Taylor).unwrap())
 }
 
-/// ∂(y, v)/∂(u_e, μ, m0, p0) at t from rest at y = 0, by hand (derived in
-/// `tests/sensitivities.rs`, `by_hand`): with m = m0 − μ t and L = ln(m0/m),
-///
-/// ```text
-/// ∂v/∂u_e = L                   ∂y/∂u_e = t − (m/μ) L
-/// ∂v/∂μ   = u_e t/m             ∂y/∂μ   = u_e ((m0/μ²) L − t/μ)
-/// ∂v/∂m0  = u_e (1/m0 − 1/m)    ∂y/∂m0  = −(u_e/μ) (L + m/m0 − 1)
-/// ∂v/∂p0  = 1/m0                ∂y/∂p0  = t/m0
-/// ```
+/// ∂(y, v)/∂(u_e, μ, m0, p0) at t from rest, by hand (derived in
+/// `sensitivity_support::rocket_by_hand`).
 fn by_hand(r: &Rocket, t: f64) -> [(f64, f64); 4] {
-    let m = r.m0 - r.mu * t;
-    let l = (r.m0 / m).ln();
-    [
-        (t - m / r.mu * l, l),
-        (r.u_e * (r.m0 / r.mu.powi(2) * l - t / r.mu), r.u_e * t / m),
-        (
-            -(r.u_e / r.mu) * (l + m / r.m0 - 1.0),
-            r.u_e * (1.0 / r.m0 - 1.0 / m),
-        ),
-        (t / r.m0, 1.0 / r.m0),
-    ]
+    rocket_by_hand((r.m0, r.mu, r.u_e), t)
 }
 
 /// The issue's closed-form case with the Taylor stepper: the rocket's sensitivities to

@@ -141,8 +141,9 @@ impl Resolved {
 }
 
 /// `Sys` with the sensitivity columns after its state: `[y, s₁, …, s_K]`, `SA = S (1 + K)`.
-/// Every method but the state rate (and the Jacobian, left to the trait's differences)
-/// reads the first S entries and forwards to `Sys`.
+/// Every method but the state rate, the Taylor coefficients, the crossings of switches and
+/// phases (and the Jacobian, left to the trait's differences) reads the first S entries and
+/// forwards to `Sys`.
 pub struct Sensitive<Sys, const S: usize> {
     system: Sys,
     /// The columns, resolved against the system's parameters.
@@ -174,6 +175,21 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     /// Whether any column is a parameter's (then the parameter Jacobian is needed).
     fn has_parameters(&self) -> bool {
         self.columns.iter().any(|c| c.parameter().is_some())
+    }
+}
+
+/// A pass's tangents into the augmented vector `out`: the values into its first S
+/// entries, lane `l` into the entries of column `columns.start + l`.
+fn scatter<const W: usize, const S: usize, const SA: usize>(
+    tangents: &[Tangent<W>; S],
+    columns: core::ops::Range<usize>,
+    out: &mut SVector<f64, SA>,
+) {
+    for (i, x) in tangents.iter().enumerate() {
+        out[i] = x.v;
+        for (lane, c) in columns.clone().enumerate() {
+            out[S * (1 + c) + i] = x.d[lane];
+        }
     }
 }
 
@@ -526,29 +542,33 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        let columns = (first..(first + W).min(self.columns())).enumerate();
-        let mut y = [Tangent::<W>::constant(0.0); S];
+        let columns = first..(first + W).min(self.columns());
+        let (y, seeds) = self.seeded::<SA, W>(state, columns.clone());
+        let rates = match self.system.state_rate_tangents::<W>(t, &y, &seeds)? {
+            Ok(rates) => rates,
+            Err(error) => return Some(Err(error)),
+        };
+        scatter(&rates, columns.clone(), out);
+        Some(Ok(columns.count()))
+    }
+
+    /// The state's entries as tangents whose lanes are the `columns`' entries, and the
+    /// parameter each lane seeds: the input of a pass over `Tangent<W>` (the state rate's,
+    /// the Taylor recurrences').
+    fn seeded<const SA: usize, const W: usize>(
+        &self,
+        state: &SVector<f64, SA>,
+        columns: core::ops::Range<usize>,
+    ) -> ([Tangent<W>; S], [Option<usize>; W]) {
+        let mut y: [Tangent<W>; S] = core::array::from_fn(|i| Tangent::constant(state[i]));
         let mut seeds = [None; W];
-        for (i, entry) in y.iter_mut().enumerate() {
-            entry.v = state[i];
-        }
-        for (lane, c) in columns.clone() {
+        for (lane, c) in columns.enumerate() {
             seeds[lane] = self.columns[c].parameter();
             for (i, entry) in y.iter_mut().enumerate() {
                 entry.d[lane] = state[S * (1 + c) + i];
             }
         }
-        let rates = match self.system.state_rate_tangents::<W>(t, &y, &seeds)? {
-            Ok(rates) => rates,
-            Err(error) => return Some(Err(error)),
-        };
-        for (i, rate) in rates.iter().enumerate() {
-            out[i] = rate.v;
-            for (lane, c) in columns.clone() {
-                out[S * (1 + c) + i] = rate.d[lane];
-            }
-        }
-        Some(Ok(columns.count()))
+        (y, seeds)
     }
 
     /// The augmented rate through the whole Jacobians: J_y (S × S) times each column plus

@@ -14,7 +14,7 @@ use core::cell::RefCell;
 
 use nalgebra::SVector;
 
-use super::{column, head, Sensitive};
+use super::{scatter, Sensitive};
 use crate::scratch::Scratch;
 use crate::system::{SystemError, VariableMassSystem};
 use crate::tangent::Tangent;
@@ -89,16 +89,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         Sys: VariableMassSystem<N, S>,
     {
         let columns = first..(first + W).min(self.columns());
-        let y = head::<S, SA>(state);
-        let mut seeded: [Tangent<W>; S] = core::array::from_fn(|i| Tangent::constant(y[i]));
-        let mut seeds = [None; W];
-        for (lane, c) in columns.clone().enumerate() {
-            seeds[lane] = self.columns[c].parameter();
-            let s = column::<S, SA>(state, c);
-            for (entry, x) in seeded.iter_mut().zip(s.iter()) {
-                entry.d[lane] = *x;
-            }
-        }
+        let (seeded, seeds) = self.seeded::<SA, W>(state, columns.clone());
         let mut memory = memory.borrow_mut();
         let TaylorPass {
             scratch,
@@ -112,12 +103,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             return Some(Err(error));
         }
         for (out, series) in coefficients.iter_mut().zip(expanded.iter()) {
-            for (i, x) in series.iter().enumerate() {
-                out[i] = x.v;
-                for (lane, c) in columns.clone().enumerate() {
-                    out[S * (1 + c) + i] = x.d[lane];
-                }
-            }
+            scatter(series, columns.clone(), out);
         }
         Some(Ok(columns.count().max(1)))
     }

@@ -582,25 +582,21 @@ where
                 (false, false) => 1.0,
             }
         };
-        let radius = |first: usize, j: usize| {
-            powf(
-                scale(first) / norm(&self.coefficients[j], first),
-                1.0 / j as f64,
-            )
-        };
-        // As `adaptive_step` computes it (the same bits for one block).
-        let log_radius = |first: usize, j: usize| {
-            let inverse = 1.0 / j as f64;
-            ln(scale(first) / norm(&self.coefficients[j], first)) * inverse
-        };
-        let bounded = (0..controlled)
-            .step_by(block.max(1))
-            .map(|first| exp(log_radius(first, order - 1).min(log_radius(first, order))));
+        // Each block's scale once; its radius as `adaptive_step` computes it (the same
+        // bits for one block).
+        let bounded = (0..controlled).step_by(block.max(1)).map(|first| {
+            let scale = scale(first);
+            let log_radius = |j: usize| {
+                let inverse = 1.0 / j as f64;
+                ln(scale / norm(&self.coefficients[j], first)) * inverse
+            };
+            exp(log_radius(order - 1).min(log_radius(order)))
+        });
         let mut rho = bounded.fold(f64::INFINITY, f64::min);
         if rho.is_infinite() {
-            rho = (1..order - 1)
-                .map(|j| radius(0, j))
-                .fold(f64::INFINITY, f64::min);
+            let scale = scale(0);
+            let radius = |j: usize| powf(scale / norm(&self.coefficients[j], 0), 1.0 / j as f64);
+            rho = (1..order - 1).map(radius).fold(f64::INFINITY, f64::min);
         }
         let step = rho * safety;
         if step.is_finite() {
