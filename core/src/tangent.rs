@@ -343,6 +343,37 @@ impl<const W: usize> varmass_table::recurrence::Scalar for Tangent<W> {
     }
 }
 
+/// A tangent as a run-time tape's coefficient (`varmass_symbolic::expr::TaylorTape`, the
+/// interpreter's Taylor sensitivities): selections branch on the value, functions follow the
+/// chain rule as in [`Coefficient::map`].
+impl<const W: usize> varmass_table::recurrence::Value for Tangent<W> {
+    fn lead(self) -> f64 {
+        self.v
+    }
+    fn map(self, f: impl Fn(f64) -> f64, slope: impl Fn(f64, f64) -> f64) -> Self {
+        Coefficient::map(self, f, slope)
+    }
+    fn map2(
+        self,
+        x: Self,
+        f: impl Fn(f64, f64) -> f64,
+        slopes: impl Fn(f64, f64, f64) -> (f64, f64),
+    ) -> Self {
+        let v = f(self.v, x.v);
+        let (along_self, along_x) = slopes(self.v, x.v, v);
+        let d = core::array::from_fn(|k| times(along_self, self.d[k]) + times(along_x, x.d[k]));
+        Self { v, d }
+    }
+    fn pick(self, other: Self, choose: impl Fn(f64, f64) -> f64) -> Self {
+        let v = choose(self.v, other.v);
+        match v.is_nan() {
+            true => Self::constant(v),
+            false if v == self.v || v != other.v => self,
+            false => other,
+        }
+    }
+}
+
 impl<const W: usize> Coefficient for Tangent<W> {
     const WIDTH: usize = 1 + W;
     fn lane(self, i: usize) -> f64 {

@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use varmass_core::math::singular_attitude_distance;
 use varmass_core::table::{knot_bracket_read, knot_gap_read, next_knot_time_read, Table};
+use varmass_core::tangent::Tangent;
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{Id, Symbol, Tape};
 use varmass_symbolic::mechanics::{time_tables, Coordinate, Derivation, Outputs};
@@ -286,6 +287,26 @@ impl Program {
         write: impl FnMut(usize, usize, f64),
     ) -> Result<(), SystemError> {
         self.taylor.expand(t, state, order, write)
+    }
+
+    /// Whether [`Program::taylor_tangents`] expands this model: q̇ in closed form (a tangent
+    /// M q̇ = p − b is not solved).
+    pub fn has_taylor_tangents(&self) -> bool {
+        self.taylor.has_tangents()
+    }
+
+    /// [`Program::taylor_each`] over tangents: the state's derivatives and parameter j moved
+    /// by 1 in direction c where `seeds[c] = Some(j)` ([`Program::parameter_names`] order)
+    /// give the Taylor coefficients of the sensitivities; `None` where q̇ has no closed form.
+    pub fn taylor_tangents<const W: usize>(
+        &self,
+        t: f64,
+        state: &[Tangent<W>],
+        seeds: &[Option<usize>; W],
+        order: usize,
+        write: impl FnMut(usize, usize, Tangent<W>),
+    ) -> Option<Result<(), SystemError>> {
+        self.taylor.expand_tangents(t, state, seeds, order, write)
     }
 
     /// Every mass at `(t, state)` into `out` (in [`Program::mass_names`] order). Only q and

@@ -4,6 +4,7 @@
 use varmass_core::input::Sampling;
 use varmass_core::nalgebra::{SMatrix, SVector};
 use varmass_core::system::central_jacobian;
+use varmass_core::tangent::Tangent;
 use varmass_core::{SystemError, VariableMassSystem};
 
 use super::error::ProgramError;
@@ -392,5 +393,28 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
                     }
                 }),
         )
+    }
+
+    /// The tapes' recurrences over tangents (`Program::taylor_tangents`); the padding of
+    /// `TapeSystem::padded` stays 0.
+    fn taylor_coefficients_tangents<const W: usize>(
+        &self,
+        t: f64,
+        state: &[Tangent<W>; S],
+        seeds: &[Option<usize>; W],
+        coefficients: &mut [[Tangent<W>; S]],
+        _: &mut varmass_core::scratch::Scratch<Tangent<W>>,
+    ) -> Option<Result<(), SystemError>> {
+        let order = coefficients.len().checked_sub(1)?;
+        for c in coefficients.iter_mut() {
+            c.fill(Tangent::constant(0.0));
+        }
+        let len = self.program.state_len();
+        self.program
+            .taylor_tangents(t, &state[..len.min(S)], seeds, order, |k, i, value| {
+                if let Some(c) = coefficients.get_mut(k) {
+                    c[i] = value;
+                }
+            })
     }
 }

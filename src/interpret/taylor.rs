@@ -12,7 +12,8 @@
 
 use std::cell::RefCell;
 
-use varmass_core::table::recurrence as rule;
+use varmass_core::table::recurrence::{self as rule, Value};
+use varmass_core::tangent::Tangent;
 use varmass_core::SystemError;
 use varmass_symbolic::expr::{TaylorJet, TaylorTape};
 use varmass_symbolic::mechanics::{Derivation, TaylorLayout};
@@ -33,20 +34,61 @@ pub(super) struct TaylorProgram {
     /// ṗ then ṁ of the state masses, over the velocities' slots (and jet).
     rates: TaylorTape,
     env: Vec<f64>,
+    /// The slot in `env` of each parameter, in the derivation's order (the sensitivities'
+    /// parameter indices).
+    parameter_slots: Vec<usize>,
     scratch: RefCell<Scratch>,
 }
 
-#[derive(Debug, Default)]
-struct Scratch {
-    laws: TaylorJet,
+#[derive(Debug)]
+struct Scratch<C = f64> {
+    laws: TaylorJet<C>,
     /// The jet of q̇ and of the rates, which share their slots.
-    velocities: TaylorJet,
+    velocities: TaylorJet<C>,
     /// Coefficients of every input, input-major: `inputs[i * stride + k]`.
-    inputs: Vec<f64>,
+    inputs: Vec<C>,
     stride: usize,
     /// The factor of M[0] and the right side of the solve.
     factor: Vec<f64>,
     rhs: Vec<f64>,
+}
+
+impl<C> Default for Scratch<C> {
+    fn default() -> Self {
+        Self {
+            laws: TaylorJet::default(),
+            velocities: TaylorJet::default(),
+            inputs: Vec::new(),
+            stride: 0,
+            factor: Vec::new(),
+            rhs: Vec::new(),
+        }
+    }
+}
+
+/// A coefficient the tapes expand over: `f64`, which solves M q̇ = p − b order by order where
+/// q̇ has no closed form, or a tangent, which does not (such a model has no Taylor
+/// sensitivities: [`TaylorProgram::expand_tangents`] refuses it first).
+trait Coefficient: Value {
+    /// Coefficient k of q̇ from M q̇ = p − b, into the inputs.
+    fn solve(
+        program: &TaylorProgram,
+        scratch: &mut Scratch<Self>,
+        k: usize,
+    ) -> Result<(), SystemError>;
+}
+
+impl Coefficient for f64 {
+    fn solve(program: &TaylorProgram, scratch: &mut Scratch, k: usize) -> Result<(), SystemError> {
+        program.solve_velocities(scratch, k)
+    }
+}
+
+impl<const W: usize> Coefficient for Tangent<W> {
+    /// Not reached: `expand_tangents` refuses a model without a closed-form q̇ first.
+    fn solve(_: &TaylorProgram, _: &mut Scratch<Self>, _: usize) -> Result<(), SystemError> {
+        Err(SystemError::SingularMassMatrix)
+    }
 }
 
 impl TaylorProgram {
@@ -62,6 +104,7 @@ impl TaylorProgram {
             rates: stages.rates,
             laws: stages.laws,
             env: env.to_vec(),
+            parameter_slots: d.parameters.iter().map(|(_, s)| s.index()).collect(),
             scratch: RefCell::new(Scratch::default()),
         }
     }
@@ -84,16 +127,60 @@ impl TaylorProgram {
         t: f64,
         state: &[f64],
         order: usize,
-        mut write: impl FnMut(usize, usize, f64),
+        write: impl FnMut(usize, usize, f64),
     ) -> Result<(), SystemError> {
         let scratch = &mut *self.scratch.borrow_mut();
+        self.expand_over(scratch, &self.env, (t, state), order, write)
+    }
+
+    /// Whether [`TaylorProgram::expand_tangents`] expands this model (q̇ in closed form).
+    pub(super) fn has_tangents(&self) -> bool {
+        !self.numeric
+    }
+
+    /// [`TaylorProgram::expand`] over tangents: the state's entries as given (their
+    /// derivatives the sensitivities' columns) and parameter `j` moved by 1 in direction c
+    /// where `seeds[c] = Some(j)`; the derivatives of y\[k\] are the Taylor coefficients of
+    /// the sensitivities. `None` where q̇ has no closed form (a tangent M q̇ = p − b is not
+    /// solved; generated code refuses the same).
+    pub(super) fn expand_tangents<const W: usize>(
+        &self,
+        t: f64,
+        state: &[Tangent<W>],
+        seeds: &[Option<usize>; W],
+        order: usize,
+        write: impl FnMut(usize, usize, Tangent<W>),
+    ) -> Option<Result<(), SystemError>> {
+        if !self.has_tangents() {
+            return None;
+        }
+        let mut env: Vec<Tangent<W>> = self.env.iter().map(|x| Tangent::constant(*x)).collect();
+        for (c, seed) in seeds.iter().enumerate() {
+            let slot = seed.and_then(|j| self.parameter_slots.get(j));
+            if let Some(x) = slot.and_then(|slot| env.get_mut(*slot)) {
+                x.d[c] = 1.0;
+            }
+        }
+        let mut scratch = Scratch::default();
+        Some(self.expand_over(&mut scratch, &env, (t, state), order, write))
+    }
+
+    /// The expansion itself, over the coefficient `C` and its parameters `env`.
+    fn expand_over<C: Coefficient>(
+        &self,
+        scratch: &mut Scratch<C>,
+        env: &[C],
+        (t, state): (f64, &[C]),
+        order: usize,
+        mut write: impl FnMut(usize, usize, C),
+    ) -> Result<(), SystemError> {
         let l = self.layout;
-        self.begin(scratch, order);
+        self.begin(scratch, env, order);
         for (i, x) in state.iter().take(l.state_len()).enumerate() {
             set(scratch, l.state(i), 0, *x);
         }
-        set(scratch, TaylorLayout::TIME, 0, t);
-        set(scratch, TaylorLayout::TIME, 1, 1.0);
+        set(scratch, TaylorLayout::TIME, 0, C::splat(t));
+        set(scratch, TaylorLayout::TIME, 1, C::splat(1.0));
         for k in 0..=order {
             self.stage_laws(scratch, k);
             self.stage_velocities(scratch, k)?;
@@ -101,7 +188,7 @@ impl TaylorProgram {
                 break;
             }
             advance(&self.rates, scratch, Stage::Rates, k);
-            let next = 1.0 / (k + 1) as f64;
+            let next = C::splat(1.0 / (k + 1) as f64);
             for a in 0..l.n {
                 let v = get(scratch, l.velocity(a), k);
                 set(scratch, l.q(a), k + 1, v * next);
@@ -119,19 +206,20 @@ impl TaylorProgram {
         Ok(())
     }
 
-    fn begin(&self, scratch: &mut Scratch, order: usize) {
+    fn begin<C: Coefficient>(&self, scratch: &mut Scratch<C>, env: &[C], order: usize) {
         let stride = order + 1;
         scratch.stride = stride;
         scratch.inputs.clear();
-        scratch.inputs.resize(self.layout.len() * stride, 0.0);
-        self.laws.begin(&mut scratch.laws, order, &self.env);
-        self.velocities
-            .begin(&mut scratch.velocities, order, &self.env);
-        self.rates.begin_more(&mut scratch.velocities, &self.env);
+        scratch
+            .inputs
+            .resize(self.layout.len() * stride, C::splat(0.0));
+        self.laws.begin(&mut scratch.laws, order, env);
+        self.velocities.begin(&mut scratch.velocities, order, env);
+        self.rates.begin_more(&mut scratch.velocities, env);
     }
 
     /// Coefficient k of the law masses, into the inputs.
-    fn stage_laws(&self, scratch: &mut Scratch, k: usize) {
+    fn stage_laws<C: Coefficient>(&self, scratch: &mut Scratch<C>, k: usize) {
         advance(&self.laws, scratch, Stage::Laws, k);
         for (i, mass) in self.law_masses.iter().enumerate() {
             let value = self.laws.output(&scratch.laws, i, k);
@@ -140,19 +228,30 @@ impl TaylorProgram {
     }
 
     /// Coefficient k of q̇, into the inputs: read off the closed form, or solved.
-    fn stage_velocities(&self, scratch: &mut Scratch, k: usize) -> Result<(), SystemError> {
+    fn stage_velocities<C: Coefficient>(
+        &self,
+        scratch: &mut Scratch<C>,
+        k: usize,
+    ) -> Result<(), SystemError> {
         advance(&self.velocities, scratch, Stage::Velocities, k);
-        let (l, n) = (self.layout, self.layout.n);
-        if !self.numeric {
-            for a in 0..n {
-                let v = self.velocities.output(&scratch.velocities, a, k);
-                if k == 0 && !v.is_finite() && scratch.inputs.iter().all(|x| x.is_finite()) {
-                    return Err(SystemError::SingularMassMatrix);
-                }
-                set(scratch, l.velocity(a), k, v);
-            }
-            return Ok(());
+        if self.numeric {
+            return C::solve(self, scratch, k);
         }
+        let l = self.layout;
+        for a in 0..l.n {
+            let v = self.velocities.output(&scratch.velocities, a, k);
+            let finite = |x: &C| x.lead().is_finite();
+            if k == 0 && !finite(&v) && scratch.inputs.iter().all(finite) {
+                return Err(SystemError::SingularMassMatrix);
+            }
+            set(scratch, l.velocity(a), k, v);
+        }
+        Ok(())
+    }
+
+    /// Coefficient k of q̇ from M q̇ = p − b, with the factor of M\[0\] (made at k = 0).
+    fn solve_velocities(&self, scratch: &mut Scratch, k: usize) -> Result<(), SystemError> {
+        let (l, n) = (self.layout, self.layout.n);
         let jet = &scratch.velocities;
         let entry = |a: usize, b: usize, j: usize| self.velocities.output(jet, a * n + b, j);
         if k == 0 {
@@ -197,7 +296,7 @@ enum Stage {
 }
 
 /// Copies coefficient k of every input into the stage's jet and advances it to order k.
-fn advance(tape: &TaylorTape, scratch: &mut Scratch, stage: Stage, k: usize) {
+fn advance<C: Value>(tape: &TaylorTape, scratch: &mut Scratch<C>, stage: Stage, k: usize) {
     let Scratch {
         laws,
         velocities,
@@ -210,21 +309,21 @@ fn advance(tape: &TaylorTape, scratch: &mut Scratch, stage: Stage, k: usize) {
         Stage::Velocities | Stage::Rates => velocities,
     };
     for i in 0..tape.inputs() {
-        let value = inputs.get(i * *stride + k).copied().unwrap_or(f64::NAN);
-        tape.set_input(jet, i, k, value);
+        let value = inputs.get(i * *stride + k).copied();
+        tape.set_input(jet, i, k, value.unwrap_or(C::splat(f64::NAN)));
     }
     tape.advance(jet, k);
 }
 
-fn get(scratch: &Scratch, input: usize, k: usize) -> f64 {
+fn get<C: Value>(scratch: &Scratch<C>, input: usize, k: usize) -> C {
     scratch
         .inputs
         .get(input * scratch.stride + k)
         .copied()
-        .unwrap_or(f64::NAN)
+        .unwrap_or(C::splat(f64::NAN))
 }
 
-fn set(scratch: &mut Scratch, input: usize, k: usize, value: f64) {
+fn set<C: Value>(scratch: &mut Scratch<C>, input: usize, k: usize, value: C) {
     if k < scratch.stride {
         if let Some(x) = scratch.inputs.get_mut(input * scratch.stride + k) {
             *x = value;

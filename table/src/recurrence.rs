@@ -16,7 +16,8 @@
 //!
 //! The arithmetic rules are generic over the [`Scalar`] of a coefficient (`f64` today; a
 //! batch of lanes later), at no cost: every function is `#[inline(always)]` and monomorphized.
-//! The selection rules (abs, min, max) branch on order-0 values and are `f64` only.
+//! The selection rules (abs, min, max) branch on the coefficients' values: they take a
+//! [`Value`] (`f64`, or a value with derivatives), never lanes (each lane branches alone).
 
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -40,6 +41,54 @@ impl Scalar for f64 {
     #[inline(always)]
     fn splat(x: f64) -> f64 {
         x
+    }
+}
+
+/// The number a run-time tape's coefficient is (`varmass_symbolic::expr::TaylorTape`): `f64`,
+/// or a value with its derivatives in some directions (`varmass_core::tangent::Tangent`, for
+/// Taylor sensitivities of a model read at run time). One value, so a selection (abs, min,
+/// max, a table's piece) branches on it; a function's value at order 0 comes from the
+/// caller's `f64` function, and a value with derivatives moves them by the slopes given
+/// beside it (the chain rule). Not for lanes: each lane would branch on its own value.
+pub trait Value: Scalar + PartialEq {
+    /// The value, which selections branch on.
+    fn lead(self) -> f64;
+    /// f(x) where f′(x) = `slope(x, f(x))`.
+    fn map(self, f: impl Fn(f64) -> f64, slope: impl Fn(f64, f64) -> f64) -> Self;
+    /// f(self, x) where (∂f/∂self, ∂f/∂x) = `slopes(self, x, f)`; a slope of a direction
+    /// that moves neither argument is never read (it may be NaN, as ∂xᵉ/∂e at x ≤ 0).
+    fn map2(
+        self,
+        x: Self,
+        f: impl Fn(f64, f64) -> f64,
+        slopes: impl Fn(f64, f64, f64) -> (f64, f64),
+    ) -> Self;
+    /// The argument whose value `choose(self, other)` returns (min, max): `self` unless the
+    /// choice is `other`'s value and not `self`'s; the choice itself for `f64`.
+    fn pick(self, other: Self, choose: impl Fn(f64, f64) -> f64) -> Self;
+}
+
+impl Value for f64 {
+    #[inline(always)]
+    fn lead(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64, _: impl Fn(f64, f64) -> f64) -> f64 {
+        f(self)
+    }
+    #[inline(always)]
+    fn map2(
+        self,
+        x: f64,
+        f: impl Fn(f64, f64) -> f64,
+        _: impl Fn(f64, f64, f64) -> (f64, f64),
+    ) -> f64 {
+        f(self, x)
+    }
+    #[inline(always)]
+    fn pick(self, other: f64, choose: impl Fn(f64, f64) -> f64) -> f64 {
+        choose(self, other)
     }
 }
 
@@ -291,8 +340,8 @@ pub fn atan2<S: Scalar>(
 /// which events locate) the branch a takes just after: the sign of its first non-zero
 /// coefficient up to k (+ when there is none: every coefficient up to k is then 0).
 #[inline(always)]
-pub fn abs(a: impl Fn(usize) -> f64, k: usize) -> f64 {
-    let zero = |_| 0.0;
+pub fn abs<S: Value>(a: impl Fn(usize) -> S, k: usize) -> S {
+    let zero = |_| S::splat(0.0);
     if below(&a, &zero, k) {
         -a(k)
     } else {
@@ -309,9 +358,14 @@ pub fn abs(a: impl Fn(usize) -> f64, k: usize) -> f64 {
 /// falling gave the isothermal layer of models/lib/atmosphere_1976.vms a growing factor, and
 /// a sphere's fall time 2e-5 off (cli/tests/library.rs).
 #[inline(always)]
-pub fn min_max(a: impl Fn(usize) -> f64, b: impl Fn(usize) -> f64, k: usize, larger: bool) -> f64 {
-    if a(0).is_nan() || b(0).is_nan() {
-        return f64::NAN;
+pub fn min_max<S: Value>(
+    a: impl Fn(usize) -> S,
+    b: impl Fn(usize) -> S,
+    k: usize,
+    larger: bool,
+) -> S {
+    if a(0).lead().is_nan() || b(0).lead().is_nan() {
+        return S::splat(f64::NAN);
     }
     let first = if larger {
         !below(&a, &b, k)
@@ -328,9 +382,9 @@ pub fn min_max(a: impl Fn(usize) -> f64, b: impl Fn(usize) -> f64, k: usize, lar
 /// Whether the series a is below b just after the expansion point: the first of the
 /// coefficients 0..=k where they differ is smaller in a (false where none differs).
 #[inline(always)]
-fn below(a: &impl Fn(usize) -> f64, b: &impl Fn(usize) -> f64, k: usize) -> bool {
+fn below<S: Value>(a: &impl Fn(usize) -> S, b: &impl Fn(usize) -> S, k: usize) -> bool {
     for j in 0..=k {
-        let (x, y) = (a(j), b(j));
+        let (x, y) = (a(j).lead(), b(j).lead());
         if x != y {
             return x < y;
         }

@@ -12,6 +12,7 @@
 //! generated code, so the two are bit-identical.
 
 use crate::error::LookupError;
+use crate::recurrence::Scalar;
 use crate::table::{Cursor, Outside, Table};
 
 /// The piece of a table holding an argument, as a cubic in s = x − `knot`.
@@ -127,16 +128,23 @@ impl Table {
 /// with `a(j)` the argument's coefficient j ≤ k and `h(j)` the stored coefficients j < k of
 /// the Horner stage h₁; returns (h₁\[k\], w\[k\]), the caller storing h₁\[k\]. At order 0,
 /// w\[0\] is `local.value`: the table's own value (as the state rate's lookup gives it), or
-/// on and beyond an end the constant after it.
+/// on and beyond an end the constant after it, a constant over any [`Scalar`] (a caller
+/// whose coefficients carry derivatives gives w\[0\] its slope itself).
 #[inline]
-pub fn series_coefficient(
+pub fn series_coefficient<S: Scalar>(
     local: &Local,
-    a: impl Fn(usize) -> f64,
-    h: impl Fn(usize) -> f64,
+    a: impl Fn(usize) -> S,
+    h: impl Fn(usize) -> S,
     k: usize,
-) -> (f64, f64) {
-    let [_, c1, c2, c3] = local.coefficients;
-    let s = |i: usize| if i == 0 { a(0) - local.knot } else { a(i) };
+) -> (S, S) {
+    let [_, c1, c2, c3] = local.coefficients.map(S::splat);
+    let s = |i: usize| {
+        if i == 0 {
+            a(0) - S::splat(local.knot)
+        } else {
+            a(i)
+        }
+    };
     let h2 = |i: usize| {
         if i == 0 {
             c3 * s(0) + c2
@@ -144,16 +152,16 @@ pub fn series_coefficient(
             c3 * s(i)
         }
     };
-    let mut h1 = if k == 0 { c1 } else { 0.0 };
+    let mut h1 = if k == 0 { c1 } else { S::splat(0.0) };
     for i in 0..=k {
-        h1 += h2(i) * s(k - i);
+        h1 = h1 + h2(i) * s(k - i);
     }
     if k == 0 {
-        return (h1, local.value);
+        return (h1, S::splat(local.value));
     }
     let mut w = h1 * s(0);
     for i in 0..k {
-        w += h(i) * s(k - i);
+        w = w + h(i) * s(k - i);
     }
     (h1, w)
 }

@@ -96,16 +96,27 @@ fn initial_entry(entry: &str, program: &Program) -> Result<usize, CliError> {
     .map_err(|e| CliError::Input(format!("--sensitivity init:{entry}: {e}")))
 }
 
-/// Checks that the run can follow its sensitivities — an adaptive Runge–Kutta method, no
-/// recorded expression (only the model's quantities have gradients), a model the
-/// sensitivities follow — and compiles the gradients of what is recorded and watched.
+/// Checks that the run can follow its sensitivities — an adaptive Runge–Kutta method or
+/// Taylor's, no recorded expression (only the model's quantities have gradients), a model
+/// the sensitivities follow — and compiles the gradients of what is recorded and watched.
 pub fn prepare(program: &mut Program, plan: &Plan) -> Result<(), CliError> {
-    if !matches!(plan.method, Method::DormandPrince | Method::Dop853) {
+    if !matches!(
+        plan.method,
+        Method::DormandPrince | Method::Dop853 | Method::Taylor
+    ) {
         return Err(CliError::Input(format!(
-            "--sensitivity runs with --method dormand-prince or dop853 (the sensitivities of \
-             the other methods are not integrated yet), not {:?}",
+            "--sensitivity runs with --method dormand-prince, dop853 or taylor (the \
+             sensitivities of the other methods are not integrated yet), not {:?}",
             plan.method
         )));
+    }
+    if plan.method == Method::Taylor && !program.has_taylor_tangents() {
+        return Err(CliError::Input(
+            "--sensitivity with --method taylor: this model's q' is solved numerically (a \
+             coupled mass matrix), whose Taylor series over tangents is not expanded; use \
+             --method dop853"
+                .to_string(),
+        ));
     }
     if let Some(reason) = program.sensitivity_obstacle() {
         return Err(CliError::Input(format!(

@@ -142,6 +142,31 @@ impl Func {
         }
     }
 
+    /// f′(u) of a one-argument function, with w = f(u) given (tan′ = 1 + w²): the chain rule
+    /// of a value with derivatives (`varmass_table::recurrence::Value`). abs′ is +1 at 0
+    /// (the branch a kink's switch takes is located elsewhere), sign′ is 0; NaN for the rest.
+    pub(crate) fn slope(self, u: f64, w: f64) -> f64 {
+        match self {
+            Func::Sin => u.cos(),
+            Func::Cos => -u.sin(),
+            Func::Tan => 1.0 + w * w,
+            Func::Exp => w,
+            Func::Ln => 1.0 / u,
+            Func::Abs => match u < 0.0 {
+                true => -1.0,
+                false => 1.0,
+            },
+            Func::Sign => 0.0,
+            Func::Tanh => 1.0 - w * w,
+            Func::Sinh => u.cosh(),
+            Func::Cosh => u.sinh(),
+            Func::Asin => 1.0 / (1.0 - u * u).sqrt(),
+            Func::Acos => -1.0 / (1.0 - u * u).sqrt(),
+            Func::Atan => 1.0 / (1.0 + u * u),
+            _ => f64::NAN,
+        }
+    }
+
     /// Odd functions: f(−u) = −f(u). Used to pull a negative coefficient out of the argument.
     pub(crate) fn is_odd(self) -> bool {
         matches!(

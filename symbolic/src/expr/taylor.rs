@@ -31,6 +31,7 @@ use super::rational::Rational;
 use super::symbol::Symbol;
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
+use varmass_table::recurrence::Value;
 use varmass_table::Table;
 
 /// One recurrence; its result goes to slot `out` of the [`Instr`] holding it.
@@ -149,15 +150,26 @@ pub struct TaylorTape {
 
 /// The coefficients of every slot of a [`TaylorTape`] up to some order: the caller-owned
 /// buffer of an expansion (one per thread; reused without allocation once large enough).
-#[derive(Clone, Debug, Default)]
-pub struct TaylorJet {
-    coefficients: Vec<f64>,
+/// Each coefficient is a [`Value`]: `f64`, or a value with derivatives (the interpreter's
+/// Taylor sensitivities expand over `varmass_core::tangent::Tangent`).
+#[derive(Clone, Debug)]
+pub struct TaylorJet<C = f64> {
+    coefficients: Vec<C>,
     stride: usize,
 }
 
-impl TaylorJet {
+impl<C> Default for TaylorJet<C> {
+    fn default() -> Self {
+        Self {
+            coefficients: Vec::new(),
+            stride: 0,
+        }
+    }
+}
+
+impl<C: Value> TaylorJet<C> {
     /// An empty jet; [`TaylorTape::begin`] sizes it.
-    pub fn new() -> TaylorJet {
+    pub fn new() -> TaylorJet<C> {
         TaylorJet::default()
     }
 
@@ -166,14 +178,14 @@ impl TaylorJet {
         self.stride.saturating_sub(1)
     }
 
-    fn get(&self, slot: usize, k: usize) -> f64 {
+    fn get(&self, slot: usize, k: usize) -> C {
         match self.coefficients.get(slot * self.stride + k) {
             Some(x) if k < self.stride => *x,
-            _ => f64::NAN,
+            _ => C::splat(f64::NAN),
         }
     }
 
-    fn set(&mut self, slot: usize, k: usize, value: f64) {
+    fn set(&mut self, slot: usize, k: usize, value: C) {
         if k < self.stride {
             if let Some(x) = self.coefficients.get_mut(slot * self.stride + k) {
                 *x = value;
@@ -726,10 +738,11 @@ impl TaylorTape {
     /// Starts an expansion to `order`: sizes `jet` (allocating only when it grows), zeroes
     /// it and computes every subexpression that depends on no input, with symbol `s` worth
     /// `env[s.index()]`.
-    pub fn begin(&self, jet: &mut TaylorJet, order: usize, env: &[f64]) {
+    pub fn begin<C: Value>(&self, jet: &mut TaylorJet<C>, order: usize, env: &[C]) {
         jet.stride = order + 1;
         jet.coefficients.clear();
-        jet.coefficients.resize(self.slots * jet.stride, 0.0);
+        jet.coefficients
+            .resize(self.slots * jet.stride, C::splat(0.0));
         for instr in &self.fixed {
             recurrence::run(instr, (&self.operands, &self.tables), env, jet, 0);
         }
@@ -738,14 +751,14 @@ impl TaylorTape {
     /// Continues an expansion that an earlier stage's tape (of the same
     /// [`ExprPool::compile_taylor_stages`]) began in `jet`: computes this stage's
     /// subexpressions that depend on no input, leaving the rest of the jet as it is.
-    pub fn begin_more(&self, jet: &mut TaylorJet, env: &[f64]) {
+    pub fn begin_more<C: Value>(&self, jet: &mut TaylorJet<C>, env: &[C]) {
         for instr in &self.fixed {
             recurrence::run(instr, (&self.operands, &self.tables), env, jet, 0);
         }
     }
 
     /// Sets coefficient `k` of input `i` (to be done before [`advance`](Self::advance)`(k)`).
-    pub fn set_input(&self, jet: &mut TaylorJet, i: usize, k: usize, value: f64) {
+    pub fn set_input<C: Value>(&self, jet: &mut TaylorJet<C>, i: usize, k: usize, value: C) {
         if let Some(slot) = self.inputs.get(i) {
             jet.set(*slot, k, value);
         }
@@ -753,7 +766,7 @@ impl TaylorTape {
 
     /// Computes coefficient `k` of every subexpression, from coefficients 0..=k of the
     /// inputs and 0..k of the rest.
-    pub fn advance(&self, jet: &mut TaylorJet, k: usize) {
+    pub fn advance<C: Value>(&self, jet: &mut TaylorJet<C>, k: usize) {
         if k >= jet.stride {
             return;
         }
@@ -763,10 +776,10 @@ impl TaylorTape {
     }
 
     /// Coefficient `k` of output `i` (NaN if not computed).
-    pub fn output(&self, jet: &TaylorJet, i: usize, k: usize) -> f64 {
+    pub fn output<C: Value>(&self, jet: &TaylorJet<C>, i: usize, k: usize) -> C {
         match self.outputs.get(i) {
             Some(slot) => jet.get(*slot, k),
-            None => f64::NAN,
+            None => C::splat(f64::NAN),
         }
     }
 }
