@@ -406,8 +406,10 @@ impl<const W: usize> Coefficient for Tangent<W> {
     }
     fn map_power(self, alpha: Self) -> Self {
         let value = power(self.v, alpha.v);
+        // Below 0 (an integer power, or the real cube root) e xᵉ/x: xᵉ⁻¹ by `powf` is NaN.
         let along_x = match alpha.v {
             0.0 => 0.0,
+            e if self.v < 0.0 => e * value / self.v,
             e => e * power(self.v, e - 1.0),
         };
         let along_alpha = match self.v > 0.0 {

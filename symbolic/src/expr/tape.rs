@@ -13,10 +13,13 @@ use std::sync::Arc;
 use varmass_table::Table;
 
 /// `b^e`, by `powi` for integer exponents (it keeps `(-2)^3 = -8` and is more accurate),
-/// `powf` otherwise: a power whose exponent is not a constant.
+/// `cbrt` for ⅓ (the real cube root, as the printed state rate's `.cbrt()`: `powf` is NaN
+/// below 0), `powf` otherwise: a power whose exponent is not a constant.
 pub(crate) fn power(b: f64, e: f64) -> f64 {
     if e.fract() == 0.0 && e.abs() <= f64::from(i32::MAX) {
         b.powi(e as i32)
+    } else if e == 1.0 / 3.0 {
+        b.cbrt()
     } else {
         b.powf(e)
     }

@@ -241,10 +241,13 @@ pub fn pow<T: Coefficient>(a: &[T; LEN], e: &[T; LEN], w: &[T; LEN], k: usize) -
     rule::pow(|j| a[j], alpha, |j| w[j], k)
 }
 
-/// bᵉ as the value tape computes it: `powi` for integer exponents, √ for ½.
+/// bᵉ as the value tape computes it: `powi` for integer exponents, √ for ½, the real cube
+/// root for ⅓ (the printed state rate's `.cbrt()`).
 pub(crate) fn power(b: f64, e: f64) -> f64 {
     if e == 0.5 {
         sqrt(b)
+    } else if e == 1.0 / 3.0 {
+        ComplexField::cbrt(b)
     } else if e == (e as i32) as f64 {
         ComplexField::powi(b, e as i32)
     } else {

@@ -65,11 +65,13 @@ fn value<C: Value>(op: Op, operands: &[usize], env: &[C], jet: &TaylorJet<C>) ->
     }
 }
 
-/// (∂/∂x, ∂/∂e) of w = xᵉ: e xᵉ⁻¹ (0 for e = 0) and w ln x (NaN for x ≤ 0, read only where
-/// a direction moves the exponent).
+/// (∂/∂x, ∂/∂e) of w = xᵉ: e xᵉ⁻¹ (0 for e = 0; e w/x below 0, an integer power or the
+/// real cube root, where xᵉ⁻¹ by `powf` is NaN) and w ln x (NaN for x ≤ 0, read only where a
+/// direction moves the exponent).
 fn power_slopes(x: f64, e: f64, w: f64) -> (f64, f64) {
     let along_x = match e {
         0.0 => 0.0,
+        e if x < 0.0 => e * w / x,
         e => e * power(x, e - 1.0),
     };
     let along_e = match x > 0.0 {
