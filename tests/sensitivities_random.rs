@@ -154,7 +154,8 @@ where
     let solution = match method {
         Method::Dop853 => {
             let fixed = StepControl::Fixed(FixedStep { step: 0.01 });
-            let mut stepper = Dop853::new(system, 0.0, start, fixed).ok()?;
+            let stepper = Dop853::new(system, 0.0, start, fixed);
+            let mut stepper = stepper.map_err(|e| eprintln!("{method:?}: {e}")).ok()?;
             run(&mut stepper, &until, &[])
         }
         Method::Taylor => {
@@ -162,7 +163,8 @@ where
                 order: 12,
                 step: 0.01,
             };
-            let mut stepper = Taylor::new(system, 0.0, start, fixed).ok()?;
+            let stepper = Taylor::new(system, 0.0, start, fixed);
+            let mut stepper = stepper.map_err(|e| eprintln!("{method:?}: {e}")).ok()?;
             run(&mut stepper, &until, &[])
         }
     };

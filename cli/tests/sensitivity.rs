@@ -57,7 +57,7 @@ fn rocket(csv: &std::path::Path, method: &str, extra: &[&str]) {
 /// give (tests/sensitivities.rs derives each) ∂v/∂u_e = L, ∂v/∂μ = u_e t/m,
 /// ∂v/∂m0 = u_e (1/m0 − 1/m), ∂y/∂u_e = t − (m/μ) L, ∂y/∂μ = u_e ((m0/μ²) L − t/μ),
 /// ∂y/∂m0 = −(u_e/μ)(L + m/m0 − 1); ∂m/∂μ = −t, ∂m/∂m0 = 1, and the time's derivatives 0
-/// (a fixed end). Measured: 2.1e-13 relative at most (DOP853), 4.9e-15 (Taylor); bound
+/// (a fixed end). Measured: 2.1e-13 relative at most (DOP853), 1.2e-14 (Taylor); bound
 /// 1e-10 (the issue's).
 #[test]
 fn the_rockets_derivative_columns_at_a_fixed_time_meet_their_closed_forms() {
@@ -153,7 +153,7 @@ fn rocket_at_burnout(method: &str) {
 /// The paper's sled stopped at x = 50 m: ∂v/∂c there against the derivative of eq. 24
 /// (tests/sensitivities.rs derives it: v² = (2/3) a x φ(ε), ε = c x/m0,
 /// φ' = −(3 + ε)/(1 + ε)³, ∂v/∂c = a x² φ'(ε)/(3 v m0)), `d(x)/d(c)` = 0 (the event's
-/// position is fixed). Measured: 9.9e-13 relative (DOP853), TAYLOR (Taylor); bound 1e-9 (the
+/// position is fixed). Measured: 9.9e-13 relative (DOP853), 5.0e-13 (Taylor); bound 1e-9 (the
 /// issue's).
 #[test]
 fn the_sleds_speed_at_50_m_in_c_meets_eq_24() {
@@ -367,7 +367,11 @@ fn apex_against_closed_form(
 /// The timed burn: t_b = 8 moves with itself only, m_b = m0 − μ t_b with all but u_e.
 /// Without the columns' jump at the switch, ∂H/∂t_b would miss (f⁻ − f⁺) dτ/dt_b — the
 /// burn's last thrust and mass rate — and read 0 (f_θ of a sign is 0): order one.
-/// Measured: 6.9e-14 relative at most; bound 1e-9 (the issue's, across a burnout).
+/// Measured: 6.9e-14 relative at most (DOP853), 5.9e-15 (Taylor); bound 1e-9 (the issue's,
+/// across a burnout). Landed on the knot at 8 (the burn with a table of t), the rate before
+/// the switch is taken a hair before it (at t = 8 it is the kink's, half the jump: the
+/// review of 2026-12-07 measured ∂y/∂t_b off by exactly 0.5). Measured: 4.2e-12 (DOP853),
+/// 5.2e-15 (Taylor); without it 0.50.
 #[test]
 fn the_apex_follows_a_burnout_at_a_time_that_is_a_parameter() {
     let (t_b, mu) = (8.0, 5.0);
@@ -390,9 +394,6 @@ fn the_apex_follows_a_burnout_at_a_time_that_is_a_parameter() {
         eprintln!("{method} at a knot: worst {worst:e}");
         assert!(worst <= 1e-9, "{method}: {worst:e}");
     }
-    // Landed on the knot at 8, the rate before the switch is taken a hair before it (at
-    // t = 8 it is the kink's, half the jump: the review of 2026-12-07 measured ∂y/∂t_b off
-    // by exactly 0.5). Measured: 4.2e-12 (without it 0.50).
 }
 
 /// The burn emptied to m_f = 60: a switch of the state, whose time t_b = (m0 − m_f)/μ moves

@@ -10,7 +10,9 @@
 //! M q̇ = p − b is solved order by order with the factor of M\[0\] (from Σⱼ M\[j\] q̇\[k−j\] =
 //! p\[k\] − b\[k\]).
 
+use std::any::Any;
 use std::cell::RefCell;
+use std::fmt;
 
 use varmass_core::table::recurrence::{self as rule, Value};
 use varmass_core::tangent::Tangent;
@@ -38,6 +40,43 @@ pub(super) struct TaylorProgram {
     /// parameter indices).
     parameter_slots: Vec<usize>,
     scratch: RefCell<Scratch>,
+    /// The expansions over tangents' memory, one per width.
+    tangents: TangentMemories,
+}
+
+/// An expansion over `Tangent<W>`'s memory, kept between expansions (they allocate only
+/// when the jets grow): its scratch and its parameters.
+struct TangentMemory<const W: usize> {
+    scratch: Scratch<Tangent<W>>,
+    env: Vec<Tangent<W>>,
+}
+
+/// The [`TangentMemory`] of each width expanded so far.
+#[derive(Default)]
+struct TangentMemories(RefCell<Vec<Box<dyn Any + Send>>>);
+
+impl fmt::Debug for TangentMemories {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "TangentMemories({} widths)", self.0.borrow().len())
+    }
+}
+
+impl TangentMemories {
+    /// `run` with the memory of width W (made on first use).
+    fn with<const W: usize, R>(&self, run: impl FnOnce(&mut TangentMemory<W>) -> R) -> R {
+        let mut memories = self.0.borrow_mut();
+        let mut known = memories.iter_mut();
+        if let Some(memory) = known.find_map(|m| m.downcast_mut::<TangentMemory<W>>()) {
+            return run(memory);
+        }
+        let mut memory = TangentMemory::<W> {
+            scratch: Scratch::default(),
+            env: Vec::new(),
+        };
+        let result = run(&mut memory);
+        memories.push(Box::new(memory));
+        result
+    }
 }
 
 #[derive(Debug)]
@@ -105,6 +144,7 @@ impl TaylorProgram {
             laws: stages.laws,
             env: env.to_vec(),
             parameter_slots: d.parameters.iter().map(|(_, s)| s.index()).collect(),
+            tangents: TangentMemories::default(),
             scratch: RefCell::new(Scratch::default()),
         }
     }
@@ -154,15 +194,19 @@ impl TaylorProgram {
         if !self.has_tangents() {
             return None;
         }
-        let mut env: Vec<Tangent<W>> = self.env.iter().map(|x| Tangent::constant(*x)).collect();
-        for (c, seed) in seeds.iter().enumerate() {
-            let slot = seed.and_then(|j| self.parameter_slots.get(j));
-            if let Some(x) = slot.and_then(|slot| env.get_mut(*slot)) {
-                x.d[c] = 1.0;
+        let expanded = self.tangents.with(|memory: &mut TangentMemory<W>| {
+            let TangentMemory { scratch, env } = memory;
+            env.clear();
+            env.extend(self.env.iter().map(|x| Tangent::constant(*x)));
+            for (c, seed) in seeds.iter().enumerate() {
+                let slot = seed.and_then(|j| self.parameter_slots.get(j));
+                if let Some(x) = slot.and_then(|slot| env.get_mut(*slot)) {
+                    x.d[c] = 1.0;
+                }
             }
-        }
-        let mut scratch = Scratch::default();
-        Some(self.expand_over(&mut scratch, &env, (t, state), order, write))
+            self.expand_over(scratch, env, (t, state), order, write)
+        });
+        Some(expanded)
     }
 
     /// The expansion itself, over the coefficient `C` and its parameters `env`.

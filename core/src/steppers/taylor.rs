@@ -223,7 +223,8 @@ where
                     state,
                     "the system provides no Taylor coefficients (generate them with \
                      emit = [..., \"taylor\"]; with sensitivities the recurrences need a \
-                     tangent form: q' in closed form, no tables, inputs or switches)",
+                     tangent form: q' in closed form, and for generated code no tables, \
+                     inputs or switches)",
                 ))
             }
             Some(Err(error)) => return Err(StepError::from_system(system, error, time, &state)),
