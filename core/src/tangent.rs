@@ -13,6 +13,7 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 use nalgebra::{ComplexField, RealField};
 
 use crate::steppers::taylor::series::{power, Coefficient};
+use varmass_table::recurrence::{power_slopes, Value};
 
 /// `slope · x`, 0 where x is 0 whatever the slope (a direction that does not move).
 fn times(slope: f64, x: f64) -> f64 {
@@ -346,7 +347,7 @@ impl<const W: usize> varmass_table::recurrence::Scalar for Tangent<W> {
 /// A tangent as a run-time tape's coefficient (`varmass_symbolic::expr::TaylorTape`, the
 /// interpreter's Taylor sensitivities): selections branch on the value, functions follow the
 /// chain rule as in [`Coefficient::map`].
-impl<const W: usize> varmass_table::recurrence::Value for Tangent<W> {
+impl<const W: usize> Value for Tangent<W> {
     fn lead(self) -> f64 {
         self.v
     }
@@ -405,22 +406,8 @@ impl<const W: usize> Coefficient for Tangent<W> {
         y.atan2(x)
     }
     fn map_power(self, alpha: Self) -> Self {
-        let value = power(self.v, alpha.v);
-        // Below 0 (an integer power, or the real cube root) e xᵉ/x: xᵉ⁻¹ by `powf` is NaN.
-        let along_x = match alpha.v {
-            0.0 => 0.0,
-            e if self.v < 0.0 => e * value / self.v,
-            e => e * power(self.v, e - 1.0),
-        };
-        let along_alpha = match self.v > 0.0 {
-            true => value * ComplexField::ln(self.v),
-            false => f64::NAN,
-        };
-        let mut d = [0.0; W];
-        for (k, slot) in d.iter_mut().enumerate() {
-            *slot = times(along_x, self.d[k]) + times(along_alpha, alpha.d[k]);
-        }
-        Self { v: value, d }
+        let slopes = |x, e, w| power_slopes((x, e, w), power, ComplexField::ln);
+        Value::map2(self, alpha, power, slopes)
     }
     fn map_sin_cos(self, hyperbolic: bool) -> (Self, Self) {
         let (sine, cosine) = match hyperbolic {

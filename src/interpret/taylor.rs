@@ -108,7 +108,7 @@ impl<C> Default for Scratch<C> {
 /// A coefficient the tapes expand over: `f64`, which solves M q̇ = p − b order by order where
 /// q̇ has no closed form, or a tangent, which does not (such a model has no Taylor
 /// sensitivities: [`TaylorProgram::expand_tangents`] refuses it first).
-trait Coefficient: Value {
+trait TapeCoefficient: Value {
     /// Coefficient k of q̇ from M q̇ = p − b, into the inputs.
     fn solve(
         program: &TaylorProgram,
@@ -117,13 +117,13 @@ trait Coefficient: Value {
     ) -> Result<(), SystemError>;
 }
 
-impl Coefficient for f64 {
+impl TapeCoefficient for f64 {
     fn solve(program: &TaylorProgram, scratch: &mut Scratch, k: usize) -> Result<(), SystemError> {
         program.solve_velocities(scratch, k)
     }
 }
 
-impl<const W: usize> Coefficient for Tangent<W> {
+impl<const W: usize> TapeCoefficient for Tangent<W> {
     /// Not reached: `expand_tangents` refuses a model without a closed-form q̇ first.
     fn solve(_: &TaylorProgram, _: &mut Scratch<Self>, _: usize) -> Result<(), SystemError> {
         Err(SystemError::SingularMassMatrix)
@@ -210,7 +210,7 @@ impl TaylorProgram {
     }
 
     /// The expansion itself, over the coefficient `C` and its parameters `env`.
-    fn expand_over<C: Coefficient>(
+    fn expand_over<C: TapeCoefficient>(
         &self,
         scratch: &mut Scratch<C>,
         env: &[C],
@@ -250,7 +250,7 @@ impl TaylorProgram {
         Ok(())
     }
 
-    fn begin<C: Coefficient>(&self, scratch: &mut Scratch<C>, env: &[C], order: usize) {
+    fn begin<C: TapeCoefficient>(&self, scratch: &mut Scratch<C>, env: &[C], order: usize) {
         let stride = order + 1;
         scratch.stride = stride;
         scratch.inputs.clear();
@@ -263,7 +263,7 @@ impl TaylorProgram {
     }
 
     /// Coefficient k of the law masses, into the inputs.
-    fn stage_laws<C: Coefficient>(&self, scratch: &mut Scratch<C>, k: usize) {
+    fn stage_laws<C: TapeCoefficient>(&self, scratch: &mut Scratch<C>, k: usize) {
         advance(&self.laws, scratch, Stage::Laws, k);
         for (i, mass) in self.law_masses.iter().enumerate() {
             let value = self.laws.output(&scratch.laws, i, k);
@@ -272,7 +272,7 @@ impl TaylorProgram {
     }
 
     /// Coefficient k of q̇, into the inputs: read off the closed form, or solved.
-    fn stage_velocities<C: Coefficient>(
+    fn stage_velocities<C: TapeCoefficient>(
         &self,
         scratch: &mut Scratch<C>,
         k: usize,

@@ -92,6 +92,29 @@ impl Value for f64 {
     }
 }
 
+/// (∂w/∂x, ∂w/∂e) of w = xᵉ at order 0, for a [`Value`] with derivatives: e xᵉ⁻¹ (0 for
+/// e = 0; e w/x below 0 — an integer power or the real cube root — where xᵉ⁻¹ by `powf` is
+/// NaN) and w ln x (NaN for x ≤ 0, read only where a direction moves the exponent). `power`
+/// and `ln` are the caller's (the value tape's semantics, its math library): the tapes and
+/// generated code's tangents take the same slopes.
+#[inline(always)]
+pub fn power_slopes(
+    (x, e, w): (f64, f64, f64),
+    power: impl Fn(f64, f64) -> f64,
+    ln: impl Fn(f64) -> f64,
+) -> (f64, f64) {
+    let along_x = match e {
+        0.0 => 0.0,
+        e if x < 0.0 => e * w / x,
+        e => e * power(x, e - 1.0),
+    };
+    let along_e = match x > 0.0 {
+        true => w * ln(x),
+        false => f64::NAN,
+    };
+    (along_x, along_e)
+}
+
 /// Σ `term(j)` for j in `start..end`: the terms between the two ends in four interleaved
 /// partial sums (term i of them into sum i mod 4) added pairwise, ((s₀ + s₁) + (s₂ + s₃)),
 /// then `term(start)`, then `term(end − 1)` (a range of fewer than three terms: all in the

@@ -48,37 +48,23 @@ fn value<C: Value>(op: Op, operands: &[usize], env: &[C], jet: &TaylorJet<C>) ->
         Op::Recip(a) => one / at(a),
         Op::Div(a, d) => at(a) * (one / at(d)),
         Op::Sqrt(a) => at(a).map(f64::sqrt, |_, w| 0.5 / w),
-        Op::Pow(a, e) => at(a).map2(at(e), power, power_slopes),
-        Op::Exp(a) => at(a).map(f64::exp, |_, w| w),
+        Op::Pow(a, e) => at(a).map2(at(e), power, |x, e, w| {
+            rule::power_slopes((x, e, w), power, f64::ln)
+        }),
+        Op::Exp(a) => at(a).map(f64::exp, |x, w| Func::Exp.slope(x, w)),
         Op::Quotient { a, f, .. } => at(a).map(|x| f.apply(&[x]), |x, w| f.slope(x, w)),
         Op::Atan2 { y, x, .. } => at(y).map2(at(x), f64::atan2, |y, x, _| {
             let r2 = y * y + x * x;
             (x / r2, -y / r2)
         }),
-        Op::Abs(a) => at(a).map(f64::abs, |x, _| Func::Abs.slope(x, 0.0)),
-        Op::Sign(a) => at(a).map(sign, |_, _| 0.0),
+        Op::Abs(a) => at(a).map(f64::abs, |x, w| Func::Abs.slope(x, w)),
+        Op::Sign(a) => at(a).map(sign, |x, w| Func::Sign.slope(x, w)),
         Op::Min(a, b) => at(a).pick(at(b), min),
         Op::Max(a, b) => at(a).pick(at(b), max),
         Op::SinCos { .. } | Op::SinhCosh { .. } | Op::Tan { .. } | Op::Table { .. } => {
             C::splat(f64::NAN)
         }
     }
-}
-
-/// (∂/∂x, ∂/∂e) of w = xᵉ: e xᵉ⁻¹ (0 for e = 0; e w/x below 0, an integer power or the
-/// real cube root, where xᵉ⁻¹ by `powf` is NaN) and w ln x (NaN for x ≤ 0, read only where a
-/// direction moves the exponent).
-fn power_slopes(x: f64, e: f64, w: f64) -> (f64, f64) {
-    let along_x = match e {
-        0.0 => 0.0,
-        e if x < 0.0 => e * w / x,
-        e => e * power(x, e - 1.0),
-    };
-    let along_e = match x > 0.0 {
-        true => w * x.ln(),
-        false => f64::NAN,
-    };
-    (along_x, along_e)
 }
 
 /// The slots an `Op::Add` sums (none if the range is out of the operands).
@@ -125,13 +111,13 @@ fn pair<C: Value>(jet: &mut TaylorJet<C>, (s, c): (usize, usize), a: usize, k: u
         let a0 = jet.get(a, 0);
         if sign < 0.0 {
             (
-                a0.map(f64::sin, |x, _| x.cos()),
-                a0.map(f64::cos, |x, _| -x.sin()),
+                a0.map(f64::sin, |x, w| Func::Sin.slope(x, w)),
+                a0.map(f64::cos, |x, w| Func::Cos.slope(x, w)),
             )
         } else {
             (
-                a0.map(f64::sinh, |x, _| x.cosh()),
-                a0.map(f64::cosh, |x, _| x.sinh()),
+                a0.map(f64::sinh, |x, w| Func::Sinh.slope(x, w)),
+                a0.map(f64::cosh, |x, w| Func::Cosh.slope(x, w)),
             )
         }
     } else {
