@@ -908,23 +908,6 @@ fn the_tangents_meet_the_jacobians_on_the_6_dof_rockets() {
     assert!(quaternion <= 1e-11, "{quaternion:e}");
 }
 
-/// A support clamps the mechanics' rows only: held on its pad, a `Sensitive` rocket's
-/// columns would grow as if it were free (the review of session 38: ∂p/∂g = −180 after 2 s
-/// on the pad, where the truth is 0). It is refused at the first rate.
-#[test]
-fn a_support_refuses_to_hold_a_system_with_sensitivities() {
-    use varmass::core::support::Supported;
-    use varmass::core::SystemError;
-    let weak = Rocket { u_e: 5.0, ..ROCKET };
-    let sensitive: Sensitive<Rocket, 2> =
-        Sensitive::new::<1, 6>(weak, &[Column::Parameter("u_e"), Column::Parameter("g")])
-            .expect("fits");
-    let held = Supported::held(sensitive, 0);
-    let start = SVector::<f64, 6>::zeros();
-    let refused = held.state_rate(0.0, &start).err();
-    assert_eq!(refused, Some(SystemError::SupportedSensitivities));
-}
-
 /// Forms the tangents cannot print: `2^a` (an f64 receiver of `powf`), `atan2(1, x)` and
 /// a mass law `(1 + t)^e` — the model compiles and goes through the Jacobians
 /// (`state_rate_tangents` is `None`).

@@ -29,3 +29,24 @@ impl Departure {
         self.time.len()
     }
 }
+
+/// How the event that ends a phase moves with the columns: what
+/// [`crate::VariableMassSystem::depart`] needs of it to give the change's time its
+/// derivative.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PhaseEnd<'a> {
+    /// g = Σ cᵢ yᵢ − value, linear in the state `[q, p, m_s]` with the coefficients
+    /// `(i, cᵢ)`: an event on a state entry or a state mass (one coefficient 1), a rail's
+    /// exit (the travel dᵀ(r − r₀)). dτ/dw = −Σ cᵢ sᵢ / Σ cᵢ fᵢ. Empty, the end is
+    /// smooth: what a support turns [`PhaseEnd::Smooth`] into.
+    Linear(&'a [(usize, f64)]),
+    /// The travel up the rail of the system that ends ([`crate::rail`]), which a system on
+    /// a rail turns into its [`PhaseEnd::Linear`] gradient.
+    RailTravel,
+    /// A lift-off from a support or a rail's bottom: the net force along the support is 0
+    /// there and the body at rest along it, so the state rate is the same on both sides
+    /// (docs/sensitivities.md#on-a-pad-and-a-rail) and the columns go on unchanged,
+    /// whatever dτ/dw; [`Departure::time`] then holds 0, not dτ/dw. Only a held system
+    /// takes it ([`crate::support::Supported`]); any other refuses it.
+    Smooth,
+}

@@ -265,11 +265,22 @@ pub enum SystemError {
         /// The second's.
         second: usize,
     },
-    /// A support (a pad's hold, a rail) was asked to hold or guide a system with
-    /// sensitivities: it clamps the mechanics' rows only, so the columns would move as if
-    /// the body were free.
-    #[error("a support cannot hold or guide a system with sensitivities")]
-    SupportedSensitivities,
+    /// A body with sensitivities slides along a rail whose direction b couples with other
+    /// coordinates in the kinetic energy (M b not along b): the rail's momentum rate is then
+    /// not a fixed projection of the free one, and the columns, projected as the rates are
+    /// (docs/sensitivities.md#on-a-pad-and-a-rail), would be wrong.
+    #[error(
+        "a rail guides a body with sensitivities whose direction couples with other coordinates"
+    )]
+    RailCoupled,
+    /// A switch whose state rate jumps was crossed while held on a support or on a rail, with
+    /// sensitivities: its time's derivative would need the constrained accelerations, which
+    /// the columns' jump does not take.
+    #[error("switch {switch} jumps the state rate while the body is held or on its rail, with sensitivities")]
+    SupportedSwitch {
+        /// The switch's index.
+        switch: usize,
+    },
     /// Forward sensitivities met a phase that ends where its end condition's state entry
     /// stands still (its rate 0 there): the change's time has no derivative.
     #[error(

@@ -12,6 +12,7 @@ use alloc::vec::Vec;
 
 use nalgebra::{SMatrix, SVector};
 
+use crate::departure::PhaseEnd;
 use crate::error::StepError;
 use crate::events::{Direction, Event, EventCondition};
 use crate::run::{run, RunConfig, RunError};
@@ -35,12 +36,13 @@ pub const BAD_STATE_MASS: &str =
 
 /// The error of a change between systems whose state a change cannot carry as it carries
 /// the mechanics: forward sensitivities are carried (`sensitivity/phases.rs`) only out of a
-/// phase that ends at an event on a state entry or a state mass, whose gradient gives the
-/// change's time its derivative, and into a system that takes them.
+/// phase that ends at an event on a state entry or a state mass, a rail's exit or a lift-off
+/// (`support/columns.rs`), whose gradient gives the change's time its derivative, and into
+/// a system that takes them.
 pub const NOT_CARRIED: &str = "a run of phases carries sensitivities across a change only \
      where the phase before ends at an event on a state entry or a state mass reaching a \
-     value (its time's derivative needs the event's gradient), between systems that both \
-     have them";
+     value, a rail's exit or a lift-off (its time's derivative needs the event's gradient), \
+     between systems that both have them";
 
 /// The error of a change whose masses move against its carry rule: a separation whose mass
 /// matrix grows (mass cannot leave and arrive at once) or a capture whose mass matrix
@@ -377,7 +379,8 @@ where
 /// The entries past the motion (forward sensitivities) carried from `state` before the
 /// change into `entered` after it ([`VariableMassSystem::depart`] and
 /// [`VariableMassSystem::arrive`]); refused ([`NOT_CARRIED`]) unless the phase before ended
-/// on a state entry or a state mass and both systems carry such entries.
+/// on a state entry, a state mass, a rail's exit or a lift-off and both systems carry such
+/// entries.
 fn carry_columns<Before, Sys, const N: usize, const S: usize>(
     (before, ended_by): (&Before, Option<&EventCondition<'_, S>>),
     phase: &Phase<'_, Sys, S>,
@@ -389,12 +392,21 @@ where
     Sys: VariableMassSystem<N, S>,
 {
     let refused = || StepError::invalid_configuration(time, *state, NOT_CARRIED);
-    let entry = match ended_by {
-        Some(EventCondition::StateComponent { index, .. }) => *index,
-        Some(EventCondition::Mass { index, .. }) if *index < Before::STATE_MASSES => 2 * N + index,
+    let gradient: [(usize, f64); 1];
+    let end = match ended_by {
+        Some(EventCondition::StateComponent { index, .. }) => {
+            gradient = [(*index, 1.0)];
+            PhaseEnd::Linear(&gradient)
+        }
+        Some(EventCondition::Mass { index, .. }) if *index < Before::STATE_MASSES => {
+            gradient = [(2 * N + index, 1.0)];
+            PhaseEnd::Linear(&gradient)
+        }
+        Some(EventCondition::RailExit { .. }) => PhaseEnd::RailTravel,
+        Some(EventCondition::LiftOff { .. } | EventCondition::RailLiftOff) => PhaseEnd::Smooth,
         _ => return Err(refused()),
     };
-    let departure = match before.depart(time, state, entry) {
+    let departure = match before.depart(time, state, &end) {
         Some(departure) => departure.map_err(|e| StepError::from_system(before, e, time, state))?,
         None => return Err(refused()),
     };

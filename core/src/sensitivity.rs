@@ -156,6 +156,20 @@ pub struct Sensitive<Sys, const S: usize> {
     taylor: taylor::TaylorPasses<S>,
 }
 
+/// A copy with its own, fresh working memory (what a run of phases needs: a support's
+/// phases, `support::phases` and `rail::phases`, each hold a copy).
+impl<Sys: Clone, const S: usize> Clone for Sensitive<Sys, S> {
+    fn clone(&self) -> Self {
+        Sensitive {
+            system: self.system.clone(),
+            columns: self.columns.clone(),
+            scratch: RefCell::new(alloc::vec![0.0; self.scratch.borrow().len()]),
+            error_control: self.error_control,
+            taylor: Default::default(),
+        }
+    }
+}
+
 impl<Sys, const S: usize> Sensitive<Sys, S> {
     /// The system itself.
     pub fn system(&self) -> &Sys {
@@ -757,10 +771,17 @@ where
         &self,
         t: f64,
         state: &SVector<f64, SA>,
-        entry: usize,
+        end: &crate::departure::PhaseEnd<'_>,
     ) -> Option<Result<crate::departure::Departure, SystemError>> {
-        // An event on a column's entry has no gradient here: refused by the run.
-        (entry < S).then(|| self.departure::<N, SA>(t, state, entry))
+        use crate::departure::PhaseEnd;
+        match end {
+            // An event on a column's entry has no gradient here: refused by the run.
+            PhaseEnd::Linear(gradient) if gradient.iter().any(|&(i, _)| i >= S) => None,
+            PhaseEnd::Linear(gradient) => Some(self.departure::<N, SA>(t, state, gradient)),
+            // Only a support knows that its end is smooth or where its rail runs: it
+            // resolves these first (`support.rs`); a free system's phase is refused.
+            PhaseEnd::Smooth | PhaseEnd::RailTravel => None,
+        }
     }
 
     /// The columns entering a phase (`sensitivity/phases.rs`).

@@ -30,6 +30,8 @@ use crate::phases::{Carry, Phase, PhasedSolution};
 use crate::rail::Rail;
 use crate::system::{SystemError, VariableMassSystem};
 
+mod columns;
+
 /// The error of a support on an index past the coordinates.
 pub const NO_SUCH_COORDINATE: &str = "a support names a coordinate the system does not have";
 
@@ -115,9 +117,9 @@ impl<Sys> Supported<Sys> {
         }
     }
 
-    /// [`SystemError::SupportedSensitivities`] while held or on a rail for a system with
-    /// state only its rate evolves (sensitivities: the clamp would leave their rows free),
-    /// and [`SystemError::SupportCoupled`] where the held coordinate couples with another at
+    /// [`SystemError::RailCoupled`] for a body with sensitivities on a rail whose direction
+    /// couples with other coordinates (`support/columns.rs`), and
+    /// [`SystemError::SupportCoupled`] where the held coordinate couples with another at
     /// `(t, state)` above [`HELD_COUPLING`]: uncoupled at the start ([`phases`] checks, M_kj
     /// and p_k at rest exactly 0), the coupling may appear as the other coordinates move
     /// (M_yθ = g_c m_p sin θ of a pitching rocket is 0 at θ = 0 only), and the clamp of p_k
@@ -131,10 +133,7 @@ impl<Sys> Supported<Sys> {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        let constrained = self.held.is_some() || self.rail.is_some();
-        if constrained && self.system.has_rate_only_state() {
-            return Err(SystemError::SupportedSensitivities);
-        }
+        self.check_rail_coupling(t, state)?;
         match self.held_below::<N>() {
             Some(k) if coupled(&self.system, k, t, state, HELD_COUPLING) => {
                 Err(SystemError::SupportCoupled { index: k })
@@ -325,9 +324,10 @@ where
     const MASSES: &'static [&'static str] = Sys::MASSES;
     const HELD: usize = Sys::HELD;
 
-    /// The lift-off and the rail exit are switches whose times move with the parameters.
+    /// A support wraps a system with sensitivities (`support/columns.rs`), not the other
+    /// way round: the sensitivities of a supported system would differentiate the free rate.
     fn sensitivity_obstacle(&self) -> Option<&'static str> {
-        Some("a support (its lift-off and rail exit are switches)")
+        Some("a support (wrap the system with sensitivities in the support instead)")
     }
 
     forwarded! {
@@ -349,33 +349,14 @@ where
         );
         fn next_stop_time(&self, after: f64) -> Option<f64>;
         fn has_rate_only_state(&self) -> bool;
-        /// Free, a system with sensitivities carries its columns across a phase change.
-        fn depart(
-            &self, t: f64, state: &SVector<f64, S>, entry: usize
-        ) -> Option<Result<crate::departure::Departure, SystemError>>;
-        fn arrive(
-            &self,
-            t: f64,
-            state: &mut SVector<f64, S>,
-            departure: &crate::departure::Departure,
-            keep_momenta: bool,
-            reset: &[usize]
-        ) -> Option<Result<(), SystemError>>;
-        /// Free, a system with sensitivities jumps its columns at a switch (held or on a
-        /// rail it is refused, `SupportedSensitivities`): without these the trait's no-op
-        /// would cross the switches without the jump, silently.
+        /// A system with sensitivities jumps its columns at a switch: without these the
+        /// trait's no-op would cross the switches without the jump, silently.
         fn has_switch_gradients(&self) -> bool;
         fn controlled_entries(&self) -> usize;
         fn measured_block(&self) -> usize;
         fn switch_gradient(
             &self, index: usize, t: f64, velocity_state: &SVector<f64, S>, out: &mut [f64]
         ) -> Result<bool, SystemError>;
-        fn cross_switches(
-            &self,
-            crossed: &[usize],
-            before: (f64, &SVector<f64, S>, &SVector<f64, S>),
-            after: (f64, &mut SVector<f64, S>)
-        ) -> Result<(), SystemError>;
         /// Without it a supported spatial body's run would report no approach to gimbal
         /// lock (the trait's default), silently.
         fn singular_attitude_distance(&self, t: f64, state: &SVector<f64, S>) -> Option<f64>;
@@ -428,13 +409,62 @@ where
         cancelled(self.held_below::<N>(), force) + self.rail_force(t, velocity_state)
     }
 
+    /// The constrained rate; with sensitivities, each column's rate projected as the
+    /// state's (`support/columns.rs`).
     fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
         self.checked_hold(t, state)?;
-        if let Some(rail) = &self.rail {
-            return rail.state_rate(&self.system, t, state);
+        let mut rate = match &self.rail {
+            Some(rail) => rail.state_rate(&self.system, t, state)?,
+            None => clamped::<N, S>(self.held_below::<N>(), self.system.state_rate(t, state)?),
+        };
+        self.project_columns(&mut rate);
+        Ok(rate)
+    }
+
+    /// Free, a system with sensitivities carries its columns across a phase change; held
+    /// or on a rail, made the constrained motion's (`support/columns.rs`).
+    fn depart(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+        end: &crate::departure::PhaseEnd<'_>,
+    ) -> Option<Result<crate::departure::Departure, SystemError>> {
+        let mut gradient = [(0, 0.0); 3];
+        let end = self.resolved_end(end, &mut gradient)?;
+        let departure = self.system.depart(t, state, &end)?;
+        Some(departure.and_then(|mut departure| {
+            self.constrain_departure(t, state, &mut departure)?;
+            Ok(departure)
+        }))
+    }
+
+    /// As [`Self::depart`], for the columns entering a phase.
+    fn arrive(
+        &self,
+        t: f64,
+        state: &mut SVector<f64, S>,
+        departure: &crate::departure::Departure,
+        keep_momenta: bool,
+        reset: &[usize],
+    ) -> Option<Result<(), SystemError>> {
+        let arrived = self
+            .system
+            .arrive(t, state, departure, keep_momenta, reset)?;
+        Some(arrived.and_then(|()| self.constrain_arrival(t, state, departure)))
+    }
+
+    /// Free, the system's own crossing (the columns jump); held or on a rail with
+    /// sensitivities, a kink jumps nothing and a jump is refused (`support/columns.rs`).
+    fn cross_switches(
+        &self,
+        crossed: &[usize],
+        before: (f64, &SVector<f64, S>, &SVector<f64, S>),
+        (t, after): (f64, &mut SVector<f64, S>),
+    ) -> Result<(), SystemError> {
+        if !(self.constrained() && self.system.has_rate_only_state()) {
+            return self.system.cross_switches(crossed, before, (t, after));
         }
-        let rate = self.system.state_rate(t, state)?;
-        Ok(clamped::<N, S>(self.held_below::<N>(), rate))
+        self.constrained_crossing(crossed, before.2, (t, after))
     }
 
     /// The free system's state rate, unclamped: the lift-off's switching function reads
@@ -459,14 +489,20 @@ where
         )
     }
 
+    /// The free Jacobian with the mechanics' rows constrained as the rate is; with
+    /// sensitivities, the columns' rows projected too.
     fn jacobian(&self, t: f64, state: &SVector<f64, S>) -> Result<SMatrix<f64, S, S>, SystemError> {
         let mut jacobian = self.system.jacobian(t, state)?;
         if let Some(rail) = &self.rail {
-            return Ok(rail.jacobian::<N, S>(jacobian));
-        }
-        if let Some(k) = self.held_below::<N>() {
+            jacobian = rail.jacobian::<N, S>(jacobian);
+        } else if let Some(k) = self.held_below::<N>() {
             jacobian.row_mut(k).fill(0.0);
             jacobian.row_mut(N + k).fill(0.0);
+        }
+        for mut column in jacobian.column_iter_mut() {
+            let mut projected = column.clone_owned();
+            self.project_columns(&mut projected);
+            column.copy_from(&projected);
         }
         Ok(jacobian)
     }

@@ -208,16 +208,16 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         Ok(())
     }
 
-    /// Where a phase of this system ends at `(t, state)` on state entry `entry` crossing a
-    /// fixed value (an event on a coordinate, a momentum or a state mass): what a state
-    /// carrying more than the motion (forward sensitivities, `sensitivity/phases.rs`) hands
-    /// to the next phase's system ([`Self::arrive`]). `None` for a system without such
-    /// entries, the default.
+    /// Where a phase of this system ends at `(t, state)` at an event that moves as `end`
+    /// says (an event on a coordinate, a momentum or a state mass, a rail's exit, a
+    /// lift-off): what a state carrying more than the motion (forward sensitivities,
+    /// `sensitivity/phases.rs`) hands to the next phase's system ([`Self::arrive`]). `None`
+    /// for a system without such entries, the default.
     fn depart(
         &self,
         _t: f64,
         _state: &SVector<f64, S>,
-        _entry: usize,
+        _end: &crate::departure::PhaseEnd<'_>,
     ) -> Option<Result<crate::departure::Departure, SystemError>> {
         None
     }
@@ -576,7 +576,8 @@ impl<const S: usize> StepError<S> {
             | SystemError::SampledInputNotFinite { .. }
             | SystemError::SupportCoupled { .. }
             | SystemError::NoParameterJacobian
-            | SystemError::SupportedSensitivities
+            | SystemError::RailCoupled
+            | SystemError::SupportedSwitch { .. }
             | SystemError::NoSwitchGradient { .. }
             | SystemError::UnlocatedSwitch { .. }
             | SystemError::TangentSwitch { .. }

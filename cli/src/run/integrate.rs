@@ -500,7 +500,8 @@ impl Advice {
             | SystemError::UnlocatedSwitch { .. }
             | SystemError::NoSwitchGradient { .. }
             | SystemError::NoParameterJacobian
-            | SystemError::SupportedSensitivities
+            | SystemError::RailCoupled
+            | SystemError::SupportedSwitch { .. }
             | SystemError::TangentPhaseEnd { .. }
             | SystemError::PhaseColumns { .. }
             | SystemError::PhaseColumnDiffers { .. } => (what, self.sensitivity_advice(error)),
@@ -533,8 +534,15 @@ impl Advice {
             SystemError::NoSwitchGradient { .. } => "the model gives no gradients of its \
                  switches: derive it with its sensitivities (the tool's runs do)"
                 .to_string(),
-            _ => "the model gives no parameter Jacobian, or a support holds it: derive it with \
-                 its sensitivities and fly it free"
+            SystemError::RailCoupled => "the rail's direction couples with the body's \
+                 other coordinates (its reference point is not its centre of mass): put the \
+                 rail on centre-of-mass coordinates, or fly without --sensitivity"
+                .to_string(),
+            SystemError::SupportedSwitch { .. } => "a switch that jumps the rate while the \
+                 body rests or slides on its support: start the run after it, or drop the \
+                 sensitivity"
+                .to_string(),
+            _ => "the model gives no parameter Jacobian: derive it with its sensitivities"
                 .to_string(),
         }
     }

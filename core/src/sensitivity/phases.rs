@@ -4,8 +4,10 @@
 //! keeps q and q̇ and recomputes p through B's momentum map; a capture keeps q and p; either
 //! may set state masses to constants (a new stage's propellant).
 //!
-//! The change's time moves with each column w: g = y_i − value differentiated along the
-//! motion gives dτ/dw = −s_i / f_i (f = A's state rate). The state at the change, followed
+//! The change's time moves with each column w: g = Σ cᵢ yᵢ − value (a state entry, a
+//! state mass, a rail's travel) differentiated along the motion gives
+//! dτ/dw = −Σ cᵢ sᵢ / Σ cᵢ fᵢ (f = A's state rate). A lift-off, where the rates on both
+//! sides agree, carries the columns unchanged (dτ/dw taken 0, `PhaseEnd::Smooth`). The state at the change, followed
 //! along the motion, moves by d y(τ)/dw = s + f dτ/dw; in the velocity state x = [q, q̇, m_s]
 //! by d x(τ)/dw = σ + ẋ dτ/dw, with σ = ∂x/∂w (q̇'s rows from
 //! [`Sensitive::velocity_sensitivities`]) and ẋ = [q̇, q̈, ṁ_s] (A's accelerations).
@@ -37,21 +39,24 @@ use crate::departure::Departure;
 use crate::system::{SystemError, VariableMassSystem};
 
 impl<Sys, const S: usize> Sensitive<Sys, S> {
-    /// What the columns carry out of a phase ending at `(t, state)` where state entry
-    /// `entry` crosses a fixed value ([`VariableMassSystem::depart`]).
+    /// What the columns carry out of a phase ending at `(t, state)` where Σ cᵢ yᵢ crosses a
+    /// fixed value, `gradient` = the `(i, cᵢ)` ([`VariableMassSystem::depart`]); an empty
+    /// `gradient` is a smooth end ([`crate::departure::PhaseEnd::Smooth`]): dτ/dw taken 0.
     pub(super) fn departure<const N: usize, const SA: usize>(
         &self,
         t: f64,
         state: &SVector<f64, SA>,
-        entry: usize,
+        gradient: &[(usize, f64)],
     ) -> Result<Departure, SystemError>
     where
         Sys: VariableMassSystem<N, S>,
     {
         let y = head::<S, SA>(state);
         let rate = self.system.state_rate(t, &y)?;
-        let along = rate.get(entry).copied().unwrap_or(0.0);
-        if along == 0.0 || !along.is_finite() {
+        let dot = |v: &SVector<f64, S>| gradient.iter().map(|&(i, c)| c * v[i]).sum::<f64>();
+        let along = dot(&rate);
+        if !gradient.is_empty() && (along == 0.0 || !along.is_finite()) {
+            let entry = gradient[0].0;
             return Err(SystemError::TangentPhaseEnd { entry });
         }
         let motion = self.velocity_rate::<N>(t, &y, &rate)?;
@@ -63,7 +68,10 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         };
         for (c, velocity) in velocities.iter().enumerate() {
             let s = column::<S, SA>(state, c);
-            let dt = -s[entry] / along;
+            let dt = match gradient.is_empty() {
+                true => 0.0,
+                false => -dot(&s) / along,
+            };
             let mut sigma = s;
             sigma.fixed_rows_mut::<N>(N).copy_from(velocity);
             departure.time.push(dt);
