@@ -2,12 +2,16 @@
 //! (docs/sensitivities.md#on-a-pad-and-a-rail, `core/src/support/columns.rs`): the support
 //! wraps the `Sensitive` system, the columns move as the constrained motion does, and the
 //! lift-off (smooth) and the rail's exit (the rates jump) carry them into the free flight.
-//! Against the derivatives of closed forms derived by hand below, taken by Richardson's
-//! central differences of the closed forms themselves (exact to rounding, so the
-//! differences' own error is ~1e-11 relative; the run's is below).
+//! Against the derivatives of closed forms derived by hand (below; the rail's in
+//! tests/rail_support), taken by Richardson's central differences of the closed forms
+//! themselves (exact to rounding, so the differences' own error is ~1e-11 relative; the
+//! run's is below).
 
 #![allow(clippy::result_large_err)] // the stepper closure's StepError carries the state
 
+mod rail_support;
+
+use rail_support::{direction, flight, richardson, G, LENGTH, MU, M_D, M_P, U_E};
 use varmass::core::phases::{Carry, Phase};
 use varmass::core::rail::{on_rail, pad_phase, slide_phase, times};
 use varmass::core::sensitivity::{Column, Sensitive};
@@ -24,25 +28,6 @@ fn control() -> StepControl {
         absolute_tolerance: 1e-12,
         ..AdaptiveControl::dop853()
     })
-}
-
-/// ∂F/∂p_i of a closed form F at `p` by Richardson's extrapolation of central differences
-/// at steps h and h/2 (h = 1e-4 |p_i|): the error O(h⁴) ~ 1e-16 relative, rounding ~1e-11.
-fn richardson<const K: usize, const P: usize>(
-    f: impl Fn(&[f64; P]) -> [f64; K],
-    p: &[f64; P],
-    i: usize,
-) -> [f64; K] {
-    let central = |h: f64| {
-        let (mut up, mut down) = (*p, *p);
-        up[i] += h;
-        down[i] -= h;
-        let (a, b) = (f(&up), f(&down));
-        core::array::from_fn::<f64, K, _>(|k| (a[k] - b[k]) / (2.0 * h))
-    };
-    let h = 1e-4 * p[i].abs();
-    let (coarse, fine) = (central(h), central(h / 2.0));
-    core::array::from_fn(|k| (4.0 * fine[k] - coarse[k]) / 3.0)
 }
 
 /// The worst of |run − reference| / (|reference| + 1) over the columns' entries.
@@ -145,12 +130,9 @@ const POINT_ROCKET: &str = "
     outflow rocket: rate mu, relative_velocity [-u_e*dx, 0, -u_e*dz]
 ";
 
-/// The rail: 80° above the horizontal towards +x, 5 m of travel.
-const INCLINATION: f64 = 80.0 * std::f64::consts::PI / 180.0;
-const LENGTH: f64 = 5.0;
-
-/// p = [m0, μ, g, u_e]: 5000 N of thrust under 5396 N of weight along the rail at first.
-const RAIL: [f64; 4] = [550.0, 5.0, 9.81, 1000.0];
+/// p = [m0, μ, g, u_e] of tests/rail_support: 5000 N of thrust under 5396 N of weight
+/// along the rail at first.
+const RAIL: [f64; 4] = [M_D + M_P, MU, G, U_E];
 
 /// The program of `source` with its Jacobians, and `values`.
 fn tape<const N: usize, const S: usize>(source: &str, values: &[(&str, f64)]) -> TapeSystem<N, S> {
@@ -161,50 +143,6 @@ fn tape<const N: usize, const S: usize>(source: &str, values: &[(&str, f64)]) ->
     };
     let d = derive_for(&ast, Parameters::Inferred, outputs).expect("derives");
     TapeSystem::new(Program::new(d, values).expect("the parameters fit")).expect("sizes")
-}
-
-/// The rail's direction d = (cos i, 0, sin i).
-fn direction() -> [f64; 3] {
-    [INCLINATION.cos(), 0.0, INCLINATION.sin()]
-}
-
-/// The rocket on the rail by hand, p = [m0, μ, g, u_e], at t after the exit: (x, z, ẋ, ż).
-/// Along the rail m s̈ = μ u_e − m g sin i: held until m_L = μ u_e/(g sin i), at
-/// t_L = (m0 − m_L)/μ; sliding, with τ = t − t_L and m = m_L − μτ,
-/// ṡ = u_e ln(m_L/m) − g sin i τ and s = u_e (τ + (m/μ) ln(m/m_L)) − ½ g sin i τ²; the exit
-/// where s = L (Newton), at t_e with speed ṡ_e and mass m_e. Free after it, with
-/// σ = t − t_e and m = m_e − μσ, the thrust still along d and the weight down:
-///
-///   v = (ṡ_e + u_e ln(m_e/m)) d − g σ ẑ,
-///   r = (L + ṡ_e σ + u_e (σ + (m/μ) ln(m/m_e))) d − ½ g σ² ẑ.
-fn rail_by_hand(p: &[f64; 4], t: f64) -> [f64; 4] {
-    let [m0, mu, g, u_e] = *p;
-    let gs = g * INCLINATION.sin();
-    let m_l = mu * u_e / gs;
-    let t_l = (m0 - m_l) / mu;
-    let slide = |tau: f64| {
-        let m = m_l - mu * tau;
-        let s = u_e * (tau + m / mu * (m / m_l).ln()) - 0.5 * gs * tau * tau;
-        (s, u_e * (m_l / m).ln() - gs * tau)
-    };
-    let mut tau = 7.0;
-    for _ in 0..60 {
-        let (s, v) = slide(tau);
-        tau -= (s - LENGTH) / v;
-    }
-    let (_, speed) = slide(tau);
-    let m_e = m_l - mu * tau;
-    let sigma = t - t_l - tau;
-    let m = m_e - mu * sigma;
-    let along_v = speed + u_e * (m_e / m).ln();
-    let along_r = LENGTH + speed * sigma + u_e * (sigma + m / mu * (m / m_e).ln());
-    let [dx, _, dz] = direction();
-    [
-        along_r * dx,
-        along_r * dz - 0.5 * g * sigma * sigma,
-        along_v * dx,
-        along_v * dz - g * sigma,
-    ]
 }
 
 /// The point rocket with `p` and four columns, on the rail from rest at the origin.
@@ -266,10 +204,10 @@ fn a_rocket_launched_from_a_rail_has_the_constrained_motions_derivatives() {
         })
         .collect();
     let reference: Vec<[f64; 4]> = (0..4)
-        .map(|i| richardson(|p| rail_by_hand(p, t), &RAIL, i))
+        .map(|i| richardson(|p| flight(p, t), &RAIL, i))
         .collect();
     let error = worst(&run, &reference);
-    let by_hand = rail_by_hand(&RAIL, t);
+    let by_hand = flight(&RAIL, t);
     let head = [state[0], state[2], state[3] / state[6], state[5] / state[6]];
     let motion = worst(&[head], &[by_hand]);
     eprintln!(

@@ -12,6 +12,8 @@ mod file;
 pub mod flight;
 mod fly;
 mod models;
+mod sensitivities;
+mod system;
 mod timed;
 
 use std::fmt::Write;
@@ -89,8 +91,22 @@ pub fn run_file(path: &Path) -> Result<SceneRun, CliError> {
 /// [`run_file`] with the models derived by the runs before (`models`, which keeps those
 /// this run derives): a scene run again derives nothing again.
 pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliError> {
+    run_file_sensitive(path, models, &[])
+}
+
+/// [`run_file_with`] with the sensitivity columns `sensitivities` (`--sensitivity`,
+/// docs/sensitivities.md#scenes): each recorded quantity's `d(X)/d(w)` and `d(t)/d(w)`
+/// after the scene's columns.
+pub fn run_file_sensitive(
+    path: &Path,
+    models: &mut Models,
+    sensitivities: &[String],
+) -> Result<SceneRun, CliError> {
+    models.set_sensitivities(!sensitivities.is_empty());
     let read = file::read(path)?;
-    let scene = build::build(&read, path, models)?;
+    let mut scene = build::build(&read, path, models, sensitivities)?;
+    sensitivities::prepare(&mut scene, sensitivities)?;
+    let derivative_names = derivative_names(&scene);
     let flight = flight::prepare(&read, path, &scene, models)?;
     let csv = scene.csv.clone();
     let phases: Vec<(Carry, Vec<(String, Recorded)>)> = scene
@@ -116,21 +132,9 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
     if energy {
         names.push(ENERGY_RESIDUAL.to_string());
     }
+    names.extend(derivative_names);
     let rows = rows(&mut flown, &phases, energy);
-    let changes: Vec<Change> = flown
-        .changes
-        .iter()
-        .map(|change| Change {
-            phase: change.phase + 1,
-            time: change.time,
-            rule: match phases.get(change.phase).map(|p| p.0) {
-                Some(Carry::Capture) => "capture",
-                _ => "separation",
-            },
-            kinetic_energy_removed: change.kinetic_energy_removed,
-            set: set_at(&flown.sets, change.phase),
-        })
-        .collect();
+    let changes = changes_of(&flown, &phases);
     let stopped_by = match (flown.stopped, flown.phase.last()) {
         (true, Some(last)) => ends.get(*last).cloned().flatten(),
         _ => None,
@@ -165,6 +169,34 @@ pub fn run_file_with(path: &Path, models: &mut Models) -> Result<SceneRun, CliEr
         rail_exit: flown.rail_exit,
         flight,
     })
+}
+
+/// The changes of phase of `flown`, as the summary prints them (`phases`: each phase's
+/// carry rule).
+fn changes_of(flown: &fly::Flown, phases: &PhaseColumns) -> Vec<Change> {
+    let change = |change: &varmass::core::PhaseChange| Change {
+        phase: change.phase + 1,
+        time: change.time,
+        rule: match phases.get(change.phase).map(|p| p.0) {
+            Some(Carry::Capture) => "capture",
+            _ => "separation",
+        },
+        kinetic_energy_removed: change.kinetic_energy_removed,
+        set: set_at(&flown.sets, change.phase),
+    };
+    flown.changes.iter().map(change).collect()
+}
+
+/// The names of the derivative columns: for each column w, each recorded quantity's
+/// `d(X)/d(w)` (the first phase's names, every phase's) and `d(t)/d(w)`.
+fn derivative_names(scene: &build::Scene) -> Vec<String> {
+    let record = &scene.phases[0].record;
+    let mut names = Vec::new();
+    for s in &scene.plan.sensitivities {
+        names.extend(record.iter().map(|(x, _)| format!("d({x})/d({})", s.name)));
+        names.push(format!("d(t)/d({})", s.name));
+    }
+    names
 }
 
 /// The flight of a run that did not fail; a role that cannot be evaluated at a point
@@ -304,11 +336,16 @@ fn rows(
             }
         };
         for (i, (t, values)) in part.rows().enumerate() {
+            // The derivatives end where they could not be had (`flown.failure` says why).
+            let Some(derivatives) = flown.derivatives.get(start + i) else {
+                return rows;
+            };
             let mut row = vec![(k + 1) as f64];
             row.extend(values);
             if energy {
                 row.extend(flown.energy_residual.get(start + i));
             }
+            row.extend(derivatives);
             rows.push((t, row));
         }
         if !complete {
@@ -325,7 +362,7 @@ fn rows(
 pub fn run(args: &RunArgs, given: &[String]) -> Result<String, CliError> {
     refuse_one_phase_flags(args, given)?;
     let path = &args.model.file;
-    let done = run_file(path)?;
+    let done = run_file_sensitive(path, &mut Models::default(), &args.sensitivity)?;
     if let Some(csv) = args.csv.as_ref().or(done.csv.as_ref()) {
         output::write_csv(&done.table, csv)?;
     }
@@ -352,7 +389,7 @@ pub fn run(args: &RunArgs, given: &[String]) -> Result<String, CliError> {
 }
 
 /// The flags that go with a scene file: the file itself, and where its output goes.
-const SCENE_FLAGS: [&str; 4] = ["file", "csv", "plot", "summary_json"];
+const SCENE_FLAGS: [&str; 5] = ["file", "csv", "plot", "summary_json", "sensitivity"];
 
 /// The flags of a one-phase run have no meaning beside a scene, which gives them itself:
 /// `given` holds the ids of the flags on the command line (a flag given at its default
@@ -361,7 +398,8 @@ fn refuse_one_phase_flags(args: &RunArgs, given: &[String]) -> Result<(), CliErr
     match given.iter().find(|id| !SCENE_FLAGS.contains(&id.as_str())) {
         Some(id) => Err(CliError::Input(format!(
             "--{}: `{}` is a scene file, which gives its own settings (docs/scenes.md); \
-             write it there (only --csv, --plot and --summary-json go with a scene file)",
+             write it there (only --csv, --plot, --summary-json and --sensitivity go with a \
+             scene file)",
             id.replace('_', "-"),
             args.model.file.display()
         ))),

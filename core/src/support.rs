@@ -93,6 +93,24 @@ impl<Sys> Supported<Sys> {
         (self.held.is_none() && self.rail.is_none()).then_some(&self.system)
     }
 
+    /// The constrained rate (the columns' projected as the state's), without the checks
+    /// of [`VariableMassSystem::state_rate`].
+    fn constrained_rate<const N: usize, const S: usize>(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+    ) -> Result<SVector<f64, S>, SystemError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        let mut rate = match &self.rail {
+            Some(rail) => rail.state_rate(&self.system, t, state)?,
+            None => clamped::<N, S>(self.held_below::<N>(), self.system.state_rate(t, state)?),
+        };
+        self.project_columns(&mut rate);
+        Ok(rate)
+    }
+
     /// The held coordinate, if it is one of the system's `N`.
     fn held_below<const N: usize>(&self) -> Option<usize> {
         self.held.filter(|&k| k < N)
@@ -349,6 +367,9 @@ where
         );
         fn next_stop_time(&self, after: f64) -> Option<f64>;
         fn has_rate_only_state(&self) -> bool;
+        fn velocity_columns(
+            &self, t: f64, state: &SVector<f64, S>
+        ) -> Option<Result<Vec<SVector<f64, N>>, SystemError>>;
         /// A system with sensitivities jumps its columns at a switch: without these the
         /// trait's no-op would cross the switches without the jump, silently.
         fn has_switch_gradients(&self) -> bool;
@@ -413,12 +434,7 @@ where
     /// state's (`support/columns.rs`).
     fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
         self.checked_hold(t, state)?;
-        let mut rate = match &self.rail {
-            Some(rail) => rail.state_rate(&self.system, t, state)?,
-            None => clamped::<N, S>(self.held_below::<N>(), self.system.state_rate(t, state)?),
-        };
-        self.project_columns(&mut rate);
-        Ok(rate)
+        self.constrained_rate(t, state)
     }
 
     /// Free, a system with sensitivities carries its columns across a phase change; held
@@ -432,8 +448,12 @@ where
         let mut gradient = [(0, 0.0); 3];
         let end = self.resolved_end(end, &mut gradient)?;
         let departure = self.system.depart(t, state, &end)?;
+        let linear = match end {
+            crate::departure::PhaseEnd::Linear(gradient) => gradient,
+            _ => &[],
+        };
         Some(departure.and_then(|mut departure| {
-            self.constrain_departure(t, state, &mut departure)?;
+            self.constrain_departure((t, state), linear, &mut departure)?;
             Ok(departure)
         }))
     }

@@ -39,7 +39,11 @@ pub struct Sensitivity {
 /// The `--sensitivity` names of `args` resolved against `program`: a parameter, or
 /// `init:x`, `init:x'`, `init:m` (a coordinate, its velocity, a state mass).
 pub fn resolve(args: &RunArgs, program: &Program) -> Result<Vec<Sensitivity>, CliError> {
-    let names = &args.sensitivity;
+    resolve_names(&args.sensitivity, program)
+}
+
+/// The `--sensitivity` `names` resolved against `program` (as [`resolve`]).
+pub fn resolve_names(names: &[String], program: &Program) -> Result<Vec<Sensitivity>, CliError> {
     if names.len() > MAX_SENSITIVITIES {
         return Err(CliError::Input(format!(
             "--sensitivity is given {} times; a run integrates at most {MAX_SENSITIVITIES} \
@@ -100,17 +104,24 @@ fn initial_entry(entry: &str, program: &Program) -> Result<usize, CliError> {
 /// Taylor's, no recorded expression (only the model's quantities have gradients), a model
 /// the sensitivities follow — and compiles the gradients of what is recorded and watched.
 pub fn prepare(program: &mut Program, plan: &Plan) -> Result<(), CliError> {
+    check_method(plan.method, program)?;
+    let watched = plan.stop_when.iter().map(|c| c.observable);
+    prepare_observables(program, watched, &plan.record)
+}
+
+/// Whether `method` integrates the sensitivities of `program`: an adaptive Runge–Kutta
+/// method or Taylor's (on a model whose q̇ has a closed form), a model they follow.
+pub fn check_method(method: Method, program: &Program) -> Result<(), CliError> {
     if !matches!(
-        plan.method,
+        method,
         Method::DormandPrince | Method::Dop853 | Method::Taylor
     ) {
         return Err(CliError::Input(format!(
             "--sensitivity runs with --method dormand-prince, dop853 or taylor (the \
-             sensitivities of the other methods are not integrated yet), not {:?}",
-            plan.method
+             sensitivities of the other methods are not integrated yet), not {method:?}"
         )));
     }
-    if plan.method == Method::Taylor && !program.has_taylor_tangents() {
+    if method == Method::Taylor && !program.has_taylor_tangents() {
         return Err(CliError::Input(
             "--sensitivity with --method taylor: this model's q' is solved numerically (a \
              coupled mass matrix), whose Taylor series over tangents is not expanded; use \
@@ -124,8 +135,18 @@ pub fn prepare(program: &mut Program, plan: &Plan) -> Result<(), CliError> {
              {reason} (docs/sensitivities.md)"
         )));
     }
-    let watched = plan.stop_when.iter().map(|c| Some(c.observable));
-    let recorded = plan.record.iter().map(|(name, recorded)| match recorded {
+    Ok(())
+}
+
+/// Compiles the gradients of the `watched` and `record`ed quantities of `program`; a
+/// recorded expression, or a quantity without a gradient, is refused.
+pub fn prepare_observables(
+    program: &mut Program,
+    watched: impl Iterator<Item = Observable>,
+    record: &[(String, Recorded)],
+) -> Result<(), CliError> {
+    let watched = watched.map(Some);
+    let recorded = record.iter().map(|(name, recorded)| match recorded {
         Recorded::Quantity(o) => Ok(Some(*o)),
         Recorded::Expression(_) => Err(CliError::Input(format!(
             "--sensitivity: `{name}` is an expression, whose derivative is not recorded yet; \
@@ -199,27 +220,52 @@ fn derivative(
     }
 }
 
-/// One monomorphized arm of [`dispatch`]: the model's `N`, its padded state `S` and the
-/// augmented state `SA = S (1 + MAX_SENSITIVITIES)`.
-macro_rules! arms {
-    ($program:ident, $plan:ident, $n:expr; $(($an:literal, $as:literal, $asa:literal)),* $(,)?) => {
-        match $n {
-            $($an => integrate::<$an, $as, $asa>($program, $plan),)*
-            _ => unreachable!("sizes are checked before"),
-        }
-    };
+/// A job run with sensitivities in the monomorphized arm of its sizes ([`on_sensitive_sizes`]):
+/// the model's `N`, its padded state `S` and the augmented state `SA = S (1 +
+/// MAX_SENSITIVITIES)`.
+pub trait SensitiveRun {
+    /// What the job gives.
+    type Output;
+    /// The job in the arm `(N, S, SA)`.
+    fn run<const N: usize, const S: usize, const SA: usize>(self)
+        -> Result<Self::Output, CliError>;
 }
 
-/// Integrates `program` with the sensitivities of `plan` in the monomorphized code of its
-/// number of coordinates (every model padded to `MAX_STATE_MASSES` state masses and
-/// `MAX_SENSITIVITIES` columns).
-pub fn dispatch(program: Program, plan: &Plan) -> Result<Outcome, CliError> {
-    let sizes = Sizes::of(&program);
+/// The one dispatch with sensitivities, for `varmass run` and scenes: `job` in the arm of
+/// its number of coordinates, every model padded to `MAX_STATE_MASSES` state masses and
+/// `MAX_SENSITIVITIES` columns.
+pub fn on_sensitive_sizes<J: SensitiveRun>(sizes: Sizes, job: J) -> Result<J::Output, CliError> {
     check_sizes(sizes)?;
-    arms!(program, plan, sizes.coordinates;
-        (1, 5, 35), (2, 7, 49), (3, 9, 63), (4, 11, 77), (5, 13, 91), (6, 15, 105),
-        (7, 17, 119), (8, 19, 133),
-    )
+    match sizes.coordinates {
+        1 => job.run::<1, 5, 35>(),
+        2 => job.run::<2, 7, 49>(),
+        3 => job.run::<3, 9, 63>(),
+        4 => job.run::<4, 11, 77>(),
+        5 => job.run::<5, 13, 91>(),
+        6 => job.run::<6, 15, 105>(),
+        7 => job.run::<7, 17, 119>(),
+        8 => job.run::<8, 19, 133>(),
+        _ => unreachable!("sizes are checked before"),
+    }
+}
+
+/// One run of a model with sensitivities.
+struct Single<'a> {
+    program: Program,
+    plan: &'a Plan,
+}
+
+impl SensitiveRun for Single<'_> {
+    type Output = Outcome;
+
+    fn run<const N: usize, const S: usize, const SA: usize>(self) -> Result<Outcome, CliError> {
+        integrate::<N, S, SA>(self.program, self.plan)
+    }
+}
+
+/// Integrates `program` with the sensitivities of `plan` ([`on_sensitive_sizes`]).
+pub fn dispatch(program: Program, plan: &Plan) -> Result<Outcome, CliError> {
+    on_sensitive_sizes(Sizes::of(&program), Single { program, plan })
 }
 
 /// The run with sensitivities in the arm `(N, S, SA)`.
@@ -228,7 +274,6 @@ fn integrate<const N: usize, const S: usize, const SA: usize>(
     plan: &Plan,
 ) -> Result<Outcome, CliError> {
     let len = program.state_len();
-    let parameters = program.parameter_names().len();
     let system = TapeSystem::<N, S>::padded(program).map_err(|e| CliError::Input(e.to_string()))?;
     let mut columns: Vec<Column> = plan.sensitivities.iter().map(|s| s.column).collect();
     let asked = columns.len();
@@ -260,7 +305,7 @@ fn integrate<const N: usize, const S: usize, const SA: usize>(
     }
     let driven: Driven<SA> =
         super::integrate::with_stepper!(padded.method, padded.steps, drive_with);
-    let (derivatives, unrecorded) = derivatives::<N, S, SA>(&sensitive, plan, &driven, parameters);
+    let (derivatives, unrecorded) = derivatives::<N, S, SA>(&sensitive, plan, &driven);
     let Driven {
         points,
         stopped_by,
@@ -290,7 +335,6 @@ fn derivatives<const N: usize, const S: usize, const SA: usize>(
     sensitive: &Sensitive<TapeSystem<N, S>, S>,
     plan: &Plan,
     driven: &Driven<SA>,
-    parameters: usize,
 ) -> (Vec<Vec<f64>>, Option<CliError>) {
     let last = driven.points.len().saturating_sub(1);
     let mut rows = Vec::with_capacity(driven.points.len());
@@ -300,7 +344,7 @@ fn derivatives<const N: usize, const S: usize, const SA: usize>(
             (true, Some(index)) => plan.stop_when.get(index).map(|c| c.observable),
             _ => None,
         };
-        let row = point_derivatives(sensitive, plan, t, &state, event, parameters);
+        let row = point_derivatives(sensitive, (plan, &plan.record), t, &state, event);
         let row = row.and_then(|row| match row.iter().all(|x| x.is_finite()) {
             true => Ok(row),
             false => Err("a derivative is not a finite number".to_string()),
@@ -320,18 +364,19 @@ fn derivatives<const N: usize, const S: usize, const SA: usize>(
     (rows, None)
 }
 
-/// The derivative columns at one point; `event` is the observable of the condition that
-/// ended the run there, if one did.
-fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
+/// The derivative columns at one point of `plan`'s run recording `record` (a scene's phase
+/// records its own); `event` is the observable of the condition that ended the run there,
+/// if one did.
+pub(crate) fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
     sensitive: &Sensitive<TapeSystem<N, S>, S>,
-    plan: &Plan,
+    (plan, record): (&Plan, &[(String, Recorded)]),
     t: f64,
     state: &SVector<f64, SA>,
     event: Option<Observable>,
-    parameters: usize,
 ) -> Result<Vec<f64>, String> {
     let system = sensitive.system();
     let program = system.program();
+    let parameters = program.parameter_names().len();
     let head: SVector<f64, S> = state.fixed_rows::<S>(0).into_owned();
     let velocity_state = system.velocity_state(t, &head).map_err(|e| e.to_string())?;
     let dv = sensitive
@@ -343,7 +388,7 @@ fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
     };
     let vs = velocity_state.as_slice();
     // Column by column: each recorded quantity's derivative, then t's (`column_names`).
-    let mut row = Vec::with_capacity(plan.sensitivities.len() * (plan.record.len() + 1));
+    let mut row = Vec::with_capacity(plan.sensitivities.len() * (record.len() + 1));
     for (c, sensitivity) in plan.sensitivities.iter().enumerate() {
         let mut direction = Direction {
             time: 0.0,
@@ -360,7 +405,7 @@ fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
         if let (Some(observable), Some(motion)) = (event, &motion) {
             moved(program, observable, t, vs, &mut direction, motion)?;
         }
-        for (_, recorded) in &plan.record {
+        for (_, recorded) in record {
             let Recorded::Quantity(o) = recorded else {
                 return Err("an expression has no derivative".to_string());
             };
@@ -371,7 +416,7 @@ fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
         row.push(direction.time);
     }
     if let (true, Some(motion)) = (plan.rates, &motion) {
-        for (_, recorded) in &plan.record {
+        for (_, recorded) in record {
             let Recorded::Quantity(o) = recorded else {
                 return Err("an expression has no rate".to_string());
             };

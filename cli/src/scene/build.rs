@@ -126,14 +126,20 @@ struct InForce {
 }
 
 /// Checks the scene read from `path` and builds its phases.
-pub fn build(read: &Read, path: &Path, models: &mut Models) -> Result<Scene, CliError> {
+pub fn build(
+    read: &Read,
+    path: &Path,
+    models: &mut Models,
+    sensitivities: &[String],
+) -> Result<Scene, CliError> {
     let scene = &read.scene;
     let at = |offset: usize| format!("{}:{}", path.display(), line_column(&read.source, offset));
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let model_file = base.join(scene.model.get_ref());
     let (entries_asked, energy_residual) = asked(scene);
     let in_force = first_in_force(scene, &base);
-    let args = first_args(read, model_file.clone(), &in_force, entries_asked.clone());
+    let asked = (entries_asked.clone(), sensitivities.to_vec());
+    let args = first_args(read, model_file.clone(), &in_force, asked);
     let model_at = at(scene.model.span().start);
     let (first, plan) = first_phase(&args, in_force, path, models, &model_at)?;
     let record_entries = match entries_asked.is_empty() {
@@ -425,7 +431,13 @@ fn coordinate(name: &str, program: &Program, key: &str) -> Result<usize, CliErro
 }
 
 /// The one-phase arguments of the scene's first phase, as `varmass run` would take them.
-fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String>) -> RunArgs {
+/// `asked`: the entries recorded and the sensitivities' columns.
+fn first_args(
+    read: &Read,
+    file: PathBuf,
+    in_force: &InForce,
+    (record, sensitivity): (Vec<String>, Vec<String>),
+) -> RunArgs {
     let scene = &read.scene;
     RunArgs {
         input: in_force.input.clone(),
@@ -449,7 +461,7 @@ fn first_args(read: &Read, file: PathBuf, in_force: &InForce, record: Vec<String
         max_steps: scene.max_steps.unwrap_or(10_000_000),
         max_seconds: None,
         record,
-        sensitivity: Vec::new(),
+        sensitivity,
         at: Vec::new(),
         rates: false,
         every: None,

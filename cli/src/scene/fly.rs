@@ -5,21 +5,25 @@
 use varmass::core::nalgebra::SVector;
 use varmass::core::phases::ALREADY_PAST;
 use varmass::core::rail::{on_rail, pad_phase, slide_phase};
+use varmass::core::sensitivity::{Column, Sensitive};
 use varmass::core::support::{held_phase, starts_held};
 use varmass::core::{
-    continue_phases_keeping, run_phases_keeping, Event, Phase, PhaseChange, PhasedSolution, Record,
+    continue_phases_keeping, run_phases_keeping, Phase, PhaseChange, PhasedSolution, Record,
     RunConfig, Statistics, StepError, StepErrorKind, StopReason, Supported, VariableMassSystem,
 };
 use varmass::interpret::{Program, TapeSystem};
 
 use super::build::{End, RailSpec, Scene};
+use super::system::SceneSystem;
 use super::timed::{self, SetAt, Timed};
 use crate::args::Method;
 use crate::error::CliError;
 use crate::run::dispatch::{on_sizes, padded_steps, SizedRun, Sizes};
-use crate::run::integrate::{describe, event, with_stepper, Watcher};
+use crate::run::integrate::{event, with_stepper, Watcher};
 use crate::run::names::{evaluate, shown};
 use crate::run::plan::Plan;
+use crate::run::record::Recorded;
+use crate::run::sensitivity::{on_sensitive_sizes, SensitiveRun};
 use crate::run::watch::Watched;
 
 /// What a scene's run computed, sizes erased.
@@ -50,22 +54,40 @@ pub struct Flown {
     pub closest_singular_attitude: Option<f64>,
     /// The values phases set at their changes by expressions of the change's time.
     pub sets: Vec<SetAt>,
+    /// The derivative columns at each point (`--sensitivity`; each row empty without), as
+    /// many rows as could be had.
+    pub derivatives: Vec<Vec<f64>>,
 }
 
 /// Runs the scene's phases in turn, in the monomorphized code of the first phase's sizes
 /// padded as `varmass run` pads ([`on_sizes`]; the phases share their coordinates and
 /// state masses).
 pub fn fly(scene: Scene) -> Result<Flown, CliError> {
+    let sizes = Sizes::of(&scene.phases[0].program);
+    if !scene.plan.sensitivities.is_empty() {
+        return on_sensitive_sizes(sizes, scene);
+    }
     // Padded even where `varmass run` has an exact arm: a scene's numbers stay those of
     // the padded arms it has always run in.
-    on_sizes(Sizes::of(&scene.phases[0].program), false, scene)
+    on_sizes(sizes, false, scene)
 }
 
 impl SizedRun for Scene {
     type Output = Flown;
 
     fn run<const N: usize, const S: usize>(self, len: usize) -> Result<Flown, CliError> {
-        fly_sized::<N, S>(self, len)
+        fly_sized::<TapeSystem<N, S>, N, S>(self, len)
+    }
+}
+
+/// With `--sensitivity`, each phase's system inside the core's `Sensitive`
+/// (docs/sensitivities.md#scenes).
+impl SensitiveRun for Scene {
+    type Output = Flown;
+
+    fn run<const N: usize, const S: usize, const SA: usize>(self) -> Result<Flown, CliError> {
+        let len = self.phases[0].program.state_len();
+        fly_sized::<Sensitive<TapeSystem<N, S>, S>, N, SA>(self, len)
     }
 }
 
@@ -85,10 +107,10 @@ fn config(plan: &Plan, energy_residual: bool) -> RunConfig {
 /// The scene's failure `e` in the tool's words, given the changes of phase so far and the
 /// phase of the last point (`ended`): a phase whose end condition holds where it begins,
 /// or the failure described in the model of the phase it happened in.
-fn failure<const N: usize, const S: usize>(
+fn failure<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
     e: StepError<S>,
     ended: (&[PhaseChange], usize),
-    phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
+    phases: &[Phase<'_, Supported<Sys>, S>],
     ends: &[Option<End>],
     plan: &Plan,
     flows: &[Vec<String>],
@@ -112,7 +134,7 @@ fn failure<const N: usize, const S: usize>(
     // The phase the run failed in, with its own model's flows: the last one entered (a
     // failure at its first step leaves no point of it).
     let k = entered.max(last).min(phases.len() - 1);
-    describe(&phases[k].system.system, plan, &flows[k], e)
+    phases[k].system.system.describe(plan, &flows[k], e)
 }
 
 /// Whether `error` is the core's refusal of a phase whose end condition holds at its start.
@@ -120,7 +142,12 @@ fn never_triggers<const S: usize>(error: &StepError<S>) -> bool {
     matches!(error.kind, StepErrorKind::InvalidConfiguration { reason } if reason == ALREADY_PAST)
 }
 
-fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result<Flown, CliError> {
+/// The scene's run in the arm `(N, S)` with the phases' systems `Sys` (plain, or with the
+/// sensitivities' columns: then `S` is the augmented state's length).
+fn fly_sized<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    scene: Scene,
+    len: usize,
+) -> Result<Flown, CliError> {
     let Scene {
         phases: built,
         plan,
@@ -129,37 +156,21 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
         rail,
         ..
     } = scene;
+    let columns: Vec<Column> = plan.sensitivities.iter().map(|s| s.column).collect();
     let k = built[0].program.state_mass_count();
     let Unpacked {
         systems,
+        records,
         ends,
         masses,
         flows,
         timed,
-    } = unpacked::<N, S>(built)?;
+    } = unpacked::<Sys, N, S>(built, &columns)?;
     let watchers = end_watchers::<S>(&ends);
-    let events: Vec<Option<Event<'_, S>>> = ends
-        .iter()
-        .zip(&watchers)
-        .map(|(end, w)| {
-            end.as_ref()
-                .map(|e| event::<N, S>(e.observable, e.value, e.direction, k, w.as_deref()))
-        })
-        .collect();
-    let mut phases: Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>> = systems
-        .into_iter()
-        .zip(&masses)
-        .zip(events)
-        .map(|(((system, carry), state_masses), until)| Phase {
-            system,
-            carry,
-            state_masses,
-            until,
-        })
-        .collect();
-    let start = start_of::<S>(&plan);
-    let held = held_first(&mut phases, support, start, &plan)?;
-    let railed = rail_first(&mut phases, rail, start, &plan)?;
+    let mut phases = scene_phases::<Sys, N, S>(systems, &masses, (&ends, &watchers), k);
+    let start = phases[0].system.system.start(&plan)?;
+    let held = held_first(&mut phases, support, start, (&plan, &columns))?;
+    let railed = rail_first(&mut phases, rail, start, (&plan, &columns))?;
     let inserted =
         usize::from(held == Some(true)) + railed.map_or(0, |on_pad| 1 + usize::from(on_pad));
     let timed::Ran {
@@ -187,23 +198,96 @@ fn fly_sized<const N: usize, const S: usize>(scene: Scene, len: usize) -> Result
     let failure = refused.or_else(|| {
         error.map(|e| {
             let ended = (&phased.changes[..], last);
-            failure::<N, S>(e, ended, &phases[offset..], &ends, &plan, &flows)
+            failure::<Sys, N, S>(e, ended, &phases[offset..], &ends, &plan, &flows)
         })
     });
     let stopped = phases.len() == last + 1 + offset
         && phases[last + offset].until.is_some()
         && phased.solution.stop == (StopReason::EventFound { index: 0 });
+    let scene_phases = &phases[offset..];
+    let (derivatives, unrecorded) =
+        derivative_rows(&phased, scene_phases, (&plan, &records), (&ends, stopped));
+    let failure = failure.or(unrecorded);
     let mut flown = flown(phased, (phases, offset), len, stopped, failure);
     flown.lift_off = lift_off;
     flown.rail_exit = rail_exit;
     flown.sets = sets;
+    flown.derivatives = derivatives;
     Ok(flown)
+}
+
+/// The scene's phases of `systems`, each with its state masses and its end (`ends`, with
+/// their `watchers`) as an event; `k` state masses.
+fn scene_phases<'a, Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    systems: Vec<(Supported<Sys>, varmass::core::Carry)>,
+    masses: &'a [Vec<(usize, f64)>],
+    (ends, watchers): (&[Option<End>], &'a [Option<Watcher<'a, S>>]),
+    k: usize,
+) -> Vec<Phase<'a, Supported<Sys>, S>> {
+    let events = ends.iter().zip(watchers).map(|(end, w)| {
+        end.as_ref()
+            .map(|e| event::<N, S>(e.observable, e.value, e.direction, k, w.as_deref()))
+    });
+    systems
+        .into_iter()
+        .zip(masses)
+        .zip(events)
+        .map(|(((system, carry), state_masses), until)| Phase {
+            system,
+            carry,
+            state_masses,
+            until,
+        })
+        .collect()
+}
+
+/// The derivative columns of every point of `phased` (renumbered: phase k is `phases[k]`,
+/// recording `records[k]`), the last point's moved with the time of the condition that
+/// ended the run there (`stopped`, the phase's `ends`). Without sensitivities each row is
+/// empty. At the first point where they cannot be had, the rows before it and the error.
+fn derivative_rows<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    phased: &PhasedSolution<N, S>,
+    phases: &[Phase<'_, Supported<Sys>, S>],
+    (plan, records): (&Plan, &[Vec<(String, Recorded)>]),
+    (ends, stopped): (&[Option<End>], bool),
+) -> (Vec<Vec<f64>>, Option<CliError>) {
+    let points = phased.solution.times.iter().zip(&phased.solution.states);
+    let last = phased.phase.len().saturating_sub(1);
+    let mut rows = Vec::with_capacity(phased.phase.len());
+    for (i, ((t, state), &k)) in points.zip(&phased.phase).enumerate() {
+        let event = match i == last && stopped {
+            true => ends
+                .get(k)
+                .and_then(Option::as_ref)
+                .and_then(|e| e.observable),
+            false => None,
+        };
+        let system = &phases[k].system.system;
+        let row = system.derivatives((plan, &records[k]), *t, state, event);
+        let row = row.and_then(|row| match row.iter().all(|x| x.is_finite()) {
+            true => Ok(row),
+            false => Err("a derivative is not a finite number".to_string()),
+        });
+        match row {
+            Ok(row) => rows.push(row),
+            Err(e) => {
+                let error = CliError::Run(format!(
+                    "cannot record the sensitivities at t = {}: {e}; the points before this \
+                     time are recorded",
+                    shown(*t)
+                ));
+                return (rows, Some(error));
+            }
+        }
+    }
+    (rows, None)
 }
 
 /// The scene's phases taken apart: each one's free system and carry rule, end, state
 /// masses set, flows and values set at its change.
-struct Unpacked<const N: usize, const S: usize> {
-    systems: Vec<(Supported<TapeSystem<N, S>>, varmass::core::Carry)>,
+struct Unpacked<Sys> {
+    systems: Vec<(Supported<Sys>, varmass::core::Carry)>,
+    records: Vec<Vec<(String, Recorded)>>,
     ends: Vec<Option<End>>,
     masses: Vec<Vec<(usize, f64)>>,
     flows: Vec<Vec<String>>,
@@ -211,11 +295,13 @@ struct Unpacked<const N: usize, const S: usize> {
 }
 
 /// [`Unpacked`] of the built phases, each program sized to the arm's `N`, `S`.
-fn unpacked<const N: usize, const S: usize>(
+fn unpacked<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
     built: Vec<super::build::ScenePhase>,
-) -> Result<Unpacked<N, S>, CliError> {
+    columns: &[Column],
+) -> Result<Unpacked<Sys>, CliError> {
     let mut out = Unpacked {
         systems: Vec::new(),
+        records: Vec::new(),
         ends: Vec::new(),
         masses: Vec::new(),
         flows: Vec::new(),
@@ -224,9 +310,9 @@ fn unpacked<const N: usize, const S: usize>(
     for phase in built {
         out.flows.push(phase.flows);
         out.timed.push(phase.timed);
-        let system = TapeSystem::<N, S>::padded(phase.program)
-            .map_err(|e| CliError::Input(e.to_string()))?;
+        let system = Sys::build(phase.program, columns)?;
         out.systems.push((Supported::free(system), phase.carry));
+        out.records.push(phase.record);
         out.ends.push(phase.end);
         out.masses.push(phase.state_masses);
     }
@@ -246,9 +332,9 @@ struct Hold {
 /// ([`met_while_held`]), the rail's exit (time, speed) read, the inserted phases numbered
 /// as the scene's first ([`renumbered`]), and the lift-off time.
 #[allow(clippy::type_complexity)]
-fn after_hold<const N: usize, const S: usize>(
+fn after_hold<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
     phased: PhasedSolution<N, S>,
-    phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
+    phases: &[Phase<'_, Supported<Sys>, S>],
     hold: Hold,
     start: (f64, SVector<f64, S>),
     ends: &[Option<End>],
@@ -279,8 +365,8 @@ fn after_hold<const N: usize, const S: usize>(
 
 /// Runs the phases with the plan's stepper ([`timed::run`]: a phase that takes values at
 /// its change is continued from the last point once its programs have them).
-fn fly_phases<'a, const N: usize, const S: usize>(
-    phases: &mut [Phase<'a, Supported<TapeSystem<N, S>>, S>],
+fn fly_phases<'a, Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    phases: &mut [Phase<'a, Supported<Sys>, S>],
     (timed, watches): (
         Vec<Option<Timed>>,
         Vec<Option<&std::cell::RefCell<Program>>>,
@@ -292,7 +378,8 @@ fn fly_phases<'a, const N: usize, const S: usize>(
     len: usize,
 ) -> Result<timed::Ran<N, S>, CliError> {
     let config = config(plan, energy_residual);
-    let steps = padded_steps(plan.steps, plan.method, len, S)?;
+    let (len, padded) = Sys::entries(len, plan.sensitivities.len());
+    let steps = padded_steps(plan.steps, plan.method, len, padded)?;
     let (from, until) = (plan.from, plan.until);
     macro_rules! phased_with {
         ($stepper:ident, $settings:expr) => {
@@ -376,9 +463,9 @@ fn watcher<'a, const S: usize>(
 /// to the end is checked to its last point). The condition is read at every point of the
 /// hold, not only at its ends: one met and unmet again while held (an oscillator that passes
 /// its value and comes back) was skipped before (review of session 33).
-fn met_while_held<const N: usize, const S: usize>(
+fn met_while_held<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
     phased: &PhasedSolution<N, S>,
-    (phases, inserted): (&[Phase<'_, Supported<TapeSystem<N, S>>, S>], usize),
+    (phases, inserted): (&[Phase<'_, Supported<Sys>, S>], usize),
     (t0, y0): (f64, SVector<f64, S>),
     ends: &[Option<End>],
     what: &str,
@@ -430,9 +517,9 @@ fn crossed(direction: varmass::core::Direction, g0: f64, g: f64) -> bool {
 /// The speed of the body's reference point along the rail's position coordinates at the
 /// rail's exit `t` (the point of the run at that time, before renumbering): |q̇| over the
 /// rail's three coordinates, the body's velocity being along the rail there.
-fn exit_speed<const N: usize, const S: usize>(
+fn exit_speed<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
     phased: &PhasedSolution<N, S>,
-    phases: &[Phase<'_, Supported<TapeSystem<N, S>>, S>],
+    phases: &[Phase<'_, Supported<Sys>, S>],
     t: f64,
 ) -> f64 {
     let i = phased.solution.times.iter().position(|&time| time == t);
@@ -451,25 +538,15 @@ fn exit_speed<const N: usize, const S: usize>(
     })
 }
 
-/// The plan's initial time and state, padded with zeros to the arm's `S`.
-fn start_of<const S: usize>(plan: &Plan) -> (f64, SVector<f64, S>) {
-    let mut initial_state = plan.initial_state.clone();
-    initial_state.resize(S, 0.0);
-    (
-        plan.from,
-        SVector::<f64, S>::from_column_slice(&initial_state),
-    )
-}
-
 /// [`hold`], and the refusal of a held phase under Taylor (the held phase has no Taylor
 /// coefficients of its own).
-fn held_first<const N: usize, const S: usize>(
-    phases: &mut Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>>,
+fn held_first<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    phases: &mut Vec<Phase<'_, Supported<Sys>, S>>,
     support: Option<(usize, Program)>,
     start: (f64, SVector<f64, S>),
-    plan: &Plan,
+    (plan, columns): (&Plan, &[Column]),
 ) -> Result<Option<bool>, CliError> {
-    let held = hold(phases, support, start)?;
+    let held = hold(phases, support, start, columns)?;
     if held == Some(true) && matches!(plan.method, Method::Taylor) {
         return Err(CliError::Input(
             "`support` with `method = \"taylor\"`: the held phase has no Taylor coefficients \
@@ -484,11 +561,11 @@ fn held_first<const N: usize, const S: usize>(
 /// rail, and before it the pad when the body rests on the rail's bottom at the start.
 /// `Some(on_pad)` with a rail, `None` without. A body not at rest, and `method = "taylor"`
 /// (the rail's motion has no Taylor coefficients of its own), are refused.
-fn rail_first<const N: usize, const S: usize>(
-    phases: &mut Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>>,
+fn rail_first<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    phases: &mut Vec<Phase<'_, Supported<Sys>, S>>,
     rail: Option<RailSpec>,
     (time, state): (f64, SVector<f64, S>),
-    plan: &Plan,
+    (plan, columns): (&Plan, &[Column]),
 ) -> Result<Option<bool>, CliError> {
     let Some(spec) = rail else {
         return Ok(None);
@@ -513,7 +590,7 @@ fn rail_first<const N: usize, const S: usize>(
     let free = &phases[0].system.system;
     let (rail, on_pad) = on_rail(free, geometry, spec.length, (time, &state)).map_err(refused)?;
     let [pad, slide] = spec.programs;
-    let system = |p| TapeSystem::<N, S>::padded(p).map_err(|e| CliError::Input(e.to_string()));
+    let system = |p| Sys::build(p, columns);
     phases.insert(0, slide_phase(system(slide)?, rail, spec.length));
     if on_pad {
         phases.insert(0, pad_phase(system(pad)?, rail));
@@ -523,9 +600,9 @@ fn rail_first<const N: usize, const S: usize>(
 
 /// What the scene computed, sizes erased: the points cut to the model's own state `len`,
 /// the programs given back for recording.
-fn flown<const N: usize, const S: usize>(
+fn flown<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
     phased: PhasedSolution<N, S>,
-    (phases, offset): (Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>>, usize),
+    (phases, offset): (Vec<Phase<'_, Supported<Sys>, S>>, usize),
     len: usize,
     stopped: bool,
     failure: Option<CliError>,
@@ -555,6 +632,7 @@ fn flown<const N: usize, const S: usize>(
         rail_exit: None,
         closest_singular_attitude: solution.closest_singular_attitude,
         sets: Vec::new(),
+        derivatives: Vec::new(),
     }
 }
 
@@ -562,10 +640,11 @@ fn flown<const N: usize, const S: usize>(
 /// program of the first phase) holds the body at the start: `Some(true)` if it does,
 /// `Some(false)` if the body lifts at once, `None` without a support. A body not at rest
 /// along its support, or a coordinate that couples with another, is refused.
-fn hold<const N: usize, const S: usize>(
-    phases: &mut Vec<Phase<'_, Supported<TapeSystem<N, S>>, S>>,
+fn hold<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    phases: &mut Vec<Phase<'_, Supported<Sys>, S>>,
     support: Option<(usize, Program)>,
     (time, state): (f64, SVector<f64, S>),
+    columns: &[Column],
 ) -> Result<Option<bool>, CliError> {
     let Some((k, program)) = support else {
         return Ok(None);
@@ -579,7 +658,7 @@ fn hold<const N: usize, const S: usize>(
     if !starts_held(&phases[0].system.system, k, (time, &state)).map_err(refused)? {
         return Ok(Some(false));
     }
-    let system = TapeSystem::<N, S>::padded(program).map_err(|e| CliError::Input(e.to_string()))?;
+    let system = Sys::build(program, columns)?;
     phases.insert(0, held_phase(system, k));
     Ok(Some(true))
 }

@@ -12,6 +12,8 @@ use crate::model::{load_source, LoadedModel};
 pub struct Models {
     derived: Vec<(ModelArgs, String, LoadedModel)>,
     derivations: usize,
+    /// Whether the models are derived with their parameter Jacobians (`--sensitivity`).
+    sensitivities: bool,
 }
 
 impl Models {
@@ -28,14 +30,23 @@ impl Models {
             .iter()
             .find(|(made_for, text, _)| made_for == args && *text == source);
         if let Some((_, _, model)) = known {
-            return Ok(model.clone());
+            if model.has_sensitivities() == self.sensitivities {
+                return Ok(model.clone());
+            }
         }
-        let model = load_source(&source, path, &args.with)?;
+        let model =
+            load_source(&source, path, &args.with)?.with_sensitivities(self.sensitivities)?;
         self.derivations += 1;
         // Only the latest text of a file is worth keeping.
         self.derived.retain(|(made_for, _, _)| made_for != args);
         self.derived.push((args.clone(), source, model.clone()));
         Ok(model)
+    }
+
+    /// Derive the models from now on with (`true`) or without their parameter Jacobians
+    /// (a scene run with `--sensitivity`, docs/sensitivities.md#scenes).
+    pub fn set_sensitivities(&mut self, sensitivities: bool) {
+        self.sensitivities = sensitivities;
     }
 
     /// How many derivations these models cost so far.

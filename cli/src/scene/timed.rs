@@ -15,17 +15,17 @@ use std::cell::RefCell;
 use std::ops::Range;
 
 use varmass::core::{PhasedSolution, StepError, StopReason, Supported};
-use varmass::interpret::{Program, TapeSystem};
+use varmass::interpret::Program;
 use varmass::symbolic::expr::Func;
 use varmass::symbolic::parse::ast::{BinOp, Expr, ExprNode};
 use varmass::symbolic::parse::parse_expression;
 
+use super::system::SceneSystem;
 use crate::error::CliError;
 use crate::run::names::{resolve, shown};
 use crate::run::record::{binary, dsl_function};
 
-type Phase<'a, const N: usize, const S: usize> =
-    varmass::core::Phase<'a, Supported<TapeSystem<N, S>>, S>;
+type Phase<'a, Sys, const S: usize> = varmass::core::Phase<'a, Supported<Sys>, S>;
 
 /// An expression of `t` and the parameters, its constant parts folded.
 #[derive(Clone, Debug)]
@@ -244,13 +244,13 @@ pub struct Ran<const N: usize, const S: usize> {
 /// the start (`before` `None`) or continued from the phases run `before`; a phase with
 /// values set at its change begins a range, its values given to its programs first.
 /// `offset` is the index of the scene's first phase in `phases` (1 behind a held phase).
-pub fn run<'a, const N: usize, const S: usize>(
-    phases: &mut [Phase<'a, N, S>],
+pub fn run<'a, Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    phases: &mut [Phase<'a, Sys, S>],
     timed: &[Option<Timed>],
     watches: &[Option<&RefCell<Program>>],
     offset: usize,
     mut segment: impl FnMut(
-        &[Phase<'a, N, S>],
+        &[Phase<'a, Sys, S>],
         Range<usize>,
         Option<PhasedSolution<N, S>>,
     ) -> (PhasedSolution<N, S>, Option<StepError<S>>),
@@ -305,13 +305,15 @@ pub fn run<'a, const N: usize, const S: usize>(
 }
 
 /// Gives `set`'s values to the phase's program and to the program watching its end.
-fn give<const N: usize, const S: usize>(
-    phase: &mut Phase<'_, N, S>,
+fn give<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    phase: &mut Phase<'_, Sys, S>,
     watch: Option<&RefCell<Program>>,
     set: SetAt,
 ) -> Result<SetAt, String> {
     let values: Vec<(&str, f64)> = set.values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-    let program = phase.system.system.program_mut();
+    let Some(program) = phase.system.system.program_mut() else {
+        return Err("a value set at a change has no sensitivities yet".to_string());
+    };
     program.set_parameters(&values).map_err(|e| e.to_string())?;
     if let Some(watch) = watch {
         watch

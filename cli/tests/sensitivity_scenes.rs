@@ -1,0 +1,132 @@
+//! `varmass run SCENE.toml --sensitivity NAME` (docs/sensitivities.md#scenes): a scene's
+//! derivative columns through its rail and its changes, against closed forms derived by hand,
+//! and the refusals of what a scene's sensitivities do not follow yet.
+
+#[path = "../../tests/rail_support/mod.rs"]
+mod rail_support;
+
+mod common;
+
+use common::{csv, model, scratch, scratch_file, varmass};
+use rail_support::{flight, richardson, G, MU, M_D, M_P, U_E};
+
+/// The columns `names` of the last row of the CSV at `path`.
+fn last_row(path: &std::path::Path, names: &[String]) -> Vec<f64> {
+    let (header, rows) = csv(path);
+    let row = rows.last().expect("a row");
+    let at = |name: &String| {
+        let i = header.iter().position(|h| h == name);
+        row[i.unwrap_or_else(|| panic!("{name} in {header:?}"))]
+    };
+    names.iter().map(at).collect()
+}
+
+/// The six-degree-of-freedom rocket of models/rocket_on_rail.toml (its reference point the
+/// centre of mass, so the rail couples with nothing): on the rail's bottom until 6.49 s, up
+/// the rail to its exit at 13.26 s, free to 16 s. Its ∂(x, z, x', z')/∂(m0, μ, g, u_e) at
+/// 16 s against the point rocket's closed form (tests/rail_support's `flight`, derived
+/// there; the attitude held on the rail and the thrust along the axis afterwards make the
+/// 6-dof flight the point rocket's), m0 = m_d + m_p(0) moved by `init:m_p`.
+#[test]
+fn a_scene_on_its_rail_has_the_closed_forms_derivatives() {
+    let table = scratch("rail_sensitivities.csv");
+    let path = model("rocket_on_rail.toml");
+    let columns = ["init:m_p", "mu", "g", "u_e"];
+    let mut args = vec!["run", &path, "--csv"];
+    let table_name = table.display().to_string();
+    args.push(&table_name);
+    for c in columns {
+        args.extend(["--sensitivity", c]);
+    }
+    varmass(&args, 0);
+    let p = [M_D + M_P, MU, G, U_E];
+    let mut worst: f64 = 0.0;
+    for (i, c) in columns.iter().enumerate() {
+        let names = ["x", "z", "x'", "z'"].map(|x| format!("d({x})/d({c})"));
+        let run = last_row(&table, &names);
+        let by_hand = richardson(|p| flight(p, 16.0), &p, i);
+        eprintln!("{c}: run {run:?}\n  by hand {by_hand:?}");
+        for (a, b) in run.iter().zip(by_hand) {
+            worst = worst.max((a - b).abs() / (b.abs() + 1.0));
+        }
+    }
+    eprintln!("worst {worst:e}");
+    // Measured 4.5e-10 (∂x'/∂μ); bound 2e-9 (tests/sensitivities_supports.rs's).
+    assert!(worst < 2e-9, "{worst:e}");
+}
+
+/// The two-stage rocket of models/two_stage_rocket.toml: stage 1 burns to m = 500 kg at
+/// T₁ = (M₁ − 500)/μ₁ = 50 s, the separation sets m = 300 kg, stage 2 burns to 150 s. By
+/// hand (tests/sensitivities_phases.rs derives the flight) v(150) = u₁ ln(M₁/500) − g T₁ +
+/// u₂ ln(300/m₂) − g (150 − T₁) with m₂ = 300 − μ₂ (150 − T₁), so ∂v/∂g = −150 (T₁ does not
+/// move with g), ∂v/∂M₁ = u₁/M₁ − u₂ μ₂/(μ₁ m₂) = −3.5, ∂v/∂v₀ = 1, ∂m/∂M₁ = μ₂/μ₁ = 0.2,
+/// ∂m/∂g = 0; and the change's time moves with M₁ (the separation's own `d(t)` is not a
+/// column: the last point is at a fixed time, d(t)/d(w) = 0 there).
+#[test]
+fn a_scene_carries_its_columns_across_a_separation() {
+    let table = scratch("two_stage_sensitivities.csv");
+    let path = model("two_stage_rocket.toml");
+    let table_name = table.display().to_string();
+    let args = [
+        "run",
+        &path,
+        "--csv",
+        &table_name,
+        "--sensitivity",
+        "g",
+        "--sensitivity",
+        "init:m",
+        "--sensitivity",
+        "init:y'",
+    ];
+    varmass(&args, 0);
+    let names = [
+        "d(y')/d(g)",
+        "d(m)/d(g)",
+        "d(y')/d(init:m)",
+        "d(m)/d(init:m)",
+        "d(y')/d(init:y')",
+        "d(t)/d(init:m)",
+    ]
+    .map(String::from);
+    let run = last_row(&table, &names);
+    let by_hand = [-150.0, 0.0, -3.5, 0.2, 1.0, 0.0];
+    let worst =
+        (run.iter().zip(by_hand)).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs() / (b.abs() + 1.0)));
+    eprintln!("two stages: run {run:?}, by hand {by_hand:?}, worst {worst:e}");
+    // Measured 1.2e-14 (∂v/∂g −149.99999999999915); bound 1e-9.
+    assert!(worst < 1e-9, "{worst:e}");
+}
+
+/// What a scene's sensitivities do not follow is refused before the first step (exit 2): a
+/// column of a parameter a later phase sets (stage 2's own μ), the initial position of a
+/// body on a rail (the rail is laid from it), a phase ending on a velocity
+/// (models/recovery_descent.toml's apogee: its time's derivative is not carried), a value
+/// set at a change by an expression, an unknown name.
+#[test]
+fn what_a_scenes_sensitivities_do_not_follow_is_refused() {
+    let two_stage = model("two_stage_rocket.toml");
+    let (_, set) = varmass(&["run", &two_stage, "--sensitivity", "mu"], 2);
+    assert!(set.contains("sets `mu`"), "{set}");
+    let (_, unknown) = varmass(&["run", &two_stage, "--sensitivity", "u_d"], 2);
+    assert!(unknown.contains("u_e"), "{unknown}");
+    let rail = model("rocket_on_rail.toml");
+    let (_, laid) = varmass(&["run", &rail, "--sensitivity", "init:x"], 2);
+    assert!(laid.contains("`[rail]` fixes this initial value"), "{laid}");
+    let descent = model("recovery_descent.toml");
+    let (_, apogee) = varmass(&["run", &descent, "--sensitivity", "g"], 2);
+    assert!(apogee.contains("ends on `z' < 0`"), "{apogee}");
+    let text = std::fs::read_to_string(&two_stage).expect("the scene");
+    let text = text
+        .replace(
+            "model = \"two_stage_rocket.vms\"",
+            &format!("model = \"{}\"", model("two_stage_rocket.vms")),
+        )
+        .replace("u_e = 3000.0 }", "u_e = \"3000 + 0*t\" }");
+    let timed = scratch_file("timed_two_stage.toml", &text);
+    let (_, at_change) = varmass(&["run", &timed, "--sensitivity", "g"], 2);
+    assert!(
+        at_change.contains("sets a value at its change"),
+        "{at_change}"
+    );
+}
