@@ -10,16 +10,16 @@
 #![allow(clippy::result_large_err)] // the stepper closure's StepError carries the state
 
 mod rail_support;
+mod sensitivity_support;
 
 use rail_support::{direction, flight, richardson, G, LENGTH, MU, M_D, M_P, U_E};
+use sensitivity_support::tape;
 use varmass::core::phases::{Carry, Phase};
 use varmass::core::rail::{on_rail, pad_phase, slide_phase, times};
 use varmass::core::sensitivity::{Column, Sensitive};
 use varmass::core::{run_phases, support, Supported, SystemError};
-use varmass::interpret::{Program, TapeSystem};
+use varmass::interpret::TapeSystem;
 use varmass::prelude::*;
-use varmass::symbolic::mechanics::{Outputs, Parameters};
-use varmass::symbolic::{derive_for, parse::parse_system};
 
 /// DOP853 at 1e-12, relative and absolute.
 fn control() -> StepControl {
@@ -133,17 +133,6 @@ const POINT_ROCKET: &str = "
 /// p = [m0, μ, g, u_e] of tests/rail_support: 5000 N of thrust under 5396 N of weight
 /// along the rail at first.
 const RAIL: [f64; 4] = [M_D + M_P, MU, G, U_E];
-
-/// The program of `source` with its Jacobians, and `values`.
-fn tape<const N: usize, const S: usize>(source: &str, values: &[(&str, f64)]) -> TapeSystem<N, S> {
-    let ast = parse_system(source).expect("parses");
-    let outputs = Outputs {
-        sensitivities: true,
-        ..Outputs::FULL
-    };
-    let d = derive_for(&ast, Parameters::Inferred, outputs).expect("derives");
-    TapeSystem::new(Program::new(d, values).expect("the parameters fit")).expect("sizes")
-}
 
 /// The point rocket with `p` and four columns, on the rail from rest at the origin.
 fn rail_system(p: &[f64; 4]) -> Sensitive<TapeSystem<3, 7>, 7> {

@@ -105,7 +105,7 @@ pub fn run_file_sensitive(
     models.set_sensitivities(!sensitivities.is_empty());
     let read = file::read(path)?;
     let mut scene = build::build(&read, path, models, sensitivities)?;
-    sensitivities::prepare(&mut scene, sensitivities)?;
+    sensitivities::prepare(&mut scene, &read, sensitivities)?;
     let derivative_names = derivative_names(&scene);
     let flight = flight::prepare(&read, path, &scene, models)?;
     let csv = scene.csv.clone();

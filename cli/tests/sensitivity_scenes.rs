@@ -55,6 +55,27 @@ fn a_scene_on_its_rail_has_the_closed_forms_derivatives() {
     assert!(worst < 2e-9, "{worst:e}");
 }
 
+/// A column that does not move the body along its rail — the aerodynamic damping k_a of a
+/// flight without rotation — has velocities of rounding alone on the rail (refused there
+/// before the rail's check had an absolute floor: the review of this change), and no
+/// effect on the flight: every derivative 0 (the closed form does not hold k_a).
+#[test]
+fn a_scene_column_that_does_not_move_the_body_passes_its_rail() {
+    let table = scratch("rail_damping.csv");
+    let path = model("rocket_on_rail.toml");
+    let table_name = table.display().to_string();
+    varmass(
+        &["run", &path, "--csv", &table_name, "--sensitivity", "k_a"],
+        0,
+    );
+    let names = ["x", "z", "x'", "z'", "m_p"].map(|x| format!("d({x})/d(k_a)"));
+    let largest = last_row(&table, &names)
+        .iter()
+        .fold(0.0_f64, |m, d| m.max(d.abs()));
+    // Measured 0 exactly; bound 1e-12.
+    assert!(largest < 1e-12, "{largest:e}");
+}
+
 /// The two-stage rocket of models/two_stage_rocket.toml: stage 1 burns to m = 500 kg at
 /// T₁ = (M₁ − 500)/μ₁ = 50 s, the separation sets m = 300 kg, stage 2 burns to 150 s. By
 /// hand (tests/sensitivities_phases.rs derives the flight) v(150) = u₁ ln(M₁/500) − g T₁ +
@@ -99,7 +120,8 @@ fn a_scene_carries_its_columns_across_a_separation() {
 }
 
 /// What a scene's sensitivities do not follow is refused before the first step (exit 2): a
-/// column of a parameter a later phase sets (stage 2's own μ), the initial position of a
+/// column of a parameter a later phase sets (stage 2's own μ; g set again to its own value:
+/// the scene fixes it there), the initial position of a
 /// body on a rail (the rail is laid from it), a phase ending on a velocity
 /// (models/recovery_descent.toml's apogee: its time's derivative is not carried), a value
 /// set at a change by an expression, an unknown name.
@@ -117,13 +139,16 @@ fn what_a_scenes_sensitivities_do_not_follow_is_refused() {
     let (_, apogee) = varmass(&["run", &descent, "--sensitivity", "g"], 2);
     assert!(apogee.contains("ends on `z' < 0`"), "{apogee}");
     let text = std::fs::read_to_string(&two_stage).expect("the scene");
-    let text = text
-        .replace(
-            "model = \"two_stage_rocket.vms\"",
-            &format!("model = \"{}\"", model("two_stage_rocket.vms")),
-        )
-        .replace("u_e = 3000.0 }", "u_e = \"3000 + 0*t\" }");
-    let timed = scratch_file("timed_two_stage.toml", &text);
+    let text = text.replace(
+        "model = \"two_stage_rocket.vms\"",
+        &format!("model = \"{}\"", model("two_stage_rocket.vms")),
+    );
+    let same = text.replace("u_e = 3000.0 }", "u_e = 3000.0, g = 9.81 }");
+    let same = scratch_file("same_g_two_stage.toml", &same);
+    let (_, set_again) = varmass(&["run", &same, "--sensitivity", "g"], 2);
+    assert!(set_again.contains("sets `g`"), "{set_again}");
+    let timed = text.replace("u_e = 3000.0 }", "u_e = \"3000 + 0*t\" }");
+    let timed = scratch_file("timed_two_stage.toml", &timed);
     let (_, at_change) = varmass(&["run", &timed, "--sensitivity", "g"], 2);
     assert!(
         at_change.contains("sets a value at its change"),

@@ -273,6 +273,15 @@ pub enum SystemError {
         "a rail guides a body with sensitivities whose direction couples with other coordinates"
     )]
     RailCoupled,
+    /// A sensitivity column moves the body across the rail it slides on (its velocity
+    /// ∂q̇/∂w leaves the rail's direction): a momentum at rest or a coupling that changes with
+    /// the column (a turning launch frame, a coupling 0 at the nominal values only), which the
+    /// columns, projected on the rail (docs/sensitivities.md#on-a-pad-and-a-rail), would miss.
+    #[error("sensitivity column {column} moves the body across its rail")]
+    RailColumnAcross {
+        /// The column's index.
+        column: usize,
+    },
     /// A switch whose state rate jumps was crossed while held on a support or on a rail, with
     /// sensitivities: its time's derivative would need the constrained accelerations, which
     /// the columns' jump does not take.

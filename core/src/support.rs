@@ -111,6 +111,23 @@ impl<Sys> Supported<Sys> {
         Ok(rate)
     }
 
+    /// The constrained accelerations, without the checks of
+    /// [`VariableMassSystem::accelerations`].
+    fn constrained_accelerations<const N: usize, const S: usize>(
+        &self,
+        t: f64,
+        velocity_state: &SVector<f64, S>,
+    ) -> Result<SVector<f64, N>, SystemError>
+    where
+        Sys: VariableMassSystem<N, S>,
+    {
+        if let Some(rail) = &self.rail {
+            return rail.accelerations(&self.system, t, velocity_state);
+        }
+        let accelerations = self.system.accelerations(t, velocity_state)?;
+        Ok(cancelled(self.held_below::<N>(), accelerations))
+    }
+
     /// The held coordinate, if it is one of the system's `N`.
     fn held_below<const N: usize>(&self) -> Option<usize> {
         self.held.filter(|&k| k < N)
@@ -413,11 +430,7 @@ where
         velocity_state: &SVector<f64, S>,
     ) -> Result<SVector<f64, N>, SystemError> {
         self.checked_hold(t, velocity_state)?;
-        if let Some(rail) = &self.rail {
-            return rail.accelerations(&self.system, t, velocity_state);
-        }
-        let accelerations = self.system.accelerations(t, velocity_state)?;
-        Ok(cancelled(self.held_below::<N>(), accelerations))
+        self.constrained_accelerations(t, velocity_state)
     }
 
     fn frozen_force(&self, t: f64, velocity_state: &SVector<f64, S>) -> SVector<f64, N> {

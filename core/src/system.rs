@@ -589,6 +589,7 @@ impl<const S: usize> StepError<S> {
             | SystemError::SupportCoupled { .. }
             | SystemError::NoParameterJacobian
             | SystemError::RailCoupled
+            | SystemError::RailColumnAcross { .. }
             | SystemError::SupportedSwitch { .. }
             | SystemError::NoSwitchGradient { .. }
             | SystemError::UnlocatedSwitch { .. }

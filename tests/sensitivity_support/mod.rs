@@ -1,4 +1,25 @@
-//! What the sensitivity tests share: the vertical rocket's closed-form sensitivities.
+//! What the sensitivity tests share: the vertical rocket's closed-form sensitivities, and a
+//! run-time model derived with its Jacobians.
+#![allow(dead_code)] // each test file uses a part
+
+use varmass::interpret::{Program, TapeSystem};
+use varmass::symbolic::mechanics::{Outputs, Parameters};
+use varmass::symbolic::{derive_for, parse::parse_system};
+
+/// The run-time system of the DSL `source` derived with its Jacobians (what the
+/// sensitivities need), with the parameter `values`.
+pub fn tape<const N: usize, const S: usize>(
+    source: &str,
+    values: &[(&str, f64)],
+) -> TapeSystem<N, S> {
+    let ast = parse_system(source).expect("parses");
+    let outputs = Outputs {
+        sensitivities: true,
+        ..Outputs::FULL
+    };
+    let d = derive_for(&ast, Parameters::Inferred, outputs).expect("derives");
+    TapeSystem::new(Program::new(d, values).expect("the parameters fit")).expect("sizes")
+}
 
 /// ∂(y, v)/∂(u_e, μ, m0, p0) at t from rest at y = 0, by hand. With m = m0 − μ t and
 /// L = ln(m0/m): v = u_e L − g t, y = u_e (t − (m/μ) L) − ½ g t² (dy/dt = u_e (1 + L − 1) − g t,

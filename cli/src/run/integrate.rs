@@ -501,6 +501,7 @@ impl Advice {
             | SystemError::NoSwitchGradient { .. }
             | SystemError::NoParameterJacobian
             | SystemError::RailCoupled
+            | SystemError::RailColumnAcross { .. }
             | SystemError::SupportedSwitch { .. }
             | SystemError::TangentPhaseEnd { .. }
             | SystemError::PhaseColumns { .. }
@@ -537,6 +538,10 @@ impl Advice {
             SystemError::RailCoupled => "the rail's direction couples with the body's \
                  other coordinates (its reference point is not its centre of mass): put the \
                  rail on centre-of-mass coordinates, or fly without --sensitivity"
+                .to_string(),
+            SystemError::RailColumnAcross { .. } => "this sensitivity moves the body across \
+                 its rail (a coupling or a turning frame that changes with it), which the \
+                 columns on the rail do not follow: fly without it"
                 .to_string(),
             SystemError::SupportedSwitch { .. } => "a switch that jumps the rate while the \
                  body rests or slides on its support: start the run after it, or drop the \

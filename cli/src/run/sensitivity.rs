@@ -345,23 +345,28 @@ fn derivatives<const N: usize, const S: usize, const SA: usize>(
             _ => None,
         };
         let row = point_derivatives(sensitive, (plan, &plan.record), t, &state, event);
-        let row = row.and_then(|row| match row.iter().all(|x| x.is_finite()) {
-            true => Ok(row),
-            false => Err("a derivative is not a finite number".to_string()),
-        });
-        match row {
+        match recorded_row(row, t) {
             Ok(row) => rows.push(row),
-            Err(e) => {
-                let error = CliError::Run(format!(
-                    "cannot record the sensitivities at t = {}: {e}; the points before this \
-                     time are recorded",
-                    shown(t)
-                ));
-                return (rows, Some(error));
-            }
+            Err(error) => return (rows, Some(error)),
         }
     }
     (rows, None)
+}
+
+/// The derivative columns `row` at time `t` as recorded: every one a finite number, or the
+/// run's failure there (the points before it are recorded).
+pub(crate) fn recorded_row(row: Result<Vec<f64>, String>, t: f64) -> Result<Vec<f64>, CliError> {
+    let row = row.and_then(|row| match row.iter().all(|x| x.is_finite()) {
+        true => Ok(row),
+        false => Err("a derivative is not a finite number".to_string()),
+    });
+    row.map_err(|e| {
+        CliError::Run(format!(
+            "cannot record the sensitivities at t = {}: {e}; the points before this time are \
+             recorded",
+            shown(t)
+        ))
+    })
 }
 
 /// The derivative columns at one point of `plan`'s run recording `record` (a scene's phase

@@ -23,7 +23,7 @@ use crate::run::integrate::{event, with_stepper, Watcher};
 use crate::run::names::{evaluate, shown};
 use crate::run::plan::Plan;
 use crate::run::record::Recorded;
-use crate::run::sensitivity::{on_sensitive_sizes, SensitiveRun};
+use crate::run::sensitivity::{on_sensitive_sizes, recorded_row, SensitiveRun};
 use crate::run::watch::Watched;
 
 /// What a scene's run computed, sizes erased.
@@ -264,20 +264,9 @@ fn derivative_rows<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
         };
         let system = &phases[k].system.system;
         let row = system.derivatives((plan, &records[k]), *t, state, event);
-        let row = row.and_then(|row| match row.iter().all(|x| x.is_finite()) {
-            true => Ok(row),
-            false => Err("a derivative is not a finite number".to_string()),
-        });
-        match row {
+        match recorded_row(row, *t) {
             Ok(row) => rows.push(row),
-            Err(e) => {
-                let error = CliError::Run(format!(
-                    "cannot record the sensitivities at t = {}: {e}; the points before this \
-                     time are recorded",
-                    shown(*t)
-                ));
-                return (rows, Some(error));
-            }
+            Err(error) => return (rows, Some(error)),
         }
     }
     (rows, None)

@@ -11,10 +11,11 @@ use crate::run::names::Observable;
 use crate::run::sensitivity::{check_method, prepare_observables, resolve_names};
 
 use super::build::{End, Scene};
+use super::file::Read;
 
 /// Resolves `names` into the scene's plan and prepares its phases' programs; nothing to do
 /// without `names`.
-pub fn prepare(scene: &mut Scene, names: &[String]) -> Result<(), CliError> {
+pub fn prepare(scene: &mut Scene, read: &Read, names: &[String]) -> Result<(), CliError> {
     if names.is_empty() {
         return Ok(());
     }
@@ -38,17 +39,25 @@ pub fn prepare(scene: &mut Scene, names: &[String]) -> Result<(), CliError> {
         if i < last {
             carried(i, phase.end.as_ref(), phase.program.state_mass_count())?;
         }
+        // Set by the phase itself, to any value (the same number too: the scene fixes it
+        // there, and the column's parameter is the first phase's), or in force with
+        // another value (a model without it).
+        let sets = |name: &&&str| {
+            i > 0 && (read.scene.phases[i - 1].set.keys()).any(|k| k.get_ref() == **name)
+        };
         let value = |values: &[(String, f64)], name: &str| {
             values.iter().find(|(n, _)| n == name).map(|(_, v)| *v)
         };
-        let set = columns
-            .iter()
-            .find(|name| value(phase.parameters(), name) != value(&first_values, name));
-        if let Some(name) = set {
+        let differs = |name: &&&str| value(phase.parameters(), name) != value(&first_values, name);
+        if let Some(name) = columns.iter().find(sets) {
             return Err(refused(
                 i,
                 &format!("sets `{name}`, a parameter of a column"),
             ));
+        }
+        if let Some(name) = columns.iter().find(differs) {
+            let does = format!("has another `{name}` (a parameter of a column) than phase 1");
+            return Err(refused(i, &does));
         }
         let watched = phase.end.iter().filter_map(|e| e.observable);
         prepare_observables(&mut phase.program, watched, &phase.record)?;
