@@ -766,14 +766,6 @@ where
         true
     }
 
-    fn velocity_columns(
-        &self,
-        t: f64,
-        state: &SVector<f64, SA>,
-    ) -> Option<Result<Vec<SVector<f64, N>>, SystemError>> {
-        Some(self.velocity_sensitivities::<N, SA>(t, state))
-    }
-
     /// The columns leaving a phase (`sensitivity/phases.rs`).
     fn depart(
         &self,

@@ -93,12 +93,14 @@ impl<Sys> Supported<Sys> {
         (self.held.is_none() && self.rail.is_none()).then_some(&self.system)
     }
 
-    /// The constrained rate (the columns' projected as the state's), without the checks
-    /// of [`VariableMassSystem::state_rate`].
+    /// The constrained rate (the columns' projected as the state's); without `check`, none
+    /// of the checks of [`VariableMassSystem::state_rate`] (the corrections at a change,
+    /// whose columns are half entered).
     fn constrained_rate<const N: usize, const S: usize>(
         &self,
         t: f64,
         state: &SVector<f64, S>,
+        check: bool,
     ) -> Result<SVector<f64, S>, SystemError>
     where
         Sys: VariableMassSystem<N, S>,
@@ -107,7 +109,7 @@ impl<Sys> Supported<Sys> {
             Some(rail) => rail.state_rate(&self.system, t, state)?,
             None => clamped::<N, S>(self.held_below::<N>(), self.system.state_rate(t, state)?),
         };
-        self.project_columns(&mut rate);
+        self.project_columns(&mut rate, check)?;
         Ok(rate)
     }
 
@@ -384,9 +386,6 @@ where
         );
         fn next_stop_time(&self, after: f64) -> Option<f64>;
         fn has_rate_only_state(&self) -> bool;
-        fn velocity_columns(
-            &self, t: f64, state: &SVector<f64, S>
-        ) -> Option<Result<Vec<SVector<f64, N>>, SystemError>>;
         /// A system with sensitivities jumps its columns at a switch: without these the
         /// trait's no-op would cross the switches without the jump, silently.
         fn has_switch_gradients(&self) -> bool;
@@ -447,7 +446,7 @@ where
     /// state's (`support/columns.rs`).
     fn state_rate(&self, t: f64, state: &SVector<f64, S>) -> Result<SVector<f64, S>, SystemError> {
         self.checked_hold(t, state)?;
-        self.constrained_rate(t, state)
+        self.constrained_rate(t, state, true)
     }
 
     /// Free, a system with sensitivities carries its columns across a phase change; held
@@ -534,7 +533,7 @@ where
         }
         for mut column in jacobian.column_iter_mut() {
             let mut projected = column.clone_owned();
-            self.project_columns(&mut projected);
+            self.project_columns(&mut projected, false)?;
             column.copy_from(&projected);
         }
         Ok(jacobian)

@@ -445,18 +445,6 @@ pub trait VariableMassSystem<const N: usize, const S: usize> {
         false
     }
 
-    /// The velocity columns ∂q̇/∂w, one per column, of a state carrying forward
-    /// sensitivities (`sensitivity::Sensitive::velocity_sensitivities`): what a rail checks
-    /// its projection of the columns against (`support/columns.rs`). `None` for a system
-    /// without, the default.
-    fn velocity_columns(
-        &self,
-        _t: f64,
-        _state: &SVector<f64, S>,
-    ) -> Option<Result<alloc::vec::Vec<SVector<f64, N>>, SystemError>> {
-        None
-    }
-
     /// What of this system forward sensitivities cannot follow, if anything
     /// (`sensitivity::Sensitive::new` refuses it with this reason). By default every system
     /// is refused: the sensitivities need the symbolic Jacobians, which generated code

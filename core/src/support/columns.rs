@@ -20,8 +20,6 @@
 //! whose rate jumps is refused ([`SystemError::SupportedSwitch`]): its time would need the
 //! constrained accelerations; one whose rate only kinks jumps nothing.
 
-use alloc::vec::Vec;
-
 use nalgebra::SVector;
 
 use super::Supported;
@@ -75,34 +73,47 @@ impl<Sys> Supported<Sys> {
         }
     }
 
-    /// The columns' blocks of `vector` (each after the first block of
+    /// The columns' blocks of the rate `rate` (each after the first block of
     /// [`VariableMassSystem::measured_block`] entries) projected, while constrained; the
-    /// mechanics' block is the constraint's own business.
+    /// mechanics' block is the constraint's own business. With `check`, sliding on a rail,
+    /// each column's free rate's q rows — its velocity ∂q̇/∂w — must lie along the rail
+    /// first ([`SystemError::RailColumnAcross`], [`Self::check_rail_coupling`]).
     pub(super) fn project_columns<const N: usize, const S: usize>(
         &self,
-        vector: &mut SVector<f64, S>,
-    ) where
+        rate: &mut SVector<f64, S>,
+        check: bool,
+    ) -> Result<(), SystemError>
+    where
         Sys: VariableMassSystem<N, S>,
     {
         let block = self.system.measured_block();
         if !self.constrained() || !self.system.has_rate_only_state() || block >= S {
-            return;
+            return Ok(());
         }
-        for chunk in vector.as_mut_slice()[block..].chunks_exact_mut(block) {
+        let sliding = self.rail.filter(|rail| check && !rail.on_pad);
+        for (column, chunk) in rate.as_mut_slice()[block..]
+            .chunks_exact_mut(block)
+            .enumerate()
+        {
+            if let Some(rail) = &sliding {
+                across::<N>(&rail.along::<N>(), &chunk[..N], column)?;
+            }
             self.project::<N>(chunk);
         }
+        Ok(())
     }
 
     /// [`SystemError::RailCoupled`] for a body with sensitivities on a rail (its bottom or
-    /// sliding) whose direction couples with other coordinates at `(t, state)`, or whose
-    /// columns' velocities ∂q̇/∂w leave the rail while it slides.
+    /// sliding) whose direction couples with other coordinates at `(t, state)`; the columns'
+    /// velocities ∂q̇/∂w, which must stay along it while it slides, are checked where the
+    /// rate has them ([`Self::project_columns`]).
     ///
     /// The projection of the momentum rows on b is exact only while the columns' momenta
     /// keep no part across b, which holds exactly when their velocities stay along b (q̇ =
     /// b ṡ for every value of w, and M⁻¹ keeps the parts across b apart where M b = μ b). A
     /// momentum at rest that grows across b as the body slides (a turning launch frame), or
     /// a coupling that is 0 at the nominal values only (m l θ̇ ż at l = 0, ∂/∂l), shows as a
-    /// column's velocity across b and is refused here, at the first rate it appears in
+    /// column's velocity across b and is refused, at the first rate it appears in
     /// ([`SystemError::RailColumnAcross`]; the review of this change measured 1–14 % and 2.8
     /// wrong, silently, before).
     pub(super) fn check_rail_coupling<const N: usize, const S: usize>(
@@ -123,17 +134,7 @@ impl<Sys> Supported<Sys> {
         if (mb - b * b.dot(&mb)).amax() > RAIL_COUPLING * scale {
             return Err(SystemError::RailCoupled);
         }
-        if rail.on_pad {
-            return Ok(());
-        }
-        let velocities = (self.system.velocity_columns(t, state)).unwrap_or(Ok(Vec::new()))?;
-        let across = |v: &SVector<f64, N>| {
-            (v - b * b.dot(v)).amax() > COLUMN_ACROSS * v.amax() + COLUMN_ACROSS_FLOOR
-        };
-        match velocities.iter().position(across) {
-            Some(column) => Err(SystemError::RailColumnAcross { column }),
-            None => Ok(()),
-        }
+        Ok(())
     }
 
     /// The end `end` as the free system takes it: a rail's travel as its gradient (into
@@ -178,7 +179,7 @@ impl<Sys> Supported<Sys> {
             return Ok(());
         }
         let free = self.system.state_rate(t, state)?;
-        let constrained = self.constrained_rate(t, state)?;
+        let constrained = self.constrained_rate(t, state, false)?;
         let along = |f: &SVector<f64, S>| gradient.iter().map(|&(i, c)| c * f[i]).sum::<f64>();
         let ratio = along(&free) / along(&constrained);
         if !ratio.is_finite() || ratio == 0.0 {
@@ -223,7 +224,7 @@ impl<Sys> Supported<Sys> {
         }
         // The constrained rate without the checks of `state_rate`: the columns are half
         // entered here, not yet a state to check.
-        let rate = self.system.state_rate(t, state)? - self.constrained_rate(t, state)?;
+        let rate = self.system.state_rate(t, state)? - self.constrained_rate(t, state, false)?;
         let e = departure.entries;
         for (c, &dt) in departure.time.iter().enumerate() {
             let start = e * (1 + c);
@@ -260,5 +261,21 @@ impl<Sys> Supported<Sys> {
                 switch: crossed.first().copied().unwrap_or(0),
             }),
         }
+    }
+}
+
+/// [`SystemError::RailColumnAcross`] for column `column` whose velocity ∂q̇/∂w `velocity`
+/// (its free rate's q rows) leaves the rail's direction `b`.
+fn across<const N: usize>(
+    b: &SVector<f64, N>,
+    velocity: &[f64],
+    column: usize,
+) -> Result<(), SystemError> {
+    let along: f64 = (0..N).map(|i| b[i] * velocity[i]).sum();
+    let off = (0..N).fold(0.0_f64, |m, i| m.max((velocity[i] - b[i] * along).abs()));
+    let size = velocity.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    match off > COLUMN_ACROSS * size + COLUMN_ACROSS_FLOOR {
+        true => Err(SystemError::RailColumnAcross { column }),
+        false => Ok(()),
     }
 }
