@@ -10,8 +10,24 @@ use varmass_symbolic::parse::ast::StatementKind;
 use varmass_symbolic::parse::{parse_system, Diagnostic};
 use varmass_symbolic::{derive_in, derive_source};
 
+/// A test's scratch directory, removed when the test is done with it (passed or failed).
+struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
 /// A fresh directory holding `files` (name, text), for one test.
-fn directory(test: &str, files: &[(&str, &str)]) -> PathBuf {
+fn directory(test: &str, files: &[(&str, &str)]) -> Scratch {
     let dir = std::env::temp_dir().join(format!("varmass-compose-{}-{test}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     for (name, text) in files {
@@ -19,7 +35,7 @@ fn directory(test: &str, files: &[(&str, &str)]) -> PathBuf {
         std::fs::create_dir_all(path.parent().expect("a directory")).expect("creates it");
         std::fs::write(path, text).expect("writes the file");
     }
-    dir
+    Scratch(dir)
 }
 
 /// The model `main.vms` of `dir` composed.
@@ -76,7 +92,7 @@ force on: [half + half]
 
 /// A directory with the component `lib/push.vms` and a `main.vms` of a body `b` on `y`
 /// followed by `rest` (its uses).
-fn with_push(test: &str, rest: &str) -> PathBuf {
+fn with_push(test: &str, rest: &str) -> Scratch {
     let main = format!("coordinates y\nmass m = m0\nbody b: mass m, position [y]\n{rest}");
     directory(test, &[("lib/push.vms", PUSH), ("main.vms", &main)])
 }
