@@ -26,9 +26,11 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Check(a) => commands::check::check(&a),
         Command::Derive(a) => commands::derive::derive(&a.model, a.latex),
-        Command::Run(a) if scene::is_scene(&a.model.file) => scene::run(&a, &given(&matches)),
+        Command::Run(a) if scene::is_scene(&a.model.file) => {
+            scene::run(&a, &given(&matches, "run"))
+        }
         Command::Run(a) => run::run(&a),
-        Command::Fit(a) => varmass_cli::fit::run(&a),
+        Command::Fit(a) => varmass_cli::fit::run_given(&a, &given(&matches, "fit")),
     };
     match result {
         Ok(text) => {
@@ -40,20 +42,23 @@ fn main() -> ExitCode {
     }
 }
 
-/// The ids of the `run` flags given on the command line (not defaulted): a scene refuses
-/// each one but `--csv` and `--plot`, whatever its value.
-fn given(matches: &ArgMatches) -> Vec<String> {
-    let (Some(("run", run)), Some(command)) = (
+/// The ids of the flags of the subcommand `name` given on the command line (not
+/// defaulted): a scene refuses those of a run's settings, whatever their value.
+fn given(matches: &ArgMatches, name: &str) -> Vec<String> {
+    let (Some((given, sub)), Some(command)) = (
         matches.subcommand(),
-        Cli::command().find_subcommand("run").cloned(),
+        Cli::command().find_subcommand(name).cloned(),
     ) else {
         return Vec::new();
     };
+    if given != name {
+        return Vec::new();
+    }
     // The arguments only: the ids also name the derive's argument groups (`RunArgs`).
     command
         .get_arguments()
         .map(|arg| arg.get_id().as_str())
-        .filter(|id| run.value_source(id) == Some(ValueSource::CommandLine))
+        .filter(|id| sub.value_source(id) == Some(ValueSource::CommandLine))
         .map(str::to_owned)
         .collect()
 }

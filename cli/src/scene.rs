@@ -12,6 +12,7 @@ mod file;
 pub mod flight;
 mod fly;
 mod models;
+mod rerun;
 mod sensitivities;
 mod system;
 mod timed;
@@ -30,6 +31,7 @@ use crate::run::record::Recorded;
 
 pub use build::ENERGY_RESIDUAL;
 pub use models::Models;
+pub use rerun::Rerun;
 
 /// Whether `path` names a scene file (`.toml`) rather than a model.
 pub fn is_scene(path: &Path) -> bool {
@@ -102,12 +104,36 @@ pub fn run_file_sensitive(
     models: &mut Models,
     sensitivities: &[String],
 ) -> Result<SceneRun, CliError> {
+    let request = Request {
+        sensitivities,
+        at: &[],
+    };
+    run_read(&file::read(path)?, path, models, &request)
+}
+
+/// What a run asks of a scene beside the file: sensitivity columns, and times to land on.
+pub struct Request<'a> {
+    /// The `--sensitivity` names (docs/sensitivities.md#scenes).
+    pub sensitivities: &'a [String],
+    /// Times each phase lands on and records a point at (a fit's data times), besides its
+    /// steps; in the scene's span.
+    pub at: &'a [f64],
+}
+
+/// Runs the scene `read` from the file at `path`, as [`run_file_sensitive`] does, with
+/// `request`.
+fn run_read(
+    read: &file::Read,
+    path: &Path,
+    models: &mut Models,
+    request: &Request<'_>,
+) -> Result<SceneRun, CliError> {
+    let sensitivities = request.sensitivities;
     models.set_sensitivities(!sensitivities.is_empty());
-    let read = file::read(path)?;
-    let mut scene = build::build(&read, path, models, sensitivities)?;
-    sensitivities::prepare(&mut scene, &read, sensitivities)?;
+    let mut scene = build::build(read, path, models, request)?;
+    sensitivities::prepare(&mut scene, read, sensitivities)?;
     let derivative_names = derivative_names(&scene);
-    let flight = flight::prepare(&read, path, &scene, models)?;
+    let flight = flight::prepare(read, path, &scene, models)?;
     let csv = scene.csv.clone();
     let phases: Vec<(Carry, Vec<(String, Recorded)>)> = scene
         .phases

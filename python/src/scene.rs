@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::{Mutex, MutexGuard};
 
-use varmass_cli::scene::{run_file_with, Models, SceneRun};
+use varmass_cli::scene::{run_file_sensitive, Models, SceneRun};
 
 use crate::errors::to_py;
 use crate::run::{columns, statistics};
@@ -45,7 +45,8 @@ impl NativeScene {
 /// energy removed and the values set by expressions of the change's time.
 type ChangeRow<'a> = (usize, f64, &'a str, f64, Vec<(String, f64)>);
 
-/// Runs the scene file at `path` with the models `scene` derived before: the recorded
+/// Runs the scene file at `path` with the models `scene` derived before, and the
+/// sensitivity columns `sensitivities` (docs/sensitivities.md#scenes): the recorded
 /// columns (`phase` first), the changes of phase, the end, the statistics and the summary
 /// the tool prints. A mistake in the file is the tool's `ValueError`/`ModelError`; a
 /// failed run its `RunError`, with the points up to the failure as `_partial`.
@@ -54,9 +55,10 @@ pub fn run_scene<'py>(
     py: Python<'py>,
     scene: &NativeScene,
     path: &str,
+    sensitivities: Vec<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let path = std::path::PathBuf::from(path);
-    let run = || run_file_with(&path, &mut scene.lock());
+    let run = || run_file_sensitive(&path, &mut scene.lock(), &sensitivities);
     let mut done: SceneRun = py.detach(run).map_err(|e| to_py(py, e))?;
     if let Some(failure) = done.failure.take() {
         let error = to_py(py, failure);

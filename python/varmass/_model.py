@@ -231,30 +231,7 @@ class Model:
         ``method`` (``"dop853"`` or ``"dormand-prince"``) and ``tol`` as :meth:`run`;
         ``until`` defaults to the data's last time. Returns a :class:`FitResult`.
         """
-        from ._fit import FitResult
-        from ._solution import _Given
-
-        if not isinstance(data, Mapping) or not data:
-            raise TypeError("data must be a non-empty mapping of quantities to (times, values)")
-        weights = dict(_checks.values("sigma", sigma))
-        series = []
-        for quantity, pair in data.items():
-            quantity = _checks.name("data", quantity)
-            try:
-                times, measured = pair
-            except (TypeError, ValueError):
-                raise TypeError(f"data[{quantity!r}] must be a pair (times, values)") from None
-            times = np.asarray(times, dtype=float).ravel()
-            measured = np.asarray(measured, dtype=float).ravel()
-            if times.shape != measured.shape or times.size == 0:
-                raise ValueError(f"data[{quantity!r}]: times and values must be equally long, not empty")
-            if not (np.all(np.isfinite(times)) and np.all(np.isfinite(measured))):
-                raise ValueError(f"data[{quantity!r}]: times and values must be finite")
-            if np.any(np.diff(times) <= 0):
-                raise ValueError(f"data[{quantity!r}]: the times must increase")
-            series.append((quantity, times.tolist(), measured.tolist(), weights.pop(quantity, None)))
-        if weights:
-            raise ValueError(f"sigma: {', '.join(weights)} is no quantity of data")
+        series = _series(data, sigma)
         unknowns = _unknowns(fit)
         last = max(s[1][-1] for s in series)
         options = _checks.run_options(
@@ -270,11 +247,7 @@ class Model:
         args = _native.options(self._file, self._with, options)
         pairs = _checks.unique_values("set", set)
         raw = _native.fit(self._native(), pairs, args, series, unknowns)
-        names, block = raw[6], raw[7]
-        times = np.frombuffer(block, dtype="<f8").reshape(len(names) + 1, -1)[0]
-        details = _Given({"end_state": None, "statistics": None, "summary": None})
-        solution = Solution(names, block, float(times[-1]), None, details)
-        return FitResult([u[0] for u in unknowns], raw[:6], [s[0] for s in series], solution)
+        return _fit_result(unknowns, raw, series)
 
 
     def ensemble(self, seed: int, **options):
@@ -293,6 +266,46 @@ def _partial_points(error):
         return None
     t, columns = table(partial)
     return {"t": t, **columns}
+
+
+def _series(data, sigma) -> list:
+    """``data`` (a mapping of quantities to ``(times, values)``) and ``sigma`` (their
+    standard deviations) as the native fit takes them: (quantity, times, values, σ or
+    ``None``), each checked."""
+    if not isinstance(data, Mapping) or not data:
+        raise TypeError("data must be a non-empty mapping of quantities to (times, values)")
+    weights = dict(_checks.values("sigma", sigma))
+    series = []
+    for quantity, pair in data.items():
+        quantity = _checks.name("data", quantity)
+        try:
+            times, measured = pair
+        except (TypeError, ValueError):
+            raise TypeError(f"data[{quantity!r}] must be a pair (times, values)") from None
+        times = np.asarray(times, dtype=float).ravel()
+        measured = np.asarray(measured, dtype=float).ravel()
+        if times.shape != measured.shape or times.size == 0:
+            raise ValueError(f"data[{quantity!r}]: times and values must be equally long, not empty")
+        if not (np.all(np.isfinite(times)) and np.all(np.isfinite(measured))):
+            raise ValueError(f"data[{quantity!r}]: times and values must be finite")
+        if np.any(np.diff(times) <= 0):
+            raise ValueError(f"data[{quantity!r}]: the times must increase")
+        series.append((quantity, times.tolist(), measured.tolist(), weights.pop(quantity, None)))
+    if weights:
+        raise ValueError(f"sigma: {', '.join(weights)} is no quantity of data")
+    return series
+
+
+def _fit_result(unknowns, raw, series):
+    """The :class:`FitResult` of the native fit's result ``raw``."""
+    from ._fit import FitResult
+    from ._solution import _Given
+
+    names, block = raw[6], raw[7]
+    times = np.frombuffer(block, dtype="<f8").reshape(len(names) + 1, -1)[0]
+    details = _Given({"end_state": None, "statistics": None, "summary": None})
+    solution = Solution(names, block, float(times[-1]), None, details)
+    return FitResult([u[0] for u in unknowns], raw[:6], [s[0] for s in series], solution)
 
 
 def _unknowns(fit) -> list:

@@ -5,11 +5,12 @@ events, the state carried by separation or capture."""
 from __future__ import annotations
 
 import os
-from typing import NamedTuple
+import warnings
+from typing import Mapping, NamedTuple, Optional
 
-from . import _native
+from . import _checks, _native
 from ._errors import RunError
-from ._model import _partial_points
+from ._model import _fit_result, _partial_points, _series, _unknowns
 from ._solution import Solution
 
 
@@ -58,12 +59,18 @@ class Scene:
     def path(self) -> str:
         return self._path
 
-    def run(self) -> Solution:
+    def run(self, sensitivity=()) -> Solution:
         """Reads, checks and runs the scene (the GIL is released while it computes). The
         model is derived at the first run and kept for the next ones while its file is
-        unchanged; the scene file itself is read again at each run."""
+        unchanged; the scene file itself is read again at each run.
+
+        ``sensitivity``: names (a parameter, a start value ``"init:y'"``) whose derivative
+        columns the run records beside the scene's (``solution.sensitivity("y", "g")``),
+        through a support, a rail and changes on a coordinate or a state mass
+        (docs/sensitivities.md#scenes)."""
+        names = _checks.names("sensitivity", sensitivity)
         try:
-            raw = _native.run_scene(self._scene(), self._path)
+            raw = _native.run_scene(self._scene(), self._path, names)
         except RunError as error:
             error.points = _partial_points(error)
             raise
@@ -72,6 +79,23 @@ class Scene:
             for (phase, time, rule, removed, values) in raw["changes"]
         ]
         return Solution._of_scene(raw, changes)
+
+    def fit(self, data: Mapping, fit, *, sigma: Optional[Mapping] = None):
+        """Fits parameters (and start values) of the scene to measured data, as ``varmass
+        fit SCENE.toml`` does (docs/sensitivities.md#fitting-a-scene): ``data``, ``fit`` and
+        ``sigma`` as :meth:`varmass.Model.fit`; the start values are the scene's own (its
+        ``[set]``, else the model's defaults, and its ``[init]``), and its settings are the
+        file's. Data outside the scene's span are left out with a warning. Returns a
+        :class:`varmass.FitResult`."""
+        series = _series(data, sigma)
+        unknowns = _unknowns(fit)
+        raw, left_out = _native.fit_scene(self._path, series, unknowns)
+        if left_out:
+            warnings.warn(
+                f"{left_out} data outside the scene's span were left out of the fit",
+                stacklevel=2,
+            )
+        return _fit_result(unknowns, raw, series)
 
     def _scene(self):
         if self._native is None:

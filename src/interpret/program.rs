@@ -107,6 +107,9 @@ pub struct Program {
     /// The switching functions' gradients, one after the other (`gradients.rs`), with the
     /// Jacobians: what the sensitivities jump by at a switch.
     switch_gradients: Option<Stage>,
+    /// Times the run lands on besides the stop times of the model ([`Program::land_on`]),
+    /// increasing.
+    landings: Vec<f64>,
     scratch: RefCell<Scratch>,
 }
 
@@ -189,6 +192,7 @@ impl Program {
             jacobians,
             gradients: Vec::new(),
             switch_gradients,
+            landings: Vec::new(),
             scratch: RefCell::new(Scratch {
                 env,
                 values: Vec::new(),
@@ -440,9 +444,11 @@ impl Program {
         Ok(())
     }
 
-    /// The first knot time of a table of t (docs/tables.md#knots-are-switches) or sample
-    /// time of a sampled input (docs/inputs.md#sampled-inputs) after `after`.
+    /// The first knot time of a table of t (docs/tables.md#knots-are-switches), sample
+    /// time of a sampled input (docs/inputs.md#sampled-inputs) or landing time
+    /// ([`Program::land_on`]) after `after`.
     pub fn next_stop_time(&self, after: f64) -> Option<f64> {
+        let landing = self.landings.partition_point(|&t| t <= after);
         let next = self
             .stops
             .iter()
@@ -450,8 +456,19 @@ impl Program {
                 let orders: Vec<&Table> = orders.iter().map(|t| &**t).collect();
                 next_knot_time_read(&orders, *slope, *offset, after)
             })
-            .fold(self.next_sample_time(after), f64::min);
+            .fold(self.next_sample_time(after), f64::min)
+            .min(self.landings.get(landing).copied().unwrap_or(f64::INFINITY));
         (next < f64::INFINITY).then_some(next)
+    }
+
+    /// Makes `times` stop times of the run (as a table's knots are): the steppers land on
+    /// each exactly and restart there, so that a point is recorded at each (a fit's data
+    /// times in a scene, docs/sensitivities.md#fitting-a-scene). The times not finite are
+    /// dropped; the rest are sorted.
+    pub fn land_on(&mut self, times: &[f64]) {
+        self.landings = times.iter().copied().filter(|t| t.is_finite()).collect();
+        self.landings.sort_by(f64::total_cmp);
+        self.landings.dedup();
     }
 
     /// The angle from gimbal lock of the spatial rigid bodies' Euler sequences at

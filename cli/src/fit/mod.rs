@@ -9,6 +9,7 @@ pub mod data;
 pub mod lm;
 mod plot;
 mod predict;
+mod scene;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -20,7 +21,9 @@ use crate::args::RunArgs;
 use crate::error::CliError;
 use crate::run::names::{named, number, shown};
 use crate::run::{Compiled, Table};
+use crate::scene::Rerun;
 pub use data::Series;
+pub use scene::fit_file as fit_scene_file;
 
 /// `varmass fit`'s arguments: a run's (the model, `--set` start values, `--init`, the
 /// method and tolerance), the data and what to fit.
@@ -116,12 +119,18 @@ pub struct Fit {
     pub table: Table,
 }
 
-/// What a fit holds fixed between evaluations.
+/// What a fit holds fixed between evaluations: the run's start, the data and the unknowns.
 struct Problem<'a> {
-    args: &'a RunArgs,
-    values: &'a [(String, f64)],
+    from: f64,
     series: &'a [Series],
     unknowns: &'a [Unknown],
+}
+
+/// A model file's runs ([`Compiled`]): the run `args` with the parameter values `values`.
+struct ModelRun<'a> {
+    compiled: &'a mut Compiled,
+    args: &'a RunArgs,
+    values: &'a [(String, f64)],
 }
 
 impl Problem<'_> {
@@ -148,61 +157,28 @@ impl Problem<'_> {
     /// rocket on its pad, compared with the start's values: else an offset that moves the
     /// first data before `--from` would fail its trial run, a bound the fit did not name).
     fn model_time(&self, t: f64, offset: f64) -> f64 {
-        (t - offset).max(self.args.from)
+        (t - offset).max(self.from)
     }
 
-    /// The run's arguments and parameter values at θ: the unknowns' sensitivities, and the
-    /// quantities' rates when the offset is fitted (∂X(tᵢ − δ)/∂δ = −Ẋ).
-    fn at(&self, theta: &DVector<f64>) -> (RunArgs, Vec<(String, f64)>) {
-        let mut args = self.args.clone();
-        let mut values = self.values.to_vec();
-        for (u, x) in self.unknowns.iter().zip(theta.iter()) {
-            if u.name == OFFSET {
-                continue;
-            }
-            match u.name.strip_prefix("init:").map(str::trim) {
-                Some(entry) => {
-                    args.init
-                        .retain(|i| i.split_once('=').is_none_or(|(n, _)| n.trim() != entry));
-                    args.init.push(format!("{entry}={x:?}"));
-                }
-                None => match values.iter_mut().find(|(n, _)| *n == u.name) {
-                    Some(slot) => slot.1 = *x,
-                    None => values.push((u.name.clone(), *x)),
-                },
-            }
-        }
-        args.sensitivity = (self.unknowns.iter())
-            .filter(|u| u.name != OFFSET)
-            .map(|u| u.name.clone())
-            .collect();
-        args.rates = self.unknowns.iter().any(|u| u.name == OFFSET);
-        args.record = vec![self.quantities().join(",")];
+    /// The data's times on the model's clock at θ, increasing, each once.
+    fn times(&self, theta: &DVector<f64>) -> Vec<f64> {
         let offset = self.offset(theta);
         let mut times: Vec<f64> = (self.series.iter())
             .flat_map(|s| s.times.iter().map(|t| self.model_time(*t, offset)))
             .collect();
         times.sort_by(f64::total_cmp);
         times.dedup();
-        // A run at least as long as the data (the offset may move them past `--until`).
-        args.until = match (args.until, times.last()) {
-            (Some(until), Some(last)) => Some(until.max(*last)),
-            (until, last) => until.or(last.copied()),
-        };
-        args.at = times;
-        (args, values)
+        times
     }
 
     /// The weighted residuals and their Jacobian at θ, and the run's table.
     fn evaluate(
         &self,
-        compiled: &mut Compiled,
+        target: &mut impl Evaluate,
         theta: &DVector<f64>,
     ) -> Result<(DVector<f64>, DMatrix<f64>, Table), String> {
-        let (args, values) = self.at(theta);
+        let table = target.table(self, theta)?;
         let offset = self.offset(theta);
-        let done = compiled.execute(&args, false, values, |_| {});
-        let table = done.map_err(|failed| failed.error.to_string())?.table;
         let n = self.unknowns.len();
         let (mut r, mut j) = (Vec::new(), Vec::new());
         for s in self.series {
@@ -243,6 +219,62 @@ impl Problem<'_> {
     }
 }
 
+/// What a fit runs at each θ: a model file (`varmass run`'s run, [`Compiled`]) or a scene
+/// file ([`Rerun`]).
+trait Evaluate {
+    /// The run at θ of `problem`: its table, landing on the data's times, with the data's
+    /// quantities and their derivatives by each unknown.
+    fn table(&mut self, problem: &Problem<'_>, theta: &DVector<f64>) -> Result<Table, String>;
+}
+
+impl ModelRun<'_> {
+    /// The run's arguments and parameter values at θ of `problem`: the unknowns'
+    /// sensitivities, and the quantities' rates when the offset is fitted
+    /// (∂X(tᵢ − δ)/∂δ = −Ẋ).
+    fn at(&self, problem: &Problem<'_>, theta: &DVector<f64>) -> (RunArgs, Vec<(String, f64)>) {
+        let mut args = self.args.clone();
+        let mut values = self.values.to_vec();
+        for (u, x) in problem.unknowns.iter().zip(theta.iter()) {
+            if u.name == OFFSET {
+                continue;
+            }
+            match u.name.strip_prefix("init:").map(str::trim) {
+                Some(entry) => {
+                    args.init
+                        .retain(|i| i.split_once('=').is_none_or(|(n, _)| n.trim() != entry));
+                    args.init.push(format!("{entry}={x:?}"));
+                }
+                None => match values.iter_mut().find(|(n, _)| *n == u.name) {
+                    Some(slot) => slot.1 = *x,
+                    None => values.push((u.name.clone(), *x)),
+                },
+            }
+        }
+        args.sensitivity = (problem.unknowns.iter())
+            .filter(|u| u.name != OFFSET)
+            .map(|u| u.name.clone())
+            .collect();
+        args.rates = problem.unknowns.iter().any(|u| u.name == OFFSET);
+        args.record = vec![problem.quantities().join(",")];
+        let times = problem.times(theta);
+        // A run at least as long as the data (the offset may move them past `--until`).
+        args.until = match (args.until, times.last()) {
+            (Some(until), Some(last)) => Some(until.max(*last)),
+            (until, last) => until.or(last.copied()),
+        };
+        args.at = times;
+        (args, values)
+    }
+}
+
+impl Evaluate for ModelRun<'_> {
+    fn table(&mut self, problem: &Problem<'_>, theta: &DVector<f64>) -> Result<Table, String> {
+        let (args, values) = self.at(problem, theta);
+        let done = self.compiled.execute(&args, false, values, |_| {});
+        Ok(done.map_err(|failed| failed.error.to_string())?.table)
+    }
+}
+
 /// The row of `table` at the time `t` (the run lands on every datum's time).
 fn row_at(table: &Table, t: f64) -> Result<usize, String> {
     let times = table.times();
@@ -266,22 +298,66 @@ pub fn fit(
     series: &[Series],
     unknowns: &[Unknown],
 ) -> Result<Fit, CliError> {
-    let most = crate::run::sensitivity::MAX_SENSITIVITIES;
-    if unknowns.len() > most {
-        return Err(CliError::Input(format!(
-            "--fit is given {} times; a fit takes at most {most} unknowns (each is a \
-             sensitivity column of every run)",
-            unknowns.len()
-        )));
-    }
+    not_too_many(unknowns)?;
     let values = compiled.model().with_defaults(&values);
     let start = start_values(args, &values, unknowns)?;
     let problem = Problem {
-        args,
-        values: &values,
+        from: args.from,
         series,
         unknowns,
     };
+    let mut run = ModelRun {
+        compiled,
+        args,
+        values: &values,
+    };
+    solve(&mut run, problem, start)
+}
+
+/// Fits `unknowns` of the scene `rerun` to `series`, each datum within the scene's span
+/// (docs/sensitivities.md#fitting-a-scene): the start values are the scene's (its `[set]`
+/// or the model's defaults, its `[init]`).
+pub fn fit_scene(
+    rerun: &mut Rerun,
+    series: &[Series],
+    unknowns: &[Unknown],
+) -> Result<Fit, CliError> {
+    not_too_many(unknowns)?;
+    let start = scene::start_values(rerun, unknowns)?;
+    let problem = Problem {
+        from: rerun.span()?.0,
+        series,
+        unknowns,
+    };
+    // The scene's refusals before any step keep their words and their exit code.
+    let theta = DVector::from_vec(start.clone());
+    scene::table(rerun, &problem, &theta).map_err(|e| match e {
+        CliError::Input(_) | CliError::Model { .. } => e,
+        e => CliError::Run(format!("the fit's first run failed: {e}")),
+    })?;
+    solve(rerun, problem, start)
+}
+
+/// Refuses more unknowns than a run's sensitivity columns.
+fn not_too_many(unknowns: &[Unknown]) -> Result<(), CliError> {
+    let most = crate::run::sensitivity::MAX_SENSITIVITIES;
+    match unknowns.len() > most {
+        true => Err(CliError::Input(format!(
+            "--fit is given {} times; a fit takes at most {most} unknowns (each is a \
+             sensitivity column of every run)",
+            unknowns.len()
+        ))),
+        false => Ok(()),
+    }
+}
+
+/// Levenberg–Marquardt from `start` on `problem`, run by `target`; the fit at the minimum.
+fn solve(
+    target: &mut impl Evaluate,
+    problem: Problem<'_>,
+    start: Vec<f64>,
+) -> Result<Fit, CliError> {
+    let (series, unknowns) = (problem.series, problem.unknowns);
     weights_known(series)?;
     let data: usize = series.iter().map(|s| s.times.len()).sum();
     if data <= unknowns.len() {
@@ -297,7 +373,7 @@ pub fn fit(
     );
     let minimum = lm::minimize(
         |theta| {
-            let evaluated = problem.evaluate(compiled, theta).map(|(r, j, _)| (r, j));
+            let evaluated = problem.evaluate(target, theta).map(|(r, j, _)| (r, j));
             if let (Err(e), None) = (&evaluated, &first_error) {
                 first_error = Some(e.clone());
             }
@@ -317,7 +393,7 @@ pub fn fit(
         }
     }
     let (_, _, table) = problem
-        .evaluate(compiled, &minimum.theta)
+        .evaluate(target, &minimum.theta)
         .map_err(CliError::Run)?;
     summarize(minimum, problem, start, table)
 }
@@ -426,6 +502,12 @@ fn summarize(
 /// `varmass fit`: reads the data, fits, writes the fitted run's CSV and the plot of the fit
 /// over the data if asked; returns the report.
 pub fn run(args: &FitArgs) -> Result<String, CliError> {
+    run_given(args, &[])
+}
+
+/// [`run`], `given` the ids of the flags on the command line: a scene file refuses those of
+/// a run's settings, which it gives itself (whatever their value).
+pub fn run_given(args: &FitArgs, given: &[String]) -> Result<String, CliError> {
     if args.fit.is_empty() || args.column.is_empty() {
         return Err(CliError::Input(
             "a fit needs --fit NAME (what to fit) and --column QUANTITY=COLUMN (what the data \
@@ -438,50 +520,75 @@ pub fn run(args: &FitArgs) -> Result<String, CliError> {
         .iter()
         .map(|f| Unknown::parse(f))
         .collect::<Result<_, _>>()?;
+    if crate::scene::is_scene(&args.run.model.file) {
+        return scene::run(args, given, &unknowns);
+    }
     let (series, left_out, window) = series_of(args, &unknowns)?;
     let model = crate::model::load(&args.run.model)?;
     let values = crate::run::plan::parameters(&args.run)?;
     let mut compiled = Compiled::new(model);
     let fitted = fit(&mut compiled, &args.run, values.clone(), &series, &unknowns)?;
+    let Some(condition) = &args.predict else {
+        return finish(args, &fitted, &series, (left_out, window));
+    };
+    let mut out = written(args, &fitted, &series)?;
+    let values = compiled.model().with_defaults(&values);
+    let problem = Problem {
+        from: args.run.from,
+        series: &series,
+        unknowns: &unknowns,
+    };
+    let mut model = ModelRun {
+        compiled: &mut compiled,
+        args: &args.run,
+        values: &values,
+    };
+    let span = (series.iter().flat_map(|s| s.times.iter()))
+        .fold(args.run.from, |end, t| end.max(*t))
+        - args.run.from;
+    let until = (args.predict_until).unwrap_or(args.run.from + 10.0 * span.max(1.0));
+    match predict::report(&mut model, &problem, &fitted, condition, until) {
+        Ok(prediction) => out += &prediction,
+        // The fit stands: its report is not lost with the prediction.
+        Err(e) => return Err(CliError::Run(format!("{out}--predict `{condition}`: {e}"))),
+    }
+    Ok(out + &left_out_note(left_out, window))
+}
+
+/// The fit's report, its CSV and plot written as `args` asks, and the note of the data
+/// left out.
+fn finish(
+    args: &FitArgs,
+    fitted: &Fit,
+    series: &[Series],
+    (left_out, window): (usize, Window),
+) -> Result<String, CliError> {
+    Ok(written(args, fitted, series)? + &left_out_note(left_out, window))
+}
+
+/// The fitted run's CSV and the plot of the fit over the data written as `args` asks; the
+/// report.
+fn written(args: &FitArgs, fitted: &Fit, series: &[Series]) -> Result<String, CliError> {
     if let Some(path) = &args.run.csv {
         crate::run::output::write_csv(&fitted.table, path)?;
     }
     if let Some(path) = &args.run.plot {
-        plot::plot(
-            &fitted,
-            &series,
-            &args.run.model.file.display().to_string(),
-            path,
-        )?;
+        let title = args.run.model.file.display().to_string();
+        plot::plot(fitted, series, &title, path)?;
     }
-    let mut out = report(&fitted, &series);
-    if let Some(condition) = &args.predict {
-        let values = compiled.model().with_defaults(&values);
-        let problem = Problem {
-            args: &args.run,
-            values: &values,
-            series: &series,
-            unknowns: &unknowns,
-        };
-        let span = (series.iter().flat_map(|s| s.times.iter()))
-            .fold(args.run.from, |end, t| end.max(*t))
-            - args.run.from;
-        let until = (args.predict_until).unwrap_or(args.run.from + 10.0 * span.max(1.0));
-        match predict::report(&mut compiled, &problem, &fitted, condition, until) {
-            Ok(prediction) => out += &prediction,
-            // The fit stands: its report is not lost with the prediction.
-            Err(e) => return Err(CliError::Run(format!("{out}--predict `{condition}`: {e}"))),
-        }
+    Ok(report(fitted, series))
+}
+
+/// How many data were left out of the run's span `window` (on the data's clock), if any.
+fn left_out_note(left_out: usize, window: Window) -> String {
+    if left_out == 0 {
+        return String::new();
     }
-    if left_out > 0 {
-        let until = window.1.map_or("the data's end".to_string(), shown);
-        let _ = writeln!(
-            out,
-            "{left_out} data outside the run ({} to {until} on the data's clock) were left out",
-            shown(window.0)
-        );
-    }
-    Ok(out)
+    let until = window.1.map_or("the data's end".to_string(), shown);
+    format!(
+        "{left_out} data outside the run ({} to {until} on the data's clock) were left out\n",
+        shown(window.0)
+    )
 }
 
 /// The span of the data kept, on the data's clock: from, until (`None`: the data's end).

@@ -8,25 +8,24 @@ use std::fmt::Write as _;
 
 use varmass::core::nalgebra::{DMatrix, DVector};
 
-use super::{with_error, Fit, Problem, OFFSET};
+use super::{with_error, Fit, ModelRun, Problem, OFFSET};
 use crate::error::CliError;
 use crate::run::names::shown;
-use crate::run::Compiled;
 
 /// The prediction's report: the event's time and each fitted quantity there, with errors.
-pub fn report(
-    compiled: &mut Compiled,
+pub(super) fn report(
+    model: &mut ModelRun<'_>,
     problem: &Problem<'_>,
     fit: &Fit,
     condition: &str,
     until: f64,
 ) -> Result<String, CliError> {
     let theta = DVector::from_column_slice(&fit.values);
-    let (mut args, values) = problem.at(&theta);
+    let (mut args, values) = model.at(problem, &theta);
     (args.at, args.rates) = (Vec::new(), false);
     args.stop_when = vec![condition.to_string()];
     args.until = Some(until);
-    let done = compiled.execute(&args, false, values, |_| {});
+    let done = model.compiled.execute(&args, false, values, |_| {});
     let done =
         done.map_err(|failed| CliError::Run(format!("the prediction's run: {}", failed.error)))?;
     if done.stopped_by.is_none() {

@@ -130,7 +130,7 @@ pub fn build(
     read: &Read,
     path: &Path,
     models: &mut Models,
-    sensitivities: &[String],
+    request: &super::Request<'_>,
 ) -> Result<Scene, CliError> {
     let scene = &read.scene;
     let at = |offset: usize| format!("{}:{}", path.display(), line_column(&read.source, offset));
@@ -138,8 +138,9 @@ pub fn build(
     let model_file = base.join(scene.model.get_ref());
     let (entries_asked, energy_residual) = asked(scene);
     let in_force = first_in_force(scene, &base);
-    let asked = (entries_asked.clone(), sensitivities.to_vec());
-    let args = first_args(read, model_file.clone(), &in_force, asked);
+    let asked = (entries_asked.clone(), request.sensitivities.to_vec());
+    let mut args = first_args(read, model_file.clone(), &in_force, asked);
+    args.at = request.at.to_vec();
     let model_at = at(scene.model.span().start);
     let (first, plan) = first_phase(&args, in_force, path, models, &model_at)?;
     let record_entries = match entries_asked.is_empty() {

@@ -207,6 +207,12 @@ pub fn read(path: &Path) -> Result<Read, CliError> {
         path: path.to_path_buf(),
         source,
     })?;
+    parse(source, path)
+}
+
+/// Parses the text `source` of the scene file at `path` (a scene read once and run again
+/// with other values: `scene::Rerun`).
+pub fn parse(source: String, path: &Path) -> Result<Read, CliError> {
     let scene = toml::from_str::<SceneFile>(&source).map_err(|e| {
         let place = e
             .span()

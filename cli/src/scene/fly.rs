@@ -62,7 +62,8 @@ pub struct Flown {
 /// Runs the scene's phases in turn, in the monomorphized code of the first phase's sizes
 /// padded as `varmass run` pads ([`on_sizes`]; the phases share their coordinates and
 /// state masses).
-pub fn fly(scene: Scene) -> Result<Flown, CliError> {
+pub fn fly(mut scene: Scene) -> Result<Flown, CliError> {
+    land_on_outputs(&mut scene);
     let sizes = Sizes::of(&scene.phases[0].program);
     if !scene.plan.sensitivities.is_empty() {
         return on_sensitive_sizes(sizes, scene);
@@ -70,6 +71,21 @@ pub fn fly(scene: Scene) -> Result<Flown, CliError> {
     // Padded even where `varmass run` has an exact arm: a scene's numbers stay those of
     // the padded arms it has always run in.
     on_sizes(sizes, false, scene)
+}
+
+/// The plan's output times (a fit's data times) made stop times of every program that runs
+/// a phase (the support's and the rail's too), so that each phase lands on them.
+fn land_on_outputs(scene: &mut Scene) {
+    let at = &scene.plan.at;
+    let held = scene.support.iter_mut().map(|(_, program)| program);
+    let railed = scene
+        .rail
+        .iter_mut()
+        .flat_map(|rail| rail.programs.iter_mut());
+    let phases = scene.phases.iter_mut().map(|phase| &mut phase.program);
+    for program in phases.chain(held).chain(railed) {
+        program.land_on(at);
+    }
 }
 
 impl SizedRun for Scene {

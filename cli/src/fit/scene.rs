@@ -1,0 +1,120 @@
+//! `varmass fit SCENE.toml` (docs/sensitivities.md#fitting-a-scene): the unknowns of a scene
+//! — a rocket on its rail, through its changes of phase — fitted to data. Each evaluation
+//! runs the scene with the unknowns' values in its `[set]` and `[init]` and their
+//! sensitivity columns (docs/sensitivities.md#scenes), every phase landing on the data's
+//! times; the residuals, the Levenberg–Marquardt and the report are a model file's.
+
+use varmass::core::nalgebra::DVector;
+
+use std::path::Path;
+
+use super::{data, finish, fit_scene, series_of, Evaluate, Fit, FitArgs, Problem, Series};
+use super::{Unknown, OFFSET};
+use crate::error::CliError;
+use crate::run::Table;
+use crate::scene::{Request, Rerun};
+
+/// The flags that go with a scene file: the file and where the output goes (the scene
+/// gives its own run settings), and what the fit reads and fits.
+const SCENE_FLAGS: [&str; 8] = [
+    "file", "csv", "plot", "data", "column", "time", "fit", "sigma",
+];
+
+/// `varmass fit SCENE.toml`: the fit's report (`given`: the ids of the flags on the command
+/// line).
+pub fn run(args: &FitArgs, given: &[String], unknowns: &[Unknown]) -> Result<String, CliError> {
+    let file = args.run.model.file.display().to_string();
+    if let Some(id) = given.iter().find(|id| !SCENE_FLAGS.contains(&id.as_str())) {
+        return Err(CliError::Input(format!(
+            "--{}: `{file}` is a scene file, which gives its own settings (docs/scenes.md); \
+             write it there (a scene's fit takes --data, --column, --time, --fit, --sigma, \
+             --csv and --plot)",
+            id.replace('_', "-"),
+        )));
+    }
+    no_offset(unknowns)?;
+    let mut rerun = Rerun::new(&args.run.model.file)?;
+    let (from, until) = rerun.span()?;
+    let mut scoped = args.clone();
+    (scoped.run.from, scoped.run.until) = (from, Some(until));
+    let (series, left_out, window) = series_of(&scoped, unknowns)?;
+    let fitted = fit_scene(&mut rerun, &series, unknowns)?;
+    finish(&scoped, &fitted, &series, (left_out, window))
+}
+
+/// Fits `unknowns` of the scene file at `path` to `series` (the Python package's
+/// `Scene.fit`): the fit, and how many data lay outside the scene's span and were left out.
+pub fn fit_file(
+    path: &Path,
+    mut series: Vec<Series>,
+    unknowns: &[Unknown],
+) -> Result<(Fit, usize), CliError> {
+    no_offset(unknowns)?;
+    let mut rerun = Rerun::new(path)?;
+    let (from, until) = rerun.span()?;
+    let left_out = data::window(&mut series, from, Some(until));
+    Ok((fit_scene(&mut rerun, &series, unknowns)?, left_out))
+}
+
+/// Refuses the data's time offset among `unknowns`: its column is each quantity's rate,
+/// which a scene does not record.
+fn no_offset(unknowns: &[Unknown]) -> Result<(), CliError> {
+    match unknowns.iter().any(|u| u.name == OFFSET) {
+        true => Err(CliError::Input(format!(
+            "--fit {OFFSET}: a scene's fit cannot fit the data's time offset yet (it needs \
+             each quantity's rate, which a scene does not record); shift the data's times, \
+             or fit the offset with a model file"
+        ))),
+        false => Ok(()),
+    }
+}
+
+/// The unknowns' start values: the scene's own, each within its bounds.
+pub fn start_values(rerun: &mut Rerun, unknowns: &[Unknown]) -> Result<Vec<f64>, CliError> {
+    let scene = rerun.path().display().to_string();
+    let mut start = Vec::new();
+    for u in unknowns {
+        let Some(value) = rerun.start_value(&u.name)? else {
+            let table = match u.name.starts_with("init:") {
+                true => "[init]",
+                false => "[set]",
+            };
+            return Err(CliError::Input(format!(
+                "--fit {}: `{scene}` gives it no value to start from; write one in its \
+                 `{table}`",
+                u.name
+            )));
+        };
+        start.push(value.clamp(u.bounds.0, u.bounds.1));
+    }
+    Ok(start)
+}
+
+/// The scene's run at θ of `problem`: the unknowns' values in its `[set]` and `[init]`,
+/// their columns, the data's quantities recorded and their times landed on.
+pub(super) fn table(
+    rerun: &mut Rerun,
+    problem: &Problem<'_>,
+    theta: &DVector<f64>,
+) -> Result<Table, CliError> {
+    let values: Vec<(String, f64)> = (problem.unknowns.iter().zip(theta.iter()))
+        .map(|(u, x)| (u.name.clone(), *x))
+        .collect();
+    let names: Vec<String> = values.iter().map(|(n, _)| n.clone()).collect();
+    let times = problem.times(theta);
+    let request = Request {
+        sensitivities: &names,
+        at: &times,
+    };
+    let ran = rerun.run(&values, &problem.quantities(), &request)?;
+    match ran.failure {
+        Some(failure) => Err(failure),
+        None => Ok(ran.table),
+    }
+}
+
+impl Evaluate for Rerun {
+    fn table(&mut self, problem: &Problem<'_>, theta: &DVector<f64>) -> Result<Table, String> {
+        table(self, problem, theta).map_err(|e| e.to_string())
+    }
+}
