@@ -37,9 +37,17 @@ impl Departure {
 pub enum PhaseEnd<'a> {
     /// g = Σ cᵢ yᵢ − value, linear in the state `[q, p, m_s]` with the coefficients
     /// `(i, cᵢ)`: an event on a state entry or a state mass (one coefficient 1), a rail's
-    /// exit (the travel dᵀ(r − r₀)). dτ/dw = −Σ cᵢ sᵢ / Σ cᵢ fᵢ. Empty, the end is
-    /// smooth: what a support turns [`PhaseEnd::Smooth`] into.
+    /// exit (the travel dᵀ(r − r₀)). dτ/dw = −Σ cᵢ sᵢ / Σ cᵢ fᵢ. Empty, dτ/dw = 0: an
+    /// end at a fixed time, or a smooth one (what a support turns [`PhaseEnd::Smooth`]
+    /// into).
     Linear(&'a [(usize, f64)]),
+    /// g = q̇_k − value, coordinate k's velocity reaching a value (an apogee):
+    /// dτ/dw = −(∂q̇_k/∂w)/q̈_k, the velocity's derivative along the column (its direct
+    /// dependence on the parameters included) over its rate along the motion.
+    Velocity {
+        /// The coordinate, an index into the coordinates.
+        coordinate: usize,
+    },
     /// The travel up the rail of the system that ends ([`crate::rail`]), which a system on
     /// a rail turns into its [`PhaseEnd::Linear`] gradient.
     RailTravel,

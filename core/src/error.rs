@@ -299,6 +299,17 @@ pub enum SystemError {
         /// The state entry of the end condition.
         entry: usize,
     },
+    /// Forward sensitivities met a phase that ends where its end condition's velocity
+    /// stands still (the coordinate's acceleration 0 there): the change's time has no
+    /// derivative.
+    #[error(
+        "a phase ends where the velocity of coordinate {coordinate} stands still (its \
+         acceleration 0): the change's time has no derivative"
+    )]
+    TangentVelocityEnd {
+        /// The coordinate of the end condition.
+        coordinate: usize,
+    },
     /// Forward sensitivities carried into a phase whose system has other columns than the
     /// phase before (every phase needs the same list, a parameter another phase holds given
     /// as `Column::Elsewhere`).

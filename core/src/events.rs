@@ -72,6 +72,19 @@ pub enum EventCondition<'a, const S: usize> {
         /// The travel of the body's reference point at which it leaves the rail, m.
         length: f64,
     },
+    /// g = q̇_k(t, state) − value: coordinate k's velocity reaching a value (an apogee:
+    /// a vertical velocity through 0, falling).
+    Velocity {
+        /// The coordinate, an index into the coordinates.
+        coordinate: usize,
+        /// The velocity at which the event triggers.
+        value: f64,
+    },
+    /// g = t − value: a fixed time.
+    Time {
+        /// The time at which the event triggers.
+        value: f64,
+    },
     /// Any function of the time and the state `[q, p, m_s]`.
     Function(&'a dyn Fn(f64, &SVector<f64, S>) -> f64),
 }
@@ -97,6 +110,12 @@ impl<const S: usize> fmt::Debug for EventCondition<'_, S> {
             Self::RailExit { length } => {
                 f.debug_struct("RailExit").field("length", length).finish()
             }
+            Self::Velocity { coordinate, value } => f
+                .debug_struct("Velocity")
+                .field("coordinate", coordinate)
+                .field("value", value)
+                .finish(),
+            Self::Time { value } => f.debug_struct("Time").field("value", value).finish(),
             Self::Function(_) => f.write_str("Function(..)"),
         }
     }
@@ -133,6 +152,25 @@ impl<'a, const S: usize> Event<'a, S> {
         }
     }
 
+    /// Stop when coordinate `coordinate`'s velocity q̇ reaches `value` in the given
+    /// direction (an apogee: `velocity_reaches(k, 0.0, Direction::Falling)`).
+    pub fn velocity_reaches(coordinate: usize, value: f64, direction: Direction) -> Self {
+        Self {
+            condition: EventCondition::Velocity { coordinate, value },
+            direction,
+            action: EventAction::Stop,
+        }
+    }
+
+    /// Stop at the time `value` (reached rising).
+    pub fn time_reaches(value: f64) -> Self {
+        Self {
+            condition: EventCondition::Time { value },
+            direction: Direction::Rising,
+            action: EventAction::Stop,
+        }
+    }
+
     /// An event on a user function g(t, state).
     pub fn function(
         function: &'a dyn Fn(f64, &SVector<f64, S>) -> f64,
@@ -159,6 +197,8 @@ impl<'a, const S: usize> Event<'a, S> {
             EventCondition::LiftOff { coordinate } => coordinate < N,
             EventCondition::RailLiftOff => true,
             EventCondition::RailExit { length } => length.is_finite(),
+            EventCondition::Velocity { coordinate, value } => coordinate < N && value.is_finite(),
+            EventCondition::Time { value } => value.is_finite(),
             EventCondition::Function(_) => true,
         };
         if ok {
@@ -198,6 +238,10 @@ impl<'a, const S: usize> Event<'a, S> {
                 Some(Ok((_, travel))) => travel - length,
                 _ => f64::NAN,
             },
+            EventCondition::Velocity { coordinate, value } => system
+                .velocities(time, state)
+                .map_or(f64::NAN, |velocities| velocities[coordinate] - value),
+            EventCondition::Time { value } => time - value,
             EventCondition::Function(function) => function(time, state),
         }
     }

@@ -40,9 +40,9 @@ pub const BAD_STATE_MASS: &str =
 /// (`support/columns.rs`), whose gradient gives the change's time its derivative, and into
 /// a system that takes them.
 pub const NOT_CARRIED: &str = "a run of phases carries sensitivities across a change only \
-     where the phase before ends at an event on a state entry or a state mass reaching a \
-     value, a rail's exit or a lift-off (its time's derivative needs the event's gradient), \
-     between systems that both have them";
+     where the phase before ends at an event on a state entry, a state mass or a velocity \
+     reaching a value, a fixed time, a rail's exit or a lift-off (its time's derivative \
+     needs the event's gradient), between systems that both have them";
 
 /// The error of a change whose masses move against its carry rule: a separation whose mass
 /// matrix grows (mass cannot leave and arrive at once) or a capture whose mass matrix
@@ -379,8 +379,8 @@ where
 /// The entries past the motion (forward sensitivities) carried from `state` before the
 /// change into `entered` after it ([`VariableMassSystem::depart`] and
 /// [`VariableMassSystem::arrive`]); refused ([`NOT_CARRIED`]) unless the phase before ended
-/// on a state entry, a state mass, a rail's exit or a lift-off and both systems carry such
-/// entries.
+/// on a state entry, a state mass, a velocity, a fixed time, a rail's exit or a lift-off
+/// and both systems carry such entries.
 fn carry_columns<Before, Sys, const N: usize, const S: usize>(
     (before, ended_by): (&Before, Option<&EventCondition<'_, S>>),
     phase: &Phase<'_, Sys, S>,
@@ -404,6 +404,11 @@ where
         }
         Some(EventCondition::RailExit { .. }) => PhaseEnd::RailTravel,
         Some(EventCondition::LiftOff { .. } | EventCondition::RailLiftOff) => PhaseEnd::Smooth,
+        Some(EventCondition::Velocity { coordinate, .. }) => PhaseEnd::Velocity {
+            coordinate: *coordinate,
+        },
+        // The time of the change does not move: dτ/dw = 0.
+        Some(EventCondition::Time { .. }) => PhaseEnd::Linear(&[]),
         _ => return Err(refused()),
     };
     let departure = match before.depart(time, state, &end) {

@@ -777,7 +777,9 @@ where
         match end {
             // An event on a column's entry has no gradient here: refused by the run.
             PhaseEnd::Linear(gradient) if gradient.iter().any(|&(i, _)| i >= S) => None,
-            PhaseEnd::Linear(gradient) => Some(self.departure::<N, SA>(t, state, gradient)),
+            PhaseEnd::Linear(_) => Some(self.departure::<N, SA>(t, state, *end)),
+            PhaseEnd::Velocity { coordinate } if *coordinate >= N => None,
+            PhaseEnd::Velocity { .. } => Some(self.departure::<N, SA>(t, state, *end)),
             // Only a support knows that its end is smooth or where its rail runs: it
             // resolves these first (`support.rs`); a free system's phase is refused.
             PhaseEnd::Smooth | PhaseEnd::RailTravel => None,

@@ -584,6 +584,7 @@ impl<const S: usize> StepError<S> {
             | SystemError::TangentSwitch { .. }
             | SystemError::SwitchesTogether { .. }
             | SystemError::TangentPhaseEnd { .. }
+            | SystemError::TangentVelocityEnd { .. }
             | SystemError::PhaseColumns { .. }
             | SystemError::PhaseColumnDiffers { .. } => error,
         };

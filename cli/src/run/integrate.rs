@@ -7,8 +7,8 @@ use varmass::core::phases::MASS_AGAINST_CARRY;
 use varmass::core::steppers::{AdaptiveControl, FixedStep, StepControl, TaylorControl};
 use varmass::core::tolerance::{Floor, Tolerance};
 use varmass::core::{
-    run, Direction, Event, EventAction, RunConfig, Statistics, StepError, StepErrorKind, Stepper,
-    StopReason, SystemError, VariableMassSystem,
+    run, Direction, Event, EventAction, EventCondition, RunConfig, Statistics, StepError,
+    StepErrorKind, Stepper, StopReason, SystemError, VariableMassSystem,
 };
 use varmass::interpret::{Program, TapeSystem};
 
@@ -316,6 +316,21 @@ pub(crate) fn event<'a, const N: usize, const S: usize>(
         (Some(Observable::Mass(i)), _) if i < state_masses => {
             Event::state_reaches(2 * N + i, value, direction)
         }
+        // The core's own velocity and time events (the same g as the watcher's, evaluated
+        // by the system): their gradients carry sensitivities across a change.
+        (Some(Observable::Velocity(a)), _) => Event {
+            condition: EventCondition::Velocity {
+                coordinate: a,
+                value,
+            },
+            direction,
+            action: EventAction::Stop,
+        },
+        (None, _) => Event {
+            condition: EventCondition::Time { value },
+            direction,
+            action: EventAction::Stop,
+        },
         (_, Some(w)) => Event::function(w, direction, EventAction::Stop),
         // Every other condition has a watcher; were one missing, an index past the state is
         // the core's typed configuration error, not a silent non-event.
@@ -504,6 +519,7 @@ impl Advice {
             | SystemError::RailColumnAcross { .. }
             | SystemError::SupportedSwitch { .. }
             | SystemError::TangentPhaseEnd { .. }
+            | SystemError::TangentVelocityEnd { .. }
             | SystemError::PhaseColumns { .. }
             | SystemError::PhaseColumnDiffers { .. } => (what, self.sensitivity_advice(error)),
         }
@@ -513,11 +529,13 @@ impl Advice {
     fn sensitivity_advice(&self, error: SystemError) -> String {
         let (until, stop_when) = (&self.until, &self.stop_when);
         match error {
-            SystemError::TangentPhaseEnd { .. } => format!(
-                "the derivatives do not exist where a phase's end condition is only touched: \
+            SystemError::TangentPhaseEnd { .. } | SystemError::TangentVelocityEnd { .. } => {
+                format!(
+                    "the derivatives do not exist where a phase's end condition is only touched: \
                  end that phase on another condition, or drop the sensitivity that moves it \
                  ({until}, {stop_when})"
-            ),
+                )
+            }
             SystemError::PhaseColumns { .. } | SystemError::PhaseColumnDiffers { .. } => {
                 "every phase carries the same sensitivities: \
                  this is a bug of the scene's set-up, please report it"

@@ -102,19 +102,21 @@ fn held_starts(scene: &Scene) -> Result<(), CliError> {
 }
 
 /// Whether the change at the end of phase `i` carries the columns: an end on a
-/// coordinate or a state mass reaching a value (the core's `Event::state_reaches`; a
-/// support's lift-off and a rail's exit are carried too, before the scene's phases).
+/// coordinate, a velocity or a state mass reaching a value, or at a time (the core's
+/// `Event::state_reaches`, `velocity_reaches`, `time_reaches`; a support's lift-off and a
+/// rail's exit are carried too, before the scene's phases).
 fn carried(i: usize, end: Option<&End>, state_masses: usize) -> Result<(), CliError> {
-    match end.and_then(|e| e.observable) {
-        Some(Observable::Coordinate(_)) => Ok(()),
-        Some(Observable::Mass(k)) if k < state_masses => Ok(()),
+    match end.map(|e| e.observable) {
+        Some(None | Some(Observable::Coordinate(_) | Observable::Velocity(_))) => Ok(()),
+        Some(Some(Observable::Mass(k))) if k < state_masses => Ok(()),
         _ => {
             let text = end.map_or("", |e| e.text.as_str());
             Err(refused(
                 i,
                 &format!(
                     "ends on `{text}`, whose time's derivative is not carried yet (only a \
-                     change on a coordinate or a state mass reaching a value is)"
+                     change on a coordinate, a velocity or a state mass reaching a value, or \
+                     at a time, is)"
                 ),
             ))
         }
@@ -125,8 +127,8 @@ fn carried(i: usize, end: Option<&End>, state_masses: usize) -> Result<(), CliEr
 fn refused(i: usize, does: &str) -> CliError {
     CliError::Input(format!(
         "--sensitivity: phase {} {does}; a scene's sensitivities follow a support, a rail \
-         and changes on a coordinate or a state mass reaching a value \
-         (docs/sensitivities.md#scenes)",
+         and changes on a coordinate, a velocity or a state mass reaching a value, or at a \
+         time (docs/sensitivities.md#scenes)",
         i + 1
     ))
 }

@@ -35,32 +35,29 @@ use alloc::vec::Vec;
 use nalgebra::SVector;
 
 use super::{column, head, Resolved, Sensitive};
-use crate::departure::Departure;
+use crate::departure::{Departure, PhaseEnd};
 use crate::system::{SystemError, VariableMassSystem};
 
 impl<Sys, const S: usize> Sensitive<Sys, S> {
-    /// What the columns carry out of a phase ending at `(t, state)` where Σ cᵢ yᵢ crosses a
-    /// fixed value, `gradient` = the `(i, cᵢ)` ([`VariableMassSystem::depart`]); an empty
-    /// `gradient` is a smooth end ([`crate::departure::PhaseEnd::Smooth`]): dτ/dw taken 0.
+    /// What the columns carry out of a phase ending at `(t, state)` on `end`
+    /// ([`VariableMassSystem::depart`]): where Σ cᵢ yᵢ crosses a fixed value
+    /// ([`PhaseEnd::Linear`], the `(i, cᵢ)`; empty: dτ/dw = 0, a fixed time or a smooth
+    /// end), or where coordinate k's velocity does ([`PhaseEnd::Velocity`]: dτ/dw =
+    /// −(∂q̇_k/∂w)/q̈_k, ∂q̇_k/∂w the column's q̇ row of σ).
     pub(super) fn departure<const N: usize, const SA: usize>(
         &self,
         t: f64,
         state: &SVector<f64, SA>,
-        gradient: &[(usize, f64)],
+        end: PhaseEnd<'_>,
     ) -> Result<Departure, SystemError>
     where
         Sys: VariableMassSystem<N, S>,
     {
         let y = head::<S, SA>(state);
         let rate = self.system.state_rate(t, &y)?;
-        let dot = |v: &SVector<f64, S>| gradient.iter().map(|&(i, c)| c * v[i]).sum::<f64>();
-        let along = dot(&rate);
-        if !gradient.is_empty() && (along == 0.0 || !along.is_finite()) {
-            let entry = gradient[0].0;
-            return Err(SystemError::TangentPhaseEnd { entry });
-        }
         let motion = self.velocity_rate::<N>(t, &y, &rate)?;
         let velocities = self.velocity_sensitivities::<N, SA>(t, state)?;
+        let moves = Moves::of::<N, S>(end, &rate, &motion)?;
         let mut departure = Departure {
             entries: S,
             initial: self.initial_entries(),
@@ -68,10 +65,7 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         };
         for (c, velocity) in velocities.iter().enumerate() {
             let s = column::<S, SA>(state, c);
-            let dt = match gradient.is_empty() {
-                true => 0.0,
-                false => -dot(&s) / along,
-            };
+            let dt = moves.time(&s, velocity);
             let mut sigma = s;
             sigma.fixed_rows_mut::<N>(N).copy_from(velocity);
             departure.time.push(dt);
@@ -209,6 +203,62 @@ fn reset_entries<const S: usize>(u: &mut SVector<f64, S>, reset: &[usize]) {
     for &i in reset {
         if i < S {
             u[i] = 0.0;
+        }
+    }
+}
+
+/// How the change's time moves with a column: g's gradient and its rate along the motion.
+enum Moves<'a> {
+    /// g = Σ cᵢ yᵢ − value, `along` = Σ cᵢ fᵢ (no coefficient: dτ/dw = 0).
+    Linear(&'a [(usize, f64)], f64),
+    /// g = q̇_k − value, `along` = q̈_k.
+    Velocity(usize, f64),
+}
+
+impl<'a> Moves<'a> {
+    /// The end `end` with its rate along the motion: the state's `rate` and the velocity
+    /// state's `motion` ([q̇, q̈, ṁ_s]); an end the motion only touches (its rate 0) has no
+    /// derivative.
+    fn of<const N: usize, const S: usize>(
+        end: PhaseEnd<'a>,
+        rate: &SVector<f64, S>,
+        motion: &SVector<f64, S>,
+    ) -> Result<Self, SystemError> {
+        let touched = |along: f64| along == 0.0 || !along.is_finite();
+        match end {
+            PhaseEnd::Velocity { coordinate } => {
+                let along = motion.get(N + coordinate).copied().unwrap_or(f64::NAN);
+                match touched(along) {
+                    true => Err(SystemError::TangentVelocityEnd { coordinate }),
+                    false => Ok(Self::Velocity(coordinate, along)),
+                }
+            }
+            PhaseEnd::Linear(gradient) => {
+                let along = gradient.iter().map(|&(i, c)| c * rate[i]).sum::<f64>();
+                match !gradient.is_empty() && touched(along) {
+                    true => Err(SystemError::TangentPhaseEnd {
+                        entry: gradient[0].0,
+                    }),
+                    false => Ok(Self::Linear(gradient, along)),
+                }
+            }
+            // A support resolves these before a free system sees them (`support.rs`).
+            PhaseEnd::Smooth | PhaseEnd::RailTravel => Ok(Self::Linear(&[], 0.0)),
+        }
+    }
+
+    /// dτ/dw of the column `s` whose velocity rows are `velocity` (∂q̇/∂w).
+    fn time<const S: usize, const N: usize>(
+        &self,
+        s: &SVector<f64, S>,
+        velocity: &SVector<f64, N>,
+    ) -> f64 {
+        match *self {
+            Self::Linear([], _) => 0.0,
+            Self::Linear(gradient, along) => {
+                -gradient.iter().map(|&(i, c)| c * s[i]).sum::<f64>() / along
+            }
+            Self::Velocity(k, along) => -velocity[k] / along,
         }
     }
 }

@@ -158,6 +158,8 @@ impl<Sys> Supported<Sys> {
             }
             PhaseEnd::Smooth => self.resting().then_some(PhaseEnd::Linear(&[])),
             PhaseEnd::Linear(gradient) => Some(PhaseEnd::Linear(gradient)),
+            // A velocity held or guided by the constraint: not followed there.
+            PhaseEnd::Velocity { .. } => (!self.constrained()).then_some(*end),
         }
     }
 
