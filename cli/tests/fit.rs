@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{scratch, scratch_file, varmass};
+use common::{reported, scratch, scratch_file, varmass};
 use varmass_cli::args::{Cli, Command};
 use varmass_cli::fit::{fit, Series, Unknown};
 use varmass_cli::model::load;
@@ -233,15 +233,6 @@ fn varmass_fit_reports_the_fitted_values() {
     }
     let (_, stderr) = varmass(&seven, 2);
     assert!(stderr.contains("at most 6"), "{stderr}");
-}
-
-/// The value the report `stdout` gives `name` (`name = value ± error`).
-fn reported(stdout: &str, name: &str) -> f64 {
-    let line = (stdout.lines())
-        .find(|l| l.trim_start().starts_with(&format!("{name} = ")))
-        .unwrap_or_else(|| panic!("{name} in {stdout}"));
-    let value = line.split(" = ").nth(1).and_then(|v| v.split('±').next());
-    value.expect("a value").trim().parse().expect("a number")
 }
 
 /// A log whose clock started 0.3 s before ignition (t_log = t + 0.3), with three samples

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{csv, scratch, scratch_file, varmass};
+use common::{csv, reported, scratch, scratch_file, varmass};
 
 /// The altitude of models/two_stage_rocket.toml from rest at m(0) = `m0` in the gravity
 /// `g`: stage 1 burns μ₁ = 10 kg/s at u₁ = 2500 m/s until m = 500 kg, at t₁ = (m0 − 500)/μ₁;
@@ -39,13 +39,19 @@ fn log() -> String {
     log
 }
 
-/// The value the report `stdout` gives `name` (`name = value ± error`).
-fn reported(stdout: &str, name: &str) -> f64 {
-    let line = (stdout.lines())
-        .find(|l| l.trim_start().starts_with(&format!("{name} = ")))
-        .unwrap_or_else(|| panic!("{name} in {stdout}"));
-    let value = line.split(" = ").nth(1).and_then(|v| v.split('±').next());
-    value.expect("a value").trim().parse().expect("a number")
+/// `varmass fit` of the two-stage scene to the log at `data` (its altitude `y`), with
+/// `extra` arguments, asserting exit `code`: stdout and stderr.
+fn fit_two_stage(data: &str, extra: &[&str], code: i32) -> (String, String) {
+    let mut args = vec![
+        "fit",
+        "../models/two_stage_rocket.toml",
+        "--data",
+        data,
+        "--column",
+        "y=altitude",
+    ];
+    args.extend(extra);
+    varmass(&args, code)
 }
 
 /// From the scene's own g = 9.81 and m(0) = 1000 kg, the fit recovers g = 9.5 and m(0) =
@@ -58,23 +64,8 @@ fn reported(stdout: &str, name: &str) -> f64 {
 fn a_two_stage_scene_is_fitted_through_its_separation() {
     let data = scratch_file("fit_scene_log.csv", &log());
     let run = scratch("fit_scene_run.csv").display().to_string();
-    let (stdout, _) = varmass(
-        &[
-            "fit",
-            "../models/two_stage_rocket.toml",
-            "--data",
-            &data,
-            "--column",
-            "y=altitude",
-            "--fit",
-            "g",
-            "--fit",
-            "init:m=600:2000",
-            "--csv",
-            &run,
-        ],
-        0,
-    );
+    let extra = ["--fit", "g", "--fit", "init:m=600:2000", "--csv", &run];
+    let (stdout, _) = fit_two_stage(&data, &extra, 0);
     println!("{stdout}");
     assert!(stdout.contains("(converged)"), "{stdout}");
     let (g, m0) = (reported(&stdout, "g"), reported(&stdout, "init:m"));
@@ -100,18 +91,7 @@ fn a_two_stage_scene_is_fitted_through_its_separation() {
 #[test]
 fn a_scenes_fit_refuses_what_it_cannot_fit() {
     let data = scratch_file("fit_scene_refused.csv", &log());
-    let fit = |extra: &[&str]| {
-        let mut args = vec![
-            "fit",
-            "../models/two_stage_rocket.toml",
-            "--data",
-            &data,
-            "--column",
-            "y=altitude",
-        ];
-        args.extend(extra);
-        varmass(&args, 2).1
-    };
+    let fit = |extra: &[&str]| fit_two_stage(&data, extra, 2).1;
     let stderr = fit(&["--fit", "g", "--method", "rk4"]);
     assert!(stderr.contains("--method: `") && stderr.contains("scene file"));
     let stderr = fit(&["--fit", "g", "--set", "g=9"]);

@@ -132,3 +132,12 @@ pub fn nasa_reference(case: u32, name: &str) -> std::collections::HashMap<i64, (
         .map(|v| ((v[0] * 1000.0).round() as i64, (v[m], v[s])))
         .collect()
 }
+
+/// The value a `varmass fit` report `stdout` gives `name` (its line `name = value ± error`).
+pub fn reported(stdout: &str, name: &str) -> f64 {
+    let line = (stdout.lines())
+        .find(|l| l.trim_start().starts_with(&format!("{name} = ")))
+        .unwrap_or_else(|| panic!("{name} in {stdout}"));
+    let value = line.split(" = ").nth(1).and_then(|v| v.split('±').next());
+    value.expect("a value").trim().parse().expect("a number")
+}
