@@ -119,12 +119,6 @@ fn a_scene_carries_its_columns_across_a_separation() {
     assert!(worst < 1e-9, "{worst:e}");
 }
 
-/// What a scene's sensitivities do not follow is refused before the first step (exit 2): a
-/// column of a parameter a later phase sets (stage 2's own μ; g set again to its own value:
-/// the scene fixes it there), the initial position of a
-/// body on a rail (the rail is laid from it), a phase ending on a velocity
-/// (models/recovery_descent.toml's apogee: its time's derivative is not carried), a value
-/// set at a change by an expression, an unknown name.
 /// The vertical rocket of two_stage_rocket.vms from m(0) = M, ẏ(0) = v₀: it burns μ = 10
 /// kg/s at u_e until the fixed time t₁ = 30 s, where a change sets μ = 0 (the change's
 /// time does not move: dτ/dw = 0); it coasts to its apogee, where the change on `y' < 0`
@@ -206,6 +200,11 @@ fn a_scene_carries_its_columns_across_a_fixed_time_and_an_apogee() {
     assert!(worst < 1e-11, "{worst:e}");
 }
 
+/// What a scene's sensitivities do not follow is refused before the first step (exit 2): a
+/// column of a parameter a later phase sets (stage 2's own μ; g set again to its own value:
+/// the scene fixes it there), the initial position of a body on a rail (the rail is laid
+/// from it), a phase ending on a quantity (`H > 1e9`: its gradient is not carried), a value
+/// set at a change by an expression, an unknown name.
 #[test]
 fn what_a_scenes_sensitivities_do_not_follow_is_refused() {
     let two_stage = model("two_stage_rocket.toml");

@@ -41,7 +41,8 @@ pub const BAD_STATE_MASS: &str =
 /// a system that takes them.
 pub const NOT_CARRIED: &str = "a run of phases carries sensitivities across a change only \
      where the phase before ends at an event on a state entry, a state mass or a velocity \
-     reaching a value, a fixed time, a rail's exit or a lift-off (its time's derivative \
+     reaching a value (a velocity on a free system only: not while a support or a rail \
+     holds the body), a fixed time, a rail's exit or a lift-off (its time's derivative \
      needs the event's gradient), between systems that both have them";
 
 /// The error of a change whose masses move against its carry rule: a separation whose mass
