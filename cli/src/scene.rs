@@ -107,6 +107,7 @@ pub fn run_file_sensitive(
     let request = Request {
         sensitivities,
         at: &[],
+        quiet: false,
     };
     run_read(&file::read(path)?, path, models, &request)
 }
@@ -118,6 +119,8 @@ pub struct Request<'a> {
     /// Times each phase lands on and records a point at (a fit's data times), besides its
     /// steps; in the scene's span.
     pub at: &'a [f64],
+    /// Whether the model's warnings go unprinted (a fit's runs after its first).
+    pub quiet: bool,
 }
 
 /// Runs the scene `read` from the file at `path`, as [`run_file_sensitive`] does, with

@@ -281,7 +281,7 @@ fn row_at(table: &Table, t: f64) -> Result<usize, String> {
     match times.binary_search_by(|x| x.total_cmp(&t)) {
         Ok(row) => Ok(row),
         Err(_) => Err(format!(
-            "the run has no point at the datum's time {} (it ended at {}: a --stop-when \
+            "the run has no point at the datum's time {} (it ended at {}: a stop condition \
              before the data's end?)",
             shown(t),
             shown(times.last().copied().unwrap_or(f64::NAN))

@@ -26,9 +26,9 @@ pub fn run(args: &FitArgs, given: &[String], unknowns: &[Unknown]) -> Result<Str
     let file = args.run.model.file.display().to_string();
     if let Some(id) = given.iter().find(|id| !SCENE_FLAGS.contains(&id.as_str())) {
         return Err(CliError::Input(format!(
-            "--{}: `{file}` is a scene file, which gives its own settings (docs/scenes.md); \
-             write it there (a scene's fit takes --data, --column, --time, --fit, --sigma, \
-             --csv and --plot)",
+            "--{}: not taken with a scene file (`{file}`), which gives the run's settings \
+             itself (docs/scenes.md); a scene's fit takes only --data, --column, --time, \
+             --fit, --sigma, --csv and --plot",
             id.replace('_', "-"),
         )));
     }
@@ -105,6 +105,7 @@ pub(super) fn table(
     let request = Request {
         sensitivities: &names,
         at: &times,
+        quiet: rerun.runs() > 0,
     };
     let ran = rerun.run(&values, &problem.quantities(), &request)?;
     match ran.failure {

@@ -142,7 +142,8 @@ pub fn build(
     let mut args = first_args(read, model_file.clone(), &in_force, asked);
     args.at = request.at.to_vec();
     let model_at = at(scene.model.span().start);
-    let (first, plan) = first_phase(&args, in_force, path, models, &model_at)?;
+    let quiet = request.quiet;
+    let (first, plan) = first_phase(&args, in_force, path, models, (&model_at, quiet))?;
     let record_entries = match entries_asked.is_empty() {
         true => plan.record.iter().map(|(n, _)| n.clone()).collect(),
         false => entries_asked,
@@ -276,20 +277,22 @@ fn first_in_force(scene: &SceneFile, base: &Path) -> InForce {
 }
 
 /// The first phase and the scene's plan, made as `varmass run` makes them from `args` (the
-/// model's warnings printed); a failure is located at the scene's `model` line (`model_at`)
-/// or, for the plan, the scene file.
+/// model's warnings printed unless `quiet`); a failure is located at the scene's `model`
+/// line (`model_at`) or, for the plan, the scene file.
 fn first_phase(
     args: &RunArgs,
     in_force: InForce,
     path: &Path,
     models: &mut Models,
-    model_at: &str,
+    (model_at, quiet): (&str, bool),
 ) -> Result<(ScenePhase, Plan), CliError> {
     let model = models.load(&args.model).map_err(|e| located(e, model_at))?;
-    for warning in &model.warnings {
-        eprintln!("warning: {warning}");
-    }
-    let warn = |w: &str| eprintln!("warning: {w}");
+    let warn = |w: &str| {
+        if !quiet {
+            eprintln!("warning: {w}");
+        }
+    };
+    model.warnings.iter().for_each(|w| warn(w));
     let (program, plan) = crate::run::plan::parameters(args)
         .and_then(|values| Compiled::new(model).prepared(args, values, warn))
         .map_err(|e| located(e, &format!("{} (the first phase)", path.display())))?;

@@ -18,6 +18,7 @@ pub struct Rerun {
     path: PathBuf,
     source: String,
     models: Models,
+    runs: usize,
 }
 
 impl Rerun {
@@ -28,7 +29,13 @@ impl Rerun {
             path: path.to_path_buf(),
             source: read.source,
             models: Models::default(),
+            runs: 0,
         })
+    }
+
+    /// How many runs were made.
+    pub fn runs(&self) -> usize {
+        self.runs
     }
 
     /// The scene file's path.
@@ -84,8 +91,8 @@ impl Rerun {
     }
 
     /// Runs the scene with `values` (parameters, and initial values `init:x`) in place of
-    /// its own, `record` recorded besides what it records, and `request`'s columns and
-    /// landing times.
+    /// its own, recording `record` only (the scene's own record may hold expressions, which
+    /// have no derivative columns), with `request`'s columns and landing times.
     pub fn run(
         &mut self,
         values: &[(String, f64)],
@@ -101,11 +108,8 @@ impl Rerun {
                 None => scene.set.insert(unplaced(name), *value),
             };
         }
-        for quantity in record {
-            if !scene.record.iter().any(|r| r.get_ref().trim() == *quantity) {
-                scene.record.push(unplaced(quantity));
-            }
-        }
+        scene.record = record.iter().map(|q| unplaced(q)).collect();
+        self.runs += 1;
         run_read(&read, &self.path.clone(), &mut self.models, request)
     }
 }
