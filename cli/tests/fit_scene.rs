@@ -123,7 +123,10 @@ fn a_scenes_fit_refuses_what_it_cannot_fit() {
     let data = scratch_file("fit_scene_refused.csv", &log());
     let fit = |extra: &[&str]| fit_two_stage(&data, extra, 2).1;
     let stderr = fit(&["--fit", "g", "--method", "rk4"]);
-    assert!(stderr.contains("--method: not taken with a scene file"), "{stderr}");
+    assert!(
+        stderr.contains("--method: not taken with a scene file"),
+        "{stderr}"
+    );
     let stderr = fit(&["--fit", "g", "--set", "g=9"]);
     assert!(stderr.contains("--set: not taken"), "{stderr}");
     let stderr = fit(&["--fit", "g", "--fit", "data:offset=-1:1"]);
