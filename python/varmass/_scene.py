@@ -66,8 +66,8 @@ class Scene:
 
         ``sensitivity``: names (a parameter, a start value ``"init:y'"``) whose derivative
         columns the run records beside the scene's (``solution.sensitivity("y", "g")``),
-        through a support, a rail and changes on a coordinate or a state mass
-        (docs/sensitivities.md#scenes)."""
+        through a support, a rail and changes on a coordinate, a velocity or a state mass
+        reaching a value, or at a time (docs/sensitivities.md#scenes)."""
         names = _checks.names("sensitivity", sensitivity)
         try:
             raw = _native.run_scene(self._scene(), self._path, names)

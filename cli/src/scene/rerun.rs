@@ -110,7 +110,7 @@ impl Rerun {
         }
         scene.record = record.iter().map(|q| unplaced(q)).collect();
         self.runs += 1;
-        run_read(&read, &self.path.clone(), &mut self.models, request)
+        run_read(&read, &self.path, &mut self.models, request)
     }
 }
 
