@@ -107,6 +107,7 @@ pub fn run_file_sensitive(
     let request = Request {
         sensitivities,
         at: &[],
+        rates: false,
         quiet: false,
     };
     run_read(&file::read(path)?, path, models, &request)
@@ -119,6 +120,9 @@ pub struct Request<'a> {
     /// Times each phase lands on and records a point at (a fit's data times), besides its
     /// steps; in the scene's span.
     pub at: &'a [f64],
+    /// Whether each recorded quantity's rate `d(X)/d(t)` is recorded too (a fit of the
+    /// data's time offset, docs/sensitivities.md#fitting-a-scene).
+    pub rates: bool,
     /// Whether the model's warnings go unprinted (a fit's runs after its first).
     pub quiet: bool,
 }
@@ -132,7 +136,7 @@ fn run_read(
     request: &Request<'_>,
 ) -> Result<SceneRun, CliError> {
     let sensitivities = request.sensitivities;
-    models.set_sensitivities(!sensitivities.is_empty());
+    models.set_sensitivities(!sensitivities.is_empty() || request.rates);
     let mut scene = build::build(read, path, models, request)?;
     sensitivities::prepare(&mut scene, read, sensitivities)?;
     let derivative_names = derivative_names(&scene);
@@ -217,13 +221,17 @@ fn changes_of(flown: &fly::Flown, phases: &PhaseColumns) -> Vec<Change> {
 }
 
 /// The names of the derivative columns: for each column w, each recorded quantity's
-/// `d(X)/d(w)` (the first phase's names, every phase's) and `d(t)/d(w)`.
+/// `d(X)/d(w)` (the first phase's names, every phase's) and `d(t)/d(w)`; then, with rates,
+/// each quantity's `d(X)/d(t)` (`point_derivatives`' order).
 fn derivative_names(scene: &build::Scene) -> Vec<String> {
     let record = &scene.phases[0].record;
     let mut names = Vec::new();
     for s in &scene.plan.sensitivities {
         names.extend(record.iter().map(|(x, _)| format!("d({x})/d({})", s.name)));
         names.push(format!("d(t)/d({})", s.name));
+    }
+    if scene.plan.rates {
+        names.extend(record.iter().map(|(x, _)| format!("d({x})/d(t)")));
     }
     names
 }

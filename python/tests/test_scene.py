@@ -186,5 +186,21 @@ def test_a_scene_is_fitted_to_its_flights_altitude():
     assert abs(fit.values["g"] - 9.5) <= 9.5e-8, fit
     assert abs(fit.values["init:m"] - 1020.0) <= 1020e-8, fit
     assert len(fit.residuals["y"]) == 60
-    with pytest.raises(ValueError, match="time offset"):
-        scene.fit({"y": (t, altitude)}, {"g": None, "data:offset": (-1.0, 1.0)})
+
+
+def test_a_scenes_log_offset_is_fitted():
+    # The same flight logged on a clock 0.8 s ahead (t_log = t + 0.8): the offset's
+    # column is each quantity's rate, which the scene records for the fit (the tool's run:
+    # cli/tests/fit_scene.rs, about 1e-14). The offset's bounds (0.2, 2) keep 0 out: the
+    # data's window starts at the bound nearest 0, so the datum logged at 160 s (model
+    # time 159.8 s at δ = 0.2) is still past the scene's 150 s and left out.
+    t = np.append(2.5 * np.arange(1, 61), 160.0)
+    altitude = np.array([two_stage_altitude(9.5, 1020.0, x - 0.8) for x in t])
+    scene = varmass.Scene.from_file(TWO_STAGE)
+    unknowns = {"g": None, "init:m": (600.0, 2000.0), "data:offset": (0.2, 2.0)}
+    with pytest.warns(UserWarning, match="1 data outside"):
+        fit = scene.fit({"y": (t, altitude)}, unknowns)
+    assert fit.converged
+    assert abs(fit.values["g"] - 9.5) <= 9.5e-8, fit
+    assert abs(fit.values["init:m"] - 1020.0) <= 1020e-8, fit
+    assert abs(fit.values["data:offset"] - 0.8) <= 1e-8, fit

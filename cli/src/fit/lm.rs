@@ -9,7 +9,9 @@
 //!
 //! clamps θ + δ into the bounds, and takes the step if it lowers the cost (λ ÷ 3), else
 //! grows λ (× 4) and tries again. It stops when the relative change of the cost and of θ
-//! fall below `tolerance`, when the gradient vanishes, or after `max_iterations`.
+//! fall below `tolerance`, when the gradient vanishes, or after `max_iterations`; a stop of
+//! the first kind is converged where the undamped step from θ is short too (else the steps
+//! shrank against runs that fail, short of the minimum).
 //!
 //! Weighed: the `levenberg-marquardt` crate (a port of MINPACK's lmder) is well kept, but
 //! its release depends on nalgebra 0.34 beside the workspace's 0.35 (two nalgebras in the
@@ -97,16 +99,38 @@ pub fn minimize(
             (theta, r, j) = (trial, tr, tj);
             lambda = (lambda / 3.0).max(1e-12);
             if drop < settings.tolerance && moved < settings.tolerance.sqrt() {
-                return Ok(done(theta, r, j, evaluations, true));
+                let converged = stationary(&j, &r, &theta, (lo, hi), settings.tolerance);
+                return Ok(done(theta, r, j, evaluations, converged));
             }
         } else {
             if moved < settings.tolerance {
-                return Ok(done(theta, r, j, evaluations, true));
+                let converged = stationary(&j, &r, &theta, (lo, hi), settings.tolerance);
+                return Ok(done(theta, r, j, evaluations, converged));
             }
             lambda *= 4.0;
         }
     }
     Ok(done(theta, r, j, evaluations, false))
+}
+
+/// Whether θ, where the steps stopped shrinking the cost, is a minimum: the undamped
+/// Gauss–Newton step from it (bounds held as in [`damped_step`]) moves θ by at most
+/// √`tolerance` relative. Steps that shrink against runs that fail (a trial the model
+/// cannot run) stop short of a minimum, where the Gauss–Newton step is still long: that
+/// stop was reported converged. A singular JᵀJ confirms nothing and denies nothing (as
+/// before).
+fn stationary(
+    j: &DMatrix<f64>,
+    r: &DVector<f64>,
+    theta: &DVector<f64>,
+    (lo, hi): (&DVector<f64>, &DVector<f64>),
+    tolerance: f64,
+) -> bool {
+    let jt = j.transpose();
+    match damped_step(&(&jt * j), &(&jt * r), 0.0, theta, (lo, hi)) {
+        Some(step) => step.norm() <= tolerance.sqrt() * theta.norm().max(1e-300),
+        None => true,
+    }
 }
 
 /// The damped Gauss–Newton step, (JᵀJ + λ D) δ = −Jᵀ r, with the unknowns that sit at a
@@ -193,5 +217,35 @@ mod tests {
         let m = minimize(evaluate, start, bounded, Settings::default()).unwrap();
         assert!((m.theta[0] - 0.5).abs() < 1e-12, "{}", m.theta);
         assert!((m.theta[1] - 0.25).abs() < 1e-8, "{}", m.theta);
+    }
+
+    /// r = θ − 2 with θ = 2 out of the model's reach: every run with θ > 1 fails. The
+    /// steps shrink against θ = 1 and stop there: not converged (it was reported converged
+    /// at the edge, r = −1, before this test). With the failures past θ = 3 the minimum is
+    /// reached and converged.
+    #[test]
+    fn a_stop_against_failing_runs_is_no_convergence() {
+        let edge = |limit: f64| {
+            move |t: &DVector<f64>| -> Evaluation {
+                match t[0] > limit {
+                    true => Err("the run failed".to_string()),
+                    false => Ok((t.add_scalar(-2.0), DMatrix::identity(1, 1))),
+                }
+            }
+        };
+        let free = (
+            &DVector::from_element(1, f64::NEG_INFINITY),
+            &DVector::from_element(1, f64::INFINITY),
+        );
+        let start = DVector::from_vec(vec![0.0]);
+        let m = minimize(edge(1.0), start.clone(), free, Settings::default()).unwrap();
+        assert!(!m.converged, "{} after {}", m.theta, m.evaluations);
+        assert!((m.theta[0] - 1.0).abs() < 1e-6, "{}", m.theta);
+        let m = minimize(edge(3.0), start, free, Settings::default()).unwrap();
+        assert!(
+            m.converged && (m.theta[0] - 2.0).abs() < 1e-12,
+            "{}",
+            m.theta
+        );
     }
 }

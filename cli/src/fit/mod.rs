@@ -429,7 +429,7 @@ fn start_values(
     let mut start = Vec::new();
     for u in unknowns {
         if u.name == OFFSET {
-            start.push(0.0_f64.clamp(u.bounds.0, u.bounds.1));
+            start.push(start_offset(std::slice::from_ref(u)));
             continue;
         }
         let value = match u.name.strip_prefix("init:").map(str::trim) {
@@ -591,6 +591,12 @@ fn left_out_note(left_out: usize, window: Window) -> String {
     )
 }
 
+/// The data's time offset at the fit's start: 0, or its bound nearest 0 (0 without it).
+fn start_offset(unknowns: &[Unknown]) -> f64 {
+    (unknowns.iter().find(|u| u.name == OFFSET))
+        .map_or(0.0, |u| 0.0_f64.clamp(u.bounds.0, u.bounds.1))
+}
+
 /// The span of the data kept, on the data's clock: from, until (`None`: the data's end).
 type Window = (f64, Option<f64>);
 
@@ -619,8 +625,7 @@ fn series_of(
         )));
     }
     let mut series = data::read(&text, &args.data, args.time.as_deref(), &pairs)?;
-    let shift = (unknowns.iter().find(|u| u.name == OFFSET))
-        .map_or(0.0, |u| 0.0_f64.clamp(u.bounds.0, u.bounds.1));
+    let shift = start_offset(unknowns);
     let window = (args.run.from + shift, args.run.until.map(|u| u + shift));
     let left_out = data::window(&mut series, window.0, window.1);
     for sigma in &args.sigma {

@@ -8,7 +8,9 @@ use varmass::core::nalgebra::DVector;
 
 use std::path::Path;
 
-use super::{data, finish, fit_scene, series_of, Evaluate, Fit, FitArgs, Problem, Series};
+use super::{
+    data, finish, fit_scene, series_of, start_offset, Evaluate, Fit, FitArgs, Problem, Series,
+};
 use super::{Unknown, OFFSET};
 use crate::error::CliError;
 use crate::run::Table;
@@ -32,7 +34,6 @@ pub fn run(args: &FitArgs, given: &[String], unknowns: &[Unknown]) -> Result<Str
             id.replace('_', "-"),
         )));
     }
-    no_offset(unknowns)?;
     let mut rerun = Rerun::new(&args.run.model.file)?;
     let (from, until) = rerun.span()?;
     let mut scoped = args.clone();
@@ -49,31 +50,23 @@ pub fn fit_file(
     mut series: Vec<Series>,
     unknowns: &[Unknown],
 ) -> Result<(Fit, usize), CliError> {
-    no_offset(unknowns)?;
     let mut rerun = Rerun::new(path)?;
     let (from, until) = rerun.span()?;
-    let left_out = data::window(&mut series, from, Some(until));
+    let shift = start_offset(unknowns);
+    let left_out = data::window(&mut series, from + shift, Some(until + shift));
     Ok((fit_scene(&mut rerun, &series, unknowns)?, left_out))
 }
 
-/// Refuses the data's time offset among `unknowns`: its column is each quantity's rate,
-/// which a scene does not record.
-fn no_offset(unknowns: &[Unknown]) -> Result<(), CliError> {
-    match unknowns.iter().any(|u| u.name == OFFSET) {
-        true => Err(CliError::Input(format!(
-            "--fit {OFFSET}: a scene's fit cannot fit the data's time offset yet (it needs \
-             each quantity's rate, which a scene does not record); shift the data's times, \
-             or fit the offset with a model file"
-        ))),
-        false => Ok(()),
-    }
-}
-
-/// The unknowns' start values: the scene's own, each within its bounds.
+/// The unknowns' start values: the scene's own, each within its bounds (the data's time
+/// offset from 0).
 pub fn start_values(rerun: &mut Rerun, unknowns: &[Unknown]) -> Result<Vec<f64>, CliError> {
     let scene = rerun.path().display().to_string();
     let mut start = Vec::new();
     for u in unknowns {
+        if u.name == OFFSET {
+            start.push(start_offset(std::slice::from_ref(u)));
+            continue;
+        }
         let Some(value) = rerun.start_value(&u.name)? else {
             let table = match u.name.starts_with("init:") {
                 true => "[init]",
@@ -91,13 +84,15 @@ pub fn start_values(rerun: &mut Rerun, unknowns: &[Unknown]) -> Result<Vec<f64>,
 }
 
 /// The scene's run at θ of `problem`: the unknowns' values in its `[set]` and `[init]`,
-/// their columns, the data's quantities recorded and their times landed on.
+/// their columns, the data's quantities recorded and their times landed on; with the
+/// data's time offset among the unknowns, the quantities' rates too (∂X(tᵢ − δ)/∂δ = −Ẋ).
 pub(super) fn table(
     rerun: &mut Rerun,
     problem: &Problem<'_>,
     theta: &DVector<f64>,
 ) -> Result<Table, CliError> {
     let values: Vec<(String, f64)> = (problem.unknowns.iter().zip(theta.iter()))
+        .filter(|(u, _)| u.name != OFFSET)
         .map(|(u, x)| (u.name.clone(), *x))
         .collect();
     let names: Vec<String> = values.iter().map(|(n, _)| n.clone()).collect();
@@ -105,6 +100,7 @@ pub(super) fn table(
     let request = Request {
         sensitivities: &names,
         at: &times,
+        rates: problem.unknowns.iter().any(|u| u.name == OFFSET),
         quiet: rerun.runs() > 0,
     };
     let ran = rerun.run(&values, &problem.quantities(), &request)?;

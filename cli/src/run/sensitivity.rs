@@ -9,6 +9,7 @@
 //! at the event (an apogee's, a landing's), and `d(t)/d(w)` its time's.
 
 use varmass::core::nalgebra::SVector;
+use varmass::core::rail::Rail;
 use varmass::core::sensitivity::{Column, Sensitive};
 use varmass::core::{StepError, SystemError, VariableMassSystem};
 use varmass::interpret::{Direction, Program, Quantity, TapeSystem};
@@ -344,7 +345,13 @@ fn derivatives<const N: usize, const S: usize, const SA: usize>(
             (true, Some(index)) => plan.stop_when.get(index).map(|c| c.observable),
             _ => None,
         };
-        let row = point_derivatives(sensitive, (plan, &plan.record), t, &state, event);
+        let row = point_derivatives(
+            sensitive,
+            (plan, &plan.record),
+            (t, &state),
+            event,
+            Constraint::default(),
+        );
         match recorded_row(row, t) {
             Ok(row) => rows.push(row),
             Err(error) => return (rows, Some(error)),
@@ -369,15 +376,26 @@ pub(crate) fn recorded_row(row: Result<Vec<f64>, String>, t: f64) -> Result<Vec<
     })
 }
 
-/// The derivative columns at one point of `plan`'s run recording `record` (a scene's phase
-/// records its own); `event` is the observable of the condition that ended the run there,
-/// if one did.
+/// What holds a point's body (a scene's support or rail; nothing elsewhere): the rates
+/// `d(X)/d(t)` and an event's moving time there follow the constrained motion, as the run
+/// integrates it (`Supported`'s), not the free one.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Constraint {
+    /// The coordinate a support holds.
+    pub held: Option<usize>,
+    /// The rail the body is on (or rests on the bottom of).
+    pub rail: Option<Rail>,
+}
+
+/// The derivative columns at one point `(t, state)` of `plan`'s run recording `record` (a
+/// scene's phase records its own); `event` is the observable of the condition that ended
+/// the run there, if one did; `constraint` what holds the body there.
 pub(crate) fn point_derivatives<const N: usize, const S: usize, const SA: usize>(
     sensitive: &Sensitive<TapeSystem<N, S>, S>,
     (plan, record): (&Plan, &[(String, Recorded)]),
-    t: f64,
-    state: &SVector<f64, SA>,
+    (t, state): (f64, &SVector<f64, SA>),
     event: Option<Observable>,
+    constraint: Constraint,
 ) -> Result<Vec<f64>, String> {
     let system = sensitive.system();
     let program = system.program();
@@ -388,7 +406,12 @@ pub(crate) fn point_derivatives<const N: usize, const S: usize, const SA: usize>
         .velocity_sensitivities::<N, SA>(t, state)
         .map_err(|e| e.to_string())?;
     let motion = match event.is_some() || plan.rates {
-        true => Some(motion(system, t, &head, &velocity_state, parameters)?),
+        true => Some(motion(
+            system,
+            (t, &head, &velocity_state),
+            parameters,
+            constraint,
+        )?),
         false => None,
     };
     let vs = velocity_state.as_slice();
@@ -432,18 +455,32 @@ pub(crate) fn point_derivatives<const N: usize, const S: usize, const SA: usize>
     Ok(row)
 }
 
-/// The motion's direction at the point: (1, q̇, q̈, ṁ_s, 0).
+/// The motion's direction at the point `(t, head)` (the state, and its velocity state):
+/// (1, q̇, q̈, ṁ_s, 0), under `constraint` as `Supported` integrates it (on a rail q̈ = b s̈
+/// and q̇ projected on b, both 0 on its pad; a held coordinate's rows 0).
 fn motion<const N: usize, const S: usize>(
     system: &TapeSystem<N, S>,
-    t: f64,
-    head: &SVector<f64, S>,
-    velocity_state: &SVector<f64, S>,
+    (t, head, velocity_state): (f64, &SVector<f64, S>, &SVector<f64, S>),
     parameters: usize,
+    constraint: Constraint,
 ) -> Result<Direction, String> {
-    let rate = system.state_rate(t, head).map_err(|e| e.to_string())?;
-    let accelerations = system
-        .accelerations(t, velocity_state)
-        .map_err(|e| e.to_string())?;
+    let (mut rate, mut accelerations) = match constraint.rail {
+        Some(rail) => (
+            rail.state_rate(system, t, head),
+            rail.accelerations(system, t, velocity_state),
+        ),
+        None => (
+            system.state_rate(t, head),
+            system.accelerations(t, velocity_state),
+        ),
+    };
+    let (rate, accelerations) = (
+        rate.as_mut().map_err(|e| e.to_string())?,
+        accelerations.as_mut().map_err(|e| e.to_string())?,
+    );
+    if let Some(k) = constraint.held.filter(|&k| k < N) {
+        (rate[k], rate[N + k], accelerations[k]) = (0.0, 0.0, 0.0);
+    }
     Ok(Direction {
         time: 1.0,
         velocity_state: (0..S)

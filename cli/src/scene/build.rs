@@ -141,6 +141,7 @@ pub fn build(
     let asked = (entries_asked.clone(), request.sensitivities.to_vec());
     let mut args = first_args(read, model_file.clone(), &in_force, asked);
     args.at = request.at.to_vec();
+    args.rates = request.rates;
     let model_at = at(scene.model.span().start);
     let quiet = request.quiet;
     let (first, plan) = first_phase(&args, in_force, path, models, (&model_at, quiet))?;

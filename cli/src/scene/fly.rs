@@ -23,7 +23,7 @@ use crate::run::integrate::{event, with_stepper, Watcher};
 use crate::run::names::{evaluate, shown};
 use crate::run::plan::Plan;
 use crate::run::record::Recorded;
-use crate::run::sensitivity::{on_sensitive_sizes, recorded_row, SensitiveRun};
+use crate::run::sensitivity::{on_sensitive_sizes, recorded_row, Constraint, SensitiveRun};
 use crate::run::watch::Watched;
 
 /// What a scene's run computed, sizes erased.
@@ -65,7 +65,7 @@ pub struct Flown {
 pub fn fly(mut scene: Scene) -> Result<Flown, CliError> {
     land_on_outputs(&mut scene);
     let sizes = Sizes::of(&scene.phases[0].program);
-    if !scene.plan.sensitivities.is_empty() {
+    if scene.plan.differentiated() {
         return on_sensitive_sizes(sizes, scene);
     }
     // Padded even where `varmass run` has an exact arm: a scene's numbers stay those of
@@ -208,6 +208,7 @@ fn fly_sized<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
         held,
         railed,
     };
+    let constraints = constraints(&phased, &phases);
     let (phased, lift_off, rail_exit) = after_hold(phased, &phases, hold, start, &ends)?;
     let offset = inserted;
     let last = phased.phase.last().copied().unwrap_or(0);
@@ -221,8 +222,12 @@ fn fly_sized<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
         && phases[last + offset].until.is_some()
         && phased.solution.stop == (StopReason::EventFound { index: 0 });
     let scene_phases = &phases[offset..];
-    let (derivatives, unrecorded) =
-        derivative_rows(&phased, scene_phases, (&plan, &records), (&ends, stopped));
+    let (derivatives, unrecorded) = derivative_rows(
+        (&phased, &constraints),
+        scene_phases,
+        (&plan, &records),
+        (&ends, stopped),
+    );
     let failure = failure.or(unrecorded);
     let mut flown = flown(phased, (phases, offset), len, stopped, failure);
     flown.lift_off = lift_off;
@@ -257,12 +262,30 @@ fn scene_phases<'a, Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
         .collect()
 }
 
-/// The derivative columns of every point of `phased` (renumbered: phase k is `phases[k]`,
-/// recording `records[k]`), the last point's moved with the time of the condition that
-/// ended the run there (`stopped`, the phase's `ends`). Without sensitivities each row is
-/// empty. At the first point where they cannot be had, the rows before it and the error.
-fn derivative_rows<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+/// What holds the body at each point of `phased` (before the support's and the rail's
+/// phases are renumbered into the first scene phase): its phase's support or rail.
+fn constraints<Sys, const N: usize, const S: usize>(
     phased: &PhasedSolution<N, S>,
+    phases: &[Phase<'_, Supported<Sys>, S>],
+) -> Vec<Constraint> {
+    let constraint = |k: &usize| {
+        phases
+            .get(*k)
+            .map_or(Constraint::default(), |p| Constraint {
+                held: p.system.held,
+                rail: p.system.rail,
+            })
+    };
+    phased.phase.iter().map(constraint).collect()
+}
+
+/// The derivative columns of every point of `phased` (renumbered: phase k is `phases[k]`,
+/// recording `records[k]`; the body held at each as `constraints` says), the last point's
+/// moved with the time of the condition that ended the run there (`stopped`, the phase's
+/// `ends`). Without sensitivities each row is empty. At the first point where they cannot
+/// be had, the rows before it and the error.
+fn derivative_rows<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
+    (phased, constraints): (&PhasedSolution<N, S>, &[Constraint]),
     phases: &[Phase<'_, Supported<Sys>, S>],
     (plan, records): (&Plan, &[Vec<(String, Recorded)>]),
     (ends, stopped): (&[Option<End>], bool),
@@ -279,7 +302,8 @@ fn derivative_rows<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
             false => None,
         };
         let system = &phases[k].system.system;
-        let row = system.derivatives((plan, &records[k]), *t, state, event);
+        let constraint = constraints.get(i).copied().unwrap_or_default();
+        let row = system.derivatives((plan, &records[k]), (*t, state), event, constraint);
         match recorded_row(row, *t) {
             Ok(row) => rows.push(row),
             Err(error) => return (rows, Some(error)),

@@ -109,6 +109,10 @@ impl Rerun {
             };
         }
         scene.record = record.iter().map(|q| unplaced(q)).collect();
+        // A run at least as long as the data (a fitted offset may move them past `until`).
+        if let Some(last) = request.at.iter().copied().reduce(f64::max) {
+            scene.until = scene.until.max(last);
+        }
         self.runs += 1;
         run_read(&read, &self.path, &mut self.models, request)
     }

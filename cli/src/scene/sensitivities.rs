@@ -14,9 +14,9 @@ use super::build::{End, Scene};
 use super::file::Read;
 
 /// Resolves `names` into the scene's plan and prepares its phases' programs; nothing to do
-/// without `names`.
+/// without `names` or the quantities' rates.
 pub fn prepare(scene: &mut Scene, read: &Read, names: &[String]) -> Result<(), CliError> {
-    if names.is_empty() {
+    if names.is_empty() && !scene.plan.rates {
         return Ok(());
     }
     let first = &scene.phases[0];

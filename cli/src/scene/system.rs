@@ -13,7 +13,7 @@ use crate::run::integrate::describe;
 use crate::run::names::Observable;
 use crate::run::plan::Plan;
 use crate::run::record::Recorded;
-use crate::run::sensitivity::{point_derivatives, MAX_SENSITIVITIES};
+use crate::run::sensitivity::{point_derivatives, Constraint, MAX_SENSITIVITIES};
 
 /// What a scene needs of its phases' system besides the mechanics.
 pub trait SceneSystem<const N: usize, const S: usize>: VariableMassSystem<N, S> + Sized {
@@ -38,15 +38,15 @@ pub trait SceneSystem<const N: usize, const S: usize>: VariableMassSystem<N, S> 
     /// The entries the step limits scale with: the model's own and the padded state's.
     fn entries(len: usize, columns: usize) -> (usize, usize);
 
-    /// The derivative columns at a point recording `record` (`d(X)/d(w)`, `d(t)/d(w)`;
-    /// none without sensitivities); `event` is the observable of the condition that ended
-    /// the run there, if one did.
+    /// The derivative columns at a point recording `record` (`d(X)/d(w)`, `d(t)/d(w)`, the
+    /// rates `d(X)/d(t)`; none without sensitivities); `event` is the observable of the
+    /// condition that ended the run there, if one did; `constraint` what holds the body.
     fn derivatives(
         &self,
         recording: (&Plan, &[(String, Recorded)]),
-        t: f64,
-        state: &SVector<f64, S>,
+        point: (f64, &SVector<f64, S>),
         event: Option<Observable>,
+        constraint: Constraint,
     ) -> Result<Vec<f64>, String>;
 }
 
@@ -80,9 +80,9 @@ impl<const N: usize, const S: usize> SceneSystem<N, S> for TapeSystem<N, S> {
     fn derivatives(
         &self,
         _: (&Plan, &[(String, Recorded)]),
-        _: f64,
-        _: &SVector<f64, S>,
+        _: (f64, &SVector<f64, S>),
         _: Option<Observable>,
+        _: Constraint,
     ) -> Result<Vec<f64>, String> {
         Ok(Vec::new())
     }
@@ -142,10 +142,10 @@ impl<const N: usize, const S0: usize, const SA: usize> SceneSystem<N, SA>
     fn derivatives(
         &self,
         (plan, record): (&Plan, &[(String, Recorded)]),
-        t: f64,
-        state: &SVector<f64, SA>,
+        point: (f64, &SVector<f64, SA>),
         event: Option<Observable>,
+        constraint: Constraint,
     ) -> Result<Vec<f64>, String> {
-        point_derivatives(self, (plan, record), t, state, event)
+        point_derivatives(self, (plan, record), point, event, constraint)
     }
 }
