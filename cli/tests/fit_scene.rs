@@ -127,6 +127,10 @@ fn a_scene_recording_an_expression_is_fitted() {
 /// g and m(0) to 1e-8 relative and δ to 1e-8 s as in the fit without it (measured: about
 /// 1e-14 each, printed with --nocapture). Before the runs extended `until`, the second fit
 /// stopped at δ = 0 against its failing trials and called that converged (rms 1632 m).
+/// `--predict "m < 200"` runs the fitted scene on to stage 2's m = 200 kg: at t = t₁ +
+/// 100/μ₂ = 52 + 50 = 102 s (the data's clock: 102 + δ), where the closed form's altitude
+/// is [`altitude`]`(9.5, 1020, 102)`; both to 1e-9 relative (measured: at most 4.2e-15 and
+/// 5.1e-15).
 #[test]
 fn a_logs_time_offset_is_fitted_through_the_separation() {
     for offset in [0.8, -0.6] {
@@ -134,7 +138,14 @@ fn a_logs_time_offset_is_fitted_through_the_separation() {
             &format!("fit_scene_offset{offset}.csv"),
             &shifted_log(offset),
         );
-        let extra = ["--fit", "g", "--fit", "init:m=600:2000"];
+        let extra = [
+            "--fit",
+            "g",
+            "--fit",
+            "init:m=600:2000",
+            "--predict",
+            "m < 200",
+        ];
         let extra = [&extra[..], &["--fit", "data:offset=-2:2"]].concat();
         let (stdout, _) = fit_two_stage(&data, &extra, 0);
         println!("{stdout}");
@@ -149,6 +160,25 @@ fn a_logs_time_offset_is_fitted_through_the_separation() {
             (reported(&stdout, "data:offset") - offset).abs() <= 1e-8,
             "{stdout}"
         );
+        let predicted = stdout
+            .split("predicted where `m < 200`:")
+            .nth(1)
+            .expect("predicted");
+        let (t, y) = (reported(predicted, "t"), reported(predicted, "y"));
+        let expected = altitude(9.5, 1020.0, 102.0);
+        println!(
+            "t off by {:.1e}, y by {:.1e}",
+            t / 102.0 - 1.0,
+            y / expected - 1.0
+        );
+        assert!((t - 102.0).abs() <= 102e-9, "{stdout}");
+        assert!((y - expected).abs() <= expected * 1e-9, "{stdout}");
+        let clock = predicted
+            .split("the data's clock: ")
+            .nth(1)
+            .expect("the data's clock");
+        let clock: f64 = clock.split(' ').next().unwrap().parse().expect("a number");
+        assert!((clock - (102.0 + offset)).abs() <= 102e-9, "{predicted}");
     }
 }
 

@@ -225,6 +225,16 @@ trait Evaluate {
     /// The run at θ of `problem`: its table, landing on the data's times, with the data's
     /// quantities and their derivatives by each unknown.
     fn table(&mut self, problem: &Problem<'_>, theta: &DVector<f64>) -> Result<Table, String>;
+
+    /// The run at θ on to `stop`, a condition before a time (`--predict`), recording the
+    /// data's quantities and their derivatives at the event: its table, and whether the
+    /// condition ended it.
+    fn predicted(
+        &mut self,
+        problem: &Problem<'_>,
+        theta: &DVector<f64>,
+        stop: (&str, f64),
+    ) -> Result<(Table, bool), CliError>;
 }
 
 impl ModelRun<'_> {
@@ -272,6 +282,15 @@ impl Evaluate for ModelRun<'_> {
         let (args, values) = self.at(problem, theta);
         let done = self.compiled.execute(&args, false, values, |_| {});
         Ok(done.map_err(|failed| failed.error.to_string())?.table)
+    }
+
+    fn predicted(
+        &mut self,
+        problem: &Problem<'_>,
+        theta: &DVector<f64>,
+        stop: (&str, f64),
+    ) -> Result<(Table, bool), CliError> {
+        predict::model_run_to(self, problem, theta, stop)
     }
 }
 
@@ -528,10 +547,9 @@ pub fn run_given(args: &FitArgs, given: &[String]) -> Result<String, CliError> {
     let values = crate::run::plan::parameters(&args.run)?;
     let mut compiled = Compiled::new(model);
     let fitted = fit(&mut compiled, &args.run, values.clone(), &series, &unknowns)?;
-    let Some(condition) = &args.predict else {
+    if args.predict.is_none() {
         return finish(args, &fitted, &series, (left_out, window));
-    };
-    let mut out = written(args, &fitted, &series)?;
+    }
     let values = compiled.model().with_defaults(&values);
     let problem = Problem {
         from: args.run.from,
@@ -543,13 +561,27 @@ pub fn run_given(args: &FitArgs, given: &[String]) -> Result<String, CliError> {
         args: &args.run,
         values: &values,
     };
-    let span = (series.iter().flat_map(|s| s.times.iter()))
+    finish_predicted(args, &mut model, (&problem, &fitted), (left_out, window))
+}
+
+/// [`finish`] and then the prediction `--predict` asks of the fitted `target` (its error
+/// after the fit's report, which is not lost with it).
+fn finish_predicted(
+    args: &FitArgs,
+    target: &mut impl Evaluate,
+    (problem, fitted): (&Problem<'_>, &Fit),
+    (left_out, window): (usize, Window),
+) -> Result<String, CliError> {
+    let mut out = written(args, fitted, problem.series)?;
+    let Some(condition) = &args.predict else {
+        return Ok(out + &left_out_note(left_out, window));
+    };
+    let span = (problem.series.iter().flat_map(|s| s.times.iter()))
         .fold(args.run.from, |end, t| end.max(*t))
         - args.run.from;
     let until = (args.predict_until).unwrap_or(args.run.from + 10.0 * span.max(1.0));
-    match predict::report(&mut model, &problem, &fitted, condition, until) {
+    match predict::report(target, problem, fitted, condition, until) {
         Ok(prediction) => out += &prediction,
-        // The fit stands: its report is not lost with the prediction.
         Err(e) => return Err(CliError::Run(format!("{out}--predict `{condition}`: {e}"))),
     }
     Ok(out + &left_out_note(left_out, window))

@@ -8,33 +8,30 @@ use std::fmt::Write as _;
 
 use varmass::core::nalgebra::{DMatrix, DVector};
 
-use super::{with_error, Fit, ModelRun, Problem, OFFSET};
+use super::{with_error, Evaluate, Fit, ModelRun, Problem, OFFSET};
 use crate::error::CliError;
 use crate::run::names::shown;
+use crate::run::Table;
+use crate::scene::{Request, Rerun};
 
-/// The prediction's report: the event's time and each fitted quantity there, with errors.
+/// The prediction's report: the event's time and each fitted quantity there, with errors
+/// (`target`: the model's runs or the scene's).
 pub(super) fn report(
-    model: &mut ModelRun<'_>,
+    target: &mut impl Evaluate,
     problem: &Problem<'_>,
     fit: &Fit,
     condition: &str,
     until: f64,
 ) -> Result<String, CliError> {
     let theta = DVector::from_column_slice(&fit.values);
-    let (mut args, values) = model.at(problem, &theta);
-    (args.at, args.rates) = (Vec::new(), false);
-    args.stop_when = vec![condition.to_string()];
-    args.until = Some(until);
-    let done = model.compiled.execute(&args, false, values, |_| {});
-    let done =
-        done.map_err(|failed| CliError::Run(format!("the prediction's run: {}", failed.error)))?;
-    if done.stopped_by.is_none() {
+    let (table, stopped) = target.predicted(problem, &theta, (condition, until))?;
+    if !stopped {
         return Err(CliError::Run(format!(
             "the fitted run did not reach `{condition}` before t = {} (--predict-until)",
             shown(until)
         )));
     }
-    let table = &done.table;
+    let table = &table;
     let last = table.times().len() - 1;
     let read =
         |name: &str| (table.names.iter().position(|c| c == name)).map(|c| table.column(c)[last]);
@@ -72,4 +69,49 @@ pub(super) fn report(
         let _ = writeln!(out, "  {quantity} = {shown}");
     }
     Ok(out)
+}
+
+/// A model's run at θ on to `condition` before `until`: its table, and whether the
+/// condition ended it.
+pub(super) fn model_run_to(
+    model: &mut ModelRun<'_>,
+    problem: &Problem<'_>,
+    theta: &DVector<f64>,
+    (condition, until): (&str, f64),
+) -> Result<(Table, bool), CliError> {
+    let (mut args, values) = model.at(problem, theta);
+    (args.at, args.rates) = (Vec::new(), false);
+    args.stop_when = vec![condition.to_string()];
+    args.until = Some(until);
+    let done = model.compiled.execute(&args, false, values, |_| {});
+    let done =
+        done.map_err(|failed| CliError::Run(format!("the prediction's run: {}", failed.error)))?;
+    Ok((done.table, done.stopped_by.is_some()))
+}
+
+/// A scene's run at θ on to `condition` before `until`, in place of its own `stop_when` and
+/// `until`: its table, and whether the condition ended it.
+pub(super) fn scene_run_to(
+    rerun: &mut Rerun,
+    problem: &Problem<'_>,
+    theta: &DVector<f64>,
+    stop: (&str, f64),
+) -> Result<(Table, bool), CliError> {
+    let values: Vec<(String, f64)> = (problem.unknowns.iter().zip(theta.iter()))
+        .filter(|(u, _)| u.name != OFFSET)
+        .map(|(u, x)| (u.name.clone(), *x))
+        .collect();
+    let names: Vec<String> = values.iter().map(|(n, _)| n.clone()).collect();
+    let request = Request {
+        sensitivities: &names,
+        at: &[],
+        rates: false,
+        quiet: true,
+    };
+    let ran = rerun.run_to(&values, &problem.quantities(), &request, Some(stop));
+    let ran = ran.map_err(|e| CliError::Run(format!("the prediction's run: {e}")))?;
+    match ran.failure {
+        Some(e) => Err(CliError::Run(format!("the prediction's run: {e}"))),
+        None => Ok((ran.table, ran.stopped_by.is_some())),
+    }
 }

@@ -9,7 +9,8 @@ use varmass::core::nalgebra::DVector;
 use std::path::Path;
 
 use super::{
-    data, finish, fit_scene, series_of, start_offset, Evaluate, Fit, FitArgs, Problem, Series,
+    data, finish_predicted, fit_scene, series_of, start_offset, Evaluate, Fit, FitArgs, Problem,
+    Series,
 };
 use super::{Unknown, OFFSET};
 use crate::error::CliError;
@@ -17,9 +18,18 @@ use crate::run::Table;
 use crate::scene::{Request, Rerun};
 
 /// The flags that go with a scene file: the file and where the output goes (the scene
-/// gives its own run settings), and what the fit reads and fits.
-const SCENE_FLAGS: [&str; 8] = [
-    "file", "csv", "plot", "data", "column", "time", "fit", "sigma",
+/// gives its own run settings), what the fit reads and fits, and the prediction.
+const SCENE_FLAGS: [&str; 10] = [
+    "file",
+    "csv",
+    "plot",
+    "data",
+    "column",
+    "time",
+    "fit",
+    "sigma",
+    "predict",
+    "predict_until",
 ];
 
 /// `varmass fit SCENE.toml`: the fit's report (`given`: the ids of the flags on the command
@@ -30,7 +40,7 @@ pub fn run(args: &FitArgs, given: &[String], unknowns: &[Unknown]) -> Result<Str
         return Err(CliError::Input(format!(
             "--{}: not taken with a scene file (`{file}`), which gives the run's settings \
              itself (docs/scenes.md); a scene's fit takes only --data, --column, --time, \
-             --fit, --sigma, --csv and --plot",
+             --fit, --sigma, --csv, --plot and --predict (--predict-until)",
             id.replace('_', "-"),
         )));
     }
@@ -40,7 +50,12 @@ pub fn run(args: &FitArgs, given: &[String], unknowns: &[Unknown]) -> Result<Str
     (scoped.run.from, scoped.run.until) = (from, Some(until));
     let (series, left_out, window) = series_of(&scoped, unknowns)?;
     let fitted = fit_scene(&mut rerun, &series, unknowns)?;
-    finish(&scoped, &fitted, &series, (left_out, window))
+    let problem = Problem {
+        from,
+        series: &series,
+        unknowns,
+    };
+    finish_predicted(&scoped, &mut rerun, (&problem, &fitted), (left_out, window))
 }
 
 /// Fits `unknowns` of the scene file at `path` to `series` (the Python package's
@@ -113,5 +128,14 @@ pub(super) fn table(
 impl Evaluate for Rerun {
     fn table(&mut self, problem: &Problem<'_>, theta: &DVector<f64>) -> Result<Table, String> {
         table(self, problem, theta).map_err(|e| e.to_string())
+    }
+
+    fn predicted(
+        &mut self,
+        problem: &Problem<'_>,
+        theta: &DVector<f64>,
+        stop: (&str, f64),
+    ) -> Result<(Table, bool), CliError> {
+        super::predict::scene_run_to(self, problem, theta, stop)
     }
 }

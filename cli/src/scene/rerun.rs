@@ -99,8 +99,24 @@ impl Rerun {
         record: &[&str],
         request: &Request<'_>,
     ) -> Result<SceneRun, CliError> {
+        self.run_to(values, record, request, None)
+    }
+
+    /// [`Self::run`] with `stop`, a condition (`stop_when`'s syntax) and a time, in place of
+    /// the scene's own `stop_when` and `until` (a fit's prediction).
+    pub fn run_to(
+        &mut self,
+        values: &[(String, f64)],
+        record: &[&str],
+        request: &Request<'_>,
+        stop: Option<(&str, f64)>,
+    ) -> Result<SceneRun, CliError> {
         let mut read = self.read()?;
         let scene = &mut read.scene;
+        if let Some((condition, until)) = stop {
+            scene.stop_when = Some(unplaced(condition));
+            scene.until = until;
+        }
         for (name, value) in values {
             // A key already written keeps its place (`Spanned` keys compare by name).
             match name.strip_prefix("init:") {
