@@ -23,7 +23,7 @@ def test_the_committed_scenes_are_the_generators(tmp_path):
     subprocess.run([sys.executable, str(TOOL), "--out", str(tmp_path)], check=True,
                    capture_output=True)
     for name in make_scenes.FLIGHTS:
-        for suffix in (".vms", ".toml"):
+        for suffix in (".vms", ".toml", "_ascent.toml"):
             written = (tmp_path / name / f"{name}{suffix}").read_text()
             committed = (ROOT / "flights" / name / f"{name}{suffix}").read_text()
             assert written == committed, f"flights/{name}/{name}{suffix}: rerun {TOOL.name}"

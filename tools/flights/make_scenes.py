@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Writes the scene of each public flight, flights/<name>/<name>.vms and <name>.toml, from its
-flight.toml (issue 36, item 6; docs/flights.md#the-scenes).
+flight.toml (issue 36, item 6; docs/flights.md#the-scenes), and <name>_ascent.toml, the same
+from the rail to the log's apogee without parachutes, which `varmass fit` fits to the log
+with the model's thrust scale s_F and drag scale s_D, both 1 as published (issue 37;
+docs/sensitivities.md#a-real-flight).
 
 Every scene is Calisto's (flights/calisto/calisto.vms, the template checked against RocketPy
 1.13 to 8.2e-7 of apogee) with the flight's own numbers and these differences, each decided
@@ -40,7 +43,7 @@ by a key of flight.toml so that a reader sees what differs between two flights:
   The landing: the last phase stops where z falls through 0. A flight without parachutes
   falls ballistically, airframe on, as RocketPy's does.
 
-    python3 tools/flights/make_scenes.py            # writes flights/<name>/<name>.{vms,toml}
+    python3 tools/flights/make_scenes.py            # writes flights/<name>/<name>{.vms,.toml,_ascent.toml}
     python3 tools/flights/make_scenes.py --out DIR  # into DIR/<name>/ (the pytest's check)
 
 Plain Python (stdlib tomllib); python/tests/test_flight_scenes.py regenerates into a temporary
@@ -49,8 +52,12 @@ folder and asserts the committed files are identical.
 
 import argparse
 import math
+import sys
 import tomllib
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from make_ascents import apogee_time  # noqa: E402  (the log's apogee, one definition)
 
 ROOT = Path(__file__).resolve().parents[2]
 FLIGHTS = ["bella_lui", "ndrt_2020", "andromeda", "astra", "erebus", "cavour", "genesis",
@@ -241,10 +248,14 @@ def mass_lines(spec):
         f"parameter kc2_1 = {num(kc2_1)}",
         "units c: m/s, t_burnout: s, z_nozzle: m, z_g: m, m_p0: kg",
         "units ka2_0: m^2, ka2_1: m^2, kc2_0: m^2, kc2_1: m^2",
-        "# the burn: RocketPy clips the thrust curve to [0, burn_time]",
+        "# the burn: RocketPy clips the thrust curve to [0, burn_time]; s_F scales the thrust",
+        "# through the exhaust speed (the propellant and its burn rate are the motor's): 1 as",
+        "# published, a free unknown of `varmass fit` (docs/sensitivities.md#a-real-flight)",
+        "parameter s_F = 1",
+        "units s_F: 1",
         "let burning = (1 + sign(t_burnout - t))/2",
-        "let thrust = burning*F(t)",
-        "let mu = thrust/c",
+        "let mu = burning*F(t)/c",
+        "let thrust = s_F*burning*F(t)",
         "units burning: 1, thrust: N, mu: kg/s",
         "# the propellant plus a constant m_held that never burns (calisto.vms)",
         "parameter m_held = 1",
@@ -261,7 +272,7 @@ def mass_lines(spec):
         "inertia C = C_d + m_p*kc2",
         "rigid rocket: mass m, inertia [A, A, C], position [x, y, z], "
         "orientation quaternion(e0, e1, e2, e3), centre [0, 0, z_c]",
-        "outflow rocket: rate mu, at [0, 0, z_nozzle], relative_velocity body [0, 0, -c]",
+        "outflow rocket: rate mu, at [0, 0, z_nozzle], relative_velocity body [0, 0, -s_F*c]",
     ]
 
 
@@ -421,10 +432,12 @@ def drag_and_margin_lines(spec):
     decl, cd = drag_lines(spec)
     tail = ", cn3 = tail_cn_alpha, z3 = tail_z_cp" if "tail" in spec else ""
     return decl + [
-        "# drag: axial, through the axis (RocketPy's R3)",
+        "# drag: axial, through the axis (RocketPy's R3); s_D scales it (1 as published, a",
+        "# free unknown of `varmass fit`)",
         cd,
-        "let drag = aero*qbar*fins_area_ref*cd",
-        "units cd: 1, drag: N",
+        "parameter s_D = 1",
+        "let drag = s_D*aero*qbar*fins_area_ref*cd",
+        "units cd: 1, s_D: 1, drag: N",
         "force rocket: body [0, 0, -drag]",
         "# the static margin at the flight's Mach number, and at Mach 0 (RocketPy's)",
         'use "../../models/lib/barrowman_margin.vms" as margin: z_cg = z_c, d_ref = d_ref, '
@@ -501,22 +514,52 @@ def phases(spec):
 
 
 def scene(name, spec):
-    q = attitude(spec["rail"])
-    rail, drogue_main = spec["rail"], chutes(spec)
+    drogue_main = chutes(spec)
     names = [c["name"] for c in drogue_main if c is not None] or ["none"]
-    lines = [
+    head = [
         f"# {spec['source']['name']}: {name}.vms from the rail to apogee, then its parachutes",
         f"# ({', '.join(names)}) to landing. WRITTEN BY tools/flights/make_scenes.py from",
-        "# flight.toml. The body starts at rest on the rail with RocketPy's attitude (3-1-3 Euler",
-        f"# angles psi = -heading = {num(-rail['heading'])} deg, theta = inclination - 90 = "
-        f"{num(rail['inclination'] - 90)} deg,",
-        f"# phi = button_angle = {num(rail['button_angle'])} deg); the rail's exit_travel is "
-        "flight.toml's. The last",
+    ]
+    end = [
         "# phase stops where z falls through 0: the landing (above the pad's level).",
         "# cli/tests/flights.rs flies the first phase only, to apogee.",
         f'model = "{name}.vms"',
         "until = 2000.0",
         'stop_when = "z < 0"',
+    ]
+    return "\n".join(scene_lines(spec, head, end) + phases(spec)) + "\n"
+
+
+def ascent_scene(name, spec, log):
+    """The flight's scene from the rail to the log's apogee, without its parachutes: what
+    `varmass fit` fits to the log's ascent (docs/sensitivities.md#a-real-flight)."""
+    until, _ = apogee_time(log)
+    head = [
+        f"# {spec['source']['name']}'s ascent: {name}.vms from the rail to the log's apogee (its",
+        "# five-sample running median's top), without parachutes. WRITTEN BY",
+        "# tools/flights/make_scenes.py from",
+    ]
+    end = [
+        "# phase ends at the log's apogee time; `varmass fit` runs it past that when a fitted",
+        "# offset of the log's clock asks (docs/sensitivities.md#a-real-flight).",
+        f'model = "{name}.vms"',
+        f"until = {num(until)}",
+    ]
+    return "\n".join(scene_lines(spec, head, end)[:-1]) + "\n"
+
+
+def scene_lines(spec, head, end):
+    """A scene's lines from its header's first lines `head` and the lines `end` that end
+    the header and name the model, to its `[flight]` table (then an empty line)."""
+    q = attitude(spec["rail"])
+    rail = spec["rail"]
+    lines = head + [
+        "# flight.toml. The body starts at rest on the rail with RocketPy's attitude (3-1-3 Euler",
+        f"# angles psi = -heading = {num(-rail['heading'])} deg, theta = inclination - 90 = "
+        f"{num(rail['inclination'] - 90)} deg,",
+        f"# phi = button_angle = {num(rail['button_angle'])} deg); the rail's exit_travel is "
+        "flight.toml's. The last",
+    ] + end + [
         'method = "dop853"',
         "tol = 1e-10",
         'record = ["altitude", "speed", "airspeed", "mach", "qbar", "alpha", "static_margin", '
@@ -540,7 +583,7 @@ def scene(name, spec):
         "log = { file = \"flight_log.csv\", time = \"time\", altitude = \"altitude\" }",
         "",
     ]
-    return "\n".join(lines + phases(spec)) + "\n"
+    return lines
 
 
 def main():
@@ -554,7 +597,9 @@ def main():
         folder.mkdir(parents=True, exist_ok=True)
         (folder / f"{name}.vms").write_text(model(name, spec))
         (folder / f"{name}.toml").write_text(scene(name, spec))
-    print(f"wrote {len(FLIGHTS)} scenes into {args.out}")
+        log = ROOT / "flights" / name / "flight_log.csv"
+        (folder / f"{name}_ascent.toml").write_text(ascent_scene(name, spec, log))
+    print(f"wrote {len(FLIGHTS)} scenes and their ascents into {args.out}")
 
 
 if __name__ == "__main__":
