@@ -208,8 +208,9 @@ fn fly_sized<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
         held,
         railed,
     };
-    let constraints = constraints(&phased, &phases);
-    let (phased, lift_off, rail_exit) = after_hold(phased, &phases, hold, start, &ends)?;
+    let mut constraints = constraints(&phased, &phases);
+    let (phased, lift_off, rail_exit) =
+        after_hold((phased, &mut constraints), &phases, hold, start, &ends)?;
     let offset = inserted;
     let last = phased.phase.last().copied().unwrap_or(0);
     let failure = refused.or_else(|| {
@@ -359,10 +360,11 @@ struct Hold {
 
 /// The run after a hold: the first phase's end condition checked over the hold
 /// ([`met_while_held`]), the rail's exit (time, speed) read, the inserted phases numbered
-/// as the scene's first ([`renumbered`]), and the lift-off time.
+/// as the scene's first ([`renumbered`]; `constraints`, one per point, lose the points it
+/// drops), and the lift-off time.
 #[allow(clippy::type_complexity)]
 fn after_hold<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
-    phased: PhasedSolution<N, S>,
+    (phased, constraints): (PhasedSolution<N, S>, &mut Vec<Constraint>),
     phases: &[Phase<'_, Supported<Sys>, S>],
     hold: Hold,
     start: (f64, SVector<f64, S>),
@@ -382,7 +384,7 @@ fn after_hold<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
     }
     let exit = railed.and_then(|on_pad| phased.changes.get(usize::from(on_pad)));
     let rail_exit = exit.map(|change| (change.time, exit_speed(&phased, phases, change.time)));
-    let (phased, removed) = renumbered(phased, inserted);
+    let (phased, removed) = renumbered(phased, inserted, constraints);
     let starts_held = held == Some(true) || railed == Some(true);
     let lift_off = match (held.or(railed), starts_held) {
         (None, _) => None,
@@ -699,12 +701,17 @@ fn hold<Sys: SceneSystem<N, S>, const N: usize, const S: usize>(
 fn renumbered<const N: usize, const S: usize>(
     mut phased: PhasedSolution<N, S>,
     inserted: usize,
+    constraints: &mut Vec<Constraint>,
 ) -> (PhasedSolution<N, S>, Vec<f64>) {
     let mut removed = Vec::new();
     for _ in 0..inserted {
-        // A change's two points (before and after) are one state: keep the first.
+        // A change's two points (before and after) are one state: keep the first (and
+        // what held the body there: the phase before's).
         if let Some(i) = phased.phase.iter().position(|&p| p == 1) {
             drop_point(&mut phased, i);
+            if i < constraints.len() {
+                constraints.remove(i);
+            }
         }
         for phase in &mut phased.phase {
             *phase = phase.saturating_sub(1);
