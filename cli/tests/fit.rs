@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{reported, scratch, scratch_file, varmass};
+use common::{reported, reported_clock, reported_rms, scratch, scratch_file, varmass};
 use varmass_cli::args::{Cli, Command};
 use varmass_cli::fit::{fit, Series, Unknown};
 use varmass_cli::model::load;
@@ -322,17 +322,8 @@ fn bella_luis_ascent_is_fitted_and_its_apogee_predicted() {
     let (stdout, _) = varmass(&args, 0);
     eprintln!("{stdout}");
     assert!(stdout.contains("(converged)"), "{stdout}");
-    let rms: f64 = (stdout.lines())
-        .find_map(|l| l.strip_prefix("residuals of z: rms "))
-        .and_then(|l| l.split(' ').next())
-        .and_then(|v| v.parse().ok())
-        .expect("the residuals' rms");
+    let (rms, clock) = (reported_rms(&stdout, "z"), reported_clock(&stdout));
     let apogee = reported(&stdout, "z");
-    let clock: f64 = (stdout.lines())
-        .find_map(|l| l.split("(the data's clock: ").nth(1))
-        .and_then(|v| v.split(' ').next())
-        .and_then(|v| v.parse().ok())
-        .expect("the apogee's time on the log's clock");
     eprintln!("rms {rms}, apogee {apogee} at {clock} (log: 458.971 at 10.53)");
     assert!(rms <= 2.2, "{rms}");
     assert!((apogee - 458.971).abs() <= 2.0, "{apogee}");

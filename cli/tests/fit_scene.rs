@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{csv, reported, scratch, scratch_file, varmass};
+use common::{csv, reported, reported_clock, reported_rms, scratch, scratch_file, varmass};
 
 /// The altitude of models/two_stage_rocket.toml from rest at m(0) = `m0` in the gravity
 /// `g`: stage 1 burns μ₁ = 10 kg/s at u₁ = 2500 m/s until m = 500 kg, at t₁ = (m0 − 500)/μ₁;
@@ -173,11 +173,7 @@ fn a_logs_time_offset_is_fitted_through_the_separation() {
         );
         assert!((t - 102.0).abs() <= 102e-9, "{stdout}");
         assert!((y - expected).abs() <= expected * 1e-9, "{stdout}");
-        let clock = predicted
-            .split("the data's clock: ")
-            .nth(1)
-            .expect("the data's clock");
-        let clock: f64 = clock.split(' ').next().unwrap().parse().expect("a number");
+        let clock = reported_clock(predicted);
         assert!((clock - (102.0 + offset)).abs() <= 102e-9, "{predicted}");
     }
 }
@@ -282,17 +278,9 @@ fn bella_luis_six_dof_ascent_is_fitted_and_its_apogee_predicted() {
     let (stdout, _) = varmass(&[&args[..], &fitted, &predicted].concat(), 0);
     println!("{stdout}");
     assert!(stdout.contains("(converged)"), "{stdout}");
-    let rms: f64 = (stdout.lines())
-        .find_map(|l| l.strip_prefix("residuals of z: rms "))
-        .and_then(|l| l.split(' ').next())
-        .and_then(|v| v.parse().ok())
-        .expect("the residuals' rms");
     let prediction = stdout.split("predicted where").nth(1).expect("predicted");
+    let (rms, clock) = (reported_rms(&stdout, "z"), reported_clock(prediction));
     let apogee = reported(prediction, "z");
-    let clock: f64 = (prediction.split("(the data's clock: ").nth(1))
-        .and_then(|v| v.split(' ').next())
-        .and_then(|v| v.parse().ok())
-        .expect("the apogee's time on the log's clock");
     println!("rms {rms}, apogee {apogee} at {clock} (log: 458.971 at 10.53)");
     assert!(rms <= 2.2, "{rms}");
     assert!((apogee - 458.971).abs() <= 2.0, "{apogee}");

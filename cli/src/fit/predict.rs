@@ -97,11 +97,7 @@ pub(super) fn scene_run_to(
     theta: &DVector<f64>,
     stop: (&str, f64),
 ) -> Result<(Table, bool), CliError> {
-    let values: Vec<(String, f64)> = (problem.unknowns.iter().zip(theta.iter()))
-        .filter(|(u, _)| u.name != OFFSET)
-        .map(|(u, x)| (u.name.clone(), *x))
-        .collect();
-    let names: Vec<String> = values.iter().map(|(n, _)| n.clone()).collect();
+    let (values, names) = super::scene::scene_values(problem, theta);
     let request = Request {
         sensitivities: &names,
         at: &[],

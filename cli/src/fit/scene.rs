@@ -106,11 +106,7 @@ pub(super) fn table(
     problem: &Problem<'_>,
     theta: &DVector<f64>,
 ) -> Result<Table, CliError> {
-    let values: Vec<(String, f64)> = (problem.unknowns.iter().zip(theta.iter()))
-        .filter(|(u, _)| u.name != OFFSET)
-        .map(|(u, x)| (u.name.clone(), *x))
-        .collect();
-    let names: Vec<String> = values.iter().map(|(n, _)| n.clone()).collect();
+    let (values, names) = scene_values(problem, theta);
     let times = problem.times(theta);
     let request = Request {
         sensitivities: &names,
@@ -123,6 +119,20 @@ pub(super) fn table(
         Some(failure) => Err(failure),
         None => Ok(ran.table),
     }
+}
+
+/// The unknowns' values at θ that a scene's run takes (all but the data's offset), and
+/// their names (the run's sensitivity columns).
+pub(super) fn scene_values(
+    problem: &Problem<'_>,
+    theta: &DVector<f64>,
+) -> (Vec<(String, f64)>, Vec<String>) {
+    let values: Vec<(String, f64)> = (problem.unknowns.iter().zip(theta.iter()))
+        .filter(|(u, _)| u.name != OFFSET)
+        .map(|(u, x)| (u.name.clone(), *x))
+        .collect();
+    let names = values.iter().map(|(n, _)| n.clone()).collect();
+    (values, names)
 }
 
 impl Evaluate for Rerun {

@@ -141,3 +141,21 @@ pub fn reported(stdout: &str, name: &str) -> f64 {
     let value = line.split(" = ").nth(1).and_then(|v| v.split('±').next());
     value.expect("a value").trim().parse().expect("a number")
 }
+
+/// The residuals' rms a `varmass fit` report `stdout` gives `quantity`.
+pub fn reported_rms(stdout: &str, quantity: &str) -> f64 {
+    (stdout.lines())
+        .find_map(|l| l.strip_prefix(&format!("residuals of {quantity}: rms ")))
+        .and_then(|l| l.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("the residuals' rms of {quantity} in {stdout}"))
+}
+
+/// The predicted event's time on the data's clock a `varmass fit --predict` report
+/// `stdout` gives (`(the data's clock: T ± E)`).
+pub fn reported_clock(stdout: &str) -> f64 {
+    (stdout.split("(the data's clock: ").nth(1))
+        .and_then(|v| v.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("the event's time on the data's clock in {stdout}"))
+}
