@@ -85,8 +85,9 @@ class Scene:
         fit SCENE.toml`` does (docs/sensitivities.md#fitting-a-scene): ``data``, ``fit`` and
         ``sigma`` as :meth:`varmass.Model.fit`; the start values are the scene's own (its
         ``[set]``, else the model's defaults, and its ``[init]``), and its settings are the
-        file's. Data outside the scene's span are left out with a warning. Returns a
-        :class:`varmass.FitResult`."""
+        file's. ``"data:offset"`` among ``fit`` fits the log's clock offset, as a model's
+        fit does. Data outside the scene's span (shifted by the offset's bound nearest 0)
+        are left out with a warning. Returns a :class:`varmass.FitResult`."""
         series = _series(data, sigma)
         unknowns = _unknowns(fit)
         raw, left_out = _native.fit_scene(self._path, series, unknowns)
