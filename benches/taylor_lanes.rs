@@ -7,7 +7,8 @@
 //! machine's load falls on all of them; the error is the worst member's largest relative
 //! error of height, speed and mass against the closed form.
 //!
-//! `cargo bench -p varmass-benches --bench taylor_lanes`
+//! `cargo bench -p varmass-benches --bench taylor_lanes [-- FILTER]` (FILTER: only the
+//! configurations whose name holds it, e.g. `"1e-9 taylor lanes 8"`, for a profile).
 
 #[path = "common/timing.rs"]
 #[allow(dead_code)]
@@ -146,9 +147,14 @@ fn configs<'a>(
 fn main() {
     let rockets = members();
     let jobs = jobs(&rockets);
+    let filter = std::env::args()
+        .skip(1)
+        .find(|a| !a.starts_with("--"))
+        .unwrap_or_default();
     let all: Vec<Config<'_>> = [1e-6, 1e-9, 1e-12]
         .into_iter()
         .flat_map(|tol| configs(&rockets, &jobs, tol))
+        .filter(|(name, _)| name.contains(&filter))
         .collect();
     let mut best = vec![Duration::MAX; all.len()];
     let mut errors = vec![0.0; all.len()];

@@ -206,6 +206,46 @@ fn the_coupled_models_jacobians_meet_central_differences() {
     assert!(worst <= 1e-8, "{worst:e}");
 }
 
+/// `jacobians` with some parameters' columns (a tape compiled for them alone, what
+/// `Sensitive` evaluates at each stage) gives J and those columns to the bit of `jacobian`
+/// and `parameter_jacobian` (each node of the tapes is the same operation on the same
+/// values), the other columns NaN; columns out of order or past the parameters are refused.
+#[test]
+fn some_parameters_columns_are_the_whole_jacobians_bits() {
+    let tape = TapeSystem::<2, 5>::new(program(COUPLED_SOURCE, &COUPLED_VALUES)).expect("sizes");
+    let count = tape.parameter_names().len();
+    let subsets: [&[usize]; 4] = [&[], &[1], &[0, 3, 5], &[0, 1, 2, 3, 4, 5, 6, 7]];
+    for i in 0..10 {
+        let f = f64::from(i);
+        let (t, state) = (
+            0.21 * f,
+            SVector::from([0.1 * f, 0.5 - 0.1 * f, 0.3, 0.2 * f, 2.5]),
+        );
+        let whole = tape.jacobian(t, &state).expect("regular");
+        let mut every = vec![0.0; 5 * count];
+        assert!(tape
+            .parameter_jacobian(t, &state, &mut every)
+            .expect("regular"));
+        for wanted in subsets.iter().copied().filter(|w| w.len() <= count) {
+            let mut out = vec![0.0; 5 * count];
+            let (jacobian, given) = tape
+                .jacobians(t, &state, wanted, &mut out)
+                .expect("regular");
+            assert!(given);
+            assert_eq!(jacobian.as_slice(), whole.as_slice(), "J with {wanted:?}");
+            for (k, (ours, theirs)) in out.iter().zip(&every).enumerate() {
+                match wanted.contains(&(k % count)) {
+                    true => assert_eq!(ours.to_bits(), theirs.to_bits(), "entry {k} of {wanted:?}"),
+                    false => assert!(ours.is_nan(), "entry {k} of {wanted:?} is {ours}"),
+                }
+            }
+        }
+        let mut out = vec![0.0; 5 * count];
+        assert!(tape.jacobians(t, &state, &[2, 1], &mut out).is_err());
+        assert!(tape.jacobians(t, &state, &[count], &mut out).is_err());
+    }
+}
+
 /// ∂(y, v)/∂(u_e, μ, m0) of the run-time rocket at t = 10 s by DOP853 at 1e-12 against the
 /// closed forms of tests/sensitivities.rs (derived there by hand):
 /// ∂v/∂u_e = L, ∂v/∂μ = u_e t/m, ∂v/∂m0 = u_e (1/m0 − 1/m), ∂y/∂u_e = t − (m/μ) L,

@@ -148,6 +148,8 @@ pub struct Sensitive<Sys, const S: usize> {
     system: Sys,
     /// The columns, resolved against the system's parameters.
     columns: Vec<Resolved>,
+    /// The parameters' columns of the parameter Jacobian the columns read, increasing.
+    wanted: Vec<usize>,
     /// The parameter Jacobian's S × P, kept between calls.
     scratch: RefCell<Vec<f64>>,
     /// Whether the adaptive steppers' error control weighs the columns too (the default).
@@ -163,6 +165,7 @@ impl<Sys: Clone, const S: usize> Clone for Sensitive<Sys, S> {
         Sensitive {
             system: self.system.clone(),
             columns: self.columns.clone(),
+            wanted: self.wanted.clone(),
             scratch: RefCell::new(alloc::vec![0.0; self.scratch.borrow().len()]),
             error_control: self.error_control,
             taylor: Default::default(),
@@ -184,11 +187,6 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
     /// The number of columns K.
     pub fn columns(&self) -> usize {
         self.columns.len()
-    }
-
-    /// Whether any column is a parameter's (then the parameter Jacobian is needed).
-    fn has_parameters(&self) -> bool {
-        self.columns.iter().any(|c| c.parameter().is_some())
     }
 }
 
@@ -252,11 +250,15 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
             Column::Initial(index) => Err(SensitivityError::UnknownEntry { index, state: S }),
             Column::Elsewhere => Ok(Resolved::Elsewhere),
         };
-        let columns = columns.iter().map(resolve).collect::<Result<_, _>>()?;
+        let columns: Vec<Resolved> = columns.iter().map(resolve).collect::<Result<_, _>>()?;
+        let mut wanted: Vec<usize> = columns.iter().filter_map(|c| c.parameter()).collect();
+        wanted.sort_unstable();
+        wanted.dedup();
         let scratch = RefCell::new(alloc::vec![0.0; S * known.len()]);
         Ok(Sensitive {
             system,
             columns,
+            wanted,
             scratch,
             error_control: true,
             taylor: Default::default(),
@@ -379,9 +381,9 @@ impl<Sys, const S: usize> Sensitive<Sys, S> {
         Sys: VariableMassSystem<N, S>,
     {
         let y = head::<S, SA>(state);
-        let jacobian = self.system.jacobian(t, &y)?;
         let mut scratch = self.scratch.borrow_mut();
-        if self.has_parameters() && !self.system.parameter_jacobian(t, &y, &mut scratch)? {
+        let (jacobian, given) = (self.system).jacobians(t, &y, &self.wanted, &mut scratch)?;
+        if !given {
             return Err(SystemError::NoParameterJacobian);
         }
         Ok((jacobian, scratch))

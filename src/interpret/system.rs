@@ -240,12 +240,33 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
         if !self.program.jacobian(t, state.as_slice(), &mut entries)? {
             return central_jacobian(t, state, |t, y| self.state_rate(t, y));
         }
-        Ok(SMatrix::<f64, S, S>::from_fn(|i, j| {
-            match i < len && j < len {
-                true => entries[i * len + j],
-                false => 0.0,
+        Ok(padded(len, &entries))
+    }
+
+    /// The program's J and the parameter Jacobian's columns `wanted` from one evaluation
+    /// ([`Program::jacobians`]), the padding's rows and columns 0; without the symbolic
+    /// Jacobians, the trait's central differences and no parameter Jacobian.
+    fn jacobians(
+        &self,
+        t: f64,
+        state: &SVector<f64, S>,
+        wanted: &[usize],
+        out: &mut [f64],
+    ) -> Result<(SMatrix<f64, S, S>, bool), SystemError> {
+        let len = self.program.state_len();
+        let rows = len * self.parameter_names().len();
+        let mut entries = vec![0.0; len * len];
+        out.iter_mut().for_each(|x| *x = 0.0);
+        let given = match out.get_mut(..rows) {
+            Some(model_rows) => {
+                (self.program).jacobians(t, state.as_slice(), wanted, &mut entries, model_rows)?
             }
-        }))
+            None => false,
+        };
+        if !given {
+            return Ok((self.jacobian(t, state)?, wanted.is_empty()));
+        }
+        Ok((padded(len, &entries), true))
     }
 
     fn sensitivity_obstacle(&self) -> Option<&'static str> {
@@ -417,4 +438,12 @@ impl<const N: usize, const S: usize> VariableMassSystem<N, S> for TapeSystem<N, 
                 }
             })
     }
+}
+
+/// The row-major `len × len` `entries` as an S × S matrix, the padding's rows and columns 0.
+fn padded<const S: usize>(len: usize, entries: &[f64]) -> SMatrix<f64, S, S> {
+    SMatrix::<f64, S, S>::from_fn(|i, j| match i < len && j < len {
+        true => entries[i * len + j],
+        false => 0.0,
+    })
 }

@@ -13,6 +13,8 @@
 //! for x = q, the state masses (and held inputs), and θ; for x = p, P_p = −I and F_p = 0.
 //! The held inputs' rows are 0 (constant between samples), as are a padded state's.
 
+use std::cell::RefCell;
+
 use varmass_core::SystemError;
 use varmass_symbolic::mechanics::{sensitivity_obstacle, time_tables, Derivation, Outputs};
 
@@ -25,6 +27,10 @@ use super::{Program, Stage};
 pub(super) struct Jacobians {
     /// F_q, F_v, F_m, P_q, P_m, M, F_θ, P_θ, each row-major, in one stage.
     stage: Stage,
+    /// The stages of the blocks with some parameters' columns of F_θ and P_θ only, by those
+    /// columns, each compiled when first asked for ([`Program::jacobians`]): the tape holds
+    /// only what they read.
+    subsets: RefCell<Vec<(Vec<usize>, Stage)>>,
     /// The columns of the state-mass blocks: state masses, then held inputs.
     mass_columns: usize,
     /// The parameters θ, [`Derivation::parameters`] order.
@@ -62,6 +68,7 @@ impl Jacobians {
                 tape: d.pool.compile(&roots),
                 roots,
             },
+            subsets: RefCell::new(Vec::new()),
             mass_columns,
             names,
             obstacle,
@@ -144,6 +151,32 @@ impl<'a> Blocks<'a> {
     }
 }
 
+impl Blocks<'_> {
+    /// ∂(state rate)/∂[q, p, m_s, held] of a model of sizes `(n, k, c)`, row-major
+    /// `len × len` into `out`: the columns of q, of p (P_p = −I, F_p = 0) and of the state
+    /// masses, the padding 0.
+    fn state_jacobian(
+        &self,
+        (n, k, c): (usize, usize, usize),
+        len: usize,
+        out: &mut [f64],
+    ) -> Result<(), SystemError> {
+        let minus_identity: Vec<f64> = (0..n * n)
+            .map(|i| if i / n == i % n { -1.0 } else { 0.0 })
+            .collect();
+        let parts = [
+            (self.columns(self.pq, Some(self.fq), (n, k), n)?, n, 0),
+            (self.columns(&minus_identity, None, (n, k), n)?, n, n),
+            (self.columns(self.pm, Some(self.fm), (n, k), c)?, c, 2 * n),
+        ];
+        out.iter_mut().take(len * len).for_each(|x| *x = 0.0);
+        for (part, width, first) in parts {
+            place(out, len, &part, width, first);
+        }
+        Ok(())
+    }
+}
+
 impl Program {
     /// Whether the program has the symbolic Jacobians (its derivation was made with
     /// `Outputs::sensitivities`): then [`Program::jacobian`] and
@@ -174,30 +207,7 @@ impl Program {
     /// ∂(state rate)/∂[q, p, m_s, held] at `(t, state)`, row-major `len × len` into `out`
     /// (`len` the state's length); `Ok(false)` without the Jacobians.
     pub fn jacobian(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<bool, SystemError> {
-        let Some(sizes) = self.jacobian_sizes() else {
-            return Ok(false);
-        };
-        let (n, k, c, _) = sizes;
-        let len = self.state_len();
-        let values = self.jacobian_values(t, state)?;
-        let blocks = Blocks::split(&values, sizes).ok_or(SystemError::NoParameterJacobian)?;
-        let minus_identity: Vec<f64> = (0..n * n)
-            .map(|i| if i / n == i % n { -1.0 } else { 0.0 })
-            .collect();
-        let parts = [
-            (blocks.columns(blocks.pq, Some(blocks.fq), (n, k), n)?, n, 0),
-            (blocks.columns(&minus_identity, None, (n, k), n)?, n, n),
-            (
-                blocks.columns(blocks.pm, Some(blocks.fm), (n, k), c)?,
-                c,
-                2 * n,
-            ),
-        ];
-        out.iter_mut().take(len * len).for_each(|x| *x = 0.0);
-        for (part, width, first) in parts {
-            place(out, len, &part, width, first);
-        }
-        Ok(true)
+        self.jacobians(t, state, &[], out, &mut [])
     }
 
     /// ∂(state rate)/∂θ at a fixed state `(t, state)`, row-major `len × P` into `out` (θ
@@ -208,17 +218,40 @@ impl Program {
         state: &[f64],
         out: &mut [f64],
     ) -> Result<bool, SystemError> {
-        let Some(sizes) = self.jacobian_sizes() else {
+        let every: Vec<usize> = (0..self.parameter_names().len()).collect();
+        self.jacobians(t, state, &every, &mut [], out)
+    }
+
+    /// [`Program::jacobian`] into `jacobian` (unless empty) and the columns `wanted`
+    /// (increasing) of [`Program::parameter_jacobian`] into `parameters` (`len × P`, the
+    /// other columns NaN), from one evaluation of a tape that holds only those columns;
+    /// `Ok(false)` without the Jacobians.
+    pub fn jacobians(
+        &self,
+        t: f64,
+        state: &[f64],
+        wanted: &[usize],
+        jacobian: &mut [f64],
+        parameters: &mut [f64],
+    ) -> Result<bool, SystemError> {
+        let Some((n, k, c, p)) = self.jacobian_sizes() else {
             return Ok(false);
         };
-        let (n, k, _, p) = sizes;
-        let values = self.jacobian_values(t, state)?;
+        if wanted.iter().any(|&j| j >= p) || !wanted.is_sorted_by(|a, b| a < b) {
+            return Err(SystemError::NoParameterJacobian);
+        }
+        let values = self.jacobian_values(t, state, wanted)?;
+        let sizes = (n, k, c, wanted.len());
         let blocks = Blocks::split(&values, sizes).ok_or(SystemError::NoParameterJacobian)?;
-        let part = blocks.columns(blocks.pt, Some(blocks.ft), (n, k), p)?;
-        out.iter_mut()
-            .take(self.state_len() * p)
-            .for_each(|x| *x = 0.0);
-        place(out, p, &part, p, 0);
+        if !jacobian.is_empty() {
+            blocks.state_jacobian((n, k, c), self.state_len(), jacobian)?;
+        }
+        let rows = parameters.iter_mut().take(self.state_len() * p);
+        rows.for_each(|x| *x = f64::NAN);
+        if !wanted.is_empty() {
+            let part = blocks.columns(blocks.pt, Some(blocks.ft), (n, k), wanted.len())?;
+            place_columns(parameters, p, &part, wanted);
+        }
         Ok(true)
     }
 
@@ -229,19 +262,53 @@ impl Program {
         Some((n, self.state_mass_count(), j.mass_columns, j.names.len()))
     }
 
-    /// The Jacobian stage's values at `(t, state)`.
-    fn jacobian_values(&self, t: f64, state: &[f64]) -> Result<Vec<f64>, SystemError> {
-        let stage = match &self.jacobians {
-            Some(j) => &j.stage,
-            None => return Ok(Vec::new()),
+    /// The values at `(t, state)` of the Jacobian stage with the parameters' columns
+    /// `wanted` (every parameter's: the whole stage).
+    fn jacobian_values(
+        &self,
+        t: f64,
+        state: &[f64],
+        wanted: &[usize],
+    ) -> Result<Vec<f64>, SystemError> {
+        let Some(j) = &self.jacobians else {
+            return Ok(Vec::new());
         };
         let scratch = &mut *self.scratch.borrow_mut();
         self.load_state(scratch, t, state)?;
-        self.run(stage, scratch);
+        if wanted.len() == j.names.len() {
+            self.run(&j.stage, scratch);
+        } else {
+            let index = self.subset_stage(j, wanted);
+            self.run(&j.subsets.borrow()[index].1, scratch);
+        }
         if let Some(error) = scratch.outside.take() {
             return Err(error);
         }
         Ok(scratch.values.clone())
+    }
+
+    /// The index in `j.subsets` of the stage with the parameters' columns `wanted`,
+    /// compiled now if it is not there: the whole stage's roots of J, then F_θ's and P_θ's
+    /// entries in those columns, row by row.
+    fn subset_stage(&self, j: &Jacobians, wanted: &[usize]) -> usize {
+        if let Some(i) = j.subsets.borrow().iter().position(|(w, _)| w == wanted) {
+            return i;
+        }
+        let (n, k, c, p) = self.jacobian_sizes().unwrap_or_default();
+        let state_blocks = 2 * (n + k) * n + (n + k) * c + n * c + 2 * n * n;
+        let all = &j.stage.roots;
+        let (head, theta) = all.split_at(state_blocks.min(all.len()));
+        let picked = theta
+            .chunks(p.max(1))
+            .flat_map(|row| wanted.iter().filter_map(|&w| row.get(w).copied()));
+        let roots: Vec<_> = head.iter().copied().chain(picked).collect();
+        let stage = Stage {
+            tape: self.d.pool.compile(&roots),
+            roots,
+        };
+        let mut subsets = j.subsets.borrow_mut();
+        subsets.push((wanted.to_vec(), stage));
+        subsets.len() - 1
     }
 }
 
@@ -255,6 +322,18 @@ fn place(out: &mut [f64], stride: usize, part: &[f64], width: usize, first: usiz
     {
         for (c, value) in values.iter().enumerate() {
             if let Some(slot) = out.get_mut(row * stride + first + c) {
+                *slot = *value;
+            }
+        }
+    }
+}
+
+/// Writes the row-major `part` (a column per entry of `wanted`) into the row-major `out` of
+/// `stride` columns, each in the column `wanted` names, from row 0.
+fn place_columns(out: &mut [f64], stride: usize, part: &[f64], wanted: &[usize]) {
+    for (row, values) in part.chunks(wanted.len().max(1)).enumerate() {
+        for (value, &column) in values.iter().zip(wanted) {
+            if let Some(slot) = out.get_mut(row * stride + column) {
                 *slot = *value;
             }
         }
