@@ -14,7 +14,7 @@ form.
 
 Session 39 (heyoka 7.13.2, 2 shared cores): batch 8 net 0.46 / 0.49 / 0.54 µs per member
 at 1e-6 / 1e-9 / 1e-12 (raw 0.88 / 0.92 / 0.97), errors 2.6e-8 / 9.2e-12 / 2.6e-14; ours,
-Taylor lanes of 8, 1.41 / 1.48 / 1.60 µs at 2.6e-8 / 9.3e-12 / 2.5e-14.
+Taylor lanes of 8, 1.41 / 1.48 / 1.60 µs at 2.6e-8 / 9.3e-12 / 2.5e-14 (session 46: 1.13 / 1.19 / 1.30).
 """
 import time, numpy as np, heyoka as hy
 rng = np.random.default_rng(38)

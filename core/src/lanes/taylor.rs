@@ -33,7 +33,7 @@ use crate::run::{run, RunConfig};
 use crate::scratch::{Scratch, LEN};
 use crate::solution::StopReason;
 use crate::stepper::Stepper;
-use crate::steppers::taylor::Plan;
+use crate::steppers::taylor::{rules, Plan};
 use crate::steppers::{Taylor, TaylorControl};
 
 /// A member in its lane, stepped by its own scalar Taylor stepper.
@@ -74,11 +74,13 @@ where
     }
     let mut lanes: [Option<TaylorMember<'_, '_, Sys, N, S>>; W] = core::array::from_fn(|_| None);
     let mut queue = 0..jobs.len();
+    let rules = rules(control);
     loop {
         for (index, slot) in lanes.iter_mut().enumerate() {
             while slot.is_none() {
                 let Some(job) = queue.next() else { break };
-                let make = |system, time, state| Taylor::new(system, time, state, control);
+                let make =
+                    |system, time, state| Taylor::in_lanes(system, (time, state), control, rules);
                 match start_with::<Sys, _, N, S, W>(jobs, job, config, make) {
                     Ok(member) => {
                         Sys::set_lane(&mut parameters, index, &jobs[job].system);

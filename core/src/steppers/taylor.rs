@@ -214,39 +214,60 @@ where
     ) -> Result<Self, StepError<S>> {
         let control = control.map_err(|e| e.at(time, &state))?;
         let progress = Progress::new(system, time, state)?;
-        let mut coefficients = [SVector::zeros(); MAX_ORDER + 1];
-        let mut scratch = Scratch::new();
-        match system.taylor_coefficients(time, &state, &mut coefficients[..2], &mut scratch) {
-            None => {
-                return Err(StepError::invalid_configuration(
-                    time,
-                    state,
-                    "the system provides no Taylor coefficients (generate them with \
-                     emit = [..., \"taylor\"]; with sensitivities the recurrences need a \
-                     tangent form: q' in closed form, and for generated code no tables, \
-                     inputs or switches)",
-                ))
-            }
-            Some(Err(error)) => return Err(StepError::from_system(system, error, time, &state)),
-            Some(Ok(())) => {}
+        let mut stepper = Self::assembled(system, progress, control, rules(control));
+        let probe = &mut stepper.coefficients[..2];
+        match system.taylor_coefficients(time, &state, probe, &mut stepper.scratch) {
+            None => Err(StepError::invalid_configuration(
+                time,
+                state,
+                "the system provides no Taylor coefficients (generate them with \
+                 emit = [..., \"taylor\"]; with sensitivities the recurrences need a \
+                 tangent form: q' in closed form, and for generated code no tables, \
+                 inputs or switches)",
+            )),
+            Some(Err(error)) => Err(StepError::from_system(system, error, time, &state)),
+            Some(Ok(())) => Ok(stepper),
         }
-        Ok(Self {
+    }
+
+    /// A member's stepper in a run in lanes: [`Taylor::new`]'s, with the run's `rules`
+    /// (`rules(control)`, computed once) and without the probe expansion that shows the
+    /// system provides coefficients. The lanes showed that once for every member
+    /// (`lanes/taylor.rs`), and the probe's one error, a singular mass matrix, makes a
+    /// lane's expansion non-finite, which expands the member here alone
+    /// ([`Self::expanded_elsewhere`]) and flies it again on the scalar path: the scalar
+    /// run's error is the member's either way.
+    pub(crate) fn in_lanes(
+        system: &'a Sys,
+        (time, state): (f64, SVector<f64, S>),
+        control: TaylorControl,
+        rules: [(usize, f64); 2],
+    ) -> Result<Self, StepError<S>> {
+        let validated = control.validated(Floor::Taylor);
+        let control = validated.map_err(|e| e.at(time, &state))?;
+        let progress = Progress::new(system, time, state)?;
+        Ok(Self::assembled(system, progress, control, rules))
+    }
+
+    /// The stepper of checked parts, before its first step.
+    fn assembled(
+        system: &'a Sys,
+        progress: Progress<S>,
+        control: TaylorControl,
+        rules: [(usize, f64); 2],
+    ) -> Self {
+        Self {
             system,
             progress,
             control,
-            coefficients,
+            coefficients: [SVector::zeros(); MAX_ORDER + 1],
             order: 0,
             last_step: 0.0,
             compensation: SVector::zeros(),
-            rules: match control {
-                TaylorControl::Adaptive { tolerance, .. } => {
-                    [rule(tolerance.absolute()), rule(tolerance.relative())]
-                }
-                TaylorControl::Fixed { .. } => [(2, 0.0); 2],
-            },
-            scratch,
+            rules,
+            scratch: Scratch::new(),
             head: false,
-        })
+        }
     }
 
     /// Whether the stepper uses the system's double-double head.
@@ -346,6 +367,17 @@ where
         } else {
             Err(StepError::new(t0, y0, StepErrorKind::NonFiniteState))
         }
+    }
+}
+
+/// The order and safety factor of `control`'s adaptive rule, absolute (`[0]`) and relative
+/// (`[1]`); `[(2, 0.0); 2]` for fixed steps (unread).
+pub(crate) fn rules(control: TaylorControl) -> [(usize, f64); 2] {
+    match control {
+        TaylorControl::Adaptive { tolerance, .. } => {
+            [rule(tolerance.absolute()), rule(tolerance.relative())]
+        }
+        TaylorControl::Fixed { .. } => [(2, 0.0); 2],
     }
 }
 
