@@ -99,7 +99,15 @@ fn the_fits_errors_cover_the_truth_as_often_as_they_say() {
             values: data,
             sigma: Some(sigma),
         }];
-        let fitted = fit(&mut compiled, &args, values.clone(), &series, &unknowns).expect("fits");
+        let fitted = fit(
+            &mut compiled,
+            &args,
+            values.clone(),
+            &series,
+            &unknowns,
+            None,
+        )
+        .expect("fits");
         assert!(fitted.converged);
         for (k, truth) in [u_e, mu].into_iter().enumerate() {
             let gap = fitted.values[k] - truth;
