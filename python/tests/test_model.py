@@ -344,3 +344,126 @@ def test_a_fit_recovers_the_rockets_exhaust_speed_and_burn_rate():
     assert fit.residuals["y"].shape == t.shape
     with pytest.raises(TypeError, match="pair"):
         rocket.fit({"y": t}, "u_e", set={"u_e": 250.0, "mu": 4.0, "g": 9.81}, init={"m": 100.0})
+
+
+def rocket_noisy_altitudes():
+    """41 altitudes of ``models/rocket.vms`` (u_e = 300 m/s, μ = 5 kg/s, m0 = 100 kg) over
+    10 s with a fixed noise of about 2 m (σ = 2 given): y = u_e (t − (m/μ) ln(m0/m)) − ½ g t²,
+    m = m0 − μ t."""
+    t = np.linspace(0.0, 10.0, 41)
+    m = 100.0 - 5.0 * t
+    y = 300.0 * (t - m / 5.0 * np.log(100.0 / m)) - 0.5 * 9.81 * t**2
+    return t, y + 2.0 * np.sin(2.4 * np.arange(41) + 0.5)
+
+
+def fit_rocket_predicting(rocket, **predict):
+    t, y = rocket_noisy_altitudes()
+    return rocket.fit(
+        {"y": (t, y)},
+        {"u_e": None, "mu": (1.0, 10.0)},
+        sigma={"y": 2.0},
+        set={"u_e": 250.0, "mu": 4.0, "g": 9.81},
+        init={"y": 0.0, "y'": 0.0, "m": 100.0},
+        tol=1e-10,
+        **predict,
+    )
+
+
+def test_a_fit_predicts_the_rockets_burnout_with_the_closed_forms_errors(rocket):
+    """``predict="m < 40"``: the fitted rocket run on to m_b = 40 kg, 2 s past the data.
+    With D = m0 − m_b = 60 kg and L = ln(m0/m_b) (the altitude above at m = m_b):
+    t* = D/μ, y* = u_e (D − m_b L)/μ − ½ g D²/μ², so ∂t*/∂μ = −D/μ² (∂t*/∂u_e = 0),
+    ∂y*/∂u_e = (D − m_b L)/μ, ∂y*/∂μ = −u_e (D − m_b L)/μ² + g D²/μ³, and each error is
+    √(gᵀΣg), Σ_ij = ρ_ij σ_i σ_j from the fit's errors and correlation, at the fitted
+    values. Measured: values and errors to 1.2e-11 relative at most; bound 1e-8 (the run's
+    tolerance, 1e-10, on its columns, with margin). Without the correlation term (ρ =
+    −0.9993) y*'s error is 0.8 % larger, far outside the bound (the Rust test
+    cli/tests/fit.rs predicts a height's time, whose error the cross term makes 12 times
+    smaller)."""
+    fit = fit_rocket_predicting(rocket, predict="m < 40")
+    assert fit.converged, fit
+    p = fit.prediction
+    assert isinstance(p, varmass.Prediction)
+    assert p.condition == "m < 40" and p.clock is None and p.clock_error is None
+    assert list(p.values) == ["y"] and list(p.errors) == ["y"]
+    u_e, mu = fit.values["u_e"], fit.values["mu"]
+    sigma = np.array([fit.errors["u_e"], fit.errors["mu"]])
+    covariance = fit.correlation * np.outer(sigma, sigma)
+    d, m_b, g = 60.0, 40.0, 9.81
+    ln = math.log(100.0 / m_b)
+    t_star = d / mu
+    y_star = u_e * (d - m_b * ln) / mu - 0.5 * g * d * d / mu**2
+    grad_t = np.array([0.0, -d / mu**2])
+    grad_y = np.array([(d - m_b * ln) / mu, -u_e * (d - m_b * ln) / mu**2 + g * d * d / mu**3])
+    error_t = math.sqrt(grad_t @ covariance @ grad_t)
+    error_y = math.sqrt(grad_y @ covariance @ grad_y)
+    for got, want in [(p.t, t_star), (p.values["y"], y_star), (p.t_error, error_t),
+                      (p.errors["y"], error_y)]:
+        print(f"{got!r} against {want!r}: {abs(got - want) / abs(want):.1e}")
+        assert abs(got - want) <= 1e-8 * abs(want), (got, want, p)
+    uncorrelated = math.sqrt(grad_y**2 @ sigma**2)
+    assert abs(uncorrelated - error_y) > 1e-3 * error_y, (uncorrelated, error_y)
+    assert "m < 40" in repr(p) and fit_rocket_predicting(rocket).prediction is None
+
+
+def with_error(value, error):
+    """The command line's ``value ± error`` (cli/src/fit/mod.rs ``with_error``): the error
+    to two significant digits and the value to its decimal place (within 1e-4…1e7)."""
+    decimals = 1 - math.floor(math.log10(error))
+    assert 0 <= decimals <= 8 and abs(value) < 1e7
+    return f"{value:.{decimals}f} ± {error:.{decimals}f}"
+
+
+def test_the_command_lines_prediction_is_pythons_to_every_printed_digit(rocket, tmp_path):
+    """``varmass fit --predict`` on the same data (written as shortest round-trip
+    decimals, so the same doubles) prints each of Python's predicted values and errors to
+    every digit it shows (the tool from the target directory; CI builds it first)."""
+    import subprocess
+
+    from conftest import tool
+
+    binary = tool()
+    if binary is None:
+        pytest.skip("no varmass binary in the target directory: cargo build -p varmass-cli")
+    fit = fit_rocket_predicting(rocket, predict="m < 40", predict_until=30.0)
+    t, y = rocket_noisy_altitudes()
+    log = tmp_path / "log.csv"
+    log.write_text("time,altitude\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(t, y)))
+    args = [str(binary), "fit", str(MODELS / "rocket.vms"), "--data", str(log)]
+    args += ["--column", "y=altitude", "--fit", "u_e", "--fit", "mu=1:10", "--sigma", "y=2"]
+    args += ["--set", "u_e=250", "--set", "mu=4", "--set", "g=9.81"]
+    args += ["--init", "y=0", "--init", "y'=0", "--init", "m=100"]
+    args += ["--method", "dop853", "--tol", "1e-10", "--predict", "m < 40"]
+    done = subprocess.run(args + ["--predict-until", "30"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    p = fit.prediction
+    expected = (
+        "predicted where `m < 40`:\n"
+        f"  t = {with_error(p.t, p.t_error)}\n"
+        f"  y = {with_error(p.values['y'], p.errors['y'])}\n"
+    )
+    assert expected in done.stdout, (expected, done.stdout)
+    for name in ("u_e", "mu"):
+        assert f"{name} = {with_error(fit.values[name], fit.errors[name])}" in done.stdout
+
+
+def test_a_failed_prediction_keeps_the_fit_and_bad_arguments_are_refused(rocket):
+    # Burnout at 12 s lies past predict_until = 11: a RunError carrying the fit, as the
+    # command line prints the fit's report and then exits 1 with the prediction's message.
+    with pytest.raises(varmass.RunError, match="did not reach `m < 40` before t = 11") as e:
+        fit_rocket_predicting(rocket, predict="m < 40", predict_until=11)
+    assert str(e.value).startswith("predict `m < 40`: ")
+    assert isinstance(e.value.fit, varmass.FitResult) and e.value.fit.converged
+    assert abs(e.value.fit.values["u_e"] - 300.0) < 10.0 and e.value.fit.prediction is None
+    with pytest.raises(TypeError, match="predict must be a condition"):
+        fit_rocket_predicting(rocket, predict=0.0)
+    with pytest.raises(ValueError, match="predict: the condition is empty"):
+        fit_rocket_predicting(rocket, predict="  ")
+    with pytest.raises(ValueError, match="predict_until needs predict"):
+        fit_rocket_predicting(rocket, predict_until=30.0)
+    with pytest.raises(TypeError, match="predict_until must be a number"):
+        fit_rocket_predicting(rocket, predict="m < 40", predict_until="30")
+    with pytest.raises(ValueError, match="predict_until must be finite"):
+        fit_rocket_predicting(rocket, predict="m < 40", predict_until=math.inf)
+    with pytest.raises(ValueError, match="predict_until must be after the run's start, 0.0"):
+        fit_rocket_predicting(rocket, predict="m < 40", predict_until=0.0)

@@ -204,3 +204,30 @@ def test_a_scenes_log_offset_is_fitted():
     assert abs(fit.values["g"] - 9.5) <= 9.5e-8, fit
     assert abs(fit.values["init:m"] - 1020.0) <= 1020e-8, fit
     assert abs(fit.values["data:offset"] - 0.8) <= 1e-8, fit
+
+
+def test_a_scene_fit_predicts_stage_twos_mass_on_the_datas_clock():
+    # The offset log above, fitted and run on to stage 2's m = 200 kg: from the separation
+    # at t₁ = (1020 − 500)/10 = 52 s, 100 kg at μ₂ = 2 kg/s take 50 s, so t = 102 s (the
+    # log's clock: 102.8 s) and y = two_stage_altitude(9.5, 1020, 102); all to 1e-9
+    # relative (measured 4.2e-15, 2.0e-15 and 5.1e-15, as the tool's run in
+    # cli/tests/fit_scene.rs). Exact data: the errors are the integration's scatter, tiny
+    # but positive (1.5e-13 s, 1.1e-13 s, 2.4e-10 m).
+    t = 2.5 * np.arange(1, 61)
+    altitude = np.array([two_stage_altitude(9.5, 1020.0, x - 0.8) for x in t])
+    scene = varmass.Scene.from_file(TWO_STAGE)
+    unknowns = {"g": None, "init:m": (600.0, 2000.0), "data:offset": (-2.0, 2.0)}
+    fit = scene.fit({"y": (t, altitude)}, unknowns, predict="m < 200")
+    p = fit.prediction
+    expected = two_stage_altitude(9.5, 1020.0, 102.0)
+    assert abs(p.t - 102.0) <= 102e-9, p
+    assert abs(p.clock - 102.8) <= 102e-9, p
+    assert abs(p.values["y"] - expected) <= expected * 1e-9, p
+    for error in (p.t_error, p.clock_error, p.errors["y"]):
+        assert 0.0 < error < 1e-6, p
+    # A condition the last phase never meets before predict_until: the fit is kept.
+    with pytest.raises(varmass.RunError, match="did not reach `m < 50`") as e:
+        scene.fit({"y": (t, altitude)}, unknowns, predict="m < 50", predict_until=110)
+    assert e.value.fit.converged and abs(e.value.fit.values["g"] - 9.5) <= 9.5e-8
+    with pytest.raises(ValueError, match="--predict-until -1: the prediction's run would end"):
+        scene.fit({"y": (t, altitude)}, unknowns, predict="m < 200", predict_until=-1)

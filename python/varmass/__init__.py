@@ -14,7 +14,7 @@ code (the run-time interpreter and the core's steppers), reached without a proce
 from ._checks import METHODS
 from ._ensemble import Distribution, Ensemble, EnsembleResult, Failure, normal, uniform
 from ._errors import Diagnostic, ModelError, ModelWarning, RunError, VarmassError
-from ._fit import FitResult
+from ._fit import FitResult, Prediction
 from ._model import Check, Model
 from ._scene import PhaseChange, Scene, run_scene
 from ._solution import Solution
@@ -32,6 +32,7 @@ __all__ = [
     "ModelError",
     "ModelWarning",
     "PhaseChange",
+    "Prediction",
     "RunError",
     "Scene",
     "Solution",

@@ -162,6 +162,28 @@ def run_options(given: Mapping, motors: Iterable[str] = ()) -> dict:
     }
 
 
+def prediction(predict, predict_until, start: Optional[float]) -> Optional[Tuple[str, Optional[float]]]:
+    """A fit's ``predict`` (the condition its fitted run goes on to, ``"z' < 0"``) and
+    ``predict_until`` (the time that run may reach, after the run's ``start``; ``None``
+    for a scene's, which the tool checks) as the extension takes them, or ``None`` without
+    ``predict``."""
+    if predict is None:
+        if predict_until is not None:
+            raise ValueError("predict_until needs predict: the condition the run goes on to")
+        return None
+    if not isinstance(predict, str):
+        raise TypeError(
+            f"predict must be a condition (a string such as \"z' < 0\"), not {type(predict).__name__}"
+        )
+    condition = predict.strip()
+    if not condition:
+        raise ValueError("predict: the condition is empty")
+    until = optional_number("predict_until", predict_until)
+    if until is not None and start is not None and not until > start:
+        raise ValueError(f"predict_until must be after the run's start, {start}, not {until}")
+    return condition, until
+
+
 def input_laws(inputs: Optional[Mapping]) -> List[Tuple[str, str]]:
     """``inputs`` ({name: DSL expression, data file or (arguments, values)}) as (name, law)
     pairs, as ``--input`` takes them: the tool parses a law, and reads a ``.csv``/``.eng``

@@ -78,7 +78,10 @@ class RunError(VarmassError):
     ``str(error)`` is the tool's message. ``time`` is when it failed, ``reason`` why, and
     ``state`` the state there by name (coordinates, velocities, momenta, state masses).
     ``points`` holds what the run recorded up to the failure, one NumPy array per recorded
-    name and ``t`` (``None`` when it failed before its first step).
+    name and ``t`` (``None`` when it failed before its first step). ``fit`` is the
+    :class:`varmass.FitResult` of a fit whose prediction failed (``fit(..., predict=...)``:
+    the fit stands, as ``varmass fit --predict`` prints its report before the error), else
+    ``None``.
     """
 
     def __init__(self, message: str):
@@ -87,6 +90,7 @@ class RunError(VarmassError):
         self.reason: str = message
         self.state: Dict[str, float] = {}
         self.points = None
+        self.fit = None
         lines = message.splitlines()
         failed = _FAILED_AT.match(lines[0]) if lines else None
         if failed:

@@ -1,8 +1,39 @@
-"""``Model.fit``'s result (docs/sensitivities.md#fitting)."""
+"""``Model.fit``'s result (docs/sensitivities.md#fitting), and its prediction."""
 
-from typing import Dict, List
+from typing import Dict, List, Optional
 
 import numpy as np
+
+
+class Prediction:
+    """The fitted run on to a condition (``fit(..., predict="z' < 0")``), as ``varmass fit
+    --predict`` prints it: each value with its standard error √(gᵀΣg), Σ the fitted
+    unknowns' covariance and g their derivatives at the event
+    (docs/sensitivities.md#fitting).
+
+    ``condition`` is the condition that ended the run; ``t`` and ``t_error`` the event's
+    time (the model's clock) and its error; ``clock`` and ``clock_error`` its time on the
+    data's clock, t + δ, and its error when ``"data:offset"`` is fitted (else ``None``);
+    ``values`` and ``errors`` map each data quantity to its value and error at the event
+    (``prediction.values["z"]``, ``prediction.errors["z"]``), in the data's order.
+    """
+
+    def __init__(self, raw):
+        condition, time, clock, quantities = raw
+        self.condition: str = condition
+        self.t: float = time[0]
+        self.t_error: float = time[1]
+        self.clock: Optional[float] = None if clock is None else clock[0]
+        self.clock_error: Optional[float] = None if clock is None else clock[1]
+        self.values: Dict[str, float] = {q: v for q, v, _ in quantities}
+        self.errors: Dict[str, float] = {q: e for q, _, e in quantities}
+
+    def __repr__(self) -> str:
+        shown = [f"t = {self.t:.6g} ± {self.t_error:.2g}"]
+        if self.clock is not None:
+            shown.append(f"clock {self.clock:.6g} ± {self.clock_error:.2g}")
+        shown += [f"{q} = {v:.6g} ± {self.errors[q]:.2g}" for q, v in self.values.items()]
+        return f"<varmass.Prediction where {self.condition!r}: {', '.join(shown)}>"
 
 
 class FitResult:
@@ -14,9 +45,11 @@ class FitResult:
     each data quantity to its weighted residuals (model − data)/σ, ``solution`` is the
     fitted run (its quantities and their derivatives at the data's times),
     ``evaluations`` the runs made and ``converged`` whether Levenberg–Marquardt converged.
+    ``prediction`` is the :class:`Prediction` that ``fit(..., predict=...)`` asked, or
+    ``None`` without one.
     """
 
-    def __init__(self, names, raw, quantities, solution):
+    def __init__(self, names, raw, quantities, solution, prediction=None):
         values, errors, correlation, residuals, evaluations, converged = raw
         self.names: List[str] = list(names)
         self.values: Dict[str, float] = dict(zip(names, values))
@@ -28,6 +61,7 @@ class FitResult:
         self.evaluations: int = evaluations
         self.converged: bool = converged
         self.solution = solution
+        self.prediction: Optional[Prediction] = prediction
 
     def __repr__(self) -> str:
         state = "converged" if self.converged else "did NOT converge"

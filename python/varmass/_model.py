@@ -218,6 +218,8 @@ class Model:
         until=None,
         method: str = "dop853",
         tol=None,
+        predict: Optional[str] = None,
+        predict_until=None,
     ):
         """Fits parameters (and start values) of the model to measured data by weighted
         least squares, as ``varmass fit`` does (docs/sensitivities.md#fitting).
@@ -230,9 +232,18 @@ class Model:
         the parameter values, the fitted ones' start among them; ``init``, ``from_``,
         ``method`` (``"dop853"`` or ``"dormand-prince"``) and ``tol`` as :meth:`run`;
         ``until`` defaults to the data's last time. Returns a :class:`FitResult`.
+
+        ``predict``: a condition (``"z' < 0"``, the apogee; ``"m < 40"``) the fitted model
+        then runs on to, as ``varmass fit --predict`` does, before ``predict_until`` (by
+        default ``from_`` plus ten times the data's span, at least 10): the result's
+        ``prediction`` (a :class:`varmass.Prediction`) holds the event's time and each data
+        quantity there, each with its standard error √(gᵀΣg). A prediction that fails (the
+        condition not reached, a failed run) raises :class:`varmass.RunError` whose ``fit``
+        is the fit's result, as the command line prints the fit before the error.
         """
         series = _series(data, sigma)
         unknowns = _unknowns(fit)
+        request = _checks.prediction(predict, predict_until, _checks.number("from_", from_))
         last = max(s[1][-1] for s in series)
         options = _checks.run_options(
             {
@@ -246,8 +257,8 @@ class Model:
         )
         args = _native.options(self._file, self._with, options)
         pairs = _checks.unique_values("set", set)
-        raw = _native.fit(self._native(), pairs, args, series, unknowns)
-        return _fit_result(unknowns, raw, series)
+        raw = _native.fit(self._native(), pairs, args, series, unknowns, request)
+        return _fit_result(unknowns, raw, series, request)
 
 
     def ensemble(self, seed: int, **options):
@@ -296,16 +307,28 @@ def _series(data, sigma) -> list:
     return series
 
 
-def _fit_result(unknowns, raw, series):
-    """The :class:`FitResult` of the native fit's result ``raw``."""
-    from ._fit import FitResult
+def _fit_result(unknowns, raw, series, request=None):
+    """The :class:`FitResult` of the native fit's result ``raw``, with the prediction
+    ``request`` asked (condition, until); a failed prediction raises :class:`RunError`
+    carrying the result."""
+    from ._fit import FitResult, Prediction
     from ._solution import _Given
 
     names, block = raw[6], raw[7]
     times = np.frombuffer(block, dtype="<f8").reshape(len(names) + 1, -1)[0]
     details = _Given({"end_state": None, "statistics": None, "summary": None})
     solution = Solution(names, block, float(times[-1]), None, details)
-    return FitResult([u[0] for u in unknowns], raw[:6], [s[0] for s in series], solution)
+    predicted, failure = raw[8]
+    prediction = None if predicted is None else Prediction(predicted)
+    result = FitResult(
+        [u[0] for u in unknowns], raw[:6], [s[0] for s in series], solution, prediction
+    )
+    if failure is not None:
+        # As `varmass fit --predict`: the fit stands (its report first), then the error.
+        error = RunError(f"predict `{request[0]}`: {failure}")
+        error.fit = result
+        raise error
+    return result
 
 
 def _unknowns(fit) -> list:

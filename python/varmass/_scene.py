@@ -80,23 +80,38 @@ class Scene:
         ]
         return Solution._of_scene(raw, changes)
 
-    def fit(self, data: Mapping, fit, *, sigma: Optional[Mapping] = None):
+    def fit(
+        self,
+        data: Mapping,
+        fit,
+        *,
+        sigma: Optional[Mapping] = None,
+        predict: Optional[str] = None,
+        predict_until=None,
+    ):
         """Fits parameters (and start values) of the scene to measured data, as ``varmass
         fit SCENE.toml`` does (docs/sensitivities.md#fitting-a-scene): ``data``, ``fit`` and
         ``sigma`` as :meth:`varmass.Model.fit`; the start values are the scene's own (its
         ``[set]``, else the model's defaults, and its ``[init]``), and its settings are the
         file's. ``"data:offset"`` among ``fit`` fits the log's clock offset, as a model's
         fit does. Data outside the scene's span (shifted by the offset's bound nearest 0)
-        are left out with a warning. Returns a :class:`varmass.FitResult`."""
+        are left out with a warning. Returns a :class:`varmass.FitResult`.
+
+        ``predict`` runs the fitted scene on to a condition in place of its own
+        ``stop_when`` and ``until``, as ``varmass fit SCENE.toml --predict`` does (it ends
+        the last phase only; ``predict_until`` defaults to the scene's start plus ten times
+        the data's span): the result's ``prediction``, or a :class:`varmass.RunError`
+        carrying the fit as :meth:`varmass.Model.fit` says."""
         series = _series(data, sigma)
         unknowns = _unknowns(fit)
-        raw, left_out = _native.fit_scene(self._path, series, unknowns)
+        request = _checks.prediction(predict, predict_until, None)
+        raw, left_out = _native.fit_scene(self._path, series, unknowns, request)
         if left_out:
             warnings.warn(
                 f"{left_out} data outside the scene's span were left out of the fit",
                 stacklevel=2,
             )
-        return _fit_result(unknowns, raw, series)
+        return _fit_result(unknowns, raw, series, request)
 
     def _scene(self):
         if self._native is None:

@@ -23,6 +23,7 @@ use crate::run::names::{named, number, shown};
 use crate::run::{Compiled, Table};
 use crate::scene::Rerun;
 pub use data::Series;
+pub use predict::{Predict, Prediction};
 pub use scene::fit_file as fit_scene_file;
 
 /// `varmass fit`'s arguments: a run's (the model, `--set` start values, `--init`, the
@@ -117,9 +118,12 @@ pub struct Fit {
     pub converged: bool,
     /// The fitted run's table (the data's quantities and their derivatives at its times).
     pub table: Table,
+    /// The prediction asked of the fit ([`Predict`]), or why it failed (the fit stands).
+    pub prediction: Option<Result<Prediction, String>>,
 }
 
 /// What a fit holds fixed between evaluations: the run's start, the data and the unknowns.
+#[derive(Clone, Copy)]
 struct Problem<'a> {
     from: f64,
     series: &'a [Series],
@@ -309,15 +313,18 @@ fn row_at(table: &Table, t: f64) -> Result<usize, String> {
 }
 
 /// Fits `unknowns` of the model `compiled` to `series`: the run `args` with the parameter
-/// values `values` (the unknowns' start among them, or the model's defaults).
+/// values `values` (the unknowns' start among them, or the model's defaults); then the
+/// prediction `predict` asks, if any, of the fitted model ([`Fit::prediction`]).
 pub fn fit(
     compiled: &mut Compiled,
     args: &RunArgs,
     values: Vec<(String, f64)>,
     series: &[Series],
     unknowns: &[Unknown],
+    predict: Option<&Predict>,
 ) -> Result<Fit, CliError> {
     not_too_many(unknowns)?;
+    predict.map_or(Ok(()), |p| p.check(args.from))?;
     let values = compiled.model().with_defaults(&values);
     let start = start_values(args, &values, unknowns)?;
     let problem = Problem {
@@ -330,16 +337,19 @@ pub fn fit(
         args,
         values: &values,
     };
-    solve(&mut run, problem, start)
+    let fitted = solve(&mut run, problem, start)?;
+    Ok(predicted(&mut run, problem, fitted, predict))
 }
 
 /// Fits `unknowns` of the scene `rerun` to `series`, each datum within the scene's span
 /// (docs/sensitivities.md#fitting-a-scene): the start values are the scene's (its `[set]`
-/// or the model's defaults, its `[init]`).
+/// or the model's defaults, its `[init]`); then the prediction `predict` asks, if any, of
+/// the fitted scene ([`Fit::prediction`]).
 pub fn fit_scene(
     rerun: &mut Rerun,
     series: &[Series],
     unknowns: &[Unknown],
+    predict: Option<&Predict>,
 ) -> Result<Fit, CliError> {
     not_too_many(unknowns)?;
     let start = scene::start_values(rerun, unknowns)?;
@@ -348,13 +358,29 @@ pub fn fit_scene(
         series,
         unknowns,
     };
+    predict.map_or(Ok(()), |p| p.check(problem.from))?;
     // The scene's refusals before any step keep their words and their exit code.
     let theta = DVector::from_vec(start.clone());
     scene::table(rerun, &problem, &theta).map_err(|e| match e {
         CliError::Input(_) | CliError::Model { .. } => e,
         e => CliError::Run(format!("the fit's first run failed: {e}")),
     })?;
-    solve(rerun, problem, start)
+    let fitted = solve(rerun, problem, start)?;
+    Ok(predicted(rerun, problem, fitted, predict))
+}
+
+/// `fitted` with the prediction `predict` asks of it, run by `target` (its failure kept as
+/// its message: the fit stands).
+fn predicted(
+    target: &mut impl Evaluate,
+    problem: Problem<'_>,
+    mut fitted: Fit,
+    predict: Option<&Predict>,
+) -> Fit {
+    fitted.prediction = predict.map(|request| {
+        predict::predict(target, &problem, &fitted, request).map_err(|e| e.to_string())
+    });
+    fitted
 }
 
 /// Refuses more unknowns than a run's sensitivity columns.
@@ -515,6 +541,7 @@ fn summarize(
         evaluations: minimum.evaluations + 1,
         converged: minimum.converged,
         table,
+        prediction: None,
     })
 }
 
@@ -546,56 +573,44 @@ pub fn run_given(args: &FitArgs, given: &[String]) -> Result<String, CliError> {
     let model = crate::model::load(&args.run.model)?;
     let values = crate::run::plan::parameters(&args.run)?;
     let mut compiled = Compiled::new(model);
-    let fitted = fit(&mut compiled, &args.run, values.clone(), &series, &unknowns)?;
-    if args.predict.is_none() {
-        return finish(args, &fitted, &series, (left_out, window));
-    }
-    let values = compiled.model().with_defaults(&values);
-    let problem = Problem {
-        from: args.run.from,
-        series: &series,
-        unknowns: &unknowns,
-    };
-    let mut model = ModelRun {
-        compiled: &mut compiled,
-        args: &args.run,
-        values: &values,
-    };
-    finish_predicted(args, &mut model, (&problem, &fitted), (left_out, window))
+    let predict = request(args);
+    let fitted = fit(
+        &mut compiled,
+        &args.run,
+        values,
+        &series,
+        &unknowns,
+        predict.as_ref(),
+    )?;
+    finish(args, &fitted, &series, (left_out, window))
 }
 
-/// [`finish`] and then the prediction `--predict` asks of the fitted `target` (its error
-/// after the fit's report, which is not lost with it).
-fn finish_predicted(
-    args: &FitArgs,
-    target: &mut impl Evaluate,
-    (problem, fitted): (&Problem<'_>, &Fit),
-    (left_out, window): (usize, Window),
-) -> Result<String, CliError> {
-    let mut out = written(args, fitted, problem.series)?;
-    let Some(condition) = &args.predict else {
-        return Ok(out + &left_out_note(left_out, window));
-    };
-    let span = (problem.series.iter().flat_map(|s| s.times.iter()))
-        .fold(args.run.from, |end, t| end.max(*t))
-        - args.run.from;
-    let until = (args.predict_until).unwrap_or(args.run.from + 10.0 * span.max(1.0));
-    match predict::report(target, problem, fitted, condition, until) {
-        Ok(prediction) => out += &prediction,
-        Err(e) => return Err(CliError::Run(format!("{out}--predict `{condition}`: {e}"))),
-    }
-    Ok(out + &left_out_note(left_out, window))
+/// The prediction `--predict` (`--predict-until`) asks, if any.
+fn request(args: &FitArgs) -> Option<Predict> {
+    (args.predict.clone()).map(|condition| Predict {
+        condition,
+        until: args.predict_until,
+    })
 }
 
-/// The fit's report, its CSV and plot written as `args` asks, and the note of the data
-/// left out.
+/// The fit's report, its CSV and plot written as `args` asks, its prediction, and the note
+/// of the data left out; a prediction that failed is the error, after the fit's report
+/// (which is not lost with it).
 fn finish(
     args: &FitArgs,
     fitted: &Fit,
     series: &[Series],
     (left_out, window): (usize, Window),
 ) -> Result<String, CliError> {
-    Ok(written(args, fitted, series)? + &left_out_note(left_out, window))
+    let mut out = written(args, fitted, series)?;
+    match (&fitted.prediction, &args.predict) {
+        (Some(Ok(prediction)), _) => out += &prediction.report(),
+        (Some(Err(e)), Some(condition)) => {
+            return Err(CliError::Run(format!("{out}--predict `{condition}`: {e}")))
+        }
+        _ => {}
+    }
+    Ok(out + &left_out_note(left_out, window))
 }
 
 /// The fitted run's CSV and the plot of the fit over the data written as `args` asks; the

@@ -14,15 +14,83 @@ use crate::run::names::shown;
 use crate::run::Table;
 use crate::scene::{Request, Rerun};
 
-/// The prediction's report: the event's time and each fitted quantity there, with errors
-/// (`target`: the model's runs or the scene's).
-pub(super) fn report(
+/// A prediction asked of a fit (`--predict COND`, `--predict-until T`): the condition, and
+/// the time its run may reach (`None`: ten times the data's span after the run's start).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Predict {
+    /// The condition that ends the run (`"z' < 0"`: the apogee), as `--stop-when` takes it.
+    pub condition: String,
+    /// The time the run may reach before the condition holds (`--predict-until`).
+    pub until: Option<f64>,
+}
+
+/// The fitted run at a condition: the event's time and each data quantity there, each with
+/// its standard error √(gᵀ Σ g).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Prediction {
+    /// The condition that ended the run.
+    pub condition: String,
+    /// The event's time on the model's clock, and its error.
+    pub time: (f64, f64),
+    /// The event's time on the data's clock, t + δ, and its error, when the data's offset
+    /// ([`OFFSET`]) is fitted.
+    pub clock: Option<(f64, f64)>,
+    /// Each data quantity at the event (in the series' order): its name, value and error.
+    pub quantities: Vec<(String, f64, f64)>,
+}
+
+impl Prediction {
+    /// The report `varmass fit --predict` prints after the fit's.
+    pub fn report(&self) -> String {
+        let mut out = format!("predicted where `{}`:\n", self.condition);
+        let _ = write!(out, "  t = {}", with_error(self.time.0, self.time.1));
+        match self.clock {
+            Some((clock, error)) => {
+                let clock = with_error(clock, error);
+                let _ = writeln!(out, " (the data's clock: {clock})");
+            }
+            None => out.push('\n'),
+        }
+        for (quantity, value, error) in &self.quantities {
+            let _ = writeln!(out, "  {quantity} = {}", with_error(*value, *error));
+        }
+        out
+    }
+}
+
+impl Predict {
+    /// The time the run may reach: the one asked, else ten times the data's span after the
+    /// run's start (at least 10).
+    fn until(&self, problem: &Problem<'_>) -> f64 {
+        let span = (problem.series.iter().flat_map(|s| s.times.iter()))
+            .fold(problem.from, |end, t| end.max(*t))
+            - problem.from;
+        (self.until).unwrap_or(problem.from + 10.0 * span.max(1.0))
+    }
+
+    /// Refuses, before the fit, an end that is not after the run's start `from`.
+    pub(super) fn check(&self, from: f64) -> Result<(), CliError> {
+        match self.until {
+            Some(until) if until > from => Ok(()),
+            Some(until) => Err(CliError::Input(format!(
+                "--predict-until {}: the prediction's run would end before it starts, at {}",
+                shown(until),
+                shown(from)
+            ))),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The prediction `request` asks of the fit `fit` (`target`: the model's runs or the
+/// scene's).
+pub(super) fn predict(
     target: &mut impl Evaluate,
     problem: &Problem<'_>,
     fit: &Fit,
-    condition: &str,
-    until: f64,
-) -> Result<String, CliError> {
+    request: &Predict,
+) -> Result<Prediction, CliError> {
+    let (condition, until) = (request.condition.as_str(), request.until(problem));
     let theta = DVector::from_column_slice(&fit.values);
     let (table, stopped) = target.predicted(problem, &theta, (condition, until))?;
     if !stopped {
@@ -53,22 +121,20 @@ pub(super) fn report(
             None => f64::NAN,
         }
     };
-    let mut out = format!("predicted where `{condition}`:\n");
     let time = table.times()[last];
-    let _ = write!(out, "  t = {}", with_error(time, spread("t", 0.0)));
-    match fit.unknowns.iter().any(|u| u.name == OFFSET) {
-        true => {
-            let clock = with_error(time + problem.offset(&theta), spread("t", 1.0));
-            let _ = writeln!(out, " (the data's clock: {clock})");
-        }
-        false => out.push('\n'),
-    }
+    let clock = (fit.unknowns.iter().any(|u| u.name == OFFSET))
+        .then(|| (time + problem.offset(&theta), spread("t", 1.0)));
+    let mut quantities = Vec::new();
     for quantity in problem.quantities() {
         let value = read(quantity).ok_or_else(|| CliError::Run("not recorded".to_string()))?;
-        let shown = with_error(value, spread(quantity, 0.0));
-        let _ = writeln!(out, "  {quantity} = {shown}");
+        quantities.push((quantity.to_string(), value, spread(quantity, 0.0)));
     }
-    Ok(out)
+    Ok(Prediction {
+        condition: condition.to_string(),
+        time: (time, spread("t", 0.0)),
+        clock,
+        quantities,
+    })
 }
 
 /// A model's run at θ on to `condition` before `until`: its table, and whether the

@@ -9,8 +9,8 @@ use varmass::core::nalgebra::DVector;
 use std::path::Path;
 
 use super::{
-    data, finish_predicted, fit_scene, series_of, start_offset, Evaluate, Fit, FitArgs, Problem,
-    Series,
+    data, finish, fit_scene, request, series_of, start_offset, Evaluate, Fit, FitArgs, Predict,
+    Problem, Series,
 };
 use super::{Unknown, OFFSET};
 use crate::error::CliError;
@@ -49,27 +49,24 @@ pub fn run(args: &FitArgs, given: &[String], unknowns: &[Unknown]) -> Result<Str
     let mut scoped = args.clone();
     (scoped.run.from, scoped.run.until) = (from, Some(until));
     let (series, left_out, window) = series_of(&scoped, unknowns)?;
-    let fitted = fit_scene(&mut rerun, &series, unknowns)?;
-    let problem = Problem {
-        from,
-        series: &series,
-        unknowns,
-    };
-    finish_predicted(&scoped, &mut rerun, (&problem, &fitted), (left_out, window))
+    let fitted = fit_scene(&mut rerun, &series, unknowns, request(args).as_ref())?;
+    finish(&scoped, &fitted, &series, (left_out, window))
 }
 
-/// Fits `unknowns` of the scene file at `path` to `series` (the Python package's
-/// `Scene.fit`): the fit, and how many data lay outside the scene's span and were left out.
+/// Fits `unknowns` of the scene file at `path` to `series` and predicts what `predict`
+/// asks, if any (the Python package's `Scene.fit`): the fit, and how many data lay outside
+/// the scene's span and were left out.
 pub fn fit_file(
     path: &Path,
     mut series: Vec<Series>,
     unknowns: &[Unknown],
+    predict: Option<&Predict>,
 ) -> Result<(Fit, usize), CliError> {
     let mut rerun = Rerun::new(path)?;
     let (from, until) = rerun.span()?;
     let shift = start_offset(unknowns);
     let left_out = data::window(&mut series, from + shift, Some(until + shift));
-    Ok((fit_scene(&mut rerun, &series, unknowns)?, left_out))
+    Ok((fit_scene(&mut rerun, &series, unknowns, predict)?, left_out))
 }
 
 /// The unknowns' start values: the scene's own, each within its bounds (the data's time

@@ -142,6 +142,19 @@ pub fn reported(stdout: &str, name: &str) -> f64 {
     value.expect("a value").trim().parse().expect("a number")
 }
 
+/// The standard error a `varmass fit` report `stdout` gives `name` (its line `name = value ±
+/// error`, the error to two significant digits).
+pub fn reported_error(stdout: &str, name: &str) -> f64 {
+    let line = (stdout.lines())
+        .find(|l| l.trim_start().starts_with(&format!("{name} = ")))
+        .unwrap_or_else(|| panic!("{name} in {stdout}"));
+    let error = line
+        .split('±')
+        .nth(1)
+        .and_then(|e| e.split_whitespace().next());
+    error.expect("an error").parse().expect("a number")
+}
+
 /// The residuals' rms a `varmass fit` report `stdout` gives `quantity`.
 pub fn reported_rms(stdout: &str, quantity: &str) -> f64 {
     (stdout.lines())
