@@ -79,8 +79,13 @@ where
         for (index, slot) in lanes.iter_mut().enumerate() {
             while slot.is_none() {
                 let Some(job) = queue.next() else { break };
-                let make =
-                    |system, time, state| Taylor::in_lanes(system, (time, state), control, rules);
+                // A run that ends before its first step keeps the probe: its start's
+                // error (a singular mass matrix) is then the scalar run's.
+                let ends_at_once = config.max_steps == 0 || config.end_time == jobs[job].time;
+                let make = |system, time, state| match ends_at_once {
+                    true => Taylor::new(system, time, state, control),
+                    false => Taylor::in_lanes(system, (time, state), control, rules),
+                };
                 match start_with::<Sys, _, N, S, W>(jobs, job, config, make) {
                     Ok(member) => {
                         Sys::set_lane(&mut parameters, index, &jobs[job].system);

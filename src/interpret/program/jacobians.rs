@@ -224,7 +224,8 @@ impl Program {
 
     /// [`Program::jacobian`] into `jacobian` (unless empty) and the columns `wanted`
     /// (increasing) of [`Program::parameter_jacobian`] into `parameters` (`len × P`, the
-    /// other columns NaN), from one evaluation of a tape that holds only those columns;
+    /// other columns NaN in the rows of q̇, ṗ and ṁ_s; the held inputs' rows 0), from one
+    /// evaluation of a tape that holds only those columns;
     /// `Ok(false)` without the Jacobians.
     pub fn jacobians(
         &self,
@@ -246,8 +247,10 @@ impl Program {
         if !jacobian.is_empty() {
             blocks.state_jacobian((n, k, c), self.state_len(), jacobian)?;
         }
-        let rows = parameters.iter_mut().take(self.state_len() * p);
-        rows.for_each(|x| *x = f64::NAN);
+        // The mechanics' rows NaN in the columns not computed; the held inputs' rows 0.
+        let moved = 2 * n + k;
+        let rows = parameters.iter_mut().take(self.state_len() * p).enumerate();
+        rows.for_each(|(i, x)| *x = if i / p.max(1) < moved { f64::NAN } else { 0.0 });
         if !wanted.is_empty() {
             let part = blocks.columns(blocks.pt, Some(blocks.ft), (n, k), wanted.len())?;
             place_columns(parameters, p, &part, wanted);
