@@ -232,6 +232,7 @@ where
         recorder,
         previous: start,
         refused: None,
+        smooth: None,
     }
     .go()
 }
