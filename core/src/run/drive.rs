@@ -26,9 +26,6 @@ use crate::system::VariableMassSystem;
 /// refused and halved on to it (`docs/mechanics.md#switches`).
 const AHEAD: f64 = 1.0 + 1.0 / 16.0;
 
-/// The smallest capped step, as a fraction of the step before the approach: `1 / FLOOR`.
-const FLOOR: f64 = 64.0;
-
 /// A run between its start and its stop: the stepper, what is watched and recorded, the
 /// last point kept, and the time after which a step was refused for a mass.
 pub(super) struct Running<'r, 'e, 'a, St, const N: usize, const S: usize> {
@@ -179,16 +176,9 @@ where
             self.smooth = None;
             return;
         };
-        let Some(proposed) = self.stepper.proposed_step() else {
-            return;
-        };
-        // Never below 1/64 of the smooth step: a switch that touches zero without crossing
-        // (abs((t − 1)²)) is predicted again half as far at each step, and would be
-        // approached until the steps underflow.
-        let smooth = *self.smooth.get_or_insert(proposed);
-        let step = cap.max(smooth / FLOOR);
-        if step < proposed {
-            self.stepper.propose_step(step);
+        if let Some(proposed) = self.stepper.proposed_step().filter(|p| *p > cap) {
+            self.smooth.get_or_insert(proposed);
+            self.stepper.propose_step(cap);
         }
     }
 
