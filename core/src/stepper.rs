@@ -350,19 +350,6 @@ pub trait Stepper<const N: usize, const S: usize> {
     /// is accepted; on error the stepper stays at its last accepted state.
     fn step(&mut self) -> Result<StepOutcome, StepError<S>>;
 
-    /// The size of the step an adaptive stepper will attempt next, if it chooses one (0 or
-    /// `None` before its first step and after a restart); `None` by default.
-    fn proposed_step(&self) -> Option<f64> {
-        None
-    }
-
-    /// Makes `step` (> 0, finite) the size of the next attempt, in place of the controller's
-    /// proposal or, after a restart, of the start's rule: what a run knows better
-    /// (`run/drive.rs`): a step that ends just past a switch's predicted crossing, the
-    /// step size of the smooth motion before a crossing or a stop time it restarted at.
-    /// Nothing by default: a fixed step, or Taylor's step from its series, is its own.
-    fn propose_step(&mut self, _step: f64) {}
-
     /// The stepper's own continuous extension over the last step, if it has one; `None`
     /// otherwise, and runs then interpolate by cubic Hermite with the state rates at the
     /// ends of the step.

@@ -145,14 +145,6 @@ where
     fn dense_output(&self, time: f64) -> Option<SVector<f64, S>> {
         self.inner.dense_output(time)
     }
-
-    fn proposed_step(&self) -> Option<f64> {
-        self.inner.proposed_step()
-    }
-
-    fn propose_step(&mut self, step: f64) {
-        self.inner.propose_step(step);
-    }
 }
 
 #[cfg(test)]

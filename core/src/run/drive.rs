@@ -19,13 +19,6 @@ use crate::solution::StopReason;
 use crate::stepper::{StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
 
-/// How far past a switch's predicted crossing the next step may end, as a multiple of the
-/// distance: the crossing then lies in the step's last 1/17, where the jump it may bring
-/// to the rate (a table's slope in forward sensitivities' columns) weighs little in the
-/// error estimate, so the step is accepted and the crossing located, instead of steps
-/// refused and halved on to it (`docs/mechanics.md#switches`).
-const AHEAD: f64 = 1.0 + 1.0 / 16.0;
-
 /// A run between its start and its stop: the stepper, what is watched and recorded, the
 /// last point kept, and the time after which a step was refused for a mass.
 pub(super) struct Running<'r, 'e, 'a, St, const N: usize, const S: usize> {
@@ -40,9 +33,6 @@ pub(super) struct Running<'r, 'e, 'a, St, const N: usize, const S: usize> {
     /// The earliest refusal of a step for a non-positive mass (its time and state): the
     /// run lands halfway there until an event shows up or the gap is a rounding.
     pub(super) refused: Option<StepError<S>>,
-    /// The step the stepper proposed before the steps approaching a switch were capped:
-    /// the smooth motion's, proposed again once the switch is crossed.
-    pub(super) smooth: Option<f64>,
 }
 
 impl<St, const N: usize, const S: usize> Running<'_, '_, '_, St, N, S>
@@ -99,13 +89,11 @@ where
             self.needs,
         )?;
         let step_start = self.previous.time;
-        let mut ahead = None;
         if let Some(switches) = &mut self.switches {
             let interpolate = |time| over_last_step(&*self.stepper, &self.previous, &current, time);
             let step = (&self.previous, &current);
             match switches.check_step(system, step, &interpolate)? {
-                // A switch approaching: the step that holds its crossing ends just past it.
-                Crossing::None => ahead = switches.ahead().map(|dt| dt * AHEAD),
+                Crossing::None => {}
                 Crossing::Redo { near } => return self.redo(step_start, near),
                 Crossing::Cross { time, state } => return self.cross(step_start, (time, state)),
             }
@@ -119,10 +107,7 @@ where
         self.previous = current;
         match outcome {
             StepOutcome::ReachedStopTime => self.landed(step_start),
-            _ => {
-                self.cap(ahead);
-                Ok(None)
-            }
+            _ => Ok(None),
         }
     }
 
@@ -151,7 +136,6 @@ where
             // (a knot of a table of t, or another input's sample, samples none), and aim at
             // the next.
             Crossing::None => {
-                let resume = self.stepper.proposed_step();
                 let watches = (&mut *self.recorder, &mut self.watch, self.switches.as_mut());
                 let previous = &mut self.previous;
                 match sample_point(self.stepper, watches, previous, Sampling::Due, self.needs)? {
@@ -159,36 +143,15 @@ where
                     Sampled::Changed => {}
                     Sampled::Stopped(stop) => return Ok(Some(stop)),
                 }
-                // Go on with the step size before the stop time, not the start's rule.
-                if let Some(step) = resume {
-                    self.stepper.propose_step(step);
-                }
             }
         }
         self.aim()
     }
 
-    /// Caps the stepper's next step at `ahead` (a switch's predicted crossing, with its
-    /// margin), keeping the step it proposed before the approach; without a switch
-    /// approaching, the approach is over.
-    fn cap(&mut self, ahead: Option<f64>) {
-        let Some(cap) = ahead else {
-            self.smooth = None;
-            return;
-        };
-        if let Some(proposed) = self.stepper.proposed_step().filter(|p| *p > cap) {
-            self.smooth.get_or_insert(proposed);
-            self.stepper.propose_step(cap);
-        }
-    }
-
-    /// Integrates again from the point kept (at `from`) to `near`, before a switch: in one
-    /// step if the error control allows (the step from `from` that crossed the switch was
-    /// accepted, and the motion before it is smooth), not from the start's first step.
+    /// Integrates again from the point kept (at `from`) to `near`, before a switch.
     fn redo(&mut self, from: f64, near: f64) -> Result<Option<StopReason>, StepError<S>> {
         self.stepper.restart(from, self.previous.state)?;
         self.stepper.set_stop_time(near)?;
-        self.stepper.propose_step(near - from);
         Ok(None)
     }
 
@@ -200,8 +163,6 @@ where
         step_start: f64,
         past: (f64, SVector<f64, S>),
     ) -> Result<Option<StopReason>, StepError<S>> {
-        // The step size to go on with past the switch: the smooth motion's before it.
-        let resume = self.smooth.take().or(self.stepper.proposed_step());
         let sliver = (&mut *self.recorder, &mut self.watch, self.config);
         self.previous = match cross_past(self.stepper, sliver, &self.previous, past, self.needs)? {
             Crossed::Past(point) => point,
@@ -214,9 +175,6 @@ where
             sample_point(self.stepper, watches, previous, which, self.needs)?
         {
             return Ok(Some(stop));
-        }
-        if let Some(step) = resume {
-            self.stepper.propose_step(step);
         }
         self.aim()
     }

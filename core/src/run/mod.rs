@@ -232,7 +232,6 @@ where
         recorder,
         previous: start,
         refused: None,
-        smooth: None,
     }
     .go()
 }

@@ -92,9 +92,6 @@ pub(crate) struct SwitchWatch {
     scratch: Vec<f64>,
     /// The bracket of the crossing a redo is landing on.
     pending: Option<(f64, f64)>,
-    /// How far past the last accepted point the nearest crossing lies on the straight
-    /// lines of g through the step that reached it ([`Self::ahead`]).
-    ahead: Option<f64>,
     /// Per switch: the time of the first crossing of the current burst and how many.
     bursts: Vec<(f64, usize)>,
     /// The chatter window in t.
@@ -123,7 +120,6 @@ impl SwitchWatch {
             anchors: vec![0.0; count],
             scratch: vec![0.0; count],
             pending: None,
-            ahead: None,
             bursts: vec![(f64::NEG_INFINITY, 0); count],
             window: settings.chatter_window * (end_time - start.time).abs(),
         };
@@ -307,7 +303,6 @@ impl SwitchWatch {
     where
         Sys: VariableMassSystem<N, S>,
     {
-        self.ahead = None;
         let mut after = core::mem::take(&mut self.scratch);
         let evaluated = self.evaluate(system, end.time, &end.state, &mut after);
         let crossing = evaluated.map(|()| self.earliest(system, (start, end), interpolate, &after));
@@ -334,7 +329,6 @@ impl SwitchWatch {
                 }
             }
             Ok(None) => {
-                self.ahead = ahead_of(&self.values, &after, end.time - start.time);
                 self.keep(&after);
                 Ok(Crossing::None)
             }
@@ -415,13 +409,6 @@ impl SwitchWatch {
             }
         }
         earliest
-    }
-
-    /// How far past the last accepted point (a step with no crossing) the nearest switch
-    /// is predicted to cross: g's straight line through the step's ends, for each switch
-    /// moving toward zero. `None` after a crossing, a redo, or where no switch approaches.
-    pub(crate) fn ahead(&self) -> Option<f64> {
-        self.ahead
     }
 
     /// The pending crossing's bracket if the run just landed on its near end at `time`.
@@ -672,17 +659,6 @@ fn slivers(t: f64) -> impl Iterator<Item = f64> {
     let rounding = 4.0 * f64::EPSILON * t.abs().max(1.0);
     core::iter::successors(Some(rounding), |s| Some(s * 2.0))
         .take_while(move |s| *s <= 1e6 * rounding)
-}
-
-/// The time past a step of length `h` at which the first of the switches going from
-/// `before` to `after` (same side, nearer zero) reaches zero on its straight line.
-fn ahead_of(before: &[f64], after: &[f64], h: f64) -> Option<f64> {
-    let toward = |(&b, &a): (&f64, &f64)| {
-        let approaching = (b > 0.0 && a > 0.0 && a < b) || (b < 0.0 && a < 0.0 && a > b);
-        approaching.then(|| h * a / (b - a))
-    };
-    let times = before.iter().zip(after).filter_map(toward);
-    times.filter(|t| *t > 0.0 && t.is_finite()).reduce(f64::min)
 }
 
 /// Whether g went from `before` strictly to the other side of zero at `after` (a zero is

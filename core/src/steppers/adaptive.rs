@@ -9,7 +9,7 @@
 
 use nalgebra::SVector;
 
-use super::control::{Controlled, Mode, StepControl};
+use super::control::{Controlled, StepControl};
 use crate::error::StepError;
 use crate::stepper::{Progress, ProgressMut, Restarting, StepOutcome, Stepper};
 use crate::system::VariableMassSystem;
@@ -100,20 +100,6 @@ where
 
     fn step(&mut self) -> Result<StepOutcome, StepError<S>> {
         A::step(self)
-    }
-
-    fn proposed_step(&self) -> Option<f64> {
-        let next = self.core.memory.next_step;
-        (next > 0.0).then_some(next)
-    }
-
-    /// The next attempt's size, at most the control's `max_step`.
-    fn propose_step(&mut self, step: f64) {
-        if let Mode::Adaptive(control, _) = self.core.mode {
-            if step > 0.0 && step.is_finite() {
-                self.core.memory.next_step = step.min(control.max_step);
-            }
-        }
     }
 }
 
